@@ -1,0 +1,4 @@
+program flexmech
+  implicit none
+  print '(a)', 'flexmech placeholder'
+end program flexmech

@@ -1,0 +1,64 @@
+!> Small string helpers used when composing messages and output headers.
+module strings
+  use kinds, only: dp
+  implicit none
+  private
+  public :: str, lower, starts_with
+
+  interface str
+    module procedure str_int, str_real, str_logical
+  end interface str
+
+contains
+
+  pure function str_int(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function str_int
+
+  !> Shortest faithful-enough form: general format with 8 significant digits,
+  !> or `digits` if given.
+  pure function str_real(x, digits) result(s)
+    real(dp), intent(in) :: x
+    integer, intent(in), optional :: digits
+    character(len=:), allocatable :: s
+    character(len=48) :: buf
+    character(len=16) :: fmt
+    integer :: d
+    d = 8
+    if (present(digits)) d = digits
+    write(fmt, '(a,i0,a,i0,a)') '(g', d + 8, '.', d, ')'
+    write(buf, fmt) x
+    s = trim(adjustl(buf))
+  end function str_real
+
+  pure function str_logical(b) result(s)
+    logical, intent(in) :: b
+    character(len=:), allocatable :: s
+    if (b) then
+      s = 'on'
+    else
+      s = 'off'
+    end if
+  end function str_logical
+
+  pure function lower(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: t
+    integer :: i, c
+    t = s
+    do i = 1, len(s)
+      c = iachar(s(i:i))
+      if (c >= iachar('A') .and. c <= iachar('Z')) t(i:i) = achar(c + 32)
+    end do
+  end function lower
+
+  logical pure function starts_with(s, prefix)
+    character(len=*), intent(in) :: s, prefix
+    starts_with = .false.
+    if (len(s) >= len(prefix)) starts_with = s(1:len(prefix)) == prefix
+  end function starts_with
+end module strings

@@ -1,0 +1,311 @@
+!> The one door to LAPACK: explicit interfaces to the F77 routines flexmech
+!> uses, and thin assumed-shape wrappers that turn INFO into a sentence and can
+!> report a reciprocal condition number (1-norm).
+!>
+!> Dense LU (general), dense and banded Cholesky (mass matrices), symmetric
+!> generalized eigenproblem (natural frequencies), nonsymmetric eigenvalues
+!> (Floquet multipliers).
+module linalg
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  implicit none
+  private
+  public :: lu_factor, lu_solve, solve_linear
+  public :: cholesky_factor, cholesky_solve
+  public :: band_cholesky_factor, band_cholesky_solve
+  public :: sym_generalized_eig, eigenvalues_general
+  public :: dense_to_lower_band
+
+  interface
+    subroutine dgetrf(m, n, a, lda, ipiv, info)
+      import :: dp
+      integer, intent(in) :: m, n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgetrf
+    subroutine dgetrs(trans, n, nrhs, a, lda, ipiv, b, ldb, info)
+      import :: dp
+      character(len=1), intent(in) :: trans
+      integer, intent(in) :: n, nrhs, lda, ldb, ipiv(*)
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dgetrs
+    subroutine dgecon(norm, n, a, lda, anorm, rcond, work, iwork, info)
+      import :: dp
+      character(len=1), intent(in) :: norm
+      integer, intent(in) :: n, lda
+      real(dp), intent(in) :: a(lda, *), anorm
+      real(dp), intent(out) :: rcond, work(*)
+      integer, intent(out) :: iwork(*), info
+    end subroutine dgecon
+    subroutine dpotrf(uplo, n, a, lda, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: info
+    end subroutine dpotrf
+    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dpotrs
+    subroutine dpocon(uplo, n, a, lda, anorm, rcond, work, iwork, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(in) :: a(lda, *), anorm
+      real(dp), intent(out) :: rcond, work(*)
+      integer, intent(out) :: iwork(*), info
+    end subroutine dpocon
+    subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, kd, ldab
+      real(dp), intent(inout) :: ab(ldab, *)
+      integer, intent(out) :: info
+    end subroutine dpbtrf
+    subroutine dpbtrs(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
+      import :: dp
+      character(len=1), intent(in) :: uplo
+      integer, intent(in) :: n, kd, nrhs, ldab, ldb
+      real(dp), intent(in) :: ab(ldab, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dpbtrs
+    subroutine dsygv(itype, jobz, uplo, n, a, lda, b, ldb, w, work, lwork, info)
+      import :: dp
+      integer, intent(in) :: itype, n, lda, ldb, lwork
+      character(len=1), intent(in) :: jobz, uplo
+      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+      real(dp), intent(out) :: w(*), work(*)
+      integer, intent(out) :: info
+    end subroutine dsygv
+    subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+      import :: dp
+      character(len=1), intent(in) :: jobvl, jobvr
+      integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+      real(dp), intent(inout) :: a(lda, *)
+      real(dp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+      integer, intent(out) :: info
+    end subroutine dgeev
+  end interface
+
+  interface lu_solve
+    module procedure lu_solve_vec, lu_solve_mat
+  end interface lu_solve
+
+contains
+
+  !> LU factorization with partial pivoting (DGETRF), in place.  With `rcond`
+  !> present, also estimates the reciprocal 1-norm condition number (DGECON).
+  subroutine lu_factor(a, ipiv, err, rcond)
+    real(dp), intent(inout) :: a(:, :)
+    integer, intent(out) :: ipiv(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: rcond
+    integer :: n, info
+    real(dp) :: anorm
+    real(dp), allocatable :: work(:)
+    integer, allocatable :: iwork(:)
+    n = size(a, 1)
+    if (size(a, 2) /= n .or. size(ipiv) < n) then
+      call err%set('lu_factor', 'matrix must be square and ipiv at least n long')
+      return
+    end if
+    anorm = maxval(sum(abs(a), dim=1))
+    call dgetrf(n, n, a, n, ipiv, info)
+    if (info < 0) then
+      call err%set('lu_factor', 'DGETRF: argument '//str(-info)//' has an illegal value')
+      return
+    else if (info > 0) then
+      if (present(rcond)) rcond = 0.0_dp
+      call err%set('lu_factor', 'DGETRF: matrix is exactly singular (U('//str(info)//','//str(info)//') = 0)')
+      return
+    end if
+    if (present(rcond)) then
+      allocate(work(4*n), iwork(n))
+      call dgecon('1', n, a, n, anorm, rcond, work, iwork, info)
+      if (info /= 0) call err%set('lu_factor', 'DGECON: argument '//str(-info)//' has an illegal value')
+    end if
+  end subroutine lu_factor
+
+  subroutine lu_solve_vec(a, ipiv, b, err)
+    real(dp), intent(in) :: a(:, :)
+    integer, intent(in) :: ipiv(:)
+    real(dp), intent(inout), target, contiguous :: b(:)
+    type(error_t), intent(inout) :: err
+    real(dp), pointer :: b2(:, :)
+    b2(1:size(b), 1:1) => b
+    call lu_solve_mat(a, ipiv, b2, err)
+  end subroutine lu_solve_vec
+
+  subroutine lu_solve_mat(a, ipiv, b, err)
+    real(dp), intent(in) :: a(:, :)
+    integer, intent(in) :: ipiv(:)
+    real(dp), intent(inout) :: b(:, :)
+    type(error_t), intent(inout) :: err
+    integer :: n, info
+    n = size(a, 1)
+    call dgetrs('N', n, size(b, 2), a, n, ipiv, b, size(b, 1), info)
+    if (info /= 0) call err%set('lu_solve', 'DGETRS: argument '//str(-info)//' has an illegal value')
+  end subroutine lu_solve_mat
+
+  !> Solve A x = b (A is not modified); optional reciprocal condition number.
+  subroutine solve_linear(a, b, err, rcond)
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(inout), contiguous :: b(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: rcond
+    real(dp), allocatable :: lu(:, :)
+    integer, allocatable :: ipiv(:)
+    lu = a
+    allocate(ipiv(size(a, 1)))
+    call lu_factor(lu, ipiv, err, rcond)
+    if (err%failed()) return
+    call lu_solve(lu, ipiv, b, err)
+  end subroutine solve_linear
+
+  !> Cholesky factorization A = L L^T (DPOTRF, lower triangle used and
+  !> overwritten).  A matrix that is not positive definite is an error that
+  !> names the failing leading minor.
+  subroutine cholesky_factor(a, err, rcond)
+    real(dp), intent(inout) :: a(:, :)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: rcond
+    integer :: n, info, j
+    real(dp) :: anorm
+    real(dp), allocatable :: work(:)
+    integer, allocatable :: iwork(:)
+    n = size(a, 1)
+    anorm = 0.0_dp
+    if (present(rcond)) then
+      ! 1-norm of the symmetric matrix from its lower triangle
+      do j = 1, n
+        anorm = max(anorm, sum(abs(a(j:n, j))) + sum(abs(a(j, 1:j - 1))))
+      end do
+    end if
+    call dpotrf('L', n, a, n, info)
+    if (info < 0) then
+      call err%set('cholesky_factor', 'DPOTRF: argument '//str(-info)//' has an illegal value')
+      return
+    else if (info > 0) then
+      call err%set('cholesky_factor', 'DPOTRF: matrix is not positive definite (leading minor of order ' &
+                   //str(info)//' is not positive)')
+      return
+    end if
+    if (present(rcond)) then
+      allocate(work(3*n), iwork(n))
+      call dpocon('L', n, a, n, anorm, rcond, work, iwork, info)
+      if (info /= 0) call err%set('cholesky_factor', 'DPOCON: argument '//str(-info)//' has an illegal value')
+    end if
+  end subroutine cholesky_factor
+
+  subroutine cholesky_solve(l, b, err)
+    real(dp), intent(in) :: l(:, :)
+    real(dp), intent(inout), contiguous :: b(:)
+    type(error_t), intent(inout) :: err
+    integer :: info
+    call dpotrs('L', size(l, 1), 1, l, size(l, 1), b, size(b), info)
+    if (info /= 0) call err%set('cholesky_solve', 'DPOTRS: argument '//str(-info)//' has an illegal value')
+  end subroutine cholesky_solve
+
+  !> Banded Cholesky (DPBTRF) of a symmetric positive definite band matrix in
+  !> LAPACK lower band storage ab(1+i-j, j) = A(i, j), j <= i <= j + kd.
+  !> Cost O(n kd^2): linear in the number of elements of a beam chain.
+  subroutine band_cholesky_factor(ab, kd, err)
+    real(dp), intent(inout) :: ab(:, :)
+    integer, intent(in) :: kd
+    type(error_t), intent(inout) :: err
+    integer :: info
+    call dpbtrf('L', size(ab, 2), kd, ab, size(ab, 1), info)
+    if (info < 0) then
+      call err%set('band_cholesky_factor', 'DPBTRF: argument '//str(-info)//' has an illegal value')
+    else if (info > 0) then
+      call err%set('band_cholesky_factor', 'DPBTRF: matrix is not positive definite (leading minor of order ' &
+                   //str(info)//' is not positive)')
+    end if
+  end subroutine band_cholesky_factor
+
+  subroutine band_cholesky_solve(ab, kd, b, err)
+    real(dp), intent(in) :: ab(:, :)
+    integer, intent(in) :: kd
+    real(dp), intent(inout), contiguous :: b(:)
+    type(error_t), intent(inout) :: err
+    integer :: info
+    call dpbtrs('L', size(ab, 2), kd, 1, ab, size(ab, 1), b, size(b), info)
+    if (info /= 0) call err%set('band_cholesky_solve', 'DPBTRS: argument '//str(-info)//' has an illegal value')
+  end subroutine band_cholesky_solve
+
+  !> Copy the lower band (half-bandwidth kd) of a dense symmetric matrix into
+  !> LAPACK lower band storage.
+  pure subroutine dense_to_lower_band(a, kd, ab)
+    real(dp), intent(in) :: a(:, :)
+    integer, intent(in) :: kd
+    real(dp), intent(out) :: ab(:, :)
+    integer :: i, j, n
+    n = size(a, 1)
+    ab = 0.0_dp
+    do j = 1, n
+      do i = j, min(n, j + kd)
+        ab(1 + i - j, j) = a(i, j)
+      end do
+    end do
+  end subroutine dense_to_lower_band
+
+  !> Generalized symmetric-definite eigenproblem K x = w M x (DSYGV).
+  !> Eigenvalues ascending in `w`; with `vectors` present, M-orthonormal
+  !> eigenvectors in its columns.
+  subroutine sym_generalized_eig(k, m, w, err, vectors)
+    real(dp), intent(in) :: k(:, :), m(:, :)
+    real(dp), intent(out) :: w(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: vectors(:, :)
+    real(dp), allocatable :: a(:, :), b(:, :), work(:)
+    integer :: n, info, lwork
+    character(len=1) :: jobz
+    n = size(k, 1)
+    a = k
+    b = m
+    jobz = 'N'
+    if (present(vectors)) jobz = 'V'
+    lwork = max(1, 66*n)
+    allocate(work(lwork))
+    call dsygv(1, jobz, 'L', n, a, n, b, n, w, work, lwork, info)
+    if (info < 0) then
+      call err%set('sym_generalized_eig', 'DSYGV: argument '//str(-info)//' has an illegal value')
+    else if (info > 0 .and. info <= n) then
+      call err%set('sym_generalized_eig', 'DSYGV: '//str(info)//' off-diagonal elements failed to converge')
+    else if (info > n) then
+      call err%set('sym_generalized_eig', 'DSYGV: mass matrix is not positive definite (leading minor of order ' &
+                   //str(info - n)//')')
+    end if
+    if (present(vectors) .and. .not. err%failed()) vectors = a
+  end subroutine sym_generalized_eig
+
+  !> Eigenvalues (wr + i wi) of a general square matrix (DGEEV, no vectors).
+  subroutine eigenvalues_general(a, wr, wi, err)
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(out) :: wr(:), wi(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: c(:, :), work(:)
+    real(dp) :: dummy(1, 1)
+    integer :: n, info, lwork
+    n = size(a, 1)
+    c = a
+    lwork = max(1, 8*n)
+    allocate(work(lwork))
+    call dgeev('N', 'N', n, c, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
+    if (info < 0) then
+      call err%set('eigenvalues_general', 'DGEEV: argument '//str(-info)//' has an illegal value')
+    else if (info > 0) then
+      call err%set('eigenvalues_general', 'DGEEV: QR algorithm failed; eigenvalues '//str(info + 1)// &
+                   ' onward not computed')
+    end if
+  end subroutine eigenvalues_general
+end module linalg

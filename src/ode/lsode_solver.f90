@@ -1,0 +1,315 @@
+!> The one door to ODEPACK's DLSODE.
+!>
+!> A model extends `ode_system_t` and implements `rhs` (and `jacobian` if it
+!> wants MF = 21 or 24).  An `lsode_t` owns DLSODE's work arrays, the method
+!> flag and tolerances, advances the model to output points, returns the work
+!> counters and decodes every negative ISTATE into a sentence.
+!>
+!> DLSODE keeps its state in COMMON /DLS001/: it is not re-entrant, so only one
+!> integration may be in progress at a time in a process (run independent
+!> analyses in separate processes).  The model reaches the F77 callback through
+!> a module-level pointer that is set for the duration of each DLSODE call.
+!>
+!> A model whose RHS fails (e.g. mass matrix not positive definite) records the
+!> error in `self%err` and returns; the shim then returns zero derivatives until
+!> the current DLSODE call ends, and `integrate_to` reports the model's error.
+module lsode_solver
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use lsode_messages, only: take_lsode_messages, clear_lsode_messages
+  implicit none
+  private
+  public :: ode_system_t, lsode_t, lsode_counters_t
+  public :: mf_adams, mf_bdf_full_user, mf_bdf_full_fd, mf_bdf_band_user, mf_bdf_band_fd
+  public :: istate_sentence
+
+  integer, parameter :: mf_adams = 10          !< nonstiff, Adams, functional iteration
+  integer, parameter :: mf_bdf_full_user = 21  !< stiff, BDF, user full Jacobian
+  integer, parameter :: mf_bdf_full_fd = 22    !< stiff, BDF, finite-difference full Jacobian
+  integer, parameter :: mf_bdf_band_user = 24  !< stiff, BDF, user banded Jacobian
+  integer, parameter :: mf_bdf_band_fd = 25    !< stiff, BDF, finite-difference banded Jacobian
+
+  !> A first-order system y' = f(t, y).  Extend it to carry the model.
+  type, abstract :: ode_system_t
+    type(error_t) :: err          !< set by rhs/jacobian when the model cannot go on
+    real(dp) :: t_failed = 0.0_dp !< time at which err was first set
+  contains
+    procedure(rhs_interface), deferred :: rhs
+    procedure :: jacobian => jacobian_not_provided
+    procedure :: fail
+  end type ode_system_t
+
+  abstract interface
+    subroutine rhs_interface(self, t, y, ydot)
+      import :: ode_system_t, dp
+      class(ode_system_t), intent(inout) :: self
+      real(dp), intent(in) :: t, y(:)
+      real(dp), intent(out) :: ydot(:)
+    end subroutine rhs_interface
+  end interface
+
+  !> Work done so far (DLSODE's IWORK(11:14)), plus CPU seconds in DLSODE calls.
+  type :: lsode_counters_t
+    integer :: steps = 0
+    integer :: rhs_evals = 0
+    integer :: jac_evals = 0
+    integer :: lu_factorizations = 0  !< one per Jacobian evaluation for BDF, none for Adams
+    integer :: order_last = 0
+    real(dp) :: step_last = 0.0_dp
+    real(dp) :: cpu_seconds = 0.0_dp
+  end type lsode_counters_t
+
+  type :: lsode_t
+    integer :: neq = 0
+    integer :: mf = mf_adams
+    integer :: ml = 0, mu = 0          !< half-bandwidths for MF = 24/25
+    integer :: max_steps = 20000       !< per output interval (DLSODE's MXSTEP)
+    real(dp) :: rtol = 1.0e-6_dp
+    real(dp), allocatable :: atol(:)
+    real(dp) :: t = 0.0_dp             !< current time
+    integer :: istate = 1
+    real(dp), allocatable :: rwork(:)
+    integer, allocatable :: iwork(:)
+    real(dp) :: cpu_seconds = 0.0_dp
+  contains
+    procedure :: init
+    procedure :: integrate_to
+    procedure :: counters
+    procedure :: restart
+  end type lsode_t
+
+  interface
+    subroutine dlsode(f, neq, y, t, tout, itol, rtol, atol, itask, istate, iopt, &
+                      rwork, lrw, iwork, liw, jac, mf)
+      import :: dp
+      interface
+        subroutine f(neq, t, y, ydot)
+          import :: dp
+          integer, intent(in) :: neq(*)
+          real(dp), intent(in) :: t, y(*)
+          real(dp), intent(out) :: ydot(*)
+        end subroutine f
+        subroutine jac(neq, t, y, ml, mu, pd, nrowpd)
+          import :: dp
+          integer, intent(in) :: neq(*), ml, mu, nrowpd
+          real(dp), intent(in) :: t, y(*)
+          real(dp), intent(inout) :: pd(nrowpd, *)
+        end subroutine jac
+      end interface
+      integer, intent(in) :: neq(*), itol, itask, iopt, lrw, liw, mf
+      real(dp), intent(inout) :: y(*), t
+      real(dp), intent(in) :: tout, rtol(*), atol(*)
+      integer, intent(inout) :: istate, iwork(liw)
+      real(dp), intent(inout) :: rwork(lrw)
+    end subroutine dlsode
+  end interface
+
+  class(ode_system_t), pointer :: active => null()
+
+contains
+
+  ! ------------------------------------------------------------------ model side
+
+  !> Default: a model that does not supply an analytic Jacobian.
+  subroutine jacobian_not_provided(self, t, y, ml, mu, pd)
+    class(ode_system_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    if (.false.) pd(1, 1) = t + y(1) + ml + mu   ! arguments intentionally unused
+    call self%fail(t, 'this model supplies no analytic Jacobian; use MF = 22 or 25')
+  end subroutine jacobian_not_provided
+
+  !> Record the first failure of the model at time t.
+  subroutine fail(self, t, message)
+    class(ode_system_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    character(len=*), intent(in) :: message
+    if (self%err%failed()) return
+    call self%err%set('', message)
+    self%t_failed = t
+  end subroutine fail
+
+  ! ------------------------------------------------------------------ F77 shims
+
+  subroutine rhs_shim(neq, t, y, ydot)
+    integer, intent(in) :: neq(*)
+    real(dp), intent(in) :: t, y(*)
+    real(dp), intent(out) :: ydot(*)
+    if (active%err%failed()) then
+      ydot(1:neq(1)) = 0.0_dp
+      return
+    end if
+    call active%rhs(t, y(1:neq(1)), ydot(1:neq(1)))
+    if (active%err%failed()) ydot(1:neq(1)) = 0.0_dp
+  end subroutine rhs_shim
+
+  subroutine jac_shim(neq, t, y, ml, mu, pd, nrowpd)
+    integer, intent(in) :: neq(*), ml, mu, nrowpd
+    real(dp), intent(in) :: t, y(*)
+    real(dp), intent(inout) :: pd(nrowpd, *)
+    if (active%err%failed()) return
+    call active%jacobian(t, y(1:neq(1)), ml, mu, pd(1:nrowpd, 1:neq(1)))
+  end subroutine jac_shim
+
+  ! ------------------------------------------------------------------ solver side
+
+  !> Prepare for a new problem of `neq` equations starting at t0.  `atol` is a
+  !> scalar or a vector of length neq.
+  subroutine init(self, neq, t0, mf, rtol, atol, err, ml, mu, max_steps)
+    class(lsode_t), intent(inout) :: self
+    integer, intent(in) :: neq, mf
+    real(dp), intent(in) :: t0, rtol, atol(:)
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: ml, mu, max_steps
+    integer :: lrw, liw
+    if (neq < 1) then
+      call err%set('lsode init', 'number of equations must be positive, got '//str(neq))
+      return
+    end if
+    if (all(mf /= [10, 21, 22, 24, 25])) then
+      call err%set('lsode init', 'method flag MF must be 10, 21, 22, 24 or 25, got '//str(mf))
+      return
+    end if
+    if (.not. (rtol >= 0.0_dp) .or. any(.not. (atol >= 0.0_dp)) .or. (rtol <= 0.0_dp .and. all(atol <= 0.0_dp))) then
+      call err%set('lsode init', 'tolerances must be non-negative and not all zero (rtol = '//str(rtol)//')')
+      return
+    end if
+    if (size(atol) /= 1 .and. size(atol) /= neq) then
+      call err%set('lsode init', 'atol must have 1 or '//str(neq)//' entries, got '//str(size(atol)))
+      return
+    end if
+    self%neq = neq
+    self%mf = mf
+    self%rtol = rtol
+    self%atol = atol
+    self%ml = 0
+    self%mu = 0
+    if (present(ml)) self%ml = ml
+    if (present(mu)) self%mu = mu
+    if (present(max_steps)) self%max_steps = max_steps
+    if ((mf == 24 .or. mf == 25) .and. (self%ml < 0 .or. self%mu < 0 .or. self%ml >= neq .or. self%mu >= neq)) then
+      call err%set('lsode init', 'band half-widths must satisfy 0 <= ml, mu < neq, got ml = ' &
+                   //str(self%ml)//', mu = '//str(self%mu))
+      return
+    end if
+    select case (mf)
+    case (10)
+      lrw = 20 + 16*neq
+      liw = 20
+    case (21, 22)
+      lrw = 22 + 9*neq + neq**2
+      liw = 20 + neq
+    case default
+      lrw = 22 + 10*neq + (2*self%ml + self%mu)*neq
+      liw = 20 + neq
+    end select
+    if (allocated(self%rwork)) deallocate(self%rwork, self%iwork)
+    allocate(self%rwork(lrw), self%iwork(liw))
+    self%rwork = 0.0_dp
+    self%iwork = 0
+    self%iwork(1) = self%ml
+    self%iwork(2) = self%mu
+    self%iwork(6) = self%max_steps
+    self%t = t0
+    self%istate = 1
+    self%cpu_seconds = 0.0_dp
+  end subroutine init
+
+  !> Start afresh from the current (t, y) on the next call, e.g. after a
+  !> discontinuity in the model.  Counters restart from zero in DLSODE.
+  subroutine restart(self)
+    class(lsode_t), intent(inout) :: self
+    self%istate = 1
+  end subroutine restart
+
+  !> Advance `sys` from the current time to `tout`; y holds the state in and out.
+  subroutine integrate_to(self, sys, y, tout, err)
+    class(lsode_t), intent(inout) :: self
+    class(ode_system_t), intent(inout), target :: sys
+    real(dp), intent(inout), contiguous :: y(:)
+    real(dp), intent(in) :: tout
+    type(error_t), intent(inout) :: err
+    class(ode_system_t), pointer :: previous
+    integer :: itol, neq(1)
+    real(dp) :: cpu0, cpu1
+    if (.not. allocated(self%rwork)) then
+      call err%set('lsode', 'integrate_to called before init')
+      return
+    end if
+    if (size(y) /= self%neq) then
+      call err%set('lsode', 'state has '//str(size(y))//' entries, solver was set up for '//str(self%neq))
+      return
+    end if
+    itol = 1
+    if (size(self%atol) > 1) itol = 2
+    neq(1) = self%neq
+    call clear_lsode_messages()
+    previous => active
+    active => sys
+    call cpu_time(cpu0)
+    ! IOPT = 1 so that MXSTEP (iwork(6)) is honoured.
+    call dlsode(rhs_shim, neq, y, self%t, tout, itol, [self%rtol], self%atol, 1, self%istate, 1, &
+                self%rwork, size(self%rwork), self%iwork, size(self%iwork), jac_shim, self%mf)
+    call cpu_time(cpu1)
+    active => previous
+    self%cpu_seconds = self%cpu_seconds + (cpu1 - cpu0)
+    if (sys%err%failed()) then
+      call err%set('', sys%err%text()//' (at t = '//str(sys%t_failed)//')')
+      return
+    end if
+    if (self%istate < 0) then
+      call err%set('DLSODE', istate_sentence(self%istate, self%mf)//' (at t = '//str(self%t)// &
+                   '; LSODE says: '//take_lsode_messages()//')', code=self%istate)
+    end if
+  end subroutine integrate_to
+
+  function counters(self) result(c)
+    class(lsode_t), intent(in) :: self
+    type(lsode_counters_t) :: c
+    if (.not. allocated(self%iwork)) return
+    c%steps = self%iwork(11)
+    c%rhs_evals = self%iwork(12)
+    c%jac_evals = self%iwork(13)
+    c%order_last = self%iwork(14)
+    c%step_last = self%rwork(11)
+    if (self%mf /= mf_adams) c%lu_factorizations = self%iwork(13)
+    c%cpu_seconds = self%cpu_seconds
+  end function counters
+
+  !> DLSODE's ISTATE on return, as a sentence a user can act on.
+  function istate_sentence(istate, mf) result(s)
+    integer, intent(in) :: istate, mf
+    character(len=:), allocatable :: s
+    select case (istate)
+    case (1)
+      s = 'nothing was done: TOUT equals T'
+    case (2)
+      s = 'integration successful'
+    case (-1)
+      s = 'excess work done: the step limit for one output interval was reached before TOUT'
+      if (mf == mf_adams) then
+        s = s//'; the problem is probably stiff for the Adams method (MF=10): use a BDF method ' &
+              //'(method = ''bdf'' or ''bdf_band'', MF=21/22/24/25)'
+      else
+        s = s//'; raise max_steps or shorten the output interval'
+      end if
+    case (-2)
+      s = 'excess accuracy requested: rtol/atol are too small for machine precision; loosen them'
+    case (-3)
+      s = 'illegal input detected by DLSODE (see its message)'
+    case (-4)
+      s = 'repeated error-test failures on one step: the solution may have a singularity or ' &
+          //'the model produced inaccurate derivatives'
+    case (-5)
+      s = 'repeated corrector convergence failures on one step: the Jacobian may be wrong or ' &
+          //'the tolerances inappropriate'
+    case (-6)
+      s = 'a component of the error weight vanished (pure relative error control, atol = 0, ' &
+          //'on a solution component that became zero)'
+    case default
+      s = 'unknown ISTATE '//str(istate)
+    end select
+  end function istate_sentence
+end module lsode_solver

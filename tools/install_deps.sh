@@ -1,0 +1,26 @@
+#!/bin/sh
+# Install flexmech's system dependencies from Debian/Ubuntu packages when missing.
+# Does nothing when everything is present. Usage: install_deps.sh [extra-package ...]
+set -eu
+pkgs="gfortran liblapack-dev libblas-dev $*"
+missing=""
+for p in $pkgs; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+
+if [ "$(id -u)" -eq 0 ]; then
+  SUDO=""
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  SUDO="sudo -n"
+else
+  echo "flexmech: missing packages:$missing" >&2
+  echo "flexmech: install them as root with:" >&2
+  echo "    apt-get update && apt-get install -y$missing" >&2
+  exit 1
+fi
+echo "flexmech: installing$missing" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq >&2
+# shellcheck disable=SC2086
+$SUDO apt-get install -y -qq --no-install-recommends $missing >&2
