@@ -74,7 +74,12 @@ $(ODEPACK_LIB): $(ODEPACK_SRC)/dlsode.f
 	@echo "built $@ from $(ODEPACK_SRC)"
 
 # ---------------------------------------------------------------- compilation
-$(OUT)/deps.mk: $(ALL_SRC) tools/fortran_deps.sh | deps
+# The source list is rewritten only when it changes, so that adding, moving or
+# removing a file regenerates the module dependencies.
+SRC_LIST := $(OUT)/sources.txt
+$(shell mkdir -p $(OUT); echo '$(ALL_SRC)' | cmp -s - $(SRC_LIST) || echo '$(ALL_SRC)' > $(SRC_LIST))
+
+$(OUT)/deps.mk: $(ALL_SRC) $(SRC_LIST) tools/fortran_deps.sh | deps
 	@mkdir -p $(OUT)
 	@sh tools/fortran_deps.sh $(OBJ_DIR) $(ALL_SRC) > $@
 
@@ -96,9 +101,12 @@ $(OUT)/tools/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(OUT)/tools
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
+# Benchmarks may compare with NLopt (optional; installed by `make bench`).
+BENCH_LIBS := -lnlopt
+
 $(OUT)/bench/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(OUT)/bench
-	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+	$(FC) $(FFLAGS) -o $@ $^ $(BENCH_LIBS) $(LIBS)
 
 test-bins: $(BIN_DIR)/flexmech $(TEST_BIN) $(TOOL_BIN)
 
@@ -116,7 +124,8 @@ test: deps
 	@$(MAKE) --no-print-directory BUILD=debug test-bins
 	@sh tests/run_tests.sh $(BUILD_DIR)
 
-bench: deps
+bench:
+	@$(MAKE) --no-print-directory deps EXTRA_PKGS=libnlopt-dev
 	@$(MAKE) --no-print-directory BUILD=release bench-bins
 	@sh bench/run_bench.sh $(BUILD_DIR)
 

@@ -1,4 +1,88 @@
+!> flexmech DECK.nml [-o OUT]
+!>
+!> Reads a namelist deck, runs the analysis named in its &run group and writes
+!> a tabular output file.  Exit status: 0 success; 1 usage error; 2 bad input
+!> (no output file is left); 3 the analysis stopped with a diagnosis (the
+!> output written so far is kept, with the diagnosis in its footer).
 program flexmech
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use version, only: program_name, program_version
+  use deck_reader, only: deck_t, invalid_value, input_error_code
+  use table_output, only: table_t
+  use run_settings, only: read_run_settings, echo_run_settings, analysis_names
+  use command_line, only: parse_arguments, quit
+  use ode_verification, only: run_lsode_check
   implicit none
-  print '(a)', 'flexmech placeholder'
+
+  character(len=:), allocatable :: deck_path, out_path
+  type(deck_t) :: deck
+  type(table_t) :: out
+  type(error_t) :: err
+  real(dp) :: cpu0, cpu1
+  character(len=32) :: analysis
+  character(len=256) :: title
+
+  call cpu_time(cpu0)
+  call parse_arguments(deck_path, out_path)
+
+  call deck%open(deck_path, err)
+  if (err%failed()) call fail_input(err)
+  call read_run_settings(deck, analysis, title, err)
+  if (err%failed()) call fail_input(err)
+
+  call out%open(out_path, err)
+  if (err%failed()) then
+    write(error_unit, '(a)') program_name//': error: '//err%text()
+    call quit(1)
+  end if
+  call out%comment(program_name//' '//program_version)
+  call out%comment('deck: '//deck_path)
+  if (len_trim(title) > 0) call out%comment('title: '//trim(title))
+  call out%comment('effective input (every value, defaults included):')
+  call echo_run_settings(out)
+
+  select case (trim(analysis))
+  case ('lsode_check')
+    call run_lsode_check(deck, out, err)
+  case default
+    call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
+                       'must be one of '//analysis_names, err)
+  end select
+  call deck%close()
+
+  if (err%failed()) then
+    if (err%code == input_error_code) then
+      call out%discard()
+      call fail_input(err)
+    end if
+    call out%comment('stopped: '//err%text())
+  end if
+  call cpu_time(cpu1)
+  call out%cost('total_cpu_seconds', str(cpu1 - cpu0, 4))
+  block
+    type(error_t) :: commit_err
+    call out%commit(commit_err)
+    if (commit_err%failed()) then
+      write(error_unit, '(a)') program_name//': error: '//commit_err%text()
+      call quit(1)
+    end if
+  end block
+  if (err%failed()) then
+    write(error_unit, '(a)') program_name//': analysis stopped: '//err%text()
+    write(error_unit, '(a)') program_name//': partial output kept in '//out_path
+    call quit(3)
+  end if
+  write(output_unit, '(a)') program_name//': wrote '//out_path
+
+contains
+
+  subroutine fail_input(err)
+    type(error_t), intent(in) :: err
+    write(error_unit, '(a)') program_name//': input error: '//err%text()
+    call quit(input_error_code)
+  end subroutine fail_input
+
 end program flexmech

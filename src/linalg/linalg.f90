@@ -164,8 +164,8 @@ contains
     real(dp), intent(out), optional :: rcond
     real(dp), allocatable :: lu(:, :)
     integer, allocatable :: ipiv(:)
+    allocate(lu(size(a, 1), size(a, 2)), ipiv(size(a, 1)))
     lu = a
-    allocate(ipiv(size(a, 1)))
     call lu_factor(lu, ipiv, err, rcond)
     if (err%failed()) return
     call lu_solve(lu, ipiv, b, err)
@@ -270,6 +270,7 @@ contains
     integer :: n, info, lwork
     character(len=1) :: jobz
     n = size(k, 1)
+    allocate(a(n, n), b(n, n))
     a = k
     b = m
     jobz = 'N'
@@ -294,13 +295,14 @@ contains
     real(dp), intent(out) :: wr(:), wi(:)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: c(:, :), work(:)
-    real(dp) :: dummy(1, 1)
+    real(dp) :: dummy_left(1, 1), dummy_right(1, 1)
     integer :: n, info, lwork
     n = size(a, 1)
+    allocate(c(n, n))
     c = a
     lwork = max(1, 8*n)
     allocate(work(lwork))
-    call dgeev('N', 'N', n, c, n, wr, wi, dummy, 1, dummy, 1, work, lwork, info)
+    call dgeev('N', 'N', n, c, n, wr, wi, dummy_left, 1, dummy_right, 1, work, lwork, info)
     if (info < 0) then
       call err%set('eigenvalues_general', 'DGEEV: argument '//str(-info)//' has an illegal value')
     else if (info > 0) then

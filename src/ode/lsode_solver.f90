@@ -22,7 +22,10 @@ module lsode_solver
   private
   public :: ode_system_t, lsode_t, lsode_counters_t
   public :: mf_adams, mf_bdf_full_user, mf_bdf_full_fd, mf_bdf_band_user, mf_bdf_band_fd
-  public :: istate_sentence
+  public :: istate_sentence, mf_from_method, method_names
+
+  !> Method names accepted in decks, and the DLSODE method flag each means.
+  character(len=*), parameter :: method_names = 'adams (MF=10), bdf (21), bdf_fd (22), bdf_band (24), bdf_band_fd (25)'
 
   integer, parameter :: mf_adams = 10          !< nonstiff, Adams, functional iteration
   integer, parameter :: mf_bdf_full_user = 21  !< stiff, BDF, user full Jacobian
@@ -277,6 +280,25 @@ contains
     if (self%mf /= mf_adams) c%lu_factorizations = self%iwork(13)
     c%cpu_seconds = self%cpu_seconds
   end function counters
+
+  !> Method flag for a deck's method name; 0 when the name is unknown.
+  pure integer function mf_from_method(name) result(mf)
+    character(len=*), intent(in) :: name
+    select case (trim(name))
+    case ('adams')
+      mf = mf_adams
+    case ('bdf')
+      mf = mf_bdf_full_user
+    case ('bdf_fd')
+      mf = mf_bdf_full_fd
+    case ('bdf_band')
+      mf = mf_bdf_band_user
+    case ('bdf_band_fd')
+      mf = mf_bdf_band_fd
+    case default
+      mf = 0
+    end select
+  end function mf_from_method
 
   !> DLSODE's ISTATE on return, as a sentence a user can act on.
   function istate_sentence(istate, mf) result(s)

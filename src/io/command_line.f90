@@ -1,0 +1,89 @@
+!> The command line of flexmech: `flexmech DECK.nml [-o OUT]`, and a clean
+!> exit with a given status (no "STOP n" noise on stderr).
+module command_line
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use, intrinsic :: iso_c_binding, only: c_int
+  use version, only: program_name, program_version
+  implicit none
+  private
+  public :: parse_arguments, quit, default_output
+
+  interface
+    subroutine c_exit(status) bind(c, name='exit')
+      import :: c_int
+      integer(c_int), value :: status
+    end subroutine c_exit
+  end interface
+
+contains
+
+  subroutine quit(status)
+    integer, intent(in) :: status
+    flush(output_unit)
+    flush(error_unit)
+    call c_exit(int(status, c_int))
+  end subroutine quit
+
+  subroutine parse_arguments(deck_path, out_path)
+    character(len=:), allocatable, intent(out) :: deck_path, out_path
+    integer :: i, n, length
+    character(len=:), allocatable :: arg
+    n = command_argument_count()
+    i = 0
+    do while (i < n)
+      i = i + 1
+      call get_command_argument(i, length=length)
+      allocate(character(len=length) :: arg)
+      call get_command_argument(i, arg)
+      select case (arg)
+      case ('-h', '--help')
+        call usage(output_unit)
+        call quit(0)
+      case ('--version')
+        write(output_unit, '(a)') program_name//' '//program_version
+        call quit(0)
+      case ('-o')
+        if (i == n) then
+          write(error_unit, '(a)') program_name//': -o needs a file name'
+          call quit(1)
+        end if
+        i = i + 1
+        call get_command_argument(i, length=length)
+        allocate(character(len=length) :: out_path)
+        call get_command_argument(i, out_path)
+      case default
+        if (allocated(deck_path)) then
+          write(error_unit, '(a)') program_name//': unexpected argument '''//arg//''''
+          call usage(error_unit)
+          call quit(1)
+        end if
+        deck_path = arg
+      end select
+      deallocate(arg)
+    end do
+    if (.not. allocated(deck_path)) then
+      call usage(error_unit)
+      call quit(1)
+    end if
+    if (.not. allocated(out_path)) out_path = default_output(deck_path)
+  end subroutine parse_arguments
+
+  !> DECK.nml -> DECK.out in the current directory.
+  pure function default_output(path) result(name)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: name
+    integer :: slash, dot
+    slash = index(path, '/', back=.true.)
+    name = path(slash + 1:)
+    dot = index(name, '.', back=.true.)
+    if (dot > 1) name = name(1:dot - 1)
+    name = name//'.out'
+  end function default_output
+
+  subroutine usage(unit)
+    integer, intent(in) :: unit
+    write(unit, '(a)') 'usage: '//program_name//' DECK.nml [-o OUTPUT]'
+    write(unit, '(a)') '  Runs the analysis named in the deck''s &run group (see doc/decks.md).'
+    write(unit, '(a)') '  Default OUTPUT: DECK.out in the current directory.'
+  end subroutine usage
+end module command_line

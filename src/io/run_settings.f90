@@ -1,0 +1,45 @@
+!> The &run group every deck starts with: which analysis to run and a title.
+module run_settings
+  use error_status, only: error_t
+  use deck_reader, only: deck_t
+  use table_output, only: table_t
+  implicit none
+  private
+  public :: read_run_settings, echo_run_settings, analysis_names
+
+  !> Analyses the program knows, for messages.
+  character(len=*), parameter :: analysis_names = '''lsode_check'''
+
+  character(len=32) :: analysis
+  character(len=256) :: title
+  namelist /run/ analysis, title
+
+contains
+
+  subroutine read_run_settings(deck, analysis_out, title_out, err)
+    type(deck_t), intent(inout) :: deck
+    character(len=*), intent(out) :: analysis_out, title_out
+    type(error_t), intent(inout) :: err
+    logical :: found
+    analysis = ''
+    title = ''
+    call deck%read_group('run', read_run_group, .true., found, err)
+    analysis_out = analysis
+    title_out = title
+  end subroutine read_run_settings
+
+  subroutine echo_run_settings(out)
+    type(table_t), intent(inout) :: out
+    integer :: u
+    u = out%echo_unit()
+    write(u, nml=run, delim='apostrophe')
+    call out%end_echo()
+  end subroutine echo_run_settings
+
+  subroutine read_run_group(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=run, iostat=ios, iomsg=iomsg)
+  end subroutine read_run_group
+end module run_settings

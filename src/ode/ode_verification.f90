@@ -1,0 +1,215 @@
+!> The `lsode_check` analysis: runs DLSODE through flexmech's wrapper on the
+!> stiff chemical-kinetics problem of LSODE's own documentation (Robertson),
+!> or on an undamped oscillator with a closed-form solution, and tabulates the
+!> solution with the cost of the run.  It is the smallest real analysis of the
+!> program and the check that the ODEPACK build is sound.
+module ode_verification
+  use kinds, only: dp, two_pi
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t, invalid_value
+  use table_output, only: table_t
+  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_from_method, method_names, mf_adams
+  implicit none
+  private
+  public :: run_lsode_check
+
+  type, extends(ode_system_t) :: kinetics_t
+  contains
+    procedure :: rhs => kinetics_rhs
+    procedure :: jacobian => kinetics_jac
+  end type kinetics_t
+
+  type, extends(ode_system_t) :: oscillator_t
+    real(dp) :: omega = 1.0_dp
+  contains
+    procedure :: rhs => oscillator_rhs
+    procedure :: jacobian => oscillator_jac
+  end type oscillator_t
+
+  ! staging variables of the &lsode_check group (defaults: DLSODE's own example)
+  character(len=32) :: problem, method
+  real(dp) :: rtol, atol(3), t_first, factor, omega
+  integer :: n_outputs, max_steps
+  namelist /lsode_check/ problem, method, rtol, atol, t_first, factor, n_outputs, omega, max_steps
+
+contains
+
+  subroutine set_defaults()
+    problem = 'kinetics'
+    method = 'bdf'
+    rtol = 1.0e-4_dp
+    atol = [1.0e-6_dp, 1.0e-10_dp, 1.0e-6_dp]
+    t_first = 0.4_dp
+    factor = 10.0_dp
+    n_outputs = 12
+    omega = 1.0_dp
+    max_steps = 20000
+  end subroutine set_defaults
+
+  subroutine read_lsode_check(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=lsode_check, iostat=ios, iomsg=iomsg)
+  end subroutine read_lsode_check
+
+  subroutine run_lsode_check(deck, out, err)
+    type(deck_t), intent(inout) :: deck
+    type(table_t), intent(inout) :: out
+    type(error_t), intent(inout) :: err
+    logical :: found
+    integer :: mf, k, neq, u
+    real(dp) :: tout
+    real(dp), allocatable :: y(:)
+    type(kinetics_t), target :: kinetics
+    type(oscillator_t), target :: oscillator
+    class(ode_system_t), pointer :: sys
+    type(lsode_t) :: ode
+    type(lsode_counters_t) :: c
+
+    call set_defaults()
+    call deck%read_group('lsode_check', read_lsode_check, .false., found, err)
+    if (err%failed()) return
+    mf = mf_from_method(method)
+    if (mf == 0) then
+      call invalid_value(deck, 'lsode_check', 'method', ''''//trim(method)//'''', 'must be one of '//method_names, err)
+    else if (problem /= 'kinetics' .and. problem /= 'oscillator') then
+      call invalid_value(deck, 'lsode_check', 'problem', ''''//trim(problem)//'''', &
+                         'must be ''kinetics'' or ''oscillator''', err)
+    else if (.not. (rtol > 0.0_dp .and. rtol < 1.0_dp)) then
+      call invalid_value(deck, 'lsode_check', 'rtol', str(rtol), 'must lie in (0, 1)', err)
+    else if (any(.not. (atol >= 0.0_dp))) then
+      call invalid_value(deck, 'lsode_check', 'atol', str(minval(atol)), 'must be >= 0', err)
+    else if (.not. (t_first > 0.0_dp)) then
+      call invalid_value(deck, 'lsode_check', 't_first', str(t_first), 'must be > 0', err)
+    else if (.not. (factor > 0.0_dp)) then
+      call invalid_value(deck, 'lsode_check', 'factor', str(factor), 'must be > 0', err)
+    else if (n_outputs < 1 .or. n_outputs > 100000) then
+      call invalid_value(deck, 'lsode_check', 'n_outputs', str(n_outputs), 'must lie in 1..100000', err)
+    else if (.not. (omega > 0.0_dp)) then
+      call invalid_value(deck, 'lsode_check', 'omega', str(omega), 'must be > 0', err)
+    else if (max_steps < 1) then
+      call invalid_value(deck, 'lsode_check', 'max_steps', str(max_steps), 'must be >= 1', err)
+    end if
+    if (err%failed()) return
+
+    u = out%echo_unit()
+    write(u, nml=lsode_check, delim='apostrophe')
+    call out%end_echo()
+
+    if (problem == 'kinetics') then
+      neq = 3
+      y = [1.0_dp, 0.0_dp, 0.0_dp]
+      sys => kinetics
+      call out%comment('problem: Robertson chemical kinetics, the stiff example of DLSODE''s prologue')
+      call ode%init(neq, 0.0_dp, mf, rtol, atol, err, ml=2, mu=2, max_steps=max_steps)
+    else
+      neq = 2
+      y = [1.0_dp, 0.0_dp]
+      oscillator%omega = omega
+      sys => oscillator
+      call out%comment('problem: undamped oscillator y'''' = -omega^2 y, y(0) = 1, exact y = cos(omega t)')
+      call ode%init(neq, 0.0_dp, mf, rtol, atol(1:1), err, ml=1, mu=1, max_steps=max_steps)
+    end if
+    if (err%failed()) return
+    call out%comment('method: '//trim(method)//' (DLSODE MF='//str(mf)//')')
+    if (neq == 3) then
+      call out%columns([character(len=16) :: 't', 'y1', 'y2', 'y3', 'y1+y2+y3-1'])
+    else
+      call out%columns([character(len=16) :: 't', 'y', 'dy/dt', 'y_exact', 'error'])
+    end if
+
+    tout = t_first
+    do k = 1, n_outputs
+      call ode%integrate_to(sys, y, tout, err)
+      if (err%failed()) exit
+      if (neq == 3) then
+        call out%row([tout, y, sum(y) - 1.0_dp])
+      else
+        call out%row([tout, y, cos(omega*tout), y(1) - cos(omega*tout)])
+      end if
+      if (problem == 'kinetics') then
+        tout = tout*factor
+      else
+        tout = tout + t_first
+      end if
+    end do
+
+    c = ode%counters()
+    if (.not. err%failed()) then
+      call out%summary('final state', str(y(1))//' '//str(y(2)))
+      if (problem == 'oscillator') call out%summary('periods integrated', str(omega*(tout - t_first)/two_pi))
+    end if
+    call out%cost('cpu_seconds', str(c%cpu_seconds, 4))
+    call out%cost('steps', str(c%steps))
+    call out%cost('rhs_evaluations', str(c%rhs_evals))
+    call out%cost('jacobian_evaluations', str(c%jac_evals))
+    call out%cost('lu_factorizations', str(c%lu_factorizations))
+    call out%cost('last_method_order', str(c%order_last))
+    if (mf == mf_adams) call out%comment('note: Adams (MF=10) uses functional iteration: no Jacobians, no LU')
+  end subroutine run_lsode_check
+
+  subroutine kinetics_rhs(self, t, y, ydot)
+    class(kinetics_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    ydot(1) = -0.04_dp*y(1) + 1.0e4_dp*y(2)*y(3)
+    ydot(3) = 3.0e7_dp*y(2)*y(2)
+    ydot(2) = -ydot(1) - ydot(3)
+    if (.false.) call self%fail(t, '')
+  end subroutine kinetics_rhs
+
+  !> Full or banded (ml = mu = 2 covers the whole 3x3) analytic Jacobian.
+  subroutine kinetics_jac(self, t, y, ml, mu, pd)
+    class(kinetics_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    real(dp) :: j(3, 3)
+    if (.false.) call self%fail(t, '')
+    j(1, :) = [-0.04_dp, 1.0e4_dp*y(3), 1.0e4_dp*y(2)]
+    j(3, :) = [0.0_dp, 6.0e7_dp*y(2), 0.0_dp]
+    j(2, :) = -j(1, :) - j(3, :)
+    call store_jacobian(j, ml, mu, pd)
+  end subroutine kinetics_jac
+
+  subroutine oscillator_rhs(self, t, y, ydot)
+    class(oscillator_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    if (.false.) call self%fail(t, '')
+    ydot(1) = y(2)
+    ydot(2) = -self%omega**2*y(1)
+  end subroutine oscillator_rhs
+
+  subroutine oscillator_jac(self, t, y, ml, mu, pd)
+    class(oscillator_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    real(dp) :: j(2, 2)
+    if (.false.) call self%fail(t + y(1), '')
+    j = reshape([0.0_dp, -self%omega**2, 1.0_dp, 0.0_dp], [2, 2])
+    call store_jacobian(j, ml, mu, pd)
+  end subroutine oscillator_jac
+
+  !> DLSODE's layouts: full pd(i, j) = J(i, j) (DLSODE passes ml = mu = 0 and
+  !> n rows); banded pd(i - j + mu + 1, j) = J(i, j) otherwise.
+  pure subroutine store_jacobian(j, ml, mu, pd)
+    real(dp), intent(in) :: j(:, :)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    integer :: r, c, n
+    n = size(j, 1)
+    if (ml == 0 .and. mu == 0 .and. size(pd, 1) == n) then
+      pd(1:n, 1:n) = j
+    else
+      do c = 1, n
+        do r = max(1, c - mu), min(n, c + ml)
+          pd(r - c + mu + 1, c) = j(r, c)
+        end do
+      end do
+    end if
+  end subroutine store_jacobian
+end module ode_verification
