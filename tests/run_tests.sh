@@ -1,0 +1,107 @@
+#!/bin/sh
+# Runs every flexmech test and ends with "N passed, M failed".
+#  1. unit suites (debug build: -fcheck=all, FP traps), one executable per module;
+#  2. deck-error tests: every tests/decks/*.nml must fail as its header says;
+#  3. regression tests: every inputs/X.nml with reference_outputs/X.out is run
+#     (release build) and compared column by column within the tolerances of
+#     reference_outputs/X.tol.
+# usage: run_tests.sh BUILD_DIR [filter]
+set -u
+build=${1:-build}
+filter=${2:-}
+passed=0
+failed=0
+failures=""
+work="$build/test_out"
+rm -rf "$work"; mkdir -p "$work"
+
+note_fail() { failed=$((failed + 1)); failures="$failures
+  $1"; }
+
+echo "== unit tests (debug build)"
+for t in "$build"/debug/tests/test_*; do
+  [ -x "$t" ] || continue
+  name=$(basename "$t")
+  case "$name" in *"$filter"*) ;; *) continue ;; esac
+  log="$work/$name.log"
+  "$t" > "$log" 2>&1
+  status=$?
+  line=$(grep -E '^[a-z_0-9]+: [0-9]+ passed, [0-9]+ failed$' "$log" | tail -n 1)
+  p=$(echo "$line" | sed -E 's/.*: ([0-9]+) passed.*/\1/')
+  f=$(echo "$line" | sed -E 's/.* ([0-9]+) failed$/\1/')
+  [ -n "$line" ] || { p=0; f=1; }
+  if [ $status -ne 0 ] && [ "$f" -eq 0 ]; then f=1; fi   # crashed after its summary
+  passed=$((passed + p)); failed=$((failed + f))
+  if [ "$f" -ne 0 ] || [ $status -ne 0 ]; then
+    failures="$failures
+  $name (exit $status):
+$(grep -E 'FAIL|assertion failed|Error|error' "$log" | head -n 20 | sed 's/^/      /')"
+    echo "   $name: FAILED ($p passed, $f failed; log $log)"
+  else
+    echo "   $name: $p passed"
+  fi
+done
+
+echo "== deck error tests (bad input must exit 2, name the problem, leave no output)"
+for deck in tests/decks/*.nml; do
+  [ -f "$deck" ] || continue
+  name=$(basename "$deck" .nml)
+  case "$name" in *"$filter"*) ;; *) continue ;; esac
+  want_status=$(sed -n 's/^! *expect-status: *//p' "$deck" | head -n 1)
+  [ -n "$want_status" ] || want_status=2
+  out="$work/$name.out"
+  "$build/bin/flexmech" "$deck" -o "$out" > "$work/$name.stdout" 2> "$work/$name.stderr"
+  status=$?
+  ok=1; why=""
+  [ "$status" -eq "$want_status" ] || { ok=0; why="exit status $status, expected $want_status"; }
+  if [ "$want_status" -eq 2 ] && { [ -e "$out" ] || ls "$out".tmp* >/dev/null 2>&1; }; then
+    ok=0; why="$why; output file left behind"
+  fi
+  msgs=$(sed -n 's/^! *expect-message: *//p' "$deck")
+  # each expected fragment must appear in stderr
+  echo "$msgs" | while IFS= read -r m; do
+    [ -z "$m" ] && continue
+    grep -qF -- "$m" "$work/$name.stderr" || echo "missing: $m"
+  done > "$work/$name.missing"
+  if [ -s "$work/$name.missing" ]; then ok=0; why="$why; message lacks: $(tr '\n' ';' < "$work/$name.missing")"; fi
+  if [ $ok -eq 1 ]; then
+    passed=$((passed + 1)); echo "   $name: ok"
+  else
+    note_fail "deck error test $name: $why
+      stderr: $(head -c 400 "$work/$name.stderr")"
+    echo "   $name: FAILED ($why)"
+  fi
+done
+
+echo "== regression tests (release build vs reference_outputs/)"
+for ref in reference_outputs/*.out; do
+  [ -f "$ref" ] || continue
+  name=$(basename "$ref" .out)
+  case "$name" in *"$filter"*) ;; *) continue ;; esac
+  deck="inputs/$name.nml"
+  if [ ! -f "$deck" ]; then note_fail "regression $name: no deck $deck"; continue; fi
+  out="$work/$name.out"
+  "$build/bin/flexmech" "$deck" -o "$out" > "$work/$name.stdout" 2> "$work/$name.stderr"
+  status=$?
+  want_status=$(sed -n 's/^! *expect-status: *//p' "$deck" | head -n 1)
+  [ -n "$want_status" ] || want_status=0
+  if [ $status -ne "$want_status" ]; then
+    note_fail "regression $name: exit status $status, expected $want_status: $(head -c 400 "$work/$name.stderr")"
+    echo "   $name: FAILED (exit $status)"; continue
+  fi
+  tol="reference_outputs/$name.tol"
+  [ -f "$tol" ] || tol=""
+  if "$build/release/tools/compare_tables" "$ref" "$out" $tol > "$work/$name.cmp" 2>&1; then
+    passed=$((passed + 1)); echo "   $name: $(tail -n 1 "$work/$name.cmp")"
+  else
+    note_fail "regression $name:
+$(head -n 25 "$work/$name.cmp" | sed 's/^/      /')"
+    echo "   $name: FAILED (see $work/$name.cmp)"
+  fi
+done
+
+if [ $failed -gt 0 ]; then
+  echo "== failures:$failures"
+fi
+echo "$passed passed, $failed failed"
+[ $failed -eq 0 ]
