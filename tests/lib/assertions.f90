@@ -104,6 +104,7 @@ contains
       return
     end if
     if (size(actual) == 0) return
+    allocate(excess(size(actual)))
     excess = abs(actual - expected) - (atol + rtol*abs(expected))
     where (ieee_is_nan(actual)) excess = huge(1.0_dp)
     i = maxloc(excess, dim=1)
