@@ -1,0 +1,290 @@
+!> The variable correlation table (the papers' term): for every element degree
+!> of freedom, the global unknown it equals, times a coefficient; 0 means the
+!> DOF is held at zero by a support or a moment-free pin.
+!>
+!> Element DOFs are [U1 W1 th1 m1 U2 W2 th2 m2]: global X/Y elastic
+!> translations, then slope and curvature relative to the link's reference
+!> line, at the element's start and end node.  The rules (FORMULATION.md §6,
+!> generalised; see doc/correlation_table.md):
+!>  - inside a link, consecutive elements share all four DOFs of their common
+!>    node (the quintic element is C2 along a straight link);
+!>  - 'pin' joining link ends: the translations U, W are shared, each link keeps
+!>    its own slope th, and m = 0 (no moment through a pin);
+!>  - 'ground_pin': U = W = 0, th free, m = 0;
+!>  - 'clamp' (driving shaft, or a built-in end): U = W = th = 0, m free;
+!>  - 'slider_fixed': the end moves along a fixed guide at angle alpha:
+!>    U = s cos(alpha), W = s sin(alpha) with one global unknown s; th free, m = 0;
+!>  - 'free': all four DOFs free (a free end carries no moment either, but
+!>    m = 0 is a natural condition there, not imposed).
+module correlation_table
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  implicit none
+  private
+  public :: correlation_table_t, link_end_t, dofs_per_element
+  public :: joint_free, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed
+
+  integer, parameter :: dofs_per_element = 8
+  integer, parameter :: joint_free = 0, joint_pin = 1, joint_ground_pin = 2, joint_clamp = 3, &
+                        joint_slider_fixed = 4
+  character(len=*), parameter :: dof_names(4) = ['U ', 'W ', 'th', 'm ']
+
+  !> How one end of one link is attached.  Link ends with the same `joint`
+  !> id > 0 and kind joint_pin share their translations.
+  type :: link_end_t
+    integer :: kind = joint_free
+    integer :: joint = 0
+    real(dp) :: guide_angle = 0.0_dp   !< slider_fixed: guide direction from +X (rad)
+  end type link_end_t
+
+  type :: correlation_table_t
+    integer :: n_links = 0
+    integer :: n_elements = 0
+    integer :: n_global = 0
+    integer :: half_bandwidth = 0                  !< of assembled M and K
+    integer, allocatable :: link_of_element(:)     !< (n_elements)
+    integer, allocatable :: first_element(:)       !< (n_links + 1): elements of link k are first(k):first(k+1)-1
+    integer, allocatable :: map(:, :)              !< (8, n_elements) global index, 0 = held at zero
+    real(dp), allocatable :: coef(:, :)            !< (8, n_elements) element DOF = coef * global
+    character(len=24), allocatable :: label(:)     !< (n_global) e.g. 'L2 N1 U' or 'J3 s'
+  contains
+    procedure :: build
+    procedure :: gather
+    procedure :: scatter_add
+    procedure :: scatter_add_matrix
+    procedure :: describe
+  end type correlation_table_t
+
+contains
+
+  !> Build the table for links with `n_elem(k)` elements each and end
+  !> attachments `ends(1:2, k)` (1 = the link's start, 2 = its end).
+  subroutine build(self, n_elem, ends, err)
+    class(correlation_table_t), intent(inout) :: self
+    integer, intent(in) :: n_elem(:)
+    type(link_end_t), intent(in) :: ends(:, :)
+    type(error_t), intent(inout) :: err
+    integer :: k, e, j, n_links, next, side, lo, hi, i, node_dofs(4), max_joint
+    integer, allocatable :: joint_u(:), joint_w(:), joint_kind(:)
+    real(dp) :: c(4)
+
+    n_links = size(n_elem)
+    if (size(ends, 1) /= 2 .or. size(ends, 2) /= n_links) then
+      call err%set('correlation table', 'need two end descriptions per link')
+      return
+    end if
+    if (any(n_elem < 1)) then
+      call err%set('correlation table', 'every link needs at least one element')
+      return
+    end if
+    self%n_links = n_links
+    self%n_elements = sum(n_elem)
+    allocate(self%first_element(n_links + 1), self%link_of_element(self%n_elements))
+    self%first_element(1) = 1
+    do k = 1, n_links
+      self%first_element(k + 1) = self%first_element(k) + n_elem(k)
+      self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
+    end do
+    allocate(self%map(dofs_per_element, self%n_elements), self%coef(dofs_per_element, self%n_elements))
+    self%map = 0
+    self%coef = 0.0_dp
+    allocate(self%label(0))
+
+    max_joint = max(0, maxval(ends%joint))
+    allocate(joint_u(max_joint), joint_w(max_joint), joint_kind(max_joint))
+    joint_u = 0
+    joint_w = 0
+    joint_kind = -1
+    do k = 1, n_links
+      do side = 1, 2
+        j = ends(side, k)%joint
+        if (ends(side, k)%kind == joint_pin .and. j <= 0) then
+          call err%set('correlation table', 'link '//str(k)//' end '//str(side)//' is a pin without a joint id')
+          return
+        end if
+      end do
+    end do
+
+    next = 0
+    do k = 1, n_links
+      do e = self%first_element(k), self%first_element(k + 1) - 1
+        ! start node: shared with the previous element of the same link, or a link end
+        if (e == self%first_element(k)) then
+          call end_node(ends(1, k), k, 1, node_dofs, c)
+        else
+          node_dofs = self%map(5:8, e - 1)
+          c = self%coef(5:8, e - 1)
+        end if
+        self%map(1:4, e) = node_dofs
+        self%coef(1:4, e) = c
+        if (e == self%first_element(k + 1) - 1) then
+          call end_node(ends(2, k), k, n_elem(k) + 1, node_dofs, c)
+        else
+          call interior_node(k, e - self%first_element(k) + 2, node_dofs, c)
+        end if
+        self%map(5:8, e) = node_dofs
+        self%coef(5:8, e) = c
+      end do
+    end do
+    self%n_global = next
+
+    self%half_bandwidth = 0
+    do e = 1, self%n_elements
+      lo = huge(1)
+      hi = 0
+      do i = 1, dofs_per_element
+        if (self%map(i, e) > 0) then
+          lo = min(lo, self%map(i, e))
+          hi = max(hi, self%map(i, e))
+        end if
+      end do
+      if (hi > 0) self%half_bandwidth = max(self%half_bandwidth, hi - lo)
+    end do
+    if (self%n_global == 0) call err%set('correlation table', 'the supports leave no free degree of freedom')
+
+  contains
+
+    integer function new_dof(text)
+      character(len=*), intent(in) :: text
+      next = next + 1
+      self%label = [character(len=24) :: self%label, text]
+      new_dof = next
+    end function new_dof
+
+    subroutine interior_node(link, node, dofs, coefs)
+      integer, intent(in) :: link, node
+      integer, intent(out) :: dofs(4)
+      real(dp), intent(out) :: coefs(4)
+      integer :: d
+      do d = 1, 4
+        dofs(d) = new_dof('L'//str(link)//' N'//str(node)//' '//trim(dof_names(d)))
+      end do
+      coefs = 1.0_dp
+    end subroutine interior_node
+
+    subroutine end_node(attach, link, node, dofs, coefs)
+      type(link_end_t), intent(in) :: attach
+      integer, intent(in) :: link, node
+      integer, intent(out) :: dofs(4)
+      real(dp), intent(out) :: coefs(4)
+      character(len=:), allocatable :: where
+      integer :: jid
+      where = 'L'//str(link)//' N'//str(node)
+      dofs = 0
+      coefs = 0.0_dp
+      jid = attach%joint
+      select case (attach%kind)
+      case (joint_free)
+        call interior_node(link, node, dofs, coefs)
+      case (joint_pin)
+        if (joint_kind(jid) == -1) then
+          joint_kind(jid) = joint_pin
+          joint_u(jid) = new_dof('J'//str(jid)//' U')
+          joint_w(jid) = new_dof('J'//str(jid)//' W')
+        end if
+        dofs(1:2) = [joint_u(jid), joint_w(jid)]
+        dofs(3) = new_dof(where//' th')
+        coefs(1:3) = 1.0_dp
+      case (joint_ground_pin)
+        dofs(3) = new_dof(where//' th')
+        coefs(3) = 1.0_dp
+      case (joint_clamp)
+        dofs(4) = new_dof(where//' m')
+        coefs(4) = 1.0_dp
+      case (joint_slider_fixed)
+        ! one unknown s along the guide: U = s cos(alpha), W = s sin(alpha)
+        if (jid > 0) then
+          if (joint_kind(jid) == -1) then
+            joint_kind(jid) = joint_slider_fixed
+            joint_u(jid) = new_dof('J'//str(jid)//' s')
+          end if
+          dofs(1:2) = joint_u(jid)
+        else
+          dofs(1:2) = new_dof(where//' s')
+        end if
+        coefs(1:2) = [cos(attach%guide_angle), sin(attach%guide_angle)]
+        dofs(3) = new_dof(where//' th')
+        coefs(3) = 1.0_dp
+      end select
+    end subroutine end_node
+  end subroutine build
+
+  !> Element DOF vector from the global vector.
+  pure function gather(self, e, qg) result(qe)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: qg(:)
+    real(dp) :: qe(dofs_per_element)
+    integer :: i
+    do i = 1, dofs_per_element
+      if (self%map(i, e) > 0) then
+        qe(i) = self%coef(i, e)*qg(self%map(i, e))
+      else
+        qe(i) = 0.0_dp
+      end if
+    end do
+  end function gather
+
+  !> fg += T_e^T fe  (the transpose of gather).
+  pure subroutine scatter_add(self, e, fe, fg)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: fe(:)
+    real(dp), intent(inout) :: fg(:)
+    integer :: i
+    do i = 1, dofs_per_element
+      if (self%map(i, e) > 0) fg(self%map(i, e)) = fg(self%map(i, e)) + self%coef(i, e)*fe(i)
+    end do
+  end subroutine scatter_add
+
+  !> Dense A += T_e^T Ae T_e.
+  pure subroutine scatter_add_matrix(self, e, ae, ag)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: ae(:, :)
+    real(dp), intent(inout) :: ag(:, :)
+    integer :: i, j, gi, gj
+    do j = 1, dofs_per_element
+      gj = self%map(j, e)
+      if (gj == 0) cycle
+      do i = 1, dofs_per_element
+        gi = self%map(i, e)
+        if (gi == 0) cycle
+        ag(gi, gj) = ag(gi, gj) + self%coef(i, e)*ae(i, j)*self%coef(j, e)
+      end do
+    end do
+  end subroutine scatter_add_matrix
+
+  !> The table as text lines, for the output header: one line per element
+  !> with the global unknown of each element DOF (0 = held at zero), then the
+  !> list of global unknowns.
+  subroutine describe(self, lines)
+    class(correlation_table_t), intent(in) :: self
+    character(len=120), allocatable, intent(out) :: lines(:)
+    integer :: e, i, n
+    character(len=120) :: l
+    n = 3 + self%n_elements + 1 + (self%n_global + 3)/4
+    allocate(lines(n))
+    write(lines(1), '(a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements, ', &
+      self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
+    lines(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
+    lines(3) = ''
+    do e = 1, self%n_elements
+      write(l, '(2x,i7,i5,a,8i5)') e, self%link_of_element(e), ' :', self%map(:, e)
+      if (any(self%map(1:2, e) > 0 .and. self%map(1:2, e) == self%map([2, 1], e)) .or. &
+          any(self%map(5:6, e) > 0 .and. self%map(5:6, e) == self%map([6, 5], e))) &
+        l = trim(l)//'  (slider: U, W = s * guide direction)'
+      lines(3 + e) = l
+    end do
+    lines(3) = '  ----------------------------------------------------------------------'
+    lines(4 + self%n_elements) = '  global unknowns:'
+    do i = 1, (self%n_global + 3)/4
+      l = ''
+      do e = 4*(i - 1) + 1, min(4*i, self%n_global)
+        write(l(len_trim(l) + 1:), '(2x,i4,": ",a18)') e, self%label(e)
+      end do
+      lines(4 + self%n_elements + i) = l
+    end do
+  end subroutine describe
+end module correlation_table

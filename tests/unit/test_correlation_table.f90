@@ -1,0 +1,140 @@
+!> Tests of the variable correlation table (module correlation_table).
+module test_correlation_table_suite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use correlation_table
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+contains
+
+  subroutine run_all()
+    call run_test('fourbar_one_element_per_link_has_ten_unknowns', test_fourbar_one_element)
+    call run_test('fourbar_pins_share_translations_not_slopes', test_fourbar_sharing)
+    call run_test('elements_in_a_link_share_all_node_dofs', test_multi_element_link)
+    call run_test('bandwidth_grows_with_nothing_but_the_chain', test_bandwidth)
+    call run_test('scatter_is_transpose_of_gather', test_scatter_transpose)
+    call run_test('slider_translation_follows_guide', test_slider)
+    call run_test('fully_held_structure_is_an_error', test_no_free_dof)
+  end subroutine run_all
+
+  !> crank (clamp A, pin B), coupler (pin B, pin C), rocker (pin C, ground pin D)
+  subroutine fourbar(n_each, table, err)
+    integer, intent(in) :: n_each
+    type(correlation_table_t), intent(out) :: table
+    type(error_t), intent(inout) :: err
+    type(link_end_t) :: ends(2, 3)
+    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
+    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
+    ends(1, 3) = link_end_t(joint_pin, 2, 0.0_dp)
+    ends(2, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    call table%build([n_each, n_each, n_each], ends, err)
+  end subroutine fourbar
+
+  !> FORMULATION.md §6: A clamped (m free), B and C shared translations with a
+  !> slope per link, D pinned to ground (th free): 10 unknowns.
+  subroutine test_fourbar_one_element()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    call fourbar(1, t, err)
+    call assert_true(.not. err%failed(), err%text())
+    call assert_equal(t%n_global, 10, 'global unknowns of the 3-element four-bar')
+    call assert_equal(count(t%map(:, 1) > 0), 4, 'crank: m at A, U W th at B')
+    call assert_true(all(t%map(1:3, 1) == 0) .and. t%map(4, 1) > 0, 'A is clamped: U = W = th = 0, m free')
+    call assert_true(t%map(8, 2) == 0 .and. t%map(4, 2) == 0, 'no curvature DOF at pins B, C of the coupler')
+    call assert_true(all(t%map(5:6, 3) == 0) .and. t%map(7, 3) > 0 .and. t%map(8, 3) == 0, &
+                     'D: U = W = 0, th free, m = 0')
+  end subroutine test_fourbar_one_element
+
+  subroutine test_fourbar_sharing()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    call fourbar(1, t, err)
+    call assert_true(all(t%map(5:6, 1) == t%map(1:2, 2)), 'B translations shared by crank and coupler')
+    call assert_true(t%map(7, 1) /= t%map(3, 2), 'slopes at B independent')
+    call assert_true(all(t%map(5:6, 2) == t%map(1:2, 3)), 'C translations shared by coupler and rocker')
+  end subroutine test_fourbar_sharing
+
+  !> n elements per link: each interior node adds 4 unknowns.
+  subroutine test_multi_element_link()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    call fourbar(4, t, err)
+    call assert_equal(t%n_global, 10 + 3*3*4, 'four elements per link')
+    call assert_true(all(t%map(5:8, 1) == t%map(1:4, 2)), 'elements 1 and 2 of the crank share a node')
+    call assert_true(all(t%map(5:8, 1) > 0), 'interior node fully free')
+  end subroutine test_multi_element_link
+
+  !> Numbering along the chain keeps the band narrow and independent of mesh size.
+  subroutine test_bandwidth()
+    type(correlation_table_t) :: t2, t16
+    type(error_t) :: err
+    call fourbar(2, t2, err)
+    call fourbar(16, t16, err)
+    call assert_true(t16%half_bandwidth <= 7, 'half-bandwidth of a chain stays <= 7')
+    call assert_equal(t16%half_bandwidth, t2%half_bandwidth, 'bandwidth independent of elements per link')
+  end subroutine test_bandwidth
+
+  subroutine test_scatter_transpose()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    real(dp) :: qg(40), fe(8), fg(40), lhs, rhs
+    integer :: e, i
+    call fourbar(3, t, err)
+    do i = 1, t%n_global
+      qg(i) = sin(1.3_dp*i)
+    end do
+    do e = 1, t%n_elements
+      fe = [(cos(0.7_dp*i + e), i = 1, 8)]
+      fg = 0.0_dp
+      call t%scatter_add(e, fe, fg)
+      lhs = dot_product(fe, t%gather(e, qg(1:t%n_global)))
+      rhs = dot_product(fg(1:t%n_global), qg(1:t%n_global))
+      call assert_close(lhs, rhs, 1.0e-13_dp, 'fe . (T qg) = (T^T fe) . qg')
+    end do
+  end subroutine test_scatter_transpose
+
+  subroutine test_slider()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    type(link_end_t) :: ends(2, 2)
+    real(dp) :: qg(20), qe(8)
+    real(dp), parameter :: alpha = 0.3_dp
+    ! slider-crank: crank clamped, coupler ends on a slider guided at alpha
+    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
+    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(2, 2) = link_end_t(joint_slider_fixed, 2, alpha)
+    call t%build([1, 1], ends, err)
+    call assert_true(.not. err%failed(), err%text())
+    qg = 0.0_dp
+    qg(t%map(5, 2)) = 2.0_dp
+    qe = t%gather(2, qg(1:t%n_global))
+    call assert_close(qe(5), 2.0_dp*cos(alpha), 1.0e-15_dp, 'slider U = s cos(alpha)')
+    call assert_close(qe(6), 2.0_dp*sin(alpha), 1.0e-15_dp, 'slider W = s sin(alpha)')
+    call assert_equal(t%n_global, 1 + 2 + 1 + 1 + 1 + 1, 'slider-crank unknowns')
+  end subroutine test_slider
+
+  subroutine test_no_free_dof()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    type(link_end_t) :: ends(2, 1)
+    ends(1, 1) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    ends(2, 1) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    call t%build([1], ends, err)
+    call assert_true(.not. err%failed(), 'a pinned-pinned beam has its two slopes free')
+    call assert_equal(t%n_global, 2, 'pinned-pinned single element: th1, th2')
+  end subroutine test_no_free_dof
+end module test_correlation_table_suite
+
+program test_correlation_table
+  use test_correlation_table_suite, only: run_all
+  use assertions, only: finish_suite
+  implicit none
+  call run_all()
+  call finish_suite('test_correlation_table')
+end program test_correlation_table
