@@ -1,0 +1,16 @@
+#!/bin/sh
+# Runs every benchmark program (bench/bench_*.f90, built in build/release/bench/)
+# and keeps each one's report in build/bench/<name>.txt.  Benchmarks print
+# figures (error against cost, cost per evaluation against problem size);
+# they never pass or fail.  Copy a report into doc/ when it documents a result.
+# usage: run_bench.sh BUILD_DIR
+set -u
+build=${1:-build}
+mkdir -p "$build/bench"
+for b in "$build"/release/bench/bench_*; do
+  [ -x "$b" ] || continue
+  name=$(basename "$b")
+  echo "== $name"
+  "$b" | tee "$build/bench/$name.txt"
+done
+echo "reports in $build/bench/"
