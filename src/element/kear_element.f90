@@ -1,0 +1,789 @@
+!> Kear's planar beam element (1986-87, FORMULATION.md section 5): exact axial
+!> stretch and curvature, Ramberg-Osgood material integrated through the
+!> depth in closed form, exact rotary inertia, K26 interpolation.
+!>
+!> Element DOFs  q = [U1 W1 th1 m1 U2 W2 th2 m2]:  U, W global X/Y elastic
+!> translations of the nodes, th = local slope w_x, m = local w_xx.  The local
+!> nodal values p = T(phi) q rotate (U, W) into the element frame (K26).
+!>
+!> The element returns, for given nodal values, nodal rates and rigid-body
+!> state of its reference line, the mass matrix M_e(q) and the force vector
+!> F_e(q, qdot, t) such that  M_e qddot = F_e  is its part of Lagrange's
+!> equations (K1, K2):
+!>
+!>   M_e = rho int( A B^T B + I theta_q theta_q^T ) dx
+!>   F_e = -dSE/dq - rho int[ A B^T (c_dd + B_dd q + 2 B_d q_d)
+!>                            + I theta_q (theta_dd - theta_q . q_dd) ] dx
+!>         - beta K_t(q) pdot_rel
+!>
+!> Derivation, the printed simplifications (formulation = kear1987), the
+!> effect switches and the checks are in doc/element.md.  All procedures are
+!> pure functions of their arguments; kear_element_init precomputes the
+!> constant integrals of the linear model once per element.
+module kear_element
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str, lower
+  use quadrature, only: gauss_legendre_interval, max_gauss_points
+  use shape_functions, only: quintic_hermite, linear_lagrange
+  use material_law, only: ramberg_osgood_t, section_resultants_t, validate_material, section_response, &
+                          ro_stress, peak_strain
+  implicit none
+  private
+  public :: kear_ndof, formulation_exact, formulation_kear1987
+  public :: element_effects_t, rigid_state_t, kear_element_t, kear_eval_info_t, stress_report_t
+  public :: kear_element_init, kear_element_eval, kear_internal_force, kear_tangent_stiffness
+  public :: kear_strain_energy, kear_kinetic_energy, kear_stress_recovery, kear_section_strains
+  public :: kear_local_dofs, kear_local_displacement
+  public :: formulation_from_name, formulation_name, effects_all_on, effects_summary
+
+  integer, parameter :: kear_ndof = 8
+  integer, parameter :: formulation_exact = 1      !< exact Lagrange equations of (K3), (K16)
+  integer, parameter :: formulation_kear1987 = 2   !< as printed: (K9), (K11), (K20), (K23)
+  integer, parameter :: n_exact = 6                !< Gauss points exact for the linear integrals (degree <= 11)
+
+  !> The papers' effects ("tracing constants").  All .false. is the linear analysis.
+  type :: element_effects_t
+    logical :: stretching = .false.      !< exact axial strain (K19); off: eps_n = u_x
+    logical :: curvature = .false.       !< exact curvature (K23) and section angle (K8); off: kappa = w_xx, theta = phi + w_x
+    logical :: material = .false.        !< Ramberg-Osgood E2 term (K13); off: linear elastic E1
+    logical :: rotary_inertia = .false.  !< rho I theta_dot^2 / 2 in (K3); off: dropped
+    logical :: coupling = .false.        !< Coriolis and Euler terms of the elastic motion; off: dropped
+  end type element_effects_t
+
+  !> Rigid-body state of the element reference line (from kinematics).
+  type :: rigid_state_t
+    real(dp) :: x1 = 0.0_dp, y1 = 0.0_dp, phi = 0.0_dp            !< end 1 and inclination
+    real(dp) :: x1_d = 0.0_dp, y1_d = 0.0_dp, phi_d = 0.0_dp      !< first time derivatives
+    real(dp) :: x1_dd = 0.0_dp, y1_dd = 0.0_dp, phi_dd = 0.0_dp   !< second time derivatives
+  end type rigid_state_t
+
+  !> One element: geometry, material, switches and precomputed integrals.
+  !> Arrays in the local DOF order p = [u1 w1 th1 m1 u2 w2 th2 m2].
+  type :: kear_element_t
+    real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
+    real(dp) :: area = 0.0_dp, inertia = 0.0_dp        !< A = b t, I = b t^3/12 (K4)
+    type(ramberg_osgood_t) :: material
+    type(element_effects_t) :: effects
+    integer :: formulation = formulation_exact
+    integer :: n_gauss = 6                              !< points for the nonlinear integrals
+    real(dp) :: beta = 0.0_dp                           !< stiffness-proportional damping
+    logical :: objective_damping = .true.               !< damp strain rates, not global q_dot
+    real(dp) :: eps_star = huge(1.0_dp)                 !< peak strain of the material law
+    ! constant integrals (exact rule)
+    real(dp) :: mass_trans(8, 8) = 0.0_dp   !< int S^T S
+    real(dp) :: coupling(8, 8) = 0.0_dp     !< int S^T (J S - S J_b)
+    real(dp) :: centrifugal(8, 8) = 0.0_dp  !< int S^T (S J_b^2 - S - 2 J S J_b)
+    real(dp) :: load0(8, 2) = 0.0_dp        !< int S^T dx
+    real(dp) :: load1(8, 2) = 0.0_dp        !< int x S^T dx
+    real(dp) :: k_linear(8, 8) = 0.0_dp     !< E1 A int gu gu^T + E1 I int gww gww^T
+    real(dp) :: rot_linear(8, 8) = 0.0_dp   !< int gw gw^T (rotary mass, linear angle)
+    real(dp) :: rot_load(8) = 0.0_dp        !< int gw dx
+    real(dp) :: gu(8) = 0.0_dp              !< d u_x / d p (constant for linear n1, n2)
+    ! nonlinear-integral stations
+    real(dp), allocatable :: xg(:), wg(:)   !< points on [0, l] and weights
+    real(dp), allocatable :: gw(:, :)       !< d w_x / d p at the points (8, n)
+    real(dp), allocatable :: gww(:, :)      !< d w_xx / d p at the points (8, n)
+  end type kear_element_t
+
+  !> By-products of one evaluation.
+  type :: kear_eval_info_t
+    real(dp) :: strain_energy = 0.0_dp
+    real(dp) :: max_abs_strain = 0.0_dp     !< over the Gauss points and both outer fibres
+    real(dp) :: x_over_l_max_strain = 0.0_dp
+    logical :: beyond_peak = .false.        !< material on and max |eps| > eps*
+    integer :: n_nonlinear_points = 0       !< cost proxy: nonlinear integrand evaluations
+  end type kear_eval_info_t
+
+  !> Stress recovery at the element ends and the Gauss points, both fibres.
+  type :: stress_report_t
+    real(dp) :: max_abs_stress = 0.0_dp
+    real(dp) :: stress = 0.0_dp              !< signed sigma at that point
+    real(dp) :: stress_x_over_l = 0.0_dp
+    integer :: stress_fibre = 0              !< +1: y = +t/2,  -1: y = -t/2
+    real(dp) :: max_abs_strain = 0.0_dp
+    real(dp) :: strain = 0.0_dp
+    real(dp) :: strain_x_over_l = 0.0_dp
+    integer :: strain_fibre = 0
+    real(dp) :: eps_star = huge(1.0_dp)
+    logical :: beyond_peak = .false.
+  end type stress_report_t
+
+  !> Strain state at one station, derivatives with respect to (a, b, c) =
+  !> (1 + u_x, w_x, w_xx).  de_used is what multiplies N in the internal
+  !> force ((K20) in kear1987, the true gradient otherwise).
+  type :: strain_point_t
+    real(dp) :: eps = 0.0_dp, kap = 0.0_dp
+    real(dp) :: de_true(3) = 0.0_dp, de_used(3) = 0.0_dp, dk(3) = 0.0_dp
+    real(dp) :: he_used(3, 3) = 0.0_dp, hk(3, 3) = 0.0_dp
+  end type strain_point_t
+
+contains
+
+  ! ------------------------------------------------------------------ set-up
+
+  !> Build an element and precompute its constant integrals.
+  pure subroutine kear_element_init(el, length, width, depth, material, effects, err, &
+                                    formulation, n_gauss, damping_beta, objective_damping)
+    type(kear_element_t), intent(out) :: el
+    real(dp), intent(in) :: length, width, depth
+    type(ramberg_osgood_t), intent(in) :: material
+    type(element_effects_t), intent(in) :: effects
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: formulation, n_gauss
+    real(dp), intent(in), optional :: damping_beta
+    logical, intent(in), optional :: objective_damping
+    real(dp) :: x(n_exact), w(n_exact), n(2), nx(2), h(6), hx(6), hxx(6)
+    real(dp) :: su(8), sw(8), gw(8), gww(8), g2(8, 8), jb(8, 8)
+    integer :: i
+
+    if (.not. (length > 0.0_dp)) then
+      call err%set('kear_element_init', 'element length must be positive, got '//str(length)); return
+    end if
+    if (.not. (width > 0.0_dp .and. depth > 0.0_dp)) then
+      call err%set('kear_element_init', 'section width and depth must be positive, got b = ' &
+                   //str(width)//', t = '//str(depth)); return
+    end if
+    call validate_material(material, err)
+    if (err%failed()) then
+      call err%add_context('kear_element_init'); return
+    end if
+    el%length = length
+    el%width = width
+    el%depth = depth
+    el%area = width*depth
+    el%inertia = width*depth**3/12.0_dp
+    el%material = material
+    el%effects = effects
+    if (present(formulation)) el%formulation = formulation
+    if (el%formulation /= formulation_exact .and. el%formulation /= formulation_kear1987) then
+      call err%set('kear_element_init', 'unknown formulation code '//str(el%formulation)); return
+    end if
+    if (present(n_gauss)) el%n_gauss = n_gauss
+    if (el%n_gauss < 2 .or. el%n_gauss > max_gauss_points) then
+      call err%set('kear_element_init', 'n_gauss must be in 2..'//str(max_gauss_points)//', got ' &
+                   //str(el%n_gauss)); return
+    end if
+    if (present(damping_beta)) el%beta = damping_beta
+    if (.not. (el%beta >= 0.0_dp)) then
+      call err%set('kear_element_init', 'damping beta must be >= 0, got '//str(el%beta)); return
+    end if
+    if (present(objective_damping)) el%objective_damping = objective_damping
+    el%eps_star = peak_strain(material)
+
+    ! constant integrals, 6-point rule: S^T S has degree 10 (h_i h_j), the rest less
+    el%gu = 0.0_dp
+    el%gu(1) = -1.0_dp/length
+    el%gu(5) = 1.0_dp/length
+    g2 = 0.0_dp
+    call gauss_legendre_interval(n_exact, 0.0_dp, length, x, w)
+    do i = 1, n_exact
+      call linear_lagrange(x(i)/length, length, n, nx)
+      call quintic_hermite(x(i)/length, length, h, hx, hxx)
+      su = 0.0_dp
+      su(1) = n(1)
+      su(5) = n(2)
+      call spread_w(h, sw)
+      call spread_w(hx, gw)
+      call spread_w(hxx, gww)
+      el%mass_trans = el%mass_trans + w(i)*(outer(su, su) + outer(sw, sw))
+      g2 = g2 + w(i)*(outer(sw, su) - outer(su, sw))          ! int S^T J S, J = [0 -1; 1 0]
+      el%load0(:, 1) = el%load0(:, 1) + w(i)*su
+      el%load0(:, 2) = el%load0(:, 2) + w(i)*sw
+      el%load1(:, 1) = el%load1(:, 1) + w(i)*x(i)*su
+      el%load1(:, 2) = el%load1(:, 2) + w(i)*x(i)*sw
+      el%k_linear = el%k_linear + w(i)*(material%e1*el%area*outer(el%gu, el%gu) &
+                                        + material%e1*el%inertia*outer(gww, gww))
+      el%rot_linear = el%rot_linear + w(i)*outer(gw, gw)
+      el%rot_load = el%rot_load + w(i)*gw
+    end do
+    jb = 0.0_dp
+    jb(1, 2) = -1.0_dp
+    jb(2, 1) = 1.0_dp
+    jb(5, 6) = -1.0_dp
+    jb(6, 5) = 1.0_dp
+    el%coupling = g2 - matmul(el%mass_trans, jb)
+    el%centrifugal = matmul(el%mass_trans, matmul(jb, jb)) - el%mass_trans - 2.0_dp*matmul(g2, jb)
+
+    ! stations for the nonlinear integrals
+    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%gw(8, el%n_gauss), el%gww(8, el%n_gauss))
+    call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
+    do i = 1, el%n_gauss
+      call quintic_hermite(el%xg(i)/length, length, h, hx, hxx)
+      call spread_w(hx, el%gw(:, i))
+      call spread_w(hxx, el%gww(:, i))
+    end do
+  end subroutine kear_element_init
+
+  !> 'exact' or 'kear1987' (case-insensitive).
+  pure subroutine formulation_from_name(name, code, err)
+    character(len=*), intent(in) :: name
+    integer, intent(out) :: code
+    type(error_t), intent(inout) :: err
+    select case (lower(trim(adjustl(name))))
+    case ('exact')
+      code = formulation_exact
+    case ('kear1987')
+      code = formulation_kear1987
+    case default
+      code = 0
+      call err%set('formulation', "unknown formulation '"//trim(name)//"' (expected exact or kear1987)")
+    end select
+  end subroutine formulation_from_name
+
+  pure function formulation_name(code) result(name)
+    integer, intent(in) :: code
+    character(len=:), allocatable :: name
+    select case (code)
+    case (formulation_exact)
+      name = 'exact'
+    case (formulation_kear1987)
+      name = 'kear1987'
+    case default
+      name = 'unknown'
+    end select
+  end function formulation_name
+
+  pure function effects_all_on() result(fx)
+    type(element_effects_t) :: fx
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+  end function effects_all_on
+
+  !> One line for output headers, e.g. "stretching=T curvature=F ...".
+  pure function effects_summary(fx) result(line)
+    type(element_effects_t), intent(in) :: fx
+    character(len=:), allocatable :: line
+    line = 'stretching='//tf(fx%stretching)//' curvature='//tf(fx%curvature)//' material=' &
+           //tf(fx%material)//' rotary_inertia='//tf(fx%rotary_inertia)//' coupling='//tf(fx%coupling)
+  end function effects_summary
+
+  pure function tf(b) result(c)
+    logical, intent(in) :: b
+    character(len=1) :: c
+    c = merge('T', 'F', b)
+  end function tf
+
+  ! ---------------------------------------------------------- main routine
+
+  !> Mass matrix and force vector of Lagrange's equations (K1, K2, K11, K17).
+  !> Optionally the tangent stiffness K_t = d^2 SE / dq^2 (kear1987: the
+  !> Jacobian of its internal force, not symmetric).
+  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), qd(8)
+    type(rigid_state_t), intent(in) :: rb
+    real(dp), intent(out) :: mass(8, 8), force(8)
+    type(kear_eval_info_t), intent(out) :: info
+    real(dp), intent(out), optional :: tangent(8, 8)
+    real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
+    real(dp) :: mp(8, 8), fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
+    logical :: linear_strain, need_k, want_k
+
+    c = cos(rb%phi)
+    s = sin(rb%phi)
+    p = to_local(c, s, q)
+    v = to_local(c, s, qd)                 ! T q_dot: the q_dot part of p_dot
+    jp = jb_times(p)
+    jv = jb_times(v)
+    j2p = jb_times(jp)
+    rhoa = el%material%rho*el%area
+    rhoi = el%material%rho*el%inertia
+
+    ! translational inertia: exact, quadratic in q, all from constant integrals
+    ! local rigid acceleration of end 1 (A^T R1_dd)
+    acc0(1) = c*rb%x1_dd + s*rb%y1_dd
+    acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
+    mp = rhoa*el%mass_trans
+    fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
+                + rb%phi_d**2*matmul(el%centrifugal, p))
+    if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
+
+    ! strain energy, internal force, damping
+    want_k = present(tangent)
+    need_k = want_k .or. el%beta > 0.0_dp
+    prel = v
+    if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
+    linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
+    if (linear_strain) then
+      fint = matmul(el%k_linear, p)
+      info%strain_energy = 0.5_dp*dot_product(p, fint)
+      fp = fp - fint
+      if (el%beta > 0.0_dp) fp = fp - el%beta*matmul(el%k_linear, prel)
+      if (want_k) kp = el%k_linear
+      call linear_strain_peak(el, p, info)
+    else
+      call nonlinear_strain_terms(el, p, prel, need_k, info, fint, fdamp, kp)
+      fp = fp - fint
+      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
+    end if
+
+    ! rotary inertia
+    if (el%effects%rotary_inertia) then
+      pdd_nm = rb%phi_d**2*j2p                             ! p_dd minus T q_dd (centrifugal part)
+      if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
+      if (.not. el%effects%curvature) then
+        ! theta = phi + w_x: linear angle, constant integrals
+        mp = mp + rhoi*el%rot_linear
+        fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
+      else
+        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
+      end if
+    end if
+
+    mass = to_global_matrix(c, s, mp)
+    force = to_global(c, s, fp)
+    if (want_k) tangent = to_global_matrix(c, s, kp)
+  end subroutine kear_element_eval
+
+  !> Internal force dSE/dq (kear1987: the printed (K17) with (K20), (K24)).
+  pure subroutine kear_internal_force(el, q, phi, f)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), phi
+    real(dp), intent(out) :: f(8)
+    real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
+    type(kear_eval_info_t) :: info
+    p = to_local(cos(phi), sin(phi), q)
+    if (is_linear_strain(el)) then
+      fint = matmul(el%k_linear, p)
+    else
+      call nonlinear_strain_terms(el, p, p, .false., info, fint, fdamp, kp)
+    end if
+    f = to_global(cos(phi), sin(phi), fint)
+  end subroutine kear_internal_force
+
+  !> K_t = d(internal force)/dq, analytic.
+  pure subroutine kear_tangent_stiffness(el, q, phi, kt)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), phi
+    real(dp), intent(out) :: kt(8, 8)
+    real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
+    type(kear_eval_info_t) :: info
+    p = to_local(cos(phi), sin(phi), q)
+    if (is_linear_strain(el)) then
+      kp = el%k_linear
+    else
+      call nonlinear_strain_terms(el, p, p, .true., info, fint, fdamp, kp)
+    end if
+    kt = to_global_matrix(cos(phi), sin(phi), kp)
+  end subroutine kear_tangent_stiffness
+
+  !> Strain energy (K16) with the element's quadrature.
+  pure real(dp) function kear_strain_energy(el, q, phi) result(se)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), phi
+    real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
+    type(kear_eval_info_t) :: info
+    p = to_local(cos(phi), sin(phi), q)
+    if (is_linear_strain(el)) then
+      se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
+    else
+      call nonlinear_strain_terms(el, p, p, .false., info, fint, fdamp, kp)
+      se = info%strain_energy
+    end if
+  end function kear_strain_energy
+
+  !> Kinetic energy (K3) of the element, evaluated directly from the
+  !> positions (K5) and section angle (K8), independent of the precomputed
+  !> matrices: translational part by an 8-point rule (exact), rotary part by
+  !> the element's rule (as in the equations of motion).  With the
+  !> curvature switch off the section angle is phi + w_x; kear1987 uses
+  !> theta_dot of (K9).
+  pure real(dp) function kear_kinetic_energy(el, q, qd, rb) result(ke)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), qd(8)
+    type(rigid_state_t), intent(in) :: rb
+    integer, parameter :: nt = 8
+    real(dp) :: c, s, p(8), pd(8), x(nt), w(nt), n(2), h(6), hx(6), su(8), sw(8), gw(8)
+    real(dp) :: vloc(2), rdot(2), a, b, ad, bd, thd, r2
+    integer :: i
+    c = cos(rb%phi)
+    s = sin(rb%phi)
+    p = to_local(c, s, q)
+    pd = to_local(c, s, qd) - rb%phi_d*jb_times(p)        ! p_dot = T q_dot + T_dot q
+    vloc(1) = c*rb%x1_d + s*rb%y1_d
+    vloc(2) = -s*rb%x1_d + c*rb%y1_d
+    ke = 0.0_dp
+    call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
+    do i = 1, nt
+      call linear_lagrange(x(i)/el%length, el%length, n)
+      call quintic_hermite(x(i)/el%length, el%length, h)
+      su = 0.0_dp
+      su(1) = n(1)
+      su(5) = n(2)
+      call spread_w(h, sw)
+      ! r_dot in the element frame (K6): R1_dot + rho_dot + phi_dot J rho
+      rdot(1) = vloc(1) + dot_product(su, pd) - rb%phi_d*dot_product(sw, p)
+      rdot(2) = vloc(2) + dot_product(sw, pd) + rb%phi_d*(x(i) + dot_product(su, p))
+      ke = ke + 0.5_dp*el%material%rho*el%area*w(i)*(rdot(1)**2 + rdot(2)**2)
+    end do
+    if (el%effects%rotary_inertia) then
+      do i = 1, el%n_gauss
+        call quintic_hermite(el%xg(i)/el%length, el%length, h, hx)
+        call spread_w(hx, gw)
+        a = 1.0_dp + dot_product(el%gu, p)
+        b = dot_product(gw, p)
+        ad = dot_product(el%gu, pd)
+        bd = dot_product(gw, pd)
+        if (.not. el%effects%curvature) then
+          thd = rb%phi_d + bd
+        else if (el%formulation == formulation_kear1987) then
+          thd = rb%phi_d + bd*a - b*ad                        ! (K9) as printed
+        else
+          r2 = a*a + b*b
+          thd = rb%phi_d + (bd*a - b*ad)/r2                   ! exact derivative of (K8)
+        end if
+        ke = ke + 0.5_dp*el%material%rho*el%inertia*el%wg(i)*thd**2
+      end do
+    end if
+  end function kear_kinetic_energy
+
+  ! ------------------------------------------------------ stress recovery
+
+  !> Fibre strain and stress at y = +-t/2 at x = 0, the Gauss points and
+  !> x = l; the maxima of |sigma| and |eps| and where they occur.  The
+  !> material switch decides the law; beyond_peak needs it on.
+  pure function kear_stress_recovery(el, q, phi) result(rep)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), phi
+    type(stress_report_t) :: rep
+    real(dp) :: p(8), eo, eps_n, kap, eps, sig
+    type(ramberg_osgood_t) :: law
+    integer :: i, k, fib
+    law = el%material
+    if (.not. el%effects%material) law%e2 = 0.0_dp
+    p = to_local(cos(phi), sin(phi), q)
+    rep%eps_star = el%eps_star
+    rep%max_abs_stress = -1.0_dp
+    rep%max_abs_strain = -1.0_dp
+    do i = 0, el%n_gauss + 1
+      if (i == 0) then
+        eo = 0.0_dp
+      else if (i == el%n_gauss + 1) then
+        eo = 1.0_dp
+      else
+        eo = el%xg(i)/el%length
+      end if
+      call kear_section_strains(el, p, eo, eps_n, kap)
+      do k = 1, 2
+        fib = 3 - 2*k                                      ! +1, then -1
+        eps = eps_n - real(fib, dp)*0.5_dp*el%depth*kap    ! (K14)
+        sig = ro_stress(law, eps)
+        if (abs(sig) > rep%max_abs_stress) then
+          rep%max_abs_stress = abs(sig)
+          rep%stress = sig
+          rep%stress_x_over_l = eo
+          rep%stress_fibre = fib
+        end if
+        if (abs(eps) > rep%max_abs_strain) then
+          rep%max_abs_strain = abs(eps)
+          rep%strain = eps
+          rep%strain_x_over_l = eo
+          rep%strain_fibre = fib
+        end if
+      end do
+    end do
+    rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
+  end function kear_stress_recovery
+
+  !> Axial strain eps_n and curvature kappa at x = e l from LOCAL nodal
+  !> values p (see kear_local_dofs), with the element's switches.
+  pure subroutine kear_section_strains(el, p, e, eps_n, kap)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(8), e
+    real(dp), intent(out) :: eps_n, kap
+    real(dp) :: h(6), hx(6), hxx(6), gw(8), gww(8)
+    type(strain_point_t) :: sp
+    call quintic_hermite(e, el%length, h, hx, hxx)
+    call spread_w(hx, gw)
+    call spread_w(hxx, gww)
+    call strain_state(el, 1.0_dp + dot_product(el%gu, p), dot_product(gw, p), dot_product(gww, p), &
+                      .false., sp)
+    eps_n = sp%eps
+    kap = sp%kap
+  end subroutine kear_section_strains
+
+  !> Local nodal values p = T(phi) q = [u1 w1 th1 m1 u2 w2 th2 m2].
+  pure function kear_local_dofs(phi, q) result(p)
+    real(dp), intent(in) :: phi, q(8)
+    real(dp) :: p(8)
+    p = to_local(cos(phi), sin(phi), q)
+  end function kear_local_dofs
+
+  !> Local elastic displacements (u, w) at x = e l (K26).
+  pure function kear_local_displacement(el, q, phi, e) result(uw)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), phi, e
+    real(dp) :: uw(2)
+    real(dp) :: p(8), n(2), h(6), sw(8)
+    p = to_local(cos(phi), sin(phi), q)
+    call linear_lagrange(e, el%length, n)
+    call quintic_hermite(e, el%length, h)
+    call spread_w(h, sw)
+    uw(1) = n(1)*p(1) + n(2)*p(5)
+    uw(2) = dot_product(sw, p)
+  end function kear_local_displacement
+
+  ! ------------------------------------------------------------ internals
+
+  logical pure function is_linear_strain(el)
+    type(kear_element_t), intent(in) :: el
+    is_linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
+  end function is_linear_strain
+
+  !> Linear model: max |eps| = |u_x| + t/2 |w_xx| at the Gauss points.
+  pure subroutine linear_strain_peak(el, p, info)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(8)
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp) :: ux, e
+    integer :: i
+    ux = abs(dot_product(el%gu, p))
+    info%max_abs_strain = 0.0_dp
+    do i = 1, el%n_gauss
+      e = ux + 0.5_dp*el%depth*abs(dot_product(el%gww(:, i), p))
+      if (e > info%max_abs_strain) then
+        info%max_abs_strain = e
+        info%x_over_l_max_strain = el%xg(i)/el%length
+      end if
+    end do
+    info%beyond_peak = .false.            ! material switch off: no peak in the law
+  end subroutine linear_strain_peak
+
+  !> Strain energy, internal force, tangent K_pp and K_pp prel (damping) by
+  !> Gauss quadrature along the element; all in local DOFs p.
+  !> Per station everything lives in the 3-space (a, b, c) = (1+u_x, w_x, w_xx):
+  !> f = G (N de + M dk),  K = G H G^T,  G = [gu gw gww] (8 x 3).
+  pure subroutine nonlinear_strain_terms(el, p, prel, need_k, info, fint, fdamp, kp)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(8), prel(8)
+    logical, intent(in) :: need_k
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp), intent(out) :: fint(8), fdamp(8), kp(8, 8)
+    real(dp) :: g(8, 3), h3(3, 3), f3(3), ux, e, ht, tn(3), tk(3)
+    type(strain_point_t) :: sp
+    type(section_resultants_t) :: res
+    integer :: i
+    fint = 0.0_dp
+    fdamp = 0.0_dp
+    kp = 0.0_dp
+    info%strain_energy = 0.0_dp
+    info%max_abs_strain = 0.0_dp
+    ht = 0.5_dp*el%depth
+    ux = dot_product(el%gu, p)
+    g(:, 1) = el%gu
+    do i = 1, el%n_gauss
+      g(:, 2) = el%gw(:, i)
+      g(:, 3) = el%gww(:, i)
+      call strain_state(el, 1.0_dp + ux, dot_product(g(:, 2), p), dot_product(g(:, 3), p), .true., sp)
+      res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
+      info%strain_energy = info%strain_energy + el%wg(i)*res%energy
+      f3 = res%axial_force*sp%de_used + res%moment*sp%dk            ! (K17)
+      fint = fint + el%wg(i)*matmul(g, f3)
+      if (need_k) then
+        tn = res%tangent(1, 1)*sp%de_true + res%tangent(1, 2)*sp%dk  ! dN/d(a,b,c)
+        tk = res%tangent(2, 1)*sp%de_true + res%tangent(2, 2)*sp%dk  ! dM/d(a,b,c)
+        h3 = outer3(sp%de_used, tn) + outer3(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
+        kp = kp + el%wg(i)*matmul(g, matmul(h3, transpose(g)))
+        fdamp = fdamp + el%wg(i)*matmul(g, matmul(h3, matmul(transpose(g), prel)))
+      end if
+      e = abs(sp%eps) + ht*abs(sp%kap)
+      if (e > info%max_abs_strain) then
+        info%max_abs_strain = e
+        info%x_over_l_max_strain = el%xg(i)/el%length
+      end if
+    end do
+    info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
+    info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star
+  end subroutine nonlinear_strain_terms
+
+  !> Axial strain and curvature at a station from (a, b, c) = (1+u_x, w_x, w_xx),
+  !> with first (and if derivs, second) derivatives.  u_xx = 0 for the linear
+  !> axial interpolation of (K26), so the u_xx terms of (K23), (K24) vanish.
+  pure subroutine strain_state(el, a, b, c, derivs, sp)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: a, b, c
+    logical, intent(in) :: derivs
+    type(strain_point_t), intent(out) :: sp
+    real(dp) :: r2, r, r3, r5, r7
+    logical :: kear
+    kear = el%formulation == formulation_kear1987
+    r2 = a*a + b*b
+    r = sqrt(r2)
+    ! axial strain
+    if (el%effects%stretching) then
+      sp%eps = r - 1.0_dp                                   ! (K19)
+      if (derivs) then
+        sp%de_true = [a/r, b/r, 0.0_dp]
+        if (kear) then
+          sp%de_used = [a, b, 0.0_dp]                       ! (K20) as printed
+          sp%he_used(1, 1) = 1.0_dp
+          sp%he_used(2, 2) = 1.0_dp
+        else
+          sp%de_used = sp%de_true
+          r3 = r2*r
+          sp%he_used(1, 1) = b*b/r3
+          sp%he_used(1, 2) = -a*b/r3
+          sp%he_used(2, 1) = -a*b/r3
+          sp%he_used(2, 2) = a*a/r3
+        end if
+      end if
+    else
+      sp%eps = a - 1.0_dp                                   ! eps_n = u_x
+      if (derivs) then
+        sp%de_true = [1.0_dp, 0.0_dp, 0.0_dp]
+        sp%de_used = sp%de_true
+      end if
+    end if
+    ! curvature
+    if (.not. el%effects%curvature) then
+      sp%kap = c                                            ! kappa = w_xx
+      if (derivs) sp%dk = [0.0_dp, 0.0_dp, 1.0_dp]
+    else if (kear) then
+      sp%kap = c*a                                          ! (K23) as printed, u_xx = 0
+      if (derivs) then
+        sp%dk = [c, 0.0_dp, a]                              ! (K24)
+        sp%hk(1, 3) = 1.0_dp
+        sp%hk(3, 1) = 1.0_dp
+      end if
+    else
+      r3 = r2*r
+      sp%kap = c*a/r3                                       ! exact curvature, u_xx = 0
+      if (derivs) then
+        r5 = r3*r2
+        r7 = r5*r2
+        sp%dk = [c*(b*b - 2.0_dp*a*a)/r5, -3.0_dp*c*a*b/r5, a/r3]
+        sp%hk(1, 1) = c*a*(6.0_dp*a*a - 9.0_dp*b*b)/r7
+        sp%hk(1, 2) = c*b*(12.0_dp*a*a - 3.0_dp*b*b)/r7
+        sp%hk(2, 2) = -3.0_dp*c*a*(a*a - 4.0_dp*b*b)/r7
+        sp%hk(1, 3) = (b*b - 2.0_dp*a*a)/r5
+        sp%hk(2, 3) = -3.0_dp*a*b/r5
+        sp%hk(2, 1) = sp%hk(1, 2)
+        sp%hk(3, 1) = sp%hk(1, 3)
+        sp%hk(3, 2) = sp%hk(2, 3)
+      end if
+    end if
+  end subroutine strain_state
+
+  !> Rotary inertia with the nonlinear section angle (curvature switch on):
+  !> exact theta = phi + atan2(w_x, 1+u_x) (K8), or kear1987's (K9)/(K11).
+  !> Adds rho I int theta_q theta_q^T to mp and -rho I int theta_q (theta_dd -
+  !> theta_q.q_dd) to fp (local DOFs).
+  pure subroutine rotary_nonlinear(el, p, v, jp, pdd_nm, phi_d, phi_dd, rhoi, mp, fp, info)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(8), v(8), jp(8), pdd_nm(8), phi_d, phi_dd, rhoi
+    real(dp), intent(inout) :: mp(8, 8), fp(8)
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp) :: a, b, r2, r4, xa, xb, xaa, xab, xbb, tq(8), acc, quad, pd(8)
+    real(dp) :: ua, ub, ja, jbb
+    integer :: i
+    logical :: kear
+    kear = el%formulation == formulation_kear1987
+    a = 1.0_dp + dot_product(el%gu, p)
+    pd = v - phi_d*jp
+    do i = 1, el%n_gauss
+      b = dot_product(el%gw(:, i), p)
+      if (kear) then
+        xa = -b                                  ! (K9), (K11): no 1/((1+u_x)^2 + w_x^2)
+        xb = a
+        quad = 0.0_dp                            ! (K11) omits the velocity-product term
+      else
+        r2 = a*a + b*b
+        r4 = r2*r2
+        xa = -b/r2
+        xb = a/r2
+        xaa = 2.0_dp*a*b/r4
+        xab = (b*b - a*a)/r4
+        xbb = -xaa
+        if (el%effects%coupling) then
+          ua = dot_product(el%gu, pd)
+          ub = dot_product(el%gw(:, i), pd)
+          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub
+        else
+          ! without the Coriolis cross term between T q_dot and phi_dot J_b p
+          ua = dot_product(el%gu, v)
+          ub = dot_product(el%gw(:, i), v)
+          ja = dot_product(el%gu, jp)
+          jbb = dot_product(el%gw(:, i), jp)
+          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub &
+                 + phi_d**2*(xaa*ja*ja + 2.0_dp*xab*ja*jbb + xbb*jbb*jbb)
+        end if
+      end if
+      tq = xa*el%gu + xb*el%gw(:, i)             ! d theta / d p
+      acc = phi_dd + dot_product(tq, pdd_nm) + quad
+      mp = mp + rhoi*el%wg(i)*outer(tq, tq)
+      fp = fp - rhoi*el%wg(i)*acc*tq
+    end do
+    info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
+  end subroutine rotary_nonlinear
+
+  !> Place the six w-functions at local DOFs 2,3,4,6,7,8.
+  pure subroutine spread_w(h, sw)
+    real(dp), intent(in) :: h(6)
+    real(dp), intent(out) :: sw(8)
+    sw = [0.0_dp, h(1), h(2), h(3), 0.0_dp, h(4), h(5), h(6)]
+  end subroutine spread_w
+
+  !> p = T(phi) q: rotate the node translations into the element frame (K26).
+  pure function to_local(c, s, q) result(p)
+    real(dp), intent(in) :: c, s, q(8)
+    real(dp) :: p(8)
+    p = q
+    p(1) = c*q(1) + s*q(2)
+    p(2) = -s*q(1) + c*q(2)
+    p(5) = c*q(5) + s*q(6)
+    p(6) = -s*q(5) + c*q(6)
+  end function to_local
+
+  !> T^T f.
+  pure function to_global(c, s, f) result(g)
+    real(dp), intent(in) :: c, s, f(8)
+    real(dp) :: g(8)
+    g = f
+    g(1) = c*f(1) - s*f(2)
+    g(2) = s*f(1) + c*f(2)
+    g(5) = c*f(5) - s*f(6)
+    g(6) = s*f(5) + c*f(6)
+  end function to_global
+
+  !> T^T A T.
+  pure function to_global_matrix(c, s, a) result(g)
+    real(dp), intent(in) :: c, s, a(8, 8)
+    real(dp) :: g(8, 8), t(8, 8)
+    integer :: j
+    do j = 1, 8
+      t(:, j) = to_global(c, s, a(:, j))          ! T^T A
+    end do
+    do j = 1, 8
+      g(j, :) = to_global(c, s, t(j, :))          ! (T^T (T^T A)^T)^T = T^T A T
+    end do
+  end function to_global_matrix
+
+  !> J_b p: (u, w) -> (-w, u) at both nodes, zero on th, m  (T_phi = -J_b T).
+  pure function jb_times(p) result(r)
+    real(dp), intent(in) :: p(8)
+    real(dp) :: r(8)
+    r = 0.0_dp
+    r(1) = -p(2)
+    r(2) = p(1)
+    r(5) = -p(6)
+    r(6) = p(5)
+  end function jb_times
+
+  pure function outer(x, y) result(m)
+    real(dp), intent(in) :: x(:), y(:)
+    real(dp) :: m(size(x), size(y))
+    integer :: j
+    do j = 1, size(y)
+      m(:, j) = x*y(j)
+    end do
+  end function outer
+
+  pure function outer3(x, y) result(m)
+    real(dp), intent(in) :: x(3), y(3)
+    real(dp) :: m(3, 3)
+    integer :: j
+    do j = 1, 3
+      m(:, j) = x*y(j)
+    end do
+  end function outer3
+end module kear_element
