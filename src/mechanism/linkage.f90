@@ -1,0 +1,669 @@
+!> The description of a single-degree-of-freedom planar linkage: joints (the
+!> points where link ends meet, some of them fixed to the ground), links (beams
+!> running between two joints, each split into finite elements) and the crank
+!> driver.  Four-bar, slider-crank and inverted slider-crank are data, not code.
+!>
+!> The deck group &mechanism is flat (gfortran cannot read derived types with
+!> allocatable components from a namelist); its variables are the components of
+!> mechanism_input_t, whose default initialisation *is* the documented default
+!> (doc/mechanism_deck.md).  build_mechanism validates every value, naming the
+!> variable and the value, and returns the checked, indexed mechanism_t.
+module linkage
+  use kinds, only: dp, pi
+  use error_status, only: error_t
+  use strings, only: str, lower
+  implicit none
+  private
+  public :: max_links, max_joints, max_elements_per_link, coordinate_unset
+  public :: joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_slider_link, joint_free
+  public :: profile_constant, profile_spinup, branch_open, branch_crossed
+  public :: mechanism_input_t, mechanism_t, link_t, joint_t, driver_t
+  public :: build_mechanism, driver_angle, joint_type_name, mechanism_summary, classify_mechanism
+  public :: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, tennant_aluminium_rho
+
+  integer, parameter :: max_links = 40              !< size of the &mechanism link arrays
+  integer, parameter :: max_joints = 60             !< size of the &mechanism joint arrays
+  integer, parameter :: max_elements_per_link = 200
+  !> "Not given" marker for joint coordinates (a real coordinate is never this).
+  real(dp), parameter :: coordinate_unset = -1.0e30_dp
+
+  integer, parameter :: joint_pin = 1           !< pin between two or more links
+  integer, parameter :: joint_ground_pin = 2    !< pin between links and the ground
+  integer, parameter :: joint_clamp = 3         !< crank end clamped to the driving shaft
+  integer, parameter :: joint_slider_fixed = 4  !< link end(s) on a block sliding on a fixed straight guide
+  integer, parameter :: joint_slider_link = 5   !< pivoting sleeve through which a link slides
+  integer, parameter :: joint_free = 6          !< free end of a single link (rotating cantilever)
+  character(len=12), parameter :: joint_type_names(6) = [character(len=12) :: &
+    'pin', 'ground_pin', 'clamp', 'slider_fixed', 'slider_link', 'free']
+
+  integer, parameter :: profile_constant = 1, profile_spinup = 2
+  integer, parameter :: branch_open = 1, branch_crossed = -1
+
+  ! Tennant's "approximating aluminum", section 8.1 (T6, T7): sigma = A eps - B eps^m.
+  real(dp), parameter :: tennant_aluminium_e1 = 10.87e6_dp      !< A, lb/in^2
+  real(dp), parameter :: tennant_aluminium_e2 = 0.8387e11_dp    !< B, lb/in^2
+  real(dp), parameter :: tennant_aluminium_m = 3.0_dp           !< m
+  real(dp), parameter :: tennant_aluminium_rho = 2.536e-4_dp    !< lb s^2/in^4
+
+  !> The flat contents of &mechanism, with the documented defaults.
+  type :: mechanism_input_t
+    integer :: n_joints = 0
+    character(len=16) :: joint_name(max_joints) = ''
+    character(len=16) :: joint_type(max_joints) = ''
+    real(dp) :: joint_x(max_joints) = coordinate_unset
+    real(dp) :: joint_y(max_joints) = coordinate_unset
+    real(dp) :: joint_guide_deg(max_joints) = 0.0_dp
+    integer :: joint_sliding_link(max_joints) = 0
+    character(len=8) :: joint_branch(max_joints) = ''
+    real(dp) :: joint_mass(max_joints) = 0.0_dp
+    integer :: n_links = 0
+    character(len=16) :: link_name(max_links) = ''
+    integer :: link_joint1(max_links) = 0
+    integer :: link_joint2(max_links) = 0
+    real(dp) :: link_length(max_links) = 0.0_dp
+    real(dp) :: link_b(max_links) = 0.25_dp
+    real(dp) :: link_h(max_links) = 1.0_dp
+    real(dp) :: link_area(max_links) = 0.0_dp
+    real(dp) :: link_inertia(max_links) = 0.0_dp
+    real(dp) :: link_e1(max_links) = tennant_aluminium_e1
+    real(dp) :: link_e2(max_links) = tennant_aluminium_e2
+    real(dp) :: link_m(max_links) = tennant_aluminium_m
+    real(dp) :: link_rho(max_links) = tennant_aluminium_rho
+    integer :: link_n_elements(max_links) = 1
+    integer :: driver_link = 1
+    real(dp) :: omega = 0.0_dp
+    real(dp) :: theta0_deg = 0.0_dp
+    character(len=16) :: profile = 'constant'
+    real(dp) :: spinup_time = 0.0_dp
+    character(len=8) :: branch = 'open'
+    real(dp) :: toggle_rcond = 1.0e-8_dp
+  end type mechanism_input_t
+
+  !> A link: a straight beam from the joint at its end 1 to the joint at its
+  !> end 2.  Its reference line runs from end 1 to end 2; its elements split
+  !> the (active) length evenly.
+  type :: link_t
+    character(len=16) :: name = ''
+    integer :: joint(2) = 0
+    real(dp) :: length = 0.0_dp       !< fixed length; for a sliding link its physical length (0 = not given)
+    logical :: sliding = .false.      !< slides through a sleeve: its active length varies
+    integer :: sleeve_end = 0         !< end (1 or 2) at the sleeve, if sliding
+    real(dp) :: b = 0.0_dp, h = 0.0_dp, area = 0.0_dp, inertia = 0.0_dp
+    real(dp) :: e1 = 0.0_dp, e2 = 0.0_dp, m = 0.0_dp, rho = 0.0_dp
+    integer :: n_elements = 0
+    integer :: first_element = 0      !< global number of its first element
+  end type link_t
+
+  !> A joint: a point of the mechanism where link ends meet.
+  type :: joint_t
+    character(len=16) :: name = ''
+    integer :: kind = 0
+    logical :: grounded = .false.     !< its position is a fixed ground point
+    logical :: has_position = .false. !< x, y were given (ground point, or reference position)
+    real(dp) :: x = 0.0_dp, y = 0.0_dp
+    real(dp) :: guide(2) = [1.0_dp, 0.0_dp]   !< slider_fixed: unit direction of the guide
+    integer :: sliding_link = 0       !< slider_link: the link sliding through the sleeve
+    integer :: branch = 0             !< +1 open, -1 crossed, 0 = the mechanism's branch
+    real(dp) :: mass = 0.0_dp         !< lumped mass at the joint (slider block, sleeve)
+    integer :: n_links = 0
+    integer, allocatable :: link(:)      !< links meeting here ...
+    integer, allocatable :: link_end(:)  !< ... and which of their ends (1 or 2)
+  end type joint_t
+
+  !> The crank: the angle of the driver link (end 1 to end 2) from global X is
+  !> theta(t) = theta0 + (profile).
+  type :: driver_t
+    integer :: link = 0
+    real(dp) :: omega = 0.0_dp        !< rad/s, positive counter-clockwise
+    real(dp) :: theta0 = 0.0_dp       !< rad
+    integer :: profile = profile_constant
+    real(dp) :: spinup_time = 0.0_dp  !< s (spinup profile)
+  end type driver_t
+
+  type :: mechanism_t
+    integer :: n_joints = 0, n_links = 0, n_elements = 0
+    type(joint_t), allocatable :: joints(:)
+    type(link_t), allocatable :: links(:)
+    type(driver_t) :: driver
+    integer :: branch = branch_open
+    real(dp) :: toggle_rcond = 1.0e-8_dp
+    real(dp) :: length_scale = 1.0_dp  !< mean link length, scales tolerances
+    type(mechanism_input_t) :: input   !< as given, for the echo and for redesign
+  end type mechanism_t
+
+contains
+
+  pure function joint_type_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(len=:), allocatable :: name
+    if (kind >= 1 .and. kind <= size(joint_type_names)) then
+      name = trim(joint_type_names(kind))
+    else
+      name = 'unknown'
+    end if
+  end function joint_type_name
+
+  !> Record an input error (code 2) naming the variable, its value and the rule.
+  pure subroutine bad(err, variable, value, rule)
+    type(error_t), intent(inout) :: err
+    character(len=*), intent(in) :: variable, value, rule
+    call err%set('&mechanism', trim(variable)//' = '//trim(value)//': '//trim(rule), code=2)
+  end subroutine bad
+
+  pure function idx(name, i) result(s)
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    s = name//'('//str(i)//')'
+  end function idx
+
+  pure function quoted(s) result(q)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: q
+    q = "'"//trim(s)//"'"
+  end function quoted
+
+  logical pure function is_set(x)
+    real(dp), intent(in) :: x
+    is_set = x > 0.5_dp*coordinate_unset
+  end function is_set
+
+  logical pure function finite(x)
+    real(dp), intent(in) :: x
+    finite = abs(x) <= huge(x)
+  end function finite
+
+  !> Validate the flat input and build the indexed mechanism.  Any failure is
+  !> an input error (err%code = 2) naming the variable and its value.
+  subroutine build_mechanism(inp, mech, err)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(out) :: mech
+    type(error_t), intent(inout) :: err
+    integer :: nj, nl, j, i, k, e, n_clamp, n_carriers, dof, n_unknowns, n_equations
+    character(len=16) :: word
+    real(dp) :: total, dx, dy
+    integer :: n_fixed
+
+    mech%input = inp
+    nj = inp%n_joints
+    nl = inp%n_links
+    if (nj < 2 .or. nj > max_joints) then
+      call bad(err, 'n_joints', str(nj), 'must be between 2 and '//str(max_joints)); return
+    end if
+    if (nl < 1 .or. nl > max_links) then
+      call bad(err, 'n_links', str(nl), 'must be between 1 and '//str(max_links)); return
+    end if
+    mech%n_joints = nj
+    mech%n_links = nl
+    allocate(mech%joints(nj), mech%links(nl))
+
+    ! ---- joints: kind, name, ground coordinates, options
+    do j = 1, nj
+      associate (jt => mech%joints(j))
+        word = lower(adjustl(inp%joint_type(j)))
+        jt%kind = findloc(joint_type_names, word, dim=1)
+        if (jt%kind == 0) then
+          call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), &
+                   'must be one of pin, ground_pin, clamp, slider_fixed, slider_link, free'); return
+        end if
+        jt%name = adjustl(inp%joint_name(j))
+        if (len_trim(jt%name) == 0) jt%name = 'J'//str(j)
+        do k = 1, j - 1
+          if (mech%joints(k)%name == jt%name) then
+            call bad(err, idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
+          end if
+        end do
+        if (is_set(inp%joint_x(j)) .neqv. is_set(inp%joint_y(j))) then
+          call bad(err, idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
+                   'give both coordinates of joint '//trim(jt%name)//' or neither'); return
+        end if
+        jt%has_position = is_set(inp%joint_x(j))
+        if (jt%has_position) then
+          if (.not. (finite(inp%joint_x(j)) .and. finite(inp%joint_y(j)))) then
+            call bad(err, idx('joint_x', j), str(inp%joint_x(j)), 'coordinates must be finite'); return
+          end if
+          jt%x = inp%joint_x(j)
+          jt%y = inp%joint_y(j)
+        end if
+        if (.not. finite(inp%joint_guide_deg(j))) then
+          call bad(err, idx('joint_guide_deg', j), str(inp%joint_guide_deg(j)), 'must be finite'); return
+        end if
+        jt%guide = [cos(inp%joint_guide_deg(j)*pi/180.0_dp), sin(inp%joint_guide_deg(j)*pi/180.0_dp)]
+        select case (lower(adjustl(inp%joint_branch(j))))
+        case ('')
+          jt%branch = 0
+        case ('open')
+          jt%branch = branch_open
+        case ('crossed')
+          jt%branch = branch_crossed
+        case default
+          call bad(err, idx('joint_branch', j), quoted(inp%joint_branch(j)), &
+                   "must be 'open', 'crossed' or empty (use branch)"); return
+        end select
+        if (.not. (inp%joint_mass(j) >= 0.0_dp .and. finite(inp%joint_mass(j)))) then
+          call bad(err, idx('joint_mass', j), str(inp%joint_mass(j)), 'must be >= 0'); return
+        end if
+        jt%mass = inp%joint_mass(j)
+        if (inp%joint_sliding_link(j) /= 0 .and. jt%kind /= joint_slider_link) then
+          call bad(err, idx('joint_sliding_link', j), str(inp%joint_sliding_link(j)), &
+                   'only a slider_link joint has a sliding link (joint '//trim(jt%name)//' is '// &
+                   joint_type_name(jt%kind)//')'); return
+        end if
+        jt%sliding_link = inp%joint_sliding_link(j)
+      end associate
+    end do
+
+    ! ---- links: topology, section, material, mesh
+    do i = 1, nl
+      associate (lk => mech%links(i))
+        lk%name = adjustl(inp%link_name(i))
+        if (len_trim(lk%name) == 0) lk%name = 'link'//str(i)
+        do k = 1, i - 1
+          if (mech%links(k)%name == lk%name) then
+            call bad(err, idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
+          end if
+        end do
+        if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > nj) then
+          call bad(err, idx('link_joint1', i), str(inp%link_joint1(i)), 'must be a joint number 1..'//str(nj)); return
+        end if
+        if (inp%link_joint2(i) < 1 .or. inp%link_joint2(i) > nj) then
+          call bad(err, idx('link_joint2', i), str(inp%link_joint2(i)), 'must be a joint number 1..'//str(nj)); return
+        end if
+        if (inp%link_joint1(i) == inp%link_joint2(i)) then
+          call bad(err, idx('link_joint2', i), str(inp%link_joint2(i)), 'a link must join two different joints'); return
+        end if
+        lk%joint = [inp%link_joint1(i), inp%link_joint2(i)]
+        if (.not. (inp%link_b(i) > 0.0_dp .and. finite(inp%link_b(i)))) then
+          call bad(err, idx('link_b', i), str(inp%link_b(i)), 'the section width must be > 0'); return
+        end if
+        if (.not. (inp%link_h(i) > 0.0_dp .and. finite(inp%link_h(i)))) then
+          call bad(err, idx('link_h', i), str(inp%link_h(i)), 'the section height must be > 0'); return
+        end if
+        lk%b = inp%link_b(i)
+        lk%h = inp%link_h(i)
+        if (.not. (inp%link_area(i) >= 0.0_dp .and. finite(inp%link_area(i)))) then
+          call bad(err, idx('link_area', i), str(inp%link_area(i)), 'must be > 0 (or 0 for b*h)'); return
+        end if
+        if (.not. (inp%link_inertia(i) >= 0.0_dp .and. finite(inp%link_inertia(i)))) then
+          call bad(err, idx('link_inertia', i), str(inp%link_inertia(i)), 'must be > 0 (or 0 for b*h**3/12)'); return
+        end if
+        lk%area = inp%link_area(i)
+        if (.not. lk%area > 0.0_dp) lk%area = lk%b*lk%h
+        lk%inertia = inp%link_inertia(i)
+        if (.not. lk%inertia > 0.0_dp) lk%inertia = lk%b*lk%h**3/12.0_dp
+        if (.not. (inp%link_e1(i) > 0.0_dp .and. finite(inp%link_e1(i)))) then
+          call bad(err, idx('link_e1', i), str(inp%link_e1(i)), 'the modulus A must be > 0'); return
+        end if
+        if (.not. (inp%link_e2(i) >= 0.0_dp .and. finite(inp%link_e2(i)))) then
+          call bad(err, idx('link_e2', i), str(inp%link_e2(i)), 'the nonlinear coefficient B must be >= 0'); return
+        end if
+        if (.not. (inp%link_m(i) > 1.0_dp .and. inp%link_m(i) <= 20.0_dp)) then
+          call bad(err, idx('link_m', i), str(inp%link_m(i)), 'the exponent m must be in (1, 20]'); return
+        end if
+        if (.not. (inp%link_rho(i) > 0.0_dp .and. finite(inp%link_rho(i)))) then
+          call bad(err, idx('link_rho', i), str(inp%link_rho(i)), 'the mass density must be > 0'); return
+        end if
+        lk%e1 = inp%link_e1(i)
+        lk%e2 = inp%link_e2(i)
+        lk%m = inp%link_m(i)
+        lk%rho = inp%link_rho(i)
+        if (inp%link_n_elements(i) < 1 .or. inp%link_n_elements(i) > max_elements_per_link) then
+          call bad(err, idx('link_n_elements', i), str(inp%link_n_elements(i)), &
+                   'must be between 1 and '//str(max_elements_per_link)); return
+        end if
+        lk%n_elements = inp%link_n_elements(i)
+        if (.not. (inp%link_length(i) >= 0.0_dp .and. finite(inp%link_length(i)))) then
+          call bad(err, idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
+          return
+        end if
+      end associate
+    end do
+
+    ! ---- incidence: which link ends meet at each joint
+    do j = 1, nj
+      mech%joints(j)%n_links = count(inp%link_joint1(1:nl) == j) + count(inp%link_joint2(1:nl) == j)
+      allocate(mech%joints(j)%link(mech%joints(j)%n_links), mech%joints(j)%link_end(mech%joints(j)%n_links))
+      mech%joints(j)%n_links = 0
+    end do
+    do i = 1, nl
+      do e = 1, 2
+        j = mech%links(i)%joint(e)
+        associate (jt => mech%joints(j))
+          jt%n_links = jt%n_links + 1
+          jt%link(jt%n_links) = i
+          jt%link_end(jt%n_links) = e
+        end associate
+      end do
+    end do
+
+    ! ---- driver
+    if (inp%driver_link < 1 .or. inp%driver_link > nl) then
+      call bad(err, 'driver_link', str(inp%driver_link), 'must be a link number 1..'//str(nl)); return
+    end if
+    mech%driver%link = inp%driver_link
+    if (.not. finite(inp%omega)) then
+      call bad(err, 'omega', str(inp%omega), 'must be finite'); return
+    end if
+    if (.not. finite(inp%theta0_deg)) then
+      call bad(err, 'theta0_deg', str(inp%theta0_deg), 'must be finite'); return
+    end if
+    mech%driver%omega = inp%omega
+    mech%driver%theta0 = inp%theta0_deg*pi/180.0_dp
+    select case (lower(adjustl(inp%profile)))
+    case ('constant')
+      mech%driver%profile = profile_constant
+    case ('spinup')
+      mech%driver%profile = profile_spinup
+      if (.not. (inp%spinup_time > 0.0_dp .and. finite(inp%spinup_time))) then
+        call bad(err, 'spinup_time', str(inp%spinup_time), "must be > 0 with profile = 'spinup'"); return
+      end if
+    case default
+      call bad(err, 'profile', quoted(inp%profile), "must be 'constant' or 'spinup'"); return
+    end select
+    mech%driver%spinup_time = inp%spinup_time
+
+    select case (lower(adjustl(inp%branch)))
+    case ('open')
+      mech%branch = branch_open
+    case ('crossed')
+      mech%branch = branch_crossed
+    case default
+      call bad(err, 'branch', quoted(inp%branch), "must be 'open' or 'crossed'"); return
+    end select
+    if (.not. (inp%toggle_rcond > 0.0_dp .and. inp%toggle_rcond < 1.0_dp)) then
+      call bad(err, 'toggle_rcond', str(inp%toggle_rcond), 'must be in (0, 1)'); return
+    end if
+    mech%toggle_rcond = inp%toggle_rcond
+
+    ! ---- rules per joint type
+    n_clamp = 0
+    do j = 1, nj
+      associate (jt => mech%joints(j))
+        select case (jt%kind)
+        case (joint_pin)
+          if (jt%n_links < 2) then
+            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'pin '//trim(jt%name)//' joins '// &
+                     str(jt%n_links)//' link end(s); a pin joins two or more (a lone link end is '//quoted('free')//')')
+            return
+          end if
+        case (joint_free)
+          if (jt%n_links /= 1) then
+            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'free end '//trim(jt%name)//' must belong to '// &
+                     'exactly one link, not '//str(jt%n_links)); return
+          end if
+        case (joint_ground_pin, joint_slider_fixed)
+          jt%grounded = jt%kind == joint_ground_pin
+          if (jt%n_links < 1) then
+            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link'); return
+          end if
+        case (joint_clamp)
+          jt%grounded = .true.
+          n_clamp = n_clamp + 1
+          if (n_clamp > 1) then
+            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'only one clamp (the driving shaft) is allowed')
+            return
+          end if
+          if (jt%n_links /= 1 .or. inp%link_joint1(inp%driver_link) /= j) then
+            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'the clamp '//trim(jt%name)// &
+                     ' must hold exactly one link end, end 1 of the driver link (link_joint1(driver_link))'); return
+          end if
+        case (joint_slider_link)
+          i = jt%sliding_link
+          if (i < 1 .or. i > nl) then
+            call bad(err, idx('joint_sliding_link', j), str(i), 'slider_link '//trim(jt%name)// &
+                     ' needs the number of the link sliding through it (1..'//str(nl)//')'); return
+          end if
+          if (all(mech%links(i)%joint /= j)) then
+            call bad(err, idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
+                     ' must have joint '//trim(jt%name)//' as link_joint1 or link_joint2'); return
+          end if
+          if (mech%links(i)%sliding) then
+            call bad(err, idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
+                     ' already slides through another sleeve'); return
+          end if
+          mech%links(i)%sliding = .true.
+          mech%links(i)%sleeve_end = findloc(mech%links(i)%joint, j, dim=1)
+          ! Without other links carrying it, the sleeve pivots on the ground.
+          n_carriers = jt%n_links - 1
+          jt%grounded = n_carriers == 0
+        end select
+        if ((jt%grounded .or. jt%kind == joint_slider_fixed) .and. .not. jt%has_position) then
+          call bad(err, idx('joint_x', j)//', '//idx('joint_y', j), 'not given', &
+                   'joint '//trim(jt%name)//' ('//joint_type_name(jt%kind)//') is on the ground: give its coordinates')
+          return
+        end if
+      end associate
+    end do
+
+    ! ---- lengths (a sliding link's length is its physical length, optional)
+    total = 0.0_dp
+    n_fixed = 0
+    do i = 1, nl
+      associate (lk => mech%links(i))
+        lk%length = inp%link_length(i)
+        if (.not. lk%sliding .and. .not. lk%length > 0.0_dp) then
+          if (mech%joints(lk%joint(1))%has_position .and. mech%joints(lk%joint(2))%has_position) then
+            dx = mech%joints(lk%joint(2))%x - mech%joints(lk%joint(1))%x
+            dy = mech%joints(lk%joint(2))%y - mech%joints(lk%joint(1))%y
+            lk%length = hypot(dx, dy)
+          end if
+          if (.not. lk%length > 0.0_dp) then
+            call bad(err, idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
+                     ' needs a length > 0, or the coordinates of both its joints'); return
+          end if
+        end if
+        if (lk%length > 0.0_dp) then
+          total = total + lk%length
+          n_fixed = n_fixed + 1
+        end if
+      end associate
+    end do
+    if (n_fixed > 0) mech%length_scale = total/n_fixed
+
+    ! ---- the driver turns about a ground point
+    associate (dl => mech%links(mech%driver%link))
+      if (dl%sliding) then
+        call bad(err, 'driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+                 ' cannot be a link that slides through a sleeve'); return
+      end if
+      k = mech%joints(dl%joint(1))%kind
+      if (k /= joint_clamp .and. k /= joint_ground_pin) then
+        call bad(err, 'driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
+                 trim(mech%joints(dl%joint(1))%name)//') must be a clamp or ground_pin: the crank turns about it'); return
+      end if
+      if (mech%joints(dl%joint(2))%grounded) then
+        call bad(err, 'driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+                 ' joins two ground points and cannot turn'); return
+      end if
+    end associate
+
+    ! ---- mobility: unknowns (2 per joint, 1 angle per link, 1 active length per
+    ! sliding link, 1 slide per guided joint) minus equations (2 per link, 2 per
+    ! ground point, 2 per guided joint) must leave the one the crank takes.
+    n_unknowns = 2*nj + nl + count(mech%links%sliding) + count(mech%joints%kind == joint_slider_fixed)
+    n_equations = 2*nl + 2*count(mech%joints%grounded) + 2*count(mech%joints%kind == joint_slider_fixed)
+    dof = n_unknowns - n_equations
+    if (dof /= 1) then
+      call bad(err, 'n_links, n_joints, joint_type', 'the linkage', 'has '//str(dof)//' degrees of freedom '// &
+               '(Gruebler count: '//str(n_unknowns)//' coordinates, '//str(n_equations)// &
+               ' constraints); flexmech needs exactly one, taken by the crank'); return
+    end if
+
+    ! ---- global element numbering, link by link
+    k = 0
+    do i = 1, nl
+      mech%links(i)%first_element = k + 1
+      k = k + mech%links(i)%n_elements
+    end do
+    mech%n_elements = k
+  end subroutine build_mechanism
+
+  !> Crank angle and its first two time derivatives at time t.
+  !> 'constant':  theta = theta0 + omega t.
+  !> 'spinup' (cycloidal, tau = t/T): theta_d = omega (tau - sin(2 pi tau)/(2 pi)) for 0 <= t <= T,
+  !> so theta_dd = (omega/T)(1 - cos(2 pi tau)) vanishes at both ends and the
+  !> jerk is continuous; at rest before t = 0, constant omega after T.
+  pure subroutine driver_angle(drv, t, theta, theta_d, theta_dd)
+    type(driver_t), intent(in) :: drv
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: theta, theta_d, theta_dd
+    real(dp) :: tau, period
+    select case (drv%profile)
+    case (profile_spinup)
+      period = drv%spinup_time
+      if (t <= 0.0_dp) then
+        theta = drv%theta0
+        theta_d = 0.0_dp
+        theta_dd = 0.0_dp
+      else if (t < period) then
+        tau = t/period
+        theta = drv%theta0 + drv%omega*period*(0.5_dp*tau**2 - (1.0_dp - cos(2.0_dp*pi*tau))/(4.0_dp*pi**2))
+        theta_d = drv%omega*(tau - sin(2.0_dp*pi*tau)/(2.0_dp*pi))
+        theta_dd = drv%omega/period*(1.0_dp - cos(2.0_dp*pi*tau))
+      else
+        theta = drv%theta0 + drv%omega*(0.5_dp*period + (t - period))
+        theta_d = drv%omega
+        theta_dd = 0.0_dp
+      end if
+    case default
+      theta = drv%theta0 + drv%omega*t
+      theta_d = drv%omega
+      theta_dd = 0.0_dp
+    end select
+  end subroutine driver_angle
+
+  !> Recognise four-bars and slider-cranks and say whether the crank can turn
+  !> fully (Grashof's rule; crank radius plus offset against the rod length).
+  !> Empty for other linkages.
+  function classify_mechanism(mech) result(text)
+    type(mechanism_t), intent(in) :: mech
+    character(len=:), allocatable :: text
+    integer :: j, g(2), ng, np, nsf, crank, i
+    real(dp) :: bars(4), s, l, pq, r, rod, offset, sgn
+    integer :: shortest
+    character(len=:), allocatable :: who
+    text = ''
+    crank = mech%driver%link
+    ng = 0; np = 0; nsf = 0; i = 0; g = 0
+    do j = 1, mech%n_joints
+      select case (mech%joints(j)%kind)
+      case (joint_clamp, joint_ground_pin)
+        ng = ng + 1
+        if (ng <= 2) g(ng) = j
+      case (joint_pin)
+        if (mech%joints(j)%n_links == 2) np = np + 1
+      case (joint_slider_fixed)
+        nsf = nsf + 1
+        if (nsf == 1) i = j
+      end select
+    end do
+    if (mech%n_links == 3 .and. mech%n_joints == 4 .and. ng == 2 .and. np == 2 .and. &
+        .not. any(mech%links%sliding)) then
+      bars(1:3) = mech%links%length
+      bars(4) = hypot(mech%joints(g(2))%x - mech%joints(g(1))%x, mech%joints(g(2))%y - mech%joints(g(1))%y)
+      s = minval(bars)
+      l = maxval(bars)
+      pq = sum(bars) - s - l
+      shortest = minloc(bars, dim=1)
+      if (s + l < pq) then
+        if (shortest == crank) then
+          who = 'crank-rocker: the crank turns fully'
+        else if (shortest == 4) then
+          who = 'double-crank (drag link): the crank turns fully'
+        else if (any(mech%links(shortest)%joint == g(1)) .or. any(mech%links(shortest)%joint == g(2))) then
+          who = 'rocker-crank: the output link turns fully, the crank cannot'
+        else
+          who = 'Grashof double-rocker: the crank cannot turn fully'
+        end if
+        text = 'four-bar, Grashof (s + l = '//str(s + l)//' < p + q = '//str(pq)//'), '//who
+      else if (s + l > pq) then
+        text = 'four-bar, non-Grashof triple-rocker (s + l = '//str(s + l)//' > p + q = '//str(pq)// &
+               '): the crank cannot turn fully'
+      else
+        text = 'four-bar, change point (s + l = p + q = '//str(pq)//'): toggle positions where the branches meet'
+      end if
+    else if (mech%n_links == 2 .and. mech%n_joints == 3 .and. ng == 1 .and. nsf == 1 .and. np == 1) then
+      r = mech%links(crank)%length
+      rod = mech%links(3 - crank)%length
+      ! offset of the guide line from the crank pivot
+      sgn = (mech%joints(g(1))%x - mech%joints(i)%x)*mech%joints(i)%guide(2) - &
+            (mech%joints(g(1))%y - mech%joints(i)%y)*mech%joints(i)%guide(1)
+      offset = abs(sgn)
+      if (rod > r + offset) then
+        text = 'slider-crank (crank '//str(r)//', rod '//str(rod)//', offset '//str(offset)// &
+               '): the crank turns fully'
+      else
+        text = 'slider-crank (crank '//str(r)//', rod '//str(rod)//', offset '//str(offset)// &
+               '): rod <= crank + offset, the crank cannot turn fully'
+      end if
+    end if
+  end function classify_mechanism
+
+  !> Lines for the output header: joints, links, driver, branch, classification.
+  function mechanism_summary(mech) result(lines)
+    type(mechanism_t), intent(in) :: mech
+    character(len=160), allocatable :: lines(:)
+    character(len=:), allocatable :: s, cls
+    integer :: j, i, k, n
+    n = 0
+    allocate(lines(mech%n_joints + mech%n_links + 4))
+    call add('mechanism: '//str(mech%n_joints)//' joints, '//str(mech%n_links)//' links, '// &
+             str(mech%n_elements)//' elements, one degree of freedom (the crank)')
+    do j = 1, mech%n_joints
+      associate (jt => mech%joints(j))
+        s = 'joint '//trim(jt%name)//': '//joint_type_name(jt%kind)
+        if (jt%grounded .or. jt%kind == joint_slider_fixed) s = s//' at ('//str(jt%x, 6)//', '//str(jt%y, 6)//')'
+        if (jt%kind == joint_slider_fixed) s = s//', guide '//str(mech%input%joint_guide_deg(j), 6)//' deg'
+        if (jt%kind == joint_slider_link) then
+          s = s//', sleeve for '//trim(mech%links(jt%sliding_link)%name)
+          if (jt%grounded) s = s//' pivoting on the ground'
+        end if
+        if (jt%mass > 0.0_dp) s = s//', mass '//str(jt%mass, 6)
+        s = s//'; link ends:'
+        do k = 1, jt%n_links
+          s = s//' '//trim(mech%links(jt%link(k))%name)//'.'//str(jt%link_end(k))
+        end do
+        call add(s)
+      end associate
+    end do
+    do i = 1, mech%n_links
+      associate (lk => mech%links(i))
+        s = 'link '//trim(lk%name)//': '//trim(mech%joints(lk%joint(1))%name)//'-'// &
+            trim(mech%joints(lk%joint(2))%name)
+        if (lk%sliding) then
+          s = s//', slides (active length varies)'
+        else
+          s = s//', length '//str(lk%length, 8)
+        end if
+        s = s//', b '//str(lk%b, 6)//', h '//str(lk%h, 6)//', A '//str(lk%area, 6)//', I '//str(lk%inertia, 6)// &
+            ', E1 '//str(lk%e1, 6)//', E2 '//str(lk%e2, 6)//', m '//str(lk%m, 4)//', rho '//str(lk%rho, 6)// &
+            ', '//str(lk%n_elements)//' element(s)'
+        call add(s)
+      end associate
+    end do
+    associate (d => mech%driver)
+      s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//str(d%omega, 8)//' rad/s, theta0 '// &
+          str(mech%input%theta0_deg, 8)//' deg, profile '
+      if (d%profile == profile_spinup) then
+        s = s//'spinup over '//str(d%spinup_time, 8)//' s (cycloidal)'
+      else
+        s = s//'constant'
+      end if
+    end associate
+    call add(s)
+    if (mech%branch == branch_open) then
+      call add('assembly branch: open')
+    else
+      call add('assembly branch: crossed')
+    end if
+    cls = classify_mechanism(mech)
+    if (len(cls) > 0) call add(cls)
+    lines = lines(1:n)
+  contains
+    subroutine add(text)
+      character(len=*), intent(in) :: text
+      n = n + 1
+      lines(n) = text
+    end subroutine add
+  end function mechanism_summary
+end module linkage
