@@ -10,10 +10,10 @@
 !>
 !> Thickness integration: for odd integer m the integrand is a polynomial and
 !> the integral is done in closed form (binomial expansion of the fibre
-!> strain, the 0/0-free form of (K16)); for any other m > 1 it is done by
-!> Gauss-Legendre on the two sub-intervals either side of the zero-strain
-!> fibre, where |eps|^(m+1) is analytic (accurate to round-off, see
-!> doc/element.md).
+!> strain, the 0/0-free form of (K16)); for any other m > 1 by the exact
+!> antiderivative of |eps|^(m+1) (the (K16) form, generalised), switching to
+!> a 16-point Gauss rule where that form would cancel (small curvature);
+!> both are accurate to round-off (doc/element.md).
 module material_law
   use kinds, only: dp
   use error_status, only: error_t
@@ -42,7 +42,7 @@ module material_law
     real(dp) :: tangent(2, 2) = 0.0_dp  !< d(N, M)/d(eps_n, kappa), symmetric
   end type section_resultants_t
 
-  integer, parameter :: n_split_gauss = 12     !< points per sub-interval, non-odd m
+  integer, parameter :: n_smooth_gauss = 16    !< non-odd m, strain of one sign (power_mean)
 
 contains
 
@@ -112,7 +112,7 @@ contains
   !> Section resultants for fibre strain eps_n - y kappa, y in [-t/2, t/2],
   !> area A = b t.  nonlinear = .false. drops the E2 term (material switch off).
   !> Odd integer m: closed form (K16, K17 in polynomial form); otherwise
-  !> Gauss-Legendre split at the zero-strain fibre.
+  !> the antiderivative form (power_mean).
   pure function section_response(mat, area, depth, eps_n, kappa, nonlinear) result(res)
     type(ramberg_osgood_t), intent(in) :: mat
     real(dp), intent(in) :: area, depth, eps_n, kappa
@@ -153,7 +153,7 @@ contains
           res%tangent(2, 2) = res%tangent(2, 2) - ht*ht*mm*mat%e2*eta_moment(m - 1, 2, eps_n, s)
         end if
       else
-        call split_gauss_nonlinear(mat, ht, eps_n, s, res)
+        call power_law_nonlinear(mat, ht, eps_n, s, res)
       end if
     end if
     res%tangent(2, 1) = res%tangent(1, 2)
@@ -180,41 +180,54 @@ contains
     end do
   end function eta_moment
 
-  !> E2 part of the resultants for non-odd m: the fibre strain changes sign at
-  !> eta0 = eps_n/s; on each side |eps|^(m+1) is smooth, so Gauss-Legendre
-  !> on [-1, eta0] and [eta0, 1] converges geometrically.
-  pure subroutine split_gauss_nonlinear(mat, ht, eps_n, s, res)
+  !> E2 part of the resultants for non-odd m, from the means
+  !> <eta^l z^j |z|^r> of power_mean (z = eps_n - eta s).
+  pure subroutine power_law_nonlinear(mat, ht, eps_n, s, res)
     type(ramberg_osgood_t), intent(in) :: mat
     real(dp), intent(in) :: ht, eps_n, s
     type(section_resultants_t), intent(inout) :: res
-    real(dp) :: xg(n_split_gauss), wg(n_split_gauss), cuts(3), a, b, eta, eps, w, ae, p
-    integer :: ncut, i, k
-    call gauss_legendre(n_split_gauss, xg, wg)
-    cuts(1) = -1.0_dp
-    ncut = 2
-    if (abs(s) > abs(eps_n)) then          ! zero-strain fibre inside the section
-      cuts(2) = eps_n/s
-      ncut = 3
-    end if
-    cuts(ncut) = 1.0_dp
+    real(dp) :: p
     p = mat%m
-    do k = 1, ncut - 1
-      a = cuts(k)
-      b = cuts(k + 1)
-      do i = 1, n_split_gauss
-        eta = 0.5_dp*(a + b) + 0.5_dp*(b - a)*xg(i)
-        w = 0.25_dp*(b - a)*wg(i)            ! mean over [-1,1]: weight/2
-        eps = eps_n - eta*s
-        ae = abs(eps)
-        res%energy = res%energy - w*mat%e2*ae**(p + 1.0_dp)/(p + 1.0_dp)
-        res%axial_force = res%axial_force - w*mat%e2*eps*ae**(p - 1.0_dp)
-        res%moment = res%moment + w*ht*eta*mat%e2*eps*ae**(p - 1.0_dp)
-        res%tangent(1, 1) = res%tangent(1, 1) - w*p*mat%e2*ae**(p - 1.0_dp)
-        res%tangent(1, 2) = res%tangent(1, 2) + w*ht*eta*p*mat%e2*ae**(p - 1.0_dp)
-        res%tangent(2, 2) = res%tangent(2, 2) - w*ht*ht*eta*eta*p*mat%e2*ae**(p - 1.0_dp)
+    res%energy = res%energy - mat%e2/(p + 1.0_dp)*power_mean(0, 0, p + 1.0_dp, eps_n, s)
+    res%axial_force = res%axial_force - mat%e2*power_mean(0, 1, p - 1.0_dp, eps_n, s)
+    res%moment = res%moment + ht*mat%e2*power_mean(1, 1, p - 1.0_dp, eps_n, s)
+    res%tangent(1, 1) = res%tangent(1, 1) - p*mat%e2*power_mean(0, 0, p - 1.0_dp, eps_n, s)
+    res%tangent(1, 2) = res%tangent(1, 2) + ht*p*mat%e2*power_mean(1, 0, p - 1.0_dp, eps_n, s)
+    res%tangent(2, 2) = res%tangent(2, 2) - ht*ht*p*mat%e2*power_mean(2, 0, p - 1.0_dp, eps_n, s)
+  end subroutine power_law_nonlinear
+
+  !> <eta^l z^j |z|^r> over eta in [-1, 1], z = eps_n - eta s, r > -1.
+  !> With eta = (eps_n - z)/s the integrand is a sum of z^i |z|^r, whose
+  !> antiderivative is z^(i+1) |z|^r / (i+r+1) for either sign of z (the
+  !> generalisation of Kear's (K16) form).  That difference quotient cancels
+  !> when |s| << |eps_n|; there (|s| < |eps_n|/2) z keeps its sign, the
+  !> integrand is analytic within a Bernstein ellipse of parameter >= 2+sqrt(3),
+  !> and a 16-point Gauss rule is exact to round-off.
+  pure real(dp) function power_mean(l, j, r, eps_n, s) result(mean)
+    integer, intent(in) :: l, j
+    real(dp), intent(in) :: r, eps_n, s
+    real(dp) :: zp, zm, binom, xg(n_smooth_gauss), wg(n_smooth_gauss), z
+    integer :: k, i
+    if (abs(s) < 0.5_dp*abs(eps_n) .or. abs(s) <= tiny(1.0_dp)) then
+      call gauss_legendre(n_smooth_gauss, xg, wg)
+      mean = 0.0_dp
+      do i = 1, n_smooth_gauss
+        z = eps_n - xg(i)*s
+        mean = mean + 0.5_dp*wg(i)*xg(i)**l*z**j*abs(z)**r
       end do
-    end do
-  end subroutine split_gauss_nonlinear
+    else
+      zp = eps_n + s            ! eta = -1
+      zm = eps_n - s            ! eta = +1
+      mean = 0.0_dp
+      binom = 1.0_dp
+      do k = 0, l
+        if (k > 0) binom = binom*real(l - k + 1, dp)/real(k, dp)
+        mean = mean + binom*eps_n**(l - k)*(-1.0_dp)**k &
+                      *(zp**(k + j + 1)*abs(zp)**r - zm**(k + j + 1)*abs(zm)**r)/(real(k + j + 1, dp) + r)
+      end do
+      mean = mean/(2.0_dp*s**(l + 1))
+    end if
+  end function power_mean
 
   !> Reference: the same resultants by plain n-point Gauss-Legendre through
   !> the depth of the pointwise law (for tests and for checking new laws).
