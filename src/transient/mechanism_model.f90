@@ -1,0 +1,378 @@
+!> The flexible mechanism as a first-order system for DLSODE (K30-K34):
+!>
+!>     M(q, t) q_dd = F(q, q_d, t)   ->   y' = f(t, y)
+!>
+!> about the known rigid-body motion.  One right-hand-side evaluation solves
+!> the rigid kinematics at t, evaluates every element (Kear's element) through
+!> the variable correlation table, assembles M in band storage and F, factors
+!> M by banded Cholesky (LAPACK DPBTRF: cost linear in the number of
+!> elements) and solves for the accelerations.
+!>
+!> The state is interleaved, y(2i-1) = q_i and y(2i) = q_d_i, so that the
+!> Jacobian of the first-order system has the band structure of M and K (for
+!> DLSODE's banded BDF options).
+!>
+!> A structure that does not move (beam tests) is modelled with fixed element
+!> rigid states instead of kinematics (`init_fixed`).
+module mechanism_model
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use linalg, only: band_cholesky_factor, band_cholesky_solve, lu_factor, lu_solve, sym_generalized_eig
+  use lsode_solver, only: ode_system_t
+  use correlation_table, only: correlation_table_t, link_end_t, dofs_per_element
+  use kear_element, only: kear_element_t, rigid_state_t, kear_eval_info_t, element_effects_t, &
+                          kear_element_init, kear_element_eval, kear_tangent_stiffness, kear_strain_energy, &
+                          kear_kinetic_energy, kear_stress_recovery, stress_report_t, formulation_from_name
+  use material_law, only: ramberg_osgood_t
+  use linkage, only: mechanism_t, joint_slider_link
+  use kinematics, only: kinematics_t, motion_t
+  implicit none
+  private
+  public :: mechanism_model_t, element_spec_t
+
+  !> What an element needs besides its rigid state (for init_fixed).
+  type :: element_spec_t
+    real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
+    type(ramberg_osgood_t) :: material
+  end type element_spec_t
+
+  type, extends(ode_system_t) :: mechanism_model_t
+    logical :: moving = .true.                    !< rigid motion from kinematics (else fixed states)
+    type(kinematics_t) :: kin
+    type(correlation_table_t) :: table
+    type(kear_element_t), allocatable :: el(:)
+    type(rigid_state_t), allocatable :: rb(:)     !< current rigid state of each element
+    integer :: n = 0                              !< global unknowns
+    integer :: kd = 0                             !< half-bandwidth of M
+    real(dp), allocatable :: mass_band(:, :)      !< (kd+1, n) lower band storage
+    real(dp), allocatable :: force(:)
+    ! cost and diagnostics
+    integer :: n_rhs = 0                          !< RHS evaluations done by this model
+    integer :: n_mass_factorizations = 0
+    integer :: n_nonlinear_points = 0             !< nonlinear integrand evaluations (cost proxy)
+    logical :: stop_beyond_peak = .true.          !< stop when a strain passes the R-O peak
+  contains
+    procedure :: init_mechanism
+    procedure :: init_fixed
+    procedure :: rhs => model_rhs
+    procedure :: jacobian => model_jacobian
+    procedure :: set_time
+    procedure :: accelerations
+    procedure :: assemble_dense
+    procedure :: linear_modes
+    procedure :: energies
+    procedure :: element_stresses
+    procedure :: state_size
+  end type mechanism_model_t
+
+contains
+
+  ! ------------------------------------------------------------------ set-up
+
+  !> Build the model of a linkage: kinematics, correlation table from the
+  !> joints, one Kear element per link segment.
+  subroutine init_mechanism(self, mech, effects, formulation, beta, err)
+    class(mechanism_model_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
+    real(dp), intent(in) :: beta
+    type(error_t), intent(inout) :: err
+    type(link_end_t), allocatable :: ends(:, :)
+    integer :: k, side, j, e, code
+    real(dp) :: guide_angle
+    type(motion_t) :: m
+
+    self%moving = .true.
+    allocate(ends(2, mech%n_links))
+    do k = 1, mech%n_links
+      if (mech%links(k)%sliding) then
+        call err%set('flexible model', 'link '''//trim(mech%links(k)%name)//''' slides through a sleeve '// &
+          '(slider_link): its varying length is supported by the kinematics but not yet by the flexible '// &
+          'transient element (moving integration limit, T24); model that link as rigid or use a fixed guide')
+        return
+      end if
+      do side = 1, 2
+        j = mech%links(k)%joint(side)
+        guide_angle = atan2(mech%joints(j)%guide(2), mech%joints(j)%guide(1))
+        ends(side, k) = link_end_t(mech%joints(j)%kind, j, guide_angle)
+        if (mech%joints(j)%kind == joint_slider_link) then
+          call err%set('flexible model', 'joint '''//trim(mech%joints(j)%name)//''' (slider_link) is not '// &
+                       'supported by the flexible transient analysis yet')
+          return
+        end if
+      end do
+    end do
+    call self%table%build(mech%links(:)%n_elements, ends, err)
+    if (err%failed()) return
+
+    call self%kin%init(mech, err)
+    if (err%failed()) return
+    call self%kin%solve(0.0_dp, err)
+    if (err%failed()) return
+
+    call formulation_from_name(formulation, code, err)
+    if (err%failed()) return
+    allocate(self%el(self%table%n_elements), self%rb(self%table%n_elements))
+    do k = 1, mech%n_links
+      associate (lk => mech%links(k))
+        do e = lk%first_element, lk%first_element + lk%n_elements - 1
+          m = self%kin%element_motion_global(e)
+          call kear_element_init(self%el(e), m%length, lk%b, lk%h, &
+                                 ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
+                                 formulation=code, damping_beta=beta)
+          if (err%failed()) then
+            call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
+            return
+          end if
+        end do
+      end associate
+    end do
+    call allocate_work(self)
+    call self%set_time(0.0_dp)
+  end subroutine init_mechanism
+
+  !> A structure at rest: elements with given rigid states and a table built
+  !> from the given link ends (beam verification tests).
+  subroutine init_fixed(self, specs, states, n_elem, ends, effects, formulation, beta, err)
+    class(mechanism_model_t), intent(inout) :: self
+    type(element_spec_t), intent(in) :: specs(:)
+    type(rigid_state_t), intent(in) :: states(:)
+    integer, intent(in) :: n_elem(:)
+    type(link_end_t), intent(in) :: ends(:, :)
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
+    real(dp), intent(in) :: beta
+    type(error_t), intent(inout) :: err
+    integer :: e, code
+    self%moving = .false.
+    call self%table%build(n_elem, ends, err)
+    if (err%failed()) return
+    if (size(specs) /= self%table%n_elements .or. size(states) /= self%table%n_elements) then
+      call err%set('flexible model', 'need one element spec and rigid state per element')
+      return
+    end if
+    call formulation_from_name(formulation, code, err)
+    if (err%failed()) return
+    allocate(self%el(self%table%n_elements))
+    self%rb = states
+    do e = 1, self%table%n_elements
+      call kear_element_init(self%el(e), specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
+                             effects, err, formulation=code, damping_beta=beta)
+      if (err%failed()) return
+    end do
+    call allocate_work(self)
+  end subroutine init_fixed
+
+  subroutine allocate_work(self)
+    type(mechanism_model_t), intent(inout) :: self
+    self%n = self%table%n_global
+    self%kd = self%table%half_bandwidth
+    allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+  end subroutine allocate_work
+
+  integer function state_size(self)
+    class(mechanism_model_t), intent(in) :: self
+    state_size = 2*self%n
+  end function state_size
+
+  !> Rigid-body states of all elements at time t (no-op for a fixed structure).
+  subroutine set_time(self, t)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    type(error_t) :: err
+    type(motion_t) :: m
+    integer :: e
+    if (.not. self%moving) return
+    call self%kin%solve(t, err)
+    if (err%failed()) then
+      call self%fail(t, 'rigid-body kinematics: '//err%text())
+      return
+    end if
+    do e = 1, size(self%el)
+      m = self%kin%element_motion_global(e)
+      self%rb(e) = rigid_state_t(m%x1, m%y1, m%phi, m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd)
+    end do
+  end subroutine set_time
+
+  ! ------------------------------------------------------------------ equations of motion
+
+  !> q_dd from M(q,t) q_dd = F(q, q_d, t).  Fails (self%err) when M is not
+  !> positive definite or a strain passes the material's peak.
+  subroutine accelerations(self, t, q, qd, qdd)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out), contiguous :: qdd(:)
+    real(dp) :: me(8, 8), fe(8)
+    type(kear_eval_info_t) :: info
+    type(error_t) :: err
+    integer :: e, i, j, gi, gj, kd
+    call self%set_time(t)
+    qdd = 0.0_dp
+    if (self%err%failed()) return
+    kd = self%kd
+    self%mass_band = 0.0_dp
+    self%force = 0.0_dp
+    do e = 1, size(self%el)
+      call kear_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
+      if (info%beyond_peak .and. self%stop_beyond_peak) then
+        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)//' (x/l = '// &
+          str(info%x_over_l_max_strain, 3)//') is past the peak of the Ramberg-Osgood curve, eps* = '// &
+          str(self%el(e)%eps_star, 6)//': the material law has no stable meaning beyond it')
+        return
+      end if
+      call self%table%scatter_add(e, fe, self%force)
+      do j = 1, dofs_per_element
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, dofs_per_element
+          gi = self%table%map(i, e)
+          if (gi < gj) cycle
+          self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
+            self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
+        end do
+      end do
+    end do
+    call band_cholesky_factor(self%mass_band, kd, err)
+    self%n_mass_factorizations = self%n_mass_factorizations + 1
+    if (err%failed()) then
+      call self%fail(t, 'mass matrix: '//err%text())
+      return
+    end if
+    qdd = self%force
+    call band_cholesky_solve(self%mass_band, kd, qdd, err)
+  end subroutine accelerations
+
+  subroutine model_rhs(self, t, y, ydot)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    real(dp) :: q(self%n), qd(self%n), qdd(self%n)
+    self%n_rhs = self%n_rhs + 1
+    q = y(1::2)      ! contiguous copies: the state is interleaved
+    qd = y(2::2)
+    call self%accelerations(t, q, qd, qdd)
+    ydot(1::2) = qd
+    ydot(2::2) = qdd
+  end subroutine model_rhs
+
+  !> Approximate Jacobian for DLSODE's BDF options (MF = 21, 24):
+  !>   d(q_d)/dq_d = I,  d(q_dd)/dq = -M^-1 K_t,  d(q_dd)/dq_d = -beta M^-1 K_t
+  !> with K_t the elastic tangent stiffness (inertial stiffness and gyroscopic
+  !> terms are left out; the chord iteration only needs an approximation).
+  subroutine model_jacobian(self, t, y, ml, mu, pd)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n)
+    integer :: ipiv(self%n), i, j, r, c, nst
+    type(error_t) :: err
+    logical :: banded
+    call self%set_time(t)
+    q = y(1::2)
+    call self%assemble_dense(q, mass, stiff)
+    call lu_factor(mass, ipiv, err)
+    if (err%failed()) then
+      call self%fail(t, 'mass matrix in the Jacobian: '//err%text())
+      return
+    end if
+    call lu_solve(mass, ipiv, stiff, err)      ! stiff := M^-1 K_t
+    beta = 0.0_dp
+    if (size(self%el) > 0) beta = self%el(1)%beta
+    nst = 2*self%n
+    banded = .not. (ml == 0 .and. mu == 0 .and. size(pd, 1) == nst)
+    do j = 1, self%n
+      call put(2*j - 1, 2*j, 1.0_dp)
+      do i = 1, self%n
+        call put(2*i, 2*j - 1, -stiff(i, j))
+        if (beta > 0.0_dp) call put(2*i, 2*j, -beta*stiff(i, j))
+      end do
+    end do
+  contains
+    subroutine put(row, col, value)
+      integer, intent(in) :: row, col
+      real(dp), intent(in) :: value
+      if (banded) then
+        if (row - col > ml .or. col - row > mu) return
+        r = row - col + mu + 1
+        c = col
+      else
+        r = row
+        c = col
+      end if
+      pd(r, c) = value
+    end subroutine put
+  end subroutine model_jacobian
+
+  !> Dense global mass matrix at (q, current time) and elastic tangent stiffness.
+  subroutine assemble_dense(self, q, mass, stiff)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: mass(:, :), stiff(:, :)
+    real(dp) :: me(8, 8), fe(8), ke(8, 8), qe(8)
+    type(kear_eval_info_t) :: info
+    integer :: e
+    mass = 0.0_dp
+    stiff = 0.0_dp
+    do e = 1, size(self%el)
+      qe = self%table%gather(e, q)
+      call kear_element_eval(self%el(e), qe, zeros8(), self%rb(e), me, fe, info)
+      call kear_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+      call self%table%scatter_add_matrix(e, me, mass)
+      call self%table%scatter_add_matrix(e, ke, stiff)
+    end do
+  end subroutine assemble_dense
+
+  pure function zeros8() result(z)
+    real(dp) :: z(8)
+    z = 0.0_dp
+  end function zeros8
+
+  !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
+  !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.
+  subroutine linear_modes(self, omega, shapes, err)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(out) :: omega(:)
+    real(dp), intent(out) :: shapes(:, :)
+    type(error_t), intent(inout) :: err
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q0(self%n)
+    q0 = 0.0_dp
+    call self%assemble_dense(q0, mass, stiff)
+    call sym_generalized_eig(stiff, mass, omega, err, shapes)
+    if (err%failed()) return
+    omega = sign(sqrt(abs(omega)), omega)
+  end subroutine linear_modes
+
+  !> Kinetic energy of the elastic-plus-rigid motion and strain energy, summed
+  !> over elements, at time t.
+  subroutine energies(self, t, q, qd, kinetic, strain)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out) :: kinetic, strain
+    integer :: e
+    real(dp) :: qe(8)
+    call self%set_time(t)
+    kinetic = 0.0_dp
+    strain = 0.0_dp
+    do e = 1, size(self%el)
+      qe = self%table%gather(e, q)
+      kinetic = kinetic + kear_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
+      strain = strain + kear_strain_energy(self%el(e), qe, self%rb(e)%phi)
+    end do
+  end subroutine energies
+
+  !> Stress report of every element for the global displacements q (rigid
+  !> states must be current: call set_time first).
+  subroutine element_stresses(self, q, reports)
+    class(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: q(:)
+    type(stress_report_t), intent(out) :: reports(:)
+    integer :: e
+    do e = 1, size(self%el)
+      reports(e) = kear_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%phi)
+    end do
+  end subroutine element_stresses
+end module mechanism_model
