@@ -30,6 +30,7 @@ module kinematics
   integer, parameter :: step_circle_line = 3    !< RRP dyad: circle and guide line
   integer, parameter :: max_newton = 30
   real(dp), parameter :: newton_tol = 1.0e-11_dp  !< scaled step at which Newton stops
+  real(dp), parameter :: residual_tol = 1.0e-14_dp !< scaled residual that needs no further step
 
   !> One step of the closed-form assembly: place `joint` from the known
   !> joints k1 (input side) and k2 through links link1 and link2.
@@ -412,8 +413,16 @@ contains
     converged = .false.
     iterations = 0
     do it = 1, max_newton
-      iterations = it
       call residual(self, q, theta, f)
+      f(self%row_driver) = f(self%row_driver)*self%mech%length_scale
+      ! already closed to rounding (e.g. an exact closed-form assembly, where
+      ! the Jacobian may be singular at a toggle: the caller diagnoses that)
+      if (maxval(abs(f)) <= residual_tol*self%mech%length_scale) then
+        converged = .true.
+        return
+      end if
+      f(self%row_driver) = f(self%row_driver)/self%mech%length_scale
+      iterations = it
       call factor_scaled(self, q, lu, ipiv, rc, e)
       if (e%failed()) return
       call solve_scaled(self, lu, ipiv, -f, dq, e)

@@ -12,13 +12,14 @@ module linkage
   use kinds, only: dp, pi
   use error_status, only: error_t
   use strings, only: str, lower
+  use deck_reader, only: deck_t, invalid_value
   implicit none
   private
   public :: max_links, max_joints, max_elements_per_link, coordinate_unset
   public :: joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_slider_link, joint_free
   public :: profile_constant, profile_spinup, branch_open, branch_crossed
-  public :: mechanism_input_t, mechanism_t, link_t, joint_t, driver_t
-  public :: build_mechanism, driver_angle, joint_type_name, mechanism_summary, classify_mechanism
+  public :: mechanism_input_t, input_issue_t, mechanism_t, link_t, joint_t, driver_t
+  public :: build_mechanism, read_mechanism, echo_mechanism, driver_angle, joint_type_name, mechanism_summary, classify_mechanism
   public :: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, tennant_aluminium_rho
 
   integer, parameter :: max_links = 40              !< size of the &mechanism link arrays
@@ -32,9 +33,10 @@ module linkage
   integer, parameter :: joint_clamp = 3         !< crank end clamped to the driving shaft
   integer, parameter :: joint_slider_fixed = 4  !< link end(s) on a block sliding on a fixed straight guide
   integer, parameter :: joint_slider_link = 5   !< pivoting sleeve through which a link slides
-  integer, parameter :: joint_free = 6          !< free end of a single link (rotating cantilever)
-  character(len=12), parameter :: joint_type_names(6) = [character(len=12) :: &
-    'pin', 'ground_pin', 'clamp', 'slider_fixed', 'slider_link', 'free']
+  integer, parameter :: joint_free = 0          !< free end of a single link (rotating cantilever)
+  ! (the codes 0-4 are those of module correlation_table)
+  character(len=12), parameter :: joint_type_names(0:5) = [character(len=12) :: &
+    'free', 'pin', 'ground_pin', 'clamp', 'slider_fixed', 'slider_link']
 
   integer, parameter :: profile_constant = 1, profile_spinup = 2
   integer, parameter :: branch_open = 1, branch_crossed = -1
@@ -79,6 +81,11 @@ module linkage
     real(dp) :: toggle_rcond = 1.0e-8_dp
   end type mechanism_input_t
 
+  !> An invalid input value, in parts (variable, value as text, rule broken).
+  type :: input_issue_t
+    character(len=:), allocatable :: variable, value, rule
+  end type input_issue_t
+
   !> A link: a straight beam from the joint at its end 1 to the joint at its
   !> end 2.  Its reference line runs from end 1 to end 2; its elements split
   !> the (active) length evenly.
@@ -97,7 +104,7 @@ module linkage
   !> A joint: a point of the mechanism where link ends meet.
   type :: joint_t
     character(len=16) :: name = ''
-    integer :: kind = 0
+    integer :: kind = -1
     logical :: grounded = .false.     !< its position is a fixed ground point
     logical :: has_position = .false. !< x, y were given (ground point, or reference position)
     real(dp) :: x = 0.0_dp, y = 0.0_dp
@@ -131,24 +138,34 @@ module linkage
     type(mechanism_input_t) :: input   !< as given, for the echo and for redesign
   end type mechanism_t
 
+
+  ! Staging variables of the deck group &mechanism (module variables because
+  ! the deck reader's callback receives only the unit; see read_mechanism).
+  integer :: n_joints, n_links, driver_link
+  character(len=16) :: joint_name(max_joints), joint_type(max_joints), link_name(max_links), profile
+  real(dp) :: joint_x(max_joints), joint_y(max_joints), joint_guide_deg(max_joints), joint_mass(max_joints)
+  integer :: joint_sliding_link(max_joints), link_joint1(max_links), link_joint2(max_links), link_n_elements(max_links)
+  character(len=8) :: joint_branch(max_joints), branch
+  real(dp) :: link_length(max_links), link_b(max_links), link_h(max_links), link_area(max_links), &
+              link_inertia(max_links), link_e1(max_links), link_e2(max_links), link_m(max_links), link_rho(max_links)
+  real(dp) :: omega, theta0_deg, spinup_time, toggle_rcond
+  namelist /mechanism/ n_joints, joint_name, joint_type, joint_x, joint_y, joint_guide_deg, &
+    joint_sliding_link, joint_branch, joint_mass, &
+    n_links, link_name, link_joint1, link_joint2, link_length, link_b, link_h, &
+    link_area, link_inertia, link_e1, link_e2, link_m, link_rho, link_n_elements, &
+    driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond
+
 contains
 
   pure function joint_type_name(kind) result(name)
     integer, intent(in) :: kind
     character(len=:), allocatable :: name
-    if (kind >= 1 .and. kind <= size(joint_type_names)) then
+    if (kind >= lbound(joint_type_names, 1) .and. kind <= ubound(joint_type_names, 1)) then
       name = trim(joint_type_names(kind))
     else
       name = 'unknown'
     end if
   end function joint_type_name
-
-  !> Record an input error (code 2) naming the variable, its value and the rule.
-  pure subroutine bad(err, variable, value, rule)
-    type(error_t), intent(inout) :: err
-    character(len=*), intent(in) :: variable, value, rule
-    call err%set('&mechanism', trim(variable)//' = '//trim(value)//': '//trim(rule), code=2)
-  end subroutine bad
 
   pure function idx(name, i) result(s)
     character(len=*), intent(in) :: name
@@ -175,10 +192,11 @@ contains
 
   !> Validate the flat input and build the indexed mechanism.  Any failure is
   !> an input error (err%code = 2) naming the variable and its value.
-  subroutine build_mechanism(inp, mech, err)
+  subroutine build_mechanism(inp, mech, err, issue)
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(out) :: mech
     type(error_t), intent(inout) :: err
+    type(input_issue_t), intent(out), optional :: issue   !< the failure's parts, for the deck reader
     integer :: nj, nl, j, i, k, e, n_clamp, n_carriers, dof, n_unknowns, n_equations
     character(len=16) :: word
     real(dp) :: total, dx, dy
@@ -188,10 +206,10 @@ contains
     nj = inp%n_joints
     nl = inp%n_links
     if (nj < 2 .or. nj > max_joints) then
-      call bad(err, 'n_joints', str(nj), 'must be between 2 and '//str(max_joints)); return
+      call bad('n_joints', str(nj), 'must be between 2 and '//str(max_joints)); return
     end if
     if (nl < 1 .or. nl > max_links) then
-      call bad(err, 'n_links', str(nl), 'must be between 1 and '//str(max_links)); return
+      call bad('n_links', str(nl), 'must be between 1 and '//str(max_links)); return
     end if
     mech%n_joints = nj
     mech%n_links = nl
@@ -201,32 +219,32 @@ contains
     do j = 1, nj
       associate (jt => mech%joints(j))
         word = lower(adjustl(inp%joint_type(j)))
-        jt%kind = findloc(joint_type_names, word, dim=1)
-        if (jt%kind == 0) then
-          call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), &
+        jt%kind = findloc(joint_type_names, word, dim=1) - 1 + lbound(joint_type_names, 1)
+        if (jt%kind < lbound(joint_type_names, 1)) then
+          call bad(idx('joint_type', j), quoted(inp%joint_type(j)), &
                    'must be one of pin, ground_pin, clamp, slider_fixed, slider_link, free'); return
         end if
         jt%name = adjustl(inp%joint_name(j))
         if (len_trim(jt%name) == 0) jt%name = 'J'//str(j)
         do k = 1, j - 1
           if (mech%joints(k)%name == jt%name) then
-            call bad(err, idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
+            call bad(idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
           end if
         end do
         if (is_set(inp%joint_x(j)) .neqv. is_set(inp%joint_y(j))) then
-          call bad(err, idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
+          call bad(idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
                    'give both coordinates of joint '//trim(jt%name)//' or neither'); return
         end if
         jt%has_position = is_set(inp%joint_x(j))
         if (jt%has_position) then
           if (.not. (finite(inp%joint_x(j)) .and. finite(inp%joint_y(j)))) then
-            call bad(err, idx('joint_x', j), str(inp%joint_x(j)), 'coordinates must be finite'); return
+            call bad(idx('joint_x', j), str(inp%joint_x(j)), 'coordinates must be finite'); return
           end if
           jt%x = inp%joint_x(j)
           jt%y = inp%joint_y(j)
         end if
         if (.not. finite(inp%joint_guide_deg(j))) then
-          call bad(err, idx('joint_guide_deg', j), str(inp%joint_guide_deg(j)), 'must be finite'); return
+          call bad(idx('joint_guide_deg', j), str(inp%joint_guide_deg(j)), 'must be finite'); return
         end if
         jt%guide = [cos(inp%joint_guide_deg(j)*pi/180.0_dp), sin(inp%joint_guide_deg(j)*pi/180.0_dp)]
         select case (lower(adjustl(inp%joint_branch(j))))
@@ -237,15 +255,15 @@ contains
         case ('crossed')
           jt%branch = branch_crossed
         case default
-          call bad(err, idx('joint_branch', j), quoted(inp%joint_branch(j)), &
+          call bad(idx('joint_branch', j), quoted(inp%joint_branch(j)), &
                    "must be 'open', 'crossed' or empty (use branch)"); return
         end select
         if (.not. (inp%joint_mass(j) >= 0.0_dp .and. finite(inp%joint_mass(j)))) then
-          call bad(err, idx('joint_mass', j), str(inp%joint_mass(j)), 'must be >= 0'); return
+          call bad(idx('joint_mass', j), str(inp%joint_mass(j)), 'must be >= 0'); return
         end if
         jt%mass = inp%joint_mass(j)
         if (inp%joint_sliding_link(j) /= 0 .and. jt%kind /= joint_slider_link) then
-          call bad(err, idx('joint_sliding_link', j), str(inp%joint_sliding_link(j)), &
+          call bad(idx('joint_sliding_link', j), str(inp%joint_sliding_link(j)), &
                    'only a slider_link joint has a sliding link (joint '//trim(jt%name)//' is '// &
                    joint_type_name(jt%kind)//')'); return
         end if
@@ -260,60 +278,60 @@ contains
         if (len_trim(lk%name) == 0) lk%name = 'link'//str(i)
         do k = 1, i - 1
           if (mech%links(k)%name == lk%name) then
-            call bad(err, idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
+            call bad(idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
           end if
         end do
         if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > nj) then
-          call bad(err, idx('link_joint1', i), str(inp%link_joint1(i)), 'must be a joint number 1..'//str(nj)); return
+          call bad(idx('link_joint1', i), str(inp%link_joint1(i)), 'must be a joint number 1..'//str(nj)); return
         end if
         if (inp%link_joint2(i) < 1 .or. inp%link_joint2(i) > nj) then
-          call bad(err, idx('link_joint2', i), str(inp%link_joint2(i)), 'must be a joint number 1..'//str(nj)); return
+          call bad(idx('link_joint2', i), str(inp%link_joint2(i)), 'must be a joint number 1..'//str(nj)); return
         end if
         if (inp%link_joint1(i) == inp%link_joint2(i)) then
-          call bad(err, idx('link_joint2', i), str(inp%link_joint2(i)), 'a link must join two different joints'); return
+          call bad(idx('link_joint2', i), str(inp%link_joint2(i)), 'a link must join two different joints'); return
         end if
         lk%joint = [inp%link_joint1(i), inp%link_joint2(i)]
         if (.not. (inp%link_b(i) > 0.0_dp .and. finite(inp%link_b(i)))) then
-          call bad(err, idx('link_b', i), str(inp%link_b(i)), 'the section width must be > 0'); return
+          call bad(idx('link_b', i), str(inp%link_b(i)), 'the section width must be > 0'); return
         end if
         if (.not. (inp%link_h(i) > 0.0_dp .and. finite(inp%link_h(i)))) then
-          call bad(err, idx('link_h', i), str(inp%link_h(i)), 'the section height must be > 0'); return
+          call bad(idx('link_h', i), str(inp%link_h(i)), 'the section height must be > 0'); return
         end if
         lk%b = inp%link_b(i)
         lk%h = inp%link_h(i)
         if (.not. (inp%link_area(i) >= 0.0_dp .and. finite(inp%link_area(i)))) then
-          call bad(err, idx('link_area', i), str(inp%link_area(i)), 'must be > 0 (or 0 for b*h)'); return
+          call bad(idx('link_area', i), str(inp%link_area(i)), 'must be > 0 (or 0 for b*h)'); return
         end if
         if (.not. (inp%link_inertia(i) >= 0.0_dp .and. finite(inp%link_inertia(i)))) then
-          call bad(err, idx('link_inertia', i), str(inp%link_inertia(i)), 'must be > 0 (or 0 for b*h**3/12)'); return
+          call bad(idx('link_inertia', i), str(inp%link_inertia(i)), 'must be > 0 (or 0 for b*h**3/12)'); return
         end if
         lk%area = inp%link_area(i)
         if (.not. lk%area > 0.0_dp) lk%area = lk%b*lk%h
         lk%inertia = inp%link_inertia(i)
         if (.not. lk%inertia > 0.0_dp) lk%inertia = lk%b*lk%h**3/12.0_dp
         if (.not. (inp%link_e1(i) > 0.0_dp .and. finite(inp%link_e1(i)))) then
-          call bad(err, idx('link_e1', i), str(inp%link_e1(i)), 'the modulus A must be > 0'); return
+          call bad(idx('link_e1', i), str(inp%link_e1(i)), 'the modulus A must be > 0'); return
         end if
         if (.not. (inp%link_e2(i) >= 0.0_dp .and. finite(inp%link_e2(i)))) then
-          call bad(err, idx('link_e2', i), str(inp%link_e2(i)), 'the nonlinear coefficient B must be >= 0'); return
+          call bad(idx('link_e2', i), str(inp%link_e2(i)), 'the nonlinear coefficient B must be >= 0'); return
         end if
         if (.not. (inp%link_m(i) > 1.0_dp .and. inp%link_m(i) <= 20.0_dp)) then
-          call bad(err, idx('link_m', i), str(inp%link_m(i)), 'the exponent m must be in (1, 20]'); return
+          call bad(idx('link_m', i), str(inp%link_m(i)), 'the exponent m must be in (1, 20]'); return
         end if
         if (.not. (inp%link_rho(i) > 0.0_dp .and. finite(inp%link_rho(i)))) then
-          call bad(err, idx('link_rho', i), str(inp%link_rho(i)), 'the mass density must be > 0'); return
+          call bad(idx('link_rho', i), str(inp%link_rho(i)), 'the mass density must be > 0'); return
         end if
         lk%e1 = inp%link_e1(i)
         lk%e2 = inp%link_e2(i)
         lk%m = inp%link_m(i)
         lk%rho = inp%link_rho(i)
         if (inp%link_n_elements(i) < 1 .or. inp%link_n_elements(i) > max_elements_per_link) then
-          call bad(err, idx('link_n_elements', i), str(inp%link_n_elements(i)), &
+          call bad(idx('link_n_elements', i), str(inp%link_n_elements(i)), &
                    'must be between 1 and '//str(max_elements_per_link)); return
         end if
         lk%n_elements = inp%link_n_elements(i)
         if (.not. (inp%link_length(i) >= 0.0_dp .and. finite(inp%link_length(i)))) then
-          call bad(err, idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
+          call bad(idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
           return
         end if
       end associate
@@ -338,14 +356,14 @@ contains
 
     ! ---- driver
     if (inp%driver_link < 1 .or. inp%driver_link > nl) then
-      call bad(err, 'driver_link', str(inp%driver_link), 'must be a link number 1..'//str(nl)); return
+      call bad('driver_link', str(inp%driver_link), 'must be a link number 1..'//str(nl)); return
     end if
     mech%driver%link = inp%driver_link
     if (.not. finite(inp%omega)) then
-      call bad(err, 'omega', str(inp%omega), 'must be finite'); return
+      call bad('omega', str(inp%omega), 'must be finite'); return
     end if
     if (.not. finite(inp%theta0_deg)) then
-      call bad(err, 'theta0_deg', str(inp%theta0_deg), 'must be finite'); return
+      call bad('theta0_deg', str(inp%theta0_deg), 'must be finite'); return
     end if
     mech%driver%omega = inp%omega
     mech%driver%theta0 = inp%theta0_deg*pi/180.0_dp
@@ -355,10 +373,10 @@ contains
     case ('spinup')
       mech%driver%profile = profile_spinup
       if (.not. (inp%spinup_time > 0.0_dp .and. finite(inp%spinup_time))) then
-        call bad(err, 'spinup_time', str(inp%spinup_time), "must be > 0 with profile = 'spinup'"); return
+        call bad('spinup_time', str(inp%spinup_time), "must be > 0 with profile = 'spinup'"); return
       end if
     case default
-      call bad(err, 'profile', quoted(inp%profile), "must be 'constant' or 'spinup'"); return
+      call bad('profile', quoted(inp%profile), "must be 'constant' or 'spinup'"); return
     end select
     mech%driver%spinup_time = inp%spinup_time
 
@@ -368,10 +386,10 @@ contains
     case ('crossed')
       mech%branch = branch_crossed
     case default
-      call bad(err, 'branch', quoted(inp%branch), "must be 'open' or 'crossed'"); return
+      call bad('branch', quoted(inp%branch), "must be 'open' or 'crossed'"); return
     end select
     if (.not. (inp%toggle_rcond > 0.0_dp .and. inp%toggle_rcond < 1.0_dp)) then
-      call bad(err, 'toggle_rcond', str(inp%toggle_rcond), 'must be in (0, 1)'); return
+      call bad('toggle_rcond', str(inp%toggle_rcond), 'must be in (0, 1)'); return
     end if
     mech%toggle_rcond = inp%toggle_rcond
 
@@ -382,43 +400,43 @@ contains
         select case (jt%kind)
         case (joint_pin)
           if (jt%n_links < 2) then
-            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'pin '//trim(jt%name)//' joins '// &
+            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'pin '//trim(jt%name)//' joins '// &
                      str(jt%n_links)//' link end(s); a pin joins two or more (a lone link end is '//quoted('free')//')')
             return
           end if
         case (joint_free)
           if (jt%n_links /= 1) then
-            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'free end '//trim(jt%name)//' must belong to '// &
+            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'free end '//trim(jt%name)//' must belong to '// &
                      'exactly one link, not '//str(jt%n_links)); return
           end if
         case (joint_ground_pin, joint_slider_fixed)
           jt%grounded = jt%kind == joint_ground_pin
           if (jt%n_links < 1) then
-            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link'); return
+            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link'); return
           end if
         case (joint_clamp)
           jt%grounded = .true.
           n_clamp = n_clamp + 1
           if (n_clamp > 1) then
-            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'only one clamp (the driving shaft) is allowed')
+            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'only one clamp (the driving shaft) is allowed')
             return
           end if
           if (jt%n_links /= 1 .or. inp%link_joint1(inp%driver_link) /= j) then
-            call bad(err, idx('joint_type', j), quoted(inp%joint_type(j)), 'the clamp '//trim(jt%name)// &
+            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'the clamp '//trim(jt%name)// &
                      ' must hold exactly one link end, end 1 of the driver link (link_joint1(driver_link))'); return
           end if
         case (joint_slider_link)
           i = jt%sliding_link
           if (i < 1 .or. i > nl) then
-            call bad(err, idx('joint_sliding_link', j), str(i), 'slider_link '//trim(jt%name)// &
+            call bad(idx('joint_sliding_link', j), str(i), 'slider_link '//trim(jt%name)// &
                      ' needs the number of the link sliding through it (1..'//str(nl)//')'); return
           end if
           if (all(mech%links(i)%joint /= j)) then
-            call bad(err, idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
+            call bad(idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
                      ' must have joint '//trim(jt%name)//' as link_joint1 or link_joint2'); return
           end if
           if (mech%links(i)%sliding) then
-            call bad(err, idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
+            call bad(idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
                      ' already slides through another sleeve'); return
           end if
           mech%links(i)%sliding = .true.
@@ -428,7 +446,7 @@ contains
           jt%grounded = n_carriers == 0
         end select
         if ((jt%grounded .or. jt%kind == joint_slider_fixed) .and. .not. jt%has_position) then
-          call bad(err, idx('joint_x', j)//', '//idx('joint_y', j), 'not given', &
+          call bad(idx('joint_x', j)//', '//idx('joint_y', j), 'not given', &
                    'joint '//trim(jt%name)//' ('//joint_type_name(jt%kind)//') is on the ground: give its coordinates')
           return
         end if
@@ -448,7 +466,7 @@ contains
             lk%length = hypot(dx, dy)
           end if
           if (.not. lk%length > 0.0_dp) then
-            call bad(err, idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
+            call bad(idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
                      ' needs a length > 0, or the coordinates of both its joints'); return
           end if
         end if
@@ -463,16 +481,16 @@ contains
     ! ---- the driver turns about a ground point
     associate (dl => mech%links(mech%driver%link))
       if (dl%sliding) then
-        call bad(err, 'driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+        call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
                  ' cannot be a link that slides through a sleeve'); return
       end if
       k = mech%joints(dl%joint(1))%kind
       if (k /= joint_clamp .and. k /= joint_ground_pin) then
-        call bad(err, 'driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
+        call bad('driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
                  trim(mech%joints(dl%joint(1))%name)//') must be a clamp or ground_pin: the crank turns about it'); return
       end if
       if (mech%joints(dl%joint(2))%grounded) then
-        call bad(err, 'driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+        call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
                  ' joins two ground points and cannot turn'); return
       end if
     end associate
@@ -484,7 +502,7 @@ contains
     n_equations = 2*nl + 2*count(mech%joints%grounded) + 2*count(mech%joints%kind == joint_slider_fixed)
     dof = n_unknowns - n_equations
     if (dof /= 1) then
-      call bad(err, 'n_links, n_joints, joint_type', 'the linkage', 'has '//str(dof)//' degrees of freedom '// &
+      call bad('n_links, n_joints, joint_type', 'the linkage', 'has '//str(dof)//' degrees of freedom '// &
                '(Gruebler count: '//str(n_unknowns)//' coordinates, '//str(n_equations)// &
                ' constraints); flexmech needs exactly one, taken by the crank'); return
     end if
@@ -496,6 +514,17 @@ contains
       k = k + mech%links(i)%n_elements
     end do
     mech%n_elements = k
+  contains
+    !> Record an input error (code 2) naming the variable, its value and the rule.
+    subroutine bad(variable, value, rule)
+      character(len=*), intent(in) :: variable, value, rule
+      call err%set('&mechanism', trim(variable)//' = '//trim(value)//': '//trim(rule), code=2)
+      if (present(issue)) then
+        issue%variable = trim(variable)
+        issue%value = trim(value)
+        issue%rule = trim(rule)
+      end if
+    end subroutine bad
   end subroutine build_mechanism
 
   !> Crank angle and its first two time derivatives at time t.
@@ -666,4 +695,107 @@ contains
       lines(n) = text
     end subroutine add
   end function mechanism_summary
+
+  !> Read &mechanism from the deck (required), validate it and build the
+  !> mechanism.  Invalid values are reported with their deck line.
+  subroutine read_mechanism(deck, mech, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(out) :: mech
+    type(error_t), intent(inout) :: err
+    type(mechanism_input_t) :: inp
+    type(input_issue_t) :: issue
+    logical :: found
+    call stage_from(inp)
+    call deck%read_group('mechanism', read_mechanism_group, required=.true., found=found, err=err)
+    if (err%failed()) return
+    call stage_to(inp)
+    call build_mechanism(inp, mech, err, issue)
+    if (err%failed() .and. allocated(issue%variable)) then
+      call err%clear()
+      call invalid_value(deck, 'mechanism', issue%variable, issue%value, issue%rule, err)
+    end if
+  end subroutine read_mechanism
+
+  subroutine read_mechanism_group(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=mechanism, iostat=ios, iomsg=iomsg)
+  end subroutine read_mechanism_group
+
+  !> Write the mechanism's effective input as the namelist group &mechanism.
+  subroutine echo_mechanism(mech, unit)
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: unit
+    call stage_from(mech%input)
+    write(unit, nml=mechanism, delim='apostrophe')
+  end subroutine echo_mechanism
+
+  subroutine stage_from(inp)
+    type(mechanism_input_t), intent(in) :: inp
+    n_joints = inp%n_joints
+    joint_name = inp%joint_name
+    joint_type = inp%joint_type
+    joint_x = inp%joint_x
+    joint_y = inp%joint_y
+    joint_guide_deg = inp%joint_guide_deg
+    joint_sliding_link = inp%joint_sliding_link
+    joint_branch = inp%joint_branch
+    joint_mass = inp%joint_mass
+    n_links = inp%n_links
+    link_name = inp%link_name
+    link_joint1 = inp%link_joint1
+    link_joint2 = inp%link_joint2
+    link_length = inp%link_length
+    link_b = inp%link_b
+    link_h = inp%link_h
+    link_area = inp%link_area
+    link_inertia = inp%link_inertia
+    link_e1 = inp%link_e1
+    link_e2 = inp%link_e2
+    link_m = inp%link_m
+    link_rho = inp%link_rho
+    link_n_elements = inp%link_n_elements
+    driver_link = inp%driver_link
+    omega = inp%omega
+    theta0_deg = inp%theta0_deg
+    profile = inp%profile
+    spinup_time = inp%spinup_time
+    branch = inp%branch
+    toggle_rcond = inp%toggle_rcond
+  end subroutine stage_from
+
+  subroutine stage_to(inp)
+    type(mechanism_input_t), intent(inout) :: inp
+    inp%n_joints = n_joints
+    inp%joint_name = joint_name
+    inp%joint_type = joint_type
+    inp%joint_x = joint_x
+    inp%joint_y = joint_y
+    inp%joint_guide_deg = joint_guide_deg
+    inp%joint_sliding_link = joint_sliding_link
+    inp%joint_branch = joint_branch
+    inp%joint_mass = joint_mass
+    inp%n_links = n_links
+    inp%link_name = link_name
+    inp%link_joint1 = link_joint1
+    inp%link_joint2 = link_joint2
+    inp%link_length = link_length
+    inp%link_b = link_b
+    inp%link_h = link_h
+    inp%link_area = link_area
+    inp%link_inertia = link_inertia
+    inp%link_e1 = link_e1
+    inp%link_e2 = link_e2
+    inp%link_m = link_m
+    inp%link_rho = link_rho
+    inp%link_n_elements = link_n_elements
+    inp%driver_link = driver_link
+    inp%omega = omega
+    inp%theta0_deg = theta0_deg
+    inp%profile = profile
+    inp%spinup_time = spinup_time
+    inp%branch = branch
+    inp%toggle_rcond = toggle_rcond
+  end subroutine stage_to
 end module linkage
