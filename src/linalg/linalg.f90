@@ -16,7 +16,6 @@ module linalg
   public :: band_cholesky_factor, band_cholesky_solve
   public :: sym_generalized_eig, eigenvalues_general
   public :: dense_to_lower_band
-  public :: singular_values
 
   interface
     subroutine dgetrf(m, n, a, lda, ipiv, info)
@@ -95,14 +94,6 @@ module linalg
       real(dp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
       integer, intent(out) :: info
     end subroutine dgeev
-    subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
-      import :: dp
-      character(len=1), intent(in) :: jobu, jobvt
-      integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
-      real(dp), intent(inout) :: a(lda, *)
-      real(dp), intent(out) :: s(*), u(ldu, *), vt(ldvt, *), work(*)
-      integer, intent(out) :: info
-    end subroutine dgesvd
   end interface
 
   interface lu_solve
@@ -319,28 +310,4 @@ contains
                    ' onward not computed')
     end if
   end subroutine eigenvalues_general
-
-  !> Singular values (descending) of a general m x n matrix (DGESVD, no
-  !> vectors); s needs min(m, n) entries.  Used for numerical-rank diagnoses
-  !> (e.g. a rank-deficient residual Jacobian in the Gauss optimizer).
-  subroutine singular_values(a, s, err)
-    real(dp), intent(in) :: a(:, :)
-    real(dp), intent(out) :: s(:)
-    type(error_t), intent(inout) :: err
-    real(dp), allocatable :: c(:, :), work(:)
-    real(dp) :: dummy_u(1, 1), dummy_vt(1, 1)
-    integer :: m, n, info, lwork
-    m = size(a, 1)
-    n = size(a, 2)
-    allocate(c(m, n))
-    c = a
-    lwork = max(1, 3*min(m, n) + max(m, n), 5*min(m, n))
-    allocate(work(lwork))
-    call dgesvd('N', 'N', m, n, c, max(1, m), s, dummy_u, 1, dummy_vt, 1, work, lwork, info)
-    if (info < 0) then
-      call err%set('singular_values', 'DGESVD: argument '//str(-info)//' has an illegal value')
-    else if (info > 0) then
-      call err%set('singular_values', 'DGESVD: '//str(info)//' superdiagonals did not converge')
-    end if
-  end subroutine singular_values
 end module linalg
