@@ -66,7 +66,7 @@ module kear_element
     type(ramberg_osgood_t) :: material
     type(element_effects_t) :: effects
     integer :: formulation = formulation_exact
-    integer :: n_gauss = 6                              !< points for the nonlinear integrals
+    integer :: n_gauss = 8                              !< points for the nonlinear integrals (doc/element.md)
     real(dp) :: beta = 0.0_dp                           !< stiffness-proportional damping
     logical :: objective_damping = .true.               !< damp strain rates, not global q_dot
     real(dp) :: eps_star = huge(1.0_dp)                 !< peak strain of the material law
@@ -745,16 +745,20 @@ contains
     g(6) = s*f(5) + c*f(6)
   end function to_global
 
-  !> T^T A T.
+  !> T^T A T (T rotates the translation pairs (1,2) and (5,6)).
   pure function to_global_matrix(c, s, a) result(g)
     real(dp), intent(in) :: c, s, a(8, 8)
     real(dp) :: g(8, 8), t(8, 8)
-    integer :: j
-    do j = 1, 8
-      t(:, j) = to_global(c, s, a(:, j))          ! T^T A
+    integer :: k
+    t = a
+    do k = 1, 5, 4
+      t(k, :) = c*a(k, :) - s*a(k + 1, :)
+      t(k + 1, :) = s*a(k, :) + c*a(k + 1, :)
     end do
-    do j = 1, 8
-      g(j, :) = to_global(c, s, t(j, :))          ! (T^T (T^T A)^T)^T = T^T A T
+    g = t
+    do k = 1, 5, 4
+      g(:, k) = c*t(:, k) - s*t(:, k + 1)
+      g(:, k + 1) = s*t(:, k) + c*t(:, k + 1)
     end do
   end function to_global_matrix
 
