@@ -277,7 +277,7 @@ contains
     real(dp), intent(out), optional :: tangent(8, 8)
     real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
     real(dp) :: mp(8, 8), fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
-    logical :: linear_strain, need_k, want_k
+    logical :: linear_strain, want_k
 
     c = cos(rb%phi)
     s = sin(rb%phi)
@@ -300,7 +300,6 @@ contains
 
     ! strain energy, internal force, damping
     want_k = present(tangent)
-    need_k = want_k .or. el%beta > 0.0_dp
     prel = v
     if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
     linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
@@ -312,7 +311,7 @@ contains
       if (want_k) kp = el%k_linear
       call linear_strain_peak(el, p, info)
     else
-      call nonlinear_strain_terms(el, p, prel, need_k, info, fint, fdamp, kp)
+      call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
       fp = fp - fint
       if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
     end if
@@ -346,7 +345,7 @@ contains
     if (is_linear_strain(el)) then
       fint = matmul(el%k_linear, p)
     else
-      call nonlinear_strain_terms(el, p, p, .false., info, fint, fdamp, kp)
+      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
     end if
     f = to_global(cos(phi), sin(phi), fint)
   end subroutine kear_internal_force
@@ -362,7 +361,7 @@ contains
     if (is_linear_strain(el)) then
       kp = el%k_linear
     else
-      call nonlinear_strain_terms(el, p, p, .true., info, fint, fdamp, kp)
+      call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
     end if
     kt = to_global_matrix(cos(phi), sin(phi), kp)
   end subroutine kear_tangent_stiffness
@@ -377,7 +376,7 @@ contains
     if (is_linear_strain(el)) then
       se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
     else
-      call nonlinear_strain_terms(el, p, p, .false., info, fint, fdamp, kp)
+      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
       se = info%strain_energy
     end if
   end function kear_strain_energy
@@ -549,17 +548,17 @@ contains
     info%beyond_peak = .false.            ! material switch off: no peak in the law
   end subroutine linear_strain_peak
 
-  !> Strain energy, internal force, tangent K_pp and K_pp prel (damping) by
-  !> Gauss quadrature along the element; all in local DOFs p.
+  !> Strain energy, internal force, tangent K_pp (if want_k) and K_pp prel
+  !> (if want_damp) by Gauss quadrature along the element; local DOFs p.
   !> Per station everything lives in the 3-space (a, b, c) = (1+u_x, w_x, w_xx):
   !> f = G (N de + M dk),  K = G H G^T,  G = [gu gw gww] (8 x 3).
-  pure subroutine nonlinear_strain_terms(el, p, prel, need_k, info, fint, fdamp, kp)
+  pure subroutine nonlinear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: p(8), prel(8)
-    logical, intent(in) :: need_k
+    logical, intent(in) :: want_k, want_damp
     type(kear_eval_info_t), intent(inout) :: info
     real(dp), intent(out) :: fint(8), fdamp(8), kp(8, 8)
-    real(dp) :: g(8, 3), h3(3, 3), f3(3), ux, e, ht, tn(3), tk(3)
+    real(dp) :: g(8, 3), h3(3, 3), f3(3), ux, e, ht, tn(3), tk(3), gh(8, 3)
     type(strain_point_t) :: sp
     type(section_resultants_t) :: res
     integer :: i
@@ -579,12 +578,15 @@ contains
       info%strain_energy = info%strain_energy + el%wg(i)*res%energy
       f3 = res%axial_force*sp%de_used + res%moment*sp%dk            ! (K17)
       fint = fint + el%wg(i)*matmul(g, f3)
-      if (need_k) then
+      if (want_k .or. want_damp) then
         tn = res%tangent(1, 1)*sp%de_true + res%tangent(1, 2)*sp%dk  ! dN/d(a,b,c)
         tk = res%tangent(2, 1)*sp%de_true + res%tangent(2, 2)*sp%dk  ! dM/d(a,b,c)
         h3 = outer3(sp%de_used, tn) + outer3(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
-        kp = kp + el%wg(i)*matmul(g, matmul(h3, transpose(g)))
-        fdamp = fdamp + el%wg(i)*matmul(g, matmul(h3, matmul(transpose(g), prel)))
+        if (want_k) then
+          gh = el%wg(i)*matmul(g, h3)
+          kp = kp + matmul(gh, transpose(g))
+        end if
+        if (want_damp) fdamp = fdamp + el%wg(i)*matmul(g, matmul(h3, matmul(prel, g)))
       end if
       e = abs(sp%eps) + ht*abs(sp%kap)
       if (e > info%max_abs_strain) then
