@@ -564,7 +564,7 @@ contains
   !> Recognise four-bars and slider-cranks and say whether the crank can turn
   !> fully (Grashof's rule; crank radius plus offset against the rod length).
   !> Empty for other linkages.
-  function classify_mechanism(mech) result(text)
+  pure function classify_mechanism(mech) result(text)
     type(mechanism_t), intent(in) :: mech
     character(len=:), allocatable :: text
     integer :: j, g(2), ng, np, nsf, crank, i
