@@ -1,0 +1,743 @@
+!> The Gauss family of optimizers (FORMULATION.md §9) as one class.
+!>
+!>   gauss              unconstrained Gauss method, no line search (B12, P2)
+!>   gauss_constrained  linear constraints, closed-form multipliers (Paradis & Willmert, P16, P17)
+!>   gnlc               quadratic constraints, B10 with B11 by Newton (Powell fallback),
+!>                      step-back (B13); feasible start, every iterate feasible
+!>   gnlc_ns            the same without step-back; any start (GNLC.NS)
+!>   gnlc_general       general nonlinear constraints with Potter's modifications
+!>                      (§9.5): quadratic re-approximation at every iterate, actual
+!>                      constraints in B11; step-back as in gnlc
+!>   gnlc_general_ns    the same without step-back (Potter's fix (b), tried by Boston)
+!>
+!> Every iteration costs one analysis (no line search), so NF = NI + 1.
+!>
+!> Convergence (the papers state no test; ours, see doc/optimization.md): at
+!> x_k, after the step s_k and the multipliers have been computed,
+!>   (1) every constraint holds: max(g_i, |h_j|) <= feas_tol;
+!>   (2) the multiplier equations are solved (max |m_i| <= feas_tol/100) and
+!>       every inequality multiplier is >= 0 (drop rule, §9.4);
+!>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf);
+!>   (4) the predicted objective change is small:
+!>       |grad F^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
+!> A zero step with solved multiplier equations is exactly the KKT system at
+!> x_k, so the test costs no analysis beyond the one that produced x_k.
+module gauss_optimizer
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str, lower
+  use linalg, only: lu_factor, sym_generalized_eig
+  use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
+  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
+  implicit none
+  private
+  public :: gauss_optimizer_t, gauss_options_t, gauss_iterate_t
+  public :: method_gauss, method_gauss_constrained, method_gnlc, method_gnlc_ns
+  public :: method_gnlc_general, method_gnlc_general_ns
+  public :: method_from_name, method_name, method_names
+  public :: hessian_auto, hessian_gauss, hessian_exact, hessian_from_name, hessian_name
+  public :: status_not_run, status_converged, status_max_iter, status_failed
+  public :: set_text
+
+  integer, parameter :: method_gauss = 1, method_gauss_constrained = 2, method_gnlc = 3, &
+                        method_gnlc_ns = 4, method_gnlc_general = 5, method_gnlc_general_ns = 6
+  character(len=*), parameter :: method_names = &
+    "'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
+  integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
+  integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
+
+  type :: gauss_options_t
+    integer :: method = method_gnlc
+    integer :: hessian = hessian_auto     !< auto: 2JJ^T for sums of squares, exact otherwise
+    integer :: max_iter = 50
+    real(dp) :: xtol = 1.0e-8_dp          !< step test (3)
+    real(dp) :: ftol = 1.0e-12_dp         !< predicted-change test (4)
+    real(dp) :: feas_tol = 1.0e-8_dp      !< constraint tolerance: active |g| <= tol, violated g > tol
+    real(dp) :: mult_tol = 1.0e-8_dp      !< drop if lambda_j |c_j| < -mult_tol |grad F|
+    real(dp) :: rcond_min = 1.0e-13_dp    !< G with smaller reciprocal condition number is singular
+    real(dp) :: regularization = 0.0_dp   !< > 0: add mu I to a singular G, mu = this * max |G_ii|
+    integer :: newton_max_iter = 30       !< Newton iterations for B11 before Powell takes over
+    logical :: potter_repeat = .true.     !< on step-back cycling repeat the step with the violated
+                                          !< constraints active (Potter's fix (a)); else stop
+  end type gauss_options_t
+
+  !> One row of the iteration log: the state after iteration k.
+  type :: gauss_iterate_t
+    integer :: k = 0
+    integer :: nf = 0
+    real(dp) :: f = 0.0_dp
+    real(dp) :: max_violation = 0.0_dp
+    real(dp) :: step = 0.0_dp                 !< ||x_k - x_{k-1}||_inf
+    real(dp), allocatable :: x(:)
+    real(dp), allocatable :: lambda(:)        !< multipliers of the step that produced x_k
+    logical, allocatable :: active(:)         !< active set used for the next step
+    character(len=:), allocatable :: events   !< drops, additions, step-back, Powell, ...
+  end type gauss_iterate_t
+
+  type :: gauss_optimizer_t
+    type(gauss_options_t) :: opts
+    ! ---- outcome
+    integer :: status = status_not_run
+    character(len=:), allocatable :: message
+    integer :: iterations = 0                  !< NI
+    real(dp) :: f = 0.0_dp
+    real(dp), allocatable :: x(:)
+    real(dp), allocatable :: g(:)              !< constraints at x (inequalities, then equalities)
+    real(dp), allocatable :: lambda(:)         !< multipliers at x (0 off the active set)
+    logical, allocatable :: active(:)
+    real(dp) :: kkt_residual = 0.0_dp          !< ||grad F + Sum lambda_j c_j||_inf at x
+    character(len=:), allocatable :: final_events   !< drops etc. during the final test
+    logical :: have_best = .false.             !< a feasible iterate was seen
+    real(dp), allocatable :: x_best(:)
+    real(dp) :: f_best = 0.0_dp
+    integer :: k_best = 0
+    ! ---- event counts
+    integer :: newton_solves = 0, powell_fallbacks = 0, drops = 0, additions = 0
+    integer :: step_backs = 0, regularizations = 0, potter_repeats = 0, releases = 0
+    ! ---- iteration log
+    integer :: n_log = 0
+    type(gauss_iterate_t), allocatable :: log(:)
+    ! ---- working state at x_k
+    real(dp), allocatable, private :: phi(:), gradf(:), jac(:, :), gm(:, :), dg(:, :), hess(:, :, :)
+    logical, allocatable, private :: have_hess(:)
+    character(len=:), allocatable, private :: ev
+  contains
+    procedure :: solve
+    procedure :: method_label
+    procedure, private :: check_setup
+    procedure, private :: curvature
+    procedure, private :: compute_step
+    procedure, private :: step_back
+    procedure, private :: append_log
+    procedure, private :: note
+  end type gauss_optimizer_t
+
+contains
+
+  ! ================================================================ names
+
+  integer function method_from_name(name) result(method)
+    character(len=*), intent(in) :: name
+    select case (lower(trim(adjustl(name))))
+    case ('gauss')
+      method = method_gauss
+    case ('gauss_constrained')
+      method = method_gauss_constrained
+    case ('gnlc')
+      method = method_gnlc
+    case ('gnlc_ns', 'gnlc.ns')
+      method = method_gnlc_ns
+    case ('gnlc_general')
+      method = method_gnlc_general
+    case ('gnlc_general_ns')
+      method = method_gnlc_general_ns
+    case default
+      method = 0
+    end select
+  end function method_from_name
+
+  function method_name(method) result(name)
+    integer, intent(in) :: method
+    character(len=:), allocatable :: name
+    select case (method)
+    case (method_gauss)
+      name = 'gauss'
+    case (method_gauss_constrained)
+      name = 'gauss_constrained'
+    case (method_gnlc)
+      name = 'gnlc'
+    case (method_gnlc_ns)
+      name = 'gnlc_ns'
+    case (method_gnlc_general)
+      name = 'gnlc_general'
+    case (method_gnlc_general_ns)
+      name = 'gnlc_general_ns'
+    case default
+      name = 'unknown'
+    end select
+  end function method_name
+
+  integer function hessian_from_name(name) result(h)
+    character(len=*), intent(in) :: name
+    select case (lower(trim(adjustl(name))))
+    case ('auto', '')
+      h = hessian_auto
+    case ('gauss')
+      h = hessian_gauss
+    case ('exact')
+      h = hessian_exact
+    case default
+      h = -1
+    end select
+  end function hessian_from_name
+
+  function hessian_name(h) result(name)
+    integer, intent(in) :: h
+    character(len=:), allocatable :: name
+    select case (h)
+    case (hessian_gauss)
+      name = 'gauss'
+    case (hessian_exact)
+      name = 'exact'
+    case default
+      name = 'auto'
+    end select
+  end function hessian_name
+
+  function method_label(self) result(name)
+    class(gauss_optimizer_t), intent(in) :: self
+    character(len=:), allocatable :: name
+    name = method_name(self%opts%method)
+  end function method_label
+
+  !> "{1, 3}" for the true entries (1-based).
+  function set_text(mask) result(s)
+    logical, intent(in) :: mask(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = '{'
+    do i = 1, size(mask)
+      if (mask(i)) then
+        if (len(s) > 1) s = s//', '
+        s = s//str(i)
+      end if
+    end do
+    s = s//'}'
+  end function set_text
+
+  ! ================================================================ driver
+
+  !> Minimise prob from x0.  On return status, x, f, lambda, active and the
+  !> log describe the run.  err is set (code 2 for inconsistent input, 1
+  !> otherwise) when the run did not converge: the message says why, and the
+  !> best feasible iterate stays in x_best / f_best.
+  subroutine solve(self, prob, x0, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout), target :: prob
+    real(dp), intent(in) :: x0(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
+    logical, allocatable :: violated(:), touched(:), limit(:)
+    integer :: n, m, mt, k, repeats, hess_kind
+    real(dp) :: xnorm, snorm, pred, t, maxviol
+    logical :: solved, step_back_method, converged
+    character(len=:), allocatable :: where
+
+    self%status = status_failed
+    self%message = ''
+    self%iterations = 0
+    self%n_log = 0
+    self%have_best = .false.
+    call self%check_setup(prob, x0, hess_kind, err)
+    if (err%failed()) then
+      self%message = err%text()
+      return
+    end if
+    n = prob%n
+    m = prob%m
+    mt = prob%m + prob%n_eq
+    step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
+    allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
+    allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
+    allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
+    allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
+    allocate(self%log(16))
+    self%x = x0
+    self%lambda = 0.0_dp
+    self%ev = ''
+
+    call prob%constraint_values(self%x, self%g, err)
+    if (err%failed()) return
+    violated = self%g(1:m) > self%opts%feas_tol
+    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol))) then
+      call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
+        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol])//' violated (max g = ' &
+        //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
+        ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
+        //ns_variant(self%opts%method)//''', which accepts any start', code=2)
+      self%message = err%text()
+      return
+    end if
+    ! initial active set: constraints at zero (within feas_tol), all equalities;
+    ! the NS variants also take the violated ones (§9.4)
+    self%active(1:m) = abs(self%g(1:m)) <= self%opts%feas_tol
+    if (.not. step_back_method) self%active(1:m) = self%active(1:m) .or. violated
+    self%active(m + 1:mt) = .true.
+
+    call prob%analyse(self%x, self%f, self%phi, err)
+    if (err%failed()) return
+    call self%append_log(prob, 0, 0.0_dp)
+
+    k = 0
+    converged = .false.
+    outer: do
+      where = 'iteration '//str(k + 1)
+      ! ---- derivatives and curvature at x_k
+      call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
+      if (err%failed()) exit outer
+      call self%curvature(prob, hess_kind, k, err)
+      if (err%failed()) exit outer
+      if (mt > 0) then
+        call prob%constraint_gradients(self%x, self%g, self%dg, err)
+        if (err%failed()) exit outer
+      end if
+      self%have_hess = .false.
+      xnorm = maxval(abs(self%x))
+
+      repeats = 0
+      inner: do
+        call self%compute_step(prob, s, solved, err)
+        if (err%failed()) exit outer
+        ! ---- convergence test at x_k (module header)
+        snorm = maxval(abs(s))
+        pred = dot_product(self%gradf, s) + 0.5_dp*dot_product(s, matmul(self%gm, s))
+        maxviol = max_violation(self%g, m)
+        if (maxviol <= self%opts%feas_tol .and. solved .and. snorm <= self%opts%xtol*(1.0_dp + xnorm) &
+            .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f))) then
+          converged = .true.
+          exit outer
+        end if
+        if (k >= self%opts%max_iter) exit outer
+
+        x_new = self%x + s
+        t = 1.0_dp
+        if (mt > 0) then
+          call prob%constraint_values(x_new, g_new, err)
+          if (err%failed()) exit outer
+          violated = g_new(1:m) > self%opts%feas_tol
+          touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
+          if (step_back_method .and. any(violated)) then
+            ! ---- step back to the farthest feasible point of the segment (B13)
+            call self%step_back(prob, s, g_new, t, g_t, limit, err)
+            if (err%failed()) exit outer
+            if (t*snorm <= self%opts%xtol*(1.0_dp + xnorm) .and. .not. any(limit .and. .not. self%active(1:m))) then
+              ! Potter §9.5 item 3: backing out of the new violation entered the
+              ! violated region of an active constraint; the step-back ends at
+              ! x_k with the same active set and would repeat the same design.
+              if (self%opts%potter_repeat .and. any(violated .and. .not. self%active(1:m)) &
+                  .and. repeats < m) then
+                repeats = repeats + 1
+                self%potter_repeats = self%potter_repeats + 1
+                call self%note('step-back cycling (Potter 9.5 item 3): limited by active ' &
+                  //set_text(limit)//' at t = '//str(t, 3)//'; step repeated with ' &
+                  //set_text(violated .and. .not. self%active(1:m))//' active (fix (a))')
+                self%additions = self%additions + count(violated .and. .not. self%active(1:m))
+                self%active(1:m) = self%active(1:m) .or. violated
+                cycle inner
+              end if
+              call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
+                ' (Potter, FORMULATION.md 9.5 item 3): backing out of violated constraint(s) ' &
+                //set_text(violated .and. .not. self%active(1:m))//' entered the violated region of active ' &
+                //set_text(limit)//'; the step-back returns to x_k with the same active set, so the ' &
+                //'next iteration would reproduce the same design')
+              exit outer
+            end if
+            self%step_backs = self%step_backs + 1
+            x_new = self%x + t*s
+            g_new = g_t
+            call self%note('step-back (B13) to t = '//str(t, 6)//', added '//set_text(limit .and. &
+                           .not. self%active(1:m)))
+            self%additions = self%additions + count(limit .and. .not. self%active(1:m))
+            self%active(1:m) = self%active(1:m) .or. limit
+          else
+            ! GNLC.NS: a violated constraint is treated as an active one (§9.4);
+            ! every method adds the constraints the step makes active
+            if (.not. step_back_method) touched = touched .or. (violated .and. .not. self%active(1:m))
+            if (any(touched)) then
+              call self%note('added '//set_text(touched))
+              self%additions = self%additions + count(touched)
+              self%active(1:m) = self%active(1:m) .or. touched
+            end if
+          end if
+          if (.not. solved) then
+            ! our rule (the papers are silent): when B11 had no solution the
+            ! active set was inconsistent; members strictly satisfied at the
+            ! new point leave it, so a Powell compromise cannot pin the set
+            limit = self%active(1:m) .and. g_new(1:m) < -self%opts%feas_tol
+            if (any(limit)) then
+              call self%note('released '//set_text(limit)//' (B11 unsolved; strictly satisfied at the new point)')
+              self%releases = self%releases + count(limit)
+              self%active(1:m) = self%active(1:m) .and. .not. limit
+            end if
+          end if
+        end if
+        exit inner
+      end do inner
+
+      ! ---- accept x_{k+1}: one analysis
+      k = k + 1
+      self%x = x_new
+      if (mt > 0) self%g = g_new
+      call prob%analyse(self%x, self%f, self%phi, err)
+      if (err%failed()) exit outer
+      self%iterations = k
+      call self%append_log(prob, k, t*snorm)
+    end do outer
+
+    if (err%failed()) then
+      call err%add_context(self%method_label()//', '//where)
+      self%status = status_failed
+      self%message = err%text()
+      return
+    end if
+    self%final_events = self%ev                 ! events of the last step computation (the test)
+    if (mt > 0) self%kkt_residual = maxval(abs(self%gradf + matmul(self%dg, self%lambda)))
+    if (mt == 0) self%kkt_residual = maxval(abs(self%gradf))
+    if (converged) then
+      self%status = status_converged
+      self%message = 'converged after '//str(k)//' iterations'
+    else
+      self%status = status_max_iter
+      if (self%have_best) then
+        self%message = 'iteration limit reached (max_iter = '//str(self%opts%max_iter)// &
+          ') without convergence; best feasible iterate: k = '//str(self%k_best)//', F = '//str(self%f_best)
+      else
+        self%message = 'iteration limit reached (max_iter = '//str(self%opts%max_iter)// &
+          ') without convergence; no feasible iterate was found'
+      end if
+      call err%set(self%method_label(), self%message)
+    end if
+  end subroutine solve
+
+  !> Method/problem consistency and option checks (code 2: bad input).
+  subroutine check_setup(self, prob, x0, hess_kind, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: x0(:)
+    integer, intent(out) :: hess_kind
+    type(error_t), intent(inout) :: err
+    character(len=:), allocatable :: me
+    integer :: i
+    me = self%method_label()
+    hess_kind = self%opts%hessian
+    if (hess_kind == hessian_auto) then
+      hess_kind = hessian_exact
+      if (prob%is_least_squares()) hess_kind = hessian_gauss
+    end if
+    if (size(x0) /= prob%n) then
+      call err%set(me, 'the start point has '//str(size(x0))//' values; problem '//prob%name// &
+                   ' has '//str(prob%n)//' variables', code=2)
+    else if (me == 'unknown') then
+      call err%set('gauss_optimizer', 'unknown method; expected one of '//method_names, code=2)
+    else if (hess_kind == hessian_gauss .and. .not. prob%is_least_squares()) then
+      call err%set(me, 'hessian = ''gauss'' (G = 2JJ^T) needs a sum-of-squares objective; problem '// &
+                   prob%name//' has a general objective: use hessian = ''exact''', code=2)
+    else if (self%opts%method == method_gauss .and. prob%n_constraints() > 0) then
+      call err%set(me, 'method ''gauss'' is unconstrained but problem '//prob%name//' has '// &
+                   str(prob%n_constraints())//' constraints: use ''gauss_constrained'' (linear) or ''gnlc''', code=2)
+    else if (self%opts%method == method_gauss_constrained .and. any(prob%con_kind /= con_linear)) then
+      i = findloc(prob%con_kind /= con_linear, .true., dim=1)
+      call err%set(me, 'constraint '//str(i)//' of problem '//prob%name//' is '// &
+                   con_kind_name(prob%con_kind(i))//'; gauss_constrained handles linear constraints only: use ''gnlc''', &
+                   code=2)
+    else if (any(self%opts%method == [method_gnlc, method_gnlc_ns]) .and. any(prob%con_kind == con_general)) then
+      i = findloc(prob%con_kind == con_general, .true., dim=1)
+      call err%set(me, 'constraint '//str(i)//' of problem '//prob%name//' is general (not quadratic); use '// &
+                   '''gnlc_general'' or ''gnlc_general_ns'' (Potter''s re-approximation)', code=2)
+    else if (self%opts%max_iter < 0 .or. self%opts%xtol <= 0.0_dp .or. self%opts%ftol <= 0.0_dp &
+             .or. self%opts%feas_tol <= 0.0_dp .or. self%opts%mult_tol < 0.0_dp .or. self%opts%rcond_min <= 0.0_dp &
+             .or. self%opts%regularization < 0.0_dp .or. self%opts%newton_max_iter < 1) then
+      call err%set(me, 'invalid options: max_iter >= 0, xtol, ftol, feas_tol, rcond_min > 0, mult_tol, ' &
+                   //'regularization >= 0 and newton_max_iter >= 1 are required', code=2)
+    end if
+  end subroutine check_setup
+
+  !> G = 2 J J^T (B5) or the objective Hessian; a singular G is diagnosed
+  !> (numerical rank of J) and either regularised or reported.
+  subroutine curvature(self, prob, hess_kind, k, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    integer, intent(in) :: hess_kind, k
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: lu(:, :), ev(:), eye(:, :)
+    integer, allocatable :: ipiv(:)
+    type(error_t) :: lerr
+    real(dp) :: rc, mu
+    character(len=:), allocatable :: what, rank_text
+    integer :: i, n, rank
+    n = prob%n
+    if (hess_kind == hessian_gauss) then
+      self%gm = 2.0_dp*matmul(self%jac, transpose(self%jac))
+      what = 'G = 2 J J^T'
+    else
+      call prob%objective_hessian(self%x, self%gm, err)
+      if (err%failed()) return
+      self%gm = 0.5_dp*(self%gm + transpose(self%gm))
+      what = 'the objective Hessian G'
+    end if
+    allocate(lu(n, n), ipiv(n))
+    lu = self%gm
+    call lu_factor(lu, ipiv, lerr, rc)
+    if (lerr%failed()) rc = 0.0_dp
+    if (rc >= self%opts%rcond_min) return
+    ! eigenvalues of G (DSYGV with M = I) give the numerical rank; for
+    ! G = 2JJ^T they are 2 sigma_i^2 of the residual Jacobian
+    rank_text = ''
+    allocate(ev(n), eye(n, n))
+    eye = 0.0_dp
+    do i = 1, n
+      eye(i, i) = 1.0_dp
+    end do
+    call lerr%clear()
+    call sym_generalized_eig(self%gm, eye, ev, lerr)
+    if (.not. lerr%failed()) then
+      rank = count(ev > self%opts%rcond_min*max(ev(n), tiny(1.0_dp)))
+      rank_text = '; eigenvalues of G from '//str(ev(1), 3)//' to '//str(ev(n), 3)//', numerical rank '// &
+                  str(rank)//' of '//str(n)
+      if (hess_kind == hessian_gauss) then
+        if (prob%n_residuals < n) then
+          rank_text = rank_text//' (only '//str(prob%n_residuals)//' residuals for '//str(n)//' variables)'
+        else
+          rank_text = rank_text//' (rank-deficient residual Jacobian J)'
+        end if
+      end if
+    end if
+    if (self%opts%regularization > 0.0_dp) then
+      mu = self%opts%regularization*max(maxval([(abs(self%gm(i, i)), i=1, n)]), 1.0e-300_dp)
+      do i = 1, n
+        self%gm(i, i) = self%gm(i, i) + mu
+      end do
+      self%regularizations = self%regularizations + 1
+      call self%note(what//' singular (rcond = '//str(rc, 3)//'): regularized with mu = '//str(mu, 3))
+      return
+    end if
+    call err%set('curvature', what//' at x_'//str(k)//' is singular or nearly singular (rcond = '//str(rc, 3) &
+      //' < rcond_min = '//str(self%opts%rcond_min, 3)//')'//rank_text//'. The Gauss step (B10/B12) is ' &
+      //'undefined; remove redundant variables or set regularization > 0 in &optimize to add mu*I (Levenberg)')
+  end subroutine curvature
+
+  !> Multipliers and step at x_k for the current active set, with the drop
+  !> rule of §9.4 (most negative multiplier first, re-solve, repeat).
+  subroutine compute_step(self, prob, s, solved, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout), target :: prob
+    real(dp), intent(out), contiguous :: s(:)
+    logical, intent(out) :: solved
+    type(error_t), intent(inout) :: err
+    type(multiplier_system_t) :: msys
+    type(multiplier_result_t) :: mres
+    class(opt_problem_t), pointer :: pprob
+    integer, allocatable :: idx(:)
+    real(dp), allocatable :: lam(:), lam_prev(:)
+    logical, allocatable :: actual(:)
+    real(dp) :: crit, worst, thresh
+    integer :: i, j, l, mt, jdrop
+    mt = prob%m + prob%n_eq
+    pprob => prob
+    allocate(lam_prev(mt))
+    lam_prev = self%lambda
+    thresh = self%opts%mult_tol*norm2(self%gradf)
+    do
+      l = count(self%active)
+      if (l == 0) then
+        call gauss_step(self%gm, self%gradf, s, err)       ! B12
+        self%lambda = 0.0_dp
+        solved = .true.
+        return
+      end if
+      idx = pack([(i, i=1, mt)], self%active)
+      allocate(lam(l), actual(l))
+      if (self%opts%method == method_gauss_constrained) then
+        call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, err)   ! P16, P17
+        if (err%failed()) return
+        solved = .true.
+      else
+        do j = 1, l
+          i = idx(j)
+          if (.not. self%have_hess(i)) then
+            ! Potter §9.5 item 1: Hessians of general constraints re-evaluated at every iterate
+            call prob%constraint_hessian(i, self%x, self%hess(:, :, i), err)
+            if (err%failed()) return
+            self%have_hess(i) = .true.
+          end if
+          actual(j) = .false.
+          if (i <= prob%m) actual(j) = prob%con_kind(i) == con_general
+        end do
+        call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
+                        actual, pprob)
+        lam = lam_prev(idx)                           ! warm start from the previous iteration
+        call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
+        if (err%failed()) return
+        self%newton_solves = self%newton_solves + 1
+        s = msys%s
+        solved = mres%solved
+        if (mres%how /= 'newton') then
+          self%powell_fallbacks = self%powell_fallbacks + 1
+          call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
+            '); Powell minimised H = Sum g^2 ('//str(mres%powell_evaluations)//' evaluations, '// &
+            mres%how//'), max |g| = '//str(mres%residual, 3))
+        end if
+      end if
+      self%lambda = 0.0_dp
+      self%lambda(idx) = lam
+      ! drop rule: the most negative multiplier of an inequality leaves the set
+      jdrop = 0
+      worst = 0.0_dp
+      do j = 1, l
+        i = idx(j)
+        if (i > prob%m) cycle
+        crit = lam(j)*norm2(self%dg(:, i))
+        if (crit < -thresh .and. crit < worst) then
+          worst = crit
+          jdrop = i
+        end if
+      end do
+      if (jdrop == 0) return
+      self%active(jdrop) = .false.
+      self%drops = self%drops + 1
+      call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
+      deallocate(lam, actual)
+    end do
+  end subroutine compute_step
+
+  !> Farthest feasible point x_k + t s on the segment (P), located by B13's
+  !> linear interpolation, repeated (Illinois regula falsi) until the
+  !> limiting constraint is within feas_tol of zero; other constraints found
+  !> violated at that point shrink the segment and the search repeats.
+  !> limit: the constraints that stop the step (at zero at t, violated beyond).
+  subroutine step_back(self, prob, s, g_new, t, g_t, limit, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: s(:), g_new(:)
+    real(dp), intent(out) :: t, g_t(:)
+    logical, intent(out) :: limit(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: g_lo(:), g_hi(:), g_c(:), g_a(:)
+    real(dp) :: t_lo, t_hi, t_c, ti, a, b, fa, fb, tol
+    integer :: i, ic, m, round, it, side
+    m = prob%m
+    tol = self%opts%feas_tol
+    allocate(g_lo(size(g_new)), g_hi(size(g_new)), g_c(size(g_new)), g_a(size(g_new)))
+    t_lo = 0.0_dp
+    g_lo = self%g
+    t_hi = 1.0_dp
+    g_hi = g_new
+    ic = 0
+    do round = 1, 2*m + 2
+      ! B13 for every constraint violated at t_hi; the first crossing wins
+      t_c = t_hi
+      ic = 0
+      do i = 1, m
+        if (g_hi(i) <= tol) cycle
+        if (g_lo(i) >= 0.0_dp) then
+          ti = t_lo
+        else
+          ti = t_lo + (t_hi - t_lo)*(-g_lo(i))/(g_hi(i) - g_lo(i))
+        end if
+        if (ti < t_c .or. ic == 0) then
+          t_c = ti
+          ic = i
+        end if
+      end do
+      if (ic == 0) exit
+      ! refine the crossing of ic inside [t_lo, t_hi]
+      a = t_lo
+      fa = g_lo(ic)
+      g_a = g_lo
+      b = t_hi
+      fb = g_hi(ic)
+      side = 0
+      if (fa < -tol) then
+        do it = 1, 60
+          t_c = a + (b - a)*(-fa)/(fb - fa)
+          call prob%constraint_values(self%x + t_c*s, g_c, err)
+          if (err%failed()) return
+          if (g_c(ic) > tol) then
+            b = t_c
+            fb = g_c(ic)
+            if (side == 1) fa = 0.5_dp*fa       ! Illinois: halve the retained end
+            side = 1
+          else
+            a = t_c
+            fa = g_c(ic)
+            g_a = g_c
+            if (g_c(ic) >= -tol) exit
+            if (side == -1) fb = 0.5_dp*fb
+            side = -1
+          end if
+          if (b - a <= 1.0e-15_dp) exit
+        end do
+      end if
+      ! a is feasible for ic; is it feasible for all?
+      if (all(g_a(1:m) <= tol)) then
+        t_lo = a
+        g_lo = g_a
+        if (b < t_hi) then
+          t_hi = b
+          call prob%constraint_values(self%x + t_hi*s, g_hi, err)
+          if (err%failed()) return
+        end if
+        exit
+      end if
+      t_hi = a                                      ! another constraint crossed earlier
+      g_hi = g_a
+    end do
+    t = t_lo
+    g_t = g_lo
+    limit = g_lo(1:m) >= -tol .and. g_hi(1:m) > tol
+    if (.not. any(limit) .and. ic > 0) limit(ic) = .true.
+  end subroutine step_back
+
+  subroutine note(self, text)
+    class(gauss_optimizer_t), intent(inout) :: self
+    character(len=*), intent(in) :: text
+    if (len(self%ev) > 0) then
+      self%ev = self%ev//'; '//text
+    else
+      self%ev = text
+    end if
+  end subroutine note
+
+  subroutine append_log(self, prob, k, step)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: k
+    real(dp), intent(in) :: step
+    type(gauss_iterate_t), allocatable :: tmp(:)
+    real(dp) :: viol
+    if (self%n_log == size(self%log)) then
+      allocate(tmp(2*size(self%log)))
+      tmp(1:self%n_log) = self%log(1:self%n_log)
+      call move_alloc(tmp, self%log)
+    end if
+    self%n_log = self%n_log + 1
+    viol = max_violation(self%g, prob%m)
+    associate (row => self%log(self%n_log))
+      row%k = k
+      row%nf = prob%count%analyses
+      row%f = self%f
+      row%max_violation = viol
+      row%step = step
+      row%x = self%x
+      row%lambda = self%lambda
+      row%active = self%active
+      row%events = self%ev
+    end associate
+    self%ev = ''
+    if (viol <= self%opts%feas_tol .and. (.not. self%have_best .or. self%f < self%f_best)) then
+      self%have_best = .true.
+      self%x_best = self%x
+      self%f_best = self%f
+      self%k_best = k
+    end if
+  end subroutine append_log
+
+  !> max(0, g_i) over inequalities and |h_j| over equalities.
+  pure real(dp) function max_violation(g, m)
+    real(dp), intent(in) :: g(:)
+    integer, intent(in) :: m
+    max_violation = 0.0_dp
+    if (m > 0) max_violation = max(0.0_dp, maxval(g(1:m)))
+    if (size(g) > m) max_violation = max(max_violation, maxval(abs(g(m + 1:))))
+  end function max_violation
+
+  function ns_variant(method) result(name)
+    integer, intent(in) :: method
+    character(len=:), allocatable :: name
+    if (method == method_gnlc_general) then
+      name = 'gnlc_general_ns'
+    else
+      name = 'gnlc_ns'
+    end if
+  end function ns_variant
+end module gauss_optimizer

@@ -1,0 +1,393 @@
+!> The Lagrange-multiplier equations of the Gauss family (FORMULATION.md
+!> §9.2-§9.5) and the step they define.
+!>
+!> For an active set S (l constraints) the KKT conditions at the new point,
+!> with F quadratic through G, give the step s = x_{k+1} - x_k as a function
+!> of the multipliers (B10 written relative to x_k):
+!>
+!>     ( G + Sum_j lambda_j A_j ) s = -( grad F(x_k) + Sum_j lambda_j c_j ),
+!>
+!> c_j = grad g_j(x_k), A_j = Hess g_j.  With A_j x_k + b_j = c_j this is
+!> exactly B10; the relative form avoids the cancellation of G x_k - grad F.
+!> Substituting s(lambda) into the active constraints gives l equations in l
+!> unknowns (B11):
+!>
+!>     m_i(lambda) = g_i(x_k) + c_i^T s + 1/2 s^T A_i s = 0        (quadratic model)
+!>     m_i(lambda) = g_i(x_k + s(lambda))                           (Potter §9.5 item 2)
+!>
+!> solved by Newton-Raphson; if Newton fails, H(lambda) = Sum m_i^2 is
+!> minimised by Powell's method and the minimiser is used whether or not
+!> H = 0 (Boston et al., text after B11).  For linear constraints (A_j = 0)
+!> the equations are linear and their solution is the closed form of
+!> Paradis & Willmert (P16, P17): `linear_multipliers`.
+module multiplier_equations
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use linalg, only: lu_factor, lu_solve, cholesky_factor
+  use optim_problem, only: opt_problem_t
+  use powell_minimizer, only: powell_function_t, powell_options_t, powell_result_t, powell_minimize
+  implicit none
+  private
+  public :: multiplier_system_t, multiplier_result_t
+  public :: gauss_step, linear_multipliers
+
+  !> Value of H where s(lambda) does not exist (M singular): large but finite.
+  real(dp), parameter :: h_undefined = 1.0e30_dp
+
+  type, extends(powell_function_t) :: multiplier_system_t
+    integer :: n = 0
+    integer :: l = 0
+    real(dp), allocatable :: gmat(:, :)     !< G (n, n)
+    real(dp), allocatable :: gradf(:)       !< grad F(x_k)
+    real(dp), allocatable :: xk(:)
+    integer, allocatable :: idx(:)          !< (l) constraint numbers in the problem
+    real(dp), allocatable :: gval(:)        !< (l) g_j(x_k)
+    real(dp), allocatable :: c(:, :)        !< (n, l) grad g_j(x_k)
+    real(dp), allocatable :: a(:, :, :)     !< (n, n, l) A_j
+    logical, allocatable :: actual(:)       !< (l) use g_j(x_k + s) in B11 (Potter)
+    class(opt_problem_t), pointer :: prob => null()   !< needed only where actual(j)
+    real(dp) :: rcond_min = 1.0e-14_dp      !< M with a smaller reciprocal condition is singular
+    ! state of the last `evaluate_step`
+    real(dp), allocatable :: mlu(:, :)
+    integer, allocatable :: ipiv(:)
+    real(dp), allocatable :: s(:)
+    real(dp) :: m_rcond = 0.0_dp
+    type(error_t) :: eval_err               !< first failure of an actual constraint inside Powell
+    integer :: evaluations = 0              !< evaluations of m(lambda)
+  contains
+    procedure :: setup
+    procedure :: evaluate_step
+    procedure :: residual
+    procedure :: newton_matrix
+    procedure :: value => h_value
+    procedure :: solve
+    procedure :: model_positive_definite
+  end type multiplier_system_t
+
+  type :: multiplier_result_t
+    logical :: solved = .false.               !< max |m_i| <= tolerance at the returned lambda
+    character(len=:), allocatable :: how      !< 'newton', 'powell', 'powell+newton'
+    character(len=:), allocatable :: newton_failure  !< why Newton failed (empty if it did not)
+    integer :: newton_iterations = 0
+    integer :: powell_evaluations = 0
+    real(dp) :: residual = 0.0_dp             !< max |m_i(lambda)|
+  end type multiplier_result_t
+
+contains
+
+  !> Load the data of one iteration and active set.  `prob` is only used for
+  !> constraints with actual(j) = .true.
+  subroutine setup(self, gmat, gradf, xk, idx, gval, c, a, actual, prob)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(in) :: gmat(:, :), gradf(:), xk(:), gval(:), c(:, :), a(:, :, :)
+    integer, intent(in) :: idx(:)
+    logical, intent(in) :: actual(:)
+    class(opt_problem_t), intent(in), pointer :: prob
+    self%n = size(xk)
+    self%l = size(idx)
+    self%gmat = gmat
+    self%gradf = gradf
+    self%xk = xk
+    self%idx = idx
+    self%gval = gval
+    self%c = c
+    self%a = a
+    self%actual = actual
+    self%prob => prob
+    if (allocated(self%mlu)) deallocate(self%mlu, self%ipiv, self%s)
+    allocate(self%mlu(self%n, self%n), self%ipiv(self%n), self%s(self%n))
+    self%s = 0.0_dp
+    call self%eval_err%clear()
+    self%evaluations = 0
+  end subroutine setup
+
+  !> s(lambda) from B10; ok = .false. if G + Sum lambda_j A_j is singular.
+  subroutine evaluate_step(self, lambda, ok)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(in) :: lambda(:)
+    logical, intent(out) :: ok
+    type(error_t) :: lerr
+    integer :: j
+    self%mlu = self%gmat
+    self%s = -self%gradf
+    do j = 1, self%l
+      self%mlu = self%mlu + lambda(j)*self%a(:, :, j)
+      self%s = self%s - lambda(j)*self%c(:, j)
+    end do
+    call lu_factor(self%mlu, self%ipiv, lerr, self%m_rcond)
+    ok = .not. lerr%failed() .and. self%m_rcond >= self%rcond_min
+    if (.not. ok) then
+      self%s = 0.0_dp
+      return
+    end if
+    call lu_solve(self%mlu, self%ipiv, self%s, lerr)
+    ok = .not. lerr%failed()
+  end subroutine evaluate_step
+
+  !> m(lambda) (B11) at the step of the last `evaluate_step`.
+  subroutine residual(self, r, err)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(out) :: r(:)
+    type(error_t), intent(inout) :: err
+    integer :: j
+    self%evaluations = self%evaluations + 1
+    do j = 1, self%l
+      if (self%actual(j)) then
+        call self%prob%constraint_value(self%idx(j), self%xk + self%s, r(j), err)   ! Potter §9.5 item 2
+        if (err%failed()) return
+      else
+        r(j) = self%gval(j) + dot_product(self%c(:, j), self%s) &
+               + 0.5_dp*dot_product(self%s, matmul(self%a(:, :, j), self%s))
+      end if
+    end do
+  end subroutine residual
+
+  !> dm_i/dlambda_j = -w_i^T M^{-1} w_j, w_j = c_j + A_j s (the model gradient
+  !> at x_k + s; for Potter's actual constraints an approximation).
+  subroutine newton_matrix(self, jm)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(out) :: jm(:, :)
+    real(dp), allocatable :: w(:, :), z(:, :)
+    type(error_t) :: lerr
+    integer :: j
+    allocate(w(self%n, self%l), z(self%n, self%l))
+    do j = 1, self%l
+      w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), self%s)
+    end do
+    z = w
+    call lu_solve(self%mlu, self%ipiv, z, lerr)
+    jm = -matmul(transpose(w), z)
+  end subroutine newton_matrix
+
+  !> Is G + Sum lambda_j A_j positive definite (Cholesky succeeds)?
+  logical function model_positive_definite(self, lambda) result(pd)
+    class(multiplier_system_t), intent(in) :: self
+    real(dp), intent(in) :: lambda(:)
+    real(dp), allocatable :: mm(:, :)
+    type(error_t) :: lerr
+    integer :: j
+    allocate(mm(self%n, self%n))
+    mm = self%gmat
+    do j = 1, self%l
+      mm = mm + lambda(j)*self%a(:, :, j)
+    end do
+    call cholesky_factor(mm, lerr)
+    pd = .not. lerr%failed()
+  end function model_positive_definite
+
+  !> H(lambda) = Sum m_i(lambda)^2, the function Powell minimises.
+  function h_value(self, x) result(h)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp) :: h
+    real(dp), allocatable :: r(:)
+    logical :: ok
+    h = h_undefined*(1.0_dp + min(sum(x**2), 1.0e200_dp))
+    if (maxval(abs(x)) > 1.0e100_dp) return
+    call self%evaluate_step(x, ok)
+    if (.not. ok) return
+    allocate(r(self%l))
+    call self%residual(r, self%eval_err)
+    if (self%eval_err%failed()) return
+    if (maxval(abs(r)) > 1.0e100_dp) return
+    h = sum(r**2)
+  end function h_value
+
+  !> Solve B11 for lambda (in: starting guess, out: solution or Powell's
+  !> minimiser of H).  Newton first; on failure Powell, then a Newton polish
+  !> from Powell's point.  On return the step of the returned lambda is in
+  !> self%s.  err is set only if no lambda gives a step at all or an actual
+  !> constraint cannot be evaluated.
+  subroutine solve(self, lambda, tol, max_newton, res, err)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(inout) :: lambda(:)
+    real(dp), intent(in) :: tol            !< max |m_i| accepted as a solution
+    integer, intent(in) :: max_newton
+    type(multiplier_result_t), intent(out) :: res
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: lam_best(:), lam_newton(:), r(:)
+    real(dp) :: h_best
+    type(powell_options_t) :: popts
+    type(powell_result_t) :: pres
+    logical :: ok
+    character(len=:), allocatable :: why, why2
+    integer :: its
+
+    allocate(r(self%l))
+    res%newton_failure = ''
+    lam_best = lambda
+    h_best = huge(1.0_dp)
+    lam_newton = lambda
+    call newton(lam_newton, ok, why, its, err)
+    if (err%failed()) return
+    res%newton_iterations = its
+    if (.not. ok .and. maxval(abs(lambda)) > 0.0_dp) then
+      ! a second Newton start from lambda = 0 (the unconstrained step)
+      lam_newton = 0.0_dp
+      call newton(lam_newton, ok, why2, its, err)
+      if (err%failed()) return
+      res%newton_iterations = res%newton_iterations + its
+      if (.not. ok) why = why//'; from lambda = 0: '//why2
+    end if
+    if (ok) then
+      lambda = lam_newton
+      res%how = 'newton'
+    else
+      res%newton_failure = why
+      ! Powell on H from the best point Newton saw (Boston et al. after B11)
+      popts%ftol = 1.0e-15_dp
+      popts%f_target = (0.01_dp*tol)**2
+      popts%initial_step = 0.1_dp*max(1.0_dp, maxval(abs(lam_best)))
+      popts%max_iter = 100*max(1, self%l)
+      lambda = lam_best
+      call powell_minimize(self, lambda, popts, pres)
+      res%powell_evaluations = pres%evaluations
+      if (self%eval_err%failed()) then
+        err = self%eval_err
+        call err%add_context('multiplier equations (Powell)')
+        return
+      end if
+      res%how = 'powell'
+      ! polish: Newton converges quadratically once Powell is near a root
+      lam_newton = lambda
+      call newton(lam_newton, ok, why, its, err)
+      if (err%failed()) return
+      res%newton_iterations = res%newton_iterations + its
+      if (ok) then
+        lambda = lam_newton
+        res%how = 'powell+newton'
+      end if
+    end if
+    call self%evaluate_step(lambda, ok)
+    if (.not. ok) then
+      call err%set('multiplier equations', 'G + Sum lambda_j A_j is singular at every multiplier tried (rcond = ' &
+                   //str(self%m_rcond, 3)//'); the active set cannot define a step')
+      return
+    end if
+    call self%residual(r, err)
+    if (err%failed()) return
+    res%residual = maxval(abs(r))
+    res%solved = res%residual <= tol
+
+  contains
+    subroutine newton(lam, converged, reason, iterations, nerr)
+      real(dp), intent(inout) :: lam(:)
+      logical, intent(out) :: converged
+      character(len=:), allocatable, intent(out) :: reason
+      integer, intent(out) :: iterations
+      type(error_t), intent(inout) :: nerr
+      real(dp), allocatable :: jm(:, :), d(:)
+      integer, allocatable :: piv(:)
+      real(dp) :: rc, h
+      type(error_t) :: lerr
+      logical :: okstep
+      integer :: it, halvings
+      allocate(jm(self%l, self%l), d(self%l), piv(self%l))
+      converged = .false.
+      reason = ''
+      iterations = 0
+      do it = 0, max_newton
+        iterations = it
+        call self%evaluate_step(lam, okstep)
+        if (.not. okstep) then
+          reason = 'G + Sum lambda_j A_j singular at Newton iterate '//str(it)
+          return
+        end if
+        call self%residual(r, nerr)
+        if (nerr%failed()) return
+        h = sum(r**2)
+        if (h < h_best) then
+          h_best = h
+          lam_best = lam
+        end if
+        if (maxval(abs(r)) <= tol) then
+          converged = .true.
+          return
+        end if
+        if (it == max_newton) then
+          reason = 'no convergence in '//str(max_newton)//' Newton iterations (max |g| = ' &
+                   //str(maxval(abs(r)), 3)//')'
+          return
+        end if
+        call self%newton_matrix(jm)
+        call lu_factor(jm, piv, lerr, rc)
+        if (lerr%failed() .or. rc < 1.0e-14_dp) then
+          reason = 'singular Newton matrix for the multipliers (active constraints dependent, ' &
+                   //'or more active constraints than the step can satisfy)'
+          return
+        end if
+        d = -r
+        call lu_solve(jm, piv, d, lerr)
+        ! our safeguard (the papers are silent): while G + Sum lambda A is
+        ! positive definite, halve steps that would leave that region, so B10
+        ! stays the minimiser of the quadratic Lagrangian model and Newton
+        ! does not jump to a root that maximises it
+        if (self%model_positive_definite(lam)) then
+          do halvings = 1, 30
+            if (self%model_positive_definite(lam + d)) exit
+            d = 0.5_dp*d
+          end do
+        end if
+        lam = lam + d
+        if (maxval(abs(lam)) > 1.0e12_dp) then
+          reason = 'Newton iterates for the multipliers diverge (|lambda| > 1e12)'
+          return
+        end if
+      end do
+    end subroutine newton
+  end subroutine solve
+
+  !> Unconstrained Gauss step (B12, P2): s = -G^{-1} grad F = -(J J^T)^{-1} J phi
+  !> for G = 2 J J^T, grad F = 2 J phi.
+  subroutine gauss_step(gmat, gradf, s, err, rcond)
+    real(dp), intent(in) :: gmat(:, :), gradf(:)
+    real(dp), intent(out), contiguous :: s(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: rcond
+    real(dp), allocatable :: lu(:, :)
+    integer, allocatable :: ipiv(:)
+    allocate(lu(size(gmat, 1), size(gmat, 2)), ipiv(size(gmat, 1)))
+    lu = gmat
+    s = -gradf
+    call lu_factor(lu, ipiv, err, rcond)
+    if (err%failed()) return
+    call lu_solve(lu, ipiv, s, err)
+  end subroutine gauss_step
+
+  !> Multipliers and step for linear active constraints (A_j = 0), closed
+  !> form.  With r_S = g_S(x_k) (zero when x_k lies on the active
+  !> constraints, the case P16/P17 assume):
+  !>     lambda = [C^T G^{-1} C]^{-1} ( r_S - C^T G^{-1} grad F )     (P16)
+  !>     s      = -G^{-1} ( grad F + C lambda )                        (P14, = P17)
+  subroutine linear_multipliers(gmat, gradf, c, gs, lambda, s, err)
+    real(dp), intent(in) :: gmat(:, :), gradf(:), c(:, :), gs(:)
+    real(dp), intent(out), contiguous :: lambda(:), s(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: lu(:, :), z(:, :), y(:), k(:, :)
+    integer, allocatable :: ipiv(:), kpiv(:)
+    real(dp) :: rc
+    integer :: n, l
+    n = size(gradf)
+    l = size(gs)
+    allocate(lu(n, n), ipiv(n), z(n, l), y(n), k(l, l), kpiv(l))
+    lu = gmat
+    call lu_factor(lu, ipiv, err)
+    if (err%failed()) return
+    z = c
+    y = gradf
+    call lu_solve(lu, ipiv, z, err)
+    call lu_solve(lu, ipiv, y, err)
+    k = matmul(transpose(c), z)
+    lambda = gs - matmul(transpose(c), y)
+    call lu_factor(k, kpiv, err, rc)
+    if (.not. err%failed() .and. rc < 1.0e-14_dp) &
+      call err%set('lu_factor', 'reciprocal condition '//str(rc, 3))
+    if (err%failed()) then
+      call err%add_context('linear_multipliers: the active constraint gradients are linearly dependent')
+      return
+    end if
+    call lu_solve(k, kpiv, lambda, err)
+    s = -(y + matmul(z, lambda))
+  end subroutine linear_multipliers
+end module multiplier_equations
