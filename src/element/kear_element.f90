@@ -289,7 +289,8 @@ contains
     rhoa = el%material%rho*el%area
     rhoi = el%material%rho*el%inertia
 
-    ! translational inertia: exact, quadratic in q, all from constant integrals
+    ! translational inertia: exact; KE is quadratic in (q, q_dot), so every term
+    ! of its Lagrange equations is a constant matrix (doc/element.md, section 3)
     ! local rigid acceleration of end 1 (A^T R1_dd)
     acc0(1) = c*rb%x1_dd + s*rb%y1_dd
     acc0(2) = -s*rb%x1_dd + c*rb%y1_dd

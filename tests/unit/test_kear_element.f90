@@ -7,7 +7,8 @@
 module test_kear_element_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use material_law, only: ramberg_osgood_t, ro_stress, peak_strain
+  use material_law, only: ramberg_osgood_t, ro_stress, peak_strain, section_resultants_t, section_response
+  use quadrature, only: gauss_legendre_interval
   use linalg, only: cholesky_factor
   use kear_element
   use assertions
@@ -66,6 +67,8 @@ contains
     call run_test('mass_symmetric_positive_definite_rigid_mass_rhoAl', test_mass_properties)
     call run_test('kinetic_energy_of_rotating_rigid_element', test_rigid_kinetic_energy)
     call run_test('inertial_operator_equals_fd_lagrange_equations', test_lagrange_fd)
+    call run_test('kear1987_internal_force_is_printed_k17_k20_k24', test_kear1987_force)
+    call run_test('mass_matrix_is_hessian_of_kinetic_energy_in_qdot', test_mass_is_ke_hessian)
     call run_test('coupling_off_drops_exactly_euler_and_coriolis_terms', test_coupling_switch)
     call run_test('switches_off_reproduce_reduced_models_and_cost', test_reduced_models)
     call run_test('stretching_gives_classical_geometric_stiffness', test_geometric_stiffness)
@@ -501,6 +504,67 @@ contains
       end do
     end function dt_dqdot
   end function fd_lagrange
+
+  !> The printed internal force (K17) with (K20) and (K24):
+  !>   F_j = int [ N ((1+u_x) u_x,qj + w_x w_x,qj) + M dkappa_K23/dq_j ] dx,
+  !> N, M the resultants of (eps_n of K19, kappa of K23), rebuilt here from
+  !> the element's strains at its 8 Gauss points, with (1+u_x) u_x,q +
+  !> w_x w_x,q = d((1+eps_n)^2/2)/dq and dkappa/dq by central differences in
+  !> q (h = 1e-6: error ~1e-12); agreement 1e-7 of the largest component.
+  subroutine test_kear1987_force()
+    type(kear_element_t) :: el
+    real(dp) :: f(8), ref(8), x(8), w(8), e(8), phi, h, ep, em, kp, km, en, ka
+    type(section_resultants_t) :: res
+    integer :: i, j
+    phi = 0.6_dp
+    h = 1.0e-6_dp
+    el = unit_element(effects_all_on(), formulation=formulation_kear1987)
+    call kear_internal_force(el, q_big, phi, f)
+    call gauss_legendre_interval(8, 0.0_dp, l_u, x, w)
+    ref = 0.0_dp
+    do i = 1, 8
+      call kear_section_strains(el, kear_local_dofs(phi, q_big), x(i)/l_u, en, ka)
+      res = section_response(soft, b_u*t_u, t_u, en, ka, .true.)
+      do j = 1, 8
+        e = 0.0_dp
+        e(j) = h
+        call kear_section_strains(el, kear_local_dofs(phi, q_big + e), x(i)/l_u, ep, kp)
+        call kear_section_strains(el, kear_local_dofs(phi, q_big - e), x(i)/l_u, em, km)
+        ref(j) = ref(j) + w(i)*(res%axial_force*((1 + ep)**2 - (1 + em)**2)/(4*h) + res%moment*(kp - km)/(2*h))
+      end do
+    end do
+    call assert_all_close(f, ref, 0.0_dp, 1.0e-7_dp*maxval(abs(ref)), 'printed (K17) with (K20), (K24)')
+  end subroutine test_kear1987_force
+
+  !> T is quadratic in qdot, so its Hessian in qdot (central differences with
+  !> step 1, exact up to round-off) is the mass matrix: for the exact
+  !> formulation (K8) and for kear1987 (K9), all effects on, 1e-12 relative.
+  subroutine test_mass_is_ke_hessian()
+    type(kear_element_t) :: el
+    type(rigid_state_t) :: rb
+    type(kear_eval_info_t) :: info
+    real(dp) :: m(8, 8), f(8), hes(8, 8), ei(8), ej(8)
+    integer :: i, j, k
+    rb = rigid_at(0.8_dp)
+    do k = 1, 2
+      el = unit_element(effects_all_on(), formulation=merge(formulation_exact, formulation_kear1987, k == 1))
+      call kear_element_eval(el, q_big, qd_big, rb, m, f, info)
+      do j = 1, 8
+        ej = 0.0_dp
+        ej(j) = 1.0_dp
+        do i = 1, 8
+          ei = 0.0_dp
+          ei(i) = 1.0_dp
+          hes(i, j) = (kear_kinetic_energy(el, q_big, qd_big + ei + ej, rb) &
+                       - kear_kinetic_energy(el, q_big, qd_big + ei - ej, rb) &
+                       - kear_kinetic_energy(el, q_big, qd_big - ei + ej, rb) &
+                       + kear_kinetic_energy(el, q_big, qd_big - ei - ej, rb))/4
+        end do
+      end do
+      call assert_all_close(reshape(m, [64]), reshape(hes, [64]), 0.0_dp, 1.0e-12_dp*maxval(abs(m)), &
+                            'M = d2 KE / dqdot2, '//formulation_name(el%formulation))
+    end do
+  end subroutine test_mass_is_ke_hessian
 
   !> coupling = .false. removes exactly the terms proportional to phi_dd q
   !> (Euler) and phi_d q_dot (Coriolis), nothing else.  For the models linear
