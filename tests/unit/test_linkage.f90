@@ -415,7 +415,7 @@ contains
   subroutine test_summary()
     type(mechanism_t) :: mech
     type(error_t) :: err
-    character(len=160), allocatable :: lines(:)
+    character(len=200), allocatable :: lines(:)
     allocate(lines(0))
     call build_mechanism(fourbar_input(5.0_dp, 11.0_dp, 10.5_dp, 10.0_dp), mech, err)
     lines = mechanism_summary(mech)
