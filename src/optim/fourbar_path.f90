@@ -20,12 +20,18 @@ module fourbar_path
   implicit none
   private
   public :: fourbar_path_t, coupler_point, fourbar_constraints
-  public :: table3_design, paper_start, default_dgamma, n_points
+  public :: table3_design, paper_start, default_dgamma, n_points, offset_target
 
   integer, parameter :: n_points = 8
   !> B Table 3, GNLC column (rounded as printed)
   real(dp), parameter :: table3_design(10) = [30.0_dp, 8.345_dp, 25.821_dp, 12.817_dp, 16.026_dp, &
                                               -1.063_dp, 1.259_dp, 1.118_dp, 4.0_dp, 7.0_dp]
+  !> A target four-bar just outside the feasible set (x1 = 31 > 30, crank
+  !> pivot (7.4, 3.6) outside both circles; x3, x4 lengthened to stay Grashof):
+  !> the constrained optimum then has F* > 0 and g9, g13, g14 active with
+  !> positive multipliers, like B's Table 3 (F = 1.78, active 9, 13, 14).
+  real(dp), parameter :: offset_target(10) = [31.0_dp, 8.345_dp, 26.5_dp, 13.2_dp, 16.026_dp, &
+                                              -1.063_dp, 1.259_dp, 1.118_dp, 3.6_dp, 7.4_dp]
   !> B Table 3, starting point (feasible; g5, g6, g7 at zero)
   real(dp), parameter :: paper_start(10) = [15.0_dp, 5.0_dp, 15.0_dp, 5.0_dp, 15.0_dp, &
                                             -0.007_dp, 0.412_dp, 1.379_dp, 6.0_dp, 5.0_dp]

@@ -13,13 +13,14 @@ module problem_library
   use error_status, only: error_t
   use strings, only: str, lower
   use optim_problem, only: opt_problem_t
-  use fourbar_path, only: fourbar_path_t, paper_start, table3_design
+  use fourbar_path, only: fourbar_path_t, paper_start, table3_design, offset_target
   implicit none
   private
   public :: problem_info_t, create_problem, problem_names
   public :: quadratic_problem_t, test_lsq_t
 
   character(len=*), parameter :: problem_names = "'rosen_suzuki', 'fourbar_path', 'fourbar_path_13', " // &
+    "'fourbar_path_offset', 'fourbar_path_13_offset', " // &
     "'rosenbrock', 'helical_valley', 'powell_singular', 'bard', 'hs15', 'hs21', 'hs28', 'hs35', 'hs65', " // &
     "'general_convex', 'three_circles', 'potter_cycling'"
 
@@ -109,6 +110,22 @@ contains
         call set_info(info, 'four-bar path generation, 13 constraints: one crank-pivot circle (paper A)', &
                       'paper A (ASCE 1984); target path from the Table 3 design', 'gnlc', paper_start, &
                       table3_design, 0.0_dp, [(0.0_dp, i=1, 13)])
+      end if
+      call move_alloc(fp, prob)
+
+    case ('fourbar_path_offset', 'fourbar_path_13_offset')
+      ! target just outside the feasible set: F* > 0, no closed-form optimum
+      allocate(fp)
+      if (info%name == 'fourbar_path_offset') then
+        call fp%setup(2, target=offset_target)
+        fp%name = 'fourbar_path_offset'
+        call set_info(info, 'four-bar path generation, 14 constraints, unreachable target path', &
+                      'Boston et al. (B); target path from a four-bar outside the feasible set', 'gnlc', paper_start)
+      else
+        call fp%setup(1, target=offset_target)
+        fp%name = 'fourbar_path_13_offset'
+        call set_info(info, 'four-bar path generation, 13 constraints, unreachable target path', &
+                      'paper A; target path from a four-bar outside the feasible set', 'gnlc', paper_start)
       end if
       call move_alloc(fp, prob)
 
@@ -262,15 +279,15 @@ contains
   subroutine set_info(info, title, source, method, x0, x_star, f_star, lambda_star)
     type(problem_info_t), intent(inout) :: info
     character(len=*), intent(in) :: title, source, method
-    real(dp), intent(in) :: x0(:), x_star(:), f_star
-    real(dp), intent(in), optional :: lambda_star(:)
+    real(dp), intent(in) :: x0(:)
+    real(dp), intent(in), optional :: x_star(:), f_star, lambda_star(:)
     info%title = title
     info%source = source
     info%method = method
     info%x0 = x0
-    info%has_optimum = .true.
-    info%x_star = x_star
-    info%f_star = f_star
+    info%has_optimum = present(x_star) .and. present(f_star)
+    if (present(x_star)) info%x_star = x_star
+    if (present(f_star)) info%f_star = f_star
     if (present(lambda_star)) info%lambda_star = lambda_star
   end subroutine set_info
 
