@@ -415,9 +415,12 @@ contains
     do it = 1, max_newton
       call residual(self, q, theta, f)
       f(self%row_driver) = f(self%row_driver)*self%mech%length_scale
-      ! already closed to rounding (e.g. an exact closed-form assembly, where
-      ! the Jacobian may be singular at a toggle: the caller diagnoses that)
-      if (maxval(abs(f)) <= residual_tol*self%mech%length_scale) then
+      ! A guess that already closes to rounding (an exact closed-form
+      ! assembly, whose Jacobian may be singular at a toggle: the caller
+      ! diagnoses that) needs no step.  Only the first iterate is accepted
+      ! this way: near a singular point a small residual does not mean a
+      ! small error (it is quadratic in the error along the null direction).
+      if (it == 1 .and. maxval(abs(f)) <= residual_tol*self%mech%length_scale) then
         converged = .true.
         return
       end if

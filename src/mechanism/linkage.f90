@@ -78,7 +78,7 @@ module linkage
     character(len=16) :: profile = 'constant'
     real(dp) :: spinup_time = 0.0_dp
     character(len=8) :: branch = 'open'
-    real(dp) :: toggle_rcond = 1.0e-8_dp
+    real(dp) :: toggle_rcond = 1.0e-7_dp
   end type mechanism_input_t
 
   !> An invalid input value, in parts (variable, value as text, rule broken).
@@ -133,7 +133,7 @@ module linkage
     type(link_t), allocatable :: links(:)
     type(driver_t) :: driver
     integer :: branch = branch_open
-    real(dp) :: toggle_rcond = 1.0e-8_dp
+    real(dp) :: toggle_rcond = 1.0e-7_dp
     real(dp) :: length_scale = 1.0_dp  !< mean link length, scales tolerances
     type(mechanism_input_t) :: input   !< as given, for the echo and for redesign
   end type mechanism_t

@@ -31,6 +31,7 @@ contains
     call run_test('link_point_matches_rigid_body_formulae', test_link_point)
     call run_test('toggle_at_sampled_angle_is_reported', test_toggle_hit)
     call run_test('toggle_passed_between_samples_is_reported', test_toggle_passed)
+    call run_test('toggle_caught_however_close_the_sample', test_toggle_any_offset)
     call run_test('non_grashof_crank_stops_where_it_cannot_assemble', test_non_assembly)
     call run_test('first_assembly_impossible_is_reported', test_non_assembly_first)
     call run_test('newton_warm_start_takes_few_iterations', test_warm_start)
@@ -607,6 +608,28 @@ contains
     ! the previous solution is kept
     call assert_close(kin%theta, 177.0_dp*deg, 1.0e-14_dp, 'state kept at the last good angle')
   end subroutine test_toggle_passed
+
+  !> Parallelogram in 1 deg steps whose grid misses 180 deg by 0 .. 1e-4 rad:
+  !> whether Newton lands on the toggle (singular Jacobian), near it (Newton
+  !> only converges linearly there), or past it (branch sign flipped), the
+  !> run must stop at 180 or 181 deg and never continue on the other branch.
+  subroutine test_toggle_any_offset()
+    type(kinematics_t) :: kin
+    type(error_t) :: err
+    real(dp), parameter :: offsets(9) = [0.0_dp, 1.0e-15_dp, -1.0e-13_dp, 1.0e-11_dp, -1.0e-9_dp, 1.0e-8_dp, &
+                                         -1.0e-7_dp, 1.0e-6_dp, 1.0e-4_dp]
+    integer :: k, m
+    do m = 1, size(offsets)
+      call make(fourbar_input(5.0_dp, 10.0_dp, 5.0_dp, 10.0_dp, 'open'), kin)
+      call err%clear()
+      do k = 150, 200
+        call kin%solve_angle(k*deg + offsets(m), 1.0_dp, 0.0_dp, err)
+        if (err%failed()) exit
+      end do
+      call assert_true(k == 180 .or. k == 181, 'stopped at 180 or 181 deg, not '//trim(itoa(k)))
+      call assert_true(index(err%text(), 'toggle') > 0, 'toggle reported: '//err%text())
+    end do
+  end subroutine test_toggle_any_offset
 
   !> Non-Grashof (5, 6, 7, 10): |BD| reaches b + c = 13 at
   !> theta = acos(-0.44) = 116.10 deg; stepping 1 deg the first angle that
