@@ -1,0 +1,342 @@
+!> Tests of the Gauss family (module gauss_optimizer): P's Table I for
+!> Rosen-Suzuki, literature optima, and every bad case of the issue (infeasible
+!> GNLC start, singular J J^T, B11 without solution, iteration limit, Potter's
+!> step-back cycling, inconsistent method/problem pairs).
+module test_gauss_optimizer_suite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use optim_problem, only: opt_problem_t
+  use problem_library, only: problem_info_t, create_problem
+  use gauss_optimizer
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+contains
+
+  subroutine run_all()
+    call run_test('rosen_suzuki_table_I_gnlc_ns_and_gnlc', test_table_one)
+    call run_test('rosen_suzuki_nf_equals_ni_plus_one', test_nf_ni)
+    call run_test('gnlc_infeasible_start_suggests_gnlc_ns', test_infeasible_start)
+    call run_test('unconstrained_gauss_mgh_problems', test_unconstrained)
+    call run_test('gauss_constrained_hs21_hs35_agree_with_gnlc', test_linear_constraints)
+    call run_test('one_iteration_when_start_on_optimal_active_set', test_one_iteration)
+    call run_test('rank_deficient_JJt_reported_or_regularized', test_rank_deficient)
+    call run_test('b11_without_solution_uses_powell_and_converges', test_powell_fallback)
+    call run_test('iteration_limit_reports_best_feasible_point', test_iteration_limit)
+    call run_test('potter_step_back_cycling_reported_and_escaped', test_potter_cycling)
+    call run_test('potter_general_constraints_converge', test_general_constraints)
+    call run_test('gnlc_ns_from_infeasible_literature_starts', test_ns_infeasible_starts)
+    call run_test('method_problem_mismatches_are_input_errors', test_mismatch)
+  end subroutine run_all
+
+  !> Solve library problem `name` with `method` from x0 (default: the library's).
+  subroutine run_problem(name, method, opt, prob, info, err, x0, max_iter, regularization, potter_repeat)
+    character(len=*), intent(in) :: name, method
+    type(gauss_optimizer_t), intent(out) :: opt
+    class(opt_problem_t), allocatable, target, intent(out) :: prob
+    type(problem_info_t), intent(out) :: info
+    type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: x0(:), regularization
+    integer, intent(in), optional :: max_iter
+    logical, intent(in), optional :: potter_repeat
+    call create_problem(name, prob, info, err)
+    if (err%failed()) return
+    opt%opts%method = method_from_name(method)
+    if (present(max_iter)) opt%opts%max_iter = max_iter
+    if (present(regularization)) opt%opts%regularization = regularization
+    if (present(potter_repeat)) opt%opts%potter_repeat = potter_repeat
+    if (present(x0)) then
+      call opt%solve(prob, x0, err)
+    else
+      call opt%solve(prob, info%x0, err)
+    end if
+  end subroutine run_problem
+
+  !> P Table I (FORMULATION.md §10.1): x* = [0, 1, 2, -1] within 1e-6 from
+  !> every start, with NI and NF no larger than the paper's.
+  subroutine test_table_one()
+    real(dp), parameter :: r5 = 2.23606797749979_dp
+    real(dp) :: starts(4, 7)
+    character(len=8) :: methods(7)
+    integer :: ni_paper(7), nf_paper(7), k
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    character(len=80) :: label
+    starts = reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, &
+                      0.0_dp, 0.0_dp, r5, 0.0_dp, 0.0_dp, 0.0_dp, r5, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, &
+                      1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp], [4, 7])
+    methods = [character(len=8) :: 'gnlc_ns', 'gnlc_ns', 'gnlc_ns', 'gnlc_ns', 'gnlc', 'gnlc', 'gnlc']
+    ni_paper = [2, 2, 2, 3, 3, 5, 5]
+    nf_paper = [3, 3, 3, 4, 4, 6, 6]
+    do k = 1, 7
+      write(label, '(a,a,4f7.3,a)') trim(methods(k)), ' from [', starts(:, k), ']'
+      call run_problem('rosen_suzuki', methods(k), opt, prob, info, err, x0=starts(:, k))
+      call assert_true(.not. err%failed(), trim(label)//': '//err%text())
+      call assert_true(opt%status == status_converged, trim(label)//' converged')
+      call assert_all_close(opt%x, [0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp], 0.0_dp, 1.0e-6_dp, trim(label)//' x*')
+      call assert_close(opt%f, -44.0_dp, 1.0e-9_dp, trim(label)//' F* = -44')
+      call assert_all_close(opt%lambda, [1.0_dp, 0.0_dp, 2.0_dp], 0.0_dp, 1.0e-6_dp, trim(label)//' lambda*')
+      call assert_true(opt%iterations <= ni_paper(k), trim(label)//' NI <= paper')
+      call assert_true(prob%count%analyses <= nf_paper(k), trim(label)//' NF <= paper')
+      call err%clear()
+    end do
+  end subroutine test_table_one
+
+  subroutine test_nf_ni()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=[0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
+    ! no line search: one analysis per iteration plus the start (§9)
+    call assert_equal(prob%count%analyses, opt%iterations + 1, 'NF = NI + 1')
+    call assert_equal(prob%count%gradients, opt%iterations + 1, 'one gradient per iterate')
+    call assert_equal(opt%n_log, opt%iterations + 1, 'one log row per iterate')
+    call assert_true(opt%step_backs >= 1, 'GNLC stepped back (the unconstrained minimiser violates all three)')
+    call assert_true(all(opt%log(1:opt%n_log)%max_violation <= opt%opts%feas_tol), 'every GNLC iterate feasible')
+  end subroutine test_nf_ni
+
+  subroutine test_infeasible_start()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=[2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp])
+    call assert_true(err%failed() .and. err%code == 2, 'input error (code 2)')
+    call assert_true(index(err%text(), 'infeasible') > 0, 'says the start is infeasible')
+    call assert_true(index(err%text(), '{1, 2, 3}') > 0, 'names the violated constraints')
+    call assert_true(index(err%text(), 'gnlc_ns') > 0, 'suggests gnlc_ns')
+    call assert_equal(prob%count%analyses, 0, 'no analysis spent')
+  end subroutine test_infeasible_start
+
+  subroutine test_unconstrained()
+    character(len=16), parameter :: names(3) = [character(len=16) :: 'rosenbrock', 'helical_valley', 'bard']
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    integer :: k
+    do k = 1, 3
+      call run_problem(trim(names(k)), 'gauss', opt, prob, info, err)
+      call assert_true(opt%status == status_converged, trim(names(k))//' converged: '//err%text())
+      ! MGH optima: exact for 1 and 7; Bard's x* printed to 7 digits, F* to 6
+      call assert_all_close(opt%x, info%x_star, 1.0e-6_dp, 1.0e-7_dp, trim(names(k))//' x*')
+      call assert_close(opt%f, info%f_star, 1.0e-8_dp, trim(names(k))//' F*')
+      call assert_equal(prob%count%analyses, opt%iterations + 1, trim(names(k))//' NF = NI + 1')
+      call err%clear()
+    end do
+    call run_problem('rosenbrock', 'gauss', opt, prob, info, err)
+    ! phi_2 = 1 - x1 is linear: the first Gauss step puts x1 = 1, the second x2 = 1
+    call assert_equal(opt%iterations, 2, 'Rosenbrock residuals: 2 Gauss iterations')
+  end subroutine test_unconstrained
+
+  subroutine test_linear_constraints()
+    character(len=8), parameter :: names(2) = [character(len=8) :: 'hs21', 'hs35']
+    type(gauss_optimizer_t) :: opt, opt2
+    class(opt_problem_t), allocatable :: prob, prob2
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    integer :: k
+    do k = 1, 2
+      call run_problem(trim(names(k)), 'gauss_constrained', opt, prob, info, err)
+      call assert_true(opt%status == status_converged, trim(names(k))//' converged: '//err%text())
+      call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, trim(names(k))//' x*')
+      call assert_close(opt%f, info%f_star, 1.0e-10_dp, trim(names(k))//' F*')
+      call assert_all_close(opt%lambda, info%lambda_star, 0.0_dp, 1.0e-8_dp, trim(names(k))//' lambda*')
+      call run_problem(trim(names(k)), 'gnlc', opt2, prob2, info, err)
+      call assert_all_close(opt2%x, opt%x, 0.0_dp, 1.0e-10_dp, trim(names(k))//': GNLC = Gauss constrained')
+      call assert_equal(opt2%iterations, opt%iterations, trim(names(k))//': same iteration count')
+    end do
+  end subroutine test_linear_constraints
+
+  !> B's design aim: one iteration when F is quadratic and the start already
+  !> lies on the constraints active at the optimum.  HS35 from (1, 1, 0.5),
+  !> on x1 + x2 + 2 x3 = 3; Rosen-Suzuki from a point on g1 = g3 = 0.
+  subroutine test_one_iteration()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    real(dp) :: x0(4)
+    call run_problem('hs35', 'gauss_constrained', opt, prob, info, err, x0=[1.0_dp, 1.0_dp, 0.5_dp])
+    call assert_equal(opt%iterations, 1, 'HS35: one iteration')
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-12_dp, 'HS35: x* after one iteration')
+    ! a point on g1 = g3 = 0 of Rosen-Suzuki: x = (0, 1, 2, -1) + t (d) with
+    ! g1, g3 quadratic; x0 = (0, t1, t2, -1) solved by hand: x2 = 0.5, then
+    ! g3: x2^2 + x3^2 - x2 - x4 - 5 = 0 and g1 fix x3 and x4 (computed below)
+    x0 = on_g1_g3(0.5_dp)
+    call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=x0)
+    call assert_true(.not. err%failed(), 'feasible start accepted: '//err%text())
+    call assert_equal(opt%iterations, 1, 'Rosen-Suzuki from g1 = g3 = 0: one iteration')
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-9_dp, 'Rosen-Suzuki: x* after one iteration')
+  end subroutine test_one_iteration
+
+  !> x = (0, x2, x3, x4) with g1 = g3 = 0: g3 - g1 gives x3^2 + ... eliminated
+  !> by Newton on (x3, x4) for the given x2 (a 2x2 problem solved here).
+  function on_g1_g3(x2) result(x)
+    real(dp), intent(in) :: x2
+    real(dp) :: x(4), r(2), jm(2, 2), d(2), det
+    integer :: it
+    x = [0.0_dp, x2, 1.5_dp, -1.5_dp]
+    do it = 1, 50
+      r(1) = sum(x**2) + x(1) - x(2) + x(3) - x(4) - 8.0_dp
+      r(2) = 2.0_dp*x(1)**2 + x(2)**2 + x(3)**2 + 2.0_dp*x(1) - x(2) - x(4) - 5.0_dp
+      jm = reshape([2.0_dp*x(3) + 1.0_dp, 2.0_dp*x(3), 2.0_dp*x(4) - 1.0_dp, -1.0_dp], [2, 2])
+      det = jm(1, 1)*jm(2, 2) - jm(1, 2)*jm(2, 1)
+      d = [jm(2, 2)*r(1) - jm(1, 2)*r(2), jm(1, 1)*r(2) - jm(2, 1)*r(1)]/det
+      x(3:4) = x(3:4) - d
+      if (maxval(abs(d)) < 1.0e-15_dp) exit
+    end do
+  end function on_g1_g3
+
+  !> HS28: two residuals for three variables, so J J^T is singular everywhere.
+  subroutine test_rank_deficient()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('hs28', 'gauss_constrained', opt, prob, info, err)
+    call assert_true(err%failed() .and. opt%status == status_failed, 'singular G stops the run')
+    call assert_true(index(err%text(), 'singular') > 0, 'diagnosis says singular')
+    call assert_true(index(err%text(), 'numerical rank 2 of 3') > 0, 'numerical rank reported')
+    call assert_true(index(err%text(), 'regularization') > 0, 'names the remedy')
+    call err%clear()
+    call run_problem('hs28', 'gauss_constrained', opt, prob, info, err, regularization=1.0e-8_dp)
+    call assert_true(opt%status == status_converged, 'regularized run converges: '//err%text())
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-7_dp, 'HS28 x* with mu = 1e-8 max G_ii')
+    call assert_true(opt%regularizations >= 1, 'regularization counted')
+    call assert_true(index(opt%log(2)%events, 'regularized') > 0, 'regularization logged')
+    ! Powell's singular function: J J^T becomes singular as x -> x* = 0
+    call err%clear()
+    call run_problem('powell_singular', 'gauss', opt, prob, info, err)
+    call assert_true(err%failed() .and. index(err%text(), 'numerical rank 3 of 4') > 0, &
+                     'Powell singular: rank loss at the solution detected')
+    call assert_true(opt%have_best .and. opt%f_best < 1.0e-15_dp, 'best point near x* kept')
+  end subroutine test_rank_deficient
+
+  subroutine test_powell_fallback()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('three_circles', 'gnlc_ns', opt, prob, info, err)
+    call assert_true(opt%status == status_converged, 'converged: '//err%text())
+    call assert_true(opt%powell_fallbacks >= 1, 'Powell fallback used')
+    call assert_true(index(opt%log(2)%events, 'Powell minimised H') > 0, 'fallback logged with the iteration')
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, 'x* = (1, sqrt 3)')
+    call assert_all_close(opt%lambda, info%lambda_star, 0.0_dp, 1.0e-7_dp, 'lambda*')
+  end subroutine test_powell_fallback
+
+  subroutine test_iteration_limit()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=[0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], max_iter=2)
+    call assert_true(opt%status == status_max_iter, 'status: iteration limit')
+    call assert_true(err%failed() .and. err%code /= 2, 'error set, not an input error')
+    call assert_true(index(err%text(), 'best feasible') > 0, 'message gives the best feasible point')
+    call assert_equal(opt%iterations, 2, 'stopped after max_iter')
+    call assert_true(opt%have_best .and. opt%f_best <= minval(opt%log(1:opt%n_log)%f) + 1.0e-12_dp, &
+                     'best feasible = lowest F over the (all feasible) GNLC iterates')
+  end subroutine test_iteration_limit
+
+  !> Potter §9.5 item 3 on potter_cycling: from (0, 1) on |x| = 1 the step to
+  !> x* of the active set {1} violates x2 >= -1/2; backing out along the chord
+  !> enters |x| < 1 and ends back at x_k with the same active set.
+  subroutine test_potter_cycling()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('potter_cycling', 'gnlc', opt, prob, info, err, potter_repeat=.false.)
+    call assert_true(err%failed() .and. opt%status == status_failed, 'cycling stops the run when not escaped')
+    call assert_true(index(err%text(), 'cycling') > 0 .and. index(err%text(), 'Potter') > 0, &
+                     'diagnosis names the step-back cycling (Potter)')
+    call assert_equal(prob%count%analyses, 1, 'detected before any repeated analysis')
+    call err%clear()
+    call run_problem('potter_cycling', 'gnlc', opt, prob, info, err)
+    call assert_true(opt%status == status_converged, 'fix (a) escapes: '//err%text())
+    call assert_equal(opt%potter_repeats, 1, 'one repeated step')
+    call assert_true(index(opt%log(2)%events, 'fix (a)') > 0, 'escape logged')
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-9_dp, 'x* = (sqrt 3/2, -1/2)')
+    call assert_all_close(opt%lambda, info%lambda_star, 0.0_dp, 1.0e-8_dp, 'lambda*')
+    call assert_true(all(opt%log(1:opt%n_log)%max_violation <= opt%opts%feas_tol), 'iterates stay feasible')
+  end subroutine test_potter_cycling
+
+  subroutine test_general_constraints()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('general_convex', 'gnlc_general', opt, prob, info, err)
+    call assert_true(opt%status == status_converged, 'gnlc_general converged: '//err%text())
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, 'x* = (1, 1)')
+    call assert_all_close(opt%lambda, info%lambda_star, 0.0_dp, 1.0e-6_dp, 'lambda* = (1, 1/2)')
+    call assert_true(prob%count%constraint_hessians > 0, 'constraint Hessians re-evaluated (Potter item 1)')
+    call assert_true(all(opt%log(1:opt%n_log)%max_violation <= opt%opts%feas_tol), 'iterates feasible')
+    call run_problem('general_convex', 'gnlc_general_ns', opt, prob, info, err)
+    call assert_true(opt%status == status_converged, 'gnlc_general_ns converged')
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, 'NS: x* = (1, 1)')
+  end subroutine test_general_constraints
+
+  !> HS 15 (non-convex quadratic constraints) and HS 65 from their infeasible
+  !> literature starts: only GNLC.NS applies.
+  subroutine test_ns_infeasible_starts()
+    character(len=8), parameter :: names(2) = [character(len=8) :: 'hs15', 'hs65']
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    integer :: k
+    do k = 1, 2
+      call run_problem(trim(names(k)), 'gnlc_ns', opt, prob, info, err)
+      call assert_true(opt%status == status_converged, trim(names(k))//' converged: '//err%text())
+      ! HS 65's printed x* is good to ~5e-7 only (x3 = 4.6204170507; the KKT
+      ! point is 4.6204175553, and x1 = x2 by symmetry although 3.650461821 and
+      ! 3.65046168 are printed); its F* has 10 digits
+      call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-6_dp, trim(names(k))//' x*')
+      call assert_true(opt%kkt_residual < 1.0e-9_dp, trim(names(k))//' KKT residual < 1e-9')
+      call assert_close(opt%f, info%f_star, 1.0e-8_dp, trim(names(k))//' F*')
+      call assert_true(opt%iterations <= 5, trim(names(k))//' few iterations')
+    end do
+  end subroutine test_ns_infeasible_starts
+
+  subroutine test_mismatch()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    call run_problem('rosen_suzuki', 'gauss', opt, prob, info, err)
+    call assert_true(err%code == 2 .and. index(err%text(), 'unconstrained') > 0, 'gauss on a constrained problem')
+    call err%clear()
+    call run_problem('rosen_suzuki', 'gauss_constrained', opt, prob, info, err)
+    call assert_true(err%code == 2 .and. index(err%text(), 'linear constraints only') > 0, &
+                     'gauss_constrained on quadratic constraints')
+    call err%clear()
+    call run_problem('general_convex', 'gnlc', opt, prob, info, err)
+    call assert_true(err%code == 2 .and. index(err%text(), 'gnlc_general') > 0, 'gnlc on general constraints')
+    call err%clear()
+    call create_problem('rosen_suzuki', prob, info, err)
+    opt%opts%method = method_gnlc
+    opt%opts%hessian = hessian_gauss
+    call opt%solve(prob, info%x0, err)
+    call assert_true(err%code == 2 .and. index(err%text(), 'sum-of-squares') > 0, 'G = 2JJ^T needs least squares')
+    call err%clear()
+    opt%opts%hessian = hessian_auto
+    call opt%solve(prob, [1.0_dp, 2.0_dp], err)
+    call assert_true(err%code == 2 .and. index(err%text(), 'variables') > 0, 'start of the wrong length')
+  end subroutine test_mismatch
+end module test_gauss_optimizer_suite
+
+program test_gauss_optimizer
+  use test_gauss_optimizer_suite, only: run_all
+  use assertions, only: finish_suite
+  implicit none
+  call run_all()
+  call finish_suite('test_gauss_optimizer')
+end program test_gauss_optimizer
