@@ -63,6 +63,7 @@ module kinematics
     type(assembly_step_t), allocatable :: steps(:)
     integer :: n_steps = 0
     logical :: plan_complete = .false.      !< every joint is placed by a closed-form step
+    logical, allocatable :: placed(:)       !< joint placed by the plan (or on the ground)
     ! state of the last accepted solution
     logical :: assembled = .false.
     logical :: time_driven = .false.
@@ -177,7 +178,7 @@ contains
     if (.not. self%plan_complete) then
       missing = ''
       do j = 1, nj
-        if (.not. (mech%joints(j)%grounded .or. mech%joints(j)%has_position)) &
+        if (.not. (self%placed(j) .or. mech%joints(j)%has_position)) &
           missing = missing//' '//trim(mech%joints(j)%name)
       end do
       if (len(missing) > 0) then
@@ -268,7 +269,8 @@ contains
         end associate
       end do
     end do
-    self%plan_complete = all(rank >= 0)
+    self%placed = rank >= 0
+    self%plan_complete = all(self%placed)
   contains
     subroutine add(step)
       type(assembly_step_t), intent(in) :: step
@@ -441,9 +443,9 @@ contains
     end do
   end subroutine newton
 
-  !> Place every joint in closed form at crank angle theta on the designated
-  !> branches (the plan must be complete).  On failure `reason` says which
-  !> dyad cannot close.
+  !> Place every joint the plan reaches in closed form at crank angle theta
+  !> on the designated branches; the others stay at their deck reference
+  !> positions.  On failure `reason` says which dyad cannot close.
   subroutine construct(self, theta, q, ok, reason)
     class(kinematics_t), intent(in) :: self
     real(dp), intent(in) :: theta
@@ -536,23 +538,6 @@ contains
     q(self%iphi(self%mech%driver%link)) = theta
   end subroutine coordinates_from_points
 
-  !> Initial guess from the joint positions given in the deck (linkages that
-  !> are not built of dyads); the crank tip is put on the crank circle.
-  subroutine guess_from_reference(self, theta, q)
-    class(kinematics_t), intent(in) :: self
-    real(dp), intent(in) :: theta
-    real(dp), intent(out) :: q(:)
-    real(dp) :: p(2, self%mech%n_joints)
-    integer :: j
-    do j = 1, self%mech%n_joints
-      p(:, j) = [self%mech%joints(j)%x, self%mech%joints(j)%y]
-    end do
-    associate (dl => self%mech%links(self%mech%driver%link))
-      p(:, dl%joint(2)) = p(:, dl%joint(1)) + dl%length*unit_vec(theta)
-    end associate
-    call coordinates_from_points(self, p, theta, q)
-  end subroutine guess_from_reference
-
   !> Sign of each dyad's orientation in configuration q (0 if degenerate).
   pure function dyad_signs(self, q) result(sg)
     class(kinematics_t), intent(in) :: self
@@ -611,14 +596,12 @@ contains
 
     rescued = .false.
     if (.not. self%assembled) then
-      if (self%plan_complete) then
-        call construct(self, theta, qn, ok, reason)
-        if (.not. ok) then
-          call err%set('kinematics', 'the linkage cannot be assembled at '//crank_angle_text(theta)//': '//reason)
-          return
-        end if
-      else
-        call guess_from_reference(self, theta, qn)
+      ! closed-form placement; joints the plan cannot reach keep the
+      ! reference positions of the deck as Newton's starting point
+      call construct(self, theta, qn, ok, reason)
+      if (.not. ok) then
+        call err%set('kinematics', 'the linkage cannot be assembled at '//crank_angle_text(theta)//': '//reason)
+        return
       end if
       call newton(self, theta, qn, ok, its)
       if (.not. ok) then
@@ -672,7 +655,6 @@ contains
     sg = dyad_signs(self, qn)
     do k = 1, self%n_steps
       if (self%steps(k)%kind == step_driver) cycle
-      if (.not. self%assembled .and. .not. self%plan_complete) self%steps(k)%sign = sg(k)
       if (sg(k) /= self%steps(k)%sign) then
         if (self%assembled) then
           call err%set('kinematics', 'the linkage passed a toggle (dead-centre) position at joint '// &

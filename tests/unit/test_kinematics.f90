@@ -28,6 +28,7 @@ contains
     call run_test('velocities_and_accelerations_match_finite_differences', test_fourbar_fd)
     call run_test('six_bar_second_loop_matches_closed_form_fourbar', test_six_bar)
     call run_test('rotating_cantilever_spinup_matches_closed_form', test_cantilever_spinup)
+    call run_test('triad_linkage_assembles_from_reference_positions', test_triad)
     call run_test('link_point_matches_rigid_body_formulae', test_link_point)
     call run_test('toggle_at_sampled_angle_is_reported', test_toggle_hit)
     call run_test('toggle_passed_between_samples_is_reported', test_toggle_passed)
@@ -507,6 +508,68 @@ contains
       call assert_close(angle_diff(mef%phi, t3 + gam), 0.0_dp, 1.0e-10_dp, 'six-bar EF angle')
     end do
   end subroutine test_six_bar
+
+  !> A class-III Assur group (triad), which cannot be placed dyad by dyad: a
+  !> rigid equilateral triangle P-Q-R (side 4) hung from the crank tip B by
+  !> BP = 3.5 and from the ground by G1-Q = 3 and G2-R = 3; crank AB = 0.5
+  !> (it turns fully; the smallest reciprocal condition is 0.024).  The
+  !> deck's reference positions (exact at 0 deg) start Newton.  Checked: every
+  !> link keeps its length, the triangle stays rigid, and the velocities match
+  !> central differences (h = 1e-6 rad of crank angle, same reasoning as above).
+  subroutine test_triad()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(kinematics_t) :: kin
+    type(error_t) :: err
+    real(dp), allocatable :: qm(:), qp(:)
+    real(dp), parameter :: s3 = sqrt(3.0_dp), h = 1.0e-6_dp
+    real(dp) :: t, pq(2), pr(2)
+    integer :: k, i
+    inp%n_joints = 7
+    inp%joint_name(1:7) = [character(len=16) :: 'A', 'B', 'P', 'Q', 'R', 'G1', 'G2']
+    inp%joint_type(1:7) = [character(len=16) :: 'clamp', 'pin', 'pin', 'pin', 'pin', 'ground_pin', 'ground_pin']
+    inp%joint_x(1:7) = [0.0_dp, 0.5_dp, 4.0_dp, 6.0_dp, 8.0_dp, 6.0_dp, 8.0_dp]
+    inp%joint_y(1:7) = [0.0_dp, 0.0_dp, 0.0_dp, 2.0_dp*s3, 0.0_dp, 2.0_dp*s3 + 3.0_dp, -3.0_dp]
+    inp%n_links = 7
+    inp%link_name(1:7) = [character(len=16) :: 'crank', 'BP', 'G1Q', 'G2R', 'PQ', 'QR', 'RP']
+    inp%link_joint1(1:7) = [1, 2, 6, 7, 3, 4, 5]
+    inp%link_joint2(1:7) = [2, 3, 4, 5, 4, 5, 3]
+    inp%link_length(1:7) = 0.0_dp   ! all from the coordinates
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), err%text())
+    call kin%init(mech, err)
+    call assert_true(.not. err%failed(), err%text())
+    call assert_true(.not. kin%plan_complete, 'a triad is not placed dyad by dyad')
+    do k = 0, 36
+      t = k*10.0_dp*deg
+      call kin%solve_angle(t - h, 1.0_dp, 0.0_dp, err)
+      qm = kin%q
+      call kin%solve_angle(t + h, 1.0_dp, 0.0_dp, err)
+      qp = kin%q
+      call kin%solve_angle(t, 1.0_dp, 0.0_dp, err)
+      call assert_true(.not. err%failed(), err%text())
+      if (err%failed()) return
+      do i = 1, 7
+        associate (lk => kin%mech%links(i))
+          call assert_close(norm2(kin%joint_position(lk%joint(2)) - kin%joint_position(lk%joint(1))), lk%length, &
+                            1.0e-12_dp, 'triad link length')
+        end associate
+      end do
+      pq = kin%joint_position(4) - kin%joint_position(3)
+      pr = kin%joint_position(5) - kin%joint_position(3)
+      call assert_close(pq(1)*pr(2) - pq(2)*pr(1), -8.0_dp*s3, 1.0e-10_dp, 'triangle keeps its orientation')
+      call assert_all_close(kin%qd, (qp - qm)/(2*h), 0.0_dp, 1.0e-6_dp, 'triad velocities vs FD')
+    end do
+    ! without reference positions the triad cannot be started
+    inp%joint_x(3:5) = coordinate_unset
+    inp%joint_y(3:5) = coordinate_unset
+    inp%link_length(1:7) = [0.5_dp, 3.5_dp, 3.0_dp, 3.0_dp, 4.0_dp, 4.0_dp, 4.0_dp]
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), err%text())
+    call kin%init(mech, err)
+    call assert_equal(err%code, 2, 'missing start positions are an input error')
+    call assert_true(index(err%text(), 'joints P Q R') > 0, 'names the joints: '//err%text())
+  end subroutine test_triad
 
   !> One link clamped to the shaft with a free end, spun up from rest
   !> (cycloidal profile): element k starts at (k-1) L/n u(theta) with the
