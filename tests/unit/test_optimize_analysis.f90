@@ -1,0 +1,166 @@
+!> Tests of the `optimize` analysis (module optimize_analysis): decks in,
+!> iteration table and summary out, input errors with code 2, diagnoses kept
+!> with the output.
+module test_optimize_analysis_suite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use deck_reader, only: deck_t
+  use table_output, only: table_t
+  use optimize_analysis, only: run_optimize
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+  character(len=:), allocatable :: scratch
+
+contains
+
+  subroutine run_all()
+    character(len=256) :: tmp
+    integer :: length, status
+    call get_environment_variable('TMPDIR', tmp, length, status)
+    if (status /= 0 .or. length == 0) tmp = '/tmp'
+    scratch = trim(tmp)//'/flexmech_test_optimize_analysis'
+    call run_test('rosen_suzuki_deck_gives_table_and_summary', test_good_deck)
+    call run_test('bad_values_are_input_errors', test_bad_values)
+    call run_test('gnlc_infeasible_start_is_an_input_error', test_infeasible)
+    call run_test('iteration_limit_keeps_table_and_best_point', test_iteration_limit)
+  end subroutine run_all
+
+  !> Write `text` (lines separated by '|') as a deck, run it, return the
+  !> output lines (empty when the output was discarded).
+  subroutine run_deck(text, err, lines)
+    character(len=*), intent(in) :: text
+    type(error_t), intent(inout) :: err
+    character(len=512), allocatable, intent(out) :: lines(:)
+    type(deck_t) :: deck
+    type(table_t) :: out
+    type(error_t) :: cerr
+    integer :: u, i, j, n, ios
+    character(len=512) :: line
+    open(newunit=u, file=scratch//'.nml', status='replace', action='write')
+    i = 1
+    do
+      j = index(text(i:), '|')
+      if (j == 0) then
+        write(u, '(a)') text(i:)
+        exit
+      end if
+      write(u, '(a)') text(i:i + j - 2)
+      i = i + j
+    end do
+    close(u)
+    call deck%open(scratch//'.nml', err)
+    call out%open(scratch//'.out', cerr)
+    call run_optimize(deck, out, err)
+    call deck%close()
+    allocate(lines(0))
+    if (err%failed() .and. err%code == 2) then
+      call out%discard()
+    else
+      call out%commit(cerr)
+      open(newunit=u, file=scratch//'.out', status='old', action='read')
+      n = 0
+      do
+        read(u, '(a)', iostat=ios) line
+        if (ios /= 0) exit
+        n = n + 1
+      end do
+      rewind(u)
+      deallocate(lines)
+      allocate(lines(n))
+      do i = 1, n
+        read(u, '(a)') lines(i)
+      end do
+      close(u, status='delete')
+    end if
+    open(newunit=u, file=scratch//'.nml', status='old')
+    close(u, status='delete')
+  end subroutine run_deck
+
+  logical function has_line(lines, fragment)
+    character(len=*), intent(in) :: lines(:), fragment
+    integer :: i
+    has_line = .false.
+    do i = 1, size(lines)
+      if (index(lines(i), fragment) > 0) has_line = .true.
+    end do
+  end function has_line
+
+  subroutine test_good_deck()
+    type(error_t) :: err
+    character(len=512), allocatable :: lines(:)
+    real(dp) :: row(6 + 4 + 3 + 3)
+    integer :: i, n_rows
+    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_ns', " // &
+                  "x0 = 0, 0, 0, 0 /", err, lines)
+    call assert_true(.not. err%failed(), 'no error: '//err%text())
+    call assert_true(has_line(lines, '# summary: status = converged'), 'status converged')
+    call assert_true(has_line(lines, '# summary: NI = 2'), 'NI = 2 (Table I: 2)')
+    call assert_true(has_line(lines, '# summary: NF = 3'), 'NF = 3 (Table I: 3)')
+    call assert_true(has_line(lines, 'active constraints (|g| <= feas_tol) = {1, 3}'), 'active set {1, 3}')
+    call assert_true(has_line(lines, '# cost: analyses NF'), 'cost lines')
+    n_rows = 0
+    do i = 1, size(lines)
+      if (lines(i)(1:1) == '#') cycle
+      n_rows = n_rows + 1
+      read(lines(i), *) row
+    end do
+    call assert_equal(n_rows, 3, 'one row per iterate (k = 0, 1, 2)')
+    call assert_close(row(1), 2.0_dp, 0.0_dp, 'last row k = 2')
+    call assert_close(row(2), 3.0_dp, 0.0_dp, 'last row NF = 3')
+    call assert_close(row(3), -44.0_dp, 1.0e-9_dp, 'F = -44')
+    call assert_all_close(row(7:10), [0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp], 0.0_dp, 1.0e-9_dp, 'x*')
+    call assert_all_close(row(11:13), [1.0_dp, 0.0_dp, 2.0_dp], 0.0_dp, 1.0e-9_dp, 'multipliers')
+    call assert_all_close(row(14:16), [1.0_dp, 0.0_dp, 1.0_dp], 0.0_dp, 0.0_dp, 'active flags')
+  end subroutine test_good_deck
+
+  subroutine test_bad_values()
+    type(error_t) :: err
+    character(len=512), allocatable :: lines(:)
+    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_xx' /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), 'method') > 0, 'unknown method named')
+    call err%clear()
+    call run_deck("&run analysis='optimize' /|&optimize problem='nope' /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), 'rosen_suzuki') > 0, 'unknown problem: valid names listed')
+    call err%clear()
+    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', x0 = 1, 2 /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), '4 variables') > 0, 'x0 of the wrong length')
+    call err%clear()
+    call run_deck("&run analysis='optimize' /|&optimize xtol = -1 /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), 'xtol') > 0, 'negative xtol')
+    call err%clear()
+    call run_deck("&run analysis='optimize' /|&optimize potter_fix = 'b' /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), 'potter_fix') > 0, 'unknown potter_fix')
+    call assert_equal(size(lines), 0, 'no output kept for input errors')
+  end subroutine test_bad_values
+
+  subroutine test_infeasible()
+    type(error_t) :: err
+    character(len=512), allocatable :: lines(:)
+    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', x0 = 2, 2, 2, 2 /", &
+                  err, lines)
+    call assert_true(err%code == 2, 'input error')
+    call assert_true(index(err%text(), 'infeasible') > 0 .and. index(err%text(), 'gnlc_ns') > 0, &
+                     'says infeasible, suggests gnlc_ns: '//err%text())
+  end subroutine test_infeasible
+
+  subroutine test_iteration_limit()
+    type(error_t) :: err
+    character(len=512), allocatable :: lines(:)
+    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', max_iter = 1 /", &
+                  err, lines)
+    call assert_true(err%failed() .and. err%code /= 2, 'a diagnosis, not an input error')
+    call assert_true(has_line(lines, '# summary: status = iteration limit reached'), 'status line')
+    call assert_true(has_line(lines, '# summary: best feasible F'), 'best feasible point reported')
+  end subroutine test_iteration_limit
+end module test_optimize_analysis_suite
+
+program test_optimize_analysis
+  use test_optimize_analysis_suite, only: run_all
+  use assertions, only: finish_suite
+  implicit none
+  call run_all()
+  call finish_suite('test_optimize_analysis')
+end program test_optimize_analysis
