@@ -688,8 +688,8 @@ contains
     ! velocities: Phi_q qd = -Phi_t (only the driver row depends on t)
     rhs = 0.0_dp
     rhs(self%row_driver) = 1.0_dp
-    call solve_scaled(self, lu, ipiv, rhs, self%q_theta, e)
-    qd = self%q_theta*theta_d
+    call solve_scaled(self, lu, ipiv, rhs, qp, e)
+    qd = qp*theta_d
     ! accelerations: Phi_q qdd = gamma
     call accel_rhs(self, qn, qd, theta_dd, rhs)
     call solve_scaled(self, lu, ipiv, rhs, qdd, e)
@@ -699,6 +699,7 @@ contains
     end if
 
     self%q = qn
+    self%q_theta = qp
     self%qd = qd
     self%qdd = qdd
     self%theta = theta
