@@ -15,6 +15,7 @@ program flexmech
   use run_settings, only: read_run_settings, echo_run_settings, analysis_names
   use command_line, only: parse_arguments, quit
   use ode_verification, only: run_lsode_check
+  use transient_analysis, only: run_transient
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -47,6 +48,8 @@ program flexmech
   select case (trim(analysis))
   case ('lsode_check')
     call run_lsode_check(deck, out, err)
+  case ('transient')
+    call run_transient(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)

@@ -1,0 +1,406 @@
+!> The `transient` analysis (Kear 1986-87): the vibration of a flexible
+!> linkage about its known rigid-body motion, integrated by DLSODE from the
+!> rigid-body state (or a mode shape, or a restart file) over a number of crank
+!> revolutions.  Output rows at equal crank-angle increments: elastic
+!> displacements of the joints, local deformations at each link's end 2, and
+!> the maximum |stress| of every element.
+module transient_analysis
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t, invalid_value
+  use table_output, only: table_t
+  use progress, only: progress_t
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user, mf_bdf_band_fd
+  use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, driver_angle, &
+                     joint_pin, joint_slider_fixed, joint_free
+  use kear_element, only: stress_report_t, effects_summary, kear_local_displacement
+  use mechanism_model, only: mechanism_model_t
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
+  implicit none
+  private
+  public :: run_transient
+
+  integer, parameter :: n_modes_reported = 5
+
+contains
+
+  subroutine run_transient(deck, out, err)
+    type(deck_t), intent(inout) :: deck
+    type(table_t), intent(inout) :: out
+    type(error_t), intent(inout) :: err
+    type(mechanism_t) :: mech
+    type(transient_settings_t) :: s
+    type(mechanism_model_t), target :: model
+    type(lsode_t) :: ode
+    type(progress_t) :: bar
+    type(lsode_counters_t) :: c
+    type(stress_report_t), allocatable :: stress(:)
+    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:)
+    real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done
+    integer :: k, n_out, e, ml
+    character(len=32), allocatable :: names(:)
+
+    call read_mechanism(deck, mech, err)
+    if (err%failed()) return
+    call read_transient_settings(deck, s, err)
+    if (err%failed()) return
+    if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
+      call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
+        'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
+      return
+    end if
+
+    block
+      integer :: u
+      u = out%echo_unit()
+      call echo_mechanism(mech, u)
+      call out%end_echo()
+    end block
+    call echo_transient_settings(out)
+
+    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
+    if (err%failed()) then
+      err%code = 2
+      call err%add_context('deck '''//deck%path//''', group &mechanism')
+      return
+    end if
+    call write_model_header(out, mech, s, model)
+
+    ! natural frequencies of the linearised structure at the start position
+    allocate(omega_n(model%n), shapes(model%n, model%n))
+    call model%linear_modes(omega_n, shapes, err)
+    if (err%failed()) return
+    call write_frequency_header(out, mech, s, omega_n)
+
+    ! initial state
+    allocate(y(model%state_size()))
+    t0 = 0.0_dp
+    y = 0.0_dp
+    select case (trim(s%initial))
+    case ('mode')
+      if (s%mode_number > model%n) then
+        call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
+                           'the model has only '//str(model%n)//' modes', err)
+        return
+      end if
+      y(1::2) = s%mode_amplitude*shapes(:, s%mode_number)/max_transverse(model, shapes(:, s%mode_number))
+      call out%comment('initial state: mode '//str(s%mode_number)//' scaled to a largest transverse '// &
+                       'displacement of '//str(s%mode_amplitude)//', at rest')
+    case ('restart')
+      call read_restart(s%restart_in, t0, y, err)
+      if (err%failed()) then
+        err%code = 2
+        call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
+        return
+      end if
+      call out%comment('initial state: restart file '//trim(s%restart_in)//' at t = '//str(t0))
+    case default
+      call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+    end select
+
+    ! output schedule
+    if (mech%driver%omega > 0.0_dp) then
+      dt_out = s%output_step_deg*pi/180.0_dp/mech%driver%omega
+      t_end = t0 + time_to_turn(mech, s%revolutions*two_pi)
+    else
+      dt_out = s%output_step_t
+      t_end = t0 + s%t_end
+    end if
+    n_out = max(1, nint((t_end - t0)/dt_out))
+
+    ml = 2*model%kd + 1
+    call ode%init(size(y), t0, s%mf, s%rtol, [s%atol], err, ml=min(ml, size(y) - 1), &
+                  mu=min(ml, size(y) - 1), max_steps=s%max_steps)
+    if (err%failed()) return
+    if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
+      call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(min(ml, size(y) - 1))// &
+                       ' (the band of M and K in the interleaved state)')
+
+    call write_columns(out, mech, model, names)
+    allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
+    peak_stress = 0.0_dp
+    peak_angle = 0.0_dp
+
+    call bar%start('transient', t0, t_end)
+    call cpu_time(cpu0)
+    call output_row(t0)
+    do k = 1, n_out
+      t = t0 + k*dt_out
+      if (k == n_out) t = max(t, t_end)
+      call ode%integrate_to(model, y, t, err)
+      if (err%failed()) exit
+      call output_row(t)
+      if (err%failed()) exit
+      call bar%update(t)
+    end do
+    call bar%finish()
+    call cpu_time(cpu1)
+
+    if (err%failed()) then
+      call driver_angle(mech%driver, model%t_failed, theta, theta_d, theta_dd)
+      call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
+      if (.not. model%err%failed()) call err%add_context('DLSODE')
+    end if
+
+    ! summary and cost
+    do e = 1, size(model%el)
+      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
+                       str(peak_angle(e), 6)//' deg')
+    end do
+    c = ode%counters()
+    revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
+    call out%cost('cpu_seconds_integration', str(cpu1 - cpu0, 4))
+    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str((cpu1 - cpu0)/revolutions_done, 4))
+    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
+    call out%cost('steps', str(c%steps))
+    call out%cost('rhs_evaluations', str(c%rhs_evals))
+    call out%cost('jacobian_evaluations', str(c%jac_evals))
+    call out%cost('lu_factorizations', str(c%lu_factorizations))
+    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
+    call out%cost('last_method_order', str(c%order_last))
+    call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
+    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
+      call write_restart(s%restart_out, ode%t, y, err)
+      if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
+    end if
+
+  contains
+
+    subroutine output_row(tt)
+      real(dp), intent(in) :: tt
+      real(dp), allocatable :: row(:)
+      real(dp) :: q(model%n), crank_deg
+      integer :: j, i, kk, ee
+      call model%set_time(tt)
+      if (model%err%failed()) then
+        call err%set('', model%err%text())
+        return
+      end if
+      q = y(1::2)
+      call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
+      crank_deg = theta*180.0_dp/pi
+      call model%element_stresses(q, stress)
+      do ee = 1, size(stress)
+        if (stress(ee)%max_abs_stress > peak_stress(ee)) then
+          peak_stress(ee) = stress(ee)%max_abs_stress
+          peak_angle(ee) = crank_deg
+        end if
+      end do
+      allocate(row(size(names)))
+      row(1) = tt
+      row(2) = crank_deg
+      kk = 2
+      do j = 1, mech%n_joints
+        if (.not. joint_moves(mech, j)) cycle
+        call joint_displacement(model, mech, j, q, row(kk + 1:kk + 2))
+        kk = kk + 2
+      end do
+      do i = 1, mech%n_links
+        ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
+        row(kk + 1:kk + 2) = kear_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
+                                                     1.0_dp)
+        kk = kk + 2
+      end do
+      do ee = 1, size(stress)
+        row(kk + ee) = stress(ee)%max_abs_stress
+      end do
+      call out%row(row)
+    end subroutine output_row
+  end subroutine run_transient
+
+  !> Joints whose elastic translation is a model unknown.
+  logical function joint_moves(mech, j)
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: j
+    joint_moves = any(mech%joints(j)%kind == [joint_pin, joint_slider_fixed, joint_free]) .and. &
+                  .not. mech%joints(j)%grounded
+  end function joint_moves
+
+  !> Global elastic (U, W) of joint j, read at the first link end there.
+  subroutine joint_displacement(model, mech, j, q, uw)
+    type(mechanism_model_t), intent(in) :: model
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: j
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: uw(2)
+    integer :: link, side, e
+    real(dp) :: qe(8)
+    link = mech%joints(j)%link(1)
+    side = mech%joints(j)%link_end(1)
+    if (side == 1) then
+      e = mech%links(link)%first_element
+      qe = model%table%gather(e, q)
+      uw = qe(1:2)
+    else
+      e = mech%links(link)%first_element + mech%links(link)%n_elements - 1
+      qe = model%table%gather(e, q)
+      uw = qe(5:6)
+    end if
+  end subroutine joint_displacement
+
+  subroutine write_columns(out, mech, model, names)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(mechanism_model_t), intent(in) :: model
+    character(len=32), allocatable, intent(out) :: names(:)
+    integer :: j, i, e
+    names = [character(len=32) :: 't', 'crank_deg']
+    do j = 1, mech%n_joints
+      if (.not. joint_moves(mech, j)) cycle
+      names = [character(len=32) :: names, trim(mech%joints(j)%name)//'_U', trim(mech%joints(j)%name)//'_W']
+    end do
+    do i = 1, mech%n_links
+      names = [character(len=32) :: names, trim(mech%links(i)%name)//'_u_end', trim(mech%links(i)%name)//'_w_end']
+    end do
+    do e = 1, size(model%el)
+      names = [character(len=32) :: names, 'sigma_max_e'//str(e)]
+    end do
+    call out%comment('columns: t (s); crank_deg = crank angle (deg); <joint>_U, <joint>_W = elastic '// &
+                     'displacement of the joint along global X, Y (in); <link>_u_end, <link>_w_end = axial '// &
+                     'and transverse elastic displacement of the link''s end 2 in the link''s rigid-body axes (in); '// &
+                     'sigma_max_e<k> = largest |stress| in element k over both outer fibres (psi)')
+    call out%columns(names)
+  end subroutine write_columns
+
+  subroutine write_model_header(out, mech, s, model)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    type(mechanism_model_t), intent(in) :: model
+    character(len=120), allocatable :: tlines(:)
+    integer :: i
+    associate (lines => mechanism_summary(mech))
+      do i = 1, size(lines)
+        if (len_trim(lines(i)) > 0) call out%comment(trim(lines(i)))
+      end do
+    end associate
+    call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(s%formulation))
+    if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
+               s%effects%rotary_inertia .or. s%effects%coupling)) &
+      call out%comment('(all effects off: the linear analysis)')
+    call model%table%describe(tlines)
+    do i = 1, size(tlines)
+      call out%comment(trim(tlines(i)))
+    end do
+  end subroutine write_model_header
+
+  subroutine write_frequency_header(out, mech, s, omega_n)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    real(dp), intent(in) :: omega_n(:)
+    integer :: i, h
+    real(dp) :: w
+    character(len=:), allocatable :: line
+    line = 'natural frequencies of the linearised structure at the start position (rad/s):'
+    do i = 1, min(n_modes_reported, size(omega_n))
+      line = line//' '//str(omega_n(i), 6)
+    end do
+    call out%comment(line)
+    if (s%damping_beta > 0.0_dp) then
+      call out%comment('stiffness-proportional damping beta = '//str(s%damping_beta)//' s: modal damping ratio '// &
+                       'zeta_1 = beta*omega_1/2 = '//str(0.5_dp*s%damping_beta*omega_n(1), 6))
+    else
+      call out%comment('no damping: a transient started from the rigid-body state never settles')
+    end if
+    w = mech%driver%omega
+    if (w > 0.0_dp) then
+      call out%comment('crank speed '//str(w, 6)//' rad/s = '//str(w/omega_n(1), 6)//' of the first natural frequency')
+      do h = 1, 8
+        if (abs(h*w - omega_n(1)) < 0.05_dp*omega_n(1)) &
+          call out%comment('warning: harmonic '//str(h)//' of the crank speed ('//str(h*w, 6)// &
+                           ' rad/s) is within 5% of the first natural frequency: near resonance')
+      end do
+    end if
+  end subroutine write_frequency_header
+
+  !> Time for the crank to turn by `angle` from t = 0 (bisection on the driver
+  !> profile, which is monotone).
+  real(dp) function time_to_turn(mech, angle) result(t)
+    type(mechanism_t), intent(in) :: mech
+    real(dp), intent(in) :: angle
+    real(dp) :: lo, hi, th0, th, thd, thdd
+    integer :: i
+    call driver_angle(mech%driver, 0.0_dp, th0, thd, thdd)
+    lo = 0.0_dp
+    hi = angle/mech%driver%omega
+    do
+      call driver_angle(mech%driver, hi, th, thd, thdd)
+      if (th - th0 >= angle) exit
+      hi = 2.0_dp*hi
+    end do
+    do i = 1, 200
+      t = 0.5_dp*(lo + hi)
+      call driver_angle(mech%driver, t, th, thd, thdd)
+      if (th - th0 < angle) then
+        lo = t
+      else
+        hi = t
+      end if
+      if (hi - lo <= 1.0e-14_dp*hi) exit
+    end do
+    t = hi
+  end function time_to_turn
+
+  !> Largest local transverse displacement of a global displacement vector,
+  !> sampled at 11 points per element (the scale of a mode shape).
+  real(dp) function max_transverse(model, q) result(wmax)
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: q(:)
+    integer :: e, i
+    real(dp) :: uw(2)
+    wmax = 0.0_dp
+    do e = 1, size(model%el)
+      do i = 0, 10
+        uw = kear_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
+        wmax = max(wmax, abs(uw(2)))
+      end do
+    end do
+    if (wmax <= 0.0_dp) wmax = 1.0_dp
+  end function max_transverse
+
+  subroutine write_restart(path, t, y, err)
+    character(len=*), intent(in) :: path
+    real(dp), intent(in) :: t, y(:)
+    type(error_t), intent(inout) :: err
+    integer :: u, ios
+    open(newunit=u, file=trim(path), status='replace', action='write', iostat=ios)
+    if (ios /= 0) then
+      call err%set('restart file '''//trim(path)//'''', 'cannot be written')
+      return
+    end if
+    write(u, '(a)') '# flexmech transient restart: t, number of states, then the state (q, q_dot interleaved)'
+    write(u, '(es25.17e3)') t
+    write(u, '(i0)') size(y)
+    write(u, '(es25.17e3)') y
+    close(u)
+  end subroutine write_restart
+
+  subroutine read_restart(path, t, y, err)
+    character(len=*), intent(in) :: path
+    real(dp), intent(out) :: t
+    real(dp), intent(inout) :: y(:)
+    type(error_t), intent(inout) :: err
+    integer :: u, ios, n
+    character(len=256) :: line
+    open(newunit=u, file=trim(path), status='old', action='read', iostat=ios)
+    if (ios /= 0) then
+      call err%set('restart file '''//trim(path)//'''', 'not found or not readable')
+      return
+    end if
+    read(u, '(a)', iostat=ios) line
+    read(u, *, iostat=ios) t
+    if (ios == 0) read(u, *, iostat=ios) n
+    if (ios /= 0) then
+      call err%set('restart file '''//trim(path)//'''', 'is not a flexmech restart file')
+    else if (n /= size(y)) then
+      call err%set('restart file '''//trim(path)//'''', 'holds '//str(n)//' states; this model has '//str(size(y)))
+    else
+      read(u, *, iostat=ios) y
+      if (ios /= 0) call err%set('restart file '''//trim(path)//'''', 'is truncated')
+    end if
+    close(u)
+  end subroutine read_restart
+end module transient_analysis
