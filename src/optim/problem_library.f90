@@ -224,8 +224,11 @@ contains
         call lp%set_linear_constraint(2*i, unit_vector(3, i, -1.0_dp), merge(5.0_dp, 4.5_dp, i == 3))
         call lp%set_linear_constraint(2*i + 1, unit_vector(3, i, 1.0_dp), merge(5.0_dp, 4.5_dp, i == 3))
       end do
+      ! HS prints x* = (3.650461821, 3.65046168, 4.6204170507), good to ~5e-7 only
+      ! (x1 = x2 by symmetry); stored here: the KKT point to 11 digits
       call set_info(info, 'sum of squares in a ball and a box; infeasible start', 'HS 65', 'gnlc_ns', &
-                    [-5.0_dp, 5.0_dp, 0.0_dp], [3.650461821_dp, 3.65046168_dp, 4.6204170507_dp], 0.9535288567_dp)
+                    [-5.0_dp, 5.0_dp, 0.0_dp], [3.65046172521_dp, 3.65046172521_dp, 4.62041755532_dp], &
+                    0.9535288567_dp, [0.0821532773_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
       call move_alloc(lp, prob)
 
     case ('general_convex')

@@ -54,7 +54,7 @@ contains
       call create_problem(trim(all_names(k)), prob, info, err)
       if (.not. info%has_optimum) cycle
       mt = prob%n_constraints()
-      allocate(phi(prob%n_residuals), grad(prob%n), jac(prob%n, prob%n_residuals), g(mt), dg(prob%n, mt))
+      allocate(phi(prob%n_residuals), grad(prob%n), jac(prob%n, prob%n_residuals), g(mt), dg(prob%n, mt), r(prob%n))
       call prob%analyse(info%x_star, f, phi, err)
       call prob%objective_derivatives(info%x_star, f, phi, grad, jac, err)
       call prob%constraint_values(info%x_star, g, err)
@@ -76,7 +76,7 @@ contains
       else if (mt == 0 .and. trim(all_names(k)) /= 'bard') then
         call assert_true(maxval(abs(grad)) <= 1.0e-12_dp, trim(all_names(k))//' grad F(x*) = 0')
       end if
-      deallocate(phi, grad, jac, g, dg)
+      deallocate(phi, grad, jac, g, dg, r)
     end do
   end subroutine test_kkt
 

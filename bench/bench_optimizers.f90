@@ -1,0 +1,277 @@
+!> The Gauss family beside modern optimizers: the same problems and starts
+!> through GNLC / GNLC.NS (ours) and NLopt's SLSQP (gradient-based SQP) and
+!> COBYLA (derivative-free), through NLopt's Fortran (F77) interface.  The
+!> modern counterpart of the papers' comparison with GRG (FORMULATION.md §10).
+!>
+!> Printed per run: NF (objective evaluations = analyses), NG (gradient
+!> evaluations), NFD (objective evaluations spent in finite differences),
+!> NI (iterations; NLopt does not report them), the final F, the distance to
+!> the known optimum and the largest constraint violation.  A benchmark:
+!> figures, not pass/fail.
+module nlopt_glue
+  use kinds, only: dp, i8
+  use error_status, only: error_t
+  use optim_problem, only: opt_problem_t
+  implicit none
+  private
+  public :: nlopt_run, alg_slsqp, alg_cobyla
+
+  integer, parameter :: alg_cobyla = 25   ! NLOPT_LN_COBYLA (nlopt.f)
+  integer, parameter :: alg_slsqp = 40    ! NLOPT_LD_SLSQP
+
+  abstract interface
+    subroutine nlopt_callback(val, n, x, grad, need_gradient, f_data)
+      import :: dp
+      real(dp), intent(out) :: val
+      integer, intent(in) :: n
+      real(dp), intent(in) :: x(n)
+      real(dp), intent(inout) :: grad(n)
+      integer, intent(in) :: need_gradient
+      integer, intent(in) :: f_data
+    end subroutine nlopt_callback
+  end interface
+
+  ! NLopt's F77 API (libnlopt, nlopt.f): explicit interfaces
+  interface
+    subroutine nlo_create(opt, alg, n)
+      import :: i8
+      integer(i8), intent(out) :: opt
+      integer, intent(in) :: alg, n
+    end subroutine nlo_create
+    subroutine nlo_destroy(opt)
+      import :: i8
+      integer(i8), intent(in) :: opt
+    end subroutine nlo_destroy
+    subroutine nlo_set_min_objective(ires, opt, f, f_data)
+      import :: i8, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: f
+      integer, intent(in) :: f_data
+    end subroutine nlo_set_min_objective
+    subroutine nlo_add_inequality_constraint(ires, opt, fc, fc_data, tol)
+      import :: i8, dp, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: fc
+      integer, intent(in) :: fc_data
+      real(dp), intent(in) :: tol
+    end subroutine nlo_add_inequality_constraint
+    subroutine nlo_add_equality_constraint(ires, opt, fc, fc_data, tol)
+      import :: i8, dp, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: fc
+      integer, intent(in) :: fc_data
+      real(dp), intent(in) :: tol
+    end subroutine nlo_add_equality_constraint
+    subroutine nlo_set_xtol_rel(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_xtol_rel
+    subroutine nlo_set_ftol_rel(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_ftol_rel
+    subroutine nlo_set_maxeval(ires, opt, n)
+      import :: i8
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      integer, intent(in) :: n
+    end subroutine nlo_set_maxeval
+    subroutine nlo_optimize(ires, opt, x, f)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(inout) :: x(*)
+      real(dp), intent(out) :: f
+    end subroutine nlo_optimize
+  end interface
+
+  ! NLopt's callbacks carry only an address: the problem being solved is
+  ! module state for the duration of one nlopt_run (a legacy callback forces it)
+  class(opt_problem_t), pointer :: current => null()
+  integer, target, save :: ids(0:200) = 0
+  type(error_t), save :: callback_err
+
+contains
+
+  !> Minimise prob from x (in: start, out: NLopt's result) with algorithm
+  !> `alg`; ires is NLopt's return code (> 0 success).
+  subroutine nlopt_run(prob, alg, x, f, ires, err)
+    class(opt_problem_t), intent(inout), target :: prob
+    integer, intent(in) :: alg
+    real(dp), intent(inout) :: x(:)
+    real(dp), intent(out) :: f
+    integer, intent(out) :: ires
+    type(error_t), intent(inout) :: err
+    integer(i8) :: opt
+    integer :: i, r
+    current => prob
+    call callback_err%clear()
+    do i = 0, size(ids) - 1
+      ids(i) = i
+    end do
+    call nlo_create(opt, alg, prob%n)
+    call nlo_set_min_objective(r, opt, objective_cb, ids(0))
+    do i = 1, prob%m
+      call nlo_add_inequality_constraint(r, opt, constraint_cb, ids(i), 1.0e-10_dp)
+    end do
+    do i = prob%m + 1, prob%m + prob%n_eq
+      call nlo_add_equality_constraint(r, opt, constraint_cb, ids(i), 1.0e-10_dp)
+    end do
+    call nlo_set_xtol_rel(r, opt, 1.0e-8_dp)
+    call nlo_set_ftol_rel(r, opt, 1.0e-14_dp)
+    call nlo_set_maxeval(r, opt, 20000)
+    call nlo_optimize(ires, opt, x, f)
+    call nlo_destroy(opt)
+    if (callback_err%failed()) err = callback_err
+    current => null()
+  end subroutine nlopt_run
+
+  subroutine objective_cb(val, n, x, grad, need_gradient, f_data)
+    real(dp), intent(out) :: val
+    integer, intent(in) :: n
+    real(dp), intent(in) :: x(n)
+    real(dp), intent(inout) :: grad(n)
+    integer, intent(in) :: need_gradient
+    integer, intent(in) :: f_data
+    real(dp), allocatable :: phi(:), jac(:, :)
+    allocate(phi(current%n_residuals), jac(n, current%n_residuals))
+    call current%analyse(x, val, phi, callback_err)
+    if (need_gradient /= 0) call current%objective_derivatives(x, val, phi, grad, jac, callback_err)
+    if (f_data /= 0) call callback_err%set('objective_cb', 'unexpected callback data')
+  end subroutine objective_cb
+
+  subroutine constraint_cb(val, n, x, grad, need_gradient, f_data)
+    real(dp), intent(out) :: val
+    integer, intent(in) :: n
+    real(dp), intent(in) :: x(n)
+    real(dp), intent(inout) :: grad(n)
+    integer, intent(in) :: need_gradient
+    integer, intent(in) :: f_data
+    real(dp), allocatable :: g(:), dg(:, :)
+    integer :: mt
+    mt = current%n_constraints()
+    allocate(g(mt), dg(n, mt))
+    call current%constraint_values(x, g, callback_err)
+    val = g(f_data)
+    if (need_gradient /= 0) then
+      call current%constraint_gradients(x, g, dg, callback_err)
+      grad = dg(:, f_data)
+    end if
+  end subroutine constraint_cb
+end module nlopt_glue
+
+program bench_optimizers
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use optim_problem, only: opt_problem_t
+  use problem_library, only: problem_info_t, create_problem
+  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, status_converged
+  use nlopt_glue, only: nlopt_run, alg_slsqp, alg_cobyla
+  implicit none
+
+  real(dp), parameter :: r5 = 2.2360679774997897_dp
+  real(dp), allocatable :: ref_x(:)
+
+  write(output_unit, '(a)') '# Gauss family (ours) beside NLopt SLSQP and COBYLA: same problems, same starts.'
+  write(output_unit, '(a)') '# NF = objective evaluations (analyses), NG = gradient evaluations, NFD = objective'
+  write(output_unit, '(a)') '# evaluations inside forward differences, NI = iterations (NLopt does not report them),'
+  write(output_unit, '(a)') '# dx = |x - x*|_inf against the known optimum (or against GNLC''s result: "ref"),'
+  write(output_unit, '(a)') '# viol = largest constraint violation.  NLopt: xtol_rel 1e-8, ftol_rel 1e-14, tol 1e-10.'
+  write(output_unit, '(a)') '#'
+  write(output_unit, '(a)') '# problem                  start          solver        NF    NG   NFD    NI' // &
+                            '                 F        dx      viol  status'
+
+  call compare('rosen_suzuki', '[0,0,0,0]', [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], ['gnlc_ns', 'gnlc   '])
+  call compare('rosen_suzuki', '[1,1,1,1]', [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp], ['gnlc_ns', 'gnlc   '])
+  call compare('rosen_suzuki', '[2,2,2,2]', [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp], ['gnlc_ns'])
+  call compare('rosen_suzuki', '[0,0,r5,0]', [0.0_dp, 0.0_dp, r5, 0.0_dp], ['gnlc_ns', 'gnlc   '])
+  call compare('fourbar_path', 'Table 3', [real(dp) ::], ['gnlc   ', 'gnlc_ns'])
+  call compare('fourbar_path_13', 'Table 3', [real(dp) ::], ['gnlc'])
+  call compare('fourbar_path_offset', 'Table 3', [real(dp) ::], ['gnlc'])
+  call compare('fourbar_path_13_offset', 'Table 3', [real(dp) ::], ['gnlc'])
+  call compare('hs35', 'HS', [real(dp) ::], ['gauss_constrained'])
+  call compare('hs15', 'HS (infeas.)', [real(dp) ::], ['gnlc_ns'])
+  call compare('hs65', 'HS (infeas.)', [real(dp) ::], ['gnlc_ns'])
+  call compare('general_convex', '[0,0]', [real(dp) ::], ['gnlc_general'])
+  call compare('three_circles', '[1,5]', [real(dp) ::], ['gnlc_ns'])
+
+contains
+
+  !> One problem, one start: our methods, then SLSQP and COBYLA.
+  subroutine compare(name, start_label, x0_in, methods)
+    character(len=*), intent(in) :: name, start_label
+    real(dp), intent(in) :: x0_in(:)
+    character(len=*), intent(in) :: methods(:)
+    class(opt_problem_t), allocatable, target :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    real(dp), allocatable :: x0(:), x(:)
+    real(dp) :: f
+    integer :: k, ires
+    logical :: have_ref
+    call create_problem(name, prob, info, err)
+    if (size(x0_in) > 0) then
+      x0 = x0_in
+    else
+      x0 = info%x0
+    end if
+    have_ref = info%has_optimum
+    if (have_ref) ref_x = info%x_star
+    do k = 1, size(methods)
+      block
+        type(gauss_optimizer_t) :: opt
+        call create_problem(name, prob, info, err)
+        opt%opts%method = method_from_name(trim(methods(k)))
+        call err%clear()
+        call opt%solve(prob, x0, err)
+        if (.not. have_ref .and. opt%status == status_converged) then
+          ref_x = opt%x              ! no closed-form optimum: compare with GNLC's
+          have_ref = .true.
+        end if
+        call report(name, start_label, trim(methods(k)), prob, opt%iterations, opt%f, opt%x, have_ref, &
+                    merge('converged', 'failed   ', opt%status == status_converged))
+      end block
+    end do
+    call create_problem(name, prob, info, err)
+    x = x0
+    call nlopt_run(prob, alg_slsqp, x, f, ires, err)
+    call report(name, start_label, 'nlopt_slsqp', prob, -1, f, x, have_ref, 'ires='//str(ires))
+    call create_problem(name, prob, info, err)
+    x = x0
+    call nlopt_run(prob, alg_cobyla, x, f, ires, err)
+    call report(name, start_label, 'nlopt_cobyla', prob, -1, f, x, have_ref, 'ires='//str(ires))
+  end subroutine compare
+
+  subroutine report(name, start_label, solver, prob, ni, f, x, have_ref, status)
+    character(len=*), intent(in) :: name, start_label, solver, status
+    class(opt_problem_t), intent(inout) :: prob
+    integer, intent(in) :: ni
+    real(dp), intent(in) :: f, x(:)
+    logical, intent(in) :: have_ref
+    real(dp), allocatable :: g(:)
+    type(error_t) :: err
+    real(dp) :: viol, dx
+    character(len=8) :: ni_text
+    allocate(g(prob%n_constraints()))
+    viol = 0.0_dp
+    if (size(g) > 0) then
+      call prob%constraint_values(x, g, err)
+      viol = max(0.0_dp, maxval([0.0_dp, g(1:prob%m)]), maxval([0.0_dp, abs(g(prob%m + 1:))]))
+    end if
+    dx = -1.0_dp
+    if (have_ref) dx = maxval(abs(x - ref_x))
+    ni_text = '     -'
+    if (ni >= 0) write(ni_text, '(i6)') ni
+    write(output_unit, '(a24,1x,a14,1x,a13,3i6,a6,es18.9,2es10.2,2x,a)') name, start_label, solver, &
+      prob%count%analyses, prob%count%gradients, prob%count%fd_analyses, ni_text, f, dx, viol, status
+  end subroutine report
+end program bench_optimizers
