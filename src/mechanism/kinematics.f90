@@ -377,7 +377,7 @@ contains
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: lu(:, :)
     integer, intent(out) :: ipiv(:)
-    real(dp), intent(out) :: rcond
+    real(dp), intent(out), optional :: rcond
     type(error_t), intent(inout) :: err
     integer :: k
     call jacobian(self, q, lu)
@@ -409,7 +409,7 @@ contains
     real(dp), intent(inout) :: q(:)
     logical, intent(out) :: converged
     integer, intent(out) :: iterations
-    real(dp) :: lu(self%n, self%n), f(self%n), dq(self%n), rc, step
+    real(dp) :: lu(self%n, self%n), f(self%n), dq(self%n), step
     integer :: ipiv(self%n), it
     type(error_t) :: e
     converged = .false.
@@ -428,7 +428,8 @@ contains
       end if
       f(self%row_driver) = f(self%row_driver)/self%mech%length_scale
       iterations = it
-      call factor_scaled(self, q, lu, ipiv, rc, e)
+      ! no condition estimate inside Newton: the toggle test after convergence makes it
+      call factor_scaled(self, q, lu, ipiv, err=e)
       if (e%failed()) return
       call solve_scaled(self, lu, ipiv, -f, dq, e)
       if (e%failed()) return

@@ -52,6 +52,8 @@ module mechanism_model
     integer :: n_mass_factorizations = 0
     integer :: n_nonlinear_points = 0             !< nonlinear integrand evaluations (cost proxy)
     logical :: stop_beyond_peak = .true.          !< stop when a strain passes the R-O peak
+    real(dp) :: t_states = -huge(1.0_dp)          !< time of the rigid states held in rb
+    integer :: n_kinematics = 0                   !< rigid-body kinematics solutions
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -185,7 +187,11 @@ contains
     type(motion_t) :: m
     integer :: e
     if (.not. self%moving) return
+    ! DLSODE evaluates the RHS several times at one t (corrector iterations):
+    ! the rigid motion is the same, so solve the kinematics once per time.
+    if (.not. (t < self%t_states .or. t > self%t_states)) return   ! t equals t_states
     call self%kin%solve(t, err)
+    self%n_kinematics = self%n_kinematics + 1
     if (err%failed()) then
       call self%fail(t, 'rigid-body kinematics: '//err%text())
       return
@@ -194,6 +200,7 @@ contains
       m = self%kin%element_motion_global(e)
       self%rb(e) = rigid_state_t(m%x1, m%y1, m%phi, m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd)
     end do
+    self%t_states = t
   end subroutine set_time
 
   ! ------------------------------------------------------------------ equations of motion

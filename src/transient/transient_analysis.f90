@@ -159,6 +159,7 @@ contains
     call out%cost('lu_factorizations', str(c%lu_factorizations))
     call out%cost('mass_factorizations', str(model%n_mass_factorizations))
     call out%cost('last_method_order', str(c%order_last))
+    call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
