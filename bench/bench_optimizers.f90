@@ -187,7 +187,7 @@ program bench_optimizers
   write(output_unit, '(a)') '# dx = |x - x*|_inf against the known optimum (or against GNLC''s result: "ref"),'
   write(output_unit, '(a)') '# viol = largest constraint violation.  NLopt: xtol_rel 1e-8, ftol_rel 1e-14, tol 1e-10.'
   write(output_unit, '(a)') '#'
-  write(output_unit, '(a)') '# problem                  start          solver        NF    NG   NFD    NI' // &
+  write(output_unit, '(a)') '# problem                  start          solver            NF    NG   NFD    NI' // &
                             '                 F        dx      viol  status'
 
   call compare('rosen_suzuki', '[0,0,0,0]', [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], ['gnlc_ns', 'gnlc   '])
@@ -271,7 +271,7 @@ contains
     if (have_ref) dx = maxval(abs(x - ref_x))
     ni_text = '     -'
     if (ni >= 0) write(ni_text, '(i6)') ni
-    write(output_unit, '(a24,1x,a14,1x,a13,3i6,a6,es18.9,2es10.2,2x,a)') name, start_label, solver, &
+    write(output_unit, '(a24,1x,a14,1x,a17,3i6,a6,es18.9,2es10.2,2x,a)') name, start_label, solver, &
       prob%count%analyses, prob%count%gradients, prob%count%fd_analyses, ni_text, f, dx, viol, status
   end subroutine report
 end program bench_optimizers
