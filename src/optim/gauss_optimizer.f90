@@ -221,7 +221,7 @@ contains
     integer :: n, m, mt, k, repeats, hess_kind
     real(dp) :: xnorm, snorm, pred, t, maxviol
     logical :: solved, step_back_method, converged
-    character(len=:), allocatable :: where
+    character(len=:), allocatable :: stage
 
     self%status = status_failed
     self%message = ''
@@ -247,7 +247,10 @@ contains
     self%ev = ''
 
     call prob%constraint_values(self%x, self%g, err)
-    if (err%failed()) return
+    if (err%failed()) then
+      call start_failed()
+      return
+    end if
     violated = self%g(1:m) > self%opts%feas_tol
     if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol))) then
       call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
@@ -265,13 +268,16 @@ contains
     self%active(m + 1:mt) = .true.
 
     call prob%analyse(self%x, self%f, self%phi, err)
-    if (err%failed()) return
+    if (err%failed()) then
+      call start_failed()
+      return
+    end if
     call self%append_log(prob, 0, 0.0_dp)
 
     k = 0
     converged = .false.
     outer: do
-      where = 'iteration '//str(k + 1)
+      stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
       call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
       if (err%failed()) exit outer
@@ -375,7 +381,7 @@ contains
     end do outer
 
     if (err%failed()) then
-      call err%add_context(self%method_label()//', '//where)
+      call err%add_context(self%method_label()//', '//stage)
       self%status = status_failed
       self%message = err%text()
       return
@@ -397,6 +403,11 @@ contains
       end if
       call err%set(self%method_label(), self%message)
     end if
+  contains
+    subroutine start_failed()
+      call err%add_context(self%method_label()//', at the start point')
+      self%message = err%text()
+    end subroutine start_failed
   end subroutine solve
 
   !> Method/problem consistency and option checks (code 2: bad input).

@@ -183,8 +183,9 @@ contains
     real(dp) :: h
     real(dp), allocatable :: r(:)
     logical :: ok
-    h = h_undefined*(1.0_dp + min(sum(x**2), 1.0e200_dp))
-    if (maxval(abs(x)) > 1.0e100_dp) return
+    h = h_undefined*1.0e100_dp
+    if (maxval(abs(x)) > 1.0e50_dp) return
+    h = h_undefined*(1.0_dp + sum(x**2))
     call self%evaluate_step(x, ok)
     if (.not. ok) return
     allocate(r(self%l))
