@@ -69,6 +69,7 @@ module optim_problem
     ! ---- set-up
     procedure, non_overridable :: init_problem
     procedure, non_overridable :: set_linear_constraint
+    procedure, non_overridable :: set_linear_inequalities
     procedure, non_overridable :: set_quadratic_constraint
     procedure, non_overridable :: set_general_constraint
     procedure, non_overridable :: set_linear_equalities
@@ -140,6 +141,18 @@ contains
     self%con_b(:, i) = b
     self%con_d(i) = d
   end subroutine set_linear_constraint
+
+  !> Linear inequalities as matrices (P4): B^T x - c <= 0, B is n x k; they
+  !> become constraints first..first+k-1.
+  subroutine set_linear_inequalities(self, bmat, c, first)
+    class(opt_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: bmat(:, :), c(:)
+    integer, intent(in) :: first
+    integer :: j
+    do j = 1, size(c)
+      call self%set_linear_constraint(first + j - 1, bmat(:, j), c(j))
+    end do
+  end subroutine set_linear_inequalities
 
   !> g_i = 1/2 x^T A x + b^T x - d <= 0   (B3)
   subroutine set_quadratic_constraint(self, i, a, b, d)

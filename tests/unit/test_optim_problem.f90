@@ -153,6 +153,13 @@ contains
     call assert_all_close(reshape(hess, [9]), reshape(a, [9]), 0.0_dp, 0.0_dp, 'quadratic Hessian = A')
     call p%constraint_hessian(1, x, hess, err)
     call assert_true(all(abs(hess) <= 0.0_dp), 'linear Hessian = 0')
+    ! linear inequalities given as a matrix (P4): B^T x - c <= 0
+    call p%set_linear_inequalities(reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp], [3, 2]), &
+                                   [1.0_dp, 2.0_dp], 2)
+    call p%constraint_values(x, g, err)
+    call assert_close(g(2), x(1) - 1.0_dp, 1.0e-15_dp, 'matrix row 1 -> constraint 2')
+    call assert_close(g(3), x(2) + x(3) - 2.0_dp, 1.0e-15_dp, 'matrix row 2 -> constraint 3')
+    call assert_true(all(p%con_kind(2:3) == con_linear), 'set as linear')
     call assert_true(.not. err%failed(), 'no error')
   end subroutine test_constraint_data
 
