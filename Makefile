@@ -15,7 +15,7 @@ endif
 BUILD     ?= release
 BUILD_DIR := build
 ODEPACK_SRC ?= $(BUILD_DIR)/odepack/src
-DECK      ?= inputs/lsode_kinetics.nml
+DECK      ?= inputs/fourbar_150_damped.nml
 LIBS      := -llapack -lblas
 
 WARN      := -std=f2008 -Wall -Wextra -Wimplicit-interface -fimplicit-none

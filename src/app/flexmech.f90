@@ -16,6 +16,7 @@ program flexmech
   use command_line, only: parse_arguments, quit
   use ode_verification, only: run_lsode_check
   use transient_analysis, only: run_transient
+  use optimize_analysis, only: run_optimize
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -50,6 +51,8 @@ program flexmech
     call run_lsode_check(deck, out, err)
   case ('transient')
     call run_transient(deck, out, err)
+  case ('optimize')
+    call run_optimize(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)

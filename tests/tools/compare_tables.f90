@@ -6,6 +6,8 @@
 !> ('!' starts a comment; the column name '*' is the same as 'default').
 !> Without a tolerance file the default is rtol = 1e-10, atol = 1e-12.
 !> A column listed with rtol < 0 is not compared (e.g. CPU-dependent columns).
+!> A name may end or start with '*' to match a prefix or a suffix
+!> (e.g. 'sigma_max_*', '*_U'); later lines override earlier ones.
 !>
 !> Prints every failing value (column, row, expected, computed, difference, up
 !> to 20 of them) and exits 1 on any failure, 0 otherwise.
@@ -62,7 +64,7 @@ program compare_tables
     r = def_r
     a = def_a
     do k = 1, size(tol_names)
-      if (lower(tol_names(k)) == lower(ref_names(j))) then
+      if (matches(lower(trim(tol_names(k))), lower(trim(ref_names(j))))) then
         r = tol_r(k)
         a = tol_a(k)
       end if
@@ -164,6 +166,22 @@ contains
       end if
     end do
   end function count_words
+
+  logical function matches(pattern, name)
+    character(len=*), intent(in) :: pattern, name
+    integer :: lp, ln
+    lp = len(pattern)
+    ln = len(name)
+    if (lp > 1 .and. pattern(lp:lp) == '*') then
+      matches = ln >= lp - 1
+      if (matches) matches = name(1:lp - 1) == pattern(1:lp - 1)
+    else if (lp > 1 .and. pattern(1:1) == '*') then
+      matches = ln >= lp - 1
+      if (matches) matches = name(ln - lp + 2:) == pattern(2:)
+    else
+      matches = pattern == name
+    end if
+  end function matches
 
   !> Whitespace-separated words (list-directed input would stop at a '/').
   subroutine split_words(s, words)
