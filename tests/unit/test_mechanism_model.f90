@@ -10,6 +10,8 @@ module test_mechanism_model_suite
   use material_law, only: ramberg_osgood_t
   use mechanism_model, only: mechanism_model_t, element_spec_t
   use lsode_solver, only: lsode_t, mf_adams
+  use linalg, only: solve_linear
+  use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use assertions
   implicit none
   private
@@ -29,6 +31,8 @@ contains
     call run_test('pinned_beam_released_from_mode1_has_theory_period', test_pinned_period_mode1)
     call run_test('clamped_beam_released_from_mode2_has_theory_period', test_clamped_period_mode2)
     call run_test('energy_is_conserved_without_damping', test_energy_conservation)
+    call run_test('fourbar_quasi_static_load_matches_rigid_body_statics', test_fourbar_statics)
+    call run_test('rhs_cost_is_linear_in_elements', test_linear_cost_structure)
   end subroutine run_all
 
   !> A horizontal beam of n elements with the given end conditions.
@@ -168,6 +172,61 @@ contains
     call assert_true(.not. err%failed(), 'integration: '//err%text())
     call assert_true(drift < 1.0e-5_dp, 'relative energy drift over 20 periods < 1e-5')
   end subroutine test_energy_conservation
+  !> Tennant's four-bar at crank angle 0, 150 rad/s: the quasi-static
+  !> solution K q = F(q = 0, q_dot = 0) of the flexible model against an
+  !> independent rigid-body statics calculation of the coupler and rocker
+  !> loading the crank as a cantilever (tools/independent/fourbar_statics.py:
+  !> crank-root curvature 4.67876606e-3 /in).  One quintic element per link
+  !> represents these load cases exactly, so 1e-5 relative is asked.
+  subroutine test_fourbar_statics()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(mechanism_model_t) :: model
+    type(error_t) :: err
+    real(dp), allocatable :: q(:), qd(:), qdd(:), mass(:, :), stiff(:, :), load(:)
+    inp%n_joints = 4
+    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
+    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_x(4) = 10.0_dp
+    inp%joint_y(4) = 0.0_dp
+    inp%n_links = 3
+    inp%link_name(1:3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
+    inp%link_joint1(1:3) = [1, 2, 4]
+    inp%link_joint2(1:3) = [2, 3, 3]
+    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
+    inp%driver_link = 1
+    inp%omega = 150.0_dp
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())
+    if (err%failed()) return
+    call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
+    call assert_true(.not. err%failed(), 'init_mechanism: '//err%text())
+    if (err%failed()) return
+    allocate(q(model%n), qd(model%n), qdd(model%n), mass(model%n, model%n), stiff(model%n, model%n))
+    q = 0.0_dp
+    qd = 0.0_dp
+    call model%accelerations(0.0_dp, q, qd, qdd)     ! fills model%force at t = 0
+    load = model%force
+    call model%assemble_dense(q, mass, stiff)
+    call solve_linear(stiff, load, err)
+    call assert_equal(trim(model%table%label(1)), 'L1 N1 m', 'first unknown is the crank-root curvature')
+    call assert_rel_close(load(1), 4.67876606e-3_dp, 1.0e-5_dp, 'crank-root curvature vs rigid-body statics')
+  end subroutine test_fourbar_statics
+
+  !> The assembled mass matrix is banded with a half-bandwidth that does not
+  !> grow with the number of elements: the RHS cost (banded Cholesky, element
+  !> loop) is linear in the number of elements.
+  subroutine test_linear_cost_structure()
+    type(mechanism_model_t) :: m4, m32
+    type(error_t) :: err
+    call beam(4, joint_clamp, element_effects_t(), m4, err)
+    call beam(32, joint_clamp, element_effects_t(), m32, err)
+    call assert_equal(m32%kd, m4%kd, 'half-bandwidth independent of the number of elements')
+    call assert_true(m32%kd <= 7, 'half-bandwidth of a beam chain at most 7')
+    call assert_equal(size(m32%mass_band, 1), m32%kd + 1, 'M stored in band form, not dense')
+  end subroutine test_linear_cost_structure
 end module test_mechanism_model_suite
 
 program test_mechanism_model
