@@ -59,6 +59,8 @@ module gauss_optimizer
     integer :: newton_max_iter = 30       !< Newton iterations for B11 before Powell takes over
     logical :: potter_repeat = .true.     !< on step-back cycling repeat the step with the violated
                                           !< constraints active (Potter's fix (a)); else stop
+    logical :: step_back_refine = .true.  !< step back to the boundary (farthest feasible point, P);
+                                          !< .false.: one B13 interpolation, feasible side kept
   end type gauss_options_t
 
   !> One row of the iteration log: the state after iteration k.
@@ -104,6 +106,7 @@ module gauss_optimizer
   contains
     procedure :: solve
     procedure :: method_label
+    procedure :: reset
     procedure, private :: check_setup
     procedure, private :: curvature
     procedure, private :: compute_step
@@ -223,11 +226,7 @@ contains
     logical :: solved, step_back_method, converged
     character(len=:), allocatable :: stage
 
-    self%status = status_failed
-    self%message = ''
-    self%iterations = 0
-    self%n_log = 0
-    self%have_best = .false.
+    call self%reset()
     call self%check_setup(prob, x0, hess_kind, err)
     if (err%failed()) then
       self%message = err%text()
@@ -409,6 +408,46 @@ contains
       self%message = err%text()
     end subroutine start_failed
   end subroutine solve
+
+  !> Forget the previous run (outcome, log, event counts); options stay.
+  subroutine reset(self)
+    class(gauss_optimizer_t), intent(inout) :: self
+    type(gauss_options_t) :: opts
+    opts = self%opts
+    if (allocated(self%x)) deallocate(self%x)
+    if (allocated(self%g)) deallocate(self%g)
+    if (allocated(self%lambda)) deallocate(self%lambda)
+    if (allocated(self%active)) deallocate(self%active)
+    if (allocated(self%x_best)) deallocate(self%x_best)
+    if (allocated(self%log)) deallocate(self%log)
+    if (allocated(self%phi)) deallocate(self%phi)
+    if (allocated(self%gradf)) deallocate(self%gradf)
+    if (allocated(self%jac)) deallocate(self%jac)
+    if (allocated(self%gm)) deallocate(self%gm)
+    if (allocated(self%dg)) deallocate(self%dg)
+    if (allocated(self%hess)) deallocate(self%hess)
+    if (allocated(self%have_hess)) deallocate(self%have_hess)
+    self%status = status_failed
+    self%message = ''
+    self%final_events = ''
+    self%iterations = 0
+    self%f = 0.0_dp
+    self%kkt_residual = 0.0_dp
+    self%have_best = .false.
+    self%f_best = 0.0_dp
+    self%k_best = 0
+    self%newton_solves = 0
+    self%powell_fallbacks = 0
+    self%drops = 0
+    self%additions = 0
+    self%releases = 0
+    self%step_backs = 0
+    self%regularizations = 0
+    self%potter_repeats = 0
+    self%n_log = 0
+    self%ev = ''
+    self%opts = opts
+  end subroutine reset
 
   !> Method/problem consistency and option checks (code 2: bad input).
   subroutine check_setup(self, prob, x0, hess_kind, err)
@@ -662,7 +701,7 @@ contains
             a = t_c
             fa = g_c(ic)
             g_a = g_c
-            if (g_c(ic) >= -tol) exit
+            if (g_c(ic) >= -tol .or. .not. self%opts%step_back_refine) exit
             if (side == -1) fb = 0.5_dp*fb
             side = -1
           end if

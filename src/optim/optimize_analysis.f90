@@ -29,11 +29,11 @@ module optimize_analysis
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &optimize group
-  character(len=32) :: problem, method, hessian, potter_fix
+  character(len=32) :: problem, method, hessian, potter_fix, step_back
   real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization
   integer :: max_iter, newton_max_iter
   namelist /optimize/ problem, method, x0, hessian, max_iter, xtol, ftol, feas_tol, mult_tol, rcond_min, &
-                      regularization, newton_max_iter, potter_fix
+                      regularization, newton_max_iter, potter_fix, step_back
 
 contains
 
@@ -51,6 +51,7 @@ contains
     regularization = 0.0_dp
     newton_max_iter = 30
     potter_fix = 'repeat'
+    step_back = 'farthest'
   end subroutine set_defaults
 
   subroutine read_optimize(unit, ios, iomsg)
@@ -80,6 +81,7 @@ contains
     method = lower(method)
     hessian = lower(hessian)
     potter_fix = lower(potter_fix)
+    step_back = lower(step_back)
     call create_problem(problem, prob, info, err)
     if (err%failed()) then
       call err%clear()
@@ -115,6 +117,9 @@ contains
     else if (potter_fix /= 'repeat' .and. potter_fix /= 'none') then
       call invalid_value(deck, 'optimize', 'potter_fix', ''''//trim(potter_fix)//'''', &
                          'must be ''repeat'' (Potter''s fix (a)) or ''none'' (report the cycling)', err)
+    else if (step_back /= 'farthest' .and. step_back /= 'b13') then
+      call invalid_value(deck, 'optimize', 'step_back', ''''//trim(step_back)//'''', &
+                         'must be ''farthest'' (the boundary, P) or ''b13'' (one linear interpolation)', err)
     end if
     if (err%failed()) return
     if (n_given == 0) then
@@ -131,7 +136,7 @@ contains
                     //trim(hessian)//''','
     write(u, '(a,*(g0.17,:,", "))') ' x0 = ', start
     write(u, '(a)') ' max_iter = '//str(max_iter)//', newton_max_iter = '//str(newton_max_iter)// &
-                    ', potter_fix = '''//trim(potter_fix)//''','
+                    ', potter_fix = '''//trim(potter_fix)//''', step_back = '''//trim(step_back)//''','
     write(u, '(a)') ' xtol = '//str(xtol)//', ftol = '//str(ftol)//', feas_tol = '//str(feas_tol)//','
     write(u, '(a)') ' mult_tol = '//str(mult_tol)//', rcond_min = '//str(rcond_min)//', regularization = ' &
                     //str(regularization)
@@ -153,6 +158,7 @@ contains
     opt%opts%regularization = regularization
     opt%opts%newton_max_iter = newton_max_iter
     opt%opts%potter_repeat = potter_fix == 'repeat'
+    opt%opts%step_back_refine = step_back == 'farthest'
     call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
                      ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dF_pred| <= ftol (1 + |F|)')
 

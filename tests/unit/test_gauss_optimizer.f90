@@ -18,6 +18,7 @@ contains
   subroutine run_all()
     call run_test('rosen_suzuki_table_I_gnlc_ns_and_gnlc', test_table_one)
     call run_test('rosen_suzuki_nf_equals_ni_plus_one', test_nf_ni)
+    call run_test('plain_b13_step_back_lands_inside_and_converges', test_plain_b13)
     call run_test('gnlc_infeasible_start_suggests_gnlc_ns', test_infeasible_start)
     call run_test('unconstrained_gauss_mgh_problems', test_unconstrained)
     call run_test('gauss_constrained_hs21_hs35_agree_with_gnlc', test_linear_constraints)
@@ -99,6 +100,35 @@ contains
     call assert_true(opt%step_backs >= 1, 'GNLC stepped back (the unconstrained minimiser violates all three)')
     call assert_true(all(opt%log(1:opt%n_log)%max_violation <= opt%opts%feas_tol), 'every GNLC iterate feasible')
   end subroutine test_nf_ni
+
+  !> step_back_refine = .false.: one B13 interpolation, as B prints it.  For
+  !> Rosen-Suzuki's convex constraints the point lands strictly inside the
+  !> crossed constraint, which joins S and is reached at the next step.
+  subroutine test_plain_b13()
+    type(gauss_optimizer_t) :: opt
+    class(opt_problem_t), allocatable :: prob
+    type(problem_info_t) :: info
+    type(error_t) :: err
+    real(dp) :: g(3), x1(4)
+    call create_problem('rosen_suzuki', prob, info, err)
+    opt%opts%method = method_gnlc
+    opt%opts%step_back_refine = .false.
+    call opt%solve(prob, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], err)
+    call assert_true(opt%status == status_converged, 'converged: '//err%text())
+    call assert_all_close(opt%x, [0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp], 0.0_dp, 1.0e-6_dp, 'x*')
+    call assert_true(opt%iterations <= 5 .and. prob%count%analyses <= 6, 'NI, NF <= paper (5, 6)')
+    ! first step-back: x1 on the segment towards the unconstrained minimiser
+    x1 = opt%log(2)%x
+    call prob%constraint_values(x1, g, err)
+    call assert_true(opt%log(2)%active(3) .and. g(3) < -opt%opts%feas_tol, 'g3 added, strictly inside (convex)')
+    call assert_true(maxval(g) <= 0.0_dp, 'feasible')
+    ! the refined step-back puts the same first point on the boundary
+    call create_problem('rosen_suzuki', prob, info, err)
+    opt%opts%step_back_refine = .true.
+    call opt%solve(prob, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], err)
+    call prob%constraint_values(opt%log(2)%x, g, err)
+    call assert_close(g(3), 0.0_dp, opt%opts%feas_tol, 'refined: g3 = 0 at the first step-back')
+  end subroutine test_plain_b13
 
   subroutine test_infeasible_start()
     type(gauss_optimizer_t) :: opt
