@@ -133,6 +133,9 @@ contains
     call err%clear()
     call run_deck("&run analysis='optimize' /|&optimize potter_fix = 'b' /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'potter_fix') > 0, 'unknown potter_fix')
+    call err%clear()
+    call run_deck("&run analysis='optimize' /|&optimize step_back = 'half' /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), 'step_back') > 0, 'unknown step_back')
     call assert_equal(size(lines), 0, 'no output kept for input errors')
   end subroutine test_bad_values
 
