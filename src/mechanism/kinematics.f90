@@ -58,7 +58,8 @@ module kinematics
     integer, allocatable :: ilen(:)         !< q index of each active length (0: fixed length)
     integer, allocatable :: islide(:)       !< q index of each guide slide (0: not on a guide)
     integer, allocatable :: row_point(:)    !< first of the two rows fixing a joint to ground/guide (0: none)
-    integer :: row_driver = 0
+    integer :: row_driver = 0               !< 0 for a structure at rest (no driver)
+    logical :: at_rest = .false.            !< no driver (driver_link = 0): the structure does not move
     real(dp), allocatable :: col_scale(:)   !< 1 for lengths, 1/L for angles: scaled Jacobian
     type(assembly_step_t), allocatable :: steps(:)
     integer :: n_steps = 0
@@ -164,8 +165,12 @@ contains
         row = row + 2
       end if
     end do
+    self%at_rest = mech%driver%link == 0
     self%row_driver = row + 1
-    if (self%row_driver /= self%n) then
+    if (self%at_rest) then
+      ! no driving constraint; build_mechanism allowed mobility <= 0 only
+      self%row_driver = 0
+    else if (self%row_driver /= self%n) then
       ! build_mechanism's mobility count guarantees this
       call err%set('kinematics', str(self%n)//' coordinates but '//str(self%row_driver)//' constraints', code=2)
       return
@@ -223,11 +228,13 @@ contains
     do j = 1, nj
       if (self%mech%joints(j)%grounded) rank(j) = 0
     end do
-    associate (dl => self%mech%links(self%mech%driver%link))
-      st = assembly_step_t(step_driver, dl%joint(2), dl%joint(1), 0, self%mech%driver%link, 0, 0)
-      call add(st)
-      rank(dl%joint(2)) = 1
-    end associate
+    if (self%mech%driver%link > 0) then
+      associate (dl => self%mech%links(self%mech%driver%link))
+        st = assembly_step_t(step_driver, dl%joint(2), dl%joint(1), 0, self%mech%driver%link, 0, 0)
+        call add(st)
+        rank(dl%joint(2)) = 1
+      end associate
+    end if
     progress = .true.
     do while (progress)
       progress = .false.
@@ -317,7 +324,7 @@ contains
         if (self%islide(j) > 0) f(r:r+1) = f(r:r+1) - q(self%islide(j))*jt%guide
       end associate
     end do
-    f(self%row_driver) = q(self%iphi(self%mech%driver%link)) - theta
+    if (self%row_driver > 0) f(self%row_driver) = q(self%iphi(self%mech%driver%link)) - theta
   end subroutine residual
 
   !> Phi_q, analytic.
@@ -347,7 +354,7 @@ contains
       jac(r+1, 2*j) = 1.0_dp
       if (self%islide(j) > 0) jac(r:r+1, self%islide(j)) = -self%mech%joints(j)%guide
     end do
-    jac(self%row_driver, self%iphi(self%mech%driver%link)) = 1.0_dp
+    if (self%row_driver > 0) jac(self%row_driver, self%iphi(self%mech%driver%link)) = 1.0_dp
   end subroutine jacobian
 
   !> gamma = -(Phi_q qd)_q qd - Phi_tt, the right side of Phi_q qdd = gamma.
@@ -367,7 +374,7 @@ contains
       ! d2/dt2 of l u(phi) = ldd u + l phidd u_perp + 2 ld phid u_perp - l phid^2 u
       g(2*i-1:2*i) = 2.0_dp*ld*phid*perp(u) - l*phid**2*u
     end do
-    g(self%row_driver) = theta_dd
+    if (self%row_driver > 0) g(self%row_driver) = theta_dd
   end subroutine accel_rhs
 
   !> Factor the row- and column-scaled Jacobian R Phi_q C (R scales the driver
@@ -536,7 +543,7 @@ contains
       q(self%iphi(i)) = atan2(v(2), v(1))
       if (self%ilen(i) > 0) q(self%ilen(i)) = norm2(v)
     end do
-    q(self%iphi(self%mech%driver%link)) = theta
+    if (self%mech%driver%link > 0) q(self%iphi(self%mech%driver%link)) = theta
   end subroutine coordinates_from_points
 
   !> Sign of each dyad's orientation in configuration q (0 if degenerate).
@@ -595,6 +602,10 @@ contains
     character(len=:), allocatable :: reason
     type(error_t) :: e
 
+    if (self%at_rest) then
+      call solve_at_rest(self, theta, err)
+      return
+    end if
     rescued = .false.
     if (.not. self%assembled) then
       ! closed-form placement; joints the plan cannot reach keep the
@@ -714,6 +725,52 @@ contains
     self%assembled = .true.
     self%time_driven = .false.
   end subroutine kin_solve_angle
+
+  !> A structure without a driver: place it once (closed-form dyads from the
+  !> ground, deck positions for the other joints), check that every link
+  !> fits between its joints, and keep it at rest.
+  subroutine solve_at_rest(self, theta, err)
+    class(kinematics_t), intent(inout) :: self
+    real(dp), intent(in) :: theta
+    type(error_t), intent(inout) :: err
+    real(dp) :: qn(self%n), d, l
+    integer :: i, a, b
+    logical :: ok
+    character(len=:), allocatable :: reason
+    if (.not. self%assembled) then
+      call construct(self, theta, qn, ok, reason)
+      if (.not. ok) then
+        call err%set('kinematics', 'the structure cannot be assembled: '//reason)
+        return
+      end if
+      do i = 1, self%mech%n_links
+        if (self%ilen(i) > 0) cycle
+        a = self%mech%links(i)%joint(1)
+        b = self%mech%links(i)%joint(2)
+        d = norm2(qn(2*b-1:2*b) - qn(2*a-1:2*a))
+        l = self%mech%links(i)%length
+        if (abs(d - l) > 1.0e-9_dp*self%mech%length_scale) then
+          call err%set('kinematics', 'the structure does not fit together: link '// &
+                       trim(self%mech%links(i)%name)//' is '//str(l, 10)//' long but its joints '// &
+                       trim(self%mech%joints(a)%name)//' and '//trim(self%mech%joints(b)%name)//' are '// &
+                       str(d, 10)//' apart')
+          return
+        end if
+      end do
+      self%q = qn
+      self%qd = 0.0_dp
+      self%qdd = 0.0_dp
+      self%q_theta = 0.0_dp
+      self%rcond = 1.0_dp
+      self%assembled = .true.
+    end if
+    self%theta = theta
+    self%theta_d = 0.0_dp
+    self%theta_dd = 0.0_dp
+    self%iterations = 0
+    self%n_solutions = self%n_solutions + 1
+    self%time_driven = .false.
+  end subroutine solve_at_rest
 
   ! ------------------------------------------------------------------ results
 

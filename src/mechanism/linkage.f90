@@ -355,12 +355,18 @@ contains
     end do
 
     ! ---- driver
-    if (inp%driver_link < 1 .or. inp%driver_link > nl) then
-      call bad('driver_link', str(inp%driver_link), 'must be a link number 1..'//str(nl)); return
+    if (inp%driver_link < 0 .or. inp%driver_link > nl) then
+      call bad('driver_link', str(inp%driver_link), 'must be a link number 1..'//str(nl)// &
+               ', or 0 for a structure without a driver'); return
     end if
     mech%driver%link = inp%driver_link
     if (.not. finite(inp%omega)) then
       call bad('omega', str(inp%omega), 'must be finite'); return
+    end if
+    ! driver_link = 0: a structure at rest (beams with immovable ends)
+    if (inp%driver_link == 0 .and. abs(inp%omega) > 0.0_dp) then
+      call bad('omega', str(inp%omega), 'a structure without a driver (driver_link = 0) does not move: '// &
+               'omega must be 0'); return
     end if
     if (.not. finite(inp%theta0_deg)) then
       call bad('theta0_deg', str(inp%theta0_deg), 'must be finite'); return
@@ -417,11 +423,16 @@ contains
         case (joint_clamp)
           jt%grounded = .true.
           n_clamp = n_clamp + 1
-          if (n_clamp > 1) then
+          if (inp%driver_link == 0) then
+            ! without a driver a clamp is a built-in end (one or more link ends)
+            if (jt%n_links < 1) then
+              call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link')
+              return
+            end if
+          else if (n_clamp > 1) then
             call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'only one clamp (the driving shaft) is allowed')
             return
-          end if
-          if (jt%n_links /= 1 .or. inp%link_joint1(inp%driver_link) /= j) then
+          else if (jt%n_links /= 1 .or. inp%link_joint1(inp%driver_link) /= j) then
             call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'the clamp '//trim(jt%name)// &
                      ' must hold exactly one link end, end 1 of the driver link (link_joint1(driver_link))'); return
           end if
@@ -479,21 +490,23 @@ contains
     if (n_fixed > 0) mech%length_scale = total/n_fixed
 
     ! ---- the driver turns about a ground point
-    associate (dl => mech%links(mech%driver%link))
-      if (dl%sliding) then
-        call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
-                 ' cannot be a link that slides through a sleeve'); return
-      end if
-      k = mech%joints(dl%joint(1))%kind
-      if (k /= joint_clamp .and. k /= joint_ground_pin) then
-        call bad('driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
-                 trim(mech%joints(dl%joint(1))%name)//') must be a clamp or ground_pin: the crank turns about it'); return
-      end if
-      if (mech%joints(dl%joint(2))%grounded) then
-        call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
-                 ' joins two ground points and cannot turn'); return
-      end if
-    end associate
+    if (mech%driver%link > 0) then
+      associate (dl => mech%links(mech%driver%link))
+        if (dl%sliding) then
+          call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+                   ' cannot be a link that slides through a sleeve'); return
+        end if
+        k = mech%joints(dl%joint(1))%kind
+        if (k /= joint_clamp .and. k /= joint_ground_pin) then
+          call bad('driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
+                   trim(mech%joints(dl%joint(1))%name)//') must be a clamp or ground_pin: the crank turns about it'); return
+        end if
+        if (mech%joints(dl%joint(2))%grounded) then
+          call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+                   ' joins two ground points and cannot turn'); return
+        end if
+      end associate
+    end if
 
     ! ---- mobility: unknowns (2 per joint, 1 angle per link, 1 active length per
     ! sliding link, 1 slide per guided joint) minus equations (2 per link, 2 per
@@ -501,7 +514,15 @@ contains
     n_unknowns = 2*nj + nl + count(mech%links%sliding) + count(mech%joints%kind == joint_slider_fixed)
     n_equations = 2*nl + 2*count(mech%joints%grounded) + 2*count(mech%joints%kind == joint_slider_fixed)
     dof = n_unknowns - n_equations
-    if (dof /= 1) then
+    if (mech%driver%link == 0) then
+      ! A structure: no motion left (0), or statically indeterminate (< 0,
+      ! e.g. a beam between two ground points); the lengths must then fit.
+      if (dof > 0) then
+        call bad('driver_link', '0', 'a structure without a driver must not move, but the linkage has '// &
+                 str(dof)//' degree(s) of freedom (Gruebler count: '//str(n_unknowns)//' coordinates, '// &
+                 str(n_equations)//' constraints)'); return
+      end if
+    else if (dof /= 1) then
       call bad('n_links, n_joints, joint_type', 'the linkage', 'has '//str(dof)//' degrees of freedom '// &
                '(Gruebler count: '//str(n_unknowns)//' coordinates, '//str(n_equations)// &
                ' constraints); flexmech needs exactly one, taken by the crank'); return
@@ -573,6 +594,7 @@ contains
     character(len=:), allocatable :: who
     text = ''
     crank = mech%driver%link
+    if (crank == 0) return
     ng = 0; np = 0; nsf = 0; i = 0; g = 0
     do j = 1, mech%n_joints
       select case (mech%joints(j)%kind)
@@ -664,8 +686,13 @@ contains
     integer :: j, i, k, n
     n = 0
     allocate(lines(mech%n_joints + mech%n_links + 4))
-    call add('mechanism: '//str(mech%n_joints)//' joints, '//str(mech%n_links)//' links, '// &
-             str(mech%n_elements)//' elements, one degree of freedom (the crank)')
+    if (mech%driver%link == 0) then
+      call add('structure: '//str(mech%n_joints)//' joints, '//str(mech%n_links)//' links, '// &
+               str(mech%n_elements)//' elements, no driver: it does not move (rigid-body state at rest)')
+    else
+      call add('mechanism: '//str(mech%n_joints)//' joints, '//str(mech%n_links)//' links, '// &
+               str(mech%n_elements)//' elements, one degree of freedom (the crank)')
+    end if
     do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
         s = 'joint '//trim(jt%name)//': '//joint_type_name(jt%kind)
@@ -701,12 +728,16 @@ contains
       end associate
     end do
     associate (d => mech%driver)
-      s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//short(d%omega)//' rad/s, theta0 '// &
-          short(mech%input%theta0_deg)//' deg, profile '
-      if (d%profile == profile_spinup) then
-        s = s//'spinup over '//short(d%spinup_time)//' s (cycloidal)'
+      if (d%link == 0) then
+        s = 'driver: none (driver_link = 0)'
       else
-        s = s//'constant'
+        s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//short(d%omega)//' rad/s, theta0 '// &
+            short(mech%input%theta0_deg)//' deg, profile '
+        if (d%profile == profile_spinup) then
+          s = s//'spinup over '//short(d%spinup_time)//' s (cycloidal)'
+        else
+          s = s//'constant'
+        end if
       end if
     end associate
     call add(s)

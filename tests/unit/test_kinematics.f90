@@ -36,6 +36,9 @@ contains
     call run_test('non_grashof_crank_stops_where_it_cannot_assemble', test_non_assembly)
     call run_test('first_assembly_impossible_is_reported', test_non_assembly_first)
     call run_test('newton_warm_start_takes_few_iterations', test_warm_start)
+    call run_test('structure_without_driver_stays_at_rest', test_structure_at_rest)
+    call run_test('truss_without_driver_is_placed_by_its_dyad', test_truss_at_rest)
+    call run_test('structure_that_does_not_fit_is_reported', test_structure_misfit)
   end subroutine run_all
 
   ! ------------------------------------------------------------------ decks
@@ -758,6 +761,86 @@ contains
     m = kin%link_motion(1)
     call assert_close(m%phi, 720.0_dp*deg, 1.0e-12_dp, 'crank angle unwrapped')
   end subroutine test_warm_start
+
+  !> An inclined beam between two ground pins, no driver (driver_link = 0):
+  !> the elements split it evenly at every time, with zero rates.
+  subroutine test_structure_at_rest()
+    type(mechanism_input_t) :: inp
+    type(kinematics_t) :: kin
+    type(error_t) :: err
+    type(motion_t) :: m
+    integer :: k, e
+    inp%n_joints = 2
+    inp%joint_type(1:2) = [character(len=16) :: 'ground_pin', 'ground_pin']
+    inp%joint_x(1:2) = [1.0_dp, 1.0_dp + 8.0_dp*sqrt(3.0_dp)]
+    inp%joint_y(1:2) = [2.0_dp, 10.0_dp]
+    inp%n_links = 1
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_n_elements(1) = 4
+    inp%driver_link = 0
+    call make(inp, kin)
+    do k = 0, 3
+      call kin%solve(0.5_dp*k, err)
+      call assert_true(.not. err%failed(), err%text())
+      do e = 1, 4
+        m = kin%element_motion(1, e)
+        call assert_close(m%x1, 1.0_dp + 2.0_dp*(e - 1)*sqrt(3.0_dp), 1.0e-12_dp, 'element start X')
+        call assert_close(m%y1, 2.0_dp + 2.0_dp*(e - 1), 1.0e-12_dp, 'element start Y')
+        call assert_close(m%phi, 30.0_dp*deg, 1.0e-14_dp, 'beam inclined at 30 deg')
+        call assert_close(m%length, 4.0_dp, 1.0e-12_dp, 'element length')
+        call assert_true(maxval(abs([m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd])) < tiny(1.0_dp), 'at rest')
+      end do
+    end do
+  end subroutine test_structure_at_rest
+
+  !> Two links from ground pins A = (0,0), B = (20,0) meeting at pin C with
+  !> lengths 12 and 16: C = (7.2, 9.6) on the open side, cross(C-A, C-B) > 0
+  !> (a right triangle).
+  subroutine test_truss_at_rest()
+    type(mechanism_input_t) :: inp
+    type(kinematics_t) :: kin
+    type(error_t) :: err
+    type(motion_t) :: m
+    inp%n_joints = 3
+    inp%joint_type(1:3) = [character(len=16) :: 'ground_pin', 'ground_pin', 'pin']
+    inp%joint_x(1:2) = [0.0_dp, 20.0_dp]
+    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
+    inp%n_links = 2
+    inp%link_joint1(1:2) = [1, 2]
+    inp%link_joint2(1:2) = [3, 3]
+    inp%link_length(1:2) = [12.0_dp, 16.0_dp]
+    inp%driver_link = 0
+    call make(inp, kin)
+    call kin%solve(0.0_dp, err)
+    call assert_true(.not. err%failed(), err%text())
+    call assert_all_close(kin%joint_position(3), [7.2_dp, 9.6_dp], 0.0_dp, 1.0e-12_dp, 'joint C')
+    m = kin%link_motion(2)
+    call assert_close(m%phi, atan2(9.6_dp, 7.2_dp - 20.0_dp), 1.0e-13_dp, 'link 2 angle')
+    call assert_true(maxval(abs(kin%qd)) + maxval(abs(kin%qdd)) < tiny(1.0_dp), 'at rest')
+  end subroutine test_truss_at_rest
+
+  !> A link whose length does not match its ground points is named.
+  subroutine test_structure_misfit()
+    type(mechanism_input_t) :: inp
+    type(kinematics_t) :: kin
+    type(error_t) :: err
+    inp%n_joints = 2
+    inp%joint_name(1:2) = [character(len=16) :: 'A', 'B']
+    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'clamp']
+    inp%joint_x(1:2) = [0.0_dp, 20.0_dp]
+    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
+    inp%n_links = 1
+    inp%link_name(1) = 'beam'
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_length(1) = 20.5_dp
+    inp%driver_link = 0
+    call make(inp, kin)
+    call kin%solve(0.0_dp, err)
+    call assert_true(index(err%text(), 'does not fit together: link beam is 20.5') > 0 .and. &
+                     index(err%text(), 'A and B are 20.0') > 0, err%text())
+  end subroutine test_structure_misfit
 
   pure function itoa(i) result(s)
     integer, intent(in) :: i

@@ -24,6 +24,8 @@ contains
     call run_test('deck_is_read_and_echo_reads_back_identically', test_deck_round_trip)
     call run_test('deck_errors_name_variable_and_line', test_deck_errors)
     call run_test('summary_classifies_fourbars_and_slider_cranks', test_summary)
+    call run_test('structure_without_driver_accepts_mobility_zero_or_less', test_structure_without_driver)
+    call run_test('structure_without_driver_must_not_move_or_turn', test_structure_rules)
   end subroutine run_all
 
   !> FORMULATION.md §8.1 four-bar: A clamp at (0,0), D ground pin at (10,0).
@@ -440,6 +442,85 @@ contains
     call build_mechanism(slider_crank_input(2.0_dp, 2.2_dp, 0.5_dp), mech, err)
     call assert_true(index(classify_mechanism(mech), 'cannot turn fully') > 0, classify_mechanism(mech))
   end subroutine test_summary
+
+  !> A beam between two ground points (pinned-pinned or clamped-clamped, the
+  !> verification beams): no driver, Gruebler count -1 (statically
+  !> indeterminate: immovable ends), accepted; two clamps are built-in ends.
+  function beam_input(end_type) result(inp)
+    character(len=*), intent(in) :: end_type
+    type(mechanism_input_t) :: inp
+    inp%n_joints = 2
+    inp%joint_name(1:2) = [character(len=16) :: 'A', 'B']
+    inp%joint_type(1:2) = [character(len=16) :: end_type, end_type]
+    inp%joint_x(1:2) = [0.0_dp, 20.0_dp]
+    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
+    inp%n_links = 1
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_n_elements(1) = 4
+    inp%driver_link = 0
+  end function beam_input
+
+  subroutine test_structure_without_driver()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(error_t) :: err
+    character(len=200), allocatable :: lines(:)
+    allocate(lines(0))
+    call build_mechanism(beam_input('ground_pin'), mech, err)
+    call assert_true(.not. err%failed(), 'pinned-pinned beam: '//err%text())
+    call assert_equal(mech%driver%link, 0, 'no driver')
+    call assert_close(mech%links(1)%length, 20.0_dp, 1.0e-14_dp, 'length from the ground points')
+    lines = mechanism_summary(mech)
+    call assert_true(index(lines(1), 'no driver') > 0, lines(1))
+    call assert_true(any(index(lines, 'driver: none') > 0), 'summary names the missing driver')
+    call assert_equal(len(classify_mechanism(mech)), 0, 'a structure is not classified as a linkage')
+    call build_mechanism(beam_input('clamp'), mech, err)
+    call assert_true(.not. err%failed(), 'clamped-clamped beam: '//err%text())
+    ! a rigid triangle on two ground pins: Gruebler count 0
+    inp = beam_input('ground_pin')
+    inp%n_joints = 3
+    inp%joint_type(3) = 'pin'
+    inp%n_links = 2
+    inp%link_joint1(1:2) = [1, 2]
+    inp%link_joint2(1:2) = [3, 3]
+    inp%link_length(1:2) = [12.0_dp, 16.0_dp]
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), 'triangle truss: '//err%text())
+  end subroutine test_structure_without_driver
+
+  !> Without a driver: omega must be 0, the linkage must not be able to move,
+  !> and driver_link must be 0..n_links; with a driver a second clamp is
+  !> still refused.
+  subroutine test_structure_rules()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(error_t) :: err
+    inp = beam_input('ground_pin')
+    inp%omega = 10.0_dp
+    call build_mechanism(inp, mech, err)
+    call assert_true(index(err%text(), 'omega must be 0') > 0, err%text())
+    call assert_equal(err%code, 2, 'input error')
+    call err%clear()
+    inp = fourbar_input(5.0_dp, 11.0_dp, 10.5_dp, 10.0_dp)
+    inp%joint_type(1) = 'ground_pin'
+    inp%driver_link = 0
+    inp%omega = 0.0_dp
+    call build_mechanism(inp, mech, err)
+    call assert_true(index(err%text(), 'must not move') > 0 .and. index(err%text(), '1 degree(s) of freedom') > 0, &
+                     err%text())
+    call err%clear()
+    inp = beam_input('ground_pin')
+    inp%driver_link = -1
+    call build_mechanism(inp, mech, err)
+    call assert_true(index(err%text(), 'driver_link = -1') > 0 .and. index(err%text(), 'or 0 for a structure') > 0, &
+                     err%text())
+    call err%clear()
+    inp = fourbar_input(5.0_dp, 11.0_dp, 10.5_dp, 10.0_dp)
+    inp%joint_type(4) = 'clamp'
+    call build_mechanism(inp, mech, err)
+    call assert_true(index(err%text(), 'only one clamp') > 0, err%text())
+  end subroutine test_structure_rules
 end module test_linkage_suite
 
 program test_linkage
