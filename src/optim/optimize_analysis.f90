@@ -167,6 +167,7 @@ contains
     call cpu_time(cpu1)
     if (run_err%failed() .and. run_err%code == input_error_code) then
       err = run_err
+      call err%add_context('deck '''//deck%path//''', group &optimize, x0')
       return
     end if
 
