@@ -66,6 +66,14 @@ contains
       return
     end if
     call write_model_header(out, mech, s, model)
+    if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
+      call model%build_motion_table(s%table_points, err)
+      if (err%failed()) return
+      call out%comment('rigid-body motion: tabulated at '//str(s%table_points)//' crank angles per revolution, '// &
+                       'quintic Hermite interpolation in the crank angle')
+    else if (mech%driver%omega > 0.0_dp) then
+      call out%comment('rigid-body motion: kinematics solved at every time the integrator asks for')
+    end if
 
     ! natural frequencies of the linearised structure at the start position
     allocate(omega_n(model%n), shapes(model%n, model%n))

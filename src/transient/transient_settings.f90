@@ -29,18 +29,21 @@ module transient_settings
     character(len=256) :: restart_in = ''
     character(len=256) :: restart_out = ''
     integer :: max_steps = 200000
+    character(len=16) :: kinematics = 'table'      !< rigid motion: 'table' (per revolution) or 'direct'
+    integer :: table_points = 720                  !< crank angles per revolution in the table
     type(element_effects_t) :: effects             !< the papers' tracing constants, all off = linear
     character(len=16) :: formulation = 'exact'     !< 'exact' or 'kear1987' (printed simplifications)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
-  character(len=16) :: method, initial, formulation
+  character(len=16) :: method, initial, formulation, kinematics
   real(dp) :: rtol, atol, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
-  integer :: mode_number, max_steps
+  integer :: mode_number, max_steps, table_points
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, revolutions, output_step_deg, t_end, output_step_t, &
-    damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps
+    damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
+    table_points
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -65,6 +68,8 @@ contains
     restart_in = s%restart_in
     restart_out = s%restart_out
     max_steps = s%max_steps
+    kinematics = s%kinematics
+    table_points = s%table_points
     call deck%read_group('transient', read_transient_group, .false., found, err)
     if (err%failed()) return
 
@@ -92,6 +97,8 @@ contains
     s%restart_in = restart_in
     s%restart_out = restart_out
     s%max_steps = max_steps
+    s%kinematics = kinematics
+    s%table_points = table_points
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
@@ -128,6 +135,10 @@ contains
       call invalid_value(deck, g, 'mode_number', str(s%mode_number), 'must be >= 1', err)
     else if (s%initial == 'restart' .and. len_trim(s%restart_in) == 0) then
       call invalid_value(deck, g, 'restart_in', '''''', 'initial = ''restart'' needs a restart file', err)
+    else if (all(s%kinematics /= [character(len=16) :: 'table', 'direct'])) then
+      call invalid_value(deck, g, 'kinematics', ''''//trim(s%kinematics)//'''', 'must be ''table'' or ''direct''', err)
+    else if (s%table_points < 36 .or. s%table_points > 1000000) then
+      call invalid_value(deck, g, 'table_points', str(s%table_points), 'must lie in 36..1000000', err)
     else if (s%max_steps < 1) then
       call invalid_value(deck, g, 'max_steps', str(s%max_steps), 'must be >= 1', err)
     else if (all(s%formulation /= [character(len=16) :: 'exact', 'kear1987'])) then
