@@ -73,6 +73,20 @@ for deck in tests/decks/*.nml; do
   fi
 done
 
+echo "== scenario tests (tests/scenarios/*.sh: several runs of the program checked together)"
+for sc in tests/scenarios/*.sh; do
+  [ -f "$sc" ] || continue
+  name=$(basename "$sc" .sh)
+  case "$name" in *"$filter"*) ;; *) continue ;; esac
+  if sh "$sc" "$build/bin/flexmech" "$build/release/tools/compare_tables" "$work/$name" > "$work/$name.log" 2>&1; then
+    passed=$((passed + 1)); echo "   $name: ok"
+  else
+    note_fail "scenario $name:
+$(tail -n 15 "$work/$name.log" | sed 's/^/      /')"
+    echo "   $name: FAILED (see $work/$name.log)"
+  fi
+done
+
 echo "== regression tests (release build vs reference_outputs/)"
 for ref in reference_outputs/*.out; do
   [ -f "$ref" ] || continue
