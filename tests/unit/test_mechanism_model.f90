@@ -256,20 +256,8 @@ contains
     type(mechanism_model_t) :: model
     type(error_t) :: err
     real(dp), allocatable :: q(:), qd(:), qdd(:), mass(:, :), stiff(:, :), load(:)
-    inp%n_joints = 4
-    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = 10.0_dp
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_name(1:3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
-    inp%driver_link = 1
-    inp%omega = 150.0_dp
+    inp = fourbar_input(150.0_dp, 'constant')
+    inp%link_n_elements(1:3) = 1
     call build_mechanism(inp, mech, err)
     call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())
     if (err%failed()) return
