@@ -73,6 +73,9 @@ module mechanism_model
     real(dp), allocatable :: table_dp(:, :, :)    !< d/dtheta
     real(dp), allocatable :: table_ddp(:, :, :)   !< d2/dtheta2
     real(dp), allocatable :: phi_per_turn(:)      !< phi gained per crank revolution (0 or +-2 pi)
+    ! lumped masses at joints (slider blocks, sleeves): mass, element and node (1, 2) carrying them
+    real(dp), allocatable :: point_mass(:)
+    integer, allocatable :: point_element(:), point_node(:)
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -102,7 +105,7 @@ contains
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
     type(link_end_t), allocatable :: ends(:, :)
-    integer :: k, side, j, e, code
+    integer :: k, side, j, e, code, n_elements(mech%n_links)
     real(dp) :: guide_angle
     type(motion_t) :: m
 
@@ -126,7 +129,8 @@ contains
         end if
       end do
     end do
-    call self%table%build(mech%links(:)%n_elements, ends, err)
+    n_elements = mech%links(:)%n_elements
+    call self%table%build(n_elements, ends, err)
     if (err%failed()) return
 
     call self%kin%init(mech, err)
@@ -152,8 +156,58 @@ contains
       end associate
     end do
     call allocate_work(self)
+    call register_point_masses(self, mech)
     call self%set_time(0.0_dp)
   end subroutine init_mechanism
+
+  !> Joint masses (slider blocks, sleeves) ride on the elastic translation of
+  !> the node where the joint's first link end sits: kinetic energy
+  !> m/2 |r_rigid' + (U', W')|^2.
+  subroutine register_point_masses(self, mech)
+    type(mechanism_model_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    integer :: j, link, n
+    allocate(self%point_mass(0), self%point_element(0), self%point_node(0))
+    do j = 1, mech%n_joints
+      if (.not. mech%joints(j)%mass > 0.0_dp) cycle
+      link = mech%joints(j)%link(1)
+      if (mech%joints(j)%link_end(1) == 1) then
+        self%point_element = [self%point_element, mech%links(link)%first_element]
+        n = 1
+      else
+        self%point_element = [self%point_element, mech%links(link)%first_element + mech%links(link)%n_elements - 1]
+        n = 2
+      end if
+      self%point_node = [self%point_node, n]
+      self%point_mass = [self%point_mass, mech%joints(j)%mass]
+    end do
+  end subroutine register_point_masses
+
+  !> Rigid-body acceleration of node `node` (1 = x = 0, 2 = x = l) of element e.
+  pure function node_acceleration(rb, length, node) result(a)
+    type(rigid_state_t), intent(in) :: rb
+    real(dp), intent(in) :: length
+    integer, intent(in) :: node
+    real(dp) :: a(2), c, s
+    a = [rb%x1_dd, rb%y1_dd]
+    if (node == 2) then
+      c = cos(rb%phi)
+      s = sin(rb%phi)
+      a = a + length*[-rb%phi_dd*s - rb%phi_d**2*c, rb%phi_dd*c - rb%phi_d**2*s]
+    end if
+  end function node_acceleration
+
+  !> Global unknowns and coefficients of the X and Y translations of a node.
+  pure subroutine node_translation_dofs(self, e, node, g, c)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e, node
+    integer, intent(out) :: g(2)
+    real(dp), intent(out) :: c(2)
+    integer :: first
+    first = 1 + 4*(node - 1)
+    g = self%table%map(first:first + 1, e)
+    c = self%table%coef(first:first + 1, e)
+  end subroutine node_translation_dofs
 
   !> A structure at rest: elements with given rigid states and a table built
   !> from the given link ends (beam verification tests).
@@ -169,6 +223,7 @@ contains
     type(error_t), intent(inout) :: err
     integer :: e, code
     self%moving = .false.
+    allocate(self%point_mass(0), self%point_element(0), self%point_node(0))
     call self%table%build(n_elem, ends, err)
     if (err%failed()) return
     if (size(specs) /= self%table%n_elements .or. size(states) /= self%table%n_elements) then
@@ -334,6 +389,7 @@ contains
         end do
       end do
     end do
+    call add_point_masses(self)
     call band_cholesky_factor(self%mass_band, kd, err)
     self%n_mass_factorizations = self%n_mass_factorizations + 1
     if (err%failed()) then
@@ -343,6 +399,25 @@ contains
     qdd = self%force
     call band_cholesky_solve(self%mass_band, kd, qdd, err)
   end subroutine accelerations
+
+  !> Point masses: m on the diagonal of each translation they ride on, and
+  !> the rigid-body inertia load -m a_rigid.
+  subroutine add_point_masses(self)
+    type(mechanism_model_t), intent(inout) :: self
+    integer :: k, i, g(2), e
+    real(dp) :: c(2), a(2), m
+    do k = 1, size(self%point_mass)
+      e = self%point_element(k)
+      m = self%point_mass(k)
+      call node_translation_dofs(self, e, self%point_node(k), g, c)
+      a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k))
+      do i = 1, 2
+        if (g(i) == 0) cycle
+        self%mass_band(1, g(i)) = self%mass_band(1, g(i)) + m*c(i)**2
+        self%force(g(i)) = self%force(g(i)) - m*c(i)*a(i)
+      end do
+    end do
+  end subroutine add_point_masses
 
   subroutine model_rhs(self, t, y, ydot)
     class(mechanism_model_t), intent(inout) :: self
@@ -423,6 +498,16 @@ contains
       call self%table%scatter_add_matrix(e, me, mass)
       call self%table%scatter_add_matrix(e, ke, stiff)
     end do
+    do e = 1, size(self%point_mass)
+      block
+        integer :: g(2), i
+        real(dp) :: c(2)
+        call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+        do i = 1, 2
+          if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
+        end do
+      end block
+    end do
   end subroutine assemble_dense
 
   pure function zeros8() result(z)
@@ -460,6 +545,25 @@ contains
       qe = self%table%gather(e, q)
       kinetic = kinetic + kear_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
       strain = strain + kear_strain_energy(self%el(e), qe, self%rb(e)%phi)
+    end do
+    do e = 1, size(self%point_mass)
+      block
+        integer :: g(2), i
+        real(dp) :: c(2), v(2), cph, sph
+        type(rigid_state_t) :: r
+        call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+        r = self%rb(self%point_element(e))
+        v = [r%x1_d, r%y1_d]
+        if (self%point_node(e) == 2) then
+          cph = cos(r%phi)
+          sph = sin(r%phi)
+          v = v + self%el(self%point_element(e))%length*r%phi_d*[-sph, cph]
+        end if
+        do i = 1, 2
+          if (g(i) > 0) v(i) = v(i) + c(i)*qd(g(i))
+        end do
+        kinetic = kinetic + 0.5_dp*self%point_mass(e)*sum(v**2)
+      end block
     end do
   end subroutine energies
 

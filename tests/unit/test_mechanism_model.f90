@@ -34,6 +34,8 @@ contains
     call run_test('fourbar_quasi_static_load_matches_rigid_body_statics', test_fourbar_statics)
     call run_test('rhs_cost_is_linear_in_elements', test_linear_cost_structure)
     call run_test('tabulated_rigid_motion_matches_kinematics', test_motion_table)
+    call run_test('cantilever_with_tip_mass_has_exact_frequency', test_tip_mass)
+    call run_test('spinning_arm_with_tip_mass_stretches_as_a_bar', test_tip_mass_load)
   end subroutine run_all
 
   !> A horizontal beam of n elements with the given end conditions.
@@ -239,6 +241,107 @@ contains
       end do
     end do
   end subroutine compare_table_with_kinematics
+
+  !> A clamped-free beam carrying a point mass M at its tip (a joint mass):
+  !> the lowest frequency solves 1 + cos(bL) cosh(bL) + mu bL (cos(bL) sinh(bL)
+  !> - sin(bL) cosh(bL)) = 0, mu = M / (rho A L) (Euler-Bernoulli with a tip
+  !> mass, e.g. Blevins, Formulas for natural frequency and mode shape, table
+  !> 8-8).  4 quintic elements: within 1e-4.
+  subroutine test_tip_mass()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(mechanism_model_t) :: model
+    type(error_t) :: err
+    real(dp), allocatable :: omega(:), shapes(:, :)
+    real(dp) :: mu, lo, hi, mid, bl
+    integer :: i
+    mu = 0.5_dp
+    inp%n_joints = 2
+    inp%joint_name(1:2) = [character(len=16) :: 'A', 'T']
+    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'free']
+    inp%joint_x(1:2) = [0.0_dp, length]
+    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
+    inp%joint_mass(2) = mu*rho*width*depth*length
+    inp%n_links = 1
+    inp%link_name(1) = 'beam'
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_n_elements(1) = 4
+    inp%driver_link = 1       ! the beam clamped on a stopped crank shaft
+    inp%omega = 0.0_dp
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())
+    if (err%failed()) return
+    call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
+    call assert_true(.not. err%failed(), 'init_mechanism: '//err%text())
+    if (err%failed()) return
+    allocate(omega(model%n), shapes(model%n, model%n))
+    call model%linear_modes(omega, shapes, err)
+    lo = 0.5_dp
+    hi = 1.875_dp
+    do i = 1, 100
+      mid = 0.5_dp*(lo + hi)
+      if (tip_mass_equation(lo, mu)*tip_mass_equation(mid, mu) <= 0.0_dp) then
+        hi = mid
+      else
+        lo = mid
+      end if
+    end do
+    bl = 0.5_dp*(lo + hi)
+    call assert_rel_close(omega(1), euler_bernoulli(bl), 1.0e-4_dp, 'tip-mass cantilever mode 1')
+  end subroutine test_tip_mass
+
+  !> An arm spinning at 100 rad/s about its clamped end with a tip mass M:
+  !> the quasi-static axial stretch K q = F is that of a bar under its own
+  !> centrifugal load plus M Omega^2 L at the tip,
+  !>   u(L) = rho Omega^2 L^3 / (3 E) + M Omega^2 L^2 / (E A).
+  !> The linear analysis leaves out centrifugal softening of the axial
+  !> stiffness, of relative size rho Omega^2 L^2 / E = 1e-4: asked 1e-3.
+  subroutine test_tip_mass_load()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(mechanism_model_t) :: model
+    type(error_t) :: err
+    real(dp), allocatable :: q(:), qd(:), qdd(:), mass(:, :), stiff(:, :), load(:)
+    real(dp) :: big_m, omega, expected, qe(8)
+    integer :: last
+    omega = 100.0_dp
+    big_m = 0.5_dp*rho*width*depth*length
+    inp%n_joints = 2
+    inp%joint_name(1:2) = [character(len=16) :: 'A', 'T']
+    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'free']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_mass(2) = big_m
+    inp%n_links = 1
+    inp%link_name(1) = 'arm'
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_length(1) = length
+    inp%link_n_elements(1) = 4
+    inp%driver_link = 1
+    inp%omega = omega
+    call build_mechanism(inp, mech, err)
+    call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
+    call assert_true(.not. err%failed(), 'model: '//err%text())
+    if (err%failed()) return
+    allocate(q(model%n), qd(model%n), qdd(model%n), mass(model%n, model%n), stiff(model%n, model%n))
+    q = 0.0_dp
+    qd = 0.0_dp
+    call model%accelerations(0.0_dp, q, qd, qdd)
+    load = model%force
+    call model%assemble_dense(q, mass, stiff)
+    call solve_linear(stiff, load, err)
+    last = size(model%el)
+    qe = model%table%gather(last, load)
+    expected = rho*omega**2*length**3/(3.0_dp*e1) + big_m*omega**2*length**2/(e1*width*depth)
+    call assert_rel_close(qe(5), expected, 1.0e-3_dp, 'tip stretch U (arm along +X at t = 0)')
+  end subroutine test_tip_mass_load
+
+  pure real(dp) function tip_mass_equation(x, mu)
+    real(dp), intent(in) :: x, mu
+    tip_mass_equation = 1.0_dp + cos(x)*cosh(x) + mu*x*(cos(x)*sinh(x) - sin(x)*cosh(x))
+  end function tip_mass_equation
 
   pure real(dp) function two_pi_local()
     two_pi_local = 2.0_dp*pi
