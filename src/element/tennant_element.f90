@@ -114,6 +114,9 @@ module tennant_element
     logical :: nonlinear = .false.        !< some tracing constant is on
     real(dp) :: eps_star = huge(1.0_dp)   !< peak strain of the material law (with D_k)
     type(local_matrices_t) :: lm
+    ! combinations for a fixed length: M, C/phi_d, K_e parts per phi_dd and phi_d^2, K_lin J_b
+    real(dp) :: m_loc(nmax, nmax) = 0.0_dp, c1_loc(nmax, nmax) = 0.0_dp
+    real(dp) :: k_eul(nmax, nmax) = 0.0_dp, k_cen(nmax, nmax) = 0.0_dp, k_lin_jb(nmax, nmax) = 0.0_dp
     integer :: n_st = 0                   !< nonlinear stations (n_gauss per section)
     real(dp), allocatable :: st_w(:), st_area(:), st_depth(:)
     real(dp), allocatable :: st_gu(:, :), st_gw(:, :), st_gk(:, :)
@@ -234,6 +237,7 @@ contains
     el%eps_star = peak_strain(mk)
 
     call build_matrices(el, length, 0.0_dp, 0.0_dp, el%lm)
+    call precombine(el)
     if (el%nonlinear) call make_stations(el, length, el%n_st, el%st_w, el%st_area, el%st_depth, &
                                          el%st_gu, el%st_gw, el%st_gk)
   end subroutine tennant_element_init
@@ -519,6 +523,35 @@ contains
     end do
   end function jbt
 
+  !> The phi-independent combinations of the constant integrals (fixed length):
+  !>   M_loc = G1 + R + M_B + slider masses,   C_loc = phi_d C1,
+  !>   K_loc = K_lin + phi_dd K_eul + phi_d^2 K_cen
+  !> with C1 = 2 (G2 - G1 J_b) - 2 R J_b, K_eul = G2 - G1 J_b - R J_b,
+  !> K_cen = G1 J_b^2 - G1 - 2 G2 J_b + R J_b^2 (see tennant_linear_terms).
+  pure subroutine precombine(el)
+    type(tennant_element_t), intent(inout) :: el
+    integer :: n, k, i
+    n = el%nd
+    associate (lm => el%lm)
+      el%m_loc(1:n, 1:n) = lm%g1(1:n, 1:n)
+      el%k_eul(1:n, 1:n) = lm%g2(1:n, 1:n) - jb_right(el, lm%g1)
+      el%k_cen(1:n, 1:n) = jb2_right(el, lm%g1) - lm%g1(1:n, 1:n) - 2.0_dp*jb_right(el, lm%g2)
+      if (el%opt%rotary_inertia) then
+        el%m_loc(1:n, 1:n) = el%m_loc(1:n, 1:n) + lm%rot(1:n, 1:n)
+        el%k_eul(1:n, 1:n) = el%k_eul(1:n, 1:n) - jb_right(el, lm%rot)
+        el%k_cen(1:n, 1:n) = el%k_cen(1:n, 1:n) + jb2_right(el, lm%rot)
+      end if
+      el%c1_loc(1:n, 1:n) = 2.0_dp*el%k_eul(1:n, 1:n)
+      if (el%opt%shear .and. el%opt%shear_inertia) el%m_loc(1:n, 1:n) = el%m_loc(1:n, 1:n) + lm%mb(1:n, 1:n)
+      do k = 0, 1
+        do i = 1 + k*el%nn, 2 + k*el%nn
+          el%m_loc(i, i) = el%m_loc(i, i) + el%node_mass(k + 1)
+        end do
+      end do
+      el%k_lin_jb(1:n, 1:n) = jb_right(el, lm%k_lin)
+    end associate
+  end subroutine precombine
+
   ! ------------------------------------------------------------------ linear terms
 
   !> M, C, K_e and F of (T25) for this element at the frame state fs, in
@@ -533,14 +566,24 @@ contains
     type(frame_state_t), intent(in) :: fs
     real(dp), intent(out) :: mass(:, :), damp(:, :), stiff(:, :), force(:)
     logical, intent(in) :: with_damping
-    type(local_matrices_t) :: lm
     if (el%sliding) then
-      call build_matrices(el, fs%length, fs%length_d, fs%length_dd, lm)
-      call combine(el, lm, fs, mass, damp, stiff, force, with_damping)
+      call combine_moving(el, fs, mass, damp, stiff, force, with_damping)
     else
       call combine(el, el%lm, fs, mass, damp, stiff, force, with_damping)
     end if
   end subroutine tennant_linear_terms
+
+  !> (A separate routine: its 25 kB of local integrals are only set up for a
+  !> moving length.)
+  pure subroutine combine_moving(el, fs, mass, damp, stiff, force, with_damping)
+    type(tennant_element_t), intent(in) :: el
+    type(frame_state_t), intent(in) :: fs
+    real(dp), intent(out) :: mass(:, :), damp(:, :), stiff(:, :), force(:)
+    logical, intent(in) :: with_damping
+    type(local_matrices_t) :: lm
+    call build_matrices(el, fs%length, fs%length_d, fs%length_dd, lm)
+    call combine(el, lm, fs, mass, damp, stiff, force, with_damping)
+  end subroutine combine_moving
 
   pure subroutine combine(el, lm, fs, mass, damp, stiff, force, with_damping)
     type(tennant_element_t), intent(in) :: el
@@ -561,6 +604,29 @@ contains
     ldd = fs%length_dd
     ! rigid acceleration of end 1 in local axes
     ar = [c*fs%x1_dd + s*fs%y1_dd, -s*fs%x1_dd + c*fs%y1_dd]
+
+    if (.not. el%sliding) then
+      ! precombined constant matrices (precombine)
+      mass(1:n, 1:n) = el%m_loc(1:n, 1:n)
+      damp(1:n, 1:n) = pd*el%c1_loc(1:n, 1:n)
+      stiff(1:n, 1:n) = el%lm%k_lin(1:n, 1:n) + pdd*el%k_eul(1:n, 1:n) + (pd*pd)*el%k_cen(1:n, 1:n)
+      force(1:n) = -(lm%l0(1:n, 1)*ar(1) + lm%l0(1:n, 2)*ar(2) - (pd*pd)*lm%l1(1:n, 1) + pdd*lm%l1(1:n, 2))
+      if (el%opt%rotary_inertia) force(1:n) = force(1:n) - pdd*lm%r0(1:n)
+      if (el%node_mass(1) > 0.0_dp) force(1:2) = force(1:2) - el%node_mass(1)*ar
+      if (el%node_mass(2) > 0.0_dp) then
+        a2 = ar + [ldd - l*pd*pd, 2.0_dp*ld*pd + l*pdd]
+        force(el%nn + 1:el%nn + 2) = force(el%nn + 1:el%nn + 2) - el%node_mass(2)*a2
+      end if
+      if (with_damping .and. el%opt%damping_beta > 0.0_dp) then
+        damp(1:n, 1:n) = damp(1:n, 1:n) + el%opt%damping_beta*lm%k_lin(1:n, 1:n)
+        stiff(1:n, 1:n) = stiff(1:n, 1:n) - (el%opt%damping_beta*pd)*el%k_lin_jb(1:n, 1:n)
+      end if
+      call rotate_matrix(el, c, s, mass)
+      call rotate_matrix(el, c, s, damp)
+      call rotate_matrix(el, c, s, stiff)
+      force(1:n) = to_global(el, c, s, force)
+      return
+    end if
 
     ! translational inertia: Euler/Coriolis operator Cc = G2 - G1 J_b, centrifugal Kc
     cc = lm%g2(1:n, 1:n) - jb_right(el, lm%g1)
@@ -662,35 +728,54 @@ contains
     real(dp), intent(out) :: fn(:)
     type(tennant_info_t), intent(out) :: info
     real(dp), intent(out), optional :: secant(:, :), tangent(:, :)
-    real(dp), allocatable :: w_(:), area_(:), depth_(:), gu_(:, :), gw_(:, :), gk_(:, :)
-    integer :: n_st
     fn(1:el%nd) = 0.0_dp
     if (present(secant)) secant(1:el%nd, 1:el%nd) = 0.0_dp
     if (present(tangent)) tangent(1:el%nd, 1:el%nd) = 0.0_dp
     if (.not. el%nonlinear) return
     if (el%sliding) then
-      call make_stations(el, fs%length, n_st, w_, area_, depth_, gu_, gw_, gk_)
-      call nonlinear_at_stations(el, n_st, w_, area_, depth_, gu_, gw_, gk_, q, fs%phi, fn, info, secant, tangent)
+      call nonlinear_moving(el, q, fs, fn, info, secant, tangent)
     else
       call nonlinear_at_stations(el, el%n_st, el%st_w, el%st_area, el%st_depth, el%st_gu, el%st_gw, el%st_gk, &
-                                 q, fs%phi, fn, info, secant, tangent)
+                                 el%lm%k_ba, q, fs%phi, fn, info, secant, tangent)
     end if
   end subroutine tennant_nonlinear_terms
 
-  pure subroutine nonlinear_at_stations(el, n_st, sw_, sarea, sdepth, sgu, sgw, sgk, q, phi, fn, info, secant, tangent)
+  pure subroutine nonlinear_moving(el, q, fs, fn, info, secant, tangent)
+    type(tennant_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(:)
+    type(frame_state_t), intent(in) :: fs
+    real(dp), intent(out) :: fn(:)
+    type(tennant_info_t), intent(out) :: info
+    real(dp), intent(out), optional :: secant(:, :), tangent(:, :)
+    real(dp), allocatable :: w_(:), area_(:), depth_(:), gu_(:, :), gw_(:, :), gk_(:, :)
+    type(local_matrices_t) :: lm
+    integer :: n_st
+    call make_stations(el, fs%length, n_st, w_, area_, depth_, gu_, gw_, gk_)
+    call build_matrices(el, fs%length, 0.0_dp, 0.0_dp, lm)
+    call nonlinear_at_stations(el, n_st, w_, area_, depth_, gu_, gw_, gk_, lm%k_ba, q, fs%phi, fn, info, &
+                               secant, tangent)
+  end subroutine nonlinear_moving
+
+  !> The nonlinear integrals at the stations: f = sum w (N de + M dk) - K_ba p
+  !> (the linear axial and bending part, integrated exactly by both rules).
+  pure subroutine nonlinear_at_stations(el, n_st, sw_, sarea, sdepth, sgu, sgw, sgk, kba, q, phi, fn, info, &
+                                        secant, tangent)
     type(tennant_element_t), intent(in) :: el
     integer, intent(in) :: n_st
-    real(dp), intent(in) :: sw_(:), sarea(:), sdepth(:), sgu(:, :), sgw(:, :), sgk(:, :)
+    real(dp), intent(in) :: sw_(:), sarea(:), sdepth(:), sgu(:, :), sgw(:, :), sgk(:, :), kba(:, :)
     real(dp), intent(in) :: q(:), phi
     real(dp), intent(out) :: fn(:)
     type(tennant_info_t), intent(out) :: info
     real(dp), intent(out), optional :: secant(:, :), tangent(:, :)
-    real(dp) :: p(el%nd), de(el%nd), dk(el%nd), ae(el%nd), ak(el%nd), f(el%nd)
+    real(dp) :: p(el%nd), de(el%nd), dk(el%nd), ae(el%nd), ak(el%nd), f(el%nd), v1(el%nd), v2(el%nd)
     real(dp) :: ks(el%nd, el%nd), kt(el%nd, el%nd)
-    real(dp) :: b, eu, k0, en, kap, q1, cb, cp, cpp, w, area, inertia, e1, dg, db, ds(2, 2), strain, c, s
+    real(dp) :: b, eu, k0, en, kap, q1, cb, cp, cpp, w, e1, dg, db, ds(2, 2), strain, c, s, gg, gk2
     type(section_resultants_t) :: res
     type(ramberg_osgood_t) :: mk
-    integer :: j, n, j_max
+    integer :: j, i, n, j_max
+    logical :: want_s, want_t
+    want_s = present(secant)
+    want_t = present(tangent)
     n = el%nd
     c = cos(phi)
     s = sin(phi)
@@ -701,13 +786,11 @@ contains
     dg = el%opt%d_g
     db = el%opt%d_b
     f = 0.0_dp
-    ks = 0.0_dp
-    kt = 0.0_dp
+    if (want_s) ks = 0.0_dp
+    if (want_t) kt = 0.0_dp
     j_max = 1
     do j = 1, n_st
       w = sw_(j)
-      area = sarea(j)
-      inertia = area*sdepth(j)**2/12.0_dp
       b = dot_product(sgw(:, j), p)
       eu = dot_product(sgu(:, j), p)
       k0 = dot_product(sgk(:, j), p)
@@ -716,41 +799,50 @@ contains
       cb = q1**(-1.5_dp)                          ! (T10) curvature factor
       cp = -3.0_dp*db*b*q1**(-2.5_dp)
       kap = cb*k0
-      res = section_response(mk, area, sdepth(j), en, kap, el%opt%d_k > 0.0_dp)
+      res = section_response(mk, sarea(j), sdepth(j), en, kap, el%opt%d_k > 0.0_dp)
       de = sgu(:, j) + (dg*b)*sgw(:, j)           ! d eps_n / dp
       dk = cb*sgk(:, j) + (cp*k0)*sgw(:, j)       ! d kappa / dp
-      f = f + w*(res%axial_force*de + res%moment*dk - (e1*area*eu)*sgu(:, j) - (e1*inertia*k0)*sgk(:, j))
+      f = f + (w*res%axial_force)*de + (w*res%moment)*dk
       strain = abs(en) + 0.5_dp*sdepth(j)*abs(kap)
       if (strain > info%max_abs_strain) then
         info%max_abs_strain = strain
         j_max = j
       end if
-      if (present(secant)) then
-        ae = sgu(:, j) + (0.5_dp*dg*b)*sgw(:, j)  ! eps_n = ae . p
-        ak = cb*sgk(:, j)                         ! kappa = ak . p
-        ds = secant_section(mk, area, sdepth(j), en, kap)
-        ks = ks + w*(ds(1, 1)*outer(de, ae) + ds(1, 2)*outer(de, ak) + ds(2, 1)*outer(dk, ae) &
-                     + ds(2, 2)*outer(dk, ak) - (e1*area)*outer(sgu(:, j), sgu(:, j)) &
-                     - (e1*inertia)*outer(sgk(:, j), sgk(:, j)))
+      if (want_s) then
+        ! K_n: [de dk] D_s [ae ak]^T with eps_n = ae . p, kappa = ak . p
+        ae = sgu(:, j) + (0.5_dp*dg*b)*sgw(:, j)
+        ak = cb*sgk(:, j)
+        ds = secant_section(mk, sarea(j), sdepth(j), en, kap)
+        v1 = w*(ds(1, 1)*ae + ds(1, 2)*ak)
+        v2 = w*(ds(2, 1)*ae + ds(2, 2)*ak)
+        do i = 1, n
+          ks(:, i) = ks(:, i) + de*v1(i) + dk*v2(i)
+        end do
       end if
-      if (present(tangent)) then
+      if (want_t) then
         cpp = -3.0_dp*db*q1**(-2.5_dp) + 15.0_dp*db*db*b*b*q1**(-3.5_dp)
-        kt = kt + w*(res%tangent(1, 1)*outer(de, de) + res%tangent(1, 2)*(outer(de, dk) + outer(dk, de)) &
-                     + res%tangent(2, 2)*outer(dk, dk) + (res%axial_force*dg)*outer(sgw(:, j), sgw(:, j)) &
-                     + res%moment*(cp*(outer(sgk(:, j), sgw(:, j)) + outer(sgw(:, j), sgk(:, j))) &
-                                   + (cpp*k0)*outer(sgw(:, j), sgw(:, j))) &
-                     - (e1*area)*outer(sgu(:, j), sgu(:, j)) - (e1*inertia)*outer(sgk(:, j), sgk(:, j)))
+        v1 = w*(res%tangent(1, 1)*de + res%tangent(1, 2)*dk)
+        v2 = w*(res%tangent(2, 1)*de + res%tangent(2, 2)*dk)
+        gg = w*(res%axial_force*dg + res%moment*cpp*k0)
+        gk2 = w*res%moment*cp
+        do i = 1, n
+          kt(:, i) = kt(:, i) + de*v1(i) + dk*v2(i) + sgw(:, j)*(gg*sgw(i, j) + gk2*sgk(i, j)) &
+                     + sgk(:, j)*(gk2*sgw(i, j))
+        end do
       end if
     end do
+    f = f - matmul(kba(1:n, 1:n), p)
     info%n_points = n_st
     info%x_over_l_max_strain = real(j_max, dp)/real(max(n_st, 1), dp)
     info%beyond_peak = el%opt%d_k > 0.0_dp .and. info%max_abs_strain > el%eps_star
     fn(1:n) = to_global(el, c, s, f)
-    if (present(secant)) then
+    if (want_s) then
+      ks = ks - kba(1:n, 1:n)
       call rotate_matrix(el, c, s, ks)
       secant(1:n, 1:n) = ks
     end if
-    if (present(tangent)) then
+    if (want_t) then
+      kt = kt - kba(1:n, 1:n)
       call rotate_matrix(el, c, s, kt)
       tangent(1:n, 1:n) = kt
     end if
@@ -767,9 +859,16 @@ contains
     integer :: l
     ht = 0.5_dp*depth
     s = ht*kappa
-    do l = 0, 2
-      mom(l) = mat%e1*eta_power_mean(l) - mat%e2*abs_power_mean(mat, l, eps_n, s)
-    end do
+    if (abs(mat%m - 3.0_dp) <= 0.0_dp) then
+      ! m = 3: <(en - eta s)^2> = en^2 + s^2/3, <eta (.)^2> = -2 en s/3, <eta^2 (.)^2> = en^2/3 + s^2/5
+      mom(0) = mat%e1 - mat%e2*(eps_n*eps_n + s*s/3.0_dp)
+      mom(1) = mat%e2*2.0_dp*eps_n*s/3.0_dp
+      mom(2) = mat%e1/3.0_dp - mat%e2*(eps_n*eps_n/3.0_dp + 0.2_dp*s*s)
+    else
+      do l = 0, 2
+        mom(l) = mat%e1*eta_power_mean(l) - mat%e2*abs_power_mean(mat, l, eps_n, s)
+      end do
+    end if
     ds(1, 1) = area*mom(0)
     ds(1, 2) = -area*ht*mom(1)
     ds(2, 1) = ds(1, 2)

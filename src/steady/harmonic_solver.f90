@@ -1,0 +1,306 @@
+!> The harmonic-series steady state of Tennant (1985) after Bahgat and
+!> Willmert (T26-T28), with the outer iteration on the nonlinear stiffness.
+!>
+!>   (T28) 2N samples per crank revolution, t_k = k T / (2N), k = 0 .. 2N-1
+!>   (T27) F(t_k) = sum_n A_n cos(n w t_k) + B_n sin(n w t_k), B_0 = 0: the
+!>         square collocation system is the discrete Fourier transform of the
+!>         samples, with harmonics n = 0 .. N and B_N = 0 (sin(N w t_k) = 0
+!>         at every sample)
+!>   (T26) Q(t) = sum_{n=0}^{N'} (K(t) - n^2 w^2 M(t))^-1 (A_n cos n w t + B_n sin n w t)
+!>         truncated after N' <= N harmonics
+!>
+!> How K(t) and M(t) enter (T26) the paper does not say.  The reading
+!> implemented here (doc/steady_state.md §3) is the literal one: at each time
+!> t the matrices of that instant are used ("frozen coefficients"), K = K_e(t)
+!> + K_n(Q(t), t).  C Q_d is neglected as in the paper; with
+!> velocity_terms = .true. it is kept, F_eff(t_k) = F(t_k) - C(t_k) Q_d(t_k)
+!> with Q_d from the trigonometric interpolant of Q at the samples.
+!>
+!> Outer iteration (T §3.8): K_n = 0 first (the linear analysis); then K_n is
+!> the paper's secant evaluated with the previous Q, until the largest change
+!> of Q relative to |Q| is below outer_tol.  Without C Q_d the equations at
+!> different times are independent, so the iteration runs time by time; the
+!> change reported for iteration i is the largest over all times.
+!>
+!> Each (K - n^2 w^2 M) is equilibrated by D = diag(K)^(-1/2) and factored by
+!> LU; in the linear pass (K = K_e) also its reciprocal condition number:
+!> rcond(K - n^2 w^2 M)/rcond(K) near zero means the harmonic n w sits on a
+!> natural frequency of the frozen structure (resonance): reported, and
+!> flagged below resonance_ratio.
+module harmonic_solver
+  use kinds, only: dp, two_pi
+  use error_status, only: error_t
+  use strings, only: str
+  use small_dense, only: dense_lu_t
+  use periodic_system, only: periodic_system_t, nonlinear_info_t
+  implicit none
+  private
+  public :: harmonic_settings_t, harmonic_report_t, harmonic_solve, fourier_coefficients, max_outer_limit
+
+  integer, parameter :: max_outer_limit = 200
+
+  type :: harmonic_settings_t
+    integer :: n_harmonics = 8             !< N: 2N samples per revolution
+    integer :: n_kept = 0                  !< N' harmonics kept in (T26); 0 = N
+    logical :: velocity_terms = .false.    !< keep C Q_d (the paper drops it)
+    real(dp) :: outer_tol = 1.0e-6_dp      !< relative change of Q that ends the outer iteration
+    integer :: max_outer = 30
+    real(dp) :: resonance_ratio = 1.0e-2_dp !< flag rcond(K - n^2 w^2 M)/rcond(K) below this
+  end type harmonic_settings_t
+
+  type :: harmonic_report_t
+    integer :: n_samples = 0
+    integer :: n_kept = 0
+    integer :: outer_iterations = 0        !< nonlinear updates of K_n (largest over the times)
+    logical :: converged = .true.
+    real(dp) :: change(0:max_outer_limit) = 0.0_dp   !< largest relative change of Q at each iteration
+    integer :: velocity_iterations = 0     !< iterations on the samples with C Q_d kept
+    real(dp) :: velocity_change(max_outer_limit) = 0.0_dp
+    integer :: factorizations = 0
+    real(dp) :: min_rcond = huge(1.0_dp)   !< of the equilibrated K - n^2 w^2 M
+    real(dp) :: worst_ratio = huge(1.0_dp) !< smallest rcond(K - n^2 w^2 M)/rcond(K), n >= 1
+    integer :: worst_harmonic = 0
+    real(dp) :: worst_time = 0.0_dp
+    logical :: near_resonance = .false.
+    real(dp) :: max_abs_strain = 0.0_dp
+    real(dp) :: strain_time = 0.0_dp
+    integer :: strain_element = 0
+    logical :: beyond_peak = .false.
+  end type harmonic_report_t
+
+contains
+
+  !> The square collocation (T27) on 2N samples: f(:, k) = F(t_k) ->
+  !> a(:, 0:N), b(:, 0:N) with b(:, 0) = b(:, N) = 0.
+  pure subroutine fourier_coefficients(f, nh, a, b)
+    real(dp), intent(in) :: f(:, 0:)
+    integer, intent(in) :: nh
+    real(dp), intent(out) :: a(:, 0:), b(:, 0:)
+    integer :: n, k, ns
+    real(dp) :: ang
+    ns = 2*nh
+    a(:, 0:nh) = 0.0_dp
+    b(:, 0:nh) = 0.0_dp
+    do k = 0, ns - 1
+      a(:, 0) = a(:, 0) + f(:, k)
+      do n = 1, nh - 1
+        ang = two_pi*real(n*k, dp)/real(ns, dp)
+        a(:, n) = a(:, n) + f(:, k)*cos(ang)
+        b(:, n) = b(:, n) + f(:, k)*sin(ang)
+      end do
+      a(:, nh) = a(:, nh) + f(:, k)*real(1 - 2*mod(k, 2), dp)
+    end do
+    a(:, 0) = a(:, 0)/ns
+    a(:, 1:nh - 1) = a(:, 1:nh - 1)*(2.0_dp/ns)
+    b(:, 1:nh - 1) = b(:, 1:nh - 1)*(2.0_dp/ns)
+    a(:, nh) = a(:, nh)/ns
+  end subroutine fourier_coefficients
+
+  !> Steady state Q(t) at the given times.
+  subroutine harmonic_solve(sys, s, times, q, rep, err)
+    class(periodic_system_t), intent(inout) :: sys
+    type(harmonic_settings_t), intent(in) :: s
+    real(dp), intent(in) :: times(:)
+    real(dp), intent(out) :: q(:, :)
+    type(harmonic_report_t), intent(out) :: rep
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: fsamp(:, :), a(:, :), b(:, :), msamp(:, :, :), csamp(:, :, :), ksamp(:, :, :)
+    real(dp), allocatable :: m(:, :), c(:, :), k(:, :), kn(:, :), f(:), qold(:), qnew(:), fn(:)
+    real(dp) :: period, t, ch, scale
+    integer :: n, nh, ns, keep, j, kk, it
+    logical :: nonlinear
+    type(nonlinear_info_t) :: info
+
+    n = sys%n
+    nh = s%n_harmonics
+    ns = 2*nh
+    keep = s%n_kept
+    if (keep <= 0 .or. keep > nh) keep = nh
+    rep%n_samples = ns
+    rep%n_kept = keep
+    if (nh < 1) then
+      call err%set('harmonic series', 'needs at least one harmonic'); return
+    end if
+    if (size(q, 1) /= n .or. size(q, 2) /= size(times)) then
+      call err%set('harmonic series', 'result array has the wrong shape'); return
+    end if
+    period = sys%period()
+    nonlinear = sys%is_nonlinear()
+    allocate(fsamp(n, 0:ns - 1), a(n, 0:nh), b(n, 0:nh), m(n, n), c(n, n), k(n, n), kn(n, n), f(n), &
+             qold(n), qnew(n), fn(n))
+
+    ! (T27), (T28): forcing at 2N equally spaced times of one revolution
+    if (s%velocity_terms) allocate(msamp(n, n, 0:ns - 1), csamp(n, n, 0:ns - 1), ksamp(n, n, 0:ns - 1))
+    do kk = 0, ns - 1
+      t = kk*period/ns
+      call sys%set_time(t, err)
+      if (err%failed()) return
+      call sys%linear_terms(m, c, k, f, s%velocity_terms)
+      fsamp(:, kk) = f
+      if (s%velocity_terms) then
+        msamp(:, :, kk) = m
+        csamp(:, :, kk) = c
+        ksamp(:, :, kk) = k
+      end if
+    end do
+    call fourier_coefficients(fsamp, nh, a, b)
+    if (s%velocity_terms) then
+      call velocity_phase()
+      if (err%failed()) return
+    end if
+
+    ! (T26) at every requested time: linear pass, then the outer iteration
+    rep%change = 0.0_dp
+    do j = 1, size(times)
+      t = times(j)
+      call sys%set_time(t, err)
+      if (err%failed()) return
+      call sys%linear_terms(m, c, k, f, s%velocity_terms)
+      call series(t, k, m, qold, .true.)
+      if (err%failed()) return
+      q(:, j) = qold
+      if (.not. nonlinear) cycle
+      scale = maxval(abs(qold))
+      do it = 1, s%max_outer
+        call sys%nonlinear_terms(qold, fn, info, secant=kn)
+        call series(t, k + kn, m, qnew, .false.)
+        if (err%failed()) return
+        scale = max(scale, maxval(abs(qnew)))
+        ch = 0.0_dp
+        if (scale > 0.0_dp) ch = maxval(abs(qnew - qold))/scale
+        rep%change(it) = max(rep%change(it), ch)
+        qold = qnew
+        if (ch <= s%outer_tol) exit
+      end do
+      if (it > s%max_outer) then
+        rep%converged = .false.
+        it = s%max_outer
+      end if
+      rep%outer_iterations = max(rep%outer_iterations, it)
+      q(:, j) = qold
+      call note_strain(info, t)
+    end do
+
+  contains
+
+    !> (T26) with the matrices of time tt.
+    subroutine series(tt, kmat, mmat, qq, with_rcond)
+      real(dp), intent(in) :: tt, kmat(:, :), mmat(:, :)
+      real(dp), intent(out) :: qq(:)
+      logical, intent(in) :: with_rcond
+      call harmonic_sum(tt, sys%omega, keep, kmat, mmat, a, b, qq, rep, s%resonance_ratio, with_rcond, err)
+    end subroutine series
+
+    subroutine note_strain(inf, tt)
+      type(nonlinear_info_t), intent(in) :: inf
+      real(dp), intent(in) :: tt
+      if (inf%max_abs_strain > rep%max_abs_strain) then
+        rep%max_abs_strain = inf%max_abs_strain
+        rep%strain_time = tt
+        rep%strain_element = inf%element
+      end if
+      rep%beyond_peak = rep%beyond_peak .or. inf%beyond_peak
+    end subroutine note_strain
+
+    !> C Q_d kept: iterate on the samples, F_eff = F - C Q_d, Q_d from the
+    !> trigonometric interpolant of Q at the samples; then (a, b) describe F_eff.
+    subroutine velocity_phase()
+      real(dp), allocatable :: qs(:, :), qsn(:, :), qd(:, :), feff(:, :), aq(:, :), bq(:, :)
+      real(dp) :: chv, sc
+      integer :: itv, kq, nn
+      allocate(qs(n, 0:ns - 1), qsn(n, 0:ns - 1), qd(n, 0:ns - 1), feff(n, 0:ns - 1), aq(n, 0:nh), bq(n, 0:nh))
+      qs = 0.0_dp
+      do itv = 1, s%max_outer
+        ! spectral derivative of the samples (the Nyquist term has zero slope there)
+        call fourier_coefficients(qs, nh, aq, bq)
+        qd = 0.0_dp
+        do kq = 0, ns - 1
+          do nn = 1, nh - 1
+            qd(:, kq) = qd(:, kq) + (nn*sys%omega)*(-aq(:, nn)*sin(two_pi*nn*kq/real(ns, dp)) + &
+                                                    bq(:, nn)*cos(two_pi*nn*kq/real(ns, dp)))
+          end do
+          feff(:, kq) = fsamp(:, kq) - matmul(csamp(:, :, kq), qd(:, kq))
+        end do
+        call fourier_coefficients(feff, nh, a, b)
+        do kq = 0, ns - 1
+          kn = 0.0_dp
+          if (nonlinear .and. itv > 1) then
+            call sys%set_time(kq*period/ns, err)
+            if (err%failed()) return
+            call sys%nonlinear_terms(qs(:, kq), fn, info, secant=kn)
+          end if
+          call series(kq*period/ns, ksamp(:, :, kq) + kn, msamp(:, :, kq), qsn(:, kq), itv == 1)
+          if (err%failed()) return
+        end do
+        sc = maxval(abs(qsn))
+        chv = 0.0_dp
+        if (sc > 0.0_dp) chv = maxval(abs(qsn - qs))/sc
+        rep%velocity_change(itv) = chv
+        qs = qsn
+        if (chv <= s%outer_tol .and. itv > 1) exit
+      end do
+      rep%velocity_iterations = min(itv, s%max_outer)
+      if (itv > s%max_outer) rep%converged = .false.
+    end subroutine velocity_phase
+  end subroutine harmonic_solve
+
+  !> Q = sum_{n=0}^{keep} (K - n^2 w^2 M)^-1 (a_n cos n w t + b_n sin n w t),
+  !> equilibrated by D = diag(K)^(-1/2); with_rcond: conditioning into rep.
+  subroutine harmonic_sum(t, omega, keep, kmat, mmat, a, b, q, rep, resonance_ratio, with_rcond, err)
+    real(dp), intent(in) :: t, omega, kmat(:, :), mmat(:, :), a(:, 0:), b(:, 0:), resonance_ratio
+    integer, intent(in) :: keep
+    real(dp), intent(out) :: q(:)
+    type(harmonic_report_t), intent(inout) :: rep
+    logical, intent(in) :: with_rcond
+    type(error_t), intent(inout) :: err
+    real(dp) :: d(size(q)), mat(size(q), size(q)), rhs(size(q)), rc, rc0, w2, ratio
+    type(dense_lu_t) :: lu
+    integer :: nn, i, j, n
+    n = size(q)
+    do i = 1, n
+      d(i) = abs(kmat(i, i))
+      if (d(i) > 0.0_dp) then
+        d(i) = 1.0_dp/sqrt(d(i))
+      else
+        d(i) = 1.0_dp
+      end if
+    end do
+    q = 0.0_dp
+    rc0 = 1.0_dp
+    do nn = 0, keep
+      w2 = (nn*omega)**2
+      do j = 1, n
+        mat(:, j) = d*(kmat(:, j) - w2*mmat(:, j))*d(j)
+      end do
+      call lu%factor(mat, err)
+      rep%factorizations = rep%factorizations + 1
+      if (err%failed()) then
+        rep%near_resonance = .true.
+        rep%worst_ratio = 0.0_dp
+        rep%worst_harmonic = nn
+        rep%worst_time = t
+        call err%set('harmonic series', 'K - n^2 w^2 M is exactly singular for harmonic n = '//str(nn)// &
+                     ' at t = '//str(t)//' s: resonance')
+        return
+      end if
+      if (with_rcond) then
+        rc = lu%rcond()
+        rep%min_rcond = min(rep%min_rcond, rc)
+        if (nn == 0) then
+          rc0 = rc
+        else
+          ratio = rc/rc0
+          if (ratio < rep%worst_ratio) then
+            rep%worst_ratio = ratio
+            rep%worst_harmonic = nn
+            rep%worst_time = t
+          end if
+          if (ratio < resonance_ratio) rep%near_resonance = .true.
+        end if
+      end if
+      rhs = d*(a(:, nn)*cos(nn*omega*t) + b(:, nn)*sin(nn*omega*t))
+      call lu%solve(rhs)
+      q = q + d*rhs
+    end do
+  end subroutine harmonic_sum
+end module harmonic_solver

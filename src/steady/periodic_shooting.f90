@@ -1,0 +1,342 @@
+!> The exact periodic steady state of a periodic system by shooting: Newton's
+!> method on the one-revolution map y0 -> Phi_T(y0) of the first-order
+!> equations y = (Q, Q_d),
+!>
+!>     Q_dd = M(t)^-1 (F(t) - C(t) Q_d - K_e(t) Q - f_n(Q, t)),
+!>
+!> integrated over one period T = 2 pi / omega by DLSODE (Adams) together
+!> with the variational equations Y' = J(t, y) Y, Y(0) = I, so that
+!> Y(T) = d Phi_T / d y0 is the monodromy matrix: Newton's Jacobian is
+!> Y(T) - I, and at the periodic solution its eigenvalues are the Floquet
+!> multipliers (|mu| <= 1 for all: the steady state is stable).  C Q_d and
+!> damping are kept: this is the steady state that the harmonic series
+!> approximates (doc/steady_state.md §4).
+!>
+!> For a linear system Y(T) does not depend on y0: one Newton step gives the
+!> periodic solution; a state-only integration confirms it.
+!>
+!> method 'bdf' (for damped, stiff models) uses DLSODE's BDF with a banded
+!> Jacobian (MF = 24): the augmented state [y, Y e_1, ..., Y e_2n] has the
+!> block-diagonal Jacobian diag(J, J, ..., J), J = [0 I; -M^-1 K_t  -M^-1 C],
+!> of half-bandwidth 2n - 1 (the coupling of Y to y through K_t(y) is left
+!> out: the corrector only needs an approximation).
+module periodic_shooting
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user
+  use linalg, only: lu_factor, lu_solve, eigenvalues_general
+  use small_dense, only: dense_lu_t
+  use periodic_system, only: periodic_system_t, nonlinear_info_t
+  implicit none
+  private
+  public :: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, flow_t, max_newton_limit
+
+  integer, parameter :: max_newton_limit = 50
+
+  type :: shooting_settings_t
+    real(dp) :: rtol = 1.0e-9_dp           !< DLSODE relative tolerance
+    real(dp) :: atol = 1.0e-13_dp          !< DLSODE absolute tolerance (all components)
+    integer :: max_newton = 12
+    real(dp) :: newton_tol = 1.0e-6_dp     !< |Phi(y0) - y0| relative to |y| (Q and Q_d separately); >> rtol
+    integer :: max_steps = 2000000         !< DLSODE steps per revolution
+    real(dp) :: unit_circle_tol = 1.0e-3_dp !< |mu| > 1 + tol: unstable
+    real(dp) :: singular_rcond = 1.0e-8_dp !< rcond(Y(T) - I) (energy units) below this: no isolated periodic solution
+    logical :: bdf = .false.               !< BDF with a banded block Jacobian instead of Adams
+  end type shooting_settings_t
+
+  type :: shooting_report_t
+    integer :: newton_iterations = 0
+    logical :: converged = .false.
+    real(dp) :: residual(0:max_newton_limit) = 0.0_dp
+    real(dp), allocatable :: mult_re(:), mult_im(:)
+    real(dp) :: max_multiplier = 0.0_dp
+    logical :: stable = .true.
+    real(dp) :: rcond_newton = huge(1.0_dp)   !< smallest rcond(Y(T) - I) met
+    logical :: near_resonance = .false.
+    integer :: steps = 0, rhs_evaluations = 0, revolutions = 0
+  end type shooting_report_t
+
+  !> y' = f(t, y) of the mechanism, optionally with the variational equations.
+  type, extends(ode_system_t) :: flow_t
+    class(periodic_system_t), pointer :: sys => null()
+    integer :: n = 0
+    logical :: variational = .false.
+    real(dp), allocatable :: m(:, :), c(:, :), k(:, :), f(:), fn(:), kt(:, :)
+    type(dense_lu_t) :: lu
+  contains
+    procedure :: rhs => flow_rhs
+    procedure :: jacobian => flow_jacobian
+    procedure :: setup
+  end type flow_t
+
+contains
+
+  subroutine setup(self, sys, variational)
+    class(flow_t), intent(inout) :: self
+    class(periodic_system_t), target, intent(inout) :: sys
+    logical, intent(in) :: variational
+    self%sys => sys
+    self%n = sys%n
+    self%variational = variational
+    if (.not. allocated(self%m)) allocate(self%m(sys%n, sys%n), self%c(sys%n, sys%n), self%k(sys%n, sys%n), &
+                                          self%f(sys%n), self%fn(sys%n), self%kt(sys%n, sys%n))
+    call self%err%clear()
+  end subroutine setup
+
+  subroutine flow_rhs(self, t, y, ydot)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    type(error_t) :: err
+    type(nonlinear_info_t) :: info
+    integer :: n, j, n2
+    real(dp) :: acc(self%n), col(self%n)
+    n = self%n
+    n2 = 2*n
+    ydot = 0.0_dp
+    call self%sys%set_time(t, err)
+    if (err%failed()) then
+      call self%fail(t, err%text())
+      return
+    end if
+    call self%sys%linear_terms(self%m, self%c, self%k, self%f, .true.)
+    if (self%sys%is_nonlinear()) then
+      if (self%variational) then
+        call self%sys%nonlinear_terms(y(1:n), self%fn, info, tangent=self%kt)
+      else
+        call self%sys%nonlinear_terms(y(1:n), self%fn, info)
+      end if
+      if (info%beyond_peak) then
+        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(info%element)// &
+                       ' is past the peak of the Ramberg-Osgood law: the material has no stable meaning beyond it')
+        return
+      end if
+    else
+      self%fn = 0.0_dp
+      self%kt = 0.0_dp
+    end if
+    call self%lu%factor(self%m, err)
+    if (err%failed()) then
+      call self%fail(t, 'mass matrix: '//err%text())
+      return
+    end if
+    acc = self%f - matmul(self%c, y(n + 1:n2)) - matmul(self%k, y(1:n)) - self%fn
+    call self%lu%solve(acc)
+    ydot(1:n) = y(n + 1:n2)
+    ydot(n + 1:n2) = acc
+    if (.not. self%variational) return
+    if (self%sys%is_nonlinear()) self%k = self%k + self%kt
+    ! Y = [Yq; Yv] (2n x 2n, column-major after the state): Yq' = Yv,
+    ! Yv' = -M^-1 (K Yq + C Yv)
+    do j = 1, n2
+      associate (yq => y(n2 + (j - 1)*n2 + 1:n2 + (j - 1)*n2 + n), yv => y(n2 + (j - 1)*n2 + n + 1:n2 + j*n2))
+        ydot(n2 + (j - 1)*n2 + 1:n2 + (j - 1)*n2 + n) = yv
+        col = -(matmul(self%k, yq) + matmul(self%c, yv))
+        call self%lu%solve(col)
+        ydot(n2 + (j - 1)*n2 + n + 1:n2 + j*n2) = col
+      end associate
+    end do
+  end subroutine flow_rhs
+
+  integer function method_flag(s)
+    type(shooting_settings_t), intent(in) :: s
+    method_flag = mf_adams
+    if (s%bdf) method_flag = mf_bdf_band_user
+  end function method_flag
+
+  !> Block-diagonal Jacobian in DLSODE's band storage, pd(i - j + mu + 1, j).
+  subroutine flow_jacobian(self, t, y, ml, mu, pd)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    type(error_t) :: err
+    type(nonlinear_info_t) :: info
+    real(dp) :: a(self%n, self%n), b(self%n, self%n), col(self%n)
+    integer :: n, n2, nb, blk, i, j, o
+    n = self%n
+    n2 = 2*n
+    if (.false.) o = ml
+    call self%sys%set_time(t, err)
+    if (err%failed()) then
+      call self%fail(t, err%text())
+      return
+    end if
+    call self%sys%linear_terms(self%m, self%c, self%k, self%f, .true.)
+    if (self%sys%is_nonlinear()) then
+      call self%sys%nonlinear_terms(y(1:n), self%fn, info, tangent=self%kt)
+      self%k = self%k + self%kt
+    end if
+    call self%lu%factor(self%m, err)
+    if (err%failed()) then
+      call self%fail(t, 'mass matrix: '//err%text())
+      return
+    end if
+    do j = 1, n
+      col = -self%k(:, j)
+      call self%lu%solve(col)
+      a(:, j) = col
+      col = -self%c(:, j)
+      call self%lu%solve(col)
+      b(:, j) = col
+    end do
+    nb = size(y)/n2
+    do blk = 0, nb - 1
+      o = blk*n2
+      do j = 1, n
+        pd(o + j - (o + n + j) + mu + 1, o + n + j) = 1.0_dp
+        do i = 1, n
+          pd(o + n + i - (o + j) + mu + 1, o + j) = a(i, j)
+          pd(o + n + i - (o + n + j) + mu + 1, o + n + j) = b(i, j)
+        end do
+      end do
+    end do
+  end subroutine flow_jacobian
+
+  !> One revolution from y0 (state only, or with the monodromy matrix).
+  subroutine revolution(sys, s, y0, variational, yt, mono, rep, err)
+    class(periodic_system_t), target, intent(inout) :: sys
+    type(shooting_settings_t), intent(in) :: s
+    real(dp), intent(in) :: y0(:)
+    logical, intent(in) :: variational
+    real(dp), intent(out) :: yt(:)
+    real(dp), intent(out) :: mono(:, :)
+    type(shooting_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    type(flow_t), target :: flow
+    type(lsode_t) :: ode
+    type(lsode_counters_t) :: cnt
+    real(dp), allocatable :: y(:)
+    integer :: n2, neq, j
+    n2 = 2*sys%n
+    neq = n2
+    if (variational) neq = n2 + n2*n2
+    allocate(y(neq))
+    y(1:n2) = y0
+    if (variational) then
+      y(n2 + 1:) = 0.0_dp
+      do j = 1, n2
+        y(n2 + (j - 1)*n2 + j) = 1.0_dp
+      end do
+    end if
+    call flow%setup(sys, variational)
+    call ode%init(neq, 0.0_dp, method_flag(s), s%rtol, [s%atol], err, max_steps=s%max_steps, ml=n2 - 1, mu=n2 - 1)
+    if (err%failed()) return
+    call ode%integrate_to(flow, y, sys%period(), err)
+    cnt = ode%counters()
+    rep%steps = rep%steps + cnt%steps
+    rep%rhs_evaluations = rep%rhs_evaluations + cnt%rhs_evals
+    rep%revolutions = rep%revolutions + 1
+    if (err%failed()) return
+    yt = y(1:n2)
+    if (variational) mono = reshape(y(n2 + 1:), [n2, n2])
+  end subroutine revolution
+
+  !> Newton on Phi_T(y0) = y0 from the guess y0; on return y0 is the initial
+  !> state of the periodic solution.
+  subroutine shooting_solve(sys, s, y0, rep, err)
+    class(periodic_system_t), target, intent(inout) :: sys
+    type(shooting_settings_t), intent(in) :: s
+    real(dp), intent(inout) :: y0(:)
+    type(shooting_report_t), intent(out) :: rep
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: yt(:), mono(:, :), jac(:, :), r(:), wr(:), wi(:), d(:), m(:, :), c(:, :), k(:, :), f(:)
+    integer, allocatable :: ipiv(:)
+    integer :: n, n2, it, j, i
+    real(dp) :: res, sq, sv, rc
+    logical :: have_mono, linear
+    n = sys%n
+    n2 = 2*n
+    allocate(yt(n2), mono(n2, n2), jac(n2, n2), r(n2), ipiv(n2), wr(n2), wi(n2), d(n2), m(n, n), c(n, n), &
+             k(n, n), f(n))
+    linear = .not. sys%is_nonlinear()
+    ! energy scaling of the state, D = diag(sqrt(K_ii), sqrt(M_ii)) at t = 0:
+    ! (Q, Q_d) differ in size by the natural frequencies, and Y(T) - I is only
+    ! meaningfully conditioned in units where both carry energy
+    call sys%set_time(0.0_dp, err)
+    if (err%failed()) return
+    call sys%linear_terms(m, c, k, f, .true.)
+    do i = 1, n
+      d(i) = sqrt(max(abs(k(i, i)), tiny(1.0_dp)))
+      d(n + i) = sqrt(max(abs(m(i, i)), tiny(1.0_dp)))
+    end do
+    have_mono = .false.
+    do it = 0, s%max_newton
+      if (linear .and. have_mono) then
+        call revolution(sys, s, y0, .false., yt, jac, rep, err)
+      else
+        call revolution(sys, s, y0, .true., yt, mono, rep, err)
+        have_mono = .true.
+      end if
+      if (err%failed()) then
+        call err%add_context('shooting, Newton iteration '//str(it))
+        return
+      end if
+      r = yt - y0
+      sq = max(maxval(abs(y0(1:n))), maxval(abs(yt(1:n))), tiny(1.0_dp))
+      sv = max(maxval(abs(y0(n + 1:n2))), maxval(abs(yt(n + 1:n2))), tiny(1.0_dp))
+      res = max(maxval(abs(r(1:n)))/sq, maxval(abs(r(n + 1:n2)))/sv)
+      rep%residual(it) = res
+      rep%newton_iterations = it
+      if (res <= s%newton_tol .and. it > 0) then
+        rep%converged = .true.
+        exit
+      end if
+      if (it == s%max_newton) exit
+      ! Newton step: (Y(T) - I) dy = -(Phi(y0) - y0), in energy units D
+      do j = 1, n2
+        jac(:, j) = d*mono(:, j)/d(j)
+        jac(j, j) = jac(j, j) - 1.0_dp
+      end do
+      call lu_factor(jac, ipiv, err, rc)
+      rep%rcond_newton = min(rep%rcond_newton, rc)
+      if (err%failed() .or. rc < s%singular_rcond) then
+        rep%near_resonance = .true.
+        if (.not. err%failed()) call err%set('shooting', 'the one-revolution map minus identity is nearly singular '// &
+          '(rcond '//str(rc, 3)//'): a Floquet multiplier is at 1, a harmonic of the crank speed sits on a '// &
+          'natural frequency; no isolated periodic solution')
+        exit
+      end if
+      r = -d*r
+      call lu_solve(jac, ipiv, r, err)
+      y0 = y0 + r/d
+    end do
+    ! Floquet multipliers of the (last) monodromy matrix
+    call eigenvalues_general(mono, wr, wi, err)
+    if (err%failed()) return
+    rep%mult_re = wr
+    rep%mult_im = wi
+    rep%max_multiplier = maxval(sqrt(wr**2 + wi**2))
+    rep%stable = rep%max_multiplier <= 1.0_dp + s%unit_circle_tol
+  end subroutine shooting_solve
+
+  !> Q (and Q_d) along the periodic orbit from y0 at increasing times in [0, T].
+  subroutine periodic_orbit(sys, s, y0, times, q, qd, rep, err)
+    class(periodic_system_t), target, intent(inout) :: sys
+    type(shooting_settings_t), intent(in) :: s
+    real(dp), intent(in) :: y0(:), times(:)
+    real(dp), intent(out) :: q(:, :), qd(:, :)
+    type(shooting_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    type(flow_t), target :: flow
+    type(lsode_t) :: ode
+    type(lsode_counters_t) :: cnt
+    real(dp) :: y(size(y0))
+    integer :: j, n
+    n = sys%n
+    y = y0
+    call flow%setup(sys, .false.)
+    call ode%init(2*n, 0.0_dp, method_flag(s), s%rtol, [s%atol], err, max_steps=s%max_steps, ml=2*n - 1, mu=2*n - 1)
+    if (err%failed()) return
+    do j = 1, size(times)
+      if (times(j) > ode%t) call ode%integrate_to(flow, y, times(j), err)
+      if (err%failed()) return
+      q(:, j) = y(1:n)
+      qd(:, j) = y(n + 1:2*n)
+    end do
+    cnt = ode%counters()
+    rep%steps = rep%steps + cnt%steps
+    rep%rhs_evaluations = rep%rhs_evaluations + cnt%rhs_evals
+  end subroutine periodic_orbit
+end module periodic_shooting
