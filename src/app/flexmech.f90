@@ -17,6 +17,7 @@ program flexmech
   use ode_verification, only: run_lsode_check
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
+  use steady_analysis, only: run_steady
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -53,6 +54,8 @@ program flexmech
     call run_transient(deck, out, err)
   case ('optimize')
     call run_optimize(deck, out, err)
+  case ('steady')
+    call run_steady(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)

@@ -1,0 +1,474 @@
+!> The `steady` analysis (Tennant 1985): the steady-state vibration of a
+!> flexible linkage driven at constant crank speed, by the paper's
+!> harmonic-series method (T26-T28) with the outer iteration on the nonlinear
+!> stiffness, by the exact periodic solution (shooting, Floquet multipliers),
+!> or both side by side.  Output rows over one crank revolution: elastic
+!> displacements of the joints, local deformations of each link's end 2, and
+!> the maximum |stress| of every element.  Near resonance the analysis stops
+!> with the diagnosis instead of printing a meaningless steady state.
+module steady_analysis
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t, invalid_value
+  use table_output, only: table_t
+  use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, profile_constant, &
+                     joint_pin, joint_slider_fixed, joint_free, joint_slider_link
+  use tennant_element, only: tennant_stress_t
+  use steady_model, only: steady_model_t
+  use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings
+  use harmonic_solver, only: harmonic_report_t, harmonic_solve
+  use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit
+  implicit none
+  private
+  public :: run_steady
+
+  integer, parameter :: n_freq_reported = 5
+
+contains
+
+  subroutine run_steady(deck, out, err)
+    type(deck_t), intent(inout) :: deck
+    type(table_t), intent(inout) :: out
+    type(error_t), intent(inout) :: err
+    type(mechanism_t) :: mech
+    type(steady_settings_t) :: s
+    type(steady_model_t), target :: model
+    type(harmonic_report_t) :: hrep
+    type(shooting_report_t) :: srep
+    real(dp), allocatable :: times(:), qh(:, :), qs(:, :), qsd(:, :), y0(:), row(:), peak(:, :), peak_at(:, :)
+    real(dp) :: cpu0, cpu1, cpu_h, cpu_s, omega
+    integer :: n_out, k, n_el
+    logical :: do_h, do_s
+    character(len=32), allocatable :: names(:)
+
+    call read_mechanism(deck, mech, err)
+    if (err%failed()) return
+    call read_steady_settings(deck, mech%n_links, s, err)
+    if (err%failed()) return
+    omega = mech%driver%omega
+    if (.not. omega > 0.0_dp) then
+      call invalid_value(deck, 'mechanism', 'omega', str(omega), &
+                         'a steady-state analysis needs a crank turning at constant speed > 0', err)
+      return
+    end if
+    if (mech%driver%profile /= profile_constant) then
+      call invalid_value(deck, 'mechanism', 'profile', '''spinup''', &
+                         'a steady-state analysis needs the constant crank speed profile', err)
+      return
+    end if
+    block
+      integer :: u
+      u = out%echo_unit()
+      call echo_mechanism(mech, u)
+      call out%end_echo()
+    end block
+    call echo_steady_settings(out)
+
+    call model%init_mechanism(mech, s%element, s%sections, err)
+    if (err%failed()) then
+      err%code = 2
+      call err%add_context('deck '''//deck%path//''', group &mechanism/&tennant')
+      return
+    end if
+    do_h = s%method /= 'shooting'
+    do_s = s%method /= 'harmonic'
+    call write_model_header(out, mech, s, model)
+    call frequency_scan(out, model, s, err)
+    if (err%failed()) return
+
+    ! output grid: one revolution, both ends included
+    n_out = max(1, nint(360.0_dp/s%output_step_deg))
+    allocate(times(n_out + 1))
+    do k = 0, n_out
+      times(k + 1) = real(k, dp)*(two_pi/n_out)/omega
+    end do
+    n_el = size(model%el)
+
+    cpu_h = 0.0_dp
+    cpu_s = 0.0_dp
+    if (do_h) then
+      allocate(qh(model%n, n_out + 1))
+      call cpu_time(cpu0)
+      call harmonic_solve(model, s%harmonic, times, qh, hrep, err)
+      call cpu_time(cpu1)
+      cpu_h = cpu1 - cpu0
+      call report_harmonic(out, s, hrep, omega)
+      call harmonic_cost(out, model, s, hrep, cpu_h)
+      if (err%failed()) then
+        call err%add_context('harmonic series')
+        return
+      end if
+      call harmonic_diagnosis(s, hrep, omega, err)
+      if (err%failed()) return
+    end if
+    if (do_s) then
+      allocate(qs(model%n, n_out + 1), qsd(model%n, n_out + 1), y0(2*model%n))
+      y0 = 0.0_dp
+      if (do_h) y0(1:model%n) = qh(:, 1)
+      call cpu_time(cpu0)
+      call shooting_solve(model, s%shooting, y0, srep, err)
+      if (.not. err%failed() .and. (srep%converged .and. (srep%stable .or. s%allow_resonance))) &
+        call periodic_orbit(model, s%shooting, y0, times, qs, qsd, srep, err)
+      call cpu_time(cpu1)
+      cpu_s = cpu1 - cpu0
+      call report_shooting(out, s, srep, omega)
+      call out%cost('shooting_revolutions_integrated', str(srep%revolutions))
+      call out%cost('shooting_steps', str(srep%steps))
+      call out%cost('shooting_rhs_evaluations', str(srep%rhs_evaluations))
+      call out%cost('cpu_seconds_shooting', str(cpu_s, 4))
+      if (err%failed()) then
+        call err%add_context('exact periodic solution (shooting) at crank speed '//str(omega, 6)//' rad/s')
+        return
+      end if
+      call shooting_diagnosis(s, srep, omega, err)
+      if (err%failed()) return
+    end if
+
+    ! the table
+    call column_names(out, mech, model, do_h, do_s, names)
+    allocate(row(size(names)), peak(n_el, 2), peak_at(n_el, 2))
+    peak = 0.0_dp
+    peak_at = 0.0_dp
+    do k = 1, n_out + 1
+      call model%set_time(times(k), err)
+      if (err%failed()) return
+      row(1) = times(k)*omega*180.0_dp/pi + mech%driver%theta0*180.0_dp/pi
+      row(2) = times(k)
+      if (do_h) call fill(qh(:, k), 1)
+      if (do_s) call fill(qs(:, k), 2)
+      call out%row(row)
+    end do
+    do k = 1, n_el
+      if (do_h) call out%summary('element '//str(k)//' peak |stress| (harmonic series)', str(peak(k, 1), 8)// &
+                                 ' psi at crank angle '//str(peak_at(k, 1), 6)//' deg')
+      if (do_s) call out%summary('element '//str(k)//' peak |stress| (exact periodic)', str(peak(k, 2), 8)// &
+                                 ' psi at crank angle '//str(peak_at(k, 2), 6)//' deg')
+    end do
+    if (do_h .and. do_s) then
+      call out%summary('harmonic series vs exact periodic', 'max |Q_h - Q_exact| / max |Q_exact| = '// &
+                       str(maxval(abs(qh - qs))/max(maxval(abs(qs)), tiny(1.0_dp)), 4))
+    end if
+    call out%cost('kinematics_solutions', str(model%n_kinematics))
+
+  contains
+
+    subroutine fill(q, which)
+      real(dp), intent(in) :: q(:)
+      integer, intent(in) :: which
+      type(tennant_stress_t) :: st(n_el)
+      integer :: j, i, e, c
+      c = 2
+      if (which == 2 .and. do_h) c = 2 + (size(row) - 2)/2
+      do j = 1, mech%n_joints
+        if (.not. joint_moves(mech, j)) cycle
+        row(c + 1:c + 2) = joint_displacement(model, mech, j, q)
+        c = c + 2
+      end do
+      do i = 1, mech%n_links
+        e = mech%links(i)%first_element + mech%links(i)%n_elements - 1
+        block
+          real(dp) :: uwa(3)
+          uwa = model%local_field(e, q, 1.0_dp)
+          row(c + 1:c + 2) = uwa(1:2)
+        end block
+        c = c + 2
+      end do
+      call model%stresses(q, st)
+      do e = 1, n_el
+        row(c + e) = st(e)%max_abs_stress
+        if (st(e)%max_abs_stress > peak(e, which)) then
+          peak(e, which) = st(e)%max_abs_stress
+          peak_at(e, which) = row(1)
+        end if
+      end do
+    end subroutine fill
+  end subroutine run_steady
+
+  ! ------------------------------------------------------------------ header
+
+  subroutine write_model_header(out, mech, s, model)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(steady_settings_t), intent(in) :: s
+    type(steady_model_t), intent(in) :: model
+    character(len=120), allocatable :: tlines(:)
+    integer :: i
+    associate (lines => mechanism_summary(mech))
+      do i = 1, size(lines)
+        if (len_trim(lines(i)) > 0) call out%comment(trim(lines(i)))
+      end do
+    end associate
+    associate (o => s%element)
+      if (o%shear .and. o%shear_modulus <= 0.0_dp) then
+        call out%comment('element: Tennant (T17-T19), 14 DOFs with shear angle alpha; shear modulus G = '// &
+                         str(model%el(1)%shear_modulus, 6)//' (default E1/(2(1 + nu)), nu = '//str(o%poisson, 3)// &
+                         '), shear factor '//str(o%shear_factor, 4))
+      else if (o%shear) then
+        call out%comment('element: Tennant (T17-T19), 14 DOFs with shear angle alpha; shear modulus G = '// &
+                         str(model%el(1)%shear_modulus, 6)//', shear factor '//str(o%shear_factor, 4))
+      else
+        call out%comment('element: Tennant (T17, T18, T29, T30), 8 DOFs, slender (no shear angle)')
+      end if
+      call out%comment('tracing constants: D_k = '//str(o%d_k, 3)//' (material), D_b = '//str(o%d_b, 3)// &
+                       ' (curvature), D_g = '//str(o%d_g, 3)//' (stretching)')
+      if (.not. (o%d_k > 0.0_dp .or. o%d_b > 0.0_dp .or. o%d_g > 0.0_dp)) &
+        call out%comment('(all tracing constants zero: the linear analysis; no nonlinear term is computed)')
+      call out%comment('kinetic energy: rotatory inertia '//str(o%rotary_inertia)//', shear-angle inertia (T4) '// &
+                       str(o%shear .and. o%shear_inertia)//'; damping beta = '//str(o%damping_beta)//' s')
+    end associate
+    call model%table%describe(tlines)
+    do i = 1, size(tlines)
+      call out%comment(trim(tlines(i)))
+    end do
+    if (s%method /= 'shooting') then
+      call out%comment('harmonic series (T26-T28): N = '//str(s%harmonic%n_harmonics)//' harmonics from '// &
+                       str(2*s%harmonic%n_harmonics)//' samples per revolution, '// &
+                       str(merge(s%harmonic%n_harmonics, s%harmonic%n_kept, s%harmonic%n_kept == 0))// &
+                       ' kept; K(t), M(t) frozen at each output time; C Q_dot '// &
+                       merge('kept     ', 'neglected', s%harmonic%velocity_terms)//' (T)')
+    end if
+  end subroutine write_model_header
+
+  !> Natural frequencies of the structure frozen at the 2N sample times: their
+  !> range over the revolution, and the harmonics of the crank speed inside it.
+  subroutine frequency_scan(out, model, s, err)
+    type(table_t), intent(inout) :: out
+    type(steady_model_t), intent(inout) :: model
+    type(steady_settings_t), intent(in) :: s
+    type(error_t), intent(inout) :: err
+    real(dp) :: wn(model%n), wmin(n_freq_reported), wmax(n_freq_reported), w
+    integer :: k, ns, i, nf, h
+    character(len=:), allocatable :: line
+    nf = min(n_freq_reported, model%n)
+    ns = max(2*s%harmonic%n_harmonics, 24)
+    wmin = huge(1.0_dp)
+    wmax = 0.0_dp
+    do k = 0, ns - 1
+      call model%set_time(k*model%period()/ns, err)
+      if (err%failed()) return
+      call model%frozen_frequencies(wn, err)
+      if (err%failed()) return
+      wmin(1:nf) = min(wmin(1:nf), wn(1:nf))
+      wmax(1:nf) = max(wmax(1:nf), wn(1:nf))
+    end do
+    call model%set_time(0.0_dp, err)
+    line = 'natural frequencies of the frozen structure over the revolution (rad/s, min-max):'
+    do i = 1, nf
+      line = line//' '//str(wmin(i), 5)//'-'//str(wmax(i), 5)
+    end do
+    call out%comment(line)
+    w = model%omega
+    call out%comment('crank speed '//str(w, 6)//' rad/s = '//str(w/wmin(1), 4)//' of the lowest natural frequency')
+    do h = 1, s%harmonic%n_harmonics
+      do i = 1, nf
+        if (h*w >= 0.95_dp*wmin(i) .and. h*w <= 1.05_dp*wmax(i)) then
+          call out%comment('warning: harmonic '//str(h)//' of the crank speed ('//str(h*w, 6)//' rad/s) meets '// &
+                           'natural frequency '//str(i)//' of the frozen structure during the revolution')
+        end if
+      end do
+    end do
+  end subroutine frequency_scan
+
+  ! ------------------------------------------------------------------ reports
+
+  subroutine report_harmonic(out, s, rep, omega)
+    type(table_t), intent(inout) :: out
+    type(steady_settings_t), intent(in) :: s
+    type(harmonic_report_t), intent(in) :: rep
+    real(dp), intent(in) :: omega
+    integer :: i
+    if (s%harmonic%velocity_terms) then
+      do i = 1, rep%velocity_iterations
+        call out%summary('C Q_dot iteration '//str(i)//' on the samples', 'max relative change of Q = '// &
+                         str(rep%velocity_change(i), 3))
+      end do
+    end if
+    call out%summary('outer iterations (K_n updates after the linear solution)', str(rep%outer_iterations)// &
+                     merge(' (converged)    ', ' (NOT converged)', rep%converged))
+    do i = 1, rep%outer_iterations
+      call out%summary('outer iteration '//str(i), 'max relative change of Q = '//str(rep%change(i), 3))
+    end do
+    call out%summary('worst conditioning of K - n^2 w^2 M', 'rcond/rcond(K) = '//str(rep%worst_ratio, 3)// &
+                     ' for harmonic n = '//str(rep%worst_harmonic)//' ('//str(rep%worst_harmonic*omega, 6)// &
+                     ' rad/s) at crank angle '//str(modulo(rep%worst_time*omega*180.0_dp/pi, 360.0_dp), 5)// &
+                     ' deg; smallest rcond '//str(rep%min_rcond, 3))
+    if (rep%max_abs_strain > 0.0_dp) call out%summary('largest strain (harmonic series)', &
+      str(rep%max_abs_strain, 5)//' in element '//str(rep%strain_element)//' at crank angle '// &
+      str(modulo(rep%strain_time*omega*180.0_dp/pi, 360.0_dp), 5)//' deg')
+  end subroutine report_harmonic
+
+  subroutine harmonic_cost(out, model, s, rep, cpu)
+    type(table_t), intent(inout) :: out
+    type(steady_model_t), intent(in) :: model
+    type(steady_settings_t), intent(in) :: s
+    type(harmonic_report_t), intent(in) :: rep
+    real(dp), intent(in) :: cpu
+    call out%cost('harmonics_used', str(rep%n_kept)//' of N = '//str(s%harmonic%n_harmonics)//' ('// &
+                  str(rep%n_samples)//' samples per revolution)')
+    call out%cost('outer_iterations', str(rep%outer_iterations))
+    call out%cost('factorizations', str(rep%factorizations))
+    call out%cost('linear_assemblies', str(model%n_linear_evaluations))
+    call out%cost('nonlinear_assemblies', str(model%n_nonlinear_evaluations))
+    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    call out%cost('cpu_seconds_harmonic', str(cpu, 4))
+  end subroutine harmonic_cost
+
+  subroutine report_shooting(out, s, rep, omega)
+    type(table_t), intent(inout) :: out
+    type(steady_settings_t), intent(in) :: s
+    type(shooting_report_t), intent(in) :: rep
+    real(dp), intent(in) :: omega
+    integer :: i, n, j
+    real(dp), allocatable :: modulus(:)
+    character(len=:), allocatable :: line
+    call out%summary('shooting Newton iterations', str(rep%newton_iterations)// &
+                     merge(' (converged)    ', ' (NOT converged)', rep%converged))
+    do i = 0, rep%newton_iterations
+      call out%summary('shooting iteration '//str(i), '|Phi(y0) - y0| / |y| = '//str(rep%residual(i), 3))
+    end do
+    call out%summary('rcond of the Newton matrix Y(T) - I (energy units)', str(rep%rcond_newton, 3))
+    if (allocated(rep%mult_re)) then
+      n = size(rep%mult_re)
+      modulus = sqrt(rep%mult_re**2 + rep%mult_im**2)
+      line = ''
+      do i = 1, min(6, n)
+        j = maxloc(modulus, dim=1)
+        line = line//' '//str(modulus(j), 6)
+        modulus(j) = -1.0_dp
+      end do
+      call out%summary('Floquet multipliers, largest moduli', trim(line))
+      call out%summary('steady state', merge('stable  ', 'UNSTABLE', rep%stable)//' (largest |multiplier| '// &
+                       str(rep%max_multiplier, 8)//', tolerance 1 + '//str(s%shooting%unit_circle_tol, 3)// &
+                       ') at crank speed '//str(omega, 6)//' rad/s')
+    end if
+  end subroutine report_shooting
+
+  subroutine harmonic_diagnosis(s, rep, omega, err)
+    type(steady_settings_t), intent(in) :: s
+    type(harmonic_report_t), intent(in) :: rep
+    real(dp), intent(in) :: omega
+    type(error_t), intent(inout) :: err
+    if (rep%beyond_peak) then
+      call err%set('harmonic series', 'strain '//str(rep%max_abs_strain, 5)//' in element '// &
+                   str(rep%strain_element)//' passes the peak of the Ramberg-Osgood law (the material has no '// &
+                   'stable meaning beyond it) at crank speed '//str(omega, 6)//' rad/s')
+    else if (.not. rep%converged) then
+      call err%set('harmonic series', 'the outer iteration on K_n did not converge in '// &
+                   str(s%harmonic%max_outer)//' iterations (last change '// &
+                   str(rep%change(s%harmonic%max_outer), 3)//') at crank speed '//str(omega, 6)//' rad/s')
+    else if (rep%near_resonance .and. .not. s%allow_resonance) then
+      call err%set('harmonic series', 'near resonance at crank speed '//str(omega, 6)//' rad/s: K - n^2 w^2 M '// &
+                   'is nearly singular for harmonic n = '//str(rep%worst_harmonic)//' ('// &
+                   str(rep%worst_harmonic*omega, 6)//' rad/s) at crank angle '// &
+                   str(modulo(rep%worst_time*omega*180.0_dp/pi, 360.0_dp), 5)//' deg (rcond/rcond(K) = '// &
+                   str(rep%worst_ratio, 3)//' < resonance_ratio = '//str(s%harmonic%resonance_ratio, 3)// &
+                   '); the steady state is not printed (allow_resonance = .true. prints it anyway)')
+    end if
+  end subroutine harmonic_diagnosis
+
+  subroutine shooting_diagnosis(s, rep, omega, err)
+    type(steady_settings_t), intent(in) :: s
+    type(shooting_report_t), intent(in) :: rep
+    real(dp), intent(in) :: omega
+    type(error_t), intent(inout) :: err
+    if (.not. rep%converged) then
+      call err%set('exact periodic solution', 'Newton on the one-revolution map did not converge in '// &
+                   str(s%shooting%max_newton)//' iterations (residual '// &
+                   str(rep%residual(rep%newton_iterations), 3)//') at crank speed '//str(omega, 6)//' rad/s')
+    else if (.not. rep%stable .and. .not. s%allow_resonance) then
+      call err%set('exact periodic solution', 'the periodic solution at crank speed '//str(omega, 6)// &
+                   ' rad/s is UNSTABLE: a Floquet multiplier has modulus '//str(rep%max_multiplier, 8)// &
+                   ' > 1 (parametric resonance); the steady state is not printed (allow_resonance = .true. '// &
+                   'prints it anyway)')
+    end if
+  end subroutine shooting_diagnosis
+
+  ! ------------------------------------------------------------------ columns
+
+  logical function joint_moves(mech, j)
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: j
+    integer :: i
+    joint_moves = .false.
+    if (mech%joints(j)%grounded) return
+    if (any(mech%joints(j)%kind == [joint_pin, joint_slider_fixed, joint_free])) then
+      joint_moves = .true.
+    else if (mech%joints(j)%kind == joint_slider_link) then
+      do i = 1, mech%joints(j)%n_links
+        if (mech%joints(j)%link(i) /= mech%joints(j)%sliding_link) joint_moves = .true.
+      end do
+    end if
+  end function joint_moves
+
+  !> Global elastic (U, W) of joint j, at the first link end there that is
+  !> not a link sliding through the joint's sleeve.
+  function joint_displacement(model, mech, j, q) result(uw)
+    type(steady_model_t), intent(in) :: model
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: j
+    real(dp), intent(in) :: q(:)
+    real(dp) :: uw(2)
+    integer :: i, link, side, e, nn
+    uw = 0.0_dp
+    do i = 1, mech%joints(j)%n_links
+      link = mech%joints(j)%link(i)
+      if (mech%joints(j)%kind == joint_slider_link .and. link == mech%joints(j)%sliding_link) cycle
+      side = mech%joints(j)%link_end(i)
+      if (side == 1) then
+        e = mech%links(link)%first_element
+        uw = model%element_q(e, q)
+        uw = uw(1:2)
+      else
+        e = mech%links(link)%first_element + mech%links(link)%n_elements - 1
+        nn = model%el(e)%nn
+        block
+          real(dp) :: qe(model%el(e)%nd)
+          qe = model%element_q(e, q)
+          uw = qe(nn + 1:nn + 2)
+        end block
+      end if
+      return
+    end do
+  end function joint_displacement
+
+  subroutine column_names(out, mech, model, do_h, do_s, names)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(steady_model_t), intent(in) :: model
+    logical, intent(in) :: do_h, do_s
+    character(len=32), allocatable, intent(out) :: names(:)
+    integer :: pass
+    character(len=:), allocatable :: suffix
+    names = [character(len=32) :: 'crank_deg', 't']
+    do pass = 1, 2
+      if (pass == 1 .and. .not. do_h) cycle
+      if (pass == 2 .and. .not. do_s) cycle
+      suffix = ''
+      if (pass == 2 .and. do_h) suffix = '_exact'
+      call add_names(suffix)
+    end do
+    call out%comment('columns: crank_deg = crank angle (deg); t (s) from crank angle theta0; <joint>_U, <joint>_W = '// &
+                     'elastic displacement of the joint along global X, Y (in; T''s U~1 is B_U, U~2 is C_U for the '// &
+                     'four-bar); <link>_u_end, <link>_w_end = axial and transverse elastic displacement of the '// &
+                     'link''s end 2 in its rigid-body axes (in); sigma_max_e<k> = largest |stress| in element k (psi); '// &
+                     'suffix _exact: the exact periodic solution (shooting)')
+    call out%columns(names)
+  contains
+    subroutine add_names(sfx)
+      character(len=*), intent(in) :: sfx
+      integer :: j, i, e
+      do j = 1, mech%n_joints
+        if (.not. joint_moves(mech, j)) cycle
+        names = [character(len=32) :: names, trim(mech%joints(j)%name)//'_U'//sfx, trim(mech%joints(j)%name)//'_W'//sfx]
+      end do
+      do i = 1, mech%n_links
+        names = [character(len=32) :: names, trim(mech%links(i)%name)//'_u_end'//sfx, &
+                 trim(mech%links(i)%name)//'_w_end'//sfx]
+      end do
+      do e = 1, size(model%el)
+        names = [character(len=32) :: names, 'sigma_max_e'//str(e)//sfx]
+      end do
+    end subroutine add_names
+  end subroutine column_names
+end module steady_analysis

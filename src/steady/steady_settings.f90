@@ -1,0 +1,236 @@
+!> The &steady and &tennant groups of a steady-state deck: which solver (the
+!> paper's harmonic series, the exact periodic solution by shooting, or both),
+!> their settings, the output grid and damping; and Tennant's element: the
+!> tracing constants, shear angle, inertia terms, shear modulus and sections.
+module steady_settings
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t, invalid_value
+  use table_output, only: table_t
+  use linkage, only: max_links
+  use tennant_element, only: tennant_options_t, tennant_max_sections
+  use steady_model, only: link_sections_t
+  use harmonic_solver, only: harmonic_settings_t, max_outer_limit
+  use periodic_shooting, only: shooting_settings_t, max_newton_limit
+  implicit none
+  private
+  public :: steady_settings_t, read_steady_settings, echo_steady_settings
+
+  integer, parameter :: ms = tennant_max_sections
+
+  type :: steady_settings_t
+    character(len=16) :: method = 'harmonic'      !< 'harmonic', 'shooting' or 'both'
+    type(harmonic_settings_t) :: harmonic
+    type(shooting_settings_t) :: shooting
+    real(dp) :: output_step_deg = 5.0_dp
+    logical :: allow_resonance = .false.          !< print a steady state even near resonance
+    type(tennant_options_t) :: element
+    type(link_sections_t) :: sections(max_links)
+  end type steady_settings_t
+
+  ! staging variables of the namelist groups
+  character(len=16) :: method, integrator
+  integer :: n_harmonics, harmonics_kept, max_outer, max_newton, max_steps, n_gauss
+  logical :: velocity_terms, allow_resonance, shear, rotary_inertia, shear_inertia
+  real(dp) :: outer_tol, resonance_ratio, output_step_deg, damping_beta, rtol, atol, newton_tol, &
+              unit_circle_tol, singular_rcond
+  real(dp) :: d_k, d_b, d_g, shear_modulus, poisson, shear_factor
+  integer :: n_sections(max_links)
+  real(dp) :: section_end(max_links, ms), section_b(max_links, ms), section_h(max_links, ms)
+  namelist /steady/ method, n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio, &
+    allow_resonance, output_step_deg, damping_beta, integrator, rtol, atol, newton_tol, max_newton, max_steps, &
+    unit_circle_tol, singular_rcond
+  namelist /tennant/ d_k, d_b, d_g, shear, rotary_inertia, shear_inertia, shear_modulus, poisson, shear_factor, &
+    n_gauss, n_sections, section_end, section_b, section_h
+
+contains
+
+  subroutine read_steady_settings(deck, n_links, s, err)
+    type(deck_t), intent(inout) :: deck
+    integer, intent(in) :: n_links
+    type(steady_settings_t), intent(out) :: s
+    type(error_t), intent(inout) :: err
+    logical :: found
+    integer :: k
+
+    method = s%method
+    n_harmonics = s%harmonic%n_harmonics
+    harmonics_kept = s%harmonic%n_kept
+    velocity_terms = s%harmonic%velocity_terms
+    outer_tol = s%harmonic%outer_tol
+    max_outer = s%harmonic%max_outer
+    resonance_ratio = s%harmonic%resonance_ratio
+    allow_resonance = s%allow_resonance
+    output_step_deg = s%output_step_deg
+    damping_beta = s%element%damping_beta
+    integrator = 'bdf'
+    rtol = s%shooting%rtol
+    atol = s%shooting%atol
+    newton_tol = s%shooting%newton_tol
+    max_newton = s%shooting%max_newton
+    max_steps = s%shooting%max_steps
+    unit_circle_tol = s%shooting%unit_circle_tol
+    singular_rcond = s%shooting%singular_rcond
+    call deck%read_group('steady', read_steady_group, .false., found, err)
+    if (err%failed()) return
+
+    d_k = s%element%d_k
+    d_b = s%element%d_b
+    d_g = s%element%d_g
+    shear = s%element%shear
+    rotary_inertia = s%element%rotary_inertia
+    shear_inertia = s%element%shear_inertia
+    shear_modulus = s%element%shear_modulus
+    poisson = s%element%poisson
+    shear_factor = s%element%shear_factor
+    n_gauss = s%element%n_gauss
+    n_sections = 0
+    section_end = 0.0_dp
+    section_b = 0.0_dp
+    section_h = 0.0_dp
+    call deck%read_group('tennant', read_tennant_group, .false., found, err)
+    if (err%failed()) return
+
+    s%method = method
+    s%harmonic = harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, &
+                                     resonance_ratio)
+    s%allow_resonance = allow_resonance
+    s%output_step_deg = output_step_deg
+    s%shooting%rtol = rtol
+    s%shooting%atol = atol
+    s%shooting%newton_tol = newton_tol
+    s%shooting%max_newton = max_newton
+    s%shooting%max_steps = max_steps
+    s%shooting%unit_circle_tol = unit_circle_tol
+    s%shooting%singular_rcond = singular_rcond
+    s%shooting%bdf = integrator == 'bdf'
+    s%element = tennant_options_t(d_k=d_k, d_b=d_b, d_g=d_g, shear=shear, rotary_inertia=rotary_inertia, &
+                                  shear_inertia=shear_inertia, shear_modulus=shear_modulus, poisson=poisson, &
+                                  shear_factor=shear_factor, n_gauss=n_gauss, damping_beta=damping_beta)
+    do k = 1, max_links
+      s%sections(k)%n = n_sections(k)
+      if (n_sections(k) > 0 .and. n_sections(k) <= ms) then
+        s%sections(k)%f1(1:n_sections(k)) = section_end(k, 1:n_sections(k))
+        s%sections(k)%b(1:n_sections(k)) = section_b(k, 1:n_sections(k))
+        s%sections(k)%h(1:n_sections(k)) = section_h(k, 1:n_sections(k))
+      end if
+    end do
+    call validate(deck, n_links, s, err)
+  end subroutine read_steady_settings
+
+  subroutine validate(deck, n_links, s, err)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: n_links
+    type(steady_settings_t), intent(in) :: s
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'steady', t = 'tennant'
+    integer :: k, j
+    if (all(s%method /= [character(len=16) :: 'harmonic', 'shooting', 'both'])) then
+      call invalid_value(deck, g, 'method', ''''//trim(s%method)//'''', &
+                         'must be ''harmonic'' (T26-T28), ''shooting'' (exact periodic) or ''both''', err)
+    else if (s%harmonic%n_harmonics < 1 .or. s%harmonic%n_harmonics > 256) then
+      call invalid_value(deck, g, 'n_harmonics', str(s%harmonic%n_harmonics), 'must lie in 1..256', err)
+    else if (s%harmonic%n_kept < 0 .or. s%harmonic%n_kept > s%harmonic%n_harmonics) then
+      call invalid_value(deck, g, 'harmonics_kept', str(s%harmonic%n_kept), &
+                         'must lie in 0..n_harmonics (0 = all)', err)
+    else if (.not. (s%harmonic%outer_tol > 0.0_dp .and. s%harmonic%outer_tol < 1.0_dp)) then
+      call invalid_value(deck, g, 'outer_tol', str(s%harmonic%outer_tol), 'must lie in (0, 1)', err)
+    else if (s%harmonic%max_outer < 1 .or. s%harmonic%max_outer > max_outer_limit) then
+      call invalid_value(deck, g, 'max_outer', str(s%harmonic%max_outer), 'must lie in 1..'//str(max_outer_limit), err)
+    else if (.not. (s%harmonic%resonance_ratio >= 0.0_dp .and. s%harmonic%resonance_ratio < 1.0_dp)) then
+      call invalid_value(deck, g, 'resonance_ratio', str(s%harmonic%resonance_ratio), 'must lie in [0, 1)', err)
+    else if (.not. (s%output_step_deg > 0.0_dp .and. s%output_step_deg <= 360.0_dp)) then
+      call invalid_value(deck, g, 'output_step_deg', str(s%output_step_deg), 'must lie in (0, 360]', err)
+    else if (.not. (s%element%damping_beta >= 0.0_dp .and. s%element%damping_beta < 1.0_dp)) then
+      call invalid_value(deck, g, 'damping_beta', str(s%element%damping_beta), 'must lie in [0, 1) seconds', err)
+    else if (integrator /= 'bdf' .and. integrator /= 'adams') then
+      call invalid_value(deck, g, 'integrator', ''''//trim(integrator)//'''', 'must be ''bdf'' or ''adams''', err)
+    else if (.not. (s%shooting%rtol > 0.0_dp .and. s%shooting%rtol < 1.0e-2_dp)) then
+      call invalid_value(deck, g, 'rtol', str(s%shooting%rtol), 'must lie in (0, 0.01)', err)
+    else if (.not. (s%shooting%atol > 0.0_dp)) then
+      call invalid_value(deck, g, 'atol', str(s%shooting%atol), 'must be > 0', err)
+    else if (.not. (s%shooting%newton_tol > 0.0_dp .and. s%shooting%newton_tol < 1.0_dp)) then
+      call invalid_value(deck, g, 'newton_tol', str(s%shooting%newton_tol), 'must lie in (0, 1)', err)
+    else if (s%shooting%max_newton < 1 .or. s%shooting%max_newton > max_newton_limit) then
+      call invalid_value(deck, g, 'max_newton', str(s%shooting%max_newton), 'must lie in 1..'//str(max_newton_limit), &
+                         err)
+    else if (s%shooting%max_steps < 1) then
+      call invalid_value(deck, g, 'max_steps', str(s%shooting%max_steps), 'must be >= 1', err)
+    else if (.not. (s%shooting%unit_circle_tol >= 0.0_dp)) then
+      call invalid_value(deck, g, 'unit_circle_tol', str(s%shooting%unit_circle_tol), 'must be >= 0', err)
+    else if (.not. (s%shooting%singular_rcond >= 0.0_dp .and. s%shooting%singular_rcond < 1.0_dp)) then
+      call invalid_value(deck, g, 'singular_rcond', str(s%shooting%singular_rcond), 'must lie in [0, 1)', err)
+    else if (.not. (s%element%d_k >= 0.0_dp .and. s%element%d_k <= 1.0_dp)) then
+      call invalid_value(deck, t, 'd_k', str(s%element%d_k), 'a tracing constant lies in [0, 1] (1 = on)', err)
+    else if (.not. (s%element%d_b >= 0.0_dp .and. s%element%d_b <= 1.0_dp)) then
+      call invalid_value(deck, t, 'd_b', str(s%element%d_b), 'a tracing constant lies in [0, 1] (1 = on)', err)
+    else if (.not. (s%element%d_g >= 0.0_dp .and. s%element%d_g <= 1.0_dp)) then
+      call invalid_value(deck, t, 'd_g', str(s%element%d_g), 'a tracing constant lies in [0, 1] (1 = on)', err)
+    else if (.not. (s%element%shear_modulus >= 0.0_dp)) then
+      call invalid_value(deck, t, 'shear_modulus', str(s%element%shear_modulus), '>= 0 (0 = E1/(2(1 + poisson)))', err)
+    else if (.not. (s%element%poisson > -1.0_dp .and. s%element%poisson < 0.5_dp)) then
+      call invalid_value(deck, t, 'poisson', str(s%element%poisson), 'must lie in (-1, 0.5)', err)
+    else if (.not. (s%element%shear_factor > 0.0_dp .and. s%element%shear_factor <= 1.0_dp)) then
+      call invalid_value(deck, t, 'shear_factor', str(s%element%shear_factor), 'must lie in (0, 1]', err)
+    else if (s%element%n_gauss < 6 .or. s%element%n_gauss > 64) then
+      call invalid_value(deck, t, 'n_gauss', str(s%element%n_gauss), 'must lie in 6..64', err)
+    end if
+    if (err%failed()) return
+    do k = 1, max_links
+      associate (sc => s%sections(k))
+        if (sc%n == 0) cycle
+        if (k > n_links) then
+          call invalid_value(deck, t, 'n_sections('//str(k)//')', str(sc%n), 'there are only '//str(n_links)// &
+                             ' links', err); return
+        end if
+        if (sc%n < 1 .or. sc%n > ms) then
+          call invalid_value(deck, t, 'n_sections('//str(k)//')', str(sc%n), 'must lie in 0..'//str(ms), err); return
+        end if
+        do j = 1, sc%n
+          if (.not. (sc%b(j) > 0.0_dp .and. sc%h(j) > 0.0_dp)) then
+            call invalid_value(deck, t, 'section_b('//str(k)//','//str(j)//'), section_h('//str(k)//','//str(j)//')', &
+                               str(sc%b(j))//', '//str(sc%h(j)), 'section width and depth must be > 0', err); return
+          end if
+          if (.not. (sc%f1(j) > 0.0_dp .and. sc%f1(j) <= 1.0_dp)) then
+            call invalid_value(deck, t, 'section_end('//str(k)//','//str(j)//')', str(sc%f1(j)), &
+                               'a section ends at a fraction of the link in (0, 1]', err); return
+          end if
+        end do
+        do j = 2, sc%n
+          if (.not. (sc%f1(j) > sc%f1(j - 1))) then
+            call invalid_value(deck, t, 'section_end('//str(k)//','//str(j)//')', str(sc%f1(j)), &
+                               'section ends must increase along the link', err); return
+          end if
+        end do
+        if (abs(sc%f1(sc%n) - 1.0_dp) > 1.0e-12_dp) then
+          call invalid_value(deck, t, 'section_end('//str(k)//','//str(sc%n)//')', str(sc%f1(sc%n)), &
+                             'the last section must end at the link''s end 2 (1.0)', err); return
+        end if
+      end associate
+    end do
+  end subroutine validate
+
+  subroutine echo_steady_settings(out)
+    type(table_t), intent(inout) :: out
+    integer :: u
+    u = out%echo_unit()
+    write(u, nml=steady, delim='apostrophe')
+    write(u, nml=tennant, delim='apostrophe')
+    call out%end_echo()
+  end subroutine echo_steady_settings
+
+  subroutine read_steady_group(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=steady, iostat=ios, iomsg=iomsg)
+  end subroutine read_steady_group
+
+  subroutine read_tennant_group(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=tennant, iostat=ios, iomsg=iomsg)
+  end subroutine read_tennant_group
+end module steady_settings
