@@ -330,6 +330,7 @@ contains
     call out%summary('rcond of the Newton matrix Y(T) - I (energy units)', str(rep%rcond_newton, 3))
     if (allocated(rep%mult_re)) then
       n = size(rep%mult_re)
+      allocate(modulus(n))
       modulus = sqrt(rep%mult_re**2 + rep%mult_im**2)
       line = ''
       do i = 1, min(6, n)

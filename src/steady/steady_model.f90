@@ -85,6 +85,7 @@ contains
     type(tennant_section_t), allocatable :: es(:)
     real(dp) :: masses(2)
     integer :: k, side, j, e, i
+    integer :: n_elem(mech%n_links)
 
     self%moving = .true.
     allocate(ends(2, mech%n_links))
@@ -102,7 +103,8 @@ contains
         ends(side, k) = link_end(mech, k, j)
       end do
     end do
-    call self%table%build(mech%links(:)%n_elements, ends, opt%shear, err)
+    n_elem = mech%links(:)%n_elements
+    call self%table%build(n_elem, ends, opt%shear, err)
     if (err%failed()) return
     call self%kin%init(mech, err)
     if (err%failed()) return
