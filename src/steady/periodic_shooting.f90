@@ -41,7 +41,7 @@ module periodic_shooting
     real(dp) :: newton_tol = 1.0e-6_dp     !< |Phi(y0) - y0| relative to |y| (Q and Q_d separately); >> rtol
     integer :: max_steps = 2000000         !< DLSODE steps per revolution
     real(dp) :: unit_circle_tol = 1.0e-3_dp !< |mu| > 1 + tol: unstable
-    real(dp) :: singular_rcond = 1.0e-8_dp !< rcond(Y(T) - I) (energy units) below this: no isolated periodic solution
+    real(dp) :: singular_rcond = 1.0e-6_dp !< rcond |Y(T) - I| (energy units) below this: no isolated periodic solution
     logical :: bdf = .false.               !< BDF with a banded block Jacobian instead of Adams
   end type shooting_settings_t
 
@@ -52,7 +52,7 @@ module periodic_shooting
     real(dp), allocatable :: mult_re(:), mult_im(:)
     real(dp) :: max_multiplier = 0.0_dp
     logical :: stable = .true.
-    real(dp) :: rcond_newton = huge(1.0_dp)   !< smallest rcond(Y(T) - I) met
+    real(dp) :: rcond_newton = huge(1.0_dp)   !< smallest rcond(Y(T) - I) |Y(T) - I| (energy units) met
     logical :: near_resonance = .false.
     integer :: steps = 0, rhs_evaluations = 0, revolutions = 0
   end type shooting_report_t
@@ -244,7 +244,7 @@ contains
     real(dp), allocatable :: yt(:), mono(:, :), jac(:, :), r(:), wr(:), wi(:), d(:), m(:, :), c(:, :), k(:, :), f(:)
     integer, allocatable :: ipiv(:)
     integer :: n, n2, it, j, i
-    real(dp) :: res, sq, sv, rc
+    real(dp) :: res, sq, rc, jnorm
     logical :: have_mono, linear
     n = sys%n
     n2 = 2*n
@@ -273,10 +273,10 @@ contains
         call err%add_context('shooting, Newton iteration '//str(it))
         return
       end if
+      ! residual in energy units, relative to the state
       r = yt - y0
-      sq = max(maxval(abs(y0(1:n))), maxval(abs(yt(1:n))), tiny(1.0_dp))
-      sv = max(maxval(abs(y0(n + 1:n2))), maxval(abs(yt(n + 1:n2))), tiny(1.0_dp))
-      res = max(maxval(abs(r(1:n)))/sq, maxval(abs(r(n + 1:n2)))/sv)
+      sq = max(maxval(abs(d*y0)), maxval(abs(d*yt)), tiny(1.0_dp))
+      res = maxval(abs(d*r))/sq
       rep%residual(it) = res
       rep%newton_iterations = it
       if (res <= s%newton_tol .and. it > 0) then
@@ -289,13 +289,18 @@ contains
         jac(:, j) = d*mono(:, j)/d(j)
         jac(j, j) = jac(j, j) - 1.0_dp
       end do
+      ! in energy units |Y(T)| ~ 1: rcond |J| estimates the smallest singular
+      ! value of J, i.e. how far the nearest multiplier is from 1
+      jnorm = maxval(sum(abs(jac), dim=1))
       call lu_factor(jac, ipiv, err, rc)
+      rc = rc*jnorm
       rep%rcond_newton = min(rep%rcond_newton, rc)
       if (err%failed() .or. rc < s%singular_rcond) then
         rep%near_resonance = .true.
-        if (.not. err%failed()) call err%set('shooting', 'the one-revolution map minus identity is nearly singular '// &
-          '(rcond '//str(rc, 3)//'): a Floquet multiplier is at 1, a harmonic of the crank speed sits on a '// &
-          'natural frequency; no isolated periodic solution')
+        if (err%failed()) call err%clear()
+        call err%set('shooting', 'the one-revolution map minus identity is nearly singular (smallest singular '// &
+          'value about '//str(rc, 3)//' in energy units): a Floquet multiplier is at 1, a harmonic of the crank '// &
+          'speed sits on a natural frequency; no isolated periodic solution')
         exit
       end if
       r = -d*r
