@@ -1,0 +1,231 @@
+!> Tests of the `steady` analysis (module steady_analysis): a deck in, the
+!> table, summary and cost out; the harmonic series and the exact periodic
+!> solution side by side; sections and the 14-DOF element from the deck;
+!> the resonance diagnosis stops without rows; input errors have code 2.
+module test_steady_analysis_suite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use deck_reader, only: deck_t
+  use table_output, only: table_t
+  use steady_analysis, only: run_steady
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+  character(len=:), allocatable :: scratch
+  character(len=*), parameter :: four_bar = '&mechanism|n_joints = 4|joint_name = ''A'', ''B'', ''C'', ''D''|'// &
+    'joint_type = ''clamp'', ''pin'', ''pin'', ''ground_pin''|joint_x(1) = 0.0, joint_y(1) = 0.0|'// &
+    'joint_x(4) = 10.0, joint_y(4) = 0.0|n_links = 3|link_name = ''crank'', ''coupler'', ''rocker''|'// &
+    'link_joint1 = 1, 2, 4|link_joint2 = 2, 3, 3|link_length = 5.0, 11.0, 10.5|'
+
+contains
+
+  subroutine run_all()
+    character(len=256) :: tmp
+    integer :: length, status
+    call get_environment_variable('TMPDIR', tmp, length, status)
+    if (status /= 0 .or. length == 0) tmp = '/tmp'
+    scratch = trim(tmp)//'/flexmech_test_steady_analysis'
+    call run_test('linear_harmonic_deck_gives_a_revolution_of_rows', test_linear_deck)
+    call run_test('nonlinear_deck_reports_outer_iterations', test_nonlinear_deck)
+    call run_test('both_methods_side_by_side_at_low_speed', test_both)
+    call run_test('shear_angle_and_sections_from_the_deck', test_shear_sections)
+    call run_test('resonance_stops_with_the_diagnosis_and_no_rows', test_resonance)
+    call run_test('bad_input_is_an_input_error', test_bad_input)
+  end subroutine run_all
+
+  !> Write `text` ('|' separates lines) as a deck, run it, return the output
+  !> lines (none when the output was discarded for an input error).
+  subroutine run_deck(text, err, lines)
+    character(len=*), intent(in) :: text
+    type(error_t), intent(inout) :: err
+    character(len=2048), allocatable, intent(out) :: lines(:)
+    type(deck_t) :: deck
+    type(table_t) :: out
+    type(error_t) :: cerr
+    integer :: u, i, j, n, ios
+    character(len=2048) :: line
+    open(newunit=u, file=scratch//'.nml', status='replace', action='write')
+    i = 1
+    do
+      j = index(text(i:), '|')
+      if (j == 0) then
+        write(u, '(a)') text(i:)
+        exit
+      end if
+      write(u, '(a)') text(i:i + j - 2)
+      i = i + j
+    end do
+    close(u)
+    call deck%open(scratch//'.nml', err)
+    call out%open(scratch//'.out', cerr)
+    call run_steady(deck, out, err)
+    call deck%close()
+    allocate(lines(0))
+    if (err%failed() .and. err%code == 2) then
+      call out%discard()
+    else
+      call out%commit(cerr)
+      open(newunit=u, file=scratch//'.out', status='old', action='read')
+      n = 0
+      do
+        read(u, '(a)', iostat=ios) line
+        if (ios /= 0) exit
+        n = n + 1
+      end do
+      rewind(u)
+      deallocate(lines)
+      allocate(lines(n))
+      do i = 1, n
+        read(u, '(a)') lines(i)
+      end do
+      close(u, status='delete')
+    end if
+    open(newunit=u, file=scratch//'.nml', status='old')
+    close(u, status='delete')
+  end subroutine run_deck
+
+  integer function count_rows(lines) result(n)
+    character(len=*), intent(in) :: lines(:)
+    integer :: i
+    n = 0
+    do i = 1, size(lines)
+      if (lines(i)(1:1) /= '#' .and. len_trim(lines(i)) > 0) n = n + 1
+    end do
+  end function count_rows
+
+  logical function has_line(lines, fragment)
+    character(len=*), intent(in) :: lines(:), fragment
+    integer :: i
+    has_line = .false.
+    do i = 1, size(lines)
+      if (index(lines(i), fragment) > 0) has_line = .true.
+    end do
+  end function has_line
+
+  !> Column line (last '#' line before the rows) split into names.
+  integer function n_columns(lines) result(n)
+    character(len=*), intent(in) :: lines(:)
+    integer :: i, last
+    last = 0
+    do i = 1, size(lines)
+      if (lines(i)(1:1) /= '#') exit
+      last = i
+    end do
+    n = 0
+    do i = 2, len_trim(lines(last))
+      if (lines(last)(i:i) /= ' ' .and. lines(last)(i - 1:i - 1) == ' ') n = n + 1
+    end do
+  end function n_columns
+
+  !> 10-degree rows over a revolution, both ends (37); columns crank_deg, t,
+  !> B and C (U, W), three link ends (u, w), three stresses = 15.
+  subroutine test_linear_deck()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 150.0|/|&steady output_step_deg = 10.0 /', &
+                  err, lines)
+    call assert_true(.not. err%failed(), 'run: '//err%text())
+    call assert_equal(count_rows(lines), 37, 'rows')
+    call assert_equal(n_columns(lines), 15, 'columns')
+    call assert_true(has_line(lines, '# cost: factorizations = '), 'factorizations in the footer')
+    call assert_true(has_line(lines, '# cost: harmonics_used = 8 of N = 8 (16 samples per revolution)'), 'harmonics')
+    call assert_true(has_line(lines, 'all tracing constants zero: the linear analysis'), 'linear noted')
+    call assert_true(has_line(lines, '# cost: nonlinear_integrand_evaluations = 0'), 'nothing nonlinear computed')
+    call assert_true(has_line(lines, 'natural frequencies of the frozen structure'), 'frequency scan')
+  end subroutine test_linear_deck
+
+  subroutine test_nonlinear_deck()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 150.0|/|&steady output_step_deg = 30.0 /|'// &
+                  '&tennant d_k = 1, d_b = 1, d_g = 1 /', err, lines)
+    call assert_true(.not. err%failed(), 'run: '//err%text())
+    call assert_true(has_line(lines, '# summary: outer iterations (K_n updates after the linear solution) = 5'), &
+                     'five outer iterations at 1e-6')
+    call assert_true(has_line(lines, '# summary: outer iteration 5 = max relative change of Q = '), &
+                     'change of the last iteration')
+    call assert_true(has_line(lines, '# summary: largest strain (harmonic series)'), 'strain')
+  end subroutine test_nonlinear_deck
+
+  !> 20 rad/s, N = 16, light damping: the footer compares the two (< 1%).
+  subroutine test_both()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    integer :: i, k
+    real(dp) :: diff
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 20.0|/|&steady method = ''both'', '// &
+                  'n_harmonics = 16, output_step_deg = 30.0, damping_beta = 2.0e-5, rtol = 1.0e-7, atol = 1.0e-11, '// &
+                  'newton_tol = 1.0e-5 /', err, lines)
+    call assert_true(.not. err%failed(), 'run: '//err%text())
+    call assert_equal(n_columns(lines), 28, 'harmonic and exact columns')
+    call assert_true(has_line(lines, 'steady state = stable'), 'stable')
+    diff = -1.0_dp
+    do i = 1, size(lines)
+      k = index(lines(i), 'max |Q_h - Q_exact| / max |Q_exact| = ')
+      if (k > 0) read(lines(i)(k + 39:), *) diff
+    end do
+    call assert_true(diff >= 0.0_dp .and. diff < 0.01_dp, 'harmonic series within 1% at 20 rad/s')
+  end subroutine test_both
+
+  !> 14-DOF element with a tapered crank (two sections): runs, and the header
+  !> names the default G = E1/2.66.
+  subroutine test_shear_sections()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&steady output_step_deg = 30.0 /|'// &
+                  '&tennant shear = T, n_sections(1) = 2, section_end(1,1:2) = 0.4, 1.0, '// &
+                  'section_b(1,1:2) = 0.3, 0.25, section_h(1,1:2) = 1.2, 1.0 /', err, lines)
+    call assert_true(.not. err%failed(), 'run: '//err%text())
+    call assert_true(has_line(lines, '14 DOFs with shear angle alpha; shear modulus G = 0.408647E+07 (default'), &
+                     'default G')
+    call assert_true(has_line(lines, 'elements of 14 DOFs'), '14-DOF table')
+    call assert_equal(count_rows(lines), 13, 'rows')
+  end subroutine test_shear_sections
+
+  !> 176 rad/s: the eighth harmonic meets the lowest frozen natural
+  !> frequency; the run stops (code /= 2) with the diagnosis, no rows.
+  subroutine test_resonance()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 176.0|/|&steady output_step_deg = 2.0 /', &
+                  err, lines)
+    call assert_true(err%failed() .and. err%code /= 2, 'stopped with a diagnosis')
+    call assert_true(index(err%text(), 'near resonance at crank speed 176.000 rad/s') > 0, 'message')
+    call assert_true(index(err%text(), 'harmonic n = 8') > 0, 'names the harmonic')
+    call assert_equal(count_rows(lines), 0, 'no rows')
+    call assert_true(has_line(lines, 'warning: harmonic 8 of the crank speed'), 'header warning')
+    call assert_true(has_line(lines, '# summary: worst conditioning of K - n^2 w^2 M'), 'rcond in the summary')
+  end subroutine test_resonance
+
+  subroutine test_bad_input()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 0.0|/', err, lines)
+    call assert_true(err%failed() .and. err%code == 2, 'omega = 0')
+    call assert_true(index(err%text(), 'omega') > 0, 'names omega')
+    call err%clear()
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&tennant d_k = 2.0 /', err, lines)
+    call assert_true(err%failed() .and. err%code == 2, 'd_k = 2')
+    call assert_true(index(err%text(), 'd_k') > 0, 'names d_k')
+    call err%clear()
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&steady method = ''fourier'' /', &
+                  err, lines)
+    call assert_true(err%failed() .and. err%code == 2, 'unknown method')
+    call err%clear()
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&tennant n_sections(2) = 2, '// &
+                  'section_end(2,1:2) = 0.5, 0.9, section_b(2,1:2) = 0.25, 0.25, section_h(2,1:2) = 1.0, 1.0 /', &
+                  err, lines)
+    call assert_true(err%failed() .and. err%code == 2, 'sections must reach the link end')
+    call assert_true(index(err%text(), 'section_end(2,2)') > 0, 'names the section')
+  end subroutine test_bad_input
+end module test_steady_analysis_suite
+
+program test_steady_analysis
+  use assertions, only: finish_suite
+  use test_steady_analysis_suite, only: run_all
+  implicit none
+  call run_all()
+  call finish_suite('test_steady_analysis')
+end program test_steady_analysis
