@@ -101,6 +101,9 @@ contains
       end if
       call harmonic_diagnosis(s, hrep, omega, err)
       if (err%failed()) return
+      if (hrep%beyond_peak) call out%comment('WARNING: a strain passes the peak of the Ramberg-Osgood law ('// &
+        str(hrep%max_abs_strain, 5)//' in element '//str(hrep%strain_element)//'); printed because '// &
+        'allow_beyond_peak = .true.: the material law has no stable meaning there')
     end if
     if (do_s) then
       allocate(qs(model%n, n_out + 1), qsd(model%n, n_out + 1), y0(2*model%n))
@@ -350,10 +353,11 @@ contains
     type(harmonic_report_t), intent(in) :: rep
     real(dp), intent(in) :: omega
     type(error_t), intent(inout) :: err
-    if (rep%beyond_peak) then
+    if (rep%beyond_peak .and. .not. s%allow_beyond_peak) then
       call err%set('harmonic series', 'strain '//str(rep%max_abs_strain, 5)//' in element '// &
                    str(rep%strain_element)//' passes the peak of the Ramberg-Osgood law (the material has no '// &
-                   'stable meaning beyond it) at crank speed '//str(omega, 6)//' rad/s')
+                   'stable meaning beyond it) at crank speed '//str(omega, 6)//' rad/s; the steady state is not '// &
+                   'printed (allow_beyond_peak = .true. prints it anyway)')
     else if (.not. rep%converged) then
       call err%set('harmonic series', 'the outer iteration on K_n did not converge in '// &
                    str(s%harmonic%max_outer)//' iterations (last change '// &

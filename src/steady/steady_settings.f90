@@ -25,6 +25,7 @@ module steady_settings
     type(shooting_settings_t) :: shooting
     real(dp) :: output_step_deg = 5.0_dp
     logical :: allow_resonance = .false.          !< print a steady state even near resonance
+    logical :: allow_beyond_peak = .false.        !< print it even where a strain passes the R-O peak
     type(tennant_options_t) :: element
     type(link_sections_t) :: sections(max_links)
   end type steady_settings_t
@@ -32,14 +33,14 @@ module steady_settings
   ! staging variables of the namelist groups
   character(len=16) :: method, integrator
   integer :: n_harmonics, harmonics_kept, max_outer, max_newton, max_steps, n_gauss
-  logical :: velocity_terms, allow_resonance, shear, rotary_inertia, shear_inertia
+  logical :: velocity_terms, allow_resonance, allow_beyond_peak, shear, rotary_inertia, shear_inertia
   real(dp) :: outer_tol, resonance_ratio, output_step_deg, damping_beta, rtol, atol, newton_tol, &
               unit_circle_tol, singular_rcond
   real(dp) :: d_k, d_b, d_g, shear_modulus, poisson, shear_factor
   integer :: n_sections(max_links)
   real(dp) :: section_end(max_links, ms), section_b(max_links, ms), section_h(max_links, ms)
   namelist /steady/ method, n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio, &
-    allow_resonance, output_step_deg, damping_beta, integrator, rtol, atol, newton_tol, max_newton, max_steps, &
+    allow_resonance, allow_beyond_peak, output_step_deg, damping_beta, integrator, rtol, atol, newton_tol, max_newton, max_steps, &
     unit_circle_tol, singular_rcond
   namelist /tennant/ d_k, d_b, d_g, shear, rotary_inertia, shear_inertia, shear_modulus, poisson, shear_factor, &
     n_gauss, n_sections, section_end, section_b, section_h
@@ -62,6 +63,7 @@ contains
     max_outer = s%harmonic%max_outer
     resonance_ratio = s%harmonic%resonance_ratio
     allow_resonance = s%allow_resonance
+    allow_beyond_peak = s%allow_beyond_peak
     output_step_deg = s%output_step_deg
     damping_beta = s%element%damping_beta
     integrator = 'bdf'
@@ -96,6 +98,7 @@ contains
     s%harmonic = harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, &
                                      resonance_ratio)
     s%allow_resonance = allow_resonance
+    s%allow_beyond_peak = allow_beyond_peak
     s%output_step_deg = output_step_deg
     s%shooting%rtol = rtol
     s%shooting%atol = atol
