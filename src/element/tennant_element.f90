@@ -762,7 +762,7 @@ contains
                                         secant, tangent)
     type(tennant_element_t), intent(in) :: el
     integer, intent(in) :: n_st
-    real(dp), intent(in) :: sw_(:), sarea(:), sdepth(:), sgu(:, :), sgw(:, :), sgk(:, :), kba(:, :)
+    real(dp), intent(in), contiguous :: sw_(:), sarea(:), sdepth(:), sgu(:, :), sgw(:, :), sgk(:, :), kba(:, :)
     real(dp), intent(in) :: q(:), phi
     real(dp), intent(out) :: fn(:)
     type(tennant_info_t), intent(out) :: info
@@ -795,11 +795,21 @@ contains
       eu = dot_product(sgu(:, j), p)
       k0 = dot_product(sgk(:, j), p)
       en = eu + 0.5_dp*dg*b*b                     ! (T12) axial part
-      q1 = 1.0_dp + db*b*b
-      cb = q1**(-1.5_dp)                          ! (T10) curvature factor
-      cp = -3.0_dp*db*b*q1**(-2.5_dp)
+      if (db > 0.0_dp) then
+        q1 = 1.0_dp/(1.0_dp + db*b*b)
+        cb = q1*sqrt(q1)                          ! (T10) curvature factor (1 + D_b w_x^2)^(-3/2)
+        cp = -3.0_dp*db*b*cb*q1                   ! its derivative in w_x
+      else
+        q1 = 1.0_dp
+        cb = 1.0_dp
+        cp = 0.0_dp
+      end if
       kap = cb*k0
-      res = section_response(mk, sarea(j), sdepth(j), en, kap, el%opt%d_k > 0.0_dp)
+      if (want_t) then
+        res = section_response(mk, sarea(j), sdepth(j), en, kap, el%opt%d_k > 0.0_dp)
+      else
+        res = section_forces(mk, sarea(j), sdepth(j), en, kap, el%opt%d_k > 0.0_dp)
+      end if
       de = sgu(:, j) + (dg*b)*sgw(:, j)           ! d eps_n / dp
       dk = cb*sgk(:, j) + (cp*k0)*sgw(:, j)       ! d kappa / dp
       f = f + (w*res%axial_force)*de + (w*res%moment)*dk
@@ -820,7 +830,7 @@ contains
         end do
       end if
       if (want_t) then
-        cpp = -3.0_dp*db*q1**(-2.5_dp) + 15.0_dp*db*db*b*b*q1**(-3.5_dp)
+        cpp = -3.0_dp*db*cb*q1 + 15.0_dp*db*db*b*b*cb*q1*q1
         v1 = w*(res%tangent(1, 1)*de + res%tangent(1, 2)*dk)
         v2 = w*(res%tangent(2, 1)*de + res%tangent(2, 2)*dk)
         gg = w*(res%axial_force*dg + res%moment*cpp*k0)
@@ -847,6 +857,29 @@ contains
       tangent(1:n, 1:n) = kt
     end if
   end subroutine nonlinear_at_stations
+
+  !> N and M only (no energy, no tangent): the closed forms of module
+  !> material_law for the linear law and m = 3, section_response otherwise.
+  pure function section_forces(mat, area, depth, eps_n, kappa, nonlinear) result(res)
+    type(ramberg_osgood_t), intent(in) :: mat
+    real(dp), intent(in) :: area, depth, eps_n, kappa
+    logical, intent(in) :: nonlinear
+    type(section_resultants_t) :: res
+    real(dp) :: ht, s, e2n, s2
+    ht = 0.5_dp*depth
+    s = ht*kappa
+    if (.not. nonlinear .or. .not. mat%e2 > 0.0_dp) then
+      res%axial_force = area*mat%e1*eps_n
+      res%moment = area*ht*mat%e1*s/3.0_dp
+    else if (abs(mat%m - 3.0_dp) <= 0.0_dp) then
+      e2n = eps_n*eps_n
+      s2 = s*s
+      res%axial_force = area*(mat%e1*eps_n - mat%e2*eps_n*(e2n + s2))
+      res%moment = area*ht*(mat%e1*s/3.0_dp - mat%e2*s*(e2n + 0.2_dp*s2))
+    else
+      res = section_response(mat, area, depth, eps_n, kappa, nonlinear)
+    end if
+  end function section_forces
 
   !> The paper's secant section stiffness: sigma = E_s eps with
   !> E_s = E1 - E2 |eps|^(m-1) (T6, T7 with the |eps|^(m-1) of §3.6), so that

@@ -38,6 +38,7 @@ module harmonic_solver
   public :: harmonic_settings_t, harmonic_report_t, harmonic_solve, fourier_coefficients, max_outer_limit
 
   integer, parameter :: max_outer_limit = 200
+  integer, parameter :: cache_limit = 400000     !< doubles of sample M, K kept without C Q_d
 
   type :: harmonic_settings_t
     integer :: n_harmonics = 8             !< N: 2N samples per revolution
@@ -129,19 +130,22 @@ contains
     allocate(fsamp(n, 0:ns - 1), a(n, 0:nh), b(n, 0:nh), m(n, n), c(n, n), k(n, n), kn(n, n), f(n), &
              qold(n), qnew(n), fn(n))
 
-    ! (T27), (T28): forcing at 2N equally spaced times of one revolution
-    if (s%velocity_terms) allocate(msamp(n, n, 0:ns - 1), csamp(n, n, 0:ns - 1), ksamp(n, n, 0:ns - 1))
+    ! (T27), (T28): forcing at 2N equally spaced times of one revolution;
+    ! M and K of the samples are kept for small systems (output times often
+    ! are sample times) and whenever C Q_d is kept
+    if (s%velocity_terms .or. n*n*ns <= cache_limit) allocate(msamp(n, n, 0:ns - 1), ksamp(n, n, 0:ns - 1))
+    if (s%velocity_terms) allocate(csamp(n, n, 0:ns - 1))
     do kk = 0, ns - 1
       t = kk*period/ns
       call sys%set_time(t, err)
       if (err%failed()) return
       call sys%linear_terms(m, c, k, f, s%velocity_terms)
       fsamp(:, kk) = f
-      if (s%velocity_terms) then
+      if (allocated(msamp)) then
         msamp(:, :, kk) = m
-        csamp(:, :, kk) = c
         ksamp(:, :, kk) = k
       end if
+      if (s%velocity_terms) csamp(:, :, kk) = c
     end do
     call fourier_coefficients(fsamp, nh, a, b)
     if (s%velocity_terms) then
@@ -155,7 +159,13 @@ contains
       t = times(j)
       call sys%set_time(t, err)
       if (err%failed()) return
-      call sys%linear_terms(m, c, k, f, s%velocity_terms)
+      kk = sample_index(t)
+      if (kk >= 0 .and. allocated(msamp)) then
+        m = msamp(:, :, kk)
+        k = ksamp(:, :, kk)
+      else
+        call sys%linear_terms(m, c, k, f, s%velocity_terms)
+      end if
       call series(t, k, m, qold, .true.)
       if (err%failed()) return
       q(:, j) = qold
@@ -182,6 +192,19 @@ contains
     end do
 
   contains
+
+    !> The sample k with t_k = tt (to round-off) or -1.
+    integer function sample_index(tt) result(ks)
+      real(dp), intent(in) :: tt
+      integer :: i
+      ks = -1
+      do i = 0, ns - 1
+        if (abs(tt - i*period/ns) <= 1.0e-12_dp*period) then
+          ks = i
+          return
+        end if
+      end do
+    end function sample_index
 
     !> (T26) with the matrices of time tt.
     subroutine series(tt, kmat, mmat, qq, with_rcond)
@@ -253,7 +276,7 @@ contains
     type(harmonic_report_t), intent(inout) :: rep
     logical, intent(in) :: with_rcond
     type(error_t), intent(inout) :: err
-    real(dp) :: d(size(q)), mat(size(q), size(q)), rhs(size(q)), rc, rc0, w2, ratio
+    real(dp) :: d(size(q)), kd(size(q), size(q)), md(size(q), size(q)), rhs(size(q)), rc, rc0, w2, ratio
     type(dense_lu_t) :: lu
     integer :: nn, i, j, n
     n = size(q)
@@ -265,14 +288,15 @@ contains
         d(i) = 1.0_dp
       end if
     end do
+    do j = 1, n
+      kd(:, j) = d*kmat(:, j)*d(j)
+      md(:, j) = d*mmat(:, j)*d(j)
+    end do
     q = 0.0_dp
     rc0 = 1.0_dp
     do nn = 0, keep
       w2 = (nn*omega)**2
-      do j = 1, n
-        mat(:, j) = d*(kmat(:, j) - w2*mmat(:, j))*d(j)
-      end do
-      call lu%factor(mat, err)
+      call lu%factor_shifted(kd, md, w2, err)
       rep%factorizations = rep%factorizations + 1
       if (err%failed()) then
         rep%near_resonance = .true.

@@ -24,38 +24,78 @@ module small_dense
     real(dp) :: anorm = 0.0_dp
   contains
     procedure :: factor
+    procedure :: factor_shifted
     procedure :: solve
     procedure :: rcond
   end type dense_lu_t
 
 contains
 
+  !> Factor K - w2 M without forming it separately.
+  subroutine factor_shifted(self, k, m, w2, err)
+    class(dense_lu_t), intent(inout) :: self
+    real(dp), intent(in) :: k(:, :), m(:, :), w2
+    type(error_t), intent(inout) :: err
+    integer :: n, i, j
+    n = size(k, 1)
+    if (n > small_limit) then
+      call self%factor(k - w2*m, err)
+      return
+    end if
+    if (self%n /= n) then
+      if (allocated(self%a)) deallocate(self%a, self%ipiv)
+      allocate(self%a(n, n), self%ipiv(n))
+      self%n = n
+    end if
+    do j = 1, n
+      do i = 1, n
+        self%a(i, j) = k(i, j) - w2*m(i, j)
+      end do
+    end do
+    call eliminate(self, err)
+  end subroutine factor_shifted
+
   !> Factor a copy of a (n x n).  Exactly singular: err is set.
   subroutine factor(self, a, err)
     class(dense_lu_t), intent(inout) :: self
     real(dp), intent(in) :: a(:, :)
     type(error_t), intent(inout) :: err
-    integer :: n, k, p, i, j
-    real(dp) :: amax, t, cs
+    integer :: n, i, j
     n = size(a, 1)
     if (self%n /= n) then
       if (allocated(self%a)) deallocate(self%a, self%ipiv)
       allocate(self%a(n, n), self%ipiv(n))
       self%n = n
     end if
+    do j = 1, n
+      do i = 1, n
+        self%a(i, j) = a(i, j)
+      end do
+    end do
+    if (n > small_limit) then
+      self%anorm = maxval(sum(abs(a), dim=1))
+      call lu_factor(self%a, self%ipiv, err)
+      return
+    end if
+    call eliminate(self, err)
+  end subroutine factor
+
+  !> Gaussian elimination with partial pivoting of self%a in place; the
+  !> 1-norm of the matrix is kept for rcond.
+  subroutine eliminate(self, err)
+    type(dense_lu_t), intent(inout) :: self
+    type(error_t), intent(inout) :: err
+    integer :: n, k, p, i, j
+    real(dp) :: amax, t, cs
+    n = self%n
     self%anorm = 0.0_dp
     do j = 1, n
       cs = 0.0_dp
       do i = 1, n
-        self%a(i, j) = a(i, j)
-        cs = cs + abs(a(i, j))
+        cs = cs + abs(self%a(i, j))
       end do
       self%anorm = max(self%anorm, cs)
     end do
-    if (n > small_limit) then
-      call lu_factor(self%a, self%ipiv, err)
-      return
-    end if
     associate (lu => self%a)
       do k = 1, n
         p = k
@@ -84,15 +124,13 @@ contains
         end do
         do j = k + 1, n
           t = lu(k, j)
-          if (abs(t) > 0.0_dp) then
-            do i = k + 1, n
-              lu(i, j) = lu(i, j) - lu(i, k)*t
-            end do
-          end if
+          do i = k + 1, n
+            lu(i, j) = lu(i, j) - lu(i, k)*t
+          end do
         end do
       end do
     end associate
-  end subroutine factor
+  end subroutine eliminate
 
   !> Solve A x = b (trans = .true.: A^T x = b) in place.
   subroutine solve(self, b, trans)

@@ -30,7 +30,9 @@ module steady_model
 
   integer, parameter :: mx = tennant_max_dof + 2
   integer, parameter :: n_cache = 256                 !< frame states remembered (distinct times)
-  real(dp), parameter :: max_kin_step = 10.0_dp*atan(1.0_dp)/45.0_dp   !< 10 deg of crank per kinematics step
+  real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
+  real(dp), parameter :: max_kin_jump = 30.0_dp*deg   !< largest crank step tried in one kinematics solution
+  real(dp), parameter :: kin_substep = 5.0_dp*deg     !< steps of the retry after a failed jump
 
   !> Sections of one link, as fractions of its length (T §3.4).
   type :: link_sections_t
@@ -75,7 +77,7 @@ contains
 
   !> The model of a linkage: table from the joints, kinematics, elements.
   subroutine init_mechanism(self, mech, opt, sections, err)
-    class(steady_model_t), intent(inout) :: self
+    class(steady_model_t), intent(out) :: self
     type(mechanism_t), intent(in) :: mech
     type(tennant_options_t), intent(in) :: opt
     type(link_sections_t), intent(in) :: sections(:)
@@ -142,7 +144,7 @@ contains
 
   !> A structure at rest with given element frames (verification tests).
   subroutine init_fixed(self, lengths, sections, materials, states, n_elem, ends, opt, err)
-    class(steady_model_t), intent(inout) :: self
+    class(steady_model_t), intent(out) :: self
     real(dp), intent(in) :: lengths(:)
     type(tennant_section_t), intent(in) :: sections(:)
     type(ramberg_osgood_t), intent(in) :: materials(:)
@@ -265,20 +267,22 @@ contains
 
   !> Rigid-body state at time t.  The crank turns at constant speed, so the
   !> motion is periodic: the kinematics is solved at the equivalent time
-  !> t + k T nearest the last solution, marching in steps of at most 10 deg
-  !> of crank (Newton's warm start, doc/kinematics.md); states of recently
-  !> visited times are reused.
+  !> t + k T nearest the last solution, in one jump of at most 30 deg of
+  !> crank (Newton's warm start, doc/kinematics.md) or, if that fails (a far
+  !> predictor can land on the other branch), again from the last solution in
+  !> steps of 5 deg; states of recently visited times are reused.
   subroutine model_set_time(self, t, err)
     class(steady_model_t), intent(inout) :: self
     real(dp), intent(in) :: t
     type(error_t), intent(inout) :: err
     type(motion_t) :: m
     integer :: e, i, n_steps
-    real(dp) :: period, te, t0, dt_max
+    real(dp) :: period, te, t0, dt_max, tol
     if (.not. self%moving) return
-    if (.not. (t < self%t_states .or. t > self%t_states)) return
+    tol = 1.0e-12_dp*self%period()         ! times that differ by round-off are the same time
+    if (abs(t - self%t_states) <= tol) return
     do i = 1, self%cache_used
-      if (.not. (t < self%cache_t(i) .or. t > self%cache_t(i))) then
+      if (abs(t - self%cache_t(i)) <= tol) then
         self%fs = self%cache_fs(:, i)
         self%t_states = t
         call refresh_maps(self)
@@ -287,14 +291,15 @@ contains
     end do
     period = self%period()
     te = t + period*anint((self%t_kin - t)/period)
-    dt_max = max_kin_step/self%omega
     t0 = self%t_kin
+    dt_max = max_kin_jump/self%omega
     n_steps = max(1, ceiling(abs(te - t0)/dt_max))
-    do i = 1, n_steps
-      call self%kin%solve(t0 + (te - t0)*real(i, dp)/n_steps, err)
-      self%n_kinematics = self%n_kinematics + 1
+    call march(n_steps, err)
+    if (err%failed()) then
+      call err%clear()
+      call march(max(1, ceiling(abs(te - t0)*self%omega/kin_substep)), err)
       if (err%failed()) return
-    end do
+    end if
     self%t_kin = te
     do e = 1, size(self%el)
       m = self%kin%element_motion_global(e)
@@ -307,6 +312,17 @@ contains
     self%cache_fs(:, self%cache_next) = self%fs
     self%cache_used = max(self%cache_used, self%cache_next)
     self%cache_next = mod(self%cache_next, n_cache) + 1
+  contains
+    subroutine march(n, e_)
+      integer, intent(in) :: n
+      type(error_t), intent(inout) :: e_
+      integer :: k
+      do k = 1, n
+        call self%kin%solve(t0 + (te - t0)*real(k, dp)/n, e_)
+        self%n_kinematics = self%n_kinematics + 1
+        if (e_%failed()) return
+      end do
+    end subroutine march
   end subroutine model_set_time
 
   subroutine refresh_maps(self)

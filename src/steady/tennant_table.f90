@@ -75,7 +75,7 @@ contains
   !> Build the table for links with n_elem(k) elements and end attachments
   !> ends(1:2, k); shear = 14-DOF elements.
   subroutine build(self, n_elem, ends, shear, err)
-    class(tennant_table_t), intent(inout) :: self
+    class(tennant_table_t), intent(out) :: self
     integer, intent(in) :: n_elem(:)
     type(table_end_t), intent(in) :: ends(:, :)
     logical, intent(in) :: shear
