@@ -1,0 +1,247 @@
+!> Shared fixtures of the transient-analysis verification tests
+!> (tests/unit/test_transient_*.f90): the FORMULATION.md §8.1 section and
+!> material, models built as the decks build them (build_mechanism +
+!> init_mechanism), a zero-crossing period meter and tolerance helpers.
+module transient_fixtures
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
+  use kear_element, only: element_effects_t, kear_local_displacement
+  use mechanism_model, only: mechanism_model_t
+  use lsode_solver, only: lsode_t, mf_bdf_full_fd
+  use assertions, only: assert_true
+  implicit none
+  private
+  public :: e1, rho, width, depth, area, inertia, radius_gyration, beam_length, bl_clamped, bl_cantilever
+  public :: probe_t, probe_modal, probe_local_w
+  public :: beam_input, cantilever_input, fourbar_input, make_model, all_effects, euler_bernoulli
+  public :: modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
+
+  ! FORMULATION.md §8.1 section (b = 0.25, h = 1 in) and aluminium.
+  real(dp), parameter :: e1 = 10.87e6_dp, rho = 2.536e-4_dp, width = 0.25_dp, depth = 1.0_dp
+  real(dp), parameter :: area = width*depth, inertia = width*depth**3/12.0_dp
+  real(dp), parameter :: radius_gyration = depth/sqrt(12.0_dp)
+  real(dp), parameter :: beam_length = 20.0_dp
+  ! Euler-Bernoulli eigenvalues beta_n L: hinged n pi; clamped-clamped
+  ! cos(bL) cosh(bL) = 1; clamped-free cos(bL) cosh(bL) = -1.
+  real(dp), parameter :: bl_clamped(2) = [4.730040744862704_dp, 7.853204624095838_dp]
+  real(dp), parameter :: bl_cantilever = 1.875104068711961_dp
+
+  !> What a period measurement watches: the modal coordinate c.q, or the
+  !> local transverse displacement of an element at x/l = xi, minus offset.
+  type :: probe_t
+    integer :: kind = 1
+    real(dp), allocatable :: c(:)
+    integer :: element = 0
+    real(dp) :: xi = 1.0_dp
+    real(dp) :: offset = 0.0_dp
+  end type probe_t
+
+  integer, parameter :: probe_modal = 1, probe_local_w = 2
+
+contains
+
+  ! ------------------------------------------------------------------ models
+
+  !> A beam of n elements between two ground points (no driver).
+  function beam_input(end_type, n) result(inp)
+    character(len=*), intent(in) :: end_type
+    integer, intent(in) :: n
+    type(mechanism_input_t) :: inp
+    inp%n_joints = 2
+    inp%joint_type(1:2) = [character(len=16) :: end_type, end_type]
+    inp%joint_x(1:2) = [0.0_dp, beam_length]
+    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
+    inp%n_links = 1
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_n_elements(1) = n
+    inp%driver_link = 0
+  end function beam_input
+
+  !> A cantilever clamped to a shaft turning at omega about its root.
+  function cantilever_input(n, omega) result(inp)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: omega
+    type(mechanism_input_t) :: inp
+    inp%n_joints = 2
+    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'free']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%n_links = 1
+    inp%link_joint1(1) = 1
+    inp%link_joint2(1) = 2
+    inp%link_length(1) = beam_length
+    inp%link_n_elements(1) = n
+    inp%omega = omega
+  end function cantilever_input
+
+  !> The four-bar of FORMULATION.md §8.1 (crank 5 clamped at A, coupler 11,
+  !> rocker 10.5 pinned at D = (10, 0)).
+  function fourbar_input(n, omega, theta0_deg) result(inp)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: omega, theta0_deg
+    type(mechanism_input_t) :: inp
+    inp%n_joints = 4
+    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_x(4) = 10.0_dp
+    inp%joint_y(4) = 0.0_dp
+    inp%n_links = 3
+    inp%link_joint1(1:3) = [1, 2, 4]
+    inp%link_joint2(1:3) = [2, 3, 3]
+    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
+    inp%link_n_elements(1:3) = n
+    inp%omega = omega
+    inp%theta0_deg = theta0_deg
+  end function fourbar_input
+
+  subroutine make_model(inp, effects, beta, model, ok)
+    type(mechanism_input_t), intent(in) :: inp
+    type(element_effects_t), intent(in) :: effects
+    real(dp), intent(in) :: beta
+    type(mechanism_model_t), intent(out) :: model
+    logical, intent(out) :: ok
+    type(mechanism_t) :: mech
+    type(error_t) :: err
+    call build_mechanism(inp, mech, err)
+    if (.not. err%failed()) call model%init_mechanism(mech, effects, 'exact', beta, err)
+    call assert_true(.not. err%failed(), 'model: '//err%text())
+    ok = .not. err%failed()
+  end subroutine make_model
+
+  function all_effects() result(fx)
+    type(element_effects_t) :: fx
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+  end function all_effects
+
+  !> Euler-Bernoulli frequency for eigenvalue beta L (length `l`).
+  pure real(dp) function euler_bernoulli(beta_l, l)
+    real(dp), intent(in) :: beta_l, l
+    euler_bernoulli = (beta_l/l)**2*sqrt(e1*inertia/(rho*area))
+  end function euler_bernoulli
+
+  !> Probe on the modal coordinate of mode k: c = M0 x_k, so that c.q is the
+  !> amplitude of mode k (M-orthonormal modes of the structure at rest).
+  function modal_probe(model, shapes, k) result(p)
+    type(mechanism_model_t), intent(inout) :: model
+    real(dp), intent(in) :: shapes(:, :)
+    integer, intent(in) :: k
+    type(probe_t) :: p
+    real(dp) :: mass(model%n, model%n), stiff(model%n, model%n), q0(model%n)
+    q0 = 0.0_dp
+    call model%assemble_dense(q0, mass, stiff)
+    p%kind = probe_modal
+    allocate(p%c(model%n))
+    p%c = matmul(mass, shapes(:, k))
+  end function modal_probe
+
+  real(dp) function probe_value(p, model, t, y) result(v)
+    type(probe_t), intent(in) :: p
+    type(mechanism_model_t), intent(inout) :: model
+    real(dp), intent(in) :: t, y(:)
+    real(dp) :: uw(2), q(size(y)/2)
+    q = y(1::2)
+    if (p%kind == probe_modal) then
+      v = dot_product(p%c, q)
+    else
+      call model%set_time(t)
+      uw = kear_local_displacement(model%el(p%element), model%table%gather(p%element, q), &
+                                   model%rb(p%element)%phi, p%xi)
+      v = uw(2)
+    end if
+    v = v - p%offset
+  end function probe_value
+
+  !> Period from the zero crossings of the probe over n_periods periods,
+  !> sampled every t_guess/100 (linear interpolation between samples: its
+  !> error is third order in the sample step at a crossing of a sine).
+  subroutine measure_period(model, y, t0, t_guess, n_periods, mf, rtol, atol, p, period, ok)
+    type(mechanism_model_t), intent(inout), target :: model
+    real(dp), intent(inout) :: y(:)
+    real(dp), intent(in) :: t0, t_guess, rtol, atol
+    integer, intent(in) :: n_periods, mf
+    type(probe_t), intent(in) :: p
+    real(dp), intent(out) :: period
+    logical, intent(out) :: ok
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    real(dp) :: dt, t, a, a_prev, first, last
+    integer :: k, n_cross
+    period = 0.0_dp
+    dt = t_guess/100.0_dp
+    call ode%init(size(y), t0, mf, rtol, [atol], err, max_steps=1000000)
+    a_prev = probe_value(p, model, t0, y)
+    n_cross = 0
+    first = 0.0_dp
+    last = 0.0_dp
+    do k = 1, 300*(n_periods + 1)
+      t = t0 + k*dt
+      call ode%integrate_to(model, y, t, err)
+      if (err%failed()) exit
+      a = probe_value(p, model, t, y)
+      if (a*a_prev < 0.0_dp) then
+        n_cross = n_cross + 1
+        last = t - dt*a/(a - a_prev)
+        if (n_cross == 1) first = last
+        if (n_cross == 2*n_periods + 1) exit
+      end if
+      a_prev = a
+    end do
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    ok = n_cross == 2*n_periods + 1 .and. .not. err%failed()
+    call assert_true(ok, 'found '//itoa(2*n_periods + 1)//' zero crossings')
+    if (ok) period = (last - first)/n_periods
+  end subroutine measure_period
+
+  !> Absolute tolerances for the interleaved state: atol_q on displacements,
+  !> atol_qd on their rates.  The rates of the stiff (high-frequency,
+  !> overdamped) components are pure round-off of M^-1 (F - K q); a rate
+  !> tolerance as small as the displacement one makes BDF's corrector fail
+  !> on that noise (measured: 30000+ order-1 steps instead of 4000).
+  pure function state_atol(n_state, atol_q, atol_qd) result(a)
+    integer, intent(in) :: n_state
+    real(dp), intent(in) :: atol_q, atol_qd
+    real(dp) :: a(n_state)
+    a(1::2) = atol_q
+    a(2::2) = atol_qd
+  end function state_atol
+
+  pure function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=12) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function itoa
+
+  pure function rtoa(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(es11.4)') x
+    s = trim(adjustl(buf))
+  end function rtoa
+
+
+  !> Integrate a damped system from the rigid state at t = 0 to t_end (BDF
+  !> with DLSODE's finite-difference full Jacobian: the model's analytic one
+  !> leaves out the damping term beta phi_dot K T^T J_b T, which is not small
+  !> here (beta phi_dot ~ 0.5); see the doc, "known issues").
+  subroutine settle(model, y, t_end, ok)
+    type(mechanism_model_t), intent(inout), target :: model
+    real(dp), intent(inout) :: y(:)
+    real(dp), intent(in) :: t_end
+    logical, intent(out) :: ok
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    call ode%init(size(y), 0.0_dp, mf_bdf_full_fd, 1.0e-9_dp, state_atol(size(y), 1.0e-12_dp, 1.0e-8_dp), err, &
+                  max_steps=200000)
+    call ode%integrate_to(model, y, t_end, err)
+    call assert_true(.not. err%failed(), 'settling run: '//err%text())
+    ok = .not. err%failed()
+  end subroutine settle
+
+  !> A cantilever of in-plane depth h turning at omega about its clamped root.
+end module transient_fixtures
