@@ -145,18 +145,20 @@ contains
   ! ------------------------------------------------------------------ 7. slider-crank
 
   !> Crank AB = 5 clamped at A = (0, 0) turning at 15 rad/s, coupler BC = 11,
-  !> C on a massless block sliding on the X axis (the §8.1 crank and coupler
-  !> with a slider; inputs/slidercrank_*.nml at speed), 4 elements per link,
-  !> linear model, damped, spun up.  At 0.01 of the first natural frequency
-  !> the stresses are those of rigid-body statics: the coupler is a beam
-  !> pinned at B and on a frictionless guide at C (a reaction along Y only)
-  !> under the d'Alembert loads -rho A a(s) of its rigid motion; the crank is
-  !> a cantilever loaded at B by the coupler and stretched by its own
-  !> centripetal inertia.  Compared: the largest |sigma| = |N|/A + |M| c/I
+  !> C on a block of mass 3.5e-4 lb s^2/in (half the coupler's) sliding on
+  !> the X axis (the §8.1 crank and coupler with a slider;
+  !> inputs/slidercrank_*.nml at speed), one element per link, linear model,
+  !> damped, spun up.  At 0.005 of the first natural frequency the stresses
+  !> are those of rigid-body statics: the coupler is a beam pinned at B and
+  !> pinned at C to the block, which the frictionless guide pushes along Y
+  !> only, under the d'Alembert loads -rho A a(s) of its rigid motion and the
+  !> block's -m a_C; the crank is a cantilever loaded at B by the coupler and
+  !> stretched by its own centripetal inertia.  Compared: the largest |sigma| = |N|/A + |M| c/I
   !> over each link at 24 crank angles of one turn, to 2 % of the largest
   !> (N is element-wise constant in the model: linear axial shape functions).
   subroutine test_slider_crank_statics()
     real(dp), parameter :: omega = 15.0_dp, t_spin = 0.2_dp, r = 5.0_dp, l = 11.0_dp
+    real(dp), parameter :: m_block = 3.5e-4_dp       ! half the coupler's mass
     integer, parameter :: n = 1, n_angles = 24
     type(mechanism_input_t) :: inp
     type(mechanism_model_t), target :: model
@@ -176,6 +178,7 @@ contains
     inp%link_joint2(1:2) = [2, 3]
     inp%link_length(1:2) = [r, l]
     inp%link_n_elements(1:2) = n
+    inp%joint_mass(3) = m_block
     inp%omega = omega
     inp%profile = 'spinup'
     inp%spinup_time = t_spin
@@ -195,7 +198,7 @@ contains
       call model%element_stresses(y(1::2), rep)
       fe(1, k) = maxval(rep(1:n)%max_abs_stress)
       fe(2, k) = maxval(rep(n + 1:2*n)%max_abs_stress)
-      st(:, k) = statics_peak_stress(r, l, omega, theta + two_pi, n)
+      st(:, k) = statics_peak_stress(r, l, omega, theta + two_pi, n, m_block)
     end do
     call assert_true(.not. err%failed(), 'integration: '//err%text())
     if (err%failed()) return
@@ -205,19 +208,21 @@ contains
 
   !> Largest |N|/A + |M| c/I in the crank (1) and the coupler (2) of a
   !> slider-crank (crank r at the origin turning at constant omega, coupler l,
-  !> block on the X axis ahead of the crank pin) from rigid-body statics with
-  !> d'Alembert loads; no rotary inertia (as in the linear model).  Each link
+  !> block of mass m_block on the X axis ahead of the crank pin) from
+  !> rigid-body statics with d'Alembert loads; no rotary inertia (as in the
+  !> linear model).  Each link
   !> is cut into n equal elements and N is averaged over each: the model's
   !> axial field is linear per element, so its element force is the element
   !> mean of the exact N (nodally exact bar elements); M is exact (the
   !> quintic element holds the quintic deflection of a linear load).
-  function statics_peak_stress(r, l, omega, theta, n) result(s)
-    real(dp), intent(in) :: r, l, omega, theta
+  function statics_peak_stress(r, l, omega, theta, n, m_block) result(s)
+    real(dp), intent(in) :: r, l, omega, theta, m_block
     integer, intent(in) :: n
     real(dp) :: s(2)
     integer, parameter :: m = 480
     real(dp) :: phi, phid, phidd, e(2), ep(2), ab(2), a0_perp, a0_par, mu, x(0:m), qp(0:m), qa(0:m)
     real(dp) :: r_perp, r_par, big_m(0:m), big_n(0:m), c, total(2), pin(2), u(2), up(2), p_perp, p_par, h
+    real(dp) :: a_cx, r_y, f_c(2)
     real(dp) :: n_mean, xs
     integer :: i, j, k, lo, hi
     mu = rho*area
@@ -238,9 +243,14 @@ contains
       qp(i) = -mu*(a0_perp + x(i)*phidd)
       qa(i) = -mu*(a0_par - x(i)*phid**2)
     end do
-    ! moments about B: the guide reaction at C is along Y (massless block)
+    ! moments about B fix the normal component r_perp of the force F_C of the
+    ! block on the coupler; the block (mass m_block, acceleration a_C along X)
+    ! is pushed by the guide along Y only: F_C = (-m_block a_C, R_y)
     r_perp = -(0.5_dp*mu*(-a0_perp)*l**2 + mu*(-phidd)*l**3/3.0_dp)/l   ! = -int x qp dx / l
-    r_par = r_perp*tan(phi)
+    a_cx = -r*omega**2*cos(theta) - l*phidd*sin(phi) - l*phid**2*cos(phi)
+    r_y = (r_perp - m_block*a_cx*sin(phi))/cos(phi)
+    f_c = [-m_block*a_cx, r_y]
+    r_par = dot_product(f_c, e)
     ! N and M at each station from the part [x, l] (trapezoid rule, fine grid)
     do i = 0, m
       big_m(i) = (l - x(i))*r_perp
