@@ -1,0 +1,340 @@
+!> Work-precision study of the transient analysis (issue 3): the §8.1
+!> four-bar at 150 rad/s with stiffness-proportional damping beta = 1e-5 s,
+!> started from the rigid state and run for five crank revolutions; the
+!> figure of merit is the peak |stress| in the coupler during the fifth turn
+!> (past the start-up: the per-turn peak changes by 3e-5 from the fifth to
+!> the fourteenth), against CPU seconds per crank revolution.
+!>
+!>   1. cost of one right-hand side (assembly + banded Cholesky) and of one
+!>      BDF Jacobian (dense M^-1 K_t) against the number of elements;
+!>   2. elements per link 1, 2, 4, 8, 16 x rtol 1e-3 ... 1e-10 x method
+!>      adams (MF 10) / bdf (MF 21) / bdf_band (MF 24); error against the
+!>      finest, tightest run; each run stops when it exceeds a CPU budget;
+!>   3. the effect of the absolute tolerance on the rates (the deck has one
+!>      atol for displacements and rates alike).
+!>
+!> Tables go to standard output (make bench keeps them in
+!> build/bench/bench_transient.txt); data files for doc/figures/*.gp go to
+!> build/bench/transient_*.dat.  A benchmark: figures, not pass/fail.
+module bench_transient_cases
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
+  use kear_element, only: element_effects_t, stress_report_t
+  use mechanism_model, only: mechanism_model_t
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user
+  implicit none
+  private
+  public :: case_result_t, run_case, rhs_cost, jacobian_cost, fourbar
+
+  real(dp), parameter :: crank_speed = 150.0_dp, beta = 1.0e-5_dp
+  integer, parameter :: revolutions = 5
+
+  type :: case_result_t
+    logical :: finished = .false.
+    character(len=80) :: why = ''
+    real(dp) :: peak = 0.0_dp              !< peak |stress| in the coupler, fifth turn (psi)
+    real(dp) :: cpu_per_rev = 0.0_dp       !< CPU seconds per crank revolution (whole run / turns done)
+    real(dp) :: steps_per_rev = 0.0_dp, rhs_per_rev = 0.0_dp, jac_per_rev = 0.0_dp
+    real(dp) :: turns = 0.0_dp
+  end type case_result_t
+
+contains
+
+  !> The §8.1 four-bar with n elements per link.
+  function fourbar(n) result(inp)
+    integer, intent(in) :: n
+    type(mechanism_input_t) :: inp
+    inp%n_joints = 4
+    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
+    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_x(4) = 10.0_dp
+    inp%joint_y(4) = 0.0_dp
+    inp%n_links = 3
+    inp%link_joint1(1:3) = [1, 2, 4]
+    inp%link_joint2(1:3) = [2, 3, 3]
+    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
+    inp%link_n_elements(1:3) = n
+    inp%omega = crank_speed
+  end function fourbar
+
+  subroutine make(n, effects, model, err)
+    integer, intent(in) :: n
+    type(element_effects_t), intent(in) :: effects
+    type(mechanism_model_t), intent(inout) :: model
+    type(error_t), intent(inout) :: err
+    type(mechanism_t) :: mech
+    call build_mechanism(fourbar(n), mech, err)
+    if (err%failed()) return
+    call model%init_mechanism(mech, effects, 'exact', beta, err)
+    if (err%failed()) return
+    call model%build_motion_table(720, err)
+  end subroutine make
+
+  !> One run: n elements per link, method mf, relative tolerance rtol;
+  !> absolute tolerances atol_q = 1e-3 rtol (in) on displacements and
+  !> atol_qd = rate_scale * rtol (in/s) on rates.  Stops when the CPU time
+  !> exceeds `budget` seconds.  Peak |stress| over the coupler's elements,
+  !> sampled every degree of the fifth turn and refined by a parabola through
+  !> the largest sample and its neighbours.
+  function run_case(n, mf, rtol, effects, budget, rate_scale) result(res)
+    integer, intent(in) :: n, mf
+    real(dp), intent(in) :: rtol, budget, rate_scale
+    type(element_effects_t), intent(in) :: effects
+    type(case_result_t) :: res
+    type(mechanism_model_t), target :: model
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    type(lsode_counters_t) :: c
+    type(stress_report_t), allocatable :: rep(:)
+    real(dp), allocatable :: y(:), atol(:)
+    real(dp) :: dt, t, cpu0, cpu1, s, s_prev, s_prev2, best
+    integer :: k, n_out, ml, first, last
+    call make(n, effects, model, err)
+    if (err%failed()) then
+      res%why = err%text()
+      return
+    end if
+    allocate(y(model%state_size()), atol(model%state_size()), rep(size(model%el)))
+    y = 0.0_dp
+    atol(1::2) = 1.0e-3_dp*rtol
+    atol(2::2) = rate_scale*rtol
+    ml = min(2*model%kd + 1, size(y) - 1)
+    call ode%init(size(y), 0.0_dp, mf, rtol, atol, err, ml=ml, mu=ml, max_steps=200000)
+    first = model%table%first_element(2)
+    last = model%table%first_element(3) - 1
+    dt = pi/180.0_dp/crank_speed
+    n_out = 360*revolutions
+    best = 0.0_dp
+    s_prev = 0.0_dp
+    s_prev2 = 0.0_dp
+    call cpu_time(cpu0)
+    cpu1 = cpu0
+    do k = 1, n_out
+      t = k*dt
+      call ode%integrate_to(model, y, t, err)
+      if (err%failed()) then
+        call cpu_time(cpu1)
+        res%why = err%text()
+        exit
+      end if
+      if (mod(k, 30) == 0) call cpu_time(cpu1)
+      if (cpu1 - cpu0 > budget) then
+        res%why = 'over the CPU budget'
+        exit
+      end if
+      if (k > 360*(revolutions - 1) - 2) then
+        call model%set_time(t)
+        call model%element_stresses(y(1::2), rep)
+        s = maxval(rep(first:last)%max_abs_stress)
+        ! parabola through (k-2, k-1, k) when k-1 is a local maximum
+        if (k > 360*(revolutions - 1) .and. s_prev >= s_prev2 .and. s_prev >= s) &
+          best = max(best, parabola_max(s_prev2, s_prev, s))
+        best = max(best, s)
+        s_prev2 = s_prev
+        s_prev = s
+      end if
+    end do
+    call cpu_time(cpu1)
+    res%turns = ode%t*crank_speed/two_pi
+    c = ode%counters()
+    if (res%turns > 0.0_dp) then
+      res%cpu_per_rev = (cpu1 - cpu0)/res%turns
+      res%steps_per_rev = c%steps/res%turns
+      res%rhs_per_rev = c%rhs_evals/res%turns
+      res%jac_per_rev = c%jac_evals/res%turns
+    end if
+    res%finished = .not. err%failed() .and. k > n_out
+    res%peak = best
+  end function run_case
+
+  pure real(dp) function parabola_max(a, b, c) result(m)
+    real(dp), intent(in) :: a, b, c
+    real(dp) :: d
+    d = a - 2.0_dp*b + c
+    if (d < 0.0_dp) then
+      m = b - 0.125_dp*(c - a)**2/d
+    else
+      m = b
+    end if
+  end function parabola_max
+
+  !> CPU microseconds per right-hand side at a deformed state (n elements
+  !> per link, 3n elements), averaged over enough calls to take ~0.2 s.
+  real(dp) function rhs_cost(n, effects, n_unknowns) result(us)
+    integer, intent(in) :: n
+    type(element_effects_t), intent(in) :: effects
+    integer, intent(out) :: n_unknowns
+    type(mechanism_model_t), target :: model
+    type(error_t) :: err
+    real(dp), allocatable :: y(:), f(:)
+    real(dp) :: cpu0, cpu1, t
+    integer :: k, calls
+    call make(n, effects, model, err)
+    n_unknowns = model%n
+    allocate(y(model%state_size()), f(model%state_size()))
+    call random_number(y)
+    y = 1.0e-4_dp*(y - 0.5_dp)
+    calls = 0
+    call cpu_time(cpu0)
+    do
+      do k = 1, 100
+        t = 1.0e-5_dp*(calls + k)          ! a new time each call: the rigid motion is interpolated too
+        call model%rhs(t, y, f)
+      end do
+      calls = calls + 100
+      call cpu_time(cpu1)
+      if (cpu1 - cpu0 > 0.2_dp) exit
+    end do
+    us = 1.0e6_dp*(cpu1 - cpu0)/calls
+  end function rhs_cost
+
+  !> CPU microseconds per BDF Jacobian (model%jacobian, full storage).
+  real(dp) function jacobian_cost(n) result(us)
+    integer, intent(in) :: n
+    type(mechanism_model_t), target :: model
+    type(error_t) :: err
+    real(dp), allocatable :: y(:), pd(:, :)
+    real(dp) :: cpu0, cpu1
+    integer :: calls
+    call make(n, element_effects_t(), model, err)
+    allocate(y(model%state_size()), pd(model%state_size(), model%state_size()))
+    y = 0.0_dp
+    calls = 0
+    call cpu_time(cpu0)
+    do
+      pd = 0.0_dp
+      call model%jacobian(1.0e-3_dp, y, 0, 0, pd)
+      calls = calls + 1
+      call cpu_time(cpu1)
+      if (cpu1 - cpu0 > 0.2_dp) exit
+    end do
+    us = 1.0e6_dp*(cpu1 - cpu0)/calls
+  end function jacobian_cost
+end module bench_transient_cases
+
+program bench_transient
+  use kinds, only: dp
+  use kear_element, only: element_effects_t
+  use lsode_solver, only: mf_adams, mf_bdf_full_user, mf_bdf_band_user
+  use bench_transient_cases
+  implicit none
+  integer, parameter :: ns(5) = [1, 2, 4, 8, 16], ns_cost(6) = [1, 2, 4, 8, 16, 32]
+  real(dp), parameter :: rate_atols(4) = [1.0e-3_dp, 1.0e0_dp, 1.0e3_dp, 1.0e6_dp]
+  integer, parameter :: mfs(3) = [mf_adams, mf_bdf_full_user, mf_bdf_band_user]
+  character(len=8), parameter :: method_names(3) = [character(len=8) :: 'adams', 'bdf', 'bdf_band']
+  real(dp), parameter :: budget = 60.0_dp          ! CPU seconds per run
+  real(dp), parameter :: rate_scale = 1.0_dp       ! atol on rates = rate_scale * rtol (in/s)
+  type(element_effects_t) :: linear
+  type(case_result_t) :: ref, r
+  real(dp) :: rtol, us, err_rel
+  integer :: i, j, k, u, n_el, n_unknowns
+  character(len=32) :: arg
+  character(len=*), parameter :: data_dir = 'build/bench/'
+  logical :: skip
+
+  linear = element_effects_t()
+  ! `bench_transient probe N METHOD RTOL [all]`: one run, for profiling
+  if (command_argument_count() >= 4) then
+    call get_command_argument(2, arg)
+    read(arg, *) i
+    call get_command_argument(3, arg)
+    k = findloc(method_names, trim(arg), dim=1)
+    call get_command_argument(4, arg)
+    read(arg, *) rtol
+    if (command_argument_count() >= 5) linear = element_effects_t(.true., .true., .true., .true., .true.)
+    r = run_case(i, mfs(k), rtol, linear, 3600.0_dp, rate_scale)
+    print '(a,l2,1x,a,f0.4,a,f0.3,a,f0.0,a,f0.0,a,f0.0)', 'finished', r%finished, trim(r%why)//' peak ', r%peak, &
+      ' CPU ms/turn ', 1.0e3_dp*r%cpu_per_rev, ' steps/turn ', r%steps_per_rev, ' RHS/turn ', r%rhs_per_rev, &
+      ' Jac/turn ', r%jac_per_rev
+    stop
+  end if
+  call execute_command_line('mkdir -p '//data_dir)
+
+  ! ---- 1. cost per right-hand side and per Jacobian against the number of elements
+  print '(a)', '## Cost per right-hand side and per BDF Jacobian (four-bar, 3n elements)'
+  print '(a)', ''
+  print '(a)', '| n per link | elements | unknowns | RHS linear (us) | per element | RHS all effects (us) | per element | '// &
+               'Jacobian (us) |'
+  print '(a)', '|---|---|---|---|---|---|---|---|'
+  open(newunit=u, file=data_dir//'transient_rhs_cost.dat', status='replace')
+  write(u, '(a)') '# n_per_link elements rhs_linear_us rhs_all_us jacobian_us'
+  do i = 1, size(ns_cost)
+    j = ns_cost(i)
+    n_el = 3*j
+    block
+      real(dp) :: lin, full, jac
+      lin = rhs_cost(j, linear, n_unknowns)
+      full = rhs_cost(j, element_effects_t(.true., .true., .true., .true., .true.), n_unknowns)
+      jac = -1.0_dp
+      if (j <= 16) jac = jacobian_cost(j)
+      print '(a,i0,a,i0,a,i0,a,f0.2,a,f0.3,a,f0.2,a,f0.3,a,f0.1,a)', '| ', j, ' | ', n_el, ' | ', n_unknowns, &
+        ' | ', lin, ' | ', lin/n_el, ' | ', full, ' | ', full/n_el, ' | ', jac, ' |'
+      write(u, '(i4,i6,3es14.5)') j, n_el, lin, full, jac
+    end block
+  end do
+  close(u)
+  print '(a)', ''
+
+  ! ---- 2. work-precision
+  print '(a)', '## Work-precision: peak coupler stress in the fifth turn, 150 rad/s, beta = 1e-5 s, linear model'
+  print '(a)', ''
+  ref = run_case(16, mf_bdf_full_user, 1.0e-10_dp, linear, 3600.0_dp, rate_scale)
+  if (.not. ref%finished) then
+    print '(a)', 'reference run (16 elements per link, bdf, rtol 1e-10) did not finish: '//trim(ref%why)
+    ref = run_case(8, mf_bdf_full_user, 1.0e-10_dp, linear, 3600.0_dp, rate_scale)
+    print '(a)', 'reference taken from 8 elements per link instead'
+  end if
+  print '(a,f0.4,a,f0.3,a)', 'reference: peak coupler stress ', ref%peak, ' psi (', ref%cpu_per_rev, &
+    ' CPU s per turn; 16 elements per link, bdf, rtol 1e-10)'
+  print '(a)', ''
+  print '(a)', '| method | n per link | rtol | peak (psi) | rel. error | CPU ms/turn | steps/turn | RHS/turn | Jac/turn |'
+  print '(a)', '|---|---|---|---|---|---|---|---|---|'
+  open(newunit=u, file=data_dir//'transient_work_precision.dat', status='replace')
+  write(u, '(a)') '# method n_per_link rtol peak rel_error cpu_ms_per_turn steps_per_turn rhs_per_turn jac_per_turn finished'
+  do k = 1, 3
+    write(u, '(a)') ''
+    write(u, '(a)') ''
+    write(u, '(a)') '# method '//trim(method_names(k))
+    do i = 1, size(ns)
+      skip = .false.
+      do j = 3, 10
+        rtol = 10.0_dp**(-j)
+        if (skip) then
+          print '(a,a,a,i0,a,es7.0,a)', '| ', trim(method_names(k)), ' | ', ns(i), ' | ', rtol, &
+            ' | - | - | (skipped: a looser tolerance was over budget) | | | |'
+          cycle
+        end if
+        r = run_case(ns(i), mfs(k), rtol, linear, budget, rate_scale)
+        if (.not. r%finished) then
+          print '(a,a,a,i0,a,es7.0,a,a,a,f0.2,a)', '| ', trim(method_names(k)), ' | ', ns(i), ' | ', rtol, &
+            ' | - | - | stopped: ', trim(r%why), ' after ', r%turns, ' turns | | | |'
+          skip = .true.
+          cycle
+        end if
+        err_rel = abs(r%peak - ref%peak)/ref%peak
+        print '(a,a,a,i0,a,es7.0,a,f0.3,a,es9.2,a,f0.2,a,f0.0,a,f0.0,a,f0.0,a)', '| ', trim(method_names(k)), ' | ', &
+          ns(i), ' | ', rtol, ' | ', r%peak, ' | ', err_rel, ' | ', 1.0e3_dp*r%cpu_per_rev, ' | ', r%steps_per_rev, &
+          ' | ', r%rhs_per_rev, ' | ', r%jac_per_rev, ' |'
+        write(u, '(a10,i4,es10.2,f14.4,es12.4,4es13.5,l3)') trim(method_names(k)), ns(i), rtol, r%peak, err_rel, &
+          1.0e3_dp*r%cpu_per_rev, r%steps_per_rev, r%rhs_per_rev, r%jac_per_rev, r%finished
+      end do
+    end do
+  end do
+  close(u)
+  print '(a)', ''
+
+  ! ---- 3. the rate tolerance
+  print '(a)', '## Absolute tolerance on the rates (bdf, 1 element per link, rtol 1e-6; atol on displacements 1e-9 in)'
+  print '(a)', ''
+  print '(a)', '| atol on rates (in/s) | peak (psi) | CPU ms/turn | steps/turn |'
+  print '(a)', '|---|---|---|---|'
+  do i = 1, size(rate_atols)
+    us = rate_atols(i)
+    r = run_case(1, mf_bdf_full_user, 1.0e-6_dp, linear, budget, us)
+    print '(a,es8.1,a,f0.3,a,f0.2,a,f0.0,a)', '| ', us*1.0e-6_dp, ' | ', r%peak, ' | ', 1.0e3_dp*r%cpu_per_rev, ' | ', &
+      r%steps_per_rev, ' |'
+  end do
+end program bench_transient
