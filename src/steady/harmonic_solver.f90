@@ -44,7 +44,7 @@ module harmonic_solver
     integer :: n_harmonics = 8             !< N: 2N samples per revolution
     integer :: n_kept = 0                  !< N' harmonics kept in (T26); 0 = N
     logical :: velocity_terms = .false.    !< keep C Q_d (the paper drops it)
-    real(dp) :: outer_tol = 1.0e-6_dp      !< relative change of Q that ends the outer iteration
+    real(dp) :: outer_tol = 1.0e-5_dp      !< relative change of Q that ends the outer iteration
     integer :: max_outer = 30
     real(dp) :: resonance_ratio = 1.0e-2_dp !< flag rcond(K - n^2 w^2 M)/rcond(K) below this
   end type harmonic_settings_t
