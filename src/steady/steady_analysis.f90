@@ -195,7 +195,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(steady_settings_t), intent(in) :: s
     type(steady_model_t), intent(in) :: model
-    character(len=120), allocatable :: tlines(:)
+    character(len=200), allocatable :: tlines(:)
     integer :: i
     associate (lines => mechanism_summary(mech))
       do i = 1, size(lines)

@@ -349,9 +349,9 @@ contains
   !> The table as text lines for the output header.
   subroutine describe(self, lines)
     class(tennant_table_t), intent(in) :: self
-    character(len=120), allocatable, intent(out) :: lines(:)
+    character(len=200), allocatable, intent(out) :: lines(:)
     integer :: e, i, n, k
-    character(len=120) :: l
+    character(len=200) :: l
     n = 3 + self%n_elements + 1 + (self%n_global + 3)/4
     allocate(lines(n))
     write(lines(1), '(a,i0,a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements of ', &
