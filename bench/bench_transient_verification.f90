@@ -426,6 +426,7 @@ contains
     real(dp), allocatable :: omega(:), shapes(:, :), y(:)
     type(probe_t) :: p
     type(error_t) :: err
+    type(element_effects_t) :: fx
     logical :: okk
     fx = all_effects()
     fx%rotary_inertia = rotary
