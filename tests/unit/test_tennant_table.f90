@@ -96,7 +96,7 @@ contains
     type(tennant_table_t) :: tt
     type(error_t) :: err
     type(table_end_t) :: ends(2, 2)
-    real(dp) :: c0(16, 16), c1(16, 16), c2(16, 16), q(8), qe(8), phi, us, ws, s, uw(2)
+    real(dp) :: c0(16, 16), c1(16, 16), c2(16, 16), q(8), qe(8), phi, us, ws, s, uw(2), qg(16)
     integer :: ng, e, i
     ends(:, 1) = [table_end_t(end_clamp, 1), table_end_t(end_pin, 2)]
     ends(:, 2) = [table_end_t(end_ground_pin, 3), table_end_t(end_sleeve, 2, carried=.true.)]
@@ -107,7 +107,10 @@ contains
     phi = 0.7_dp
     call tt%element_map(e, phi, 3.0_dp, -5.0_dp, ng, c0, c1, c2)
     q = [(0.01_dp*i, i = 1, 8)]
-    qe = matmul(c0(1:8, 1:ng), q(tt%glob(1:ng, e)))
+    do i = 1, ng
+      qg(i) = q(tt%glob(i, e))
+    end do
+    qe = matmul(c0(1:8, 1:ng), qg(1:ng))
     us = q(tt%sleeve_u(e))
     ws = q(tt%sleeve_w(e))
     s = q(tt%sleeve_s(e))
