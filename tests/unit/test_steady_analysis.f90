@@ -32,6 +32,7 @@ contains
     call run_test('both_methods_side_by_side_at_low_speed', test_both)
     call run_test('shear_angle_and_sections_from_the_deck', test_shear_sections)
     call run_test('resonance_stops_with_the_diagnosis_and_no_rows', test_resonance)
+    call run_test('parametric_resonance_of_the_undamped_four_bar_stops', test_parametric)
     call run_test('bad_input_is_an_input_error', test_bad_input)
   end subroutine run_all
 
@@ -198,6 +199,21 @@ contains
     call assert_true(has_line(lines, 'warning: harmonic 8 of the crank speed'), 'header warning')
     call assert_true(has_line(lines, '# summary: worst conditioning of K - n^2 w^2 M'), 'rcond in the summary')
   end subroutine test_resonance
+
+  !> Undamped, 295 rad/s: a pair of Floquet multipliers of modulus 1.0018
+  !> (stable at 293 and 297 rad/s, doc/steady_state.md §6): the run stops
+  !> with the multipliers in the summary, no rows.
+  subroutine test_parametric()
+    type(error_t) :: err
+    character(len=2048), allocatable :: lines(:)
+    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 295.0|/|&steady method = ''shooting'', '// &
+                  'integrator = ''adams'', rtol = 1.0e-8, atol = 1.0e-12, output_step_deg = 30.0 /', err, lines)
+    call assert_true(err%failed() .and. err%code /= 2, 'stopped with a diagnosis')
+    call assert_true(index(err%text(), 'UNSTABLE') > 0 .and. index(err%text(), 'modulus 1.00') > 0, &
+                     'names the multiplier: '//err%text())
+    call assert_true(has_line(lines, '# summary: Floquet multipliers, largest moduli =  1.001'), 'multipliers listed')
+    call assert_equal(count_rows(lines), 0, 'no rows')
+  end subroutine test_parametric
 
   subroutine test_bad_input()
     type(error_t) :: err
