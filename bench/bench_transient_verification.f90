@@ -399,7 +399,7 @@ program bench_transient_verification
   ! ---- 5. rigid limit
   print '(a)', '## 5. Rigid limit: four-bar at 15 rad/s, linear, largest joint deformation in the second turn x E/E0'
   print '(a)', ''
-  print '(a)', '| E / E0 | max |deformation| x E/E0 (in) | ratio to E0 |'
+  print '(a)', '| E / E0 | largest joint deformation x E/E0 (in) | ratio to E0 |'
   print '(a)', '|---|---|---|'
   block
     real(dp) :: d0, d
