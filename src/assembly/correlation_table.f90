@@ -60,12 +60,15 @@ contains
 
   !> Build the table for links with `n_elem(k)` elements each and end
   !> attachments `ends(1:2, k)` (1 = the link's start, 2 = its end).
-  subroutine build(self, n_elem, ends, err)
+  !> Unknowns are numbered link by link, node by node (the papers' order);
+  !> with reduce_band they are renumbered to narrow the band of M and K.
+  subroutine build(self, n_elem, ends, err, reduce_band)
     class(correlation_table_t), intent(inout) :: self
     integer, intent(in) :: n_elem(:)
     type(link_end_t), intent(in) :: ends(:, :)
     type(error_t), intent(inout) :: err
-    integer :: k, e, j, n_links, next, side, lo, hi, i, node_dofs(4), max_joint
+    logical, intent(in), optional :: reduce_band   !< renumber by reverse Cuthill-McKee when it narrows the band
+    integer :: k, e, j, n_links, next, side, node_dofs(4), max_joint
     integer, allocatable :: joint_u(:), joint_w(:), joint_kind(:)
     real(dp) :: c(4)
 
@@ -128,20 +131,14 @@ contains
       end do
     end do
     self%n_global = next
-
-    self%half_bandwidth = 0
-    do e = 1, self%n_elements
-      lo = huge(1)
-      hi = 0
-      do i = 1, dofs_per_element
-        if (self%map(i, e) > 0) then
-          lo = min(lo, self%map(i, e))
-          hi = max(hi, self%map(i, e))
-        end if
-      end do
-      if (hi > 0) self%half_bandwidth = max(self%half_bandwidth, hi - lo)
-    end do
-    if (self%n_global == 0) call err%set('correlation table', 'the supports leave no free degree of freedom')
+    if (self%n_global == 0) then
+      call err%set('correlation table', 'the supports leave no free degree of freedom')
+      return
+    end if
+    self%half_bandwidth = bandwidth(self%map)
+    if (present(reduce_band)) then
+      if (reduce_band) call reduce_bandwidth(self)
+    end if
 
   contains
 
@@ -209,6 +206,120 @@ contains
       end select
     end subroutine end_node
   end subroutine build
+
+  !> Half-bandwidth of the assembled matrices for a given numbering.
+  pure integer function bandwidth(map) result(kd)
+    integer, intent(in) :: map(:, :)
+    integer :: e
+    kd = 0
+    do e = 1, size(map, 2)
+      if (any(map(:, e) > 0)) kd = max(kd, maxval(map(:, e)) - minval(map(:, e), mask=map(:, e) > 0))
+    end do
+  end function bandwidth
+
+  !> Renumber the global unknowns by reverse Cuthill-McKee when that narrows
+  !> the band.  Numbering link by link keeps a chain of links narrow only if
+  !> every link runs away from the joint it shares with the links before it;
+  !> a link drawn towards that joint (a rocker from its ground pivot D to the
+  !> coupler pin C) would couple its last node to unknowns numbered long
+  !> before, and the band would grow with the number of elements.
+  subroutine reduce_bandwidth(self)
+    type(correlation_table_t), intent(inout) :: self
+    integer, allocatable :: degree(:), start(:), adj(:), order(:), new_index(:), fill(:), new_map(:, :)
+    logical, allocatable :: placed(:)
+    integer :: n, e, i, j, a, b, head, tail, root, v, k, best, m
+    character(len=24), allocatable :: new_label(:)
+    n = self%n_global
+    ! adjacency of the unknowns (two unknowns of one element are coupled), in CSR form
+    allocate(degree(n), start(n + 1))
+    degree = 0
+    do e = 1, self%n_elements
+      do i = 1, dofs_per_element
+        do j = 1, dofs_per_element
+          a = self%map(i, e)
+          b = self%map(j, e)
+          if (a > 0 .and. b > 0 .and. a /= b) degree(a) = degree(a) + 1
+        end do
+      end do
+    end do
+    start(1) = 1
+    do i = 1, n
+      start(i + 1) = start(i) + degree(i)
+    end do
+    allocate(adj(max(1, start(n + 1) - 1)), fill(n))
+    fill = start(1:n)
+    do e = 1, self%n_elements
+      do i = 1, dofs_per_element
+        do j = 1, dofs_per_element
+          a = self%map(i, e)
+          b = self%map(j, e)
+          if (a > 0 .and. b > 0 .and. a /= b) then
+            adj(fill(a)) = b
+            fill(a) = fill(a) + 1
+          end if
+        end do
+      end do
+    end do
+    ! Cuthill-McKee from a lowest-degree unknown of every component, then reversed
+    allocate(order(n), placed(n))
+    placed = .false.
+    tail = 0
+    do while (tail < n)
+      root = 0
+      do i = 1, n
+        if (.not. placed(i)) then
+          if (root == 0) then
+            root = i
+          else if (degree(i) < degree(root)) then
+            root = i
+          end if
+        end if
+      end do
+      tail = tail + 1
+      order(tail) = root
+      placed(root) = .true.
+      head = tail
+      do while (head <= tail)
+        v = order(head)
+        head = head + 1
+        ! append the unplaced neighbours of v, lowest degree first
+        do
+          best = 0
+          do k = start(v), start(v + 1) - 1
+            m = adj(k)
+            if (placed(m)) cycle
+            if (best == 0) then
+              best = m
+            else if (degree(m) < degree(best)) then
+              best = m
+            end if
+          end do
+          if (best == 0) exit
+          tail = tail + 1
+          order(tail) = best
+          placed(best) = .true.
+        end do
+      end do
+    end do
+    allocate(new_index(n))
+    do i = 1, n
+      new_index(order(n + 1 - i)) = i
+    end do
+    new_map = self%map
+    do e = 1, self%n_elements
+      do i = 1, dofs_per_element
+        if (self%map(i, e) > 0) new_map(i, e) = new_index(self%map(i, e))
+      end do
+    end do
+    if (bandwidth(new_map) >= self%half_bandwidth) return
+    allocate(new_label(n))
+    do i = 1, n
+      new_label(new_index(i)) = self%label(i)
+    end do
+    self%map = new_map
+    self%label = new_label
+    self%half_bandwidth = bandwidth(new_map)
+  end subroutine reduce_bandwidth
 
   !> Element DOF vector from the global vector.
   pure function gather(self, e, qg) result(qe)

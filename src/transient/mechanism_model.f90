@@ -130,7 +130,7 @@ contains
       end do
     end do
     n_elements = mech%links(:)%n_elements
-    call self%table%build(n_elements, ends, err)
+    call self%table%build(n_elements, ends, err, reduce_band=.true.)
     if (err%failed()) return
 
     call self%kin%init(mech, err)

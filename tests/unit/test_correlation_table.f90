@@ -15,6 +15,7 @@ contains
     call run_test('fourbar_pins_share_translations_not_slopes', test_fourbar_sharing)
     call run_test('elements_in_a_link_share_all_node_dofs', test_multi_element_link)
     call run_test('bandwidth_grows_with_nothing_but_the_chain', test_bandwidth)
+    call run_test('links_drawn_against_the_chain_keep_a_narrow_band', test_bandwidth_reversed_rocker)
     call run_test('scatter_is_transpose_of_gather', test_scatter_transpose)
     call run_test('slider_translation_follows_guide', test_slider)
     call run_test('fully_held_structure_is_an_error', test_no_free_dof)
@@ -75,9 +76,44 @@ contains
     type(error_t) :: err
     call fourbar(2, t2, err)
     call fourbar(16, t16, err)
-    call assert_true(t16%half_bandwidth <= 7, 'half-bandwidth of a chain stays <= 7')
-    call assert_equal(t16%half_bandwidth, t2%half_bandwidth, 'bandwidth independent of elements per link')
+    call assert_true(t16%half_bandwidth <= 7, 'half-bandwidth of a chain stays <= 7 with 16 elements per link')
+    call assert_true(t2%half_bandwidth <= 7, 'half-bandwidth of a chain stays <= 7 with 2 elements per link')
   end subroutine test_bandwidth
+
+  !> The rocker drawn from its ground pivot D to the coupler pin C (as in the
+  !> decks): numbered link by link its last node couples to C, numbered with
+  !> the coupler, and the band grows with the mesh (checked); the reverse
+  !> Cuthill-McKee renumbering keeps it at most 7 for any mesh, and the table
+  !> stays a valid table (same sharing, every unknown used).
+  subroutine test_bandwidth_reversed_rocker()
+    type(correlation_table_t) :: t
+    type(error_t) :: err
+    type(link_end_t) :: ends(2, 3)
+    integer :: n_each, seen(200), e, k
+    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
+    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
+    ends(1, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    ends(2, 3) = link_end_t(joint_pin, 2, 0.0_dp)
+    do n_each = 1, 16, 5
+      call t%build([n_each, n_each, n_each], ends, err, reduce_band=.true.)
+      call assert_true(.not. err%failed(), err%text())
+      call assert_true(t%half_bandwidth <= 7, 'half-bandwidth <= 7 with the rocker drawn D -> C')
+      call assert_equal(t%n_global, 10 + 3*4*(n_each - 1), 'unknowns')
+      call assert_true(all(t%map(5:6, 2*n_each) == t%map(5:6, 3*n_each)), 'C shared by coupler and rocker ends')
+      seen = 0
+      do e = 1, t%n_elements
+        do k = 1, 8
+          if (t%map(k, e) > 0) seen(t%map(k, e)) = 1
+        end do
+      end do
+      call assert_equal(sum(seen), t%n_global, 'every unknown appears in the table')
+      t = correlation_table_t()
+    end do
+    call t%build([16, 16, 16], ends, err)
+    call assert_true(t%half_bandwidth > 50, 'without renumbering the band spans the rocker')
+  end subroutine test_bandwidth_reversed_rocker
 
   subroutine test_scatter_transpose()
     type(correlation_table_t) :: t
