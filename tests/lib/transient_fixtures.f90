@@ -1,7 +1,8 @@
 !> Shared fixtures of the transient-analysis verification tests
 !> (tests/unit/test_transient_*.f90): the FORMULATION.md §8.1 section and
 !> material, models built as the decks build them (build_mechanism +
-!> init_mechanism), a zero-crossing period meter and tolerance helpers.
+!> init_mechanism, and the motion table when the crank turns), a
+!> zero-crossing period meter and tolerance helpers.
 module transient_fixtures
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
@@ -97,16 +98,23 @@ contains
     inp%theta0_deg = theta0_deg
   end function fourbar_input
 
-  subroutine make_model(inp, effects, beta, model, ok)
+  subroutine make_model(inp, effects, beta, model, ok, table)
     type(mechanism_input_t), intent(in) :: inp
     type(element_effects_t), intent(in) :: effects
     real(dp), intent(in) :: beta
     type(mechanism_model_t), intent(out) :: model
     logical, intent(out) :: ok
+    logical, intent(in), optional :: table     !< tabulate a turning crank's motion (default yes)
     type(mechanism_t) :: mech
     type(error_t) :: err
+    logical :: tabulate
+    tabulate = .true.
+    if (present(table)) tabulate = table
     call build_mechanism(inp, mech, err)
     if (.not. err%failed()) call model%init_mechanism(mech, effects, 'exact', beta, err)
+    ! as the decks do (&transient kinematics = 'table'): the rigid motion of a
+    ! turning crank tabulated once per revolution at 720 crank angles
+    if (.not. err%failed() .and. inp%omega > 0.0_dp .and. tabulate) call model%build_motion_table(720, err)
     call assert_true(.not. err%failed(), 'model: '//err%text())
     ok = .not. err%failed()
   end subroutine make_model
@@ -159,7 +167,7 @@ contains
   !> error is third order in the sample step at a crossing of a sine).
   subroutine measure_period(model, y, t0, t_guess, n_periods, mf, rtol, atol, p, period, ok)
     type(mechanism_model_t), intent(inout), target :: model
-    real(dp), intent(inout) :: y(:)
+    real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: t0, t_guess, rtol, atol
     integer, intent(in) :: n_periods, mf
     type(probe_t), intent(in) :: p
@@ -231,7 +239,7 @@ contains
   !> here (beta phi_dot ~ 0.5); see the doc, "known issues").
   subroutine settle(model, y, t_end, ok)
     type(mechanism_model_t), intent(inout), target :: model
-    real(dp), intent(inout) :: y(:)
+    real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: t_end
     logical, intent(out) :: ok
     type(lsode_t) :: ode

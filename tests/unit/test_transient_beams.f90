@@ -198,7 +198,7 @@ contains
     allocate(p%c(model%n))
     p%c = 0.0_dp
     p%c(mid) = 1.0_dp
-    call measure_period(model, y, 0.0_dp, two_pi/omega(1), 4, mf_adams, 1.0e-9_dp, 1.0e-13_dp, p, period, ok)
+    call measure_period(model, y, 0.0_dp, two_pi/omega(1), 3, mf_adams, 1.0e-9_dp, 1.0e-13_dp, p, period, ok)
   end subroutine hinged_period
 
 end module test_transient_beams_suite
