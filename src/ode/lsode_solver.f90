@@ -313,7 +313,7 @@ contains
       s = 'excess work done: the step limit for one output interval was reached before TOUT'
       if (mf == mf_adams) then
         s = s//'; the problem is probably stiff for the Adams method (MF=10): use a BDF method ' &
-              //'(method = ''bdf'' or ''bdf_band'', MF=21/22/24/25)'
+              //'(method = ''bdf'', MF=21, or ''bdf_fd'', MF=22)'
       else
         s = s//'; raise max_steps or shorten the output interval'
       end if

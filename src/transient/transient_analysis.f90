@@ -36,7 +36,7 @@ contains
     type(progress_t) :: bar
     type(lsode_counters_t) :: c
     type(stress_report_t), allocatable :: stress(:)
-    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:)
+    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
     real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done
     integer :: k, n_out, e, ml
     character(len=32), allocatable :: names(:)
@@ -118,7 +118,11 @@ contains
     n_out = max(1, nint((t_end - t0)/dt_out))
 
     ml = 2*model%kd + 1
-    call ode%init(size(y), t0, s%mf, s%rtol, [s%atol], err, ml=min(ml, size(y) - 1), &
+    ! displacements and rates have their own absolute tolerances (interleaved state)
+    allocate(atol_vector(size(y)))
+    atol_vector(1::2) = s%atol
+    atol_vector(2::2) = s%atol_rate
+    call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=min(ml, size(y) - 1), &
                   mu=min(ml, size(y) - 1), max_steps=s%max_steps)
     if (err%failed()) return
     if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
@@ -146,9 +150,13 @@ contains
     call cpu_time(cpu1)
 
     if (err%failed()) then
-      call driver_angle(mech%driver, model%t_failed, theta, theta_d, theta_dd)
+      ! the model's own failures carry their time; DLSODE's stops are at the solver's time
+      if (model%err%failed()) then
+        call driver_angle(mech%driver, model%t_failed, theta, theta_d, theta_dd)
+      else
+        call driver_angle(mech%driver, ode%t, theta, theta_d, theta_dd)
+      end if
       call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
-      if (.not. model%err%failed()) call err%add_context('DLSODE')
     end if
 
     ! summary and cost

@@ -18,6 +18,7 @@ module transient_settings
     integer :: mf = 10
     real(dp) :: rtol = 1.0e-6_dp
     real(dp) :: atol = 1.0e-9_dp
+    real(dp) :: atol_rate = -1.0_dp                !< absolute tolerance of the rates; < 0: atol
     real(dp) :: revolutions = 1.0_dp
     real(dp) :: output_step_deg = 5.0_dp
     real(dp) :: t_end = 0.0_dp          !< used when the driver does not turn (omega = 0)
@@ -37,11 +38,11 @@ module transient_settings
 
   ! staging variables of the namelist groups
   character(len=16) :: method, initial, formulation, kinematics
-  real(dp) :: rtol, atol, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
+  real(dp) :: rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
   integer :: mode_number, max_steps, table_points
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
-  namelist /transient/ method, rtol, atol, revolutions, output_step_deg, t_end, output_step_t, &
+  namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
     table_points
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
@@ -57,6 +58,7 @@ contains
     method = s%method
     rtol = s%rtol
     atol = s%atol
+    atol_rate = s%atol_rate
     revolutions = s%revolutions
     output_step_deg = s%output_step_deg
     t_end = s%t_end
@@ -86,6 +88,8 @@ contains
     s%mf = mf_from_method(method)
     s%rtol = rtol
     s%atol = atol
+    s%atol_rate = atol_rate
+    if (.not. atol_rate > 0.0_dp) s%atol_rate = atol
     s%revolutions = revolutions
     s%output_step_deg = output_step_deg
     s%t_end = t_end
@@ -115,6 +119,8 @@ contains
       call invalid_value(deck, g, 'rtol', str(s%rtol), 'must lie in (0, 0.1)', err)
     else if (.not. (s%atol > 0.0_dp)) then
       call invalid_value(deck, g, 'atol', str(s%atol), 'must be > 0', err)
+    else if (.not. (atol_rate > 0.0_dp .or. atol_rate < -0.5_dp)) then   ! the default is -1
+      call invalid_value(deck, g, 'atol_rate', str(atol_rate), 'must be > 0 (or left out: then atol)', err)
     else if (.not. (s%revolutions > 0.0_dp .and. s%revolutions <= 1.0e4_dp)) then
       call invalid_value(deck, g, 'revolutions', str(s%revolutions), 'must lie in (0, 10000]', err)
     else if (.not. (s%output_step_deg > 0.0_dp .and. s%output_step_deg <= 360.0_dp)) then
