@@ -496,7 +496,7 @@ contains
     call quintic_hermite(e, el%length, h, hx, hxx)
     call spread_w(hx, gw)
     call spread_w(hxx, gww)
-    call strain_state(el, 1.0_dp + dot_product(el%gu, p), dot_product(gw, p), dot_product(gww, p), &
+    call strain_state(el, dot_product(el%gu, p), dot_product(gw, p), dot_product(gww, p), &
                       .false., sp)
     eps_n = sp%eps
     kap = sp%kap
@@ -574,7 +574,7 @@ contains
     do i = 1, el%n_gauss
       g(:, 2) = el%gw(:, i)
       g(:, 3) = el%gww(:, i)
-      call strain_state(el, 1.0_dp + ux, dot_product(g(:, 2), p), dot_product(g(:, 3), p), .true., sp)
+      call strain_state(el, ux, dot_product(g(:, 2), p), dot_product(g(:, 3), p), .true., sp)
       res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
       info%strain_energy = info%strain_energy + el%wg(i)*res%energy
       f3 = res%axial_force*sp%de_used + res%moment*sp%dk            ! (K17)
@@ -602,19 +602,22 @@ contains
   !> Axial strain and curvature at a station from (a, b, c) = (1+u_x, w_x, w_xx),
   !> with first (and if derivs, second) derivatives.  u_xx = 0 for the linear
   !> axial interpolation of (K26), so the u_xx terms of (K23), (K24) vanish.
-  pure subroutine strain_state(el, a, b, c, derivs, sp)
+  pure subroutine strain_state(el, ux, b, c, derivs, sp)
     type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: a, b, c
+    real(dp), intent(in) :: ux, b, c      !< u_x, w_x, w_xx
     logical, intent(in) :: derivs
     type(strain_point_t), intent(out) :: sp
-    real(dp) :: r2, r, r3, r5, r7
+    real(dp) :: a, r2, r, r3, r5, r7
     logical :: kear
     kear = el%formulation == formulation_kear1987
+    a = 1.0_dp + ux
     r2 = a*a + b*b
     r = sqrt(r2)
     ! axial strain
     if (el%effects%stretching) then
-      sp%eps = r - 1.0_dp                                   ! (K19)
+      ! (K19) eps_n = r - 1, written without the cancellation of r - 1 so that a
+      ! small strain keeps its relative accuracy (DLSODE's error test sees it)
+      sp%eps = (ux*(2.0_dp + ux) + b*b)/(r + 1.0_dp)
       if (derivs) then
         sp%de_true = [a/r, b/r, 0.0_dp]
         if (kear) then
@@ -631,7 +634,7 @@ contains
         end if
       end if
     else
-      sp%eps = a - 1.0_dp                                   ! eps_n = u_x
+      sp%eps = ux                                           ! eps_n = u_x
       if (derivs) then
         sp%de_true = [1.0_dp, 0.0_dp, 0.0_dp]
         sp%de_used = sp%de_true

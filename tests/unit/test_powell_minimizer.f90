@@ -42,7 +42,9 @@ contains
     class(quadratic_t), intent(inout) :: self
     real(dp), intent(in) :: x(:)
     real(dp) :: f
-    f = 0.5_dp*dot_product(x - self%c, matmul(self%q, x - self%c)) + self%f0
+    real(dp) :: d(size(x))
+    d = x - self%c
+    f = 0.5_dp*dot_product(d, matmul(self%q, d)) + self%f0
   end function quadratic_value
 
   function banana_value(self, x) result(f)
