@@ -11,9 +11,9 @@ set ylabel 'CPU microseconds per call'
 set key bottom right font ",9"
 set title 'One right-hand side'
 set xrange [2:150]
-plot f using 2:7 with linespoints pt 7 lw 2 title 'linear, links end to end (kd = 7)', \
+plot f using 2:5 with linespoints pt 4 lw 2 title 'linear, rocker D->C as in the decks', \
+     f using 2:7 with linespoints pt 7 lw 2 title 'linear, links end to end', \
      f using 2:8 with linespoints pt 5 lw 2 title 'all effects, links end to end', \
-     f using 2:5 with linespoints pt 4 dt 2 title 'linear, rocker D->C as in the decks (kd = 4n)', \
      0.8*x with lines dt 3 title '0.8 us x elements', 2.6*x with lines dt 3 title '2.6 us x elements'
 set title 'One BDF Jacobian (dense M^{-1}K_t, model\_jacobian)'
 plot f using 2:($9 > 0 ? $9 : 1/0) with linespoints pt 7 lw 2 title 'flexmech', \
