@@ -76,7 +76,7 @@ contains
   !> Euler-Bernoulli (measured: 1e-6 hinged, 1.3e-6 and 1.6e-3 clamped).
   !> With rotary inertia on as well, the hinged beam follows Rayleigh's beam,
   !> omega^2 = EI k^4 / (rho A (1 + r^2 k^2)), k = n pi / L (Rayleigh, Theory of
-  !> Sound, 1877, §186): mode 2, 4 elements, checked to 1e-4 (it differs from
+  !> Sound, 1877): mode 2, 4 elements, checked to 1e-4 (it differs from
   !> Euler-Bernoulli by 4.1e-3).
   subroutine test_beam_periods()
     character(len=16), parameter :: ends(2) = [character(len=16) :: 'ground_pin', 'clamp']
