@@ -104,7 +104,8 @@ $(OUT)/tools/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(ODEPACK_LIB)
 # Benchmarks may compare with NLopt (optional; installed by `make bench`).
 BENCH_LIBS := -lnlopt
 
-$(OUT)/bench/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(ODEPACK_LIB)
+# Benchmarks share the tests' fixtures (tests/lib), so they measure the same cases.
+$(OUT)/bench/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(TLIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(OUT)/bench
 	$(FC) $(FFLAGS) -o $@ $^ $(BENCH_LIBS) $(LIBS)
 
