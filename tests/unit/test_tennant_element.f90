@@ -178,7 +178,7 @@ contains
     real(dp), parameter :: t0 = 0.013_dp, h = 1.0e-4_dp
     real(dp) :: q0(el%nd), q1(el%nd), q2(el%nd), q(el%nd), qd(el%nd), qdd(el%nd)
     real(dp) :: dkdqd(el%nd, -2:2), dkdq(el%nd), lag(el%nd), model(el%nd), scale
-    real(dp) :: m(el%nd, el%nd), c(el%nd, el%nd), k(el%nd, el%nd), f(el%nd), kl(el%nd, el%nd)
+    real(dp) :: m(el%nd, el%nd), c(el%nd, el%nd), k(el%nd, el%nd), f(el%nd), kl(el%nd, el%nd), kn(el%nd, el%nd)
     type(frame_state_t) :: fs
     integer :: j, i
     q0 = sample_q(el%nd, 11, 1.0_dp)
@@ -195,9 +195,10 @@ contains
     lag = (dkdqd(:, -2) - 8.0_dp*dkdqd(:, -1) + 8.0_dp*dkdqd(:, 1) - dkdqd(:, 2))/(12.0_dp*h) - dkdq
     call tennant_linear_terms(el, fs, m, c, k, f, .false.)
     kl = k_linear(el, fs%phi, fs%length)
-    model = matmul(m, qdd) + matmul(c, qd) + matmul(k - kl, q) - f
+    kn = k - kl      ! a named array: -O2 warns about the temporary of matmul(k - kl, q)
+    model = matmul(m, qdd) + matmul(c, qd) + matmul(kn, q) - f
     scale = max(maxval(abs(f)), maxval(abs(matmul(m, qdd))), maxval(abs(matmul(c, qd))), &
-                maxval(abs(matmul(k - kl, q))))
+                maxval(abs(matmul(kn, q))))
     call assert_all_close(model, lag, 0.0_dp, 1.0e-7_dp*scale, label)
   contains
     subroutine state(t, qq, qqd, qqdd)
