@@ -1,5 +1,6 @@
 !> Small string helpers used when composing messages and output headers.
 module strings
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   implicit none
   private
@@ -30,7 +31,16 @@ contains
     integer :: d
     d = 8
     if (present(digits)) d = digits
-    write(fmt, '(a,i0,a,i0,a)') '(g', d + 8, '.', d, ')'
+    ! a three-digit exponent needs an explicit exponent width, or the 'E' is
+    ! dropped (0.1+301), which gnuplot and numpy cannot read
+    ! (ieee_is_finite first: an ordered comparison with NaN traps in the debug build)
+    if (.not. ieee_is_finite(x)) then
+      write(fmt, '(a,i0,a,i0,a)') '(g', d + 8, '.', d, ')'
+    else if (abs(x) >= 1.0e99_dp .or. (abs(x) < 1.0e-99_dp .and. x /= 0.0_dp)) then
+      write(fmt, '(a,i0,a,i0,a)') '(g', d + 9, '.', d, 'e3)'
+    else
+      write(fmt, '(a,i0,a,i0,a)') '(g', d + 8, '.', d, ')'
+    end if
     write(buf, fmt) x
     s = trim(adjustl(buf))
   end function str_real
