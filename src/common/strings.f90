@@ -36,7 +36,7 @@ contains
     ! (ieee_is_finite first: an ordered comparison with NaN traps in the debug build)
     if (.not. ieee_is_finite(x)) then
       write(fmt, '(a,i0,a,i0,a)') '(g', d + 8, '.', d, ')'
-    else if (abs(x) >= 1.0e99_dp .or. (abs(x) < 1.0e-99_dp .and. x /= 0.0_dp)) then
+    else if (abs(x) >= 1.0e99_dp .or. (abs(x) < 1.0e-99_dp .and. abs(x) > 0.0_dp)) then
       write(fmt, '(a,i0,a,i0,a)') '(g', d + 9, '.', d, 'e3)'
     else
       write(fmt, '(a,i0,a,i0,a)') '(g', d + 8, '.', d, ')'
