@@ -11,7 +11,7 @@
 module linkage
   use kinds, only: dp, pi
   use error_status, only: error_t
-  use strings, only: str, lower
+  use strings, only: str, lower, compact
   use deck_reader, only: deck_t, invalid_value
   implicit none
   private
@@ -626,12 +626,12 @@ contains
         else
           who = 'Grashof double-rocker: the crank cannot turn fully'
         end if
-        text = 'four-bar, Grashof (s + l = '//short(s + l)//' < p + q = '//short(pq)//'), '//who
+        text = 'four-bar, Grashof (s + l = '//compact(s + l)//' < p + q = '//compact(pq)//'), '//who
       else if (s + l > pq) then
-        text = 'four-bar, non-Grashof triple-rocker (s + l = '//short(s + l)//' > p + q = '//short(pq)// &
+        text = 'four-bar, non-Grashof triple-rocker (s + l = '//compact(s + l)//' > p + q = '//compact(pq)// &
                '): the crank cannot turn fully'
       else
-        text = 'four-bar, change point (s + l = p + q = '//short(pq)//'): toggle positions where the branches meet'
+        text = 'four-bar, change point (s + l = p + q = '//compact(pq)//'): toggle positions where the branches meet'
       end if
     else if (mech%n_links == 2 .and. mech%n_joints == 3 .and. ng == 1 .and. nsf == 1 .and. np == 1) then
       r = mech%links(crank)%length
@@ -641,42 +641,15 @@ contains
             (mech%joints(g(1))%y - mech%joints(i)%y)*mech%joints(i)%guide(1)
       offset = abs(sgn)
       if (rod > r + offset) then
-        text = 'slider-crank (crank '//short(r)//', rod '//short(rod)//', offset '//short(offset)// &
+        text = 'slider-crank (crank '//compact(r)//', rod '//compact(rod)//', offset '//compact(offset)// &
                '): the crank turns fully'
       else
-        text = 'slider-crank (crank '//short(r)//', rod '//short(rod)//', offset '//short(offset)// &
+        text = 'slider-crank (crank '//compact(r)//', rod '//compact(rod)//', offset '//compact(offset)// &
                '): rod <= crank + offset, the crank cannot turn fully'
       end if
     end if
   end function classify_mechanism
 
-  !> Compact number for the header: 6 significant digits, no trailing zeros.
-  pure function short(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    integer :: e, k
-    if (abs(x) < tiny(x)) then
-      s = '0'
-      return
-    end if
-    if (abs(x) >= 0.1_dp .and. abs(x) < 1.0e6_dp) then
-      write(buf, '(g15.6)') x
-    else
-      write(buf, '(es13.5e2)') x
-    end if
-    buf = adjustl(buf)
-    e = scan(buf, 'E')
-    if (e == 0) e = len_trim(buf) + 1
-    k = e - 1
-    if (index(buf(1:k), '.') > 0) then
-      do while (buf(k:k) == '0')
-        k = k - 1
-      end do
-      if (buf(k:k) == '.') k = k - 1
-    end if
-    s = buf(1:k)//trim(buf(e:))
-  end function short
 
   !> Lines for the output header: joints, links, driver, branch, classification.
   function mechanism_summary(mech) result(lines)
@@ -696,13 +669,13 @@ contains
     do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
         s = 'joint '//trim(jt%name)//': '//joint_type_name(jt%kind)
-        if (jt%grounded .or. jt%kind == joint_slider_fixed) s = s//' at ('//short(jt%x)//', '//short(jt%y)//')'
-        if (jt%kind == joint_slider_fixed) s = s//', guide '//short(mech%input%joint_guide_deg(j))//' deg'
+        if (jt%grounded .or. jt%kind == joint_slider_fixed) s = s//' at ('//compact(jt%x)//', '//compact(jt%y)//')'
+        if (jt%kind == joint_slider_fixed) s = s//', guide '//compact(mech%input%joint_guide_deg(j))//' deg'
         if (jt%kind == joint_slider_link) then
           s = s//', sleeve for '//trim(mech%links(jt%sliding_link)%name)
           if (jt%grounded) s = s//' pivoting on the ground'
         end if
-        if (jt%mass > 0.0_dp) s = s//', mass '//short(jt%mass)
+        if (jt%mass > 0.0_dp) s = s//', mass '//compact(jt%mass)
         s = s//'; link ends:'
         do k = 1, jt%n_links
           s = s//' '//trim(mech%links(jt%link(k))%name)//'.'//str(jt%link_end(k))
@@ -716,14 +689,14 @@ contains
             trim(mech%joints(lk%joint(2))%name)
         if (lk%sliding) then
           s = s//', slides (active length varies'
-          if (lk%length > 0.0_dp) s = s//', physical length '//short(lk%length)
+          if (lk%length > 0.0_dp) s = s//', physical length '//compact(lk%length)
           s = s//')'
         else
-          s = s//', length '//short(lk%length)
+          s = s//', length '//compact(lk%length)
         end if
-        s = s//', '//str(lk%n_elements)//' element(s); b '//short(lk%b)//', h '//short(lk%h)//', A '// &
-            short(lk%area)//', I '//short(lk%inertia)//'; E1 '//short(lk%e1)//', E2 '//short(lk%e2)// &
-            ', m '//short(lk%m)//', rho '//short(lk%rho)
+        s = s//', '//str(lk%n_elements)//' element(s); b '//compact(lk%b)//', h '//compact(lk%h)//', A '// &
+            compact(lk%area)//', I '//compact(lk%inertia)//'; E1 '//compact(lk%e1)//', E2 '//compact(lk%e2)// &
+            ', m '//compact(lk%m)//', rho '//compact(lk%rho)
         call add(s)
       end associate
     end do
@@ -731,10 +704,10 @@ contains
       if (d%link == 0) then
         s = 'driver: none (driver_link = 0)'
       else
-        s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//short(d%omega)//' rad/s, theta0 '// &
-            short(mech%input%theta0_deg)//' deg, profile '
+        s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//compact(d%omega)//' rad/s, theta0 '// &
+            compact(mech%input%theta0_deg)//' deg, profile '
         if (d%profile == profile_spinup) then
-          s = s//'spinup over '//short(d%spinup_time)//' s (cycloidal)'
+          s = s//'spinup over '//compact(d%spinup_time)//' s (cycloidal)'
         else
           s = s//'constant'
         end if
