@@ -15,11 +15,14 @@
 !> Convergence (the papers state no test; ours, see doc/optimization.md): at
 !> x_k, after the step s_k and the multipliers have been computed,
 !>   (1) every constraint holds: max(g_i, |h_j|) <= feas_tol;
-!>   (2) the multiplier equations are solved (max |m_i| <= feas_tol/100) and
-!>       every inequality multiplier is >= 0 (drop rule, §9.4);
+!>   (2) the multiplier equations hold to the feasibility tolerance
+!>       (max |m_i| <= feas_tol) and every inequality multiplier is >= 0
+!>       (drop rule, §9.4);
 !>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf);
-!>   (4) the predicted objective change is small:
-!>       |grad F^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
+!>   (4) the predicted change of the Lagrangian is small:
+!>       |(grad F + C lambda)^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
+!> (4) uses the Lagrangian, not F: at a constrained optimum grad F = -C lambda
+!> is large, and grad F^T s would only measure how closely B11 was solved.
 !> A zero step with solved multiplier equations is exactly the KKT system at
 !> x_k, so the test costs no analysis beyond the one that produced x_k.
 module gauss_optimizer
@@ -223,7 +226,9 @@ contains
     logical, allocatable :: violated(:), touched(:), limit(:)
     integer :: n, m, mt, k, repeats, hess_kind
     real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged
+    logical :: solved, step_back_method, converged, same_point
+    real(dp) :: b11_res
+    logical, allocatable :: active_before(:)
     character(len=:), allocatable :: stage
 
     call self%reset()
@@ -291,13 +296,16 @@ contains
 
       repeats = 0
       inner: do
-        call self%compute_step(prob, s, solved, err)
+        active_before = self%active
+        call self%compute_step(prob, s, solved, b11_res, err)
         if (err%failed()) exit outer
         ! ---- convergence test at x_k (module header)
         snorm = maxval(abs(s))
         pred = dot_product(self%gradf, s) + 0.5_dp*dot_product(s, matmul(self%gm, s))
+        if (mt > 0) pred = pred + dot_product(matmul(self%dg, self%lambda), s)
         maxviol = max_violation(self%g, m)
-        if (maxviol <= self%opts%feas_tol .and. solved .and. snorm <= self%opts%xtol*(1.0_dp + xnorm) &
+        if (maxviol <= self%opts%feas_tol .and. b11_res <= self%opts%feas_tol &
+            .and. snorm <= self%opts%xtol*(1.0_dp + xnorm) &
             .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f))) then
           converged = .true.
           exit outer
@@ -365,6 +373,21 @@ contains
               self%active(1:m) = self%active(1:m) .and. .not. limit
             end if
           end if
+        end if
+        ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
+        ! with a changed active set the step is recomputed at x_k; with the
+        ! same set the next iteration would repeat this one exactly
+        same_point = maxval(abs(x_new - self%x)) <= 0.0_dp
+        if (same_point .and. any(self%active .neqv. active_before) .and. repeats < 2*mt) then
+          repeats = repeats + 1
+          call self%note('zero-length step: recomputed at x_k with the new active set')
+          cycle inner
+        end if
+        if (same_point) then
+          call err%set(self%method_label(), 'zero-length step at iteration '//str(k + 1)//' with the active set ' &
+            //set_text(self%active)//' unchanged: the next iteration would repeat this one (max violation ' &
+            //str(maxviol, 3)//', B11 residual '//str(b11_res, 3)//'); stopped without another analysis')
+          exit outer
         end if
         exit inner
       end do inner
@@ -558,11 +581,12 @@ contains
 
   !> Multipliers and step at x_k for the current active set, with the drop
   !> rule of §9.4 (most negative multiplier first, re-solve, repeat).
-  subroutine compute_step(self, prob, s, solved, err)
+  subroutine compute_step(self, prob, s, solved, residual, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
     real(dp), intent(out), contiguous :: s(:)
     logical, intent(out) :: solved
+    real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
     type(multiplier_system_t) :: msys
     type(multiplier_result_t) :: mres
@@ -577,6 +601,7 @@ contains
     allocate(lam_prev(mt))
     lam_prev = self%lambda
     thresh = self%opts%mult_tol*norm2(self%gradf)
+    residual = 0.0_dp
     do
       l = count(self%active)
       if (l == 0) then
@@ -604,13 +629,14 @@ contains
           if (i <= prob%m) actual(j) = prob%con_kind(i) == con_general
         end do
         call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
-                        actual, pprob)
+                        actual, pprob, nonneg=idx <= prob%m)
         lam = lam_prev(idx)                           ! warm start from the previous iteration
         call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
         if (err%failed()) return
         self%newton_solves = self%newton_solves + 1
         s = msys%s
         solved = mres%solved
+        residual = mres%residual
         if (mres%how /= 'newton') then
           self%powell_fallbacks = self%powell_fallbacks + 1
           call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &

@@ -160,7 +160,7 @@ contains
     opt%opts%potter_repeat = potter_fix == 'repeat'
     opt%opts%step_back_refine = step_back == 'farthest'
     call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
-                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dF_pred| <= ftol (1 + |F|)')
+                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|)')
 
     call cpu_time(cpu0)
     call opt%solve(prob, start, run_err)

@@ -328,7 +328,10 @@ contains
       call assert_true(opt%status == status_converged, trim(names(k))//' converged: '//err%text())
       ! stored optima to 11 digits (HS 65: the KKT point, not HS's rounded print)
       call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-9_dp, trim(names(k))//' x*')
-      call assert_true(opt%kkt_residual < 1.0e-9_dp, trim(names(k))//' KKT residual < 1e-9')
+      ! grad F = -C lambda is O(|lambda|) (1751 for HS 15); B11 is solved to
+      ! 1e-10, which leaves a KKT residual of that relative size
+      call assert_true(opt%kkt_residual < 1.0e-10_dp*(1.0_dp + maxval(abs(opt%lambda))), &
+                       trim(names(k))//' KKT residual < 1e-10 (1 + |lambda|)')
       call assert_close(opt%f, info%f_star, 1.0e-8_dp, trim(names(k))//' F*')
       call assert_true(opt%iterations <= 5, trim(names(k))//' few iterations')
     end do
