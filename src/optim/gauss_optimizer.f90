@@ -26,6 +26,7 @@
 !> A zero step with solved multiplier equations is exactly the KKT system at
 !> x_k, so the test costs no analysis beyond the one that produced x_k.
 module gauss_optimizer
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
@@ -48,6 +49,7 @@ module gauss_optimizer
     "'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
   integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
+  integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
 
   type :: gauss_options_t
     integer :: method = method_gnlc
@@ -114,6 +116,7 @@ module gauss_optimizer
     procedure, private :: curvature
     procedure, private :: compute_step
     procedure, private :: step_back
+    procedure, private :: analyse_trial
     procedure, private :: append_log
     procedure, private :: note
   end type gauss_optimizer_t
@@ -224,7 +227,7 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
     logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind
+    integer :: n, m, mt, k, repeats, hess_kind, halvings
     real(dp) :: xnorm, snorm, pred, t, maxviol
     logical :: solved, step_back_method, converged, same_point
     real(dp) :: b11_res
@@ -251,6 +254,8 @@ contains
     self%ev = ''
 
     call prob%constraint_values(self%x, self%g, err)
+    if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
+      call err%set('constraints', 'not finite at the start point: g = '//vec_text(self%g))
     if (err%failed()) then
       call start_failed()
       return
@@ -272,6 +277,8 @@ contains
     self%active(m + 1:mt) = .true.
 
     call prob%analyse(self%x, self%f, self%phi, err)
+    if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
+      call err%set('objective', 'not finite at the start point (F = '//str(self%f)//')')
     if (err%failed()) then
       call start_failed()
       return
@@ -284,11 +291,15 @@ contains
       stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
       call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
+      if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
+        call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
       if (err%failed()) exit outer
       call self%curvature(prob, hess_kind, k, err)
       if (err%failed()) exit outer
       if (mt > 0) then
         call prob%constraint_gradients(self%x, self%g, self%dg, err)
+        if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
+          call err%set('constraint gradients', 'not finite at x_'//str(k))
         if (err%failed()) exit outer
       end if
       self%have_hess = .false.
@@ -317,6 +328,23 @@ contains
         if (mt > 0) then
           call prob%constraint_values(x_new, g_new, err)
           if (err%failed()) exit outer
+          ! a non-finite constraint value is a failed trial: shorten the step
+          halvings = 0
+          do while (.not. all(ieee_is_finite(g_new)) .and. halvings < max_halvings)
+            halvings = halvings + 1
+            s = 0.5_dp*s
+            x_new = self%x + s
+            call prob%constraint_values(x_new, g_new, err)
+            if (err%failed()) exit outer
+          end do
+          if (halvings > 0) then
+            snorm = maxval(abs(s))
+            call self%note('constraints not finite at the trial point: step halved '//str(halvings)//' times')
+          end if
+          if (.not. all(ieee_is_finite(g_new))) then
+            call err%set('constraints', 'not finite anywhere along the step (halved '//str(max_halvings)//' times)')
+            exit outer
+          end if
           violated = g_new(1:m) > self%opts%feas_tol
           touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
           if (step_back_method .and. any(violated)) then
@@ -392,11 +420,10 @@ contains
         exit inner
       end do inner
 
-      ! ---- accept x_{k+1}: one analysis
+      ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
+      ! never a value: step back to the midpoint and analyse again
       k = k + 1
-      self%x = x_new
-      if (mt > 0) self%g = g_new
-      call prob%analyse(self%x, self%f, self%phi, err)
+      call self%analyse_trial(prob, x_new, g_new, t, snorm, step_back_method, err)
       if (err%failed()) exit outer
       self%iterations = k
       call self%append_log(prob, k, t*snorm)
@@ -490,6 +517,12 @@ contains
     if (size(x0) /= prob%n) then
       call err%set(me, 'the start point has '//str(size(x0))//' values; problem '//prob%name// &
                    ' has '//str(prob%n)//' variables', code=2)
+    else if (.not. all(ieee_is_finite(x0))) then
+      call err%set(me, 'the start point is not finite: x0 = '//vec_text(x0), code=2)
+    else if (.not. all(ieee_is_finite([self%opts%xtol, self%opts%ftol, self%opts%feas_tol, self%opts%mult_tol, &
+                                       self%opts%rcond_min, self%opts%regularization]))) then
+      call err%set(me, 'invalid options: xtol, ftol, feas_tol, mult_tol, rcond_min and regularization must be ' &
+                   //'finite', code=2)
     else if (me == 'unknown') then
       call err%set('gauss_optimizer', 'unknown method; expected one of '//method_names, code=2)
     else if (hess_kind == hessian_gauss .and. .not. prob%is_least_squares()) then
@@ -534,6 +567,8 @@ contains
       what = 'G = 2 J J^T'
     else
       call prob%objective_hessian(self%x, self%gm, err)
+      if (.not. err%failed() .and. .not. all(ieee_is_finite(self%gm))) &
+        call err%set('objective Hessian', 'not finite at x_'//str(k))
       if (err%failed()) return
       self%gm = 0.5_dp*(self%gm + transpose(self%gm))
       what = 'the objective Hessian G'
@@ -753,6 +788,67 @@ contains
     limit = g_lo(1:m) >= -tol .and. g_hi(1:m) > tol
     if (.not. any(limit) .and. ic > 0) limit(ic) = .true.
   end subroutine step_back
+
+  !> Analyse x_new and make it x_{k+1}.  While F (or phi) is not finite, or a
+  !> step-back method meets a violated constraint on the way back, the step
+  !> is halved towards x_k: every analysis counts in NF, none gives a value.
+  subroutine analyse_trial(self, prob, x_new, g_new, t, snorm, step_back_method, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(inout) :: x_new(:), g_new(:), t
+    real(dp), intent(in) :: snorm
+    logical, intent(in) :: step_back_method
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: phi(:)
+    real(dp) :: f
+    integer :: halvings, m
+    logical :: ok
+    m = prob%m
+    allocate(phi(size(self%phi)))
+    halvings = 0
+    do
+      ok = .true.
+      if (halvings > 0 .and. size(g_new) > 0) then
+        call prob%constraint_values(x_new, g_new, err)
+        if (err%failed()) return
+        ok = all(ieee_is_finite(g_new))
+        if (ok .and. step_back_method .and. m > 0) ok = maxval(g_new(1:m)) <= self%opts%feas_tol
+      end if
+      if (ok) then
+        call prob%analyse(x_new, f, phi, err)
+        if (err%failed()) return
+        ok = ieee_is_finite(f) .and. all(ieee_is_finite(phi))
+        if (ok) exit
+      end if
+      halvings = halvings + 1
+      if (halvings > max_halvings) then
+        call err%set('objective', 'not finite (or the constraints not satisfied) anywhere along the step from x_k: ' &
+          //'halved '//str(max_halvings)//' times towards x_k = '//vec_text(self%x))
+        return
+      end if
+      t = 0.5_dp*t
+      x_new = self%x + 0.5_dp*(x_new - self%x)
+    end do
+    if (halvings > 0) call self%note('objective not finite at the trial point: step halved '//str(halvings)// &
+                                     ' times (t = '//str(t, 4)//', |s| = '//str(t*snorm, 3)//')')
+    self%x = x_new
+    self%g = g_new
+    self%f = f
+    self%phi = phi
+  end subroutine analyse_trial
+
+  !> Short text of a vector for messages.
+  function vec_text(v) result(s)
+    real(dp), intent(in) :: v(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, min(size(v), 8)
+      if (i > 1) s = s//', '
+      s = s//str(v(i), 4)
+    end do
+    if (size(v) > 8) s = s//', ...'
+  end function vec_text
 
   subroutine note(self, text)
     class(gauss_optimizer_t), intent(inout) :: self

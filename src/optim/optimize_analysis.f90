@@ -11,14 +11,16 @@
 !> an error with the diagnosis (the table and the best feasible point stay in
 !> the output).
 module optimize_analysis
+  use, intrinsic :: iso_fortran_env, only: int64
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
   use deck_reader, only: deck_t, invalid_value, input_error_code
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use optim_problem, only: opt_problem_t, con_kind_name
   use problem_library, only: problem_info_t, create_problem, problem_names
-  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, method_names, hessian_from_name, &
+  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
                              status_converged, status_max_iter, set_text
   implicit none
@@ -26,6 +28,8 @@ module optimize_analysis
   public :: run_optimize
 
   integer, parameter :: max_vars = 50
+  character(len=20), parameter :: method_list(6) = [character(len=20) :: 'gauss', 'gauss_constrained', 'gnlc', &
+                                                    'gnlc_ns', 'gnlc_general', 'gnlc_general_ns']
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &optimize group
@@ -89,38 +93,35 @@ contains
       return
     end if
     n = prob%n
-    n_given = count(x0 > 0.5_dp*unset)
-    if (method_from_name(method) == 0) then
-      call invalid_value(deck, 'optimize', 'method', ''''//trim(method)//'''', 'must be one of '//method_names, err)
-    else if (hessian_from_name(hessian) < 0) then
-      call invalid_value(deck, 'optimize', 'hessian', ''''//trim(hessian)//'''', &
-                         'must be ''auto'', ''gauss'' (G = 2JJ^T) or ''exact''', err)
-    else if (n_given /= 0 .and. (n_given /= n .or. any(x0(1:n) <= 0.5_dp*unset))) then
+    if (method == 'gnlc.ns') method = 'gnlc_ns'
+    call check_choice(deck, 'optimize', 'method', method, method_list, err)
+    call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
+    call check_choice(deck, 'optimize', 'potter_fix', potter_fix, [character(len=8) :: 'repeat', 'none'], err)
+    call check_choice(deck, 'optimize', 'step_back', step_back, [character(len=8) :: 'farthest', 'b13'], err)
+    if (err%failed()) return
+    ! x0: unset entries hold the sentinel -huge; the given ones must be finite
+    n_given = count(.not. is_unset(x0))
+    if (n_given /= 0 .and. (n_given /= n .or. any(is_unset(x0(1:n))))) then
       call invalid_value(deck, 'optimize', 'x0', str(n_given)//' values', 'problem '//trim(problem)// &
                          ' has '//str(n)//' variables: give all of x0(1:'//str(n)//') or none', err)
-    else if (max_iter < 0) then
-      call invalid_value(deck, 'optimize', 'max_iter', str(max_iter), 'must be >= 0', err)
-    else if (.not. (xtol > 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'xtol', str(xtol), 'must be > 0', err)
-    else if (.not. (ftol > 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'ftol', str(ftol), 'must be > 0', err)
-    else if (.not. (feas_tol > 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'feas_tol', str(feas_tol), 'must be > 0', err)
-    else if (.not. (mult_tol >= 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'mult_tol', str(mult_tol), 'must be >= 0', err)
-    else if (.not. (rcond_min > 0.0_dp .and. rcond_min < 1.0_dp)) then
-      call invalid_value(deck, 'optimize', 'rcond_min', str(rcond_min), 'must lie in (0, 1)', err)
-    else if (.not. (regularization >= 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'regularization', str(regularization), 'must be >= 0', err)
-    else if (newton_max_iter < 1) then
-      call invalid_value(deck, 'optimize', 'newton_max_iter', str(newton_max_iter), 'must be >= 1', err)
-    else if (potter_fix /= 'repeat' .and. potter_fix /= 'none') then
-      call invalid_value(deck, 'optimize', 'potter_fix', ''''//trim(potter_fix)//'''', &
-                         'must be ''repeat'' (Potter''s fix (a)) or ''none'' (report the cycling)', err)
-    else if (step_back /= 'farthest' .and. step_back /= 'b13') then
-      call invalid_value(deck, 'optimize', 'step_back', ''''//trim(step_back)//'''', &
-                         'must be ''farthest'' (the boundary, P) or ''b13'' (one linear interpolation)', err)
+      return
     end if
+    if (n_given > 0) call check_reals(deck, 'optimize', 'x0', x0(1:n), err, at_least=-1.0e15_dp, at_most=1.0e15_dp, &
+      why='a design variable beyond 1e15 leaves residuals whose squares overflow')
+    call check_integer(deck, 'optimize', 'max_iter', max_iter, err, at_least=0, at_most=100000)
+    call check_integer(deck, 'optimize', 'newton_max_iter', newton_max_iter, err, at_least=1, at_most=1000)
+    call check_real(deck, 'optimize', 'xtol', xtol, err, above=0.0_dp, below=1.0_dp, &
+                    why='a relative step tolerance')
+    call check_real(deck, 'optimize', 'ftol', ftol, err, above=0.0_dp, below=1.0_dp, &
+                    why='a relative objective tolerance')
+    call check_real(deck, 'optimize', 'feas_tol', feas_tol, err, above=0.0_dp, below=1.0_dp, &
+                    why='an absolute constraint tolerance; 1 or more would call violated constraints satisfied')
+    call check_real(deck, 'optimize', 'mult_tol', mult_tol, err, at_least=0.0_dp, below=1.0_dp, &
+                    why='a multiplier threshold relative to |grad F|')
+    call check_real(deck, 'optimize', 'rcond_min', rcond_min, err, above=0.0_dp, below=1.0_dp, &
+                    why='a reciprocal condition number')
+    call check_real(deck, 'optimize', 'regularization', regularization, err, at_least=0.0_dp, at_most=1.0_dp, &
+                    why='mu = regularization max G_ii; above 1 mu I would swamp G and the step become a gradient step')
     if (err%failed()) return
     if (n_given == 0) then
       start = info%x0
@@ -233,6 +234,13 @@ contains
     end if
     if (run_err%failed()) err = run_err
   end subroutine run_optimize
+
+  !> x0 entries the deck left at the sentinel (bit comparison: no floating-point
+  !> comparison with a NaN the deck may hold).
+  elemental logical function is_unset(v)
+    real(dp), intent(in) :: v
+    is_unset = transfer(v, 0_int64) == transfer(unset, 0_int64)
+  end function is_unset
 
   !> Rows k, NF, F, max violation, step, |S|, x(1:n), lambda(1:m+n_eq),
   !> active(1:m+n_eq) (1 = in the working set); events as '#' lines.

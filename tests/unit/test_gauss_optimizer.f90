@@ -3,6 +3,7 @@
 !> GNLC start, singular J J^T, B11 without solution, iteration limit, Potter's
 !> step-back cycling, inconsistent method/problem pairs).
 module test_gauss_optimizer_suite
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
   use optim_problem, only: opt_problem_t
@@ -12,6 +13,17 @@ module test_gauss_optimizer_suite
   implicit none
   private
   public :: run_all
+
+  !> phi = (log(x1/3), x2 - 1): outside x1 > 0 the residual is NaN
+  !> (bad = 1) or +Inf (bad = 2), as a user's analysis may return when a
+  !> design leaves its domain or overflows.  From x1 = 30 the Gauss step
+  !> x1 - x1 log(x1/3) lands at x1 = -39.
+  type, extends(opt_problem_t) :: log_domain_t
+    integer :: bad = 1
+  contains
+    procedure :: residuals => log_residuals
+    procedure :: jacobian => log_jacobian
+  end type log_domain_t
 
 contains
 
@@ -30,7 +42,72 @@ contains
     call run_test('potter_general_constraints_converge', test_general_constraints)
     call run_test('gnlc_ns_from_infeasible_literature_starts', test_ns_infeasible_starts)
     call run_test('method_problem_mismatches_are_input_errors', test_mismatch)
+    call run_test('non_finite_trial_is_a_failed_trial', test_non_finite_trial)
   end subroutine run_all
+
+  subroutine log_residuals(self, x, phi, err)
+    class(log_domain_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: phi(:)
+    type(error_t), intent(inout) :: err
+    if (x(1) > 0.0_dp) then
+      phi(1) = log(x(1)/3.0_dp)
+    else if (self%bad == 1) then
+      phi(1) = ieee_value(phi(1), ieee_quiet_nan)
+    else
+      phi(1) = ieee_value(phi(1), ieee_positive_inf)
+    end if
+    phi(2) = x(2) - 1.0_dp
+    if (.false.) call err%clear()
+  end subroutine log_residuals
+
+  subroutine log_jacobian(self, x, phi, jac, err)
+    class(log_domain_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), phi(:)
+    real(dp), intent(out) :: jac(:, :)
+    type(error_t), intent(inout) :: err
+    jac = 0.0_dp
+    jac(1, 1) = 1.0_dp/x(1)
+    jac(2, 2) = 1.0_dp
+    if (.false.) jac(1, 1) = phi(1) + self%bad
+    if (.false.) call err%clear()
+  end subroutine log_jacobian
+
+  !> Issue 8 item 4: a trial point where F is NaN or Inf is a failed trial
+  !> (the step is halved towards x_k), never a value; the run converges to
+  !> x* = (3, 1) with every logged row finite, and every trial counts in NF.
+  subroutine test_non_finite_trial()
+    type(log_domain_t) :: prob
+    type(gauss_optimizer_t) :: opt
+    type(error_t) :: err
+    integer :: bad, r
+    logical :: finite_rows
+    do bad = 1, 2
+      call prob%init_problem('log_domain', 2, 2, 0)
+      prob%bad = bad
+      opt%opts%method = method_gauss
+      call opt%solve(prob, [30.0_dp, 0.0_dp], err)
+      call assert_true(opt%status == status_converged, 'converged: '//err%text())
+      ! the stop test accepts x_k when its step is <= xtol (1 + |x|) = 4e-8
+      call assert_all_close(opt%x, [3.0_dp, 1.0_dp], 0.0_dp, 4.0e-8_dp, 'x* = (3, 1)')
+      call assert_true(index(opt%log(2)%events, 'not finite') > 0, 'the failed trial is logged')
+      finite_rows = .true.
+      do r = 1, opt%n_log
+        finite_rows = finite_rows .and. ieee_is_finite(opt%log(r)%f) .and. all(ieee_is_finite(opt%log(r)%x))
+      end do
+      call assert_true(finite_rows, 'no row holds NaN or Inf')
+      ! from 30: trials at -39.1 and -4.5 fail, 12.7 is accepted: NF > NI + 1
+      call assert_true(prob%count%analyses > opt%iterations + 1, 'failed trials are counted analyses')
+      call err%clear()
+    end do
+    ! a start where F is not finite is a diagnosed stop, not a run from a NaN
+    call prob%init_problem('log_domain', 2, 2, 0)
+    call opt%solve(prob, [-1.0_dp, 0.0_dp], err)
+    call assert_true(err%failed() .and. index(err%text(), 'not finite at the start') > 0, 'non-finite F(x0) diagnosed')
+    call err%clear()
+    call opt%solve(prob, [ieee_value(1.0_dp, ieee_positive_inf), 0.0_dp], err)
+    call assert_true(err%code == 2 .and. index(err%text(), 'not finite') > 0, 'Inf in x0 is an input error')
+  end subroutine test_non_finite_trial
 
   !> Solve library problem `name` with `method` from x0 (default: the library's).
   subroutine run_problem(name, method, opt, prob, info, err, x0, max_iter, regularization, potter_repeat)
