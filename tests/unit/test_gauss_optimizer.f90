@@ -7,7 +7,8 @@ module test_gauss_optimizer_suite
   use kinds, only: dp
   use error_status, only: error_t
   use optim_problem, only: opt_problem_t
-  use problem_library, only: problem_info_t, create_problem
+  use problem_library, only: problem_info_t, create_problem, quadratic_problem_t
+  use strings, only: str
   use gauss_optimizer
   use assertions
   implicit none
@@ -43,7 +44,38 @@ contains
     call run_test('gnlc_ns_from_infeasible_literature_starts', test_ns_infeasible_starts)
     call run_test('method_problem_mismatches_are_input_errors', test_mismatch)
     call run_test('non_finite_trial_is_a_failed_trial', test_non_finite_trial)
+    call run_test('hs6_regularized_declares_convergence', test_hs6_regularized)
   end subroutine run_all
+
+  !> Issue 8 item 10: HS 6, min (1 - x1)^2 s.t. 10 (x2 - x1^2) = 0, posed as
+  !> the pair h <= 0, -h <= 0 (opposite gradients: B11 singular when both are
+  !> active) with the singular exact Hessian diag(2, 0) regularised.  It
+  !> reached x* = (1, 1) and then re-analysed it to the iteration limit; now
+  !> the stop test declares convergence within a few analyses.
+  subroutine test_hs6_regularized()
+    real(dp), parameter :: regs(3) = [1.0e-10_dp, 1.0e-6_dp, 1.0e-4_dp]
+    type(quadratic_problem_t) :: p
+    type(gauss_optimizer_t) :: opt
+    type(error_t) :: err
+    integer :: k
+    do k = 1, 3
+      call p%init_problem('hs6_pair', 2, 0, 2)
+      p%q = reshape([2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2])
+      p%lin = [-2.0_dp, 0.0_dp]
+      p%const = 1.0_dp
+      call p%set_quadratic_constraint(1, reshape([-20.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), [0.0_dp, 10.0_dp], 0.0_dp)
+      call p%set_quadratic_constraint(2, reshape([20.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), [0.0_dp, -10.0_dp], 0.0_dp)
+      opt%opts = gauss_options_t()
+      opt%opts%method = method_gnlc_ns
+      opt%opts%regularization = regs(k)
+      call opt%solve(p, [-1.2_dp, 1.0_dp], err)
+      call assert_true(opt%status == status_converged, 'regularization '//str(regs(k), 2)//': converged '//err%text())
+      ! the step test stops within xtol (1 + |x|) = 2e-8 of x*
+      call assert_all_close(opt%x, [1.0_dp, 1.0_dp], 0.0_dp, 2.0e-8_dp, 'x* = (1, 1)')
+      call assert_true(p%count%analyses <= 6, 'at most 6 analyses (it took 50 before)')
+      call err%clear()
+    end do
+  end subroutine test_hs6_regularized
 
   subroutine log_residuals(self, x, phi, err)
     class(log_domain_t), intent(inout) :: self
