@@ -61,6 +61,8 @@ module gauss_optimizer
     real(dp) :: mult_tol = 1.0e-8_dp      !< drop if lambda_j |c_j| < -mult_tol |grad F|
     real(dp) :: rcond_min = 1.0e-13_dp    !< G with smaller reciprocal condition number is singular
     real(dp) :: regularization = 0.0_dp   !< > 0: add mu I to a singular G, mu = this * max |G_ii|
+    logical :: auto_regularize = .true.   !< regularization = 0 and G singular: choose mu (see curvature);
+                                          !< .false.: stop with the diagnosis
     integer :: newton_max_iter = 30       !< Newton iterations for B11 before Powell takes over
     logical :: potter_repeat = .true.     !< on step-back cycling repeat the step with the violated
                                           !< constraints active (Potter's fix (a)); else stop
@@ -261,9 +263,13 @@ contains
       return
     end if
     violated = self%g(1:m) > self%opts%feas_tol
-    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol))) then
+    ! step-back methods keep inequalities and linear equalities satisfied; a
+    ! nonlinear equality cannot hold along a step and is restored by B11
+    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol &
+                                                       .and. prob%con_kind(m + 1:mt) == con_linear))) then
       call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
-        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol])//' violated (max g = ' &
+        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol .and. prob%con_kind(m + 1:mt) == con_linear]) &
+        //' violated (max g = ' &
         //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
         ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
         //ns_variant(self%opts%method)//''', which accepts any start', code=2)
@@ -558,8 +564,9 @@ contains
     real(dp), allocatable :: lu(:, :), ev(:), eye(:, :)
     integer, allocatable :: ipiv(:)
     type(error_t) :: lerr
-    real(dp) :: rc, mu
-    character(len=:), allocatable :: what, rank_text
+    real(dp) :: rc, mu, gmax
+    real(dp), parameter :: auto_factor = 1.0e-8_dp
+    character(len=:), allocatable :: what, rank_text, how
     integer :: i, n, rank
     n = prob%n
     if (hess_kind == hessian_gauss) then
@@ -600,18 +607,33 @@ contains
         end if
       end if
     end if
-    if (self%opts%regularization > 0.0_dp) then
-      mu = self%opts%regularization*max(maxval([(abs(self%gm(i, i)), i=1, n)]), 1.0e-300_dp)
+    if (self%opts%regularization > 0.0_dp .or. self%opts%auto_regularize) then
+      gmax = maxval([(abs(self%gm(i, i)), i=1, n)])
+      if (self%opts%regularization > 0.0_dp) then
+        mu = self%opts%regularization*max(gmax, 1.0e-300_dp)
+        how = ''
+      else if (gmax > 0.0_dp) then
+        ! automatic (Levenberg): mu = 1e-8 max G_ii shifts the zero eigenvalues
+        ! to 1e-8 of G's scale and leaves the others untouched to 8 digits
+        mu = auto_factor*gmax
+        how = ' (automatic, 1e-8 max G_ii)'
+      else
+        ! G = 0 (F linear near x_k): mu = |grad F|/max(1, |x|) bounds the step
+        ! to about max(1, |x|), a trust region of the design's own size
+        mu = max(maxval(abs(self%gradf))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
+        how = ' (automatic, G = 0: |grad F|/max(1, |x|))'
+      end if
       do i = 1, n
         self%gm(i, i) = self%gm(i, i) + mu
       end do
       self%regularizations = self%regularizations + 1
-      call self%note(what//' singular (rcond = '//str(rc, 3)//'): regularized with mu = '//str(mu, 3))
+      call self%note(what//' singular (rcond = '//str(rc, 3)//'): regularized with mu = '//str(mu, 3)//how)
       return
     end if
     call err%set('curvature', what//' at x_'//str(k)//' is singular or nearly singular (rcond = '//str(rc, 3) &
       //' < rcond_min = '//str(self%opts%rcond_min, 3)//')'//rank_text//'. The Gauss step (B10/B12) is ' &
-      //'undefined; remove redundant variables or set regularization > 0 in &optimize to add mu*I (Levenberg)')
+      //'undefined; remove redundant variables, or set singular_g = ''regularize'' (the default) or ' &
+      //'regularization > 0 in &optimize to add mu*I (Levenberg)')
   end subroutine curvature
 
   !> Multipliers and step at x_k for the current active set, with the drop
@@ -660,8 +682,7 @@ contains
             if (err%failed()) return
             self%have_hess(i) = .true.
           end if
-          actual(j) = .false.
-          if (i <= prob%m) actual(j) = prob%con_kind(i) == con_general
+          actual(j) = prob%con_kind(i) == con_general
         end do
         call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
                         actual, pprob, nonneg=idx <= prob%m)

@@ -8,11 +8,17 @@
 !> Jacobian is stored the papers' way, J(n, p) = [grad phi_1 ... grad phi_p]
 !> (P3), so grad F = 2 J phi (B4) and the Gauss matrix is G = 2 J J^T (B5).
 !>
-!> Constraints g_i(x) <= 0, i = 1..m, each of one kind:
-!>   linear     g = b^T x - d                     (data: set_linear_constraint)
-!>   quadratic  g = 1/2 x^T A x + b^T x - d       (data: set_quadratic_constraint, B3)
-!>   general    g from `general_constraint`       (Potter's case, §9.5)
-!> and linear equalities h = D^T x - e = 0 (P5), numbered m+1..m+n_eq.
+!> Constraints g_i(x) <= 0, i = 1..m, and equalities h_j(x) = 0, numbered
+!> i = m+j (j = 1..n_eq), each of one kind:
+!>   linear     g = b^T x - d                     (set_linear_constraint; equalities:
+!>                                                 set_linear_equalities, P5)
+!>   quadratic  g = 1/2 x^T A x + b^T x - d       (set_quadratic_constraint, B3;
+!>                                                 set_quadratic_equality)
+!>   general    g from `general_constraint(i, ...)` (Potter's case, §9.5;
+!>                                                 set_general_constraint / set_general_equality)
+!> The data of constraint i (inequality or equality) is con_kind(i),
+!> con_a(:, :, i), con_b(:, i), con_d(i); equalities are always active and
+!> their multipliers have no sign.
 !>
 !> Counting.  The solver calls the non-overridable, counted entry points
 !> (`analyse`, `objective_derivatives`, ...).  One call of `analyse` is one
@@ -47,13 +53,11 @@ module optim_problem
     integer :: n = 0             !< design variables
     integer :: n_residuals = 0   !< p > 0: F = phi^T phi ; 0: general objective
     integer :: m = 0             !< inequality constraints g_i <= 0
-    integer :: n_eq = 0          !< linear equalities D^T x - e = 0
-    integer, allocatable :: con_kind(:)         !< (m) con_linear | con_quadratic | con_general
-    real(dp), allocatable :: con_a(:, :, :)     !< (n, n, m) A_i of quadratic constraints (0 otherwise)
-    real(dp), allocatable :: con_b(:, :)        !< (n, m) b_i
-    real(dp), allocatable :: con_d(:)           !< (m) d_i
-    real(dp), allocatable :: eq_d(:, :)         !< (n, n_eq) D
-    real(dp), allocatable :: eq_e(:)            !< (n_eq) e
+    integer :: n_eq = 0          !< equalities h_j = 0 (constraints m+1..m+n_eq)
+    integer, allocatable :: con_kind(:)         !< (m+n_eq) con_linear | con_quadratic | con_general
+    real(dp), allocatable :: con_a(:, :, :)     !< (n, n, m+n_eq) A_i of quadratic constraints (0 otherwise)
+    real(dp), allocatable :: con_b(:, :)        !< (n, m+n_eq) b_i
+    real(dp), allocatable :: con_d(:)           !< (m+n_eq) d_i
     real(dp) :: fd_rel_step = 1.4901161193847656e-8_dp   !< sqrt(eps): forward-difference step factor
     type(opt_counters_t) :: count
   contains
@@ -73,6 +77,8 @@ module optim_problem
     procedure, non_overridable :: set_quadratic_constraint
     procedure, non_overridable :: set_general_constraint
     procedure, non_overridable :: set_linear_equalities
+    procedure, non_overridable :: set_quadratic_equality
+    procedure, non_overridable :: set_general_equality
     procedure, non_overridable :: is_least_squares
     procedure, non_overridable :: n_constraints
     ! ---- solver side: counted
@@ -119,15 +125,12 @@ contains
     self%n_eq = 0
     if (present(n_eq)) self%n_eq = n_eq
     if (allocated(self%con_kind)) deallocate(self%con_kind, self%con_a, self%con_b, self%con_d)
-    if (allocated(self%eq_d)) deallocate(self%eq_d, self%eq_e)
-    allocate(self%con_kind(m), self%con_a(n, n, m), self%con_b(n, m), self%con_d(m))
-    allocate(self%eq_d(n, self%n_eq), self%eq_e(self%n_eq))
+    allocate(self%con_kind(m + self%n_eq), self%con_a(n, n, m + self%n_eq), self%con_b(n, m + self%n_eq), &
+             self%con_d(m + self%n_eq))
     self%con_kind = con_linear
     self%con_a = 0.0_dp
     self%con_b = 0.0_dp
     self%con_d = 0.0_dp
-    self%eq_d = 0.0_dp
-    self%eq_e = 0.0_dp
     call self%reset_counters()
   end subroutine init_problem
 
@@ -175,13 +178,30 @@ contains
     self%con_d(i) = 0.0_dp
   end subroutine set_general_constraint
 
-  !> h = D^T x - e = 0   (P5); D is n x n_eq.
+  !> h = D^T x - e = 0   (P5); D is n x n_eq (all equalities linear).
   subroutine set_linear_equalities(self, d, e)
     class(opt_problem_t), intent(inout) :: self
     real(dp), intent(in) :: d(:, :), e(:)
-    self%eq_d = d
-    self%eq_e = e
+    integer :: j
+    do j = 1, size(e)
+      call self%set_linear_constraint(self%m + j, d(:, j), e(j))
+    end do
   end subroutine set_linear_equalities
+
+  !> Equality j: h_j = 1/2 x^T A x + b^T x - e = 0 (constraint m + j).
+  subroutine set_quadratic_equality(self, j, a, b, e)
+    class(opt_problem_t), intent(inout) :: self
+    integer, intent(in) :: j
+    real(dp), intent(in) :: a(:, :), b(:), e
+    call self%set_quadratic_constraint(self%m + j, a, b, e)
+  end subroutine set_quadratic_equality
+
+  !> Equality j: h_j from `general_constraint(m + j, ...)`.
+  subroutine set_general_equality(self, j)
+    class(opt_problem_t), intent(inout) :: self
+    integer, intent(in) :: j
+    call self%set_general_constraint(self%m + j)
+  end subroutine set_general_equality
 
   logical pure function is_least_squares(self)
     class(opt_problem_t), intent(in) :: self
@@ -462,7 +482,7 @@ contains
     integer :: i
     self%count%constraint_evals = self%count%constraint_evals + 1
     g = 0.0_dp
-    do i = 1, self%m
+    do i = 1, self%m + self%n_eq
       select case (self%con_kind(i))
       case (con_linear)
         g(i) = dot_product(self%con_b(:, i), x) - self%con_d(i)
@@ -477,9 +497,6 @@ contains
         end if
       end select
     end do
-    do i = 1, self%n_eq
-      g(self%m + i) = dot_product(self%eq_d(:, i), x) - self%eq_e(i)
-    end do
   end subroutine constraint_values
 
   !> One constraint (inequality i <= m, or equality i - m) at x.
@@ -491,10 +508,6 @@ contains
     type(error_t), intent(inout) :: err
     self%count%constraint_evals = self%count%constraint_evals + 1
     g = 0.0_dp
-    if (i > self%m) then
-      g = dot_product(self%eq_d(:, i - self%m), x) - self%eq_e(i - self%m)
-      return
-    end if
     select case (self%con_kind(i))
     case (con_linear)
       g = dot_product(self%con_b(:, i), x) - self%con_d(i)
@@ -516,7 +529,7 @@ contains
     logical :: any_general
     dg = 0.0_dp
     any_general = .false.
-    do i = 1, self%m
+    do i = 1, self%m + self%n_eq
       select case (self%con_kind(i))
       case (con_linear)
         dg(:, i) = self%con_b(:, i)
@@ -532,9 +545,6 @@ contains
       end select
     end do
     if (any_general) self%count%constraint_gradients = self%count%constraint_gradients + 1
-    do i = 1, self%n_eq
-      dg(:, self%m + i) = self%eq_d(:, i)
-    end do
   end subroutine constraint_gradients
 
   !> Hessian of constraint i at x: A_i for quadratic, 0 for linear, the
@@ -546,7 +556,6 @@ contains
     real(dp), intent(out) :: hess(:, :)
     type(error_t), intent(inout) :: err
     hess = 0.0_dp
-    if (i > self%m) return
     select case (self%con_kind(i))
     case (con_quadratic)
       hess = self%con_a(:, :, i)

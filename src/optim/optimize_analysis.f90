@@ -33,11 +33,11 @@ module optimize_analysis
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &optimize group
-  character(len=32) :: problem, method, hessian, potter_fix, step_back
+  character(len=32) :: problem, method, hessian, potter_fix, step_back, singular_g
   real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization
   integer :: max_iter, newton_max_iter
   namelist /optimize/ problem, method, x0, hessian, max_iter, xtol, ftol, feas_tol, mult_tol, rcond_min, &
-                      regularization, newton_max_iter, potter_fix, step_back
+                      regularization, newton_max_iter, potter_fix, step_back, singular_g
 
 contains
 
@@ -56,6 +56,7 @@ contains
     newton_max_iter = 30
     potter_fix = 'repeat'
     step_back = 'farthest'
+    singular_g = 'regularize'
   end subroutine set_defaults
 
   subroutine read_optimize(unit, ios, iomsg)
@@ -86,6 +87,7 @@ contains
     hessian = lower(hessian)
     potter_fix = lower(potter_fix)
     step_back = lower(step_back)
+    singular_g = lower(singular_g)
     call create_problem(problem, prob, info, err)
     if (err%failed()) then
       call err%clear()
@@ -98,6 +100,7 @@ contains
     call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
     call check_choice(deck, 'optimize', 'potter_fix', potter_fix, [character(len=8) :: 'repeat', 'none'], err)
     call check_choice(deck, 'optimize', 'step_back', step_back, [character(len=8) :: 'farthest', 'b13'], err)
+    call check_choice(deck, 'optimize', 'singular_g', singular_g, [character(len=12) :: 'regularize', 'stop'], err)
     if (err%failed()) return
     ! x0: unset entries hold the sentinel -huge; the given ones must be finite
     n_given = count(.not. is_unset(x0))
@@ -140,7 +143,7 @@ contains
                     ', potter_fix = '''//trim(potter_fix)//''', step_back = '''//trim(step_back)//''','
     write(u, '(a)') ' xtol = '//str(xtol)//', ftol = '//str(ftol)//', feas_tol = '//str(feas_tol)//','
     write(u, '(a)') ' mult_tol = '//str(mult_tol)//', rcond_min = '//str(rcond_min)//', regularization = ' &
-                    //str(regularization)
+                    //str(regularization)//', singular_g = '''//trim(singular_g)//''''
     write(u, '(a)') '/'
     call out%end_echo()
 
@@ -157,6 +160,7 @@ contains
     opt%opts%mult_tol = mult_tol
     opt%opts%rcond_min = rcond_min
     opt%opts%regularization = regularization
+    opt%opts%auto_regularize = singular_g == 'regularize'
     opt%opts%newton_max_iter = newton_max_iter
     opt%opts%potter_repeat = potter_fix == 'repeat'
     opt%opts%step_back_refine = step_back == 'farthest'
@@ -334,9 +338,9 @@ contains
       end if
       i = j + 1
     end do
-    if (prob%n_eq > 0) then
+    do i = prob%m + 1, prob%m + prob%n_eq
       if (len(s) > 0) s = s//', '
-      s = s//str(prob%n_eq)//' linear equalities (numbered '//str(prob%m + 1)//'-'//str(prob%m + prob%n_eq)//')'
-    end if
+      s = s//'h'//str(i)//' '//con_kind_name(prob%con_kind(i))//' equality'
+    end do
   end function constraint_text
 end module optimize_analysis

@@ -19,6 +19,13 @@ module test_gauss_optimizer_suite
   !> (bad = 1) or +Inf (bad = 2), as a user's analysis may return when a
   !> design leaves its domain or overflows.  From x1 = 30 the Gauss step
   !> x1 - x1 log(x1/3) lands at x1 = -39.
+  !> HS 6 with h = 10 (x2 - x1^2) = 0 as a general equality (value only:
+  !> gradient and Hessian by differences).
+  type, extends(quadratic_problem_t) :: hs6_general_t
+  contains
+    procedure :: general_constraint => hs6_h
+  end type hs6_general_t
+
   type, extends(opt_problem_t) :: log_domain_t
     integer :: bad = 1
   contains
@@ -45,7 +52,55 @@ contains
     call run_test('method_problem_mismatches_are_input_errors', test_mismatch)
     call run_test('non_finite_trial_is_a_failed_trial', test_non_finite_trial)
     call run_test('hs6_regularized_declares_convergence', test_hs6_regularized)
+    call run_test('nonlinear_equality_hs6_with_defaults', test_hs6_equality)
   end subroutine run_all
+
+  !> HS 6 with its constraint as one quadratic equality (gnlc_ns) and as a
+  !> general equality (gnlc_general_ns, Potter's re-approximation): first-class
+  !> equalities, default settings (G = diag(2, 0) regularised automatically).
+  !> HS: x* = (1, 1), f* = 0 from (-1.2, 1).
+  subroutine test_hs6_equality()
+    type(quadratic_problem_t) :: p
+    type(hs6_general_t) :: pg
+    type(gauss_optimizer_t) :: opt
+    type(error_t) :: err
+    call p%init_problem('hs6', 2, 0, 0, n_eq=1)
+    p%q = reshape([2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2])
+    p%lin = [-2.0_dp, 0.0_dp]
+    p%const = 1.0_dp
+    call p%set_quadratic_equality(1, reshape([-20.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2]), [0.0_dp, 10.0_dp], 0.0_dp)
+    opt%opts%method = method_gnlc_ns
+    call opt%solve(p, [-1.2_dp, 1.0_dp], err)
+    call assert_true(opt%status == status_converged, 'quadratic equality: converged '//err%text())
+    call assert_all_close(opt%x, [1.0_dp, 1.0_dp], 0.0_dp, 2.0e-8_dp, 'quadratic equality: x* = (1, 1)')
+    call assert_true(opt%powell_fallbacks == 0, 'no Powell fallback (one equality, not an opposite pair)')
+    call assert_true(p%count%analyses <= 6, 'quadratic equality: at most 6 analyses')
+    call pg%init_problem('hs6_general', 2, 0, 0, n_eq=1)
+    pg%q = p%q
+    pg%lin = p%lin
+    pg%const = 1.0_dp
+    call pg%set_general_equality(1)
+    opt%opts%method = method_gnlc_general_ns
+    call opt%solve(pg, [-1.2_dp, 1.0_dp], err)
+    call assert_true(opt%status == status_converged, 'general equality: converged '//err%text())
+    call assert_all_close(opt%x, [1.0_dp, 1.0_dp], 0.0_dp, 2.0e-8_dp, 'general equality: x* = (1, 1)')
+    call assert_true(pg%count%constraint_hessians > 0, 'general equality re-approximated (Potter item 1)')
+    ! GNLC (step-back) accepts a start off a nonlinear equality: B11 restores it
+    opt%opts%method = method_gnlc_general
+    call opt%solve(pg, [-1.2_dp, 1.0_dp], err)
+    call assert_true(opt%status == status_converged, 'gnlc_general from off the equality: '//err%text())
+    call assert_all_close(opt%x, [1.0_dp, 1.0_dp], 0.0_dp, 2.0e-8_dp, 'gnlc_general: x* = (1, 1)')
+  end subroutine test_hs6_equality
+
+  subroutine hs6_h(self, i, x, g, err)
+    class(hs6_general_t), intent(inout) :: self
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: g
+    type(error_t), intent(inout) :: err
+    g = 10.0_dp*(x(2) - x(1)**2)
+    if (i /= self%m + 1) call err%set('hs6_general', 'no constraint '//str(i))
+  end subroutine hs6_h
 
   !> Issue 8 item 10: HS 6, min (1 - x1)^2 s.t. 10 (x2 - x1^2) = 0, posed as
   !> the pair h <= 0, -h <= 0 (opposite gradients: B11 singular when both are
@@ -142,7 +197,7 @@ contains
   end subroutine test_non_finite_trial
 
   !> Solve library problem `name` with `method` from x0 (default: the library's).
-  subroutine run_problem(name, method, opt, prob, info, err, x0, max_iter, regularization, potter_repeat)
+  subroutine run_problem(name, method, opt, prob, info, err, x0, max_iter, regularization, potter_repeat, auto_reg)
     character(len=*), intent(in) :: name, method
     type(gauss_optimizer_t), intent(out) :: opt
     class(opt_problem_t), allocatable, target, intent(out) :: prob
@@ -150,13 +205,14 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: x0(:), regularization
     integer, intent(in), optional :: max_iter
-    logical, intent(in), optional :: potter_repeat
+    logical, intent(in), optional :: potter_repeat, auto_reg
     call create_problem(name, prob, info, err)
     if (err%failed()) return
     opt%opts%method = method_from_name(method)
     if (present(max_iter)) opt%opts%max_iter = max_iter
     if (present(regularization)) opt%opts%regularization = regularization
     if (present(potter_repeat)) opt%opts%potter_repeat = potter_repeat
+    if (present(auto_reg)) opt%opts%auto_regularize = auto_reg
     if (present(x0)) then
       call opt%solve(prob, x0, err)
     else
@@ -338,7 +394,7 @@ contains
     class(opt_problem_t), allocatable :: prob
     type(problem_info_t) :: info
     type(error_t) :: err
-    call run_problem('hs28', 'gauss_constrained', opt, prob, info, err)
+    call run_problem('hs28', 'gauss_constrained', opt, prob, info, err, auto_reg=.false.)
     call assert_true(err%failed() .and. opt%status == status_failed, 'singular G stops the run')
     call assert_true(index(err%text(), 'singular') > 0, 'diagnosis says singular')
     call assert_true(index(err%text(), 'numerical rank 2 of 3') > 0, 'numerical rank reported')
@@ -351,10 +407,20 @@ contains
     call assert_true(index(opt%log(2)%events, 'regularized') > 0, 'regularization logged')
     ! Powell's singular function: J J^T becomes singular as x -> x* = 0
     call err%clear()
-    call run_problem('powell_singular', 'gauss', opt, prob, info, err)
+    call run_problem('powell_singular', 'gauss', opt, prob, info, err, auto_reg=.false.)
     call assert_true(err%failed() .and. index(err%text(), 'numerical rank 3 of 4') > 0, &
                      'Powell singular: rank loss at the solution detected')
     call assert_true(opt%have_best .and. opt%f_best < 1.0e-15_dp, 'best point near x* kept')
+    ! default: G singular is regularised automatically (mu = 1e-8 max G_ii)
+    call err%clear()
+    call run_problem('hs28', 'gauss_constrained', opt, prob, info, err)
+    call assert_true(opt%status == status_converged, 'HS28 with defaults converges: '//err%text())
+    call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-7_dp, 'HS28 x* with defaults')
+    call assert_true(index(opt%log(2)%events, 'automatic') > 0, 'automatic regularization logged')
+    call err%clear()
+    call run_problem('powell_singular', 'gauss', opt, prob, info, err)
+    call assert_true(opt%status == status_converged, 'Powell singular with defaults converges: '//err%text())
+    call assert_true(opt%f < 1.0e-20_dp, 'Powell singular: F < 1e-20 (F* = 0, x* = 0 approached linearly)')
   end subroutine test_rank_deficient
 
   subroutine test_powell_fallback()

@@ -61,7 +61,7 @@ contains
     class(opt_problem_t), intent(inout) :: prob
     real(dp), allocatable :: v(:)
     integer :: i
-    do i = 1, prob%m
+    do i = 1, prob%m + prob%n_eq
       v = reshape(prob%con_a(:, :, i), [prob%n**2])
       call jiggle(v)
       prob%con_a(:, :, i) = reshape(v, [prob%n, prob%n])
@@ -69,10 +69,6 @@ contains
       call jiggle(prob%con_b(:, i))
     end do
     call jiggle(prob%con_d)
-    do i = 1, prob%n_eq
-      call jiggle(prob%eq_d(:, i))
-    end do
-    call jiggle(prob%eq_e)
     select type (prob)
     type is (quadratic_problem_t)
       v = reshape(prob%q, [prob%n**2])

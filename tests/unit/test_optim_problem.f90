@@ -139,7 +139,7 @@ contains
     call p%set_quadratic_constraint(2, a, [1.0_dp, 0.0_dp, -1.0_dp], 2.0_dp)
     call p%set_general_constraint(3)
     call p%set_linear_equalities(reshape([1.0_dp, 1.0_dp, 1.0_dp], [3, 1]), [1.0_dp])
-    call assert_true(all(p%con_kind == [con_linear, con_quadratic, con_general]), 'kinds recorded')
+    call assert_true(all(p%con_kind == [con_linear, con_quadratic, con_general, con_linear]), 'kinds recorded')
     x = [0.5_dp, -1.0_dp, 2.0_dp]
     call p%constraint_values(x, g, err)
     call assert_close(g(1), 0.5_dp + 2.0_dp + 1.0_dp - 3.0_dp, 1.0e-15_dp, 'linear b^T x - d')
