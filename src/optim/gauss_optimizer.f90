@@ -221,7 +221,9 @@ contains
   !> Minimise prob from x0.  On return status, x, f, lambda, active and the
   !> log describe the run.  err is set (code 2 for inconsistent input, 1
   !> otherwise) when the run did not converge: the message says why, and the
-  !> best feasible iterate stays in x_best / f_best.
+  !> best feasible iterate stays in x_best / f_best.  err reports this run
+  !> only: an error left in it by an earlier call is cleared first (it would
+  !> otherwise reach the problem's procedures and be blamed on them).
   subroutine solve(self, prob, x0, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
@@ -236,6 +238,7 @@ contains
     logical, allocatable :: active_before(:)
     character(len=:), allocatable :: stage
 
+    call err%clear()
     call self%reset()
     call self%check_setup(prob, x0, hess_kind, err)
     if (err%failed()) then

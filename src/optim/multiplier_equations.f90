@@ -57,6 +57,7 @@ module multiplier_equations
     real(dp) :: m_rcond = 0.0_dp
     type(error_t) :: eval_err               !< first failure of an actual constraint inside Powell
     integer :: evaluations = 0              !< evaluations of m(lambda)
+    logical :: in_powell = .false.          !< counting: evaluations now are Powell's
   contains
     procedure :: setup
     procedure :: evaluate_step
@@ -142,6 +143,8 @@ contains
     do j = 1, self%l
       if (self%actual(j)) then
         call self%prob%constraint_value(self%idx(j), self%xk + self%s, r(j), err)   ! Potter §9.5 item 2
+        self%prob%count%b11_constraint_evals = self%prob%count%b11_constraint_evals + 1
+        if (self%in_powell) self%prob%count%powell_constraint_evals = self%prob%count%powell_constraint_evals + 1
         if (err%failed()) return
       else
         r(j) = self%gval(j) + dot_product(self%c(:, j), self%s) &
@@ -266,9 +269,12 @@ contains
       popts%initial_step = 0.1_dp*max(1.0_dp, maxval(abs(lam_best)))
       popts%max_iter = 100*max(1, self%l)
       lambda = self%project(lam_best)
+      self%in_powell = .true.
       call powell_minimize(self, lambda, popts, pres)
+      self%in_powell = .false.
       lambda = self%project(lambda)
       res%powell_evaluations = pres%evaluations
+      if (associated(self%prob)) self%prob%count%powell_h_evals = self%prob%count%powell_h_evals + pres%evaluations
       if (self%eval_err%failed()) then
         err = self%eval_err
         call err%add_context('multiplier equations (Powell)')

@@ -39,13 +39,17 @@ module optim_problem
 
   type :: opt_counters_t
     integer :: analyses = 0              !< NF: objective evaluations asked for by the optimizer
-    integer :: gradients = 0             !< objective gradient (residual Jacobian) evaluations
+    integer :: gradients = 0             !< objective gradients (for sums of squares: via J, one per Jacobian)
+    integer :: jacobians = 0             !< residual Jacobian evaluations (sums of squares)
     integer :: hessians = 0              !< objective Hessian evaluations (hessian = 'exact')
     integer :: fd_analyses = 0           !< objective evaluations spent in finite differences
     integer :: constraint_evals = 0      !< constraint vectors evaluated (each at one point)
     integer :: constraint_gradients = 0  !< gradient sets of the general constraints
     integer :: constraint_hessians = 0   !< Hessians of general constraints (Potter re-approximation)
     integer :: fd_constraint_evals = 0   !< general-constraint evaluations spent in finite differences
+    integer :: b11_constraint_evals = 0  !< single general-constraint evaluations in B11 (Potter's actual g)
+    integer :: powell_h_evals = 0        !< evaluations of H = Sum m_i^2 in Powell's fallback
+    integer :: powell_constraint_evals = 0 !< of b11_constraint_evals: those inside Powell's fallback
   end type opt_counters_t
 
   type, abstract :: opt_problem_t
@@ -455,6 +459,7 @@ contains
     type(error_t), intent(inout) :: err
     self%count%gradients = self%count%gradients + 1
     if (self%n_residuals > 0) then
+      self%count%jacobians = self%count%jacobians + 1
       call self%jacobian(x, phi, jac, err)
       grad = 2.0_dp*matmul(jac, phi)
     else

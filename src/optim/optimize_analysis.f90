@@ -222,9 +222,13 @@ contains
     call out%cost('iterations NI', str(opt%iterations))
     call out%cost('analyses NF (objective evaluations)', str(prob%count%analyses))
     call out%cost('gradient evaluations', str(prob%count%gradients))
+    call out%cost('residual Jacobian evaluations', str(prob%count%jacobians))
     call out%cost('objective evaluations in finite differences', str(prob%count%fd_analyses))
     call out%cost('objective Hessian evaluations', str(prob%count%hessians))
     call out%cost('constraint evaluations', str(prob%count%constraint_evals))
+    call out%cost('general-constraint evaluations in B11 / of them in Powell''s fallback', &
+                  str(prob%count%b11_constraint_evals)//' / '//str(prob%count%powell_constraint_evals))
+    call out%cost('H evaluations in Powell''s fallback', str(prob%count%powell_h_evals))
     call out%cost('general-constraint gradients / Hessians', str(prob%count%constraint_gradients)//' / '// &
                   str(prob%count%constraint_hessians))
     call out%cost('constraint evaluations in finite differences', str(prob%count%fd_constraint_evals))

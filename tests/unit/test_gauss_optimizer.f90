@@ -431,6 +431,11 @@ contains
     call run_problem('three_circles', 'gnlc_ns', opt, prob, info, err)
     call assert_true(opt%status == status_converged, 'converged: '//err%text())
     call assert_true(opt%powell_fallbacks >= 1, 'Powell fallback used')
+    ! separate counters (issue 11): Powell's H evaluations; quadratic
+    ! constraints use the model in B11, so no constraint evaluation there
+    call assert_true(prob%count%powell_h_evals > 0, 'H evaluations in Powell counted')
+    call assert_equal(prob%count%b11_constraint_evals, 0, 'no actual constraint in B11 for quadratic ones')
+    call assert_equal(prob%count%jacobians, prob%count%gradients, 'sum of squares: one Jacobian per gradient')
     call assert_true(index(opt%log(2)%events, 'Powell minimised H') > 0, 'fallback logged with the iteration')
     call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, 'x* = (1, sqrt 3)')
     call assert_all_close(opt%lambda, info%lambda_star, 0.0_dp, 1.0e-7_dp, 'lambda*')
@@ -483,6 +488,9 @@ contains
     call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, 'x* = (1, 1)')
     call assert_all_close(opt%lambda, info%lambda_star, 0.0_dp, 1.0e-6_dp, 'lambda* = (1, 1/2)')
     call assert_true(prob%count%constraint_hessians > 0, 'constraint Hessians re-evaluated (Potter item 1)')
+    call assert_true(prob%count%b11_constraint_evals > 0 .and. &
+                     prob%count%constraint_evals >= prob%count%b11_constraint_evals, &
+                     'actual constraints in B11 counted, within the constraint evaluations')
     call assert_true(all(opt%log(1:opt%n_log)%max_violation <= opt%opts%feas_tol), 'iterates feasible')
     call run_problem('general_convex', 'gnlc_general_ns', opt, prob, info, err)
     call assert_true(opt%status == status_converged, 'gnlc_general_ns converged')
@@ -536,6 +544,12 @@ contains
     opt%opts%hessian = hessian_auto
     call opt%solve(prob, [1.0_dp, 2.0_dp], err)
     call assert_true(err%code == 2 .and. index(err%text(), 'variables') > 0, 'start of the wrong length')
+    ! issue 11: an error left from an earlier call must not reach this run
+    ! (it was blamed on "constraint 1" of the next problem)
+    call create_problem('general_convex', prob, info, err)
+    opt%opts%method = method_gnlc_general
+    call opt%solve(prob, info%x0, err)
+    call assert_true(opt%status == status_converged .and. .not. err%failed(), 'stale error cleared: '//err%text())
   end subroutine test_mismatch
 end module test_gauss_optimizer_suite
 
