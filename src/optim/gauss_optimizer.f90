@@ -30,7 +30,7 @@ module gauss_optimizer
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
-  use linalg, only: lu_factor, sym_generalized_eig
+  use linalg, only: lu_factor, lu_solve, sym_generalized_eig, cholesky_factor
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
   use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
   implicit none
@@ -116,6 +116,7 @@ module gauss_optimizer
     procedure :: reset
     procedure, private :: check_setup
     procedure, private :: curvature
+    procedure, private :: make_convex
     procedure, private :: compute_step
     procedure, private :: step_back
     procedure, private :: analyse_trial
@@ -252,6 +253,7 @@ contains
     allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
     allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
     allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
+    self%hess = 0.0_dp
     allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
     allocate(self%log(16))
     self%x = x0
@@ -303,14 +305,14 @@ contains
       if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
         call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
       if (err%failed()) exit outer
-      call self%curvature(prob, hess_kind, k, err)
-      if (err%failed()) exit outer
       if (mt > 0) then
         call prob%constraint_gradients(self%x, self%g, self%dg, err)
         if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
           call err%set('constraint gradients', 'not finite at x_'//str(k))
         if (err%failed()) exit outer
       end if
+      call self%curvature(prob, hess_kind, k, err)
+      if (err%failed()) exit outer
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
 
@@ -582,6 +584,7 @@ contains
       if (err%failed()) return
       self%gm = 0.5_dp*(self%gm + transpose(self%gm))
       what = 'the objective Hessian G'
+      if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp) call self%make_convex(n)
     end if
     allocate(lu(n, n), ipiv(n))
     lu = self%gm
@@ -638,6 +641,82 @@ contains
       //'undefined; remove redundant variables, or set singular_g = ''regularize'' (the default) or ' &
       //'regularization > 0 in &optimize to add mu*I (Levenberg)')
   end subroutine curvature
+
+  !> An indefinite model (default settings): B10 minimises the Lagrangian
+  !> model with M = G + Sum lambda_j A_j over the tangent space of the active
+  !> constraints.  If the projection P M P (P onto that space; M with the
+  !> multipliers and constraint Hessians of the previous iteration) has a
+  !> negative eigenvalue lambda_min, B10 would step to a saddle or maximum.
+  !> G + mu I with mu = 2 |lambda_min| mirrors that curvature; the fixed point
+  !> (grad F + C lambda = 0) is unchanged, and near a solution satisfying the
+  !> second-order conditions no shift is made (fast convergence kept).
+  subroutine make_convex(self, n)
+    class(gauss_optimizer_t), intent(inout) :: self
+    integer, intent(in) :: n
+    real(dp), allocatable :: c(:, :), ev(:), eye(:, :)
+    type(error_t) :: lerr
+    real(dp) :: mu
+    integer :: i
+    allocate(c(n, n), ev(n), eye(n, n))
+    c = self%gm
+    do i = 1, size(self%lambda)
+      if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) c = c + self%lambda(i)*self%hess(:, :, i)
+    end do
+    call project_tangent(c)
+    eye = c
+    call cholesky_factor(c, lerr)
+    if (.not. lerr%failed()) return
+    c = eye
+    eye = 0.0_dp
+    do i = 1, n
+      eye(i, i) = 1.0_dp
+    end do
+    call lerr%clear()
+    call sym_generalized_eig(c, eye, ev, lerr)
+    if (lerr%failed()) return
+    if (ev(1) >= -1.0e-8_dp*maxval(abs(ev))) return     ! singular, not indefinite: handled below
+    mu = -2.0_dp*ev(1)
+    do i = 1, n
+      self%gm(i, i) = self%gm(i, i) + mu
+    end do
+    self%regularizations = self%regularizations + 1
+    call self%note('model G + Sum lambda A indefinite (lambda_min = '//str(ev(1), 3)//'): G + mu I, mu = '// &
+                   str(mu, 3)//' (automatic, 2 |lambda_min|)')
+  contains
+    !> c <- P c P, P = I - C (C^T C)^{-1} C^T for the active gradients C
+    !> (unchanged if there are none, or they are dependent).
+    subroutine project_tangent(c)
+      real(dp), intent(inout) :: c(:, :)
+      real(dp), allocatable :: cc(:, :), kk(:, :), w(:, :), pm(:, :)
+      integer, allocatable :: piv(:)
+      type(error_t) :: perr
+      real(dp) :: rc
+      integer :: l, j
+      l = count(self%active)
+      if (l == 0 .or. l >= n) return
+      allocate(cc(n, l), kk(l, l), w(l, n), pm(n, n), piv(l))
+      l = 0
+      do j = 1, size(self%active)
+        if (.not. self%active(j)) cycle
+        l = l + 1
+        cc(:, l) = self%dg(:, j)
+      end do
+      kk = matmul(transpose(cc), cc)
+      call lu_factor(kk, piv, perr, rc)
+      if (perr%failed() .or. rc < 1.0e-12_dp) return
+      w = transpose(cc)
+      call lu_solve(kk, piv, w, perr)
+      if (perr%failed()) return
+      pm = -matmul(cc, w)
+      do j = 1, n
+        pm(j, j) = pm(j, j) + 1.0_dp
+      end do
+      c = matmul(pm, matmul(c, pm))
+      ! the range directions have eigenvalue 0 now: lift them so only the
+      ! tangent-space curvature can fail the test
+      c = c + matmul(cc, transpose(cc))*maxval(abs(c))
+    end subroutine project_tangent
+  end subroutine make_convex
 
   !> Multipliers and step at x_k for the current active set, with the drop
   !> rule of §9.4 (most negative multiplier first, re-solve, repeat).

@@ -20,6 +20,7 @@ module optimize_analysis
   use table_output, only: table_t
   use optim_problem, only: opt_problem_t, con_kind_name
   use problem_library, only: problem_info_t, create_problem, problem_names
+  use user_problems, only: create_user_problem, user_problem_names
   use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
                              status_converged, status_max_iter, set_text
@@ -78,6 +79,7 @@ contains
     integer :: n, n_given, u
     real(dp), allocatable :: start(:)
     real(dp) :: cpu0, cpu1
+    character(len=:), allocatable :: names
 
     call set_defaults()
     call deck%read_group('optimize', read_optimize, .true., found, err)
@@ -88,10 +90,15 @@ contains
     potter_fix = lower(potter_fix)
     step_back = lower(step_back)
     singular_g = lower(singular_g)
-    call create_problem(problem, prob, info, err)
+    ! the user's problems (make PROBLEM=...) first, then the library
+    call create_user_problem(trim(problem), prob, info, found, err)
+    if (.not. err%failed() .and. .not. found) call create_problem(problem, prob, info, err)
     if (err%failed()) then
       call err%clear()
-      call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//problem_names, err)
+      names = problem_names
+      if (len(user_problem_names()) > 0) names = user_problem_names()//', '//names
+      call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//names// &
+                         ' (or a problem of your own: make PROBLEM=file.f90, doc/optimization.md)', err)
       return
     end if
     n = prob%n
