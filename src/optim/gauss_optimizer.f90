@@ -37,22 +37,23 @@ module gauss_optimizer
   private
   public :: gauss_optimizer_t, gauss_options_t, gauss_iterate_t
   public :: method_gauss, method_gauss_constrained, method_gnlc, method_gnlc_ns
-  public :: method_gnlc_general, method_gnlc_general_ns
+  public :: method_gnlc_general, method_gnlc_general_ns, method_auto
   public :: method_from_name, method_name, method_names
   public :: hessian_auto, hessian_gauss, hessian_exact, hessian_from_name, hessian_name
   public :: status_not_run, status_converged, status_max_iter, status_failed
   public :: set_text
 
   integer, parameter :: method_gauss = 1, method_gauss_constrained = 2, method_gnlc = 3, &
-                        method_gnlc_ns = 4, method_gnlc_general = 5, method_gnlc_general_ns = 6
+                        method_gnlc_ns = 4, method_gnlc_general = 5, method_gnlc_general_ns = 6, method_auto = 7
   character(len=*), parameter :: method_names = &
-    "'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
+    "'auto', 'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
   integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
   integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
 
   type :: gauss_options_t
-    integer :: method = method_gnlc
+    integer :: method = method_auto       !< auto: chosen from the problem (see check_setup); solve
+                                          !< leaves the method used here
     integer :: hessian = hessian_auto     !< auto: 2JJ^T for sums of squares, exact otherwise
     integer :: max_iter = 50
     real(dp) :: xtol = 1.0e-8_dp          !< step test (3)
@@ -143,6 +144,8 @@ contains
       method = method_gnlc_general
     case ('gnlc_general_ns')
       method = method_gnlc_general_ns
+    case ('auto')
+      method = method_auto
     case default
       method = 0
     end select
@@ -164,6 +167,8 @@ contains
       name = 'gnlc_general'
     case (method_gnlc_general_ns)
       name = 'gnlc_general_ns'
+    case (method_auto)
+      name = 'auto'
     case default
       name = 'unknown'
     end select
@@ -234,13 +239,14 @@ contains
     logical, allocatable :: violated(:), touched(:), limit(:)
     integer :: n, m, mt, k, repeats, hess_kind, halvings
     real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged, same_point
+    logical :: solved, step_back_method, converged, same_point, auto
     real(dp) :: b11_res
     logical, allocatable :: active_before(:)
     character(len=:), allocatable :: stage
 
     call err%clear()
     call self%reset()
+    auto = self%opts%method == method_auto
     call self%check_setup(prob, x0, hess_kind, err)
     if (err%failed()) then
       self%message = err%text()
@@ -259,6 +265,7 @@ contains
     self%x = x0
     self%lambda = 0.0_dp
     self%ev = ''
+    if (auto) call self%note('method auto: '//self%method_label())
 
     call prob%constraint_values(self%x, self%g, err)
     if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
@@ -519,6 +526,16 @@ contains
     type(error_t), intent(inout) :: err
     character(len=:), allocatable :: me
     integer :: i
+    if (self%opts%method == method_auto) then
+      ! any start is allowed: the NS variants; Potter's for general constraints
+      if (prob%n_constraints() == 0) then
+        self%opts%method = method_gauss
+      else if (any(prob%con_kind == con_general)) then
+        self%opts%method = method_gnlc_general_ns
+      else
+        self%opts%method = method_gnlc_ns
+      end if
+    end if
     me = self%method_label()
     hess_kind = self%opts%hessian
     if (hess_kind == hessian_auto) then

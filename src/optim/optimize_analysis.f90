@@ -29,8 +29,8 @@ module optimize_analysis
   public :: run_optimize
 
   integer, parameter :: max_vars = 50
-  character(len=20), parameter :: method_list(6) = [character(len=20) :: 'gauss', 'gauss_constrained', 'gnlc', &
-                                                    'gnlc_ns', 'gnlc_general', 'gnlc_general_ns']
+  character(len=20), parameter :: method_list(7) = [character(len=20) :: 'auto', 'gauss', 'gauss_constrained', &
+                                                    'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns']
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &optimize group
@@ -44,7 +44,7 @@ contains
 
   subroutine set_defaults()
     problem = 'rosen_suzuki'
-    method = 'gnlc'
+    method = 'auto'
     x0 = unset
     hessian = 'auto'
     max_iter = 50
