@@ -111,6 +111,7 @@ module gauss_optimizer
     real(dp), allocatable, private :: phi(:), gradf(:), jac(:, :), gm(:, :), dg(:, :), hess(:, :, :)
     logical, allocatable, private :: have_hess(:)
     character(len=:), allocatable, private :: ev
+    logical, private :: last_solved = .true.    !< B11 of the previous step solved (multipliers meaningful)
   contains
     procedure :: solve
     procedure :: method_label
@@ -328,6 +329,7 @@ contains
         active_before = self%active
         call self%compute_step(prob, s, solved, b11_res, err)
         if (err%failed()) exit outer
+        self%last_solved = solved
         ! ---- convergence test at x_k (module header)
         snorm = maxval(abs(s))
         pred = dot_product(self%gradf, s) + 0.5_dp*dot_product(s, matmul(self%gm, s))
@@ -514,6 +516,7 @@ contains
     self%potter_repeats = 0
     self%n_log = 0
     self%ev = ''
+    self%last_solved = .true.
     self%opts = opts
   end subroutine reset
 
@@ -587,6 +590,7 @@ contains
     integer, allocatable :: ipiv(:)
     type(error_t) :: lerr
     real(dp) :: rc, mu, gmax
+    real(dp), allocatable :: glag(:)
     real(dp), parameter :: auto_factor = 1.0e-8_dp
     character(len=:), allocatable :: what, rank_text, how
     integer :: i, n, rank
@@ -635,16 +639,18 @@ contains
       if (self%opts%regularization > 0.0_dp) then
         mu = self%opts%regularization*max(gmax, 1.0e-300_dp)
         how = ''
-      else if (gmax > 0.0_dp) then
-        ! automatic (Levenberg): mu = 1e-8 max G_ii shifts the zero eigenvalues
-        ! to 1e-8 of G's scale and leaves the others untouched to 8 digits
-        mu = auto_factor*gmax
-        how = ' (automatic, 1e-8 max G_ii)'
       else
-        ! G = 0 (F linear near x_k): mu = |grad F|/max(1, |x|) bounds the step
-        ! to about max(1, |x|), a trust region of the design's own size
-        mu = max(maxval(abs(self%gradf))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
-        how = ' (automatic, G = 0: |grad F|/max(1, |x|))'
+        ! automatic (Levenberg): mu = 1e-8 max G_ii shifts the zero eigenvalues
+        ! to 1e-8 of G's scale and leaves the others untouched to 8 digits;
+        ! but at least |grad L|/max(1, |x|) (grad L = grad F + C lambda of the
+        ! last solved step), which bounds a step along a null direction of G
+        ! to about the design's own size (a trust region) and vanishes at a
+        ! KKT point, so that the final convergence is not slowed
+        allocate(glag(n))
+        glag = self%gradf
+        if (self%last_solved .and. size(self%lambda) > 0) glag = glag + matmul(self%dg, self%lambda)
+        mu = max(auto_factor*gmax, maxval(abs(glag))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
+        how = ' (automatic, max(1e-8 max G_ii, |grad L|/max(1, |x|)))'
       end if
       do i = 1, n
         self%gm(i, i) = self%gm(i, i) + mu
@@ -676,9 +682,13 @@ contains
     integer :: i
     allocate(c(n, n), ev(n), eye(n, n))
     c = self%gm
-    do i = 1, size(self%lambda)
-      if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) c = c + self%lambda(i)*self%hess(:, :, i)
-    end do
+    ! a Powell compromise's multipliers (often huge) describe no model
+    if (self%last_solved) then
+      do i = 1, size(self%lambda)
+        if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) c = c + self%lambda(i)*self%hess(:, :, i)
+      end do
+    end if
+    if (count(self%active) >= n) return        ! no tangent space: nothing to convexify
     call project_tangent(c)
     eye = c
     call cholesky_factor(c, lerr)
