@@ -21,6 +21,7 @@ module optimize_analysis
   use optim_problem, only: opt_problem_t, con_kind_name
   use problem_library, only: problem_info_t, create_problem, problem_names
   use user_problems, only: create_user_problem, user_problem_names
+  use deck_problem, only: read_deck_problem
   use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
                              status_converged, status_max_iter, set_text
@@ -90,13 +91,21 @@ contains
     potter_fix = lower(potter_fix)
     step_back = lower(step_back)
     singular_g = lower(singular_g)
-    ! the user's problems (make PROBLEM=...) first, then the library
-    call create_user_problem(trim(problem), prob, info, found, err)
+    ! a problem posed by coefficients in the deck; the user's problems (make
+    ! PROBLEM=...); then the library
+    found = .false.
+    if (problem == 'deck') then
+      call read_deck_problem(deck, prob, info, err)
+      if (err%failed()) return
+      found = .true.
+    end if
+    if (.not. found) call create_user_problem(trim(problem), prob, info, found, err)
     if (.not. err%failed() .and. .not. found) call create_problem(problem, prob, info, err)
     if (err%failed()) then
       call err%clear()
       names = problem_names
       if (len(user_problem_names()) > 0) names = user_problem_names()//', '//names
+      names = '''deck'' (coefficients in &problem_data), '//names
       call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//names// &
                          ' (or a problem of your own: make PROBLEM=file.f90, doc/optimization.md)', err)
       return
