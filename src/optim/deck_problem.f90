@@ -13,7 +13,8 @@
 !>       title = 'HS 35 from its coefficients'
 !>     /
 !>
-!> Bounds become linear constraints after the general inequalities.  The
+!> Bounds are set with set_bounds (unit-gradient constraints after the
+!> inequalities; NS trial points are kept in the box).  The
 !> default start is x = 0 (give x0 in &optimize).
 module deck_problem
   use, intrinsic :: iso_fortran_env, only: int64
@@ -78,7 +79,7 @@ contains
     type(error_t), intent(inout) :: err
     type(quadratic_problem_t), allocatable :: qp
     logical :: found
-    integer :: i, j, k, nb
+    integer :: i, j
     call set_defaults()
     call deck%read_group('problem_data', read_problem_data, .true., found, err)
     if (err%failed()) return
@@ -88,9 +89,8 @@ contains
     if (err%failed()) return
     call check_all(deck, err)
     if (err%failed()) return
-    nb = count(lower(1:n) > -none) + count(upper(1:n) < none)
     allocate(qp)
-    call qp%init_problem('deck', n, 0, n_ineq + nb, n_eq=n_eq)
+    call qp%init_problem('deck', n, 0, n_ineq, n_eq=n_eq)
     qp%q = 0.5_dp*(f_q(1:n, 1:n) + transpose(f_q(1:n, 1:n)))
     qp%lin = f_c(1:n)
     qp%const = f_0
@@ -101,17 +101,6 @@ contains
         call qp%set_linear_constraint(i, g_a(i, 1:n), g_b(i))
       end if
     end do
-    k = n_ineq
-    do j = 1, n
-      if (lower(j) > -none) then
-        k = k + 1
-        call qp%set_linear_constraint(k, unit_vector(n, j, -1.0_dp), -lower(j))
-      end if
-      if (upper(j) < none) then
-        k = k + 1
-        call qp%set_linear_constraint(k, unit_vector(n, j, 1.0_dp), upper(j))
-      end if
-    end do
     do j = 1, n_eq
       if (any(abs(h_q(1:n, 1:n, j)) > 0.0_dp)) then
         call qp%set_quadratic_equality(j, h_q(1:n, 1:n, j), h_a(j, 1:n), h_b(j))
@@ -119,6 +108,7 @@ contains
         call qp%set_linear_constraint(qp%m + j, h_a(j, 1:n), h_b(j))
       end if
     end do
+    call qp%set_bounds(lower(1:n), upper(1:n))     ! simple bounds, after the inequalities
     info%name = 'deck'
     info%title = trim(title)
     info%source = 'coefficients in &problem_data of the deck'
@@ -172,11 +162,4 @@ contains
     is_unset = transfer(v, 0_int64) == transfer(unset, 0_int64)
   end function is_unset
 
-  pure function unit_vector(n, i, v) result(e)
-    integer, intent(in) :: n, i
-    real(dp), intent(in) :: v
-    real(dp) :: e(n)
-    e = 0.0_dp
-    e(i) = v
-  end function unit_vector
 end module deck_problem

@@ -267,6 +267,10 @@ contains
     self%lambda = 0.0_dp
     self%ev = ''
     if (auto) call self%note('method auto: '//self%method_label())
+    if (.not. step_back_method .and. prob%n_bounds > 0) then
+      self%x = prob%project_to_bounds(x0)
+      if (maxval(abs(self%x - x0)) > 0.0_dp) call self%note('start projected onto the bounds')
+    end if
 
     call prob%constraint_values(self%x, self%g, err)
     if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &

@@ -29,8 +29,7 @@ module hs_collection
 
   type, extends(opt_problem_t) :: hs_problem_t
     integer :: number = 0
-    integer :: mg = 0                     !< general inequalities (constraints 1..mg)
-    integer :: nb = 0                     !< bound constraints (mg+1..mg+nb)
+    integer :: mg = 0                     !< general inequalities (constraints 1..mg); bounds mg+1..m
   contains
     procedure :: objective => hs_objective
     procedure :: gradient => hs_gradient
@@ -48,41 +47,22 @@ contains
     real(dp), intent(out) :: f_star
     logical, intent(out) :: found
     real(dp), allocatable :: lo(:), hi(:)
-    integer :: n, mg, me, i, k
+    integer :: n, mg, me, i
     found = any(hs_numbers == number)
     f_star = 0.0_dp
     if (.not. found) return
     call hs_data(number, n, mg, me, lo, hi, x0, x_star, f_star)
     prob%number = number
     prob%mg = mg
-    prob%nb = count(lo > -none) + count(hi < none)
-    call prob%init_problem('hs'//str(number), n, 0, mg + prob%nb, n_eq=me)
+    call prob%init_problem('hs'//str(number), n, 0, mg, n_eq=me)
     do i = 1, mg
       call prob%set_general_constraint(i)
-    end do
-    k = mg
-    do i = 1, n
-      if (lo(i) > -none) then                       ! lo - x <= 0
-        k = k + 1
-        call prob%set_linear_constraint(k, unit(n, i, -1.0_dp), -lo(i))
-      end if
-      if (hi(i) < none) then                        ! x - hi <= 0
-        k = k + 1
-        call prob%set_linear_constraint(k, unit(n, i, 1.0_dp), hi(i))
-      end if
     end do
     do i = 1, me
       call prob%set_general_equality(i)
     end do
+    call prob%set_bounds(lo, hi)                    ! constraints mg+1..m, after the general ones
   end subroutine create_hs
-
-  pure function unit(n, i, v) result(e)
-    integer, intent(in) :: n, i
-    real(dp), intent(in) :: v
-    real(dp) :: e(n)
-    e = 0.0_dp
-    e(i) = v
-  end function unit
 
   !> Sizes, bounds, standard start and published optimum of each problem.
   subroutine hs_data(number, n, mg, me, lo, hi, x0, xs, fs)

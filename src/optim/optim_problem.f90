@@ -62,6 +62,8 @@ module optim_problem
     real(dp), allocatable :: con_a(:, :, :)     !< (n, n, m+n_eq) A_i of quadratic constraints (0 otherwise)
     real(dp), allocatable :: con_b(:, :)        !< (n, m+n_eq) b_i
     real(dp), allocatable :: con_d(:)           !< (m+n_eq) d_i
+    real(dp), allocatable :: xl(:), xu(:)       !< (n) simple bounds (-huge, huge: none), see set_bounds
+    integer :: n_bounds = 0                     !< finite bounds, constraints m-n_bounds+1..m
     real(dp) :: fd_rel_step = 1.4901161193847656e-8_dp   !< sqrt(eps): forward-difference step factor
     type(opt_counters_t) :: count
   contains
@@ -83,6 +85,8 @@ module optim_problem
     procedure, non_overridable :: set_linear_equalities
     procedure, non_overridable :: set_quadratic_equality
     procedure, non_overridable :: set_general_equality
+    procedure, non_overridable :: set_bounds
+    procedure, non_overridable :: project_to_bounds
     procedure, non_overridable :: is_least_squares
     procedure, non_overridable :: n_constraints
     ! ---- solver side: counted
@@ -122,6 +126,7 @@ contains
     character(len=*), intent(in) :: name
     integer, intent(in) :: n, n_residuals, m
     integer, intent(in), optional :: n_eq
+    integer :: i
     self%name = name
     self%n = n
     self%n_residuals = n_residuals
@@ -135,6 +140,9 @@ contains
     self%con_a = 0.0_dp
     self%con_b = 0.0_dp
     self%con_d = 0.0_dp
+    self%xl = [(-huge(1.0_dp), i=1, n)]
+    self%xu = [(huge(1.0_dp), i=1, n)]
+    self%n_bounds = 0
     call self%reset_counters()
   end subroutine init_problem
 
@@ -191,6 +199,69 @@ contains
       call self%set_linear_constraint(self%m + j, d(:, j), e(j))
     end do
   end subroutine set_linear_equalities
+
+  !> Simple bounds lower <= x <= upper (|value| >= 1e30: none), once, after
+  !> the other constraints are set.  Each finite bound becomes a linear
+  !> inequality with a unit gradient, numbered after the inequalities given
+  !> to init_problem (m grows by their number, so equality j stays m + j);
+  !> the NS methods also keep every trial point inside the box (projection),
+  !> so F is never evaluated outside it.
+  subroutine set_bounds(self, lower, upper)
+    class(opt_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: lower(:), upper(:)
+    integer, allocatable :: kind(:)
+    real(dp), allocatable :: a(:, :, :), b(:, :), d(:)
+    integer :: j, k, nb, m0, mt0
+    real(dp), parameter :: none = 1.0e30_dp
+    m0 = self%m
+    mt0 = self%m + self%n_eq
+    nb = count(lower > -none) + count(upper < none)
+    call move_alloc(self%con_kind, kind)
+    call move_alloc(self%con_a, a)
+    call move_alloc(self%con_b, b)
+    call move_alloc(self%con_d, d)
+    allocate(self%con_kind(mt0 + nb), self%con_a(self%n, self%n, mt0 + nb), self%con_b(self%n, mt0 + nb), &
+             self%con_d(mt0 + nb))
+    self%con_kind(1:m0) = kind(1:m0)
+    self%con_a(:, :, 1:m0) = a(:, :, 1:m0)
+    self%con_b(:, 1:m0) = b(:, 1:m0)
+    self%con_d(1:m0) = d(1:m0)
+    self%con_kind(m0 + nb + 1:) = kind(m0 + 1:)
+    self%con_a(:, :, m0 + nb + 1:) = a(:, :, m0 + 1:)
+    self%con_b(:, m0 + nb + 1:) = b(:, m0 + 1:)
+    self%con_d(m0 + nb + 1:) = d(m0 + 1:)
+    self%m = m0 + nb
+    self%n_bounds = nb
+    k = m0
+    do j = 1, self%n
+      self%xl(j) = merge(lower(j), -huge(1.0_dp), lower(j) > -none)
+      self%xu(j) = merge(upper(j), huge(1.0_dp), upper(j) < none)
+      if (lower(j) > -none) then                    ! lower - x <= 0
+        k = k + 1
+        call self%set_linear_constraint(k, unit(j, -1.0_dp), -lower(j))
+      end if
+      if (upper(j) < none) then                     ! x - upper <= 0
+        k = k + 1
+        call self%set_linear_constraint(k, unit(j, 1.0_dp), upper(j))
+      end if
+    end do
+  contains
+    pure function unit(i, v) result(e)
+      integer, intent(in) :: i
+      real(dp), intent(in) :: v
+      real(dp) :: e(self%n)
+      e = 0.0_dp
+      e(i) = v
+    end function unit
+  end subroutine set_bounds
+
+  !> x clipped into [xl, xu].
+  pure function project_to_bounds(self, x) result(p)
+    class(opt_problem_t), intent(in) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp) :: p(size(x))
+    p = min(max(x, self%xl), self%xu)
+  end function project_to_bounds
 
   !> Equality j: h_j = 1/2 x^T A x + b^T x - e = 0 (constraint m + j).
   subroutine set_quadratic_equality(self, j, a, b, e)

@@ -21,7 +21,7 @@ module test_hs_collection_suite
   !> library problems that are HS problems: name and HS number
   character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
                                                   'rosen_suzuki', 'hs65']
-  integer, parameter :: known_failures(8) = [3, 5, 18, 20, 23, 31, 60, 71]
+  integer, parameter :: known_failures(7) = [3, 5, 18, 23, 31, 60, 71]
 
 contains
 
