@@ -295,13 +295,14 @@ contains
     call out%columns(names)
     do r = 1, opt%n_steps
       associate (st => opt%steps(r))
-        if (len(st%events) > 0) call out%comment('k = '//str(st%k)//': '//st%events)
         row(1:6) = [real(st%k, dp), real(st%analyses, dp), st%cpu, st%mass, st%max_violation, st%move_limit]
         do i = 1, n
           row(6 + i) = prob%var(i)%value(st%x(i))
         end do
         row(7 + n:) = st%g
         call out%row(row)
+        ! after the row: the column names stay the last '#' line before the first row
+        if (len(st%events) > 0) call out%comment('k = '//str(st%k)//': '//st%events)
       end associate
     end do
   end subroutine write_history
