@@ -633,12 +633,13 @@ contains
   subroutine model_newton_solve(self, x)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
-    real(dp) :: r1(self%n), dv(self%n)
+    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
     type(error_t) :: err
     integer :: kd
     kd = self%kd
     r1 = x(1::2)
-    dv = sym_band_times(self%newton_mass, kd, x(2::2)) - self%newton_hl0*band_times(self%newton_stiff, kd, r1)
+    r2 = x(2::2)
+    call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
     if (self%newton_cholesky) then
       call band_cholesky_solve(self%newton_chol, kd, dv, err)
     else
@@ -669,35 +670,30 @@ contains
     end do
   end function symmetric_band
 
-  !> A x for A in general band storage ab(kd+1+i-j, j).
-  pure function band_times(ab, kd, x) result(y)
-    real(dp), intent(in) :: ab(:, :), x(:)
+  !> y = M a - c K b for M symmetric in lower band storage m(1+i-j, j) and K
+  !> in general band storage k(kd+1+i-j, j), both of half-bandwidth kd: O(N kd).
+  pure subroutine band_combination(m, k, kd, a, c, b, y)
+    real(dp), intent(in) :: m(:, :), k(:, :), a(:), c, b(:)
     integer, intent(in) :: kd
-    real(dp) :: y(size(x))
-    integer :: j, n, i0, i1
-    n = size(x)
+    real(dp), intent(out) :: y(:)
+    integer :: i, j, n
+    real(dp) :: aj, cbj, s
+    n = size(a)
     y = 0.0_dp
     do j = 1, n
-      i0 = max(1, j - kd)
-      i1 = min(n, j + kd)
-      y(i0:i1) = y(i0:i1) + ab(kd + 1 + i0 - j:kd + 1 + i1 - j, j)*x(j)
+      aj = a(j)
+      cbj = c*b(j)
+      s = m(1, j)*aj
+      do i = max(1, j - kd), min(n, j + kd)
+        y(i) = y(i) - k(kd + 1 + i - j, j)*cbj
+      end do
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*aj
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
     end do
-  end function band_times
-
-  !> A x for symmetric A in lower band storage ab(1+i-j, j), i >= j.
-  pure function sym_band_times(ab, kd, x) result(y)
-    real(dp), intent(in) :: ab(:, :), x(:)
-    integer, intent(in) :: kd
-    real(dp) :: y(size(x))
-    integer :: j, n, i1
-    n = size(x)
-    y = 0.0_dp
-    do j = 1, n
-      i1 = min(n, j + kd)
-      y(j:i1) = y(j:i1) + ab(1:1 + i1 - j, j)*x(j)
-      y(j) = y(j) + dot_product(ab(2:1 + i1 - j, j), x(j + 1:i1))
-    end do
-  end function sym_band_times
+  end subroutine band_combination
 
   pure function zeros8() result(z)
     real(dp) :: z(8)
