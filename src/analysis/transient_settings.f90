@@ -140,11 +140,9 @@ contains
     end if
     call check_real(deck, g, 'damping_beta', s%damping_beta, err, at_least=0.0_dp, below=1.0_dp, why='seconds')
     call check_choice(deck, g, 'initial', s%initial, [character(len=16) :: 'rigid', 'mode', 'restart'], err)
-    if (s%initial == 'mode') then
-      call check_integer(deck, g, 'mode_number', s%mode_number, err, at_least=1)
-      call check_real(deck, g, 'mode_amplitude', s%mode_amplitude, err, at_least=-1.0e3_dp, at_most=1.0e3_dp, &
-                      why='length units of the largest modal displacement')
-    end if
+    call check_real(deck, g, 'mode_amplitude', s%mode_amplitude, err, at_least=-1.0e3_dp, at_most=1.0e3_dp, &
+                    why='length units of the largest modal displacement')
+    if (s%initial == 'mode') call check_integer(deck, g, 'mode_number', s%mode_number, err, at_least=1)
     if (err%failed()) return
     if (s%initial == 'restart' .and. len_trim(s%restart_in) == 0) &
       call invalid_value(deck, g, 'restart_in', '''''', 'initial = ''restart'' needs a restart file', err)
