@@ -44,8 +44,10 @@ TEST_BIN  := $(addprefix $(OUT)/tests/,$(notdir $(TEST_SRC:.f90=)))
 TOOL_BIN  := $(addprefix $(OUT)/tools/,$(notdir $(TOOL_SRC:.f90=)))
 BENCH_BIN := $(addprefix $(OUT)/bench/,$(notdir $(BENCH_SRC:.f90=)))
 
-ODEPACK_FILES := dlsode dstode dprepj dsolsy dintdy dcfode dewset dvnorm
+# DPREPJ and DSOLSY (DLSODE's Newton matrix) are ours: src/ode/lsode_newton.f90.
+ODEPACK_FILES := dlsode dstode dintdy dcfode dewset dvnorm
 ODEPACK_LIB   := $(BUILD_DIR)/odepack/libodepack.a
+ODEPACK_LIST  := $(BUILD_DIR)/odepack/files.txt
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
@@ -66,7 +68,10 @@ $(ODEPACK_SRC)/dlsode.f: | deps
 
 odepack: $(ODEPACK_LIB)
 
-$(ODEPACK_LIB): $(ODEPACK_SRC)/dlsode.f
+# The file list is rewritten only when it changes, so that the library is rebuilt then.
+$(shell mkdir -p $(BUILD_DIR)/odepack; echo '$(ODEPACK_FILES)' | cmp -s - $(ODEPACK_LIST) || echo '$(ODEPACK_FILES)' > $(ODEPACK_LIST))
+
+$(ODEPACK_LIB): $(ODEPACK_SRC)/dlsode.f $(ODEPACK_LIST)
 	@mkdir -p $(BUILD_DIR)/odepack/obj
 	@for f in $(ODEPACK_FILES); do \
 	  $(FC) $(LEGACY_FFLAGS) -c $(ODEPACK_SRC)/$$f.f -o $(BUILD_DIR)/odepack/obj/$$f.o || exit 1; done
