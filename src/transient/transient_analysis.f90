@@ -14,8 +14,10 @@ module transient_analysis
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user, mf_bdf_band_fd
   use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, driver_angle, &
                      joint_pin, joint_slider_fixed, joint_free
-  use kear_element, only: stress_report_t, effects_summary, kear_local_displacement
+  use kear_element, only: stress_report_t, effects_summary
+  use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
+  use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
   implicit none
   private
@@ -31,6 +33,7 @@ contains
     type(error_t), intent(inout) :: err
     type(mechanism_t) :: mech
     type(transient_settings_t) :: s
+    type(loads_input_t) :: loads_in
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
@@ -45,6 +48,8 @@ contains
     if (err%failed()) return
     call read_transient_settings(deck, s, err)
     if (err%failed()) return
+    call read_loads(deck, loads_in, err)
+    if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
         'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
@@ -58,6 +63,14 @@ contains
       call out%end_echo()
     end block
     call echo_transient_settings(out)
+    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
+      block
+        integer :: u
+        u = out%echo_unit()
+        call echo_loads(u)
+        call out%end_echo()
+      end block
+    end if
 
     call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
     if (err%failed()) then
@@ -65,6 +78,17 @@ contains
       call err%add_context('deck '''//deck%path//''', group &mechanism')
       return
     end if
+    block
+      real(dp) :: gravity(2)
+      type(point_load_t), allocatable :: point_loads(:)
+      call resolve_loads(loads_in, mech, gravity, point_loads, err)
+      if (err%failed()) then
+        err%code = 2
+        call err%add_context('deck '''//deck%path//''', group &loads')
+        return
+      end if
+      call model%set_loads(gravity, point_loads)
+    end block
     call write_model_header(out, mech, s, model)
     if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
       call model%build_motion_table(s%table_points, err)
@@ -216,7 +240,7 @@ contains
       end do
       do i = 1, mech%n_links
         ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        row(kk + 1:kk + 2) = kear_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
+        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
                                                      1.0_dp)
         kk = kk + 2
       end do
@@ -286,14 +310,14 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
-    character(len=120), allocatable :: tlines(:)
+    character(len=160), allocatable :: tlines(:)
     integer :: i
     associate (lines => mechanism_summary(mech))
       do i = 1, size(lines)
         if (len_trim(lines(i)) > 0) call out%comment(trim(lines(i)))
       end do
     end associate
-    call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(s%formulation))
+    call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(model%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &
       call out%comment('(all effects off: the linear analysis)')
@@ -371,7 +395,7 @@ contains
     wmax = 0.0_dp
     do e = 1, size(model%el)
       do i = 0, 10
-        uw = kear_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
+        uw = beam_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
         wmax = max(wmax, abs(uw(2)))
       end do
     end do

@@ -33,7 +33,8 @@ module transient_settings
     character(len=16) :: kinematics = 'table'      !< rigid motion: 'table' (per revolution) or 'direct'
     integer :: table_points = 720                  !< crank angles per revolution in the table
     type(element_effects_t) :: effects             !< the papers' tracing constants, all off = linear
-    character(len=16) :: formulation = 'exact'     !< 'exact' or 'kear1987' (printed simplifications)
+    character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
+                                                   !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
@@ -147,9 +148,9 @@ contains
       call invalid_value(deck, g, 'table_points', str(s%table_points), 'must lie in 36..1000000', err)
     else if (s%max_steps < 1) then
       call invalid_value(deck, g, 'max_steps', str(s%max_steps), 'must be >= 1', err)
-    else if (all(s%formulation /= [character(len=16) :: 'exact', 'kear1987'])) then
+    else if (all(s%formulation /= [character(len=16) :: 'default', 'consistent', 'exact', 'kear1987'])) then
       call invalid_value(deck, 'effects', 'formulation', ''''//trim(s%formulation)//'''', &
-                         'must be ''exact'' or ''kear1987''', err)
+                         'must be ''default'', ''consistent'', ''exact'' or ''kear1987''', err)
     end if
   end subroutine validate
 

@@ -7,7 +7,8 @@ module transient_fixtures
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
-  use kear_element, only: element_effects_t, kear_local_displacement
+  use kear_element, only: element_effects_t
+  use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_bdf_full_fd
   use assertions, only: assert_true
@@ -155,7 +156,7 @@ contains
       v = dot_product(p%c, q)
     else
       call model%set_time(t)
-      uw = kear_local_displacement(model%el(p%element), model%table%gather(p%element, q), &
+      uw = beam_local_displacement(model%el(p%element), model%table%gather(p%element, q), &
                                    model%rb(p%element)%phi, p%xi)
       v = uw(2)
     end if

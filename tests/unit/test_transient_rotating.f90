@@ -6,7 +6,8 @@
 module test_transient_rotating_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
-  use kear_element, only: element_effects_t, kear_local_displacement
+  use kear_element, only: element_effects_t
+  use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: mf_adams
   use linkage, only: mechanism_input_t
@@ -62,7 +63,7 @@ contains
     call settle(model, y, 0.08_dp, ok)
     if (.not. ok) return
     call model%set_time(0.08_dp)
-    uw = kear_local_displacement(model%el(n), model%table%gather(n, y(1::2)), model%rb(n)%phi, 1.0_dp)
+    uw = beam_local_displacement(model%el(n), model%table%gather(n, y(1::2)), model%rb(n)%phi, 1.0_dp)
     leading = rho*omega**2*beam_length**3/(3.0_dp*e1)
     kl = omega*beam_length*sqrt(rho/e1)
     exact = beam_length*(tan(kl)/kl - 1.0_dp)
@@ -169,7 +170,7 @@ contains
     p%xi = 1.0_dp
     p%offset = probe_value(p, model, t_settle, y)      ! the steady tip deflection (~0)
     call assert_true(abs(p%offset) < 1.0e-8_dp, 'settled: tip deflection '//rtoa(p%offset))
-    uw = kear_local_displacement(model%el(n), model%table%gather(n, shapes(:, 1)), model%rb(n)%phi, 1.0_dp)
+    uw = beam_local_displacement(model%el(n), model%table%gather(n, shapes(:, 1)), model%rb(n)%phi, 1.0_dp)
     y(1::2) = y(1::2) + 1.0e-3_dp*shapes(:, 1)/uw(2)
     call measure_period(model, y, t_settle, two_pi/omega0, n_periods, mf_adams, 1.0e-9_dp, 1.0e-14_dp, p, period, ok)
     if (.not. ok) return
