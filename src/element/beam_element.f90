@@ -245,10 +245,11 @@ contains
       do j = 1, 8
         call rotate_back(hp(:, j))
       end do
-      do i = 1, 8
-        call rotate_back(hp(i, :))
+      hp = transpose(hp)
+      do j = 1, 8
+        call rotate_back(hp(:, j))
       end do
-      dgen = hp
+      dgen = transpose(hp)
     end if
   contains
     pure subroutine rotate_back(v)
