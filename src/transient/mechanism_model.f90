@@ -156,7 +156,9 @@ contains
       associate (lk => mech%links(k))
         do e = lk%first_element, lk%first_element + lk%n_elements - 1
           m = self%kin%element_motion_global(e)
-          call beam_element_init(self%el(e), kind, m%length, lk%b, lk%h, &
+          ! the rectangle with the link's A and I (= b, h unless link_area/link_inertia are given)
+          call beam_element_init(self%el(e), kind, m%length, lk%area/sqrt(12.0_dp*lk%inertia/lk%area), &
+                                 sqrt(12.0_dp*lk%inertia/lk%area), &
                                  ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
                                  kear_code=code, damping_beta=beta)
           if (err%failed()) then
