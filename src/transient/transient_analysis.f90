@@ -132,7 +132,7 @@ contains
     end select
 
     ! output schedule
-    if (mech%driver%omega > 0.0_dp) then
+    if (mech%driver%omega > 0.0_dp .and. .not. (s%t_end > 0.0_dp .and. s%output_step_t > 0.0_dp)) then
       dt_out = s%output_step_deg*pi/180.0_dp/mech%driver%omega
       t_end = t0 + time_to_turn(mech, s%revolutions*two_pi)
     else
@@ -149,6 +149,10 @@ contains
     call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=min(ml, size(y) - 1), &
                   mu=min(ml, size(y) - 1), max_steps=s%max_steps)
     if (err%failed()) return
+    if (s%max_order > 0) then
+      ode%iwork(5) = s%max_order            ! DLSODE's MAXORD (optional input, IOPT = 1)
+      call out%comment('DLSODE order limited to '//str(s%max_order))
+    end if
     if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
       call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(min(ml, size(y) - 1))// &
                        ' (the band of M and K in the interleaved state)')

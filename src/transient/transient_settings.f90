@@ -6,6 +6,7 @@ module transient_settings
   use error_status, only: error_t
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
+  use deck_checks, only: check_integer
   use table_output, only: table_t
   use lsode_solver, only: mf_from_method, method_names
   use kear_element, only: element_effects_t
@@ -30,6 +31,7 @@ module transient_settings
     character(len=256) :: restart_in = ''
     character(len=256) :: restart_out = ''
     integer :: max_steps = 200000
+    integer :: max_order = 0                       !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF)
     character(len=16) :: kinematics = 'table'      !< rigid motion: 'table' (per revolution) or 'direct'
     integer :: table_points = 720                  !< crank angles per revolution in the table
     type(element_effects_t) :: effects             !< the papers' tracing constants, all off = linear
@@ -40,12 +42,12 @@ module transient_settings
   ! staging variables of the namelist groups
   character(len=16) :: method, initial, formulation, kinematics
   real(dp) :: rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
-  integer :: mode_number, max_steps, table_points
+  integer :: mode_number, max_steps, table_points, max_order
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
-    table_points
+    table_points, max_order
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -73,6 +75,7 @@ contains
     max_steps = s%max_steps
     kinematics = s%kinematics
     table_points = s%table_points
+    max_order = s%max_order
     call deck%read_group('transient', read_transient_group, .false., found, err)
     if (err%failed()) return
 
@@ -104,9 +107,12 @@ contains
     s%max_steps = max_steps
     s%kinematics = kinematics
     s%table_points = table_points
+    s%max_order = max_order
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
+    call check_integer(deck, 'transient', 'max_order', s%max_order, err, at_least=0, &
+                       at_most=merge(12, 5, s%mf == 10), why='DLSODE''s orders: Adams 1..12, BDF 1..5 (0 = default)')
   end subroutine read_transient_settings
 
   subroutine validate(deck, s, err)
