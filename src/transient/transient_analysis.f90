@@ -270,8 +270,9 @@ contains
     integer, intent(in) :: j
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: uw(2)
-    integer :: link, side, e
-    real(dp) :: qe(8)
+    integer :: link, side, e, nd
+    real(dp) :: qe(model%table%element_dofs)
+    nd = model%table%node_dofs                ! 4 (Kear's element) or 6 (consistent)
     link = mech%joints(j)%link(1)
     side = mech%joints(j)%link_end(1)
     if (side == 1) then
@@ -281,7 +282,7 @@ contains
     else
       e = mech%links(link)%first_element + mech%links(link)%n_elements - 1
       qe = model%table%gather(e, q)
-      uw = qe(5:6)
+      uw = qe(nd + 1:nd + 2)
     end if
   end subroutine joint_displacement
 
