@@ -99,20 +99,27 @@ contains
     inp%theta0_deg = theta0_deg
   end function fourbar_input
 
-  subroutine make_model(inp, effects, beta, model, ok, table)
+  subroutine make_model(inp, effects, beta, model, ok, table, formulation)
     type(mechanism_input_t), intent(in) :: inp
     type(element_effects_t), intent(in) :: effects
     real(dp), intent(in) :: beta
     type(mechanism_model_t), intent(out) :: model
     logical, intent(out) :: ok
     logical, intent(in), optional :: table     !< tabulate a turning crank's motion (default yes)
+    character(len=*), intent(in), optional :: formulation   !< default 'exact' (Kear's element)
     type(mechanism_t) :: mech
     type(error_t) :: err
     logical :: tabulate
     tabulate = .true.
     if (present(table)) tabulate = table
     call build_mechanism(inp, mech, err)
-    if (.not. err%failed()) call model%init_mechanism(mech, effects, 'exact', beta, err)
+    if (.not. err%failed()) then
+      if (present(formulation)) then
+        call model%init_mechanism(mech, effects, formulation, beta, err)
+      else
+        call model%init_mechanism(mech, effects, 'exact', beta, err)
+      end if
+    end if
     ! as the decks do (&transient kinematics = 'table'): the rigid motion of a
     ! turning crank tabulated once per revolution at 720 crank angles
     if (.not. err%failed() .and. inp%omega > 0.0_dp .and. tabulate) call model%build_motion_table(720, err)
