@@ -70,7 +70,7 @@ contains
   end subroutine resolve_formulation
 
   pure subroutine beam_element_init(el, kind, length, width, depth, material, effects, err, &
-                                    kear_code, damping_beta, n_gauss)
+                                    kear_code, damping_beta, n_gauss, fibre_distance)
     type(beam_element_t), intent(out) :: el
     integer, intent(in) :: kind
     real(dp), intent(in) :: length, width, depth
@@ -79,16 +79,18 @@ contains
     type(error_t), intent(inout) :: err
     integer, intent(in), optional :: kear_code, n_gauss
     real(dp), intent(in), optional :: damping_beta
+    real(dp), intent(in), optional :: fibre_distance   !< outer-fibre distance for stresses (default t/2)
     el%kind = kind
     if (kind == element_kind_consistent) then
       call consistent_element_init(el%cons, length, width, depth, material, effects, err, &
-                                   n_gauss=n_gauss, damping_beta=damping_beta)
+                                   n_gauss=n_gauss, damping_beta=damping_beta, fibre_distance=fibre_distance)
       el%ndof = 12
       el%beta = el%cons%beta
       el%eps_star = el%cons%eps_star
     else
       call kear_element_init(el%kear, length, width, depth, material, effects, err, &
-                             formulation=kear_code, n_gauss=n_gauss, damping_beta=damping_beta)
+                             formulation=kear_code, n_gauss=n_gauss, damping_beta=damping_beta, &
+                             fibre_distance=fibre_distance)
       el%ndof = 8
       el%beta = el%kear%beta
       el%eps_star = el%kear%eps_star

@@ -45,6 +45,7 @@ module consistent_element
   type :: consistent_element_t
     real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
     real(dp) :: area = 0.0_dp, inertia = 0.0_dp
+    real(dp) :: fibre = 0.0_dp                !< outer-fibre distance c for stresses (t/2 for a rectangle)
     type(ramberg_osgood_t) :: material
     type(element_effects_t) :: effects
     integer :: n_gauss = 8
@@ -74,7 +75,7 @@ module consistent_element
 contains
 
   pure subroutine consistent_element_init(el, length, width, depth, material, effects, err, &
-                                          n_gauss, damping_beta, objective_damping)
+                                          n_gauss, damping_beta, objective_damping, fibre_distance)
     type(consistent_element_t), intent(out) :: el
     real(dp), intent(in) :: length, width, depth
     type(ramberg_osgood_t), intent(in) :: material
@@ -83,6 +84,7 @@ contains
     integer, intent(in), optional :: n_gauss
     real(dp), intent(in), optional :: damping_beta
     logical, intent(in), optional :: objective_damping
+    real(dp), intent(in), optional :: fibre_distance   !< c of a section given by A, I, c (default t/2)
     real(dp) :: x(n_exact), w(n_exact), su(nd), sw(nd), gs(nd, 4), g2(nd, nd), jb(nd, nd)
     integer :: i
 
@@ -102,6 +104,8 @@ contains
     el%depth = depth
     el%area = width*depth
     el%inertia = width*depth**3/12.0_dp
+    el%fibre = 0.5_dp*depth
+    if (present(fibre_distance)) el%fibre = fibre_distance
     el%material = material
     el%effects = effects
     if (present(n_gauss)) el%n_gauss = n_gauss
@@ -371,7 +375,7 @@ contains
       call consistent_section_strains(el, p, eo, eps_n, kap)
       do k = 1, 2
         fib = 3 - 2*k
-        eps = eps_n - real(fib, dp)*0.5_dp*el%depth*kap
+        eps = eps_n - real(fib, dp)*el%fibre*kap           ! y = +-c
         sig = ro_stress(law, eps)
         if (abs(sig) > rep%max_abs_stress) then
           rep%max_abs_stress = abs(sig)

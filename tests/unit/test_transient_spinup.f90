@@ -45,7 +45,9 @@ contains
     inp%link_joint1(1) = 1
     inp%link_joint2(1) = 2
     inp%link_length(1) = 8.0_dp
+    inp%link_section(1) = 'general'
     inp%link_area(1) = 7.2968e-5_dp
+    inp%link_c(1) = 0.0183824_dp
     inp%link_inertia(1) = 8.2189e-9_dp
     inp%link_e1(1) = 6.9e10_dp
     inp%link_e2(1) = 0.0_dp

@@ -156,11 +156,9 @@ contains
       associate (lk => mech%links(k))
         do e = lk%first_element, lk%first_element + lk%n_elements - 1
           m = self%kin%element_motion_global(e)
-          ! the rectangle with the link's A and I (= b, h unless link_area/link_inertia are given)
-          call beam_element_init(self%el(e), kind, m%length, lk%area/sqrt(12.0_dp*lk%inertia/lk%area), &
-                                 sqrt(12.0_dp*lk%inertia/lk%area), &
+          call beam_element_init(self%el(e), kind, m%length, lk%b, lk%h, &
                                  ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
-                                 kear_code=code, damping_beta=beta)
+                                 kear_code=code, damping_beta=beta, fibre_distance=lk%fibre)
           if (err%failed()) then
             call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
             return
@@ -347,9 +345,15 @@ contains
     integer :: k, e
     call driver_angle(self%kin%mech%driver, t, theta, theta_d, theta_dd)
     h = two_pi/self%n_table
-    turns = floor((theta - self%theta_start)/two_pi)
-    x = theta - self%theta_start - turns*two_pi        ! in [0, 2 pi)
-    k = min(int(x/h), self%n_table - 1)
+    turns = aint((theta - self%theta_start)/two_pi)
+    x = theta - self%theta_start - turns*two_pi        ! in (-2 pi, 2 pi)
+    if (x < 0.0_dp) then
+      turns = turns - 1.0_dp
+      x = x + two_pi
+    end if
+    ! the deck's ranges keep theta moderate; the clamp keeps the index in the
+    ! table whatever rounding does at the ends of a turn
+    k = max(0, min(int(x/h), self%n_table - 1))
     x = x - k*h
     call quintic_hermite(x/h, h, hw, hx, hxx)
     do e = 1, size(self%el)
