@@ -137,7 +137,7 @@ contains
     call check_real(deck, g, 'revolutions', s%revolutions, err, above=0.0_dp, at_most=1.0e4_dp)
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, above=0.0_dp, at_most=360.0_dp)
     call check_real(deck, g, 't_end', s%t_end, err, at_least=0.0_dp, at_most=1.0e6_dp, &
-                    why='seconds of a run whose driver does not turn')
+                    why='seconds: the span of a run without a turning driver, or with output_step_t > 0 instead of revolutions')
     call check_real(deck, g, 'output_step_t', s%output_step_t, err, at_least=0.0_dp, at_most=1.0e6_dp)
     if (err%failed()) return
     if (s%output_step_t > 0.0_dp .and. s%t_end > 0.0_dp) then

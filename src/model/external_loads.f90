@@ -160,7 +160,7 @@ contains
       if (len_trim(inp%load_joint(k)) > 0) then
         j = findloc([(mech%joints(m)%name, m = 1, mech%n_joints)], inp%load_joint(k), 1)
         if (j == 0) then
-          call err%set('loads', 'load_joint('//str(k)//') = '''//trim(inp%load_joint(k))//''' is not a joint')
+          call err%set('point load', 'load_joint('//str(k)//') = '''//trim(inp%load_joint(k))//''' is not a joint')
           return
         end if
         lk = mech%joints(j)%link(1)
@@ -168,7 +168,7 @@ contains
       else
         lk = findloc([(mech%links(m)%name, m = 1, mech%n_links)], inp%load_link(k), 1)
         if (lk == 0) then
-          call err%set('loads', 'load_link('//str(k)//') = '''//trim(inp%load_link(k))//''' is not a link')
+          call err%set('point load', 'load_link('//str(k)//') = '''//trim(inp%load_link(k))//''' is not a link')
           return
         end if
         s = inp%load_position(k)
