@@ -3,6 +3,7 @@
 #   make run     build and run the default deck (prints where the output went)
 #   make test    build (release and debug), run unit, deck-error and regression tests
 #   make bench   work-precision and cost studies (figures, not pass/fail)
+#   make plot OUT=run.out   standard figures of an output (PNG, SVG; flexmech plot)
 #   make deps    install missing system packages and fetch ODEPACK (done by every target)
 #
 # Our own code builds with -std=f2008 -Wall -Wextra, warning-free.  ODEPACK is
@@ -25,6 +26,11 @@ LEGACY_FFLAGS  := -O2 -g -std=legacy -w
 
 FFLAGS    := $(FFLAGS_$(BUILD))
 OUT       := $(BUILD_DIR)/$(BUILD)
+# `make plot OUT=run.out` names an output file; the build directory keeps its name.
+ifeq ($(origin OUT),command line)
+PLOT_OUTPUT := $(OUT)
+override OUT := $(BUILD_DIR)/$(BUILD)
+endif
 OBJ_DIR   := $(OUT)/obj
 MOD_DIR   := $(OUT)/mod
 BIN_DIR   := $(if $(filter release,$(BUILD)),$(BUILD_DIR)/bin,$(OUT)/bin)
@@ -49,13 +55,13 @@ ODEPACK_LIB   := $(BUILD_DIR)/odepack/libodepack.a
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
-.PHONY: all deps odepack run test test-bins bench clean distclean help
+.PHONY: all deps odepack run test test-bins bench clean distclean help plot
 .DEFAULT_GOAL := all
 
 all: $(BIN_DIR)/flexmech
 
 help:
-	@sed -n '3,9p' Makefile
+	@sed -n '3,10p' Makefile
 
 # ---------------------------------------------------------------- dependencies
 deps:
@@ -119,6 +125,10 @@ run: all
 	@out=$(BUILD_DIR)/out/$(basename $(notdir $(DECK))).out; \
 	$(BIN_DIR)/flexmech $(DECK) -o $$out && \
 	echo "output written to $$out" && grep -E '^# (summary|cost)' $$out
+
+plot: all
+	@test -n "$(PLOT_OUTPUT)" || { echo "usage: make plot OUT=run.out" >&2; exit 1; }
+	$(BIN_DIR)/flexmech plot $(PLOT_OUTPUT)
 
 test: deps
 	@$(MAKE) --no-print-directory BUILD=release test-bins

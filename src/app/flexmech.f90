@@ -18,6 +18,7 @@ program flexmech
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
+  use subcommands, only: dispatch_subcommands
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -29,6 +30,7 @@ program flexmech
   character(len=256) :: title
 
   call cpu_time(cpu0)
+  call dispatch_subcommands()   ! plot, sweeps, batches (src/batch); returns for a single deck
   call parse_arguments(deck_path, out_path)
 
   call deck%open(deck_path, err)

@@ -1,0 +1,51 @@
+#!/bin/sh
+# `flexmech plot` on one output of every analysis (transient, steady harmonic,
+# steady harmonic + exact, optimize, lsode_check, sweep): runs headless, exits
+# 0 and draws non-empty PNG files (PNG signature checked) and SVG files; the
+# scripts committed in doc/figures/standard/ are what `flexmech plot` writes
+# today (doc figures and user figures cannot drift apart).
+# usage: plot_figures.sh FLEXMECH COMPARE_TABLES WORKDIR
+set -eu
+bin=$1; work=$3
+rm -rf "$work"; mkdir -p "$work"
+command -v gnuplot >/dev/null 2>&1 || { echo "gnuplot not installed (make deps): skipped"; exit 0; }
+fail=0
+png_ok() {  # non-empty file that starts with the PNG signature
+  [ -s "$1" ] && [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]
+}
+check() {  # output, figures...
+  out=$1; shift
+  stem=$(basename "$out" .out)
+  if ! "$bin" plot "$out" -d "$work" > "$work/$stem.log" 2>&1; then
+    echo "FAIL: flexmech plot $out exited non-zero:"; cat "$work/$stem.log"; fail=1; return
+  fi
+  for fig in "$@"; do
+    png_ok "$work/${stem}_$fig.png" || { echo "FAIL: $stem: no valid ${stem}_$fig.png"; fail=1; }
+    [ -s "$work/${stem}_$fig.svg" ] || { echo "FAIL: $stem: no ${stem}_$fig.svg"; fail=1; }
+  done
+  echo "ok: $out -> $*"
+}
+check reference_outputs/fourbar_150_damped.out stress joints links
+check reference_outputs/beam_pinned_large.out stress links
+check reference_outputs/tennant_fig3_linear.out stress joints links
+check reference_outputs/tennant_fig5_exact.out stress joints links
+check reference_outputs/opt_rosen_suzuki_gnlc_x0_0000.out history
+check reference_outputs/lsode_kinetics.out solution
+for s in reference_outputs/sweep_*.out; do
+  [ -f "$s" ] && check "$s" peaks cost
+done
+# a file that is not an output: exit status 3, no crash
+printf 'not a table\n' > "$work/bad.out"
+set +e; "$bin" plot "$work/bad.out" -d "$work" > /dev/null 2>&1; st=$?; set -e
+[ $st -eq 3 ] || { echo "FAIL: plot of a non-table exited $st, expected 3"; fail=1; }
+# drift: regenerate every committed doc script and compare
+for gp in doc/figures/standard/*.gp; do
+  [ -f "$gp" ] || continue
+  data=$(sed -n 's/^data = "\(.*\)"$/\1/p' "$gp")
+  mkdir -p "$work/drift"
+  "$bin" plot "$data" -d "$work/drift" --script-only > /dev/null
+  sed "s|$work/drift|doc/figures/standard|" "$work/drift/$(basename "$gp")" | cmp -s - "$gp" || {
+    echo "FAIL: $gp differs from what flexmech plot writes now (rerun sh tools/doc_figures.sh)"; fail=1; }
+done
+[ $fail -eq 0 ] && echo "plot figures: all ok"
+exit $fail
