@@ -94,7 +94,7 @@ contains
     integer, intent(in) :: u
     character(len=*), intent(in) :: name, subtitle
     character(len=64), allocatable, intent(inout) :: figures(:)
-    figures = [character(len=64) :: figures, name]
+    call append_figure(figures, name)
     write(u, '(a)') ''
     write(u, '(a)') 'do for [fmt in formats] {'
     write(u, '(a)') '  reset'
@@ -128,6 +128,42 @@ contains
       end if
     end do
   end subroutine plot_series
+
+  subroutine append_figure(figures, name)
+    character(len=64), allocatable, intent(inout) :: figures(:)
+    character(len=*), intent(in) :: name
+    character(len=64), allocatable :: longer(:)
+    allocate(longer(size(figures) + 1))
+    longer(1:size(figures)) = figures
+    longer(size(longer)) = name
+    call move_alloc(longer, figures)
+  end subroutine append_figure
+
+  !> A series_t built component by component (gfortran 12 mis-sizes a
+  !> deferred-length component given another one in a structure constructor).
+  function series(x, y, title, style, filter) result(item)
+    integer, intent(in) :: x, y
+    character(len=*), intent(in) :: title, style, filter
+    type(series_t) :: item
+    item%x = x
+    item%y = y
+    item%title = title
+    item%style = style
+    item%filter = filter
+  end function series
+
+  subroutine add_series(s, item)
+    type(series_t), allocatable, intent(inout) :: s(:)
+    type(series_t), intent(in) :: item
+    type(series_t), allocatable :: longer(:)
+    integer :: i
+    allocate(longer(size(s) + 1))
+    do i = 1, size(s)
+      longer(i) = s(i)
+    end do
+    longer(size(longer)) = item
+    call move_alloc(longer, s)
+  end subroutine add_series
 
   pure function colour(i, alpha) result(s)
     integer, intent(in) :: i
@@ -191,13 +227,13 @@ contains
       k = k + 1
       je = column_index(out, nm//'_exact')
       if (split > -huge(1.0_dp)) then
-        s = [s, series_t(ix, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'), &
-                series_t(ix, j, nm, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split')]
+        call add_series(s, series(ix, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'))
+        call add_series(s, series(ix, j, nm, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
       else
-        s = [s, series_t(ix, j, nm, 'w l lw 2 '//colour(k, '00'), '')]
+        call add_series(s, series(ix, j, nm, 'w l lw 2 '//colour(k, '00'), ''))
         if (je > 0) s(size(s))%title = nm//' (harmonic series)'
       end if
-      if (je > 0) s = [s, series_t(ix, je, nm//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), '')]
+      if (je > 0) call add_series(s, series(ix, je, nm//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), ''))
     end do
     if (k == 0) return
     sub = what
@@ -260,7 +296,7 @@ contains
     do j = 1, out%n_columns()
       if (out%names(j)%s(1:1) /= 'x' .or. verify(out%names(j)%s(2:), '0123456789') /= 0) cycle
       n = n + 1
-      s = [s, series_t(k, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), '')]
+      call add_series(s, series(k, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), ''))
     end do
     if (n > 0) then
       write(u, '(a)') '  set title "design variables"'
@@ -323,11 +359,12 @@ contains
       if (index(out%names(j)%s, word) == 0) cycle
       if (.not. any(finite_positive(out%data(:, j), word == 'cpu'))) cycle
       n = n + 1
-      s = [s, series_t(1, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.8 '//colour(n, '00'), '')]
+      call add_series(s, series(1, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.8 '//colour(n, '00'), ''))
     end do
     if (n == 0) return
     call begin_figure(u, name, what, figures)
     write(u, '(a)') '  set xlabel "'//esc(out%names(1)%s)//'"'
+    write(u, '(a)') '  set key inside left top'
     if (word == 'cpu') then
       write(u, '(a)') '  set logscale y'
       write(u, '(a)') '  set ylabel "CPU seconds"'

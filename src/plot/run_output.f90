@@ -140,9 +140,9 @@ contains
     integer :: q
     text = trim(adjustl(line(2:)))
     if (starts_with(text, 'summary:') .or. starts_with(text, 'cost:')) then
-      out%footer = [out%footer, name_t(text)]
+      call append_text(out%footer, text)
     end if
-    if (.not. in_data) out%header = [out%header, name_t(text)]
+    if (.not. in_data) call append_text(out%header, text)
     if (starts_with(text, 'title: ') .and. len(out%title) == 0) out%title = trim(text(8:))
     if (starts_with(text, 'deck: ') .and. len(out%deck) == 0) out%deck = trim(text(7:))
     if (starts_with(text, 'sweep: ')) out%analysis = 'sweep'
@@ -173,6 +173,19 @@ contains
       out%names(i)%s = 'column'//str(i)
     end do
   end subroutine find_column_line
+
+  subroutine append_text(list, text)
+    type(name_t), allocatable, intent(inout) :: list(:)
+    character(len=*), intent(in) :: text
+    type(name_t), allocatable :: longer(:)
+    integer :: i
+    allocate(longer(size(list) + 1))
+    do i = 1, size(list)
+      call move_alloc(list(i)%s, longer(i)%s)
+    end do
+    longer(size(longer))%s = text
+    call move_alloc(longer, list)
+  end subroutine append_text
 
   subroutine grow(a)
     real(dp), allocatable, intent(inout) :: a(:, :)

@@ -40,16 +40,16 @@ do for [fmt in formats] {
   set format y "% h"
   set title "design variables"
   unset logscale y
-  plot data u 1:7 w lp lw 2 pt 7 ps 0.6 lc rgb "#000072b2" t "", \
-       data u 1:8 w lp lw 2 pt 7 ps 0.6 lc rgb "#00d55e00" t "", \
-       data u 1:9 w lp lw 2 pt 7 ps 0.6 lc rgb "#00009e73" t "", \
-       data u 1:10 w lp lw 2 pt 7 ps 0.6 lc rgb "#00cc79a7" t "", \
-       data u 1:11 w lp lw 2 pt 7 ps 0.6 lc rgb "#00e69f00" t "", \
-       data u 1:12 w lp lw 2 pt 7 ps 0.6 lc rgb "#0056b4e9" t "", \
-       data u 1:13 w lp lw 2 pt 7 ps 0.6 lc rgb "#00000000" t "", \
-       data u 1:14 w lp lw 2 pt 7 ps 0.6 lc rgb "#00f0e442" t "", \
-       data u 1:15 w lp lw 2 pt 7 ps 0.6 lc rgb "#000072b2" t "", \
-       data u 1:16 w lp lw 2 pt 7 ps 0.6 lc rgb "#00d55e00" t ""
+  plot data u 1:7 w lp lw 2 pt 7 ps 0.6 lc rgb "#000072b2" t "x1", \
+       data u 1:8 w lp lw 2 pt 7 ps 0.6 lc rgb "#00d55e00" t "x2", \
+       data u 1:9 w lp lw 2 pt 7 ps 0.6 lc rgb "#00009e73" t "x3", \
+       data u 1:10 w lp lw 2 pt 7 ps 0.6 lc rgb "#00cc79a7" t "x4", \
+       data u 1:11 w lp lw 2 pt 7 ps 0.6 lc rgb "#00e69f00" t "x5", \
+       data u 1:12 w lp lw 2 pt 7 ps 0.6 lc rgb "#0056b4e9" t "x6", \
+       data u 1:13 w lp lw 2 pt 7 ps 0.6 lc rgb "#00000000" t "x7", \
+       data u 1:14 w lp lw 2 pt 7 ps 0.6 lc rgb "#00f0e442" t "x8", \
+       data u 1:15 w lp lw 2 pt 7 ps 0.6 lc rgb "#000072b2" t "x9", \
+       data u 1:16 w lp lw 2 pt 7 ps 0.6 lc rgb "#00d55e00" t "x10"
   unset multiplot
   set output
 }

@@ -34,10 +34,10 @@ do for [fmt in formats] {
   set title "design variables"
   set key on inside right top
   unset logscale y
-  plot data u 1:7 w lp lw 2 pt 7 ps 0.6 lc rgb "#000072b2" t "", \
-       data u 1:8 w lp lw 2 pt 7 ps 0.6 lc rgb "#00d55e00" t "", \
-       data u 1:9 w lp lw 2 pt 7 ps 0.6 lc rgb "#00009e73" t "", \
-       data u 1:10 w lp lw 2 pt 7 ps 0.6 lc rgb "#00cc79a7" t ""
+  plot data u 1:7 w lp lw 2 pt 7 ps 0.6 lc rgb "#000072b2" t "x1", \
+       data u 1:8 w lp lw 2 pt 7 ps 0.6 lc rgb "#00d55e00" t "x2", \
+       data u 1:9 w lp lw 2 pt 7 ps 0.6 lc rgb "#00009e73" t "x3", \
+       data u 1:10 w lp lw 2 pt 7 ps 0.6 lc rgb "#00cc79a7" t "x4"
   unset multiplot
   set output
 }
