@@ -7,12 +7,12 @@
 !> log are POINTS/<stem>_<k>.nml, .out, .log with POINTS = points_dir or
 !> OUT without its extension followed by _points.  A point that fails (bad
 !> value: exit 2; analysis stopped: exit 3; crash) is reported in the summary
-!> with empty (NaN) values and never stops the others.  With `make MPI=1` the
+!> (a comment line with its diagnosis instead of a row) and never stops the others.  With `make MPI=1` the
 !> points are shared by the MPI ranks (src/batch/mpi/job_pool.f90); rank 0
 !> writes the point decks and the summary, and every point's output is the
 !> same file the serial run writes.
 module sweep_run
-  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use kinds, only: dp
   use error_status, only: error_t
@@ -187,6 +187,9 @@ contains
     end select
   end function status_meaning
 
+  !> The summary table: a row per point that succeeded, with the numbers its
+  !> footer shares with every other such point (a table holds finite numbers
+  !> only); a failed point is a comment line with its diagnosis in its place.
   subroutine write_summary(deck, s, title, out_path, dir, stem, statuses, err)
     type(deck_t), intent(in) :: deck
     type(sweep_settings_t), intent(in) :: s
@@ -195,27 +198,12 @@ contains
     type(error_t), intent(inout) :: err
     type(point_result_t) :: r(size(statuses))
     type(table_t) :: out
-    type(error_t) :: perr
-    character(len=:), allocatable :: echo, path, xname
+    character(len=:), allocatable :: echo
     character(len=64), allocatable :: names(:), all_names(:)
     real(dp), allocatable :: row(:)
     real(dp) :: cpu_sum
     integer :: k, j, n
-    allocate(names(0))
-    do k = 1, size(statuses)
-      path = point_file(dir, stem, k, size(statuses))//'.out'
-      r(k)%notes = ''
-      allocate(r(k)%metrics(0))
-      if (statuses(k) /= 0) then
-        r(k)%notes = '; '//first_line(point_file(dir, stem, k, size(statuses))//'.log')
-        cycle
-      end if
-      call read_point_metrics(path, r(k)%metrics, r(k)%notes, perr)
-      call perr%clear()
-      do j = 1, size(r(k)%metrics)
-        if (.not. any(names == r(k)%metrics(j)%name)) call append_name(names, r(k)%metrics(j)%name)
-      end do
-    end do
+    call collect_points(dir, stem, statuses, r, names)
     call out%open(out_path, err)
     if (err%failed()) return
     call out%comment(program_name//' '//program_version)
@@ -225,28 +213,30 @@ contains
                      ' values; point decks, outputs and logs in '//dir//'/'//stem//'_<k>.{nml,out,log}')
     call echo_sweep_settings(s, echo)
     call out%comment(echo)
-    call out%comment('columns: the swept value; the exit status of the point (0 ok, 2 input error, 3 analysis '// &
-                     'stopped); every number of the point''s summary and cost footer (NaN: point failed)')
-    cpu_sum = 0.0_dp
-    do k = 1, size(statuses)
-      call out%comment('point '//str(k)//': '//assignment_text(trim(s%variable), s%values(k))//': exit '// &
-                       str(statuses(k))//' ('//status_meaning(statuses(k))//')'//r(k)%notes)
-    end do
-    xname = metric_name(s%variable(1:scan(s%variable//'(', '(') - 1))
+    call out%comment('columns: the swept value; the exit status of the point (0); every number of the '// &
+                     'summary and cost footer common to all points that succeeded. A failed point has no row: '// &
+                     'its exit status (2 input error, 3 analysis stopped) and diagnosis are in its comment line')
     n = size(names)
-    allocate(all_names(n + 2))
-    all_names(1) = xname
+    allocate(all_names(n + 2), row(n + 2))
+    all_names(1) = metric_name(s%variable(1:scan(s%variable//'(', '(') - 1))
     all_names(2) = 'exit_status'
     all_names(3:) = names
     call out%comment(column_line(all_names))
-    allocate(row(n + 2))
+    cpu_sum = 0.0_dp
     do k = 1, size(statuses)
-      row = ieee_value(0.0_dp, ieee_quiet_nan)
-      row(1) = s%values(k)
-      row(2) = real(statuses(k), dp)
       do j = 1, size(r(k)%metrics)
-        row(2 + name_index(names, r(k)%metrics(j)%name)) = r(k)%metrics(j)%value
         if (r(k)%metrics(j)%name == 'cost_total_cpu_seconds') cpu_sum = cpu_sum + r(k)%metrics(j)%value
+      end do
+      if (statuses(k) /= 0) then
+        call out%comment('point '//str(k)//': '//assignment_text(trim(s%variable), s%values(k))//': exit '// &
+                         str(statuses(k))//' ('//status_meaning(statuses(k))//')'//r(k)%notes)
+        cycle
+      end if
+      row(1) = s%values(k)
+      row(2) = 0.0_dp
+      do j = 1, size(r(k)%metrics)
+        if (name_index(names, r(k)%metrics(j)%name) > 0) &
+          row(2 + name_index(names, r(k)%metrics(j)%name)) = r(k)%metrics(j)%value
       end do
       call out%row(row)
     end do
@@ -257,4 +247,48 @@ contains
     call out%cost('processes', str(pool_size()))
     call out%commit(err)
   end subroutine write_summary
+
+  !> Footer numbers of every point that succeeded, and the names that all of
+  !> them have with finite values (in the first point's order).
+  subroutine collect_points(dir, stem, statuses, r, names)
+    character(len=*), intent(in) :: dir, stem
+    integer, intent(in) :: statuses(:)
+    type(point_result_t), intent(out) :: r(:)
+    character(len=64), allocatable, intent(out) :: names(:)
+    type(error_t) :: perr
+    character(len=64), allocatable :: first(:)
+    integer :: k, j, n_ok
+    allocate(first(0))
+    n_ok = 0
+    do k = 1, size(statuses)
+      r(k)%notes = ''
+      allocate(r(k)%metrics(0))
+      if (statuses(k) /= 0) then
+        r(k)%notes = '; '//first_line(point_file(dir, stem, k, size(statuses))//'.log')
+        cycle
+      end if
+      call read_point_metrics(point_file(dir, stem, k, size(statuses))//'.out', r(k)%metrics, r(k)%notes, perr)
+      call perr%clear()
+      n_ok = n_ok + 1
+      if (n_ok > 1) cycle
+      do j = 1, size(r(k)%metrics)
+        if (name_index(first, r(k)%metrics(j)%name) == 0) call append_name(first, r(k)%metrics(j)%name)
+      end do
+    end do
+    allocate(names(0))
+    do j = 1, size(first)
+      if (all([(has_finite(r(k)%metrics, first(j)) .or. statuses(k) /= 0, k = 1, size(statuses))])) &
+        call append_name(names, first(j))
+    end do
+  end subroutine collect_points
+
+  logical function has_finite(metrics, name)
+    type(metric_t), intent(in) :: metrics(:)
+    character(len=*), intent(in) :: name
+    integer :: j
+    has_finite = .false.
+    do j = 1, size(metrics)
+      if (metrics(j)%name == name) has_finite = ieee_is_finite(metrics(j)%value)
+    end do
+  end function has_finite
 end module sweep_run
