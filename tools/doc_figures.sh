@@ -13,6 +13,9 @@ for name in fourbar_150_damped fourbar_100_nonlinear slidercrank_150_nonlinear \
             opt_rosen_suzuki_gnlc_x0_0000 opt_fourbar_path lsode_kinetics; do
   "$bin" plot "reference_outputs/$name.out" -d "$dir" --png
 done
+for out in doc/figures/data/*.out; do   # outputs too costly for the regression tests
+  [ -f "$out" ] && "$bin" plot "$out" -d "$dir" --png
+done
 for deck in inputs/sweep_*.nml; do
   [ -f "$deck" ] || continue
   name=$(basename "$deck" .nml)

@@ -39,7 +39,10 @@ contains
       call run_plot_command(args(2:), status)
       call quit(status)
     end if
-    decks = pack(args, [(is_deck_argument(args, i), i = 1, size(args))])
+    do i = 1, size(args)     ! another option: the ordinary command line reports it
+      if (args(i)(1:1) == '-' .and. args(i) /= '-o' .and. is_deck_argument(args, i)) return
+    end do
+    decks = pack(args, [(is_deck_argument(args, i) .and. args(i)(1:1) /= '-', i = 1, size(args))])
     if (size(decks) > 1) then
       if (any(args == '-o')) then
         write(error_unit, '(a)') program_name//': -o names one output; with several decks each writes DECK.out'
@@ -59,12 +62,12 @@ contains
     end if
   end subroutine dispatch_subcommands
 
-  !> A word that is neither an option nor the file name after -o.
+  !> A word that is not the file name after -o (and, for decks, not an option).
   logical pure function is_deck_argument(args, i)
     character(len=*), intent(in) :: args(:)
     integer, intent(in) :: i
-    is_deck_argument = args(i)(1:1) /= '-'
-    if (i > 1) is_deck_argument = is_deck_argument .and. args(i - 1) /= '-o'
+    is_deck_argument = .true.
+    if (i > 1) is_deck_argument = args(i - 1) /= '-o'
   end function is_deck_argument
 
   logical function has_sweep(path)

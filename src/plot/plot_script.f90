@@ -13,7 +13,8 @@
 !>                       steady with method = 'both': harmonic series solid, exact dashed)
 !>   optimize           <base>_history objective, constraint violation, step and variables per iteration
 !>   lsode_check        <base>_solution each component against t
-!>   sweep              <base>_peaks, <base>_cost  summary values against the swept value
+!>   sweep              <base>_peaks, <base>_cost, <base>_multipliers (when the points report
+!>                      Floquet multipliers)  summary values against the swept value
 !>   anything else      <base>_columns the first column against the others
 module plot_script
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -344,6 +345,8 @@ contains
     character(len=64), allocatable, intent(inout) :: figures(:)
     call sweep_figure(u, out, 'peaks', 'summary peaks against the swept value', 'peak', figures)
     call sweep_figure(u, out, 'cost', 'cost of each point (log scale)', 'cpu', figures)
+    call sweep_figure(u, out, 'multipliers', 'largest Floquet multiplier moduli (above 1: parametric resonance)', &
+                      'floquet_multipliers', figures)
   end subroutine sweep_figures
 
   subroutine sweep_figure(u, out, name, what, word, figures)
