@@ -1,9 +1,12 @@
-!> `flexmech plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]`
+!> `flexmech plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]
+!>                [--animate [--magnify F]]`
 !>
 !> For each output: writes DIR/<stem>.gp (DIR defaults to the output's own
 !> directory) and runs gnuplot on it, which draws DIR/<stem>_<figure>.png and
 !> .svg.  --png draws the PNG files only; --script-only writes the scripts and
-!> does not run gnuplot.  Exit status 0 when every figure was drawn, 1 on a
+!> does not run gnuplot.  --animate also draws DIR/<stem>_anim.gif, the
+!> deformed mechanism over the last revolution (module plot_animation), with
+!> the displacements multiplied by F (default: automatic).  Exit status 0 when every figure was drawn, 1 on a
 !> usage error, 3 when an output could not be read or gnuplot failed.
 module plot_command
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
@@ -11,6 +14,8 @@ module plot_command
   use version, only: program_name
   use run_output, only: run_output_t, read_run_output
   use plot_script, only: write_plot_script
+  use plot_animation, only: write_animation
+  use kinds, only: dp
   use process_runner, only: shell_quote, run_command
   implicit none
   private
@@ -23,12 +28,16 @@ contains
     character(len=*), intent(in) :: args(:)
     integer, intent(out) :: exit_status
     character(len=:), allocatable :: dir
-    logical :: script_only, png_only
-    integer :: i, status
+    logical :: script_only, png_only, animate
+    integer :: i, status, ios
     logical :: want(size(args))
+    real(dp) :: magnify
+    character(len=:), allocatable :: why
     exit_status = 0
     script_only = .false.
     png_only = .false.
+    animate = .false.
+    magnify = 0.0_dp
     want = .false.
     i = 0
     do while (i < size(args))
@@ -46,6 +55,18 @@ contains
         script_only = .true.
       case ('--png')
         png_only = .true.
+      case ('--animate')
+        animate = .true.
+      case ('--magnify')
+        ios = 1
+        if (i < size(args)) read(args(i + 1), *, iostat=ios) magnify
+        if (ios == 0) ios = merge(0, 1, magnify > 0.0_dp .and. magnify < 1.0e12_dp)
+        if (ios /= 0) then
+          call usage('--magnify needs a factor > 0')
+          exit_status = 1
+          return
+        end if
+        i = i + 1
       case default
         want(i) = .true.
       end select
@@ -55,10 +76,17 @@ contains
       exit_status = 1
       return
     end if
+    if (allocated(dir)) then          ! -d DIR is created when missing
+      call run_command('mkdir -p '//shell_quote(dir), status, why)
+    end if
     do i = 1, size(args)
       if (.not. want(i)) cycle
       call plot_one(trim(args(i)), dir, script_only, png_only, status)
       exit_status = max(exit_status, status)
+      if (animate .and. status == 0) then
+        call animate_one(trim(args(i)), dir, script_only, magnify, status)
+        exit_status = max(exit_status, status)
+      end if
     end do
   end subroutine run_plot_command
 
@@ -109,6 +137,36 @@ contains
     end do
   end subroutine plot_one
 
+  subroutine animate_one(path, dir, script_only, magnify, status)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(in) :: dir
+    logical, intent(in) :: script_only
+    real(dp), intent(in) :: magnify
+    integer, intent(out) :: status
+    type(run_output_t) :: out
+    type(error_t) :: err
+    character(len=:), allocatable :: base, why
+    integer :: n_frames
+    status = 0
+    base = figure_base(path, dir)
+    call read_run_output(path, out, err)
+    if (.not. err%failed()) call write_animation(out, base, magnify, n_frames, err)
+    if (err%failed()) then
+      write(error_unit, '(a)') program_name//' plot: '//err%text()
+      status = 3
+      return
+    end if
+    write(output_unit, '(a)') program_name//' plot: wrote '//base//'_anim.gp, '//base//'_anim.dat'
+    if (script_only) return
+    call run_command('gnuplot '//shell_quote(base//'_anim.gp'), status, why)
+    if (status /= 0) then
+      write(error_unit, '(a)') program_name//' plot: gnuplot failed on '//base//'_anim.gp '//why
+      status = 3
+      return
+    end if
+    write(output_unit, '(a,i0,a)') program_name//' plot: drew '//base//'_anim.gif (', n_frames, ' frames)'
+  end subroutine animate_one
+
   !> DIR/<stem> where stem is the output's file name without its extension.
   pure function figure_base(path, dir) result(base)
     character(len=*), intent(in) :: path
@@ -129,6 +187,7 @@ contains
   subroutine usage(why)
     character(len=*), intent(in) :: why
     write(error_unit, '(a)') program_name//' plot: '//why
-    write(error_unit, '(a)') 'usage: '//program_name//' plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]'
+    write(error_unit, '(a)') 'usage: '//program_name//' plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]'// &
+      ' [--animate [--magnify F]]'
   end subroutine usage
 end module plot_command

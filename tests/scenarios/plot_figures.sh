@@ -3,7 +3,8 @@
 # steady harmonic + exact, optimize, lsode_check, sweep): runs headless, exits
 # 0 and draws non-empty PNG files (PNG signature checked) and SVG files; the
 # scripts committed in doc/figures/standard/ are what `flexmech plot` writes
-# today (doc figures and user figures cannot drift apart).
+# today (doc figures and user figures cannot drift apart); --animate draws
+# a GIF of at least 30 frames for a transient and a steady run.
 # usage: plot_figures.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 bin=$1; work=$3
@@ -34,6 +35,20 @@ check reference_outputs/lsode_kinetics.out solution
 for s in reference_outputs/sweep_*.out; do
   [ -f "$s" ] && check "$s" peaks cost
 done
+# the animation of a transient and of a steady run: GIF files (signature GIF89a)
+for out in reference_outputs/fourbar_150_damped.out reference_outputs/tennant_fig3_linear.out; do
+  stem=$(basename "$out" .out)
+  if "$bin" plot "$out" -d "$work/anim" --png --animate > "$work/$stem.anim.log" 2>&1 &&
+     [ "$(head -c 6 "$work/anim/${stem}_anim.gif")" = "GIF89a" ] &&
+     [ "$(grep -c '^# crank_deg' "$work/anim/${stem}_anim.dat")" -gt 30 ]; then
+    echo "ok: animation of $out"
+  else
+    echo "FAIL: no animation of $out"; cat "$work/$stem.anim.log"; fail=1
+  fi
+done
+# an optimizer output has no mechanism: --animate is refused with exit 3
+set +e; "$bin" plot reference_outputs/opt_hs15_gnlc_ns.out -d "$work/anim" --animate > /dev/null 2>&1; st=$?; set -e
+[ $st -eq 3 ] || { echo "FAIL: --animate on an optimizer output exited $st, expected 3"; fail=1; }
 # a file that is not an output: exit status 3, no crash
 printf 'not a table\n' > "$work/bad.out"
 set +e; "$bin" plot "$work/bad.out" -d "$work" > /dev/null 2>&1; st=$?; set -e
