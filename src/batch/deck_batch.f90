@@ -29,7 +29,7 @@ contains
       commands(k) = shell_quote(exe)//' '//shell_quote(trim(decks(k)))//' -o '// &
                     shell_quote(default_output(trim(decks(k))))
     end do
-    call pool_run(commands, statuses, 'batch')
+    call pool_run(commands, statuses, 'batch decks')
     exit_status = 0
     if (pool_is_root()) then
       write(output_unit, '(a)') program_name//': batch of '//itoa(size(decks))//' decks:'

@@ -75,7 +75,7 @@ contains
         call err%clear()
       end do
     end if
-    call pool_run(commands, statuses, 'sweep')
+    call pool_run(commands, statuses, 'sweep points')
     exit_status = 0
     if (pool_is_root()) then
       call write_summary(deck, s, title, out_path, dir, stem, statuses, err)

@@ -95,7 +95,7 @@ contains
     stopped = 0
     done = 0
     stop_job = 0
-    call bar%start(label//' points done', 0.0_dp, real(n, dp))
+    call bar%start(label//' done', 0.0_dp, real(n, dp), counts=.true.)
     do while (stopped < pool_size() - 1)
       call MPI_Irecv(msg, 2, MPI_INTEGER, MPI_ANY_SOURCE, tag_request, MPI_COMM_WORLD, req)
       do

@@ -27,7 +27,7 @@ contains
   end function pool_size
 
   !> statuses(i): exit status of commands(i) (-1: could not be started).
-  !> Reports 'label  k/n' on stderr while it runs, when stderr is a terminal.
+  !> Reports 'label done  k/n' on stderr while it runs, when stderr is a terminal.
   subroutine pool_run(commands, statuses, label)
     character(len=*), intent(in) :: commands(:)
     integer, intent(out) :: statuses(:)
@@ -35,7 +35,7 @@ contains
     type(progress_t) :: bar
     character(len=:), allocatable :: why
     integer :: i
-    call bar%start(label//' points done', 0.0_dp, real(size(commands), dp))
+    call bar%start(label//' done', 0.0_dp, real(size(commands), dp), counts=.true.)
     do i = 1, size(commands)
       call run_command(trim(commands(i)), statuses(i), why)
       call bar%update(real(i, dp))
