@@ -14,7 +14,7 @@ program flexmech
   use table_output, only: table_t
   use run_settings, only: read_run_settings, echo_run_settings, analysis_names
   use command_line, only: parse_arguments, quit
-  use ode_verification, only: run_lsode_check
+  use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
