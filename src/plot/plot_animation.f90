@@ -48,7 +48,7 @@ contains
       call err%set('animate', out%path//' has no t column or fewer than two rows: nothing to animate', 3)
       return
     end if
-    rows = last_revolution_rows(out)
+    call last_revolution_rows(out, rows)
     allocate(ju(mech%n_joints), jw(mech%n_joints))
     do j = 1, mech%n_joints
       ju(j) = column_index(out, trim(mech%joints(j)%name)//'_U')
@@ -84,9 +84,9 @@ contains
 
   !> The rows of the last revolution (all rows when the run is shorter or the
   !> driver does not turn), at most max_frames of them, evenly picked.
-  function last_revolution_rows(out) result(rows)
+  subroutine last_revolution_rows(out, rows)
     type(run_output_t), intent(in) :: out
-    integer, allocatable :: rows(:)
+    integer, allocatable, intent(out) :: rows(:)
     integer :: ic, n, first, i, step
     ic = column_index(out, 'crank_deg')
     n = size(out%data, 1)
@@ -100,8 +100,11 @@ contains
       end do
     end if
     step = max(1, (n - first + 1 + max_frames - 1)/max_frames)
-    rows = [(i, i = first, n, step)]
-  end function last_revolution_rows
+    allocate(rows((n - first)/step + 1))
+    do i = 1, size(rows)
+      rows(i) = first + (i - 1)*step
+    end do
+  end subroutine last_revolution_rows
 
   !> 1, 2 or 5 times a power of ten, at most x.
   pure real(dp) function nice_factor(x) result(f)
