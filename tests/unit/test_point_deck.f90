@@ -47,7 +47,9 @@ contains
 
   subroutine test_section()
     integer :: u
-    call assert_equal(assignment_text('arr(2:4)', 0.5_dp)(1:13), 'arr(2:4) = 3*', 'section: repeat count 3')
+    character(len=:), allocatable :: text
+    text = assignment_text('arr(2:4)', 0.5_dp)
+    call assert_equal(text(1:13), 'arr(2:4) = 3*', 'section: repeat count 3')
     arr = 0.0_dp
     open(newunit=u, status='scratch')
     write(u, '(a)') '&grp '//assignment_text('arr(2:4)', 0.5_dp)//' /'
