@@ -67,17 +67,24 @@ contains
   end function assignment_text
 
   !> An integral value as an integer (readable by integer and real variables),
-  !> any other with 17 significant digits (the double exactly).
+  !> any other with the fewest significant digits (15 to 17) that read back as
+  !> the same double.
   pure function value_text(value) result(s)
     real(dp), intent(in) :: value
     character(len=:), allocatable :: s
     character(len=32) :: buf
+    real(dp) :: back
+    integer :: digits, ios
     if (abs(value) < 1.0e9_dp .and. abs(aint(value) - value) <= 0.0_dp) then
       s = int_text(nint(value))
-    else
-      write(buf, '(es25.17e3)') value
-      s = trim(adjustl(buf))
+      return
     end if
+    do digits = 15, 17
+      write(buf, '(es32.'//int_text(digits - 1)//'e3)') value
+      read(buf, *, iostat=ios) back
+      if (ios == 0 .and. abs(back - value) <= 0.0_dp) exit
+    end do
+    s = trim(adjustl(buf))
   end function value_text
 
   pure function int_text(i) result(s)

@@ -116,9 +116,17 @@ contains
         v(i) = a + (b - a)*real(i - 1, dp)/real(n - 1, dp)
       end if
     end do
-    v(1) = a      ! the ends exactly as written
+    v = round_15(v)     ! 1e-6, not 9.9999999999999995e-7, in decks and tables
+    v(1) = a            ! the ends exactly as written
     v(n) = b
   end function range_values
+
+  elemental real(dp) function round_15(x) result(r)
+    real(dp), intent(in) :: x
+    character(len=32) :: buf
+    write(buf, '(es23.14e3)') x
+    read(buf, *) r
+  end function round_15
 
   !> name or name(i:j) with a letter first, then letters, digits, '_'.
   logical pure function is_designator(text)
