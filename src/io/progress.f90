@@ -1,7 +1,7 @@
 !> A one-line progress report on stderr for long runs, drawn only when stderr
 !> is a terminal, so batch logs and tests stay clean:
 !>
-!>     transient  42%  revolution 3, crank 151 deg, 81234 steps  ETA 3 s
+!>     transient  42%  revolution 3, crank angle 900 deg, 81234 steps  ETA 3 s
 !>     sweep points done  7/20  35%  ETA 1 min
 !>
 !> The ETA is the elapsed wall time scaled by the fraction still to do; it is
