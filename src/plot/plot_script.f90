@@ -238,7 +238,7 @@ contains
     end do
     if (k == 0) return
     sub = what
-    if (split > -huge(1.0_dp)) sub = sub//'; bold: the last revolution (crank angle >= '//str(split, 6)//' deg)'
+    if (split > -huge(1.0_dp)) sub = sub//'; bold: the last revolution (crank angle >= '//str(nint(split))//' deg)'
     if (exact) sub = sub//'; solid: harmonic series, dashed: exact'
     call begin_figure(u, name, sub, figures)
     if (xlabel(1:1) == 'c') then
@@ -248,6 +248,7 @@ contains
       else
         write(u, '(a)') '  set xtics 360'
         write(u, '(a)') '  set mxtics 4'
+        write(u, '(a)') '  set autoscale xfix'
       end if
     end if
     write(u, '(a)') '  set xlabel "'//xlabel//'"'

@@ -15,9 +15,10 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_stress.".fmt
-  set title title."\nlargest |stress| per element; bold: the last revolution (crank angle >= 1440.00 deg)"
+  set title title."\nlargest |stress| per element; bold: the last revolution (crank angle >= 1440 deg)"
   set xtics 360
   set mxtics 4
+  set autoscale xfix
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
   plot data u 2:($2 < split ? $13 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
@@ -34,9 +35,10 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); bold: the last revolution (crank angle >= 1440.00 deg)"
+  set title title."\njoint elastic displacement U (global X), W (global Y); bold: the last revolution (crank angle >= 1440 deg)"
   set xtics 360
   set mxtics 4
+  set autoscale xfix
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   plot data u 2:($2 < split ? $3 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
@@ -55,9 +57,10 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_links.".fmt
-  set title title."\nlink end 2 deformation in the link's rigid-body axes; bold: the last revolution (crank angle >= 1440.00 deg)"
+  set title title."\nlink end 2 deformation in the link's rigid-body axes; bold: the last revolution (crank angle >= 1440 deg)"
   set xtics 360
   set mxtics 4
+  set autoscale xfix
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   plot data u 2:($2 < split ? $7 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \

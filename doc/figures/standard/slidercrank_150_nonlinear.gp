@@ -15,9 +15,10 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_stress.".fmt
-  set title title."\nlargest |stress| per element; bold: the last revolution (crank angle >= 720.000 deg)"
+  set title title."\nlargest |stress| per element; bold: the last revolution (crank angle >= 720 deg)"
   set xtics 360
   set mxtics 4
+  set autoscale xfix
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
   plot data u 2:($2 < split ? $11 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
@@ -32,9 +33,10 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); bold: the last revolution (crank angle >= 720.000 deg)"
+  set title title."\njoint elastic displacement U (global X), W (global Y); bold: the last revolution (crank angle >= 720 deg)"
   set xtics 360
   set mxtics 4
+  set autoscale xfix
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   plot data u 2:($2 < split ? $3 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
@@ -53,9 +55,10 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_links.".fmt
-  set title title."\nlink end 2 deformation in the link's rigid-body axes; bold: the last revolution (crank angle >= 720.000 deg)"
+  set title title."\nlink end 2 deformation in the link's rigid-body axes; bold: the last revolution (crank angle >= 720 deg)"
   set xtics 360
   set mxtics 4
+  set autoscale xfix
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   plot data u 2:($2 < split ? $7 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
