@@ -116,17 +116,18 @@ contains
         v(i) = a + (b - a)*real(i - 1, dp)/real(n - 1, dp)
       end if
     end do
-    v = round_15(v)     ! 1e-6, not 9.9999999999999995e-7, in decks and tables
+    v = round_14(v)     ! 1e-6, not 9.9999999999999995e-7, in decks and tables
     v(1) = a            ! the ends exactly as written
     v(n) = b
   end function range_values
 
-  elemental real(dp) function round_15(x) result(r)
+  !> x to 14 significant digits (exp(log) leaves a relative error of a few 1e-16).
+  elemental real(dp) function round_14(x) result(r)
     real(dp), intent(in) :: x
     character(len=32) :: buf
-    write(buf, '(es23.14e3)') x
+    write(buf, '(es23.13e3)') x
     read(buf, *) r
-  end function round_15
+  end function round_14
 
   !> name or name(i:j) with a letter first, then letters, digits, '_'.
   logical pure function is_designator(text)
@@ -142,8 +143,23 @@ contains
     end if
     if (verify(text(1:p - 1), 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0) return
     if (text(len(text):) /= ')') return
-    is_designator = verify(text(p + 1:len(text) - 1), '0123456789:') == 0 .and. len(text) > p + 1
+    is_designator = is_subscript(text(p + 1:len(text) - 1))
   end function is_designator
+
+  !> 'i' or 'i:j' with unsigned integers i, j.
+  logical pure function is_subscript(text)
+    character(len=*), intent(in) :: text
+    integer :: c
+    c = index(text, ':')
+    if (c == 0) then
+      is_subscript = len(text) > 0 .and. verify(text, '0123456789') == 0
+    else
+      is_subscript = c > 1 .and. c < len(text) .and. verify(text(1:c - 1), '0123456789') == 0 .and. &
+                     verify(text(c + 1:), '0123456789') == 0
+    end if
+  end function is_subscript
+
+
 
   subroutine echo_sweep_settings(s, lines)
     type(sweep_settings_t), intent(in) :: s
