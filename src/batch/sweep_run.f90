@@ -232,6 +232,8 @@ contains
                          str(statuses(k))//' ('//status_meaning(statuses(k))//')'//r(k)%notes)
         cycle
       end if
+      if (len(r(k)%notes) > 0) call out%comment('point '//str(k)//': '// &
+        assignment_text(trim(s%variable), s%values(k))//r(k)%notes)      ! text summaries: status = converged ...
       row(1) = s%values(k)
       row(2) = 0.0_dp
       do j = 1, size(r(k)%metrics)
