@@ -1,12 +1,16 @@
 !> `flexmech plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]
 !>                [--animate [--magnify F]]`
+!> `flexmech plot A.out B.out ... --compare [-n NAME] [--columns c1,c2] [-t TITLE]
+!>                [--labels 'l1;l2'] [-d DIR]`
 !>
 !> For each output: writes DIR/<stem>.gp (DIR defaults to the output's own
 !> directory) and runs gnuplot on it, which draws DIR/<stem>_<figure>.png and
 !> .svg.  --png draws the PNG files only; --script-only writes the scripts and
 !> does not run gnuplot.  --animate also draws DIR/<stem>_anim.gif, the
 !> deformed mechanism over the last revolution (module plot_animation), with
-!> the displacements multiplied by F (default: automatic).  Exit status 0 when every figure was drawn, 1 on a
+!> the displacements multiplied by F (default: automatic).  --compare draws
+!> the runs together in DIR/NAME_<figure> (module plot_compare; NAME defaults
+!> to the first stem followed by _compare).  Exit status 0 when every figure was drawn, 1 on a
 !> usage error, 3 when an output could not be read or gnuplot failed.
 module plot_command
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
@@ -15,6 +19,7 @@ module plot_command
   use run_output, only: run_output_t, read_run_output
   use plot_script, only: write_plot_script
   use plot_animation, only: write_animation
+  use plot_compare, only: write_compare_script
   use kinds, only: dp
   use process_runner, only: shell_quote, run_command
   implicit none
@@ -28,7 +33,8 @@ contains
     character(len=*), intent(in) :: args(:)
     integer, intent(out) :: exit_status
     character(len=:), allocatable :: dir
-    logical :: script_only, png_only, animate
+    character(len=1024) :: name, only, title, run_labels
+    logical :: script_only, png_only, animate, compare
     integer :: i, status, ios
     logical :: want(size(args))
     real(dp) :: magnify
@@ -37,6 +43,11 @@ contains
     script_only = .false.
     png_only = .false.
     animate = .false.
+    compare = .false.
+    only = ''
+    name = ''
+    title = ''
+    run_labels = ''
     magnify = 0.0_dp
     want = .false.
     i = 0
@@ -57,6 +68,25 @@ contains
         png_only = .true.
       case ('--animate')
         animate = .true.
+      case ('--compare')
+        compare = .true.
+      case ('-n', '--columns', '-t', '--labels')
+        if (i == size(args)) then
+          call usage(trim(args(i))//' needs a value')
+          exit_status = 1
+          return
+        end if
+        select case (trim(args(i)))
+        case ('-n')
+          name = args(i + 1)
+        case ('-t')
+          title = args(i + 1)
+        case ('--labels')
+          run_labels = args(i + 1)
+        case default
+          only = args(i + 1)
+        end select
+        i = i + 1
       case ('--magnify')
         ios = 1
         if (i < size(args)) read(args(i + 1), *, iostat=ios) magnify
@@ -78,6 +108,11 @@ contains
     end if
     if (allocated(dir)) then          ! -d DIR is created when missing
       call run_command('mkdir -p '//shell_quote(dir), status, why)
+    end if
+    if (compare) then
+      call compare_runs(args, want, dir, trim(name), trim(only), trim(title), trim(run_labels), &
+                        script_only, png_only, exit_status)
+      return
     end if
     do i = 1, size(args)
       if (.not. want(i)) cycle
@@ -137,6 +172,83 @@ contains
     end do
   end subroutine plot_one
 
+  subroutine compare_runs(args, want, dir, name, only, title, run_labels, script_only, png_only, status)
+    character(len=*), intent(in) :: args(:)
+    logical, intent(in) :: want(:)
+    character(len=:), allocatable, intent(in) :: dir
+    character(len=*), intent(in) :: name, only, title, run_labels
+    logical, intent(in) :: script_only, png_only
+    integer, intent(out) :: status
+    type(run_output_t), allocatable :: outs(:)
+    character(len=64), allocatable :: labels(:), figures(:)
+    type(error_t) :: err
+    character(len=:), allocatable :: base, command, why
+    integer :: i, k, first
+    allocate(outs(count(want)), labels(count(want)))
+    first = findloc(want, .true., dim=1)
+    base = figure_base(trim(args(first)), dir)
+    if (len(name) > 0) then
+      base = base(1:index(base, '/', back=.true.))//name
+    else
+      base = base//'_compare'
+    end if
+    k = 0
+    do i = 1, size(args)
+      if (.not. want(i)) cycle
+      k = k + 1
+      call read_run_output(trim(args(i)), outs(k), err)
+      if (err%failed()) exit
+      labels(k) = nth_label(run_labels, k, stem_of(trim(args(i))))
+    end do
+    if (.not. err%failed()) call write_compare_script(outs, labels, base, base//'.gp', only, title, figures, err)
+    status = 0
+    if (err%failed()) then
+      write(error_unit, '(a)') program_name//' plot: '//err%text()
+      status = 3
+      return
+    end if
+    write(output_unit, '(a)') program_name//' plot: wrote '//base//'.gp'
+    if (script_only .or. size(figures) == 0) return
+    command = 'gnuplot'
+    if (png_only) command = command//' -e '//shell_quote('formats="png"')
+    call run_command(command//' '//shell_quote(base//'.gp'), status, why)
+    if (status /= 0) then
+      write(error_unit, '(a)') program_name//' plot: gnuplot failed on '//base//'.gp '//why
+      status = 3
+      return
+    end if
+    do i = 1, size(figures)
+      write(output_unit, '(a)') program_name//' plot: drew '//base//'_'//trim(figures(i))// &
+        trim(merge('.png      ', '.png, .svg', png_only))
+    end do
+  end subroutine compare_runs
+
+  !> The k-th ';'-separated label, or `default` when there is none.
+  pure function nth_label(list, k, default) result(s)
+    character(len=*), intent(in) :: list, default
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    integer :: i, a, b
+    s = default
+    a = 1
+    do i = 1, k
+      if (a > len(list)) return
+      b = index(list(a:)//';', ';') + a - 1
+      if (i == k .and. b > a) s = list(a:b - 1)
+      a = b + 1
+    end do
+  end function nth_label
+
+  !> The file name without directory and extension.
+  pure function stem_of(path) result(stem)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: stem
+    integer :: dot
+    stem = path(index(path, '/', back=.true.) + 1:)
+    dot = index(stem, '.', back=.true.)
+    if (dot > 1) stem = stem(1:dot - 1)
+  end function stem_of
+
   subroutine animate_one(path, dir, script_only, magnify, status)
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(in) :: dir
@@ -189,5 +301,7 @@ contains
     write(error_unit, '(a)') program_name//' plot: '//why
     write(error_unit, '(a)') 'usage: '//program_name//' plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]'// &
       ' [--animate [--magnify F]]'
+    write(error_unit, '(a)') '       '//program_name//' plot A.out B.out ... --compare [-n NAME] [--columns c1,c2]'// &
+      ' [-t TITLE] [--labels ''l1;l2''] [-d DIR]'
   end subroutine usage
 end module plot_command
