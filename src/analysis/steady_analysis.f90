@@ -18,8 +18,8 @@ module steady_analysis
   use tennant_element, only: tennant_stress_t
   use steady_model, only: steady_model_t
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings
-  use harmonic_solver, only: harmonic_report_t, harmonic_solve
-  use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit
+  use harmonic_solver, only: harmonic_report_t, harmonic_solve, harmonic_diagnosis
+  use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit, shooting_diagnosis
   implicit none
   private
   public :: run_steady
@@ -108,7 +108,7 @@ contains
         call err%add_context('harmonic series')
         return
       end if
-      call harmonic_diagnosis(s, hrep, omega, err)
+      call harmonic_diagnosis(s%harmonic, hrep, omega, s%allow_resonance, s%allow_beyond_peak, err)
       if (err%failed()) return
       if (hrep%beyond_peak) call out%comment('WARNING: a strain passes the peak of the Ramberg-Osgood law ('// &
         str(hrep%max_abs_strain, 5)//' in element '//str(hrep%strain_element)//'); printed because '// &
@@ -133,7 +133,7 @@ contains
         call err%add_context('exact periodic solution (shooting) at crank speed '//str(omega, 6)//' rad/s')
         return
       end if
-      call shooting_diagnosis(s, srep, omega, err)
+      call shooting_diagnosis(s%shooting, srep, omega, s%allow_resonance, err)
       if (err%failed()) return
     end if
 
@@ -349,46 +349,7 @@ contains
     end if
   end subroutine report_shooting
 
-  subroutine harmonic_diagnosis(s, rep, omega, err)
-    type(steady_settings_t), intent(in) :: s
-    type(harmonic_report_t), intent(in) :: rep
-    real(dp), intent(in) :: omega
-    type(error_t), intent(inout) :: err
-    if (rep%beyond_peak .and. .not. s%allow_beyond_peak) then
-      call err%set('harmonic series', 'strain '//str(rep%max_abs_strain, 5)//' in element '// &
-                   str(rep%strain_element)//' passes the peak of the Ramberg-Osgood law (the material has no '// &
-                   'stable meaning beyond it) at crank speed '//str(omega, 6)//' rad/s; the steady state is not '// &
-                   'printed (allow_beyond_peak = .true. prints it anyway)')
-    else if (.not. rep%converged) then
-      call err%set('harmonic series', 'the outer iteration on K_n did not converge in '// &
-                   str(s%harmonic%max_outer)//' iterations (last change '// &
-                   str(rep%change(s%harmonic%max_outer), 3)//') at crank speed '//str(omega, 6)//' rad/s')
-    else if (rep%near_resonance .and. .not. s%allow_resonance) then
-      call err%set('harmonic series', 'near resonance at crank speed '//str(omega, 6)//' rad/s: K - n^2 w^2 M '// &
-                   'is nearly singular for harmonic n = '//str(rep%worst_harmonic)//' ('// &
-                   str(rep%worst_harmonic*omega, 6)//' rad/s) at crank angle '// &
-                   str(modulo(rep%worst_time*omega*180.0_dp/pi, 360.0_dp), 5)//' deg (rcond/rcond(K) = '// &
-                   str(rep%worst_ratio, 3)//' < resonance_ratio = '//str(s%harmonic%resonance_ratio, 3)// &
-                   '); the steady state is not printed (allow_resonance = .true. prints it anyway)')
-    end if
-  end subroutine harmonic_diagnosis
 
-  subroutine shooting_diagnosis(s, rep, omega, err)
-    type(steady_settings_t), intent(in) :: s
-    type(shooting_report_t), intent(in) :: rep
-    real(dp), intent(in) :: omega
-    type(error_t), intent(inout) :: err
-    if (.not. rep%converged) then
-      call err%set('exact periodic solution', 'Newton on the one-revolution map did not converge in '// &
-                   str(s%shooting%max_newton)//' iterations (residual '// &
-                   str(rep%residual(rep%newton_iterations), 3)//') at crank speed '//str(omega, 6)//' rad/s')
-    else if (.not. rep%stable .and. .not. s%allow_resonance) then
-      call err%set('exact periodic solution', 'the periodic solution at crank speed '//str(omega, 6)// &
-                   ' rad/s is UNSTABLE: a Floquet multiplier has modulus '//str(rep%max_multiplier, 8)// &
-                   ' > 1 (parametric resonance); the steady state is not printed (allow_resonance = .true. '// &
-                   'prints it anyway)')
-    end if
-  end subroutine shooting_diagnosis
 
   ! ------------------------------------------------------------------ columns
 

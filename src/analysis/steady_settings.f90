@@ -16,7 +16,7 @@ module steady_settings
   use periodic_shooting, only: shooting_settings_t, max_newton_limit
   implicit none
   private
-  public :: steady_settings_t, read_steady_settings, echo_steady_settings
+  public :: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
 
   integer, parameter :: ms = tennant_max_sections
 
@@ -208,6 +208,19 @@ contains
     write(u, nml=tennant, delim='apostrophe')
     call out%end_echo()
   end subroutine echo_steady_settings
+
+  !> The &steady and &tennant groups as read, with method set, for a deck
+  !> written by the program (the design analysis' final deck).
+  subroutine write_steady_groups(unit, method_text)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: method_text
+    character(len=16) :: method_read
+    method_read = method
+    method = method_text
+    write(unit, nml=steady, delim='apostrophe')
+    write(unit, nml=tennant, delim='apostrophe')
+    method = method_read
+  end subroutine write_steady_groups
 
   subroutine read_steady_group(unit, ios, iomsg)
     integer, intent(in) :: unit

@@ -18,6 +18,7 @@ program flexmech
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
+  use design_analysis, only: run_design
   use subcommands, only: dispatch_subcommands
   implicit none
 
@@ -58,6 +59,8 @@ program flexmech
     call run_optimize(deck, out, err)
   case ('steady')
     call run_steady(deck, out, err)
+  case ('design')
+    call run_design(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)
