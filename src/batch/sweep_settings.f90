@@ -22,8 +22,8 @@ module sweep_settings
   integer, parameter :: max_sweep_values = 1000
   integer, parameter :: name_len = 64
   !> Groups whose variables a sweep may vary.
-  character(len=16), parameter :: sweep_groups(7) = [character(len=16) :: 'mechanism', 'transient', &
-    'effects', 'steady', 'tennant', 'optimize', 'lsode_check']
+  character(len=16), parameter :: sweep_groups(9) = [character(len=16) :: 'mechanism', 'transient', &
+    'effects', 'steady', 'tennant', 'optimize', 'problem_data', 'design', 'lsode_check']
 
   type :: sweep_settings_t
     character(len=name_len) :: group = ''

@@ -56,7 +56,7 @@ contains
       select case (out%analysis)
       case ('transient', 'steady')
         call curve_figures(u, out, figures)
-      case ('optimize')
+      case ('optimize', 'design')
         call history_figure(u, out, figures)
       case ('sweep')
         call sweep_figures(u, out, figures)
@@ -279,25 +279,34 @@ contains
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
     character(len=64), allocatable, intent(inout) :: figures(:)
-    integer :: k, j, n
+    integer :: k, j, n, jv
     type(series_t), allocatable :: s(:)
+    logical :: design
     k = column_index(out, 'k')
-    if (k == 0 .or. column_index(out, 'F') == 0) then
+    design = column_index(out, 'mass') > 0      ! the design analysis: mass, design values, g<i>
+    if (k == 0 .or. (column_index(out, 'F') == 0 .and. .not. design)) then
       call columns_figure(u, out, figures)
       return
     end if
-    call begin_figure(u, 'history', 'optimizer history', figures)
-    write(u, '(a)') '  set multiplot layout 2,2 title title'
+    call begin_figure(u, 'history', merge('design history   ', 'optimizer history', design), figures)
+    write(u, '(a)') '  set multiplot layout '//merge('2,2', '2,3', n_panels() <= 4)//' title title'
     write(u, '(a)') '  set xlabel "iteration k"'
     if (maxval(out%data(:, k)) <= 20.0_dp) write(u, '(a)') '  set xtics 1'
     write(u, '(a)') '  unset key'
     call panel('objective F', 'F', .true.)
+    call panel('mass of the links', 'mass', .false.)
     call panel('max constraint violation', 'max_violation', .true.)
     call panel('step |s|', 'step', .true.)
+    if (design) call constraint_panel()
     allocate(s(0))
     n = 0
+    jv = column_index(out, 'max_violation')
     do j = 1, out%n_columns()
-      if (out%names(j)%s(1:1) /= 'x' .or. verify(out%names(j)%s(2:), '0123456789') /= 0) cycle
+      if (design) then           ! the design values: after max_violation, before g1
+        if (j <= jv .or. is_numbered(out%names(j)%s, 'g')) cycle
+      else if (.not. is_numbered(out%names(j)%s, 'x')) then
+        cycle
+      end if
       n = n + 1
       call add_series(s, series(k, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), ''))
     end do
@@ -310,6 +319,38 @@ contains
     write(u, '(a)') '  unset multiplot'
     call end_figure(u)
   contains
+    !> The analysis constraints g<i> (feasible: <= 0).
+    subroutine constraint_panel()
+      integer :: j, m
+      m = 0
+      do j = 1, out%n_columns()
+        if (.not. is_numbered(out%names(j)%s, 'g')) cycle
+        m = m + 1
+        if (m == 1) write(u, '(a)') '  set title "analysis constraints g (feasible: g <= 0)"'
+        if (m == 1) write(u, '(a)') '  set key on inside right top'
+        if (m > 1) write(u, '(a)') ', \'
+        write(u, '(a)', advance='no') merge('  plot ', '       ', m == 1)// &
+          'data u '//str(k)//':'//str(j)//' w lp lw 2 pt 7 ps 0.6 '//colour(m, '00')//' t "'//out%names(j)%s//'"'
+      end do
+      if (m == 0) return
+      write(u, '(a)') ''
+      write(u, '(a)') '  unset key'
+    end subroutine constraint_panel
+
+    integer function n_panels()
+      integer :: j
+      logical :: has_g, has_x
+      n_panels = count([column_index(out, 'F') > 0, column_index(out, 'mass') > 0, &
+                        column_index(out, 'max_violation') > 0, column_index(out, 'step') > 0])
+      has_g = .false.
+      has_x = .false.
+      do j = 1, out%n_columns()
+        has_g = has_g .or. (design .and. is_numbered(out%names(j)%s, 'g'))
+        has_x = has_x .or. is_numbered(out%names(j)%s, 'x') .or. design
+      end do
+      n_panels = n_panels + count([has_g, has_x])
+    end function n_panels
+
     subroutine panel(label, name, logy)
       character(len=*), intent(in) :: label, name
       logical, intent(in) :: logy
@@ -339,6 +380,15 @@ contains
       end if
     end subroutine panel
   end subroutine history_figure
+
+  !> name is prefix followed by digits only (x1, g12).
+  logical pure function is_numbered(name, prefix)
+    character(len=*), intent(in) :: name, prefix
+    is_numbered = .false.
+    if (len(name) <= len(prefix)) return
+    if (name(1:len(prefix)) /= prefix) return
+    is_numbered = verify(name(len(prefix) + 1:), '0123456789') == 0
+  end function is_numbered
 
   !> Sweep summary: peaks and cost against the swept value.
   subroutine sweep_figures(u, out, figures)
