@@ -189,7 +189,8 @@ contains
 
   !> The summary table: a row per point that succeeded, with the numbers its
   !> footer shares with every other such point (a table holds finite numbers
-  !> only); a failed point is a comment line with its diagnosis in its place.
+  !> only); a failed point has no row and a comment line with its diagnosis,
+  !> among the notes before the column names.
   subroutine write_summary(deck, s, title, out_path, dir, stem, statuses, err)
     type(deck_t), intent(in) :: deck
     type(sweep_settings_t), intent(in) :: s
@@ -215,25 +216,28 @@ contains
     call out%comment(echo)
     call out%comment('columns: the swept value; the exit status of the point (0); every number of the '// &
                      'summary and cost footer common to all points that succeeded. A failed point has no row: '// &
-                     'its exit status (2 input error, 3 analysis stopped) and diagnosis are in its comment line')
+                     'its exit status (2 input error, 3 analysis stopped) and diagnosis are in its point line above')
     n = size(names)
     allocate(all_names(n + 2), row(n + 2))
     all_names(1) = metric_name(s%variable(1:scan(s%variable//'(', '(') - 1))
     all_names(2) = 'exit_status'
     all_names(3:) = names
+    ! the points' notes first: the column names stay the last '#' line before the rows
+    do k = 1, size(statuses)
+      if (statuses(k) /= 0) then
+        call out%comment('point '//str(k)//': '//assignment_text(trim(s%variable), s%values(k))//': exit '// &
+                         str(statuses(k))//' ('//status_meaning(statuses(k))//'), no row'//r(k)%notes)
+      else if (len(r(k)%notes) > 0) then           ! text summaries: status = converged ...
+        call out%comment('point '//str(k)//': '//assignment_text(trim(s%variable), s%values(k))//r(k)%notes)
+      end if
+    end do
     call out%comment(column_line(all_names))
     cpu_sum = 0.0_dp
     do k = 1, size(statuses)
       do j = 1, size(r(k)%metrics)
         if (r(k)%metrics(j)%name == 'cost_total_cpu_seconds') cpu_sum = cpu_sum + r(k)%metrics(j)%value
       end do
-      if (statuses(k) /= 0) then
-        call out%comment('point '//str(k)//': '//assignment_text(trim(s%variable), s%values(k))//': exit '// &
-                         str(statuses(k))//' ('//status_meaning(statuses(k))//')'//r(k)%notes)
-        cycle
-      end if
-      if (len(r(k)%notes) > 0) call out%comment('point '//str(k)//': '// &
-        assignment_text(trim(s%variable), s%values(k))//r(k)%notes)      ! text summaries: status = converged ...
+      if (statuses(k) /= 0) cycle
       row(1) = s%values(k)
       row(2) = 0.0_dp
       do j = 1, size(r(k)%metrics)
