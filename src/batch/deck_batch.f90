@@ -6,12 +6,12 @@ module deck_batch
   use, intrinsic :: iso_fortran_env, only: output_unit
   use version, only: program_name
   use command_line, only: default_output
-  use process_runner, only: shell_quote, self_executable
+  use process_runner, only: shell_quote, flexmech_command
   use job_pool, only: pool_start, pool_stop, pool_is_root, pool_run
   use sweep_run, only: status_meaning
   implicit none
   private
-  public :: run_deck_batch
+  public :: run_deck_batch, run_single_deck
 
 contains
 
@@ -21,12 +21,12 @@ contains
     integer, intent(out) :: exit_status
     character(len=2048) :: commands(size(decks))
     integer :: statuses(size(decks)), k
-    character(len=:), allocatable :: exe
+    character(len=:), allocatable :: run
     character(len=22) :: meaning
     call pool_start()
-    exe = self_executable()
+    run = flexmech_command()
     do k = 1, size(decks)
-      commands(k) = shell_quote(exe)//' '//shell_quote(trim(decks(k)))//' -o '// &
+      commands(k) = run//' '//shell_quote(trim(decks(k)))//' -o '// &
                     shell_quote(default_output(trim(decks(k))))
     end do
     call pool_run(commands, statuses, 'batch decks')
@@ -45,6 +45,21 @@ contains
     end if
     call pool_stop()
   end subroutine run_deck_batch
+
+  !> One deck under mpirun with several ranks: run once (by one worker), with
+  !> the deck's own exit status on rank 0 and 0 on the others.
+  subroutine run_single_deck(deck, out_path, exit_status)
+    character(len=*), intent(in) :: deck, out_path
+    integer, intent(out) :: exit_status
+    character(len=2048) :: commands(1)
+    integer :: statuses(1)
+    call pool_start()
+    commands(1) = flexmech_command()//' '//shell_quote(deck)//' -o '//shell_quote(out_path)
+    call pool_run(commands, statuses, 'deck')
+    exit_status = 0
+    if (pool_is_root()) exit_status = max(0, statuses(1))
+    call pool_stop()
+  end subroutine run_single_deck
 
   pure function itoa(i) result(s)
     integer, intent(in) :: i

@@ -7,7 +7,7 @@ module process_runner
   use, intrinsic :: iso_c_binding, only: c_char, c_size_t, c_null_char, c_long
   implicit none
   private
-  public :: shell_quote, run_command, self_executable
+  public :: shell_quote, run_command, self_executable, flexmech_command, is_child
 
   interface
     function c_readlink(path, buf, bufsize) bind(c, name='readlink') result(n)
@@ -54,6 +54,21 @@ contains
       why = 'cannot run '''//command//''': '//trim(cmdmsg)
     end if
   end subroutine run_command
+
+  !> The shell command that runs this flexmech executable as a child process
+  !> (marked by FLEXMECH_CHILD=1: under mpirun a child inherits the launcher's
+  !> environment and must not take itself for an MPI rank).
+  function flexmech_command() result(c)
+    character(len=:), allocatable :: c
+    c = 'FLEXMECH_CHILD=1 '//shell_quote(self_executable())
+  end function flexmech_command
+
+  !> Is this process a child run by a sweep or a batch?
+  logical function is_child()
+    integer :: status
+    call get_environment_variable('FLEXMECH_CHILD', status=status)
+    is_child = status == 0
+  end function is_child
 
   !> The path of the running flexmech executable (/proc/self/exe; argv[0] elsewhere).
   function self_executable() result(path)

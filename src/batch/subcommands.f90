@@ -17,7 +17,8 @@ module subcommands
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use sweep_run, only: run_sweep
-  use deck_batch, only: run_deck_batch
+  use deck_batch, only: run_deck_batch, run_single_deck
+  use job_pool, only: pool_launched
   implicit none
   private
   public :: dispatch_subcommands
@@ -52,12 +53,16 @@ contains
       call quit(status)
     end if
     if (size(decks) /= 1) return
+    out_path = default_output(trim(decks(1)))
+    do i = 1, size(args) - 1
+      if (args(i) == '-o') out_path = trim(args(i + 1))
+    end do
     if (has_sweep(trim(decks(1)))) then
-      out_path = default_output(trim(decks(1)))
-      do i = 1, size(args) - 1
-        if (args(i) == '-o') out_path = trim(args(i + 1))
-      end do
       call run_sweep(trim(decks(1)), out_path, status)
+      call quit(status)
+    end if
+    if (pool_launched()) then      ! mpirun -n N with one plain deck: run it once
+      call run_single_deck(trim(decks(1)), out_path, status)
       call quit(status)
     end if
   end subroutine dispatch_subcommands

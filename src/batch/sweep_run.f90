@@ -24,7 +24,7 @@ module sweep_run
   use sweep_settings, only: sweep_settings_t, read_sweep_settings, echo_sweep_settings
   use point_deck, only: write_point_deck, assignment_text
   use point_metrics, only: metric_t, read_point_metrics, metric_name
-  use process_runner, only: shell_quote, run_command, self_executable
+  use process_runner, only: shell_quote, run_command, flexmech_command
   use job_pool, only: pool_start, pool_stop, pool_is_root, pool_size, pool_run
   implicit none
   private
@@ -64,7 +64,7 @@ contains
     call point_names(out_path, s%points_dir, dir, stem)
     allocate(commands(size(s%values)), statuses(size(s%values)))
     do k = 1, size(s%values)
-      commands(k) = point_command(self_executable(), point_file(dir, stem, k, size(s%values)))
+      commands(k) = point_command(flexmech_command(), point_file(dir, stem, k, size(s%values)))
     end do
     if (pool_is_root()) then
       call run_command('mkdir -p '//shell_quote(dir), st, why)
@@ -94,10 +94,10 @@ contains
   end subroutine run_sweep
 
   !> The shell command of one point (POINT.nml -> POINT.out, messages to POINT.log).
-  pure function point_command(exe, point) result(c)
-    character(len=*), intent(in) :: exe, point
+  pure function point_command(flexmech, point) result(c)
+    character(len=*), intent(in) :: flexmech, point
     character(len=:), allocatable :: c
-    c = shell_quote(exe)//' '//shell_quote(point//'.nml')//' -o '//shell_quote(point//'.out')// &
+    c = flexmech//' '//shell_quote(point//'.nml')//' -o '//shell_quote(point//'.out')// &
         ' > '//shell_quote(point//'.log')//' 2>&1'
   end function point_command
 

@@ -4,7 +4,8 @@
 # CPU-time columns, every point's output rows are byte-identical, and the
 # failing point (175 rad/s, harmonic 8 on a natural frequency) is reported in
 # both summaries while the others run.  A batch of two decks on 2 ranks prints
-# one table of exit statuses.  Skipped when Open MPI or the MPI build is absent.
+# one table of exit statuses; one plain deck under mpirun runs once.  Skipped
+# when Open MPI or the MPI build is absent.
 # usage: mpi_sweep.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 serial=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); compare=$2; work=$3
@@ -41,5 +42,9 @@ sed 's/rtol = .*/rtol = -1.0/' inputs/lsode_kinetics.nml > "$work/bad.nml"
 set +e; (cd "$work" && mpirun -n 2 "$mpi" good.nml bad.nml > batch.log 2>&1); set -e
 [ "$(grep -c 'batch of 2 decks' "$work/batch.log")" -eq 1 ] || { echo "FAIL: MPI batch table missing or repeated"; cat "$work/batch.log"; fail=1; }
 grep -qE '^ +2 +input error +bad.nml' "$work/batch.log" || { echo "FAIL: MPI batch lacks bad.nml's status"; fail=1; }
+# one plain deck under mpirun -n 2 runs once (not once per rank)
+set +e; (cd "$work" && mpirun -n 2 "$mpi" good.nml -o single.out > single.log 2>&1); st=$?; set -e
+[ $st -eq 0 ] || { echo "FAIL: single deck under mpirun exited $st"; cat "$work/single.log"; fail=1; }
+[ "$(grep -c 'wrote single.out' "$work/single.log")" -eq 1 ] || { echo "FAIL: the single deck did not run exactly once"; cat "$work/single.log"; fail=1; }
 [ $fail -eq 0 ] && echo "mpi sweep: all ok"
 exit $fail

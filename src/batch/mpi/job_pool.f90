@@ -13,10 +13,10 @@ module job_pool
     MPI_ANY_SOURCE, MPI_Status, MPI_Request, MPI_STATUS_IGNORE
   use kinds, only: dp
   use progress, only: progress_t
-  use process_runner, only: run_command
+  use process_runner, only: run_command, is_child
   implicit none
   private
-  public :: pool_start, pool_stop, pool_is_root, pool_size, pool_run
+  public :: pool_start, pool_stop, pool_is_root, pool_size, pool_run, pool_launched
 
   integer, parameter :: tag_request = 1, tag_job = 2
   logical, save :: started_here = .false.
@@ -45,6 +45,22 @@ contains
     if (.not. down) call MPI_Finalize()
     started_here = .false.
   end subroutine pool_stop
+
+  !> Started by mpirun as one of several processes (read from the launcher's
+  !> environment, before MPI_Init): a single deck then runs once, not once per rank.
+  logical function pool_launched()
+    character(len=16) :: value
+    integer :: n, ios, status, k
+    character(len=*), parameter :: names(3) = [character(len=20) :: 'OMPI_COMM_WORLD_SIZE', 'PMI_SIZE', 'PMIX_SIZE']
+    pool_launched = .false.
+    if (is_child()) return          ! a point or deck run by a rank, not a rank
+    do k = 1, size(names)
+      call get_environment_variable(trim(names(k)), value, status=status)
+      if (status /= 0) cycle
+      read(value, *, iostat=ios) n
+      if (ios == 0 .and. n > 1) pool_launched = .true.
+    end do
+  end function pool_launched
 
   logical function pool_is_root()
     integer :: rank

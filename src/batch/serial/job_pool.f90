@@ -8,7 +8,7 @@ module job_pool
   use process_runner, only: run_command
   implicit none
   private
-  public :: pool_start, pool_stop, pool_is_root, pool_size, pool_run
+  public :: pool_start, pool_stop, pool_is_root, pool_size, pool_run, pool_launched
 
 contains
 
@@ -17,6 +17,11 @@ contains
 
   subroutine pool_stop()
   end subroutine pool_stop
+
+  !> Started as one of several MPI processes?  Never in the serial build.
+  logical function pool_launched()
+    pool_launched = .false.
+  end function pool_launched
 
   logical function pool_is_root()
     pool_is_root = .true.
