@@ -297,12 +297,13 @@ contains
     call panel('mass of the links', 'mass', .false.)
     call panel('max constraint violation', 'max_violation', .true.)
     call panel('step |s|', 'step', .true.)
+    call panel('move limit', 'move_limit', .true.)
     if (design) call constraint_panel()
     allocate(s(0))
     n = 0
-    jv = column_index(out, 'max_violation')
+    jv = max(column_index(out, 'max_violation'), column_index(out, 'move_limit'))
     do j = 1, out%n_columns()
-      if (design) then           ! the design values: after max_violation, before g1
+      if (design) then           ! the design values: after the bookkeeping columns, before g1
         if (j <= jv .or. is_numbered(out%names(j)%s, 'g')) cycle
       else if (.not. is_numbered(out%names(j)%s, 'x')) then
         cycle
@@ -341,7 +342,8 @@ contains
       integer :: j
       logical :: has_g, has_x
       n_panels = count([column_index(out, 'F') > 0, column_index(out, 'mass') > 0, &
-                        column_index(out, 'max_violation') > 0, column_index(out, 'step') > 0])
+                        column_index(out, 'max_violation') > 0, column_index(out, 'step') > 0, &
+                        column_index(out, 'move_limit') > 0])
       has_g = .false.
       has_x = .false.
       do j = 1, out%n_columns()
@@ -361,7 +363,7 @@ contains
       positive = any(out%data(:, j) > 0.0_dp)
       if (name == 'F') positive = all(out%data(:, j) > 0.0_dp)
       if (positive .and. name == 'F') positive = maxval(out%data(:, j)) > 100.0_dp*minval(out%data(:, j))
-      write(u, '(a)') '  set title "'//trim(label//merge(' (log scale; zeros not drawn)', '                             ', &
+      write(u, '(a)') '  set title "'//trim(label//merge(' (log scale)', '            ', &
                       logy .and. positive))//'"'
       if (name == 'F' .and. positive) write(u, '(a)') '  set title "objective F (log scale)"'
       if (logy .and. positive) then

@@ -33,17 +33,20 @@ check reference_outputs/tennant_fig5_exact.out stress joints links
 check reference_outputs/opt_rosen_suzuki_gnlc_x0_0000.out history
 check reference_outputs/lsode_kinetics.out solution
 # a design history (the column layout of src/analysis/design_analysis.f90:
-# k, NF, mass, max_violation, the design values, g<i>), synthetic
+# k, analyses, cpu_s, mass, max_violation, move_limit, the design values,
+# g<i>), synthetic: the design analysis has no reference output yet
 cat > "$work/design_history.out" <<'EOD'
 # title: design history layout
 #  ANALYSIS='design',
-#                      k                      NF                    mass           max_violation                      h1                      h2                      g1                      g2
-  0 1 2.0 0.5 1.0 1.0 0.5 -0.2
-  1 2 1.5 0.1 0.8 0.9 0.1 -0.1
-  2 3 1.2 0.0 0.7 0.85 -0.01 -0.05
+#                      k                analyses                   cpu_s                    mass           max_violation              move_limit               link_h(1)               link_h(2)                      g1                      g2
+  0 1 0.01 2.0 0.5 0.3 1.0 1.0 0.5 -0.2
+  1 4 0.02 1.5 0.1 0.3 0.8 0.9 0.1 -0.1
+  2 7 0.03 1.2 0.0 0.15 0.7 0.85 -0.01 -0.05
 EOD
 check "$work/design_history.out" history
 grep -q 'analysis constraints g' "$work/design_history.gp" || { echo "FAIL: design history lacks the constraint panel"; fail=1; }
+grep -q 't "link_h(1)"' "$work/design_history.gp" && ! grep -q 't "move_limit"' "$work/design_history.gp" \
+  || { echo "FAIL: design values misidentified in the design history"; fail=1; }
 for s in reference_outputs/sweep_*.out; do
   [ -f "$s" ] && check "$s" peaks cost
 done

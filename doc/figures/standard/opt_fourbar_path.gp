@@ -19,20 +19,20 @@ do for [fmt in formats] {
   set xlabel "iteration k"
   set xtics 1
   unset key
-  set title "objective F (log scale; zeros not drawn)"
+  set title "objective F (log scale)"
   set title "objective F (log scale)"
   set logscale y
   set format y "%.0e"
   plot data u 1:($3 > 0 ? $3 : NaN) w lp lw 2 pt 7 lc rgb "#000072b2"
   unset logscale y
   set format y "% h"
-  set title "max constraint violation (log scale; zeros not drawn)"
+  set title "max constraint violation (log scale)"
   set logscale y
   set format y "%.0e"
   plot data u 1:($4 > 0 ? $4 : NaN) w lp lw 2 pt 7 lc rgb "#000072b2"
   unset logscale y
   set format y "% h"
-  set title "step |s| (log scale; zeros not drawn)"
+  set title "step |s| (log scale)"
   set logscale y
   set format y "%.0e"
   plot data u 1:($5 > 0 ? $5 : NaN) w lp lw 2 pt 7 lc rgb "#000072b2"

@@ -25,7 +25,7 @@ do for [fmt in formats] {
   set yrange [-1:1]
   plot data u 1:4 w lp lw 2 pt 7 lc rgb "#000072b2"
   set autoscale y
-  set title "step |s| (log scale; zeros not drawn)"
+  set title "step |s| (log scale)"
   set logscale y
   set format y "%.0e"
   plot data u 1:($5 > 0 ? $5 : NaN) w lp lw 2 pt 7 lc rgb "#000072b2"
