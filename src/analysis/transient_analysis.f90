@@ -178,7 +178,9 @@ contains
       if (err%failed()) exit
       call output_row(t)
       if (err%failed()) exit
-      call bar%update(t)
+      c = ode%counters()
+      call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
+                      ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
     end do
     call bar%finish()
     call cpu_time(cpu1)

@@ -19,6 +19,7 @@ program flexmech
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
   use design_analysis, only: run_design
+  use subcommands, only: dispatch_subcommands
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -30,6 +31,7 @@ program flexmech
   character(len=256) :: title
 
   call cpu_time(cpu0)
+  call dispatch_subcommands()   ! plot, sweeps, batches (src/batch); returns for a single deck
   call parse_arguments(deck_path, out_path)
 
   call deck%open(deck_path, err)

@@ -85,5 +85,7 @@ contains
     write(unit, '(a)') 'usage: '//program_name//' DECK.nml [-o OUTPUT]'
     write(unit, '(a)') '  Runs the analysis named in the deck''s &run group (see doc/decks.md).'
     write(unit, '(a)') '  Default OUTPUT: DECK.out in the current directory.'
+    write(unit, '(a)') '  A deck with a &sweep group runs a sweep (doc/sweeps.md); several decks run as a batch.'
+    write(unit, '(a)') '       '//program_name//' plot RUN.out [-d DIR] [--png] [--animate]   figures (doc/plotting.md)'
   end subroutine usage
 end module command_line
