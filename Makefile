@@ -136,3 +136,33 @@ clean:
 # also forgets the ODEPACK download
 distclean:
 	rm -rf $(BUILD_DIR)
+
+# ---------------------------------------------------------------- reliability
+#   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds
+#   make fuzz-ci              the bounded slice CI runs (fixed seed)
+#   make check-debug          every deck of inputs/ and tests/decks/ in the debug build
+#   make check-opt            the test suite under -O0, -O2 and -O3 -march=native
+#   make check-valgrind       valgrind on one deck of each analysis
+RUNS         ?= 300
+SEED         ?= 1
+FUZZ_TIMEOUT ?= 5
+CI_FUZZ_RUNS := 400
+OPT_LEVELS   := O0 O2 O3native
+OPTFLAGS_O0       := -O0
+OPTFLAGS_O2       := -O2
+OPTFLAGS_O3native := -O3 -march=native
+VALGRIND_DECKS := inputs/fourbar_150_damped.nml inputs/tennant_fig3_linear.nml \
+                  inputs/opt_hs35_gauss_constrained.nml inputs/lsode_kinetics.nml
+
+.PHONY: fuzz fuzz-ci fuzz-bins check-debug check-opt check-valgrind
+
+fuzz-bins: deps
+	@command -v python3 >/dev/null 2>&1 || sh tools/install_deps.sh python3
+	@$(MAKE) --no-print-directory BUILD=release all
+	@$(MAKE) --no-print-directory BUILD=debug all
+
+fuzz: fuzz-bins
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(RUNS) --seed $(SEED) --timeout $(FUZZ_TIMEOUT)
+
+fuzz-ci: fuzz-bins
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(CI_FUZZ_RUNS) --seed 20260101 --timeout $(FUZZ_TIMEOUT)
