@@ -166,3 +166,8 @@ fuzz: fuzz-bins
 
 fuzz-ci: fuzz-bins
 	@nice python3 tests/fuzz/fuzz_decks.py --runs $(CI_FUZZ_RUNS) --seed 20260101 --timeout $(FUZZ_TIMEOUT)
+
+check-debug: deps
+	@$(MAKE) --no-print-directory BUILD=release test-bins
+	@$(MAKE) --no-print-directory BUILD=debug test-bins
+	@SKIP_UNITS=1 sh tests/run_tests.sh $(BUILD_DIR) '' debug
