@@ -1,7 +1,8 @@
 #!/bin/sh
 # Runs every flexmech test and ends with "N passed, M failed".
 #  1. unit suites (debug build: -fcheck=all, FP traps), one executable per module;
-#  2. deck-error tests: every tests/decks/*.nml must fail as its header says;
+#  2. deck-error tests: every tests/decks/*.nml must fail as its header says
+#     (! expect-status: N, ! expect-message: TEXT, ! expect-no-message: TEXT);
 #  3. scenario tests: tests/scenarios/*.sh;
 #  4. regression tests: every inputs/X.nml with reference_outputs/X.out is run
 #     and compared column by column within the tolerances of
@@ -83,7 +84,12 @@ for flavour in $flavours; do
       [ -z "$m" ] && continue
       grep -qF -- "$m" "$work/$flavour/$name.stderr" || echo "missing: $m"
     done > "$work/$flavour/$name.missing"
-    if [ -s "$work/$flavour/$name.missing" ]; then ok=0; why="$why; message lacks: $(tr '\n' ';' < "$work/$flavour/$name.missing")"; fi
+    # and no forbidden fragment may
+    sed -n 's/^! *expect-no-message: *//p' "$deck" | while IFS= read -r m; do
+      [ -z "$m" ] && continue
+      grep -qF -- "$m" "$work/$flavour/$name.stderr" && echo "unwanted: $m"
+    done >> "$work/$flavour/$name.missing"
+    if [ -s "$work/$flavour/$name.missing" ]; then ok=0; why="$why; message wrong: $(tr '\n' ';' < "$work/$flavour/$name.missing")"; fi
     if [ $ok -eq 1 ]; then
       passed=$((passed + 1)); echo "   $name: ok"
     else
