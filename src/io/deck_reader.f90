@@ -20,6 +20,8 @@
 !> for callers that do the read themselves; it names the line only for
 !> unknown variables.
 module deck_reader
+  use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
+                                           ieee_set_flag, ieee_support_halting
   use error_status, only: error_t
   use strings, only: str, lower
   implicit none
@@ -161,6 +163,27 @@ contains
     has_group = first > 0
   end function has_group
 
+  !> Call the owner's reader with overflow not trapping: a deck value beyond
+  !> the range of a double (1e309) is read as Inf, which the owner's
+  !> finiteness check rejects with exit 2, instead of a SIGFPE inside the
+  !> library's number conversion in the debug build.
+  subroutine read_quietly(reader, unit, ios, iomsg)
+    procedure(group_reader) :: reader
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    logical :: halting
+    if (.not. ieee_support_halting(ieee_overflow)) then
+      call reader(unit, ios, iomsg)
+      return
+    end if
+    call ieee_get_halting_mode(ieee_overflow, halting)
+    call ieee_set_halting_mode(ieee_overflow, .false.)
+    call reader(unit, ios, iomsg)
+    call ieee_set_flag(ieee_overflow, .false.)
+    call ieee_set_halting_mode(ieee_overflow, halting)
+  end subroutine read_quietly
+
   !> Lines [first, last] of the group: from its '&name' to the line holding its
   !> terminating '/'.  first = 0 if absent; last = 0 if never terminated.
   subroutine group_line_range(self, group, first, last)
@@ -246,7 +269,7 @@ contains
     if (err%failed()) return
     call self%rewind()
     iomsg = ''
-    call reader(self%unit, ios, iomsg)
+    call read_quietly(reader, self%unit, ios, iomsg)
     if (ios == 0) then
       found = .true.
       return
@@ -424,7 +447,7 @@ contains
     write(u, '(a)') text
     rewind(u)
     iomsg = ''
-    call reader(u, ios, iomsg)
+    call read_quietly(reader, u, ios, iomsg)
     close(u)
     msg = ''
     if (ios /= 0) msg = trim(iomsg)
@@ -453,7 +476,7 @@ contains
       end if
       rewind(u)
       iomsg = ''
-      call reader(u, ios, iomsg)
+      call read_quietly(reader, u, ios, iomsg)
       close(u)
       if (ios /= 0) then
         bad = k
