@@ -69,6 +69,9 @@ program flexmech
                        'must be one of '//analysis_names, err)
   end select
   call deck%close()
+  if (.not. err%failed()) then
+    if (out%bad_row > 0) call err%set('output', out%non_finite_text(), 3)
+  end if
 
   if (err%failed()) then
     if (err%code == input_error_code) then

@@ -15,7 +15,7 @@ module deck_checks
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str
+  use strings, only: str, compact
   use deck_reader, only: deck_t, invalid_value
   implicit none
   private
@@ -122,20 +122,20 @@ contains
     character(len=:), allocatable :: s, lo, hi
     lo = ''
     hi = ''
-    if (present(above)) lo = '('//str(above)
-    if (present(at_least)) lo = '['//str(at_least)
-    if (present(below)) hi = str(below)//')'
-    if (present(at_most)) hi = str(at_most)//']'
+    if (present(above)) lo = '('//compact(above)
+    if (present(at_least)) lo = '['//compact(at_least)
+    if (present(below)) hi = compact(below)//')'
+    if (present(at_most)) hi = compact(at_most)//']'
     if (len(lo) > 0 .and. len(hi) > 0) then
       s = 'must lie in '//lo//', '//hi
     else if (present(above)) then
-      s = 'must be > '//str(above)
+      s = 'must be > '//compact(above)
     else if (present(at_least)) then
-      s = 'must be >= '//str(at_least)
+      s = 'must be >= '//compact(at_least)
     else if (present(below)) then
-      s = 'must be < '//str(below)
+      s = 'must be < '//compact(below)
     else if (present(at_most)) then
-      s = 'must be <= '//str(at_most)
+      s = 'must be <= '//compact(at_most)
     else
       s = 'must be a finite number'
     end if

@@ -20,8 +20,8 @@
 !> for callers that do the read themselves; it names the line only for
 !> unknown variables.
 module deck_reader
-  use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_get_halting_mode, ieee_set_halting_mode, &
-                                           ieee_set_flag, ieee_support_halting
+  use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_underflow, ieee_get_halting_mode, &
+                                           ieee_set_halting_mode, ieee_set_flag, ieee_support_halting
   use error_status, only: error_t
   use strings, only: str, lower
   implicit none
@@ -163,25 +163,29 @@ contains
     has_group = first > 0
   end function has_group
 
-  !> Call the owner's reader with overflow not trapping: a deck value beyond
-  !> the range of a double (1e309) is read as Inf, which the owner's
-  !> finiteness check rejects with exit 2, instead of a SIGFPE inside the
-  !> library's number conversion in the debug build.
+  !> Call a group reader with overflow halting off: the C library's strtod
+  !> raises the overflow flag on a value such as 1e309 (read as Infinity and
+  !> rejected afterwards by the finiteness checks), which would otherwise
+  !> trap in a build with -ffpe-trap=overflow.
   subroutine read_quietly(reader, unit, ios, iomsg)
     procedure(group_reader) :: reader
     integer, intent(in) :: unit
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: iomsg
-    logical :: halting
-    if (.not. ieee_support_halting(ieee_overflow)) then
+    logical :: halt_overflow, halt_underflow
+    if (.not. (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_underflow))) then
       call reader(unit, ios, iomsg)
       return
     end if
-    call ieee_get_halting_mode(ieee_overflow, halting)
+    call ieee_get_halting_mode(ieee_overflow, halt_overflow)
+    call ieee_get_halting_mode(ieee_underflow, halt_underflow)
     call ieee_set_halting_mode(ieee_overflow, .false.)
+    call ieee_set_halting_mode(ieee_underflow, .false.)
     call reader(unit, ios, iomsg)
     call ieee_set_flag(ieee_overflow, .false.)
-    call ieee_set_halting_mode(ieee_overflow, halting)
+    call ieee_set_flag(ieee_underflow, .false.)
+    call ieee_set_halting_mode(ieee_overflow, halt_overflow)
+    call ieee_set_halting_mode(ieee_underflow, halt_underflow)
   end subroutine read_quietly
 
   !> Lines [first, last] of the group: from its '&name' to the line holding its
@@ -551,6 +555,7 @@ contains
     character(len=*), intent(in) :: line, var
     integer :: i, j
     names_variable = .false.
+    if (len(var) == 0) return
     i = index(line, var)
     do while (i > 0)
       j = i + len(var)
@@ -583,12 +588,15 @@ contains
     integer, intent(in) :: ios
     character(len=:), allocatable :: s, name, token
     integer :: n
+    logical :: known
     if (index(iomsg, 'Cannot match namelist object name') > 0) then
       token = trim(iomsg(index(iomsg, 'name ') + 5:))
       n = verify(lower(token), 'abcdefghijklmnopqrstuvwxyz0123456789_%') - 1
       if (n < 0) n = len(token)
       name = lower(token(1:n))
-      if (n > 0 .and. (len(line) == 0 .or. names_variable(line, name))) then
+      known = n > 0 .and. len(line) == 0       ! (Fortran's .and. does not short-circuit)
+      if (n > 0 .and. len(line) > 0) known = names_variable(line, name)
+      if (known) then
         s = 'unknown variable '''//token(1:n)//''''
       else
         if (index(token, '&') > 1) token = token(1:index(token, '&') - 1)

@@ -12,7 +12,7 @@ module steady_analysis
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
   use table_output, only: table_t
-  use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, profile_constant, &
+  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, mechanism_summary, profile_constant, &
                      joint_pin, joint_slider_fixed, joint_free, joint_slider_link
   use tennant_element, only: tennant_stress_t
   use steady_model, only: steady_model_t
@@ -45,7 +45,15 @@ contains
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_steady_settings(deck, mech%n_links, s, err)
+    call check_section_rules(deck, mech, s%element%d_k > 0.0_dp, s%element%shear, err)
     if (err%failed()) return
+    do k = 1, mech%n_links
+      if (s%sections(k)%n > 0 .and. mech%links(k)%section /= 'rectangle') then
+        call invalid_value(deck, 'tennant', 'n_sections('//str(k)//')', str(s%sections(k)%n), 'tapered sections '// &
+                           'are rectangles b x h; link '//str(k)//' has a '//trim(mech%links(k)%section)//' section', err)
+        return
+      end if
+    end do
     omega = mech%driver%omega
     if (.not. omega > 0.0_dp) then
       call invalid_value(deck, 'mechanism', 'omega', str(omega), &

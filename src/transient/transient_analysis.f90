@@ -12,7 +12,7 @@ module transient_analysis
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user, mf_bdf_band_fd
-  use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, driver_angle, &
+  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, mechanism_summary, driver_angle, &
                      joint_pin, joint_slider_fixed, joint_free
   use kear_element, only: stress_report_t, effects_summary, kear_local_displacement
   use mechanism_model, only: mechanism_model_t
@@ -44,6 +44,7 @@ contains
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_transient_settings(deck, s, err)
+    call check_section_rules(deck, mech, s%effects%material, .false., err)
     if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
