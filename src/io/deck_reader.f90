@@ -314,6 +314,12 @@ contains
         if (l(k:k) == '!' .or. l(k:k) == '/') exit
         if (l(k:k) == '''' .or. l(k:k) == '"') then
           call quoted_value(l, k, j, n)
+          if (j > len(l)) then
+            ! the reader would run on into the next lines (and groups)
+            call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": the text opened by '// &
+                         l(k:k)//' is not closed on its line', input_error_code)
+            return
+          end if
           if (len(target) > 0 .and. n > longest) then
             longest = n
             fits = longest_fitting(reader, group, target, sub, n)
