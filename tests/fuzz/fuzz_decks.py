@@ -14,7 +14,12 @@ their deck and a README, under WORKDIR/failures/).
 
 Classes (FAIL = the fuzzer exits 1):
   exit0, exit2, exit3    normal outcomes
-  timeout                the time limit was hit (reported, not a failure)
+  timeout                the time limit was hit, and the case then finished
+                         within --hang-factor times the limit (slow, not a
+                         failure)
+  hang           FAIL    no result within --hang-factor times the limit
+                         either (an endless loop, or a case too slow to judge:
+                         replay it)
   crash          FAIL    killed by a signal, a runtime error, a backtrace, or
                          an exit status other than 0, 2, 3
   nonfinite      FAIL    NaN/Inf (or an unreadable number) in a data row of a
@@ -339,7 +344,7 @@ def classify(status, stderr, out_path, deck_path):
     return found
 
 
-FAILING = {'crash', 'warning', 'nonfinite', 'bad_number', 'leftover', 'no_context'}
+FAILING = {'crash', 'warning', 'hang', 'nonfinite', 'bad_number', 'leftover', 'no_context'}
 
 
 def main():
@@ -349,6 +354,8 @@ def main():
     ap.add_argument('--first', type=int, default=0, help='index of the first case')
     ap.add_argument('--only', type=int, help='replay this one case')
     ap.add_argument('--timeout', type=float, default=5.0, help='seconds per run')
+    ap.add_argument('--hang-factor', type=float, default=6.0,
+                    help='a timed-out case is run again with this many times the limit')
     ap.add_argument('--release', default=os.path.join(ROOT, 'build/bin/flexmech'))
     ap.add_argument('--debug', default=os.path.join(ROOT, 'build/debug/bin/flexmech'))
     ap.add_argument('--work', default=os.path.join(ROOT, 'build/fuzz'))
@@ -369,6 +376,7 @@ def main():
     indices = [a.only] if a.only is not None else range(a.first, a.first + a.runs)
     counts = {}
     failures = []
+    slow = []
     t0 = time.time()
     for i in indices:
         rng = random.Random('%d/%d' % (a.seed, i))
@@ -379,10 +387,20 @@ def main():
         for name, binary in binaries:
             out = os.path.join(a.work, 'case.out')
             status, _, stderr, dt = run_case(binary, case, out, a.timeout)
+            if status is None and a.hang_factor > 1:
+                status, _, stderr, dt = run_case(binary, case, out, a.timeout * a.hang_factor)
+                if status is None:
+                    stderr = b'no result in %.1f s' % (a.timeout * a.hang_factor)
             result = classify(status, stderr, out, case)
+            if status is not None and dt > a.timeout:
+                result = [('timeout', 'finished in %.1f s' % dt)] + result[1:]
+            elif status is None:
+                result = [('hang', 'no result in %.1f s' % (a.timeout * a.hang_factor))]
             for cls, _ in result:
                 counts[(name, cls)] = counts.get((name, cls), 0) + 1
             bad = [(c, d) for c, d in result if c in FAILING]
+            if result[0][0] == 'timeout':
+                slow.append('case %d (%s, from %s): %s [%s]' % (i, name, deck, result[0][1], '; '.join(steps)))
             if a.verbose or a.only is not None:
                 print('case %d %s %s: %s  [%.1fs] %s' % (i, name, deck, result, dt, '; '.join(steps)))
                 if a.only is not None:
@@ -401,6 +419,8 @@ def main():
             f.write('case %d (%s binary, from %s): %s\n  mutations: %s\n  replay: python3 '
                     'tests/fuzz/fuzz_decks.py --seed %d --only %d\n  stderr: %s\n\n'
                     % (i, name, deck, bad, '; '.join(steps), a.seed, i, err[:600]))
+        if slow:
+            f.write('slow cases (over the time limit, not failures):\n  ' + '\n  '.join(slow) + '\n')
     n = len(indices)
     print('fuzz: %d cases x %d binaries, seed %d, %.0f s' % (n, len(binaries), a.seed, time.time() - t0))
     for name, _ in binaries:
