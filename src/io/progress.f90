@@ -3,6 +3,7 @@
 module progress
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: error_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   implicit none
   private
@@ -36,6 +37,8 @@ contains
     self%t0 = t0
     self%t1 = t1
     self%last_percent = -1
+    self%active = .false.
+    if (.not. (ieee_is_finite(t0) .and. ieee_is_finite(t1))) return
     self%active = c_isatty(2_c_int) == 1 .and. t1 > t0
   end subroutine start
 
@@ -43,8 +46,13 @@ contains
     class(progress_t), intent(inout) :: self
     real(dp), intent(in) :: t
     integer :: percent
+    real(dp) :: fraction
     if (.not. self%active) return
-    percent = int(100.0_dp*(t - self%t0)/(self%t1 - self%t0))
+    ! a NaN or Inf time (a failing integration) draws nothing rather than trapping in int()
+    if (.not. ieee_is_finite(t)) return
+    fraction = (t - self%t0)/(self%t1 - self%t0)
+    if (.not. ieee_is_finite(fraction)) return
+    percent = int(100.0_dp*max(0.0_dp, min(1.0_dp, fraction)))
     percent = max(0, min(100, percent))
     if (percent == self%last_percent) return
     self%last_percent = percent
