@@ -47,11 +47,20 @@ contains
           write(error_unit, '(a)') program_name//': -o needs a file name'
           call quit(1)
         end if
+        if (allocated(out_path)) then
+          write(error_unit, '(a)') program_name//': -o given twice'
+          call quit(1)
+        end if
         i = i + 1
         call get_command_argument(i, length=length)
         allocate(character(len=length) :: out_path)
         call get_command_argument(i, out_path)
       case default
+        if (len(arg) > 1 .and. arg(1:1) == '-') then
+          write(error_unit, '(a)') program_name//': unknown option '''//arg//''''
+          call usage(error_unit)
+          call quit(1)
+        end if
         if (allocated(deck_path)) then
           write(error_unit, '(a)') program_name//': unexpected argument '''//arg//''''
           call usage(error_unit)

@@ -75,6 +75,11 @@ contains
       call err%set('deck '''//self%path//'''', 'file not found', input_error_code)
       return
     end if
+    inquire(file=self%path//'/.', exist=exists)
+    if (exists) then
+      call err%set('deck '''//self%path//'''', 'is a directory', input_error_code)
+      return
+    end if
     open(newunit=self%unit, file=self%path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
       call err%set('deck '''//self%path//'''', 'cannot open: '//trim(iomsg), input_error_code)
@@ -82,29 +87,51 @@ contains
     end if
     n = 0
     do
-      call read_line(self%unit, line, ios)
+      call read_line(self%unit, line, ios, iomsg)
       if (ios /= 0) exit
       n = n + 1
     end do
+    if (.not. is_iostat_end(ios)) then      ! a device that fails
+      close(self%unit)
+      call err%set('deck '''//self%path//'''', 'cannot read: '//trim(iomsg), input_error_code)
+      return
+    end if
     self%opened = .true.
     allocate(self%lines(n))
     rewind(self%unit)
     do n = 1, size(self%lines)
-      call read_line(self%unit, self%lines(n)%text, ios)
+      call read_line(self%unit, self%lines(n)%text, ios, iomsg)
     end do
     rewind(self%unit)
+    call read_from_copy(self)
   end subroutine deck_open
 
+  !> The groups are read from a copy of the deck whose lines all end with a
+  !> newline: gfortran's namelist reader does not see a group closed on a
+  !> last line without one (the scanner, reading whole lines, does).
+  subroutine read_from_copy(self)
+    class(deck_t), intent(inout) :: self
+    integer :: i
+    close(self%unit)
+    open(newunit=self%unit, status='scratch', action='readwrite')
+    do i = 1, size(self%lines)
+      write(self%unit, '(a)') self%lines(i)%text
+    end do
+    rewind(self%unit)
+  end subroutine read_from_copy
+
   !> The next record, whole (non-advancing reads of 512-character pieces).
-  subroutine read_line(unit, line, ios)
+  subroutine read_line(unit, line, ios, iomsg)
     integer, intent(in) :: unit
     character(len=:), allocatable, intent(out) :: line
     integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
     character(len=512) :: piece
     integer :: got
     line = ''
     do
-      read(unit, '(a)', advance='no', size=got, iostat=ios) piece
+      got = 0
+      read(unit, '(a)', advance='no', size=got, iostat=ios, iomsg=iomsg) piece
       line = line//piece(1:got)
       if (is_iostat_eor(ios)) then
         ios = 0
