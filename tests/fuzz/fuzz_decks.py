@@ -4,7 +4,7 @@
 Every case takes one deck of inputs/ or tests/decks/, applies one to three
 mutations (numbers to 0, +-tiny, +-huge, subnormal, NaN, +-Inf, wrong types,
 deleted / duplicated lines, truncation, unknown groups and variables, long
-lines, tabs, binary garbage, ...), runs it with each binary under a time limit
+lines, tabs, binary garbage, line endings, ...), runs it with each binary under a time limit
 and classifies the run.  A case is a pure function of (seed, index), so
 
     python3 tests/fuzz/fuzz_decks.py --seed S --only I
@@ -222,9 +222,18 @@ def mutate_repeat(rng, text):
     return text[:m.start(1)] + new + text[m.end(1):], 'repeat count %s -> %s' % (m.group(1).decode(), new.decode())
 
 
+def mutate_endings(rng, text):
+    choice = rng.randrange(3)
+    if choice == 0:
+        return text.replace(b'\n', b'\r\n'), 'CRLF line endings'
+    if choice == 1:
+        return text.rstrip(b'\n'), 'no newline after the last line'
+    return text.replace(b'\n', b'\r'), 'CR line endings'
+
+
 MUTATORS = [(mutate_number, 6), (mutate_type, 3), (mutate_string, 2), (mutate_lines, 2),
             (mutate_truncate, 1), (mutate_unknown, 2), (mutate_long, 1), (mutate_tabs, 1),
-            (mutate_garbage, 1), (mutate_repeat, 1)]
+            (mutate_garbage, 1), (mutate_repeat, 1), (mutate_endings, 1)]
 
 
 def make_case(rng, decks):
