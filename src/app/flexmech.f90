@@ -16,10 +16,11 @@ program flexmech
   use table_output, only: table_t
   use run_settings, only: read_run_settings, echo_run_settings, analysis_names
   use command_line, only: parse_arguments, quit, output_path_problem
-  use ode_verification, only: run_lsode_check
+  use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
+  use design_analysis, only: run_design
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -64,6 +65,8 @@ program flexmech
     call run_optimize(deck, out, err)
   case ('steady')
     call run_steady(deck, out, err)
+  case ('design')
+    call run_design(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)

@@ -47,7 +47,8 @@ contains
                                      range_text(above, at_least, below, at_most)//reason(why), err)
   end subroutine check_real
 
-  !> Every element of a real array deck value (checked as name(i)).
+  !> Every element of a real array deck value (named name(i), or name(k,i)
+  !> when name is given as 'name(k,:)').
   subroutine check_reals(deck, group, name, values, err, above, at_least, below, at_most, why)
     type(deck_t), intent(in) :: deck
     character(len=*), intent(in) :: group, name
@@ -55,9 +56,14 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: above, at_least, below, at_most
     character(len=*), intent(in), optional :: why
-    integer :: i
+    integer :: i, colon
+    colon = index(name, ':)')      ! 'section_b(3,:)' names element i as 'section_b(3,i)'
     do i = 1, size(values)
-      call check_real(deck, group, name//'('//str(i)//')', values(i), err, above, at_least, below, at_most, why)
+      if (colon > 0) then
+        call check_real(deck, group, name(1:colon - 1)//str(i)//')', values(i), err, above, at_least, below, at_most, why)
+      else
+        call check_real(deck, group, name//'('//str(i)//')', values(i), err, above, at_least, below, at_most, why)
+      end if
       if (err%failed()) return
     end do
   end subroutine check_reals

@@ -3,7 +3,7 @@
 !> or on an undamped oscillator with a closed-form solution, and tabulates the
 !> solution with the cost of the run.  It is the smallest real analysis of the
 !> program and the check that the ODEPACK build is sound.
-module ode_verification
+module lsode_check_analysis
   use kinds, only: dp, two_pi
   use error_status, only: error_t
   use strings, only: str
@@ -213,4 +213,4 @@ contains
       end do
     end if
   end subroutine store_jacobian
-end module ode_verification
+end module lsode_check_analysis
