@@ -16,9 +16,14 @@
 !>
 !> Given the reader, a failed read is replayed on growing prefixes of the
 !> group to find the line that breaks it (gfortran reports a wrong-type value
-!> as an end of file, with no position).  `check_read` is the simpler form
-!> for callers that do the read themselves; it names the line only for
-!> unknown variables.
+!> as an end of file, with no position).  Before the read, every quoted
+!> value is measured against its variable through the same reader (a text
+!> longer than its variable would be cut silently).  The scanner that finds
+!> groups and lines reads whole lines of any length with tabs as blanks, as
+!> the namelist reader does; the groups are read from a copy of the deck
+!> whose lines all end with a newline.  `check_read` is the simpler form for
+!> callers that do the read themselves; it names the line only for unknown
+!> variables.
 module deck_reader
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_underflow, ieee_get_halting_mode, &
                                            ieee_set_halting_mode, ieee_set_flag, ieee_support_halting
