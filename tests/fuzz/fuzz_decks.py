@@ -32,6 +32,8 @@ Classes (FAIL = the fuzzer exits 1):
                          on read)
   no_context     FAIL    an exit-2 message that does not name the deck and
                          the group
+  exit2_without_line     an exit-2 message naming no line (counted only:
+                         a missing group has none)
 """
 import argparse
 import os
@@ -341,6 +343,8 @@ def classify(status, stderr, out_path, deck_path):
         first = msgs[0]
         if "deck '" not in first or 'group &' not in first:
             found.append(('no_context', first[:200]))
+        elif 'line' not in first:
+            found.append(('exit2_without_line', first[:200]))   # counted, not a failure
     if status in (0, 3) and os.path.exists(out_path):
         p = data_problem(out_path)
         if p:
