@@ -180,3 +180,66 @@ clean:
 # also forgets the ODEPACK download
 distclean:
 	rm -rf $(BUILD_DIR)
+
+# ---------------------------------------------------------------- reliability
+#   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds
+#   make fuzz-ci              the bounded slice CI runs (fixed seed)
+#   make check-debug          every deck of inputs/ and tests/decks/ in the debug build
+#   make check-opt            the test suite under -O0, -O2 and -O3 -march=native
+#   make check-valgrind       valgrind on one deck of each analysis
+RUNS         ?= 300
+SEED         ?= 1
+FUZZ_TIMEOUT ?= 5
+CI_FUZZ_RUNS := 400
+OPT_LEVELS   := O0 O2 O3native
+OPTFLAGS_O0       := -O0
+OPTFLAGS_O2       := -O2
+OPTFLAGS_O3native := -O3 -march=native
+VALGRIND_DECKS := inputs/fourbar_150_damped.nml inputs/tennant_fig4_linear.nml \
+                  inputs/opt_hs35_gauss_constrained.nml inputs/lsode_kinetics.nml
+
+.PHONY: fuzz fuzz-ci fuzz-bins check-debug check-opt check-valgrind $(addprefix check-opt-,$(OPT_LEVELS))
+
+fuzz-bins: deps
+	@command -v python3 >/dev/null 2>&1 || sh tools/install_deps.sh python3
+	@$(MAKE) --no-print-directory BUILD=release all
+	@$(MAKE) --no-print-directory BUILD=debug all
+
+fuzz: fuzz-bins
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(RUNS) --seed $(SEED) --timeout $(FUZZ_TIMEOUT)
+
+fuzz-ci: fuzz-bins
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(CI_FUZZ_RUNS) --seed 20260101 --timeout $(FUZZ_TIMEOUT)
+
+check-debug: deps
+	@$(MAKE) --no-print-directory BUILD=release test-bins
+	@$(MAKE) --no-print-directory BUILD=debug test-bins
+	@SKIP_UNITS=1 sh tests/run_tests.sh $(BUILD_DIR) '' debug
+
+# Each level builds into its own directory (ODEPACK included, from the same
+# sources) and runs the whole suite with unit tests and regression comparisons
+# at that level; make check-opt-O3native runs one level.
+check-opt: deps odepack
+	@fails=""; for l in $(OPT_LEVELS); do \
+	  $(MAKE) --no-print-directory check-opt-$$l || fails="$$fails $$l"; done; \
+	  if [ -n "$$fails" ]; then echo "check-opt: failures at:$$fails"; exit 1; fi; \
+	  echo "check-opt: the suite passes at $(OPT_LEVELS)"
+
+$(addprefix check-opt-,$(OPT_LEVELS)): check-opt-%: deps odepack
+	@echo "== optimization level $* ($(OPTFLAGS_$*))"
+	@nice $(MAKE) --no-print-directory BUILD=release BUILD_DIR=$(BUILD_DIR)/opt/$* \
+	  ODEPACK_SRC=$(abspath $(ODEPACK_SRC)) FFLAGS_release='$(OPTFLAGS_$*) -g $(WARN)' test-bins
+	@UNIT_FLAVOUR=release sh tests/run_tests.sh $(BUILD_DIR)/opt/$* '' release
+
+# valgrind's memcheck on one deck of each analysis (release build, -O2 -g):
+# any invalid access or use of an uninitialised value fails.
+check-valgrind: all
+	@command -v valgrind >/dev/null 2>&1 || sh tools/install_deps.sh valgrind
+	@mkdir -p $(BUILD_DIR)/valgrind; fails=0; \
+	for d in $(VALGRIND_DECKS); do \
+	  n=$$(basename $$d .nml); \
+	  if nice valgrind -q --error-exitcode=99 --track-origins=yes $(BIN_DIR)/flexmech $$d \
+	       -o $(BUILD_DIR)/valgrind/$$n.out > $(BUILD_DIR)/valgrind/$$n.log 2>&1; then \
+	    echo "   $$n: no valgrind errors"; \
+	  else echo "   $$n: FAILED (see $(BUILD_DIR)/valgrind/$$n.log)"; fails=$$((fails + 1)); fi; \
+	done; [ $$fails -eq 0 ]

@@ -31,7 +31,7 @@ contains
     write(u, '(a)') '! sweep point: '//assign//' in &'//group//' (written by flexmech from '//deck%path//')'
     do i = 1, size(deck%lines)
       if (s_first > 0 .and. i >= s_first .and. i <= s_last) cycle
-      line = trim(deck%lines(i))
+      line = trim(deck%lines(i)%text)
       if (i == g_last) then
         col = terminator_column(line, i == g_first)
         write(u, '(a)') line(1:col - 1)

@@ -9,6 +9,7 @@
 module progress
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: error_unit, int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   implicit none
   private
@@ -47,6 +48,8 @@ contains
     self%last_percent = -1
     self%counts = .false.
     if (present(counts)) self%counts = counts
+    self%active = .false.
+    if (.not. (ieee_is_finite(t0) .and. ieee_is_finite(t1))) return
     self%active = c_isatty(2_c_int) == 1 .and. t1 > t0
     call system_clock(self%clock0, self%rate)
     self%last_clock = self%clock0
@@ -63,7 +66,11 @@ contains
     character(len=:), allocatable :: line
     character(len=32) :: buf
     if (.not. self%active) return
-    frac = max(0.0_dp, min(1.0_dp, (t - self%t0)/(self%t1 - self%t0)))
+    ! a NaN or Inf time (a failing integration) draws nothing rather than trapping in int()
+    if (.not. ieee_is_finite(t)) return
+    frac = (t - self%t0)/(self%t1 - self%t0)
+    if (.not. ieee_is_finite(frac)) return
+    frac = max(0.0_dp, min(1.0_dp, frac))
     percent = int(100.0_dp*frac)
     call system_clock(now)
     if (percent == self%last_percent .and. real(now - self%last_clock, dp) < 0.1_dp*real(self%rate, dp)) return
