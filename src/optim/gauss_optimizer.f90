@@ -122,6 +122,7 @@ module gauss_optimizer
     procedure, private :: compute_step
     procedure, private :: step_back
     procedure, private :: analyse_trial
+    procedure, private :: check_cycling
     procedure, private :: append_log
     procedure, private :: note
   end type gauss_optimizer_t
@@ -238,7 +239,7 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
     logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind, halvings
+    integer :: n, m, mt, k, repeats, hess_kind, halvings, stalls, escapes, last_escapes
     real(dp) :: xnorm, snorm, pred, t, maxviol
     logical :: solved, step_back_method, converged, same_point, auto
     real(dp) :: b11_res
@@ -309,6 +310,9 @@ contains
     call self%append_log(prob, 0, 0.0_dp)
 
     k = 0
+    stalls = 0
+    escapes = 0
+    last_escapes = 0
     converged = .false.
     outer: do
       stage = 'iteration '//str(k + 1)
@@ -443,6 +447,23 @@ contains
         end if
         exit inner
       end do inner
+
+      ! ---- cycling and stalls (issue 11): a trial point that returns to one
+      ! of the last iterates.  Back to an earlier one: damp the step (halved
+      ! per detection, 3 times); then, or when the run keeps repeating x_k
+      ! (3 steps below xtol in a row without convergence), stop with the
+      ! diagnosis instead of spending analyses on the same designs
+      call self%check_cycling(x_new, xnorm, m, stalls, escapes, err)
+      if (err%failed()) exit outer
+      if (escapes > 0 .and. escapes == last_escapes + 1) then
+        x_new = self%x + 0.5_dp**escapes*(x_new - self%x)
+        t = t*0.5_dp**escapes
+        if (mt > 0) then
+          call prob%constraint_values(x_new, g_new, err)
+          if (err%failed()) exit outer
+        end if
+      end if
+      last_escapes = escapes
 
       ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
       ! never a value: step back to the midpoint and analyse again
@@ -970,6 +991,45 @@ contains
     self%f = f
     self%phi = phi
   end subroutine analyse_trial
+
+  !> Does x_new repeat one of the last four iterates (within xtol (1 + |x|))?
+  !> x_k itself: a stall (counted; the third in a row stops the run); an
+  !> earlier one: a cycle (escapes += 1 asks the caller to damp the step;
+  !> the fourth stops the run).
+  subroutine check_cycling(self, x_new, xnorm, m, stalls, escapes, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    real(dp), intent(in) :: x_new(:), xnorm
+    integer, intent(in) :: m                   !< inequalities (for the violation)
+    integer, intent(inout) :: stalls, escapes
+    type(error_t), intent(inout) :: err
+    integer :: j, hit
+    real(dp) :: tol
+    tol = self%opts%xtol*(1.0_dp + xnorm)
+    hit = 0
+    do j = self%n_log, max(1, self%n_log - 3), -1
+      if (maxval(abs(x_new - self%log(j)%x)) <= tol) then
+        hit = j
+        exit
+      end if
+    end do
+    if (hit == self%n_log) then
+      stalls = stalls + 1
+      if (stalls >= 3) call err%set(self%method_label(), 'stalled at iteration '//str(self%log(hit)%k + 1)// &
+        ': three steps in a row below xtol without convergence (max violation '// &
+        str(max_violation(self%g, m), 3)//'); the iterates no longer move')
+      return
+    end if
+    stalls = 0
+    if (hit == 0) return
+    escapes = escapes + 1
+    if (escapes > 3) then
+      call err%set(self%method_label(), 'cycling: iteration '//str(self%log(self%n_log)%k + 1)// &
+        ' returns to the design of iteration '//str(self%log(hit)%k)//' again after 3 damped escapes')
+      return
+    end if
+    call self%note('cycling: the step returns to the design of iteration '//str(self%log(hit)%k)// &
+                   '; step damped by '//str(0.5_dp**escapes, 3))
+  end subroutine check_cycling
 
   !> Short text of a vector for messages.
   function vec_text(v) result(s)
