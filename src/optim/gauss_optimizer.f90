@@ -616,7 +616,8 @@ contains
     type(error_t) :: lerr
     real(dp) :: rc, mu, gmax
     real(dp), allocatable :: glag(:)
-    real(dp), parameter :: auto_factor = 1.0e-8_dp
+    real(dp), parameter :: auto_factor = 1.0e-8_dp, auto_rcond = 1.4901161193847656e-8_dp
+    logical :: auto_exact
     character(len=:), allocatable :: what, rank_text, how
     integer :: i, n, rank
     n = prob%n
@@ -636,7 +637,13 @@ contains
     lu = self%gm
     call lu_factor(lu, ipiv, lerr, rc)
     if (lerr%failed()) rc = 0.0_dp
-    if (rc >= self%opts%rcond_min) return
+    ! with the automatic choice (default) an objective Hessian is treated as
+    ! singular below sqrt(eps): a difference Hessian is only good to ~1e-8
+    ! relative, so smaller eigenvalues are noise, and M would be too
+    ! ill-conditioned for B11 to be solved to feas_tol/100 (G = 2 J J^T is
+    ! positive semi-definite by construction and keeps rcond_min)
+    auto_exact = hess_kind /= hessian_gauss .and. self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp
+    if (rc >= self%opts%rcond_min .and. .not. (auto_exact .and. rc < auto_rcond)) return
     ! eigenvalues of G (DSYGV with M = I) give the numerical rank; for
     ! G = 2JJ^T they are 2 sigma_i^2 of the residual Jacobian
     rank_text = ''
@@ -674,8 +681,9 @@ contains
         allocate(glag(n))
         glag = self%gradf
         if (self%last_solved .and. size(self%lambda) > 0) glag = glag + matmul(self%dg, self%lambda)
-        mu = max(auto_factor*gmax, maxval(abs(glag))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
-        how = ' (automatic, max(1e-8 max G_ii, |grad L|/max(1, |x|)))'
+        mu = max(merge(100.0_dp, 1.0_dp, auto_exact)*auto_factor*gmax, &
+                 maxval(abs(glag))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
+        how = ' (automatic, max('//merge('1e-6', '1e-8', auto_exact)//' max G_ii, |grad L|/max(1, |x|)))'
       end if
       do i = 1, n
         self%gm(i, i) = self%gm(i, i) + mu
