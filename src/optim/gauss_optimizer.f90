@@ -117,6 +117,9 @@ module gauss_optimizer
     procedure :: method_label
     procedure :: reset
     procedure, private :: check_setup
+    procedure, private :: start
+    procedure, private :: add_to_active
+    procedure, private :: release_satisfied
     procedure, private :: curvature
     procedure, private :: make_convex
     procedure, private :: compute_step
@@ -239,7 +242,7 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
     logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind, halvings, stalls, escapes, last_escapes
+    integer :: n, m, mt, k, repeats, hess_kind, halvings, stalls, escapes
     real(dp) :: xnorm, snorm, pred, t, maxviol
     logical :: solved, step_back_method, converged, same_point, auto
     real(dp) :: b11_res
@@ -258,61 +261,13 @@ contains
     m = prob%m
     mt = prob%m + prob%n_eq
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
-    allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
-    allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
-    allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
-    self%hess = 0.0_dp
+    call self%start(prob, x0, step_back_method, auto, err)
+    if (err%failed()) return
     allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
-    allocate(self%log(16))
-    self%x = x0
-    self%lambda = 0.0_dp
-    self%ev = ''
-    if (auto) call self%note('method auto: '//self%method_label())
-    if (.not. step_back_method .and. prob%n_bounds > 0) then
-      self%x = prob%project_to_bounds(x0)
-      if (maxval(abs(self%x - x0)) > 0.0_dp) call self%note('start projected onto the bounds')
-    end if
-
-    call prob%constraint_values(self%x, self%g, err)
-    if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
-      call err%set('constraints', 'not finite at the start point: g = '//vec_text(self%g))
-    if (err%failed()) then
-      call start_failed()
-      return
-    end if
-    violated = self%g(1:m) > self%opts%feas_tol
-    ! step-back methods keep inequalities and linear equalities satisfied; a
-    ! nonlinear equality cannot hold along a step and is restored by B11
-    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol &
-                                                       .and. prob%con_kind(m + 1:mt) == con_linear))) then
-      call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
-        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol .and. prob%con_kind(m + 1:mt) == con_linear]) &
-        //' violated (max g = ' &
-        //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
-        ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
-        //ns_variant(self%opts%method)//''', which accepts any start', code=2)
-      self%message = err%text()
-      return
-    end if
-    ! initial active set: constraints at zero (within feas_tol), all equalities;
-    ! the NS variants also take the violated ones (§9.4)
-    self%active(1:m) = abs(self%g(1:m)) <= self%opts%feas_tol
-    if (.not. step_back_method) self%active(1:m) = self%active(1:m) .or. violated
-    self%active(m + 1:mt) = .true.
-
-    call prob%analyse(self%x, self%f, self%phi, err)
-    if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
-      call err%set('objective', 'not finite at the start point (F = '//str(self%f)//')')
-    if (err%failed()) then
-      call start_failed()
-      return
-    end if
-    call self%append_log(prob, 0, 0.0_dp)
 
     k = 0
     stalls = 0
     escapes = 0
-    last_escapes = 0
     converged = .false.
     outer: do
       stage = 'iteration '//str(k + 1)
@@ -409,26 +364,9 @@ contains
             self%additions = self%additions + count(limit .and. .not. self%active(1:m))
             self%active(1:m) = self%active(1:m) .or. limit
           else
-            ! GNLC.NS: a violated constraint is treated as an active one (§9.4);
-            ! every method adds the constraints the step makes active
-            if (.not. step_back_method) touched = touched .or. (violated .and. .not. self%active(1:m))
-            if (any(touched)) then
-              call self%note('added '//set_text(touched))
-              self%additions = self%additions + count(touched)
-              self%active(1:m) = self%active(1:m) .or. touched
-            end if
+            call self%add_to_active(violated, touched, step_back_method)
           end if
-          if (.not. solved) then
-            ! our rule (the papers are silent): when B11 had no solution the
-            ! active set was inconsistent; members strictly satisfied at the
-            ! new point leave it, so a Powell compromise cannot pin the set
-            limit = self%active(1:m) .and. g_new(1:m) < -self%opts%feas_tol
-            if (any(limit)) then
-              call self%note('released '//set_text(limit)//' (B11 unsolved; strictly satisfied at the new point)')
-              self%releases = self%releases + count(limit)
-              self%active(1:m) = self%active(1:m) .and. .not. limit
-            end if
-          end if
+          if (.not. solved) call self%release_satisfied(g_new(1:m))
         end if
         ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
         ! with a changed active set the step is recomputed at x_k; with the
@@ -453,17 +391,8 @@ contains
       ! per detection, 3 times); then, or when the run keeps repeating x_k
       ! (3 steps below xtol in a row without convergence), stop with the
       ! diagnosis instead of spending analyses on the same designs
-      call self%check_cycling(x_new, xnorm, m, stalls, escapes, err)
+      call self%check_cycling(prob, x_new, g_new, t, xnorm, stalls, escapes, err)
       if (err%failed()) exit outer
-      if (escapes > 0 .and. escapes == last_escapes + 1) then
-        x_new = self%x + 0.5_dp**escapes*(x_new - self%x)
-        t = t*0.5_dp**escapes
-        if (mt > 0) then
-          call prob%constraint_values(x_new, g_new, err)
-          if (err%failed()) exit outer
-        end if
-      end if
-      last_escapes = escapes
 
       ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
       ! never a value: step back to the midpoint and analyse again
@@ -497,12 +426,106 @@ contains
       end if
       call err%set(self%method_label(), self%message)
     end if
-  contains
-    subroutine start_failed()
+  end subroutine solve
+
+  !> GNLC.NS: a violated constraint is treated as an active one (§9.4); every
+  !> method adds the constraints the step makes active (touched).
+  subroutine add_to_active(self, violated, touched, step_back_method)
+    class(gauss_optimizer_t), intent(inout) :: self
+    logical, intent(in) :: violated(:), step_back_method
+    logical, intent(inout) :: touched(:)
+    integer :: m
+    m = size(violated)
+    if (.not. step_back_method) touched = touched .or. (violated .and. .not. self%active(1:m))
+    if (.not. any(touched)) return
+    call self%note('added '//set_text(touched))
+    self%additions = self%additions + count(touched)
+    self%active(1:m) = self%active(1:m) .or. touched
+  end subroutine add_to_active
+
+  !> Our rule (the papers are silent): when B11 had no solution the active
+  !> set was inconsistent; members strictly satisfied at the new point leave
+  !> it, so a Powell compromise cannot pin the set.  g: inequalities there.
+  subroutine release_satisfied(self, g)
+    class(gauss_optimizer_t), intent(inout) :: self
+    real(dp), intent(in) :: g(:)
+    logical :: leave(size(g))
+    integer :: m
+    m = size(g)
+    leave = self%active(1:m) .and. g < -self%opts%feas_tol
+    if (.not. any(leave)) return
+    call self%note('released '//set_text(leave)//' (B11 unsolved; strictly satisfied at the new point)')
+    self%releases = self%releases + count(leave)
+    self%active(1:m) = self%active(1:m) .and. .not. leave
+  end subroutine release_satisfied
+
+  !> The start: working arrays, x0 (projected into the bounds for the NS
+  !> variants), constraints and the initial active set (§9.4), the check of a
+  !> step-back method's start (code 2 if infeasible), and the analysis at x0.
+  subroutine start(self, prob, x0, step_back_method, auto, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x0(:)
+    logical, intent(in) :: step_back_method, auto
+    type(error_t), intent(inout) :: err
+    logical, allocatable :: violated(:)
+    integer :: n, m, mt
+    n = prob%n
+    m = prob%m
+    mt = prob%m + prob%n_eq
+    allocate(violated(m))
+    allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
+    allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
+    allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
+    self%hess = 0.0_dp
+    allocate(self%log(16))
+    self%x = x0
+    self%lambda = 0.0_dp
+    self%ev = ''
+    if (auto) call self%note('method auto: '//self%method_label())
+    if (.not. step_back_method .and. prob%n_bounds > 0) then
+      self%x = prob%project_to_bounds(x0)
+      if (maxval(abs(self%x - x0)) > 0.0_dp) call self%note('start projected onto the bounds')
+    end if
+
+    call prob%constraint_values(self%x, self%g, err)
+    if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
+      call err%set('constraints', 'not finite at the start point: g = '//vec_text(self%g))
+    if (err%failed()) then
       call err%add_context(self%method_label()//', at the start point')
       self%message = err%text()
-    end subroutine start_failed
-  end subroutine solve
+      return
+    end if
+    violated = self%g(1:m) > self%opts%feas_tol
+    ! step-back methods keep inequalities and linear equalities satisfied; a
+    ! nonlinear equality cannot hold along a step and is restored by B11
+    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol &
+                                                       .and. prob%con_kind(m + 1:mt) == con_linear))) then
+      call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
+        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol .and. prob%con_kind(m + 1:mt) == con_linear]) &
+        //' violated (max g = ' &
+        //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
+        ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
+        //ns_variant(self%opts%method)//''', which accepts any start', code=2)
+      self%message = err%text()
+      return
+    end if
+    ! initial active set: constraints at zero (within feas_tol), all equalities;
+    ! the NS variants also take the violated ones (§9.4)
+    self%active(1:m) = abs(self%g(1:m)) <= self%opts%feas_tol
+    if (.not. step_back_method) self%active(1:m) = self%active(1:m) .or. violated
+    self%active(m + 1:mt) = .true.
+
+    call prob%analyse(self%x, self%f, self%phi, err)
+    if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
+      call err%set('objective', 'not finite at the start point (F = '//str(self%f)//')')
+    if (err%failed()) then
+      call err%add_context(self%method_label()//', at the start point')
+      self%message = err%text()
+      return
+    end if
+    call self%append_log(prob, 0, 0.0_dp)
+  end subroutine start
 
   !> Forget the previous run (outcome, log, event counts); options stay.
   subroutine reset(self)
@@ -1002,16 +1025,18 @@ contains
 
   !> Does x_new repeat one of the last four iterates (within xtol (1 + |x|))?
   !> x_k itself: a stall (counted; the third in a row stops the run); an
-  !> earlier one: a cycle (escapes += 1 asks the caller to damp the step;
-  !> the fourth stops the run).
-  subroutine check_cycling(self, x_new, xnorm, m, stalls, escapes, err)
+  !> earlier one: a cycle, escaped by damping the step (x_new, t and g_new
+  !> updated: halved, quartered, /8); the fourth stops the run.
+  subroutine check_cycling(self, prob, x_new, g_new, t, xnorm, stalls, escapes, err)
     class(gauss_optimizer_t), intent(inout) :: self
-    real(dp), intent(in) :: x_new(:), xnorm
-    integer, intent(in) :: m                   !< inequalities (for the violation)
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(inout) :: x_new(:), g_new(:), t
+    real(dp), intent(in) :: xnorm
     integer, intent(inout) :: stalls, escapes
     type(error_t), intent(inout) :: err
-    integer :: j, hit
+    integer :: j, hit, m
     real(dp) :: tol
+    m = prob%m
     tol = self%opts%xtol*(1.0_dp + xnorm)
     hit = 0
     do j = self%n_log, max(1, self%n_log - 3), -1
@@ -1037,6 +1062,9 @@ contains
     end if
     call self%note('cycling: the step returns to the design of iteration '//str(self%log(hit)%k)// &
                    '; step damped by '//str(0.5_dp**escapes, 3))
+    x_new = self%x + 0.5_dp**escapes*(x_new - self%x)
+    t = t*0.5_dp**escapes
+    if (size(g_new) > 0) call prob%constraint_values(x_new, g_new, err)
   end subroutine check_cycling
 
   !> Short text of a vector for messages.
