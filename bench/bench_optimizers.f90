@@ -260,7 +260,8 @@ contains
     character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
                                                     'rosen_suzuki', 'hs65']
     integer, parameter :: np = size(hs_numbers) + 6
-    integer :: nf(np, 3), k, u, i, j, n_tau
+    integer :: nf(np, 3), k, u, i, j, n_tau, length, status, ios
+    character(len=512) :: dir
     character(len=16) :: names(np)
     real(dp) :: r(np, 3), tau, best, ratio
     logical :: solved(np, 3)
@@ -277,7 +278,14 @@ contains
       write(output_unit, '(a14,3i10)') names(k), merge(nf(k, :), -1, solved(k, :))
     end do
     write(output_unit, '(a,3i4)') '# solved (gauss, slsqp, cobyla): ', count(solved, dim=1)
-    open(newunit=u, file='build/bench/hs_nf.dat', status='replace', action='write')
+    ! data files for the figure: $BENCH_DIR (default build/bench, run_bench.sh's)
+    call get_environment_variable('BENCH_DIR', dir, length, status)
+    if (status /= 0 .or. length == 0) dir = 'build/bench'
+    open(newunit=u, file=trim(dir)//'/hs_nf.dat', status='replace', action='write', iostat=ios)
+    if (ios /= 0) then
+      write(output_unit, '(a)') '# cannot write '//trim(dir)//'/hs_nf.dat: no data files (set BENCH_DIR)'
+      return
+    end if
     write(u, '(a)') '# problem NF_gauss NF_slsqp NF_cobyla (-1: not solved)'
     do k = 1, np
       write(u, '(a14,3i10)') names(k), merge(nf(k, :), -1, solved(k, :))
@@ -292,7 +300,7 @@ contains
         if (solved(k, j)) r(k, j) = real(nf(k, j), dp)/best
       end do
     end do
-    open(newunit=u, file='build/bench/hs_profile.dat', status='replace', action='write')
+    open(newunit=u, file=trim(dir)//'/hs_profile.dat', status='replace', action='write')
     write(u, '(a)') '# tau rho_gauss rho_slsqp rho_cobyla (Dolan-More profile of NF over '//str(np)//' problems)'
     n_tau = 400
     do i = 0, n_tau
