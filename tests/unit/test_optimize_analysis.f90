@@ -4,8 +4,7 @@
 module test_optimize_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_reader, only: deck_t
-  use table_output, only: table_t
+  use deck_runner, only: scratch_path, run_deck, has_line, summary_value, line_length
   use optimize_analysis, only: run_optimize
   use assertions
   implicit none
@@ -17,11 +16,7 @@ module test_optimize_analysis_suite
 contains
 
   subroutine run_all()
-    character(len=256) :: tmp
-    integer :: length, status
-    call get_environment_variable('TMPDIR', tmp, length, status)
-    if (status /= 0 .or. length == 0) tmp = '/tmp'
-    scratch = trim(tmp)//'/flexmech_test_optimize_analysis'
+    scratch = scratch_path('test_optimize_analysis')
     call run_test('rosen_suzuki_deck_gives_table_and_summary', test_good_deck)
     call run_test('bad_values_are_input_errors', test_bad_values)
     call run_test('gnlc_infeasible_start_is_an_input_error', test_infeasible)
@@ -29,13 +24,21 @@ contains
     call run_test('deck_posed_quadratic_problem_with_equality', test_deck_problem)
   end subroutine run_all
 
+  !> The deck `text` ('|' separates lines) through the analysis; output lines back.
+  subroutine run_text(text, err, lines)
+    character(len=*), intent(in) :: text
+    type(error_t), intent(inout) :: err
+    character(len=line_length), allocatable, intent(out) :: lines(:)
+    call run_deck(run_optimize, scratch, text, err, lines)
+  end subroutine run_text
+
   !> HS 6 posed by coefficients (issue 11): F = (1 - x1)^2 = 1/2 x^T diag(2, 0) x
   !> - 2 x1 + 1, h = 1/2 x^T diag(-20, 0) x + 10 x2 = 0 (a quadratic equality),
   !> from (-1.2, 1) with default settings: x* = (1, 1), F* = 0 (HS).
   subroutine test_deck_problem()
     type(error_t) :: err
-    character(len=512), allocatable :: lines(:)
-    call run_deck("&run analysis='optimize' /|&optimize problem='deck', x0 = -1.2, 1 /|" // &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text("&run analysis='optimize' /|&optimize problem='deck', x0 = -1.2, 1 /|" // &
                   "&problem_data n = 2, f_q(1,1) = 2, f_c = -2, 0, f_0 = 1, n_eq = 1, h_q(1,1,1) = -20, " // &
                   "h_a(1,2) = 10, h_b(1) = 0, f_star = 0, x_star = 1, 1 /", err, lines)
     call assert_true(.not. err%failed(), 'no error: '//err%text())
@@ -45,91 +48,17 @@ contains
     ! the step test stops within xtol (1 + |x|) = 2e-8 of x*
     call assert_true(summary_value(lines, '# summary: |x - x*|_inf =') < 2.0e-8_dp, '|x - x*| < 2e-8')
     ! a bound above its upper bound is an input error naming both
-    call run_deck("&run analysis='optimize' /|&optimize problem='deck' /|" // &
+    call run_text("&run analysis='optimize' /|&optimize problem='deck' /|" // &
                   "&problem_data n = 1, f_q(1,1) = 2, lower = 2, upper = 1 /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'upper(1)') > 0, 'lower > upper rejected')
   end subroutine test_deck_problem
 
-  !> Write `text` (lines separated by '|') as a deck, run it, return the
-  !> output lines (empty when the output was discarded).
-  subroutine run_deck(text, err, lines)
-    character(len=*), intent(in) :: text
-    type(error_t), intent(inout) :: err
-    character(len=512), allocatable, intent(out) :: lines(:)
-    type(deck_t) :: deck
-    type(table_t) :: out
-    type(error_t) :: cerr
-    integer :: u, i, j, n, ios
-    character(len=512) :: line
-    open(newunit=u, file=scratch//'.nml', status='replace', action='write')
-    i = 1
-    do
-      j = index(text(i:), '|')
-      if (j == 0) then
-        write(u, '(a)') text(i:)
-        exit
-      end if
-      write(u, '(a)') text(i:i + j - 2)
-      i = i + j
-    end do
-    close(u)
-    call deck%open(scratch//'.nml', err)
-    call out%open(scratch//'.out', cerr)
-    call run_optimize(deck, out, err)
-    call deck%close()
-    allocate(lines(0))
-    if (err%failed() .and. err%code == 2) then
-      call out%discard()
-    else
-      call out%commit(cerr)
-      open(newunit=u, file=scratch//'.out', status='old', action='read')
-      n = 0
-      do
-        read(u, '(a)', iostat=ios) line
-        if (ios /= 0) exit
-        n = n + 1
-      end do
-      rewind(u)
-      deallocate(lines)
-      allocate(lines(n))
-      do i = 1, n
-        read(u, '(a)') lines(i)
-      end do
-      close(u, status='delete')
-    end if
-    open(newunit=u, file=scratch//'.nml', status='old')
-    close(u, status='delete')
-  end subroutine run_deck
-
-  !> The number after `key` on the first line that starts with it (huge if none).
-  real(dp) function summary_value(lines, key) result(v)
-    character(len=*), intent(in) :: lines(:), key
-    integer :: i, ios
-    v = huge(1.0_dp)
-    do i = 1, size(lines)
-      if (index(lines(i), key) == 1) then
-        read(lines(i)(len(key) + 1:), *, iostat=ios) v
-        if (ios /= 0) v = huge(1.0_dp)
-        return
-      end if
-    end do
-  end function summary_value
-
-  logical function has_line(lines, fragment)
-    character(len=*), intent(in) :: lines(:), fragment
-    integer :: i
-    has_line = .false.
-    do i = 1, size(lines)
-      if (index(lines(i), fragment) > 0) has_line = .true.
-    end do
-  end function has_line
-
   subroutine test_good_deck()
     type(error_t) :: err
-    character(len=512), allocatable :: lines(:)
+    character(len=line_length), allocatable :: lines(:)
     real(dp) :: row(6 + 4 + 3 + 3)
     integer :: i, n_rows
-    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_ns', " // &
+    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_ns', " // &
                   "x0 = 0, 0, 0, 0 /", err, lines)
     call assert_true(.not. err%failed(), 'no error: '//err%text())
     call assert_true(has_line(lines, '# summary: status = converged'), 'status converged')
@@ -154,31 +83,31 @@ contains
 
   subroutine test_bad_values()
     type(error_t) :: err
-    character(len=512), allocatable :: lines(:)
-    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_xx' /", err, lines)
+    character(len=line_length), allocatable :: lines(:)
+    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_xx' /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'method') > 0, 'unknown method named')
     call err%clear()
-    call run_deck("&run analysis='optimize' /|&optimize problem='nope' /", err, lines)
+    call run_text("&run analysis='optimize' /|&optimize problem='nope' /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'rosen_suzuki') > 0, 'unknown problem: valid names listed')
     call err%clear()
-    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', x0 = 1, 2 /", err, lines)
+    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', x0 = 1, 2 /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), '4 variables') > 0, 'x0 of the wrong length')
     call err%clear()
-    call run_deck("&run analysis='optimize' /|&optimize xtol = -1 /", err, lines)
+    call run_text("&run analysis='optimize' /|&optimize xtol = -1 /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'xtol') > 0, 'negative xtol')
     call err%clear()
-    call run_deck("&run analysis='optimize' /|&optimize potter_fix = 'b' /", err, lines)
+    call run_text("&run analysis='optimize' /|&optimize potter_fix = 'b' /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'potter_fix') > 0, 'unknown potter_fix')
     call err%clear()
-    call run_deck("&run analysis='optimize' /|&optimize step_back = 'half' /", err, lines)
+    call run_text("&run analysis='optimize' /|&optimize step_back = 'half' /", err, lines)
     call assert_true(err%code == 2 .and. index(err%text(), 'step_back') > 0, 'unknown step_back')
     call assert_equal(size(lines), 0, 'no output kept for input errors')
   end subroutine test_bad_values
 
   subroutine test_infeasible()
     type(error_t) :: err
-    character(len=512), allocatable :: lines(:)
-    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', x0 = 2, 2, 2, 2 /", &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', x0 = 2, 2, 2, 2 /", &
                   err, lines)
     call assert_true(err%code == 2, 'input error')
     call assert_true(index(err%text(), 'infeasible') > 0 .and. index(err%text(), 'gnlc_ns') > 0, &
@@ -187,8 +116,8 @@ contains
 
   subroutine test_iteration_limit()
     type(error_t) :: err
-    character(len=512), allocatable :: lines(:)
-    call run_deck("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', max_iter = 1 /", &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', max_iter = 1 /", &
                   err, lines)
     call assert_true(err%failed() .and. err%code /= 2, 'a diagnosis, not an input error')
     call assert_true(has_line(lines, '# summary: status = iteration limit reached'), 'status line')

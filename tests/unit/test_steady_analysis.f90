@@ -5,8 +5,7 @@
 module test_steady_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_reader, only: deck_t
-  use table_output, only: table_t
+  use deck_runner, only: scratch_path, run_deck, has_line, count_rows, line_length
   use steady_analysis, only: run_steady
   use assertions
   implicit none
@@ -22,11 +21,7 @@ module test_steady_analysis_suite
 contains
 
   subroutine run_all()
-    character(len=256) :: tmp
-    integer :: length, status
-    call get_environment_variable('TMPDIR', tmp, length, status)
-    if (status /= 0 .or. length == 0) tmp = '/tmp'
-    scratch = trim(tmp)//'/flexmech_test_steady_analysis'
+    scratch = scratch_path('test_steady_analysis')
     call run_test('linear_harmonic_deck_gives_a_revolution_of_rows', test_linear_deck)
     call run_test('nonlinear_deck_reports_outer_iterations', test_nonlinear_deck)
     call run_test('both_methods_side_by_side_at_low_speed', test_both)
@@ -36,74 +31,13 @@ contains
     call run_test('bad_input_is_an_input_error', test_bad_input)
   end subroutine run_all
 
-  !> Write `text` ('|' separates lines) as a deck, run it, return the output
-  !> lines (none when the output was discarded for an input error).
-  subroutine run_deck(text, err, lines)
+  !> The deck `text` ('|' separates lines) through the analysis; output lines back.
+  subroutine run_text(text, err, lines)
     character(len=*), intent(in) :: text
     type(error_t), intent(inout) :: err
-    character(len=2048), allocatable, intent(out) :: lines(:)
-    type(deck_t) :: deck
-    type(table_t) :: out
-    type(error_t) :: cerr
-    integer :: u, i, j, n, ios
-    character(len=2048) :: line
-    open(newunit=u, file=scratch//'.nml', status='replace', action='write')
-    i = 1
-    do
-      j = index(text(i:), '|')
-      if (j == 0) then
-        write(u, '(a)') text(i:)
-        exit
-      end if
-      write(u, '(a)') text(i:i + j - 2)
-      i = i + j
-    end do
-    close(u)
-    call deck%open(scratch//'.nml', err)
-    call out%open(scratch//'.out', cerr)
-    call run_steady(deck, out, err)
-    call deck%close()
-    allocate(lines(0))
-    if (err%failed() .and. err%code == 2) then
-      call out%discard()
-    else
-      call out%commit(cerr)
-      open(newunit=u, file=scratch//'.out', status='old', action='read')
-      n = 0
-      do
-        read(u, '(a)', iostat=ios) line
-        if (ios /= 0) exit
-        n = n + 1
-      end do
-      rewind(u)
-      deallocate(lines)
-      allocate(lines(n))
-      do i = 1, n
-        read(u, '(a)') lines(i)
-      end do
-      close(u, status='delete')
-    end if
-    open(newunit=u, file=scratch//'.nml', status='old')
-    close(u, status='delete')
-  end subroutine run_deck
-
-  integer function count_rows(lines) result(n)
-    character(len=*), intent(in) :: lines(:)
-    integer :: i
-    n = 0
-    do i = 1, size(lines)
-      if (lines(i)(1:1) /= '#' .and. len_trim(lines(i)) > 0) n = n + 1
-    end do
-  end function count_rows
-
-  logical function has_line(lines, fragment)
-    character(len=*), intent(in) :: lines(:), fragment
-    integer :: i
-    has_line = .false.
-    do i = 1, size(lines)
-      if (index(lines(i), fragment) > 0) has_line = .true.
-    end do
-  end function has_line
+    character(len=line_length), allocatable, intent(out) :: lines(:)
+    call run_deck(run_steady, scratch, text, err, lines)
+  end subroutine run_text
 
   !> Column line (last '#' line before the rows) split into names.
   integer function n_columns(lines) result(n)
@@ -124,8 +58,8 @@ contains
   !> B and C (U, W), three link ends (u, w), three stresses = 15.
   subroutine test_linear_deck()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 150.0|/|&steady output_step_deg = 10.0 /', &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 150.0|/|&steady output_step_deg = 10.0 /', &
                   err, lines)
     call assert_true(.not. err%failed(), 'run: '//err%text())
     call assert_equal(count_rows(lines), 37, 'rows')
@@ -139,8 +73,8 @@ contains
 
   subroutine test_nonlinear_deck()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 150.0|/|&steady output_step_deg = 30.0 /|'// &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 150.0|/|&steady output_step_deg = 30.0 /|'// &
                   '&tennant d_k = 1, d_b = 1, d_g = 1 /', err, lines)
     call assert_true(.not. err%failed(), 'run: '//err%text())
     call assert_true(has_line(lines, '# summary: outer iterations (K_n updates after the linear solution) = 4'), &
@@ -153,10 +87,10 @@ contains
   !> 20 rad/s, N = 16, light damping: the footer compares the two (< 1%).
   subroutine test_both()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
+    character(len=line_length), allocatable :: lines(:)
     integer :: i, k
     real(dp) :: diff
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 20.0|/|&steady method = ''both'', '// &
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 20.0|/|&steady method = ''both'', '// &
                   'n_harmonics = 16, output_step_deg = 30.0, damping_beta = 2.0e-5, rtol = 1.0e-6, atol = 1.0e-10, '// &
                   'newton_tol = 1.0e-4 /', err, lines)
     call assert_true(.not. err%failed(), 'run: '//err%text())
@@ -174,8 +108,8 @@ contains
   !> names the default G = E1/2.66.
   subroutine test_shear_sections()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&steady output_step_deg = 30.0 /|'// &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&steady output_step_deg = 30.0 /|'// &
                   '&tennant shear = T, n_sections(1) = 2, section_end(1,1:2) = 0.4, 1.0, '// &
                   'section_b(1,1:2) = 0.3, 0.25, section_h(1,1:2) = 1.2, 1.0 /', err, lines)
     call assert_true(.not. err%failed(), 'run: '//err%text())
@@ -189,8 +123,8 @@ contains
   !> frequency; the run stops (code /= 2) with the diagnosis, no rows.
   subroutine test_resonance()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 176.0|/|&steady output_step_deg = 2.0 /', &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 176.0|/|&steady output_step_deg = 2.0 /', &
                   err, lines)
     call assert_true(err%failed() .and. err%code /= 2, 'stopped with a diagnosis')
     call assert_true(index(err%text(), 'near resonance at crank speed 176.000 rad/s') > 0, 'message')
@@ -205,8 +139,8 @@ contains
   !> with the multipliers in the summary, no rows.
   subroutine test_parametric()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 295.0|/|&steady method = ''shooting'', '// &
+    character(len=line_length), allocatable :: lines(:)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 295.0|/|&steady method = ''shooting'', '// &
                   'integrator = ''adams'', rtol = 1.0e-8, atol = 1.0e-12, output_step_deg = 30.0 /', err, lines)
     call assert_true(err%failed() .and. err%code /= 2, 'stopped with a diagnosis')
     call assert_true(index(err%text(), 'UNSTABLE') > 0 .and. index(err%text(), 'modulus 1.00') > 0, &
@@ -217,20 +151,20 @@ contains
 
   subroutine test_bad_input()
     type(error_t) :: err
-    character(len=2048), allocatable :: lines(:)
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 0.0|/', err, lines)
+    character(len=line_length), allocatable :: lines(:)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 0.0|/', err, lines)
     call assert_true(err%failed() .and. err%code == 2, 'omega = 0')
     call assert_true(index(err%text(), 'omega') > 0, 'names omega')
     call err%clear()
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&tennant d_k = 2.0 /', err, lines)
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&tennant d_k = 2.0 /', err, lines)
     call assert_true(err%failed() .and. err%code == 2, 'd_k = 2')
     call assert_true(index(err%text(), 'd_k') > 0, 'names d_k')
     call err%clear()
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&steady method = ''fourier'' /', &
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&steady method = ''fourier'' /', &
                   err, lines)
     call assert_true(err%failed() .and. err%code == 2, 'unknown method')
     call err%clear()
-    call run_deck('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&tennant n_sections(2) = 2, '// &
+    call run_text('&run analysis = ''steady'' /|'//four_bar//'omega = 100.0|/|&tennant n_sections(2) = 2, '// &
                   'section_end(2,1:2) = 0.5, 0.9, section_b(2,1:2) = 0.25, 0.25, section_h(2,1:2) = 1.0, 1.0 /', &
                   err, lines)
     call assert_true(err%failed() .and. err%code == 2, 'sections must reach the link end')

@@ -5,6 +5,7 @@ module test_steady_settings_suite
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
+  use deck_runner, only: scratch_path, write_deck
   use steady_settings, only: steady_settings_t, read_steady_settings
   use assertions
   implicit none
@@ -16,11 +17,7 @@ module test_steady_settings_suite
 contains
 
   subroutine run_all()
-    character(len=256) :: tmp
-    integer :: length, status
-    call get_environment_variable('TMPDIR', tmp, length, status)
-    if (status /= 0 .or. length == 0) tmp = '/tmp'
-    scratch = trim(tmp)//'/flexmech_test_steady_settings.nml'
+    scratch = scratch_path('test_steady_settings.nml')
     call run_test('defaults_without_the_groups', test_defaults)
     call run_test('values_reach_the_solvers_and_the_element', test_values)
     call run_test('rule_violations_are_input_errors', test_violations)
@@ -31,19 +28,8 @@ contains
     type(steady_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
     type(deck_t) :: deck
-    integer :: u, i, j
-    open(newunit=u, file=scratch, status='replace', action='write')
-    i = 1
-    do
-      j = index(text(i:), '|')
-      if (j == 0) then
-        write(u, '(a)') text(i:)
-        exit
-      end if
-      write(u, '(a)') text(i:i + j - 2)
-      i = i + j
-    end do
-    close(u)
+    integer :: u
+    call write_deck(scratch, text)
     call deck%open(scratch, err)
     call read_steady_settings(deck, 3, s, err)
     call deck%close()

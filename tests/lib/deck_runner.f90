@@ -1,0 +1,134 @@
+!> Running an analysis on a deck written by a test: the deck text ('|'
+!> separates lines) goes to a scratch file under $TMPDIR, the analysis runs
+!> through its driver, and the output comes back as lines.  One home for what
+!> the analysis suites used to copy.
+module deck_runner
+  use kinds, only: dp
+  use error_status, only: error_t
+  use deck_reader, only: deck_t
+  use table_output, only: table_t
+  implicit none
+  private
+  public :: scratch_path, write_deck, run_deck, analysis_runner, has_line, summary_value, count_rows, line_length
+
+  integer, parameter :: line_length = 2048
+
+  abstract interface
+    !> An analysis driver: run_transient, run_steady, run_optimize, ...
+    subroutine analysis_runner(deck, out, err)
+      import :: deck_t, table_t, error_t
+      type(deck_t), intent(inout) :: deck
+      type(table_t), intent(inout) :: out
+      type(error_t), intent(inout) :: err
+    end subroutine analysis_runner
+  end interface
+
+contains
+
+  !> $TMPDIR/flexmech_<name> (or /tmp/...).
+  function scratch_path(name) result(path)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: path
+    character(len=256) :: tmp
+    integer :: length, status
+    call get_environment_variable('TMPDIR', tmp, length, status)
+    if (status /= 0 .or. length == 0) tmp = '/tmp'
+    path = trim(tmp)//'/flexmech_'//name
+  end function scratch_path
+
+  !> Write `text` ('|' separates lines) to `path`.
+  subroutine write_deck(path, text)
+    character(len=*), intent(in) :: path, text
+    integer :: u, i, j
+    open(newunit=u, file=path, status='replace', action='write')
+    i = 1
+    do
+      j = index(text(i:), '|')
+      if (j == 0) then
+        write(u, '(a)') text(i:)
+        exit
+      end if
+      write(u, '(a)') text(i:i + j - 2)
+      i = i + j
+    end do
+    close(u)
+  end subroutine write_deck
+
+  !> Write the deck, run `analysis` on it into stem.out, return the output
+  !> lines (none when the output was discarded for an input error); both
+  !> files are removed.
+  subroutine run_deck(analysis, stem, text, err, lines)
+    procedure(analysis_runner) :: analysis
+    character(len=*), intent(in) :: stem, text
+    type(error_t), intent(inout) :: err
+    character(len=line_length), allocatable, intent(out) :: lines(:)
+    type(deck_t) :: deck
+    type(table_t) :: out
+    type(error_t) :: cerr
+    integer :: u, i, n, ios
+    character(len=line_length) :: line
+    call write_deck(stem//'.nml', text)
+    call deck%open(stem//'.nml', err)
+    call out%open(stem//'.out', cerr)
+    if (.not. err%failed()) call analysis(deck, out, err)
+    call deck%close()
+    allocate(lines(0))
+    if (err%failed() .and. err%code == 2) then
+      call out%discard()
+    else
+      call out%commit(cerr)
+      open(newunit=u, file=stem//'.out', status='old', action='read')
+      n = 0
+      do
+        read(u, '(a)', iostat=ios) line
+        if (ios /= 0) exit
+        n = n + 1
+      end do
+      rewind(u)
+      deallocate(lines)
+      allocate(lines(n))
+      do i = 1, n
+        read(u, '(a)') lines(i)
+      end do
+      close(u, status='delete')
+    end if
+    open(newunit=u, file=stem//'.nml', status='old')
+    close(u, status='delete')
+  end subroutine run_deck
+
+  logical function has_line(lines, fragment)
+    character(len=*), intent(in) :: lines(:), fragment
+    integer :: i
+    has_line = .false.
+    do i = 1, size(lines)
+      if (index(lines(i), fragment) > 0) then
+        has_line = .true.
+        return
+      end if
+    end do
+  end function has_line
+
+  !> The number after `key` on the first line that starts with it (huge if none).
+  real(dp) function summary_value(lines, key) result(v)
+    character(len=*), intent(in) :: lines(:), key
+    integer :: i, ios
+    v = huge(1.0_dp)
+    do i = 1, size(lines)
+      if (index(lines(i), key) == 1) then
+        read(lines(i)(len(key) + 1:), *, iostat=ios) v
+        if (ios /= 0) v = huge(1.0_dp)
+        return
+      end if
+    end do
+  end function summary_value
+
+  !> Data rows (neither '#' lines nor blank).
+  integer function count_rows(lines) result(n)
+    character(len=*), intent(in) :: lines(:)
+    integer :: i
+    n = 0
+    do i = 1, size(lines)
+      if (lines(i)(1:1) /= '#' .and. len_trim(lines(i)) > 0) n = n + 1
+    end do
+  end function count_rows
+end module deck_runner
