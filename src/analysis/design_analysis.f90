@@ -24,6 +24,7 @@ module design_analysis
   use linkage, only: mechanism_t, read_mechanism, build_mechanism, echo_mechanism, profile_constant
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_analysis, only: run_steady
+  use run_settings, only: read_run_settings, write_run_header
   use design_problem, only: design_problem_t, design_variable_t, design_eval_t, parse_variable
   use design_sequence, only: design_sequence_t
   implicit none
@@ -384,15 +385,17 @@ contains
       type(deck_t) :: side_deck
       type(table_t) :: side_out
       type(error_t) :: side_err
+      character(len=32) :: side_analysis
+      character(len=256) :: side_title
       call side_deck%open(deck_path, side_err)
       if (.not. side_err%failed()) call side_out%open(out_path, side_err)
       if (side_err%failed()) then
         call out%comment('could not analyse '//deck_path//': '//side_err%text())
         return
       end if
-      call side_out%comment(program_name//' '//program_version)
-      call side_out%comment('deck: '//deck_path)
-      call run_steady(side_deck, side_out, side_err)
+      call read_run_settings(side_deck, side_analysis, side_title, side_err)
+      call write_run_header(side_out, deck_path, side_title)
+      if (.not. side_err%failed()) call run_steady(side_deck, side_out, side_err)
       call side_deck%close()
       if (side_err%failed()) call side_out%comment('stopped: '//side_err%text())
       call side_out%commit(side_err)

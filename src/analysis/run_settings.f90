@@ -3,9 +3,10 @@ module run_settings
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use table_output, only: table_t
+  use version, only: program_name, program_version
   implicit none
   private
-  public :: read_run_settings, echo_run_settings, analysis_names
+  public :: read_run_settings, echo_run_settings, write_run_header, analysis_names
 
   !> Analyses the program knows, for messages.
   character(len=*), parameter :: analysis_names = '''transient'', ''steady'', ''optimize'', ''design'', ''lsode_check'''
@@ -27,6 +28,18 @@ contains
     analysis_out = analysis
     title_out = title
   end subroutine read_run_settings
+
+  !> The first lines of every output: program, deck, title, and the &run
+  !> group as read (after read_run_settings).
+  subroutine write_run_header(out, deck_path, title_text)
+    type(table_t), intent(inout) :: out
+    character(len=*), intent(in) :: deck_path, title_text
+    call out%comment(program_name//' '//program_version)
+    call out%comment('deck: '//deck_path)
+    if (len_trim(title_text) > 0) call out%comment('title: '//trim(title_text))
+    call out%comment('effective input (every value, defaults included):')
+    call echo_run_settings(out)
+  end subroutine write_run_header
 
   subroutine echo_run_settings(out)
     type(table_t), intent(inout) :: out

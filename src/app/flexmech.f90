@@ -11,10 +11,10 @@ program flexmech
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use version, only: program_name, program_version
+  use version, only: program_name
   use deck_reader, only: deck_t, invalid_value, input_error_code
   use table_output, only: table_t
-  use run_settings, only: read_run_settings, echo_run_settings, analysis_names
+  use run_settings, only: read_run_settings, write_run_header, analysis_names
   use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
@@ -52,11 +52,7 @@ program flexmech
     err%code = input_error_code
     call fail_input(err)
   end if
-  call out%comment(program_name//' '//program_version)
-  call out%comment('deck: '//deck_path)
-  if (len_trim(title) > 0) call out%comment('title: '//trim(title))
-  call out%comment('effective input (every value, defaults included):')
-  call echo_run_settings(out)
+  call write_run_header(out, deck_path, title)
 
   select case (trim(analysis))
   case ('lsode_check')
