@@ -28,12 +28,14 @@ module mechanism_model
   use error_status, only: error_t
   use strings, only: str
   use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
-                    sym_generalized_eig
+                    sym_generalized_eig, solve_linear
   use lsode_solver, only: ode_system_t
-  use correlation_table, only: correlation_table_t, link_end_t, dofs_per_element
-  use kear_element, only: kear_element_t, rigid_state_t, kear_eval_info_t, element_effects_t, &
-                          kear_element_init, kear_element_eval, kear_tangent_stiffness, kear_strain_energy, &
-                          kear_kinetic_energy, kear_stress_recovery, stress_report_t, formulation_from_name
+  use correlation_table, only: correlation_table_t, link_end_t
+  use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
+  use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, &
+                          beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_point_load, &
+                          resolve_formulation, element_kind_consistent
+  use external_loads, only: point_load_t, load_factor_at
   use material_law, only: ramberg_osgood_t
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
   use kinematics, only: kinematics_t, motion_t
@@ -53,7 +55,8 @@ module mechanism_model
     logical :: moving = .true.                    !< rigid motion from kinematics (else fixed states)
     type(kinematics_t) :: kin
     type(correlation_table_t) :: table
-    type(kear_element_t), allocatable :: el(:)
+    type(beam_element_t), allocatable :: el(:)
+    character(len=16) :: formulation = ''         !< the element formulation in effect (resolved 'default')
     type(rigid_state_t), allocatable :: rb(:)     !< current rigid state of each element
     integer :: n = 0                              !< global unknowns
     integer :: kd = 0                             !< half-bandwidth of M
@@ -87,6 +90,10 @@ module mechanism_model
     logical :: newton_cholesky = .true.           !< S was factored by Cholesky (else banded LU)
     integer :: n_newton_factorizations = 0
     integer :: n_newton_lu = 0                    !< of which by banded LU (K_t not symmetric or S indefinite)
+    ! external loads (src/transient/loads.f90): gravity acceleration and point forces/moments
+    real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
+    type(point_load_t), allocatable :: loads(:)
+    real(dp) :: load_scale = 1.0_dp               !< multiplies every point load (static load stepping)
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -104,6 +111,8 @@ module mechanism_model
     procedure :: energies
     procedure :: element_stresses
     procedure :: state_size
+    procedure :: set_loads
+    procedure :: static_equilibrium
   end type mechanism_model_t
 
 contains
@@ -120,7 +129,8 @@ contains
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
     type(link_end_t), allocatable :: ends(:, :)
-    integer :: k, side, j, e, code, n_elements(mech%n_links)
+    integer :: k, side, j, e, code, kind, n_elements(mech%n_links)
+    character(len=:), allocatable :: resolved
     real(dp) :: guide_angle
     type(motion_t) :: m
 
@@ -145,7 +155,10 @@ contains
       end do
     end do
     n_elements = mech%links(:)%n_elements
-    call self%table%build(n_elements, ends, err, reduce_band=.true.)
+    call resolve_formulation(formulation, effects, kind, code, resolved, err)
+    if (err%failed()) return
+    self%formulation = resolved
+    call self%table%build(n_elements, ends, err, reduce_band=.true., axial_dofs=kind == element_kind_consistent)
     if (err%failed()) return
 
     call self%kin%init(mech, err)
@@ -153,16 +166,14 @@ contains
     call self%kin%solve(0.0_dp, err)
     if (err%failed()) return
 
-    call formulation_from_name(formulation, code, err)
-    if (err%failed()) return
     allocate(self%el(self%table%n_elements), self%rb(self%table%n_elements))
     do k = 1, mech%n_links
       associate (lk => mech%links(k))
         do e = lk%first_element, lk%first_element + lk%n_elements - 1
           m = self%kin%element_motion_global(e)
-          call kear_element_init(self%el(e), m%length, lk%b, lk%h, &
+          call beam_element_init(self%el(e), kind, m%length, lk%b, lk%h, &
                                  ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
-                                 formulation=code, damping_beta=beta, fibre_distance=lk%fibre)
+                                 kear_code=code, damping_beta=beta, fibre_distance=lk%fibre)
           if (err%failed()) then
             call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
             return
@@ -171,6 +182,7 @@ contains
       end associate
     end do
     call allocate_work(self)
+    allocate(self%loads(0))
     call register_point_masses(self, mech)
     call self%set_time(0.0_dp)
   end subroutine init_mechanism
@@ -219,7 +231,7 @@ contains
     integer, intent(out) :: g(2)
     real(dp), intent(out) :: c(2)
     integer :: first
-    first = 1 + 4*(node - 1)
+    first = 1 + self%table%node_dofs*(node - 1)
     g = self%table%map(first:first + 1, e)
     c = self%table%coef(first:first + 1, e)
   end subroutine node_translation_dofs
@@ -236,22 +248,24 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
-    integer :: e, code
+    integer :: e, code, kind
+    character(len=:), allocatable :: resolved
     self%moving = .false.
-    allocate(self%point_mass(0), self%point_element(0), self%point_node(0))
-    call self%table%build(n_elem, ends, err)
+    allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0))
+    call resolve_formulation(formulation, effects, kind, code, resolved, err)
+    if (err%failed()) return
+    self%formulation = resolved
+    call self%table%build(n_elem, ends, err, axial_dofs=kind == element_kind_consistent)
     if (err%failed()) return
     if (size(specs) /= self%table%n_elements .or. size(states) /= self%table%n_elements) then
       call err%set('flexible model', 'need one element spec and rigid state per element')
       return
     end if
-    call formulation_from_name(formulation, code, err)
-    if (err%failed()) return
     allocate(self%el(self%table%n_elements))
     self%rb = states
     do e = 1, self%table%n_elements
-      call kear_element_init(self%el(e), specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
-                             effects, err, formulation=code, damping_beta=beta)
+      call beam_element_init(self%el(e), kind, specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
+                             effects, err, kear_code=code, damping_beta=beta)
       if (err%failed()) return
     end do
     call allocate_work(self)
@@ -379,18 +393,20 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(8, 8), fe(8)
+    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
     type(kear_eval_info_t) :: info
     type(error_t) :: err
-    integer :: e, i, j, gi, gj, kd
+    integer :: e, i, j, gi, gj, kd, nd
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     kd = self%kd
+    nd = self%table%element_dofs
     self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call kear_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      call beam_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), loaded_state(self, e), &
+                             me, fe, info)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)//' (x/l = '// &
@@ -399,10 +415,10 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      do j = 1, dofs_per_element
+      do j = 1, nd
         gj = self%table%map(j, e)
         if (gj == 0) cycle
-        do i = 1, dofs_per_element
+        do i = 1, nd
           gi = self%table%map(i, e)
           if (gi < gj) cycle
           self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
@@ -411,6 +427,7 @@ contains
       end do
     end do
     call add_point_masses(self)
+    call add_point_loads(self, t, q, self%force)
     call band_cholesky_factor(self%mass_band, kd, err)
     self%n_mass_factorizations = self%n_mass_factorizations + 1
     if (err%failed()) then
@@ -431,7 +448,7 @@ contains
       e = self%point_element(k)
       m = self%point_mass(k)
       call node_translation_dofs(self, e, self%point_node(k), g, c)
-      a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k))
+      a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k)) - self%gravity
       do i = 1, 2
         if (g(i) == 0) cycle
         self%mass_band(1, g(i)) = self%mass_band(1, g(i)) + m*c(i)**2
@@ -507,7 +524,7 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass(:, :), stiff(:, :)
-    real(dp) :: me(8, 8), ke(8, 8)
+    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
     integer :: e, i, g(2)
     real(dp) :: c(2)
     mass = 0.0_dp
@@ -531,12 +548,13 @@ contains
     type(mechanism_model_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: me(8, 8), ke(8, 8)
-    real(dp) :: fe(8), qe(8)
+    real(dp), intent(out) :: me(:, :), ke(:, :)
+    real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
     type(kear_eval_info_t) :: info
+    zero = 0.0_dp
     qe = self%table%gather(e, q)
-    call kear_element_eval(self%el(e), qe, zeros8(), self%rb(e), me, fe, info)
-    call kear_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info)
+    call beam_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
   end subroutine element_mass_stiffness
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
@@ -545,17 +563,18 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
-    real(dp) :: me(8, 8), ke(8, 8), cij, c(2)
+    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
+    real(dp) :: cij, c(2)
     integer :: e, i, j, gi, gj, kd, g(2)
     kd = self%kd
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
     do e = 1, size(self%el)
       call element_mass_stiffness(self, e, q, me, ke)
-      do j = 1, dofs_per_element
+      do j = 1, self%table%element_dofs
         gj = self%table%map(j, e)
         if (gj == 0) cycle
-        do i = 1, dofs_per_element
+        do i = 1, self%table%element_dofs
           gi = self%table%map(i, e)
           if (gi == 0) cycle
           cij = self%table%coef(i, e)*self%table%coef(j, e)
@@ -701,11 +720,6 @@ contains
     end do
   end subroutine band_combination
 
-  pure function zeros8() result(z)
-    real(dp) :: z(8)
-    z = 0.0_dp
-  end function zeros8
-
   !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
   !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.
   subroutine linear_modes(self, omega, shapes, err)
@@ -728,14 +742,14 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out) :: kinetic, strain
     integer :: e
-    real(dp) :: qe(8)
+    real(dp) :: qe(self%table%element_dofs)
     call self%set_time(t)
     kinetic = 0.0_dp
     strain = 0.0_dp
     do e = 1, size(self%el)
       qe = self%table%gather(e, q)
-      kinetic = kinetic + kear_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
-      strain = strain + kear_strain_energy(self%el(e), qe, self%rb(e)%phi)
+      kinetic = kinetic + beam_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
+      strain = strain + beam_strain_energy(self%el(e), qe, self%rb(e)%phi)
     end do
     do e = 1, size(self%point_mass)
       block
@@ -766,7 +780,101 @@ contains
     type(stress_report_t), intent(out) :: reports(:)
     integer :: e
     do e = 1, size(self%el)
-      reports(e) = kear_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%phi)
+      reports(e) = beam_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%phi)
     end do
   end subroutine element_stresses
+
+  ! ------------------------------------------------------------------ external loads
+
+  !> Gravity (global acceleration vector) and point loads (already resolved
+  !> to elements, src/transient/loads.f90).
+  subroutine set_loads(self, gravity, point_loads)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: gravity(2)
+    type(point_load_t), intent(in) :: point_loads(:)
+    self%gravity = gravity
+    self%loads = point_loads
+  end subroutine set_loads
+
+  !> Rigid state of element e as the element sees it: gravity g acts on every
+  !> mass like a frame acceleration -g (rho A int B^T g = -rho A int B^T (-g)).
+  pure function loaded_state(self, e) result(rb)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    type(rigid_state_t) :: rb
+    rb = self%rb(e)
+    rb%x1_dd = rb%x1_dd - self%gravity(1)
+    rb%y1_dd = rb%y1_dd - self%gravity(2)
+  end function loaded_state
+
+  !> f += generalized forces of the point loads at time t (times load_scale);
+  !> optionally jac += their Jacobian d/dq (moments work through the section angle).
+  subroutine add_point_loads(self, t, q, f, jac)
+    type(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: t, q(:)
+    real(dp), intent(inout) :: f(:)
+    real(dp), intent(inout), optional :: jac(:, :)
+    real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
+    integer :: k, e
+    do k = 1, size(self%loads)
+      e = self%loads(k)%element
+      fac = self%load_scale*load_factor_at(self%loads(k), t)
+      call beam_point_load(self%el(e), self%table%gather(e, q), self%rb(e)%phi, self%loads(k)%x_over_l, &
+                           fac*self%loads(k)%force, fac*self%loads(k)%moment, gen, dgen)
+      call self%table%scatter_add(e, gen, f)
+      if (present(jac)) call self%table%scatter_add_matrix(e, dgen, jac)
+    end do
+  end subroutine add_point_loads
+
+  !> Static equilibrium of a structure at rest (init_fixed) under its loads
+  !> at time t: F(q, 0, t) + Q(q, t) = 0, by Newton's method with the tangent
+  !> -K_t + dQ/dq, the point loads applied in n_steps equal increments
+  !> (natural-parameter continuation).  q holds the start and the result.
+  subroutine static_equilibrium(self, t, q, n_steps, err, iterations)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    real(dp), intent(inout) :: q(:)
+    integer, intent(in) :: n_steps
+    type(error_t), intent(inout) :: err
+    integer, intent(out), optional :: iterations
+    real(dp) :: r(self%n), jac(self%n, self%n), mass(self%n, self%n), zero(self%n), qdd(self%n), scratch(self%n)
+    real(dp) :: scale0
+    integer :: step, it, n_it
+    logical :: converged
+    scale0 = self%load_scale
+    zero = 0.0_dp
+    n_it = 0
+    do step = 1, n_steps
+      self%load_scale = scale0*real(step, dp)/real(n_steps, dp)
+      converged = .false.
+      do it = 1, 50
+        n_it = n_it + 1
+        call self%accelerations(t, q, zero, qdd)      ! fills self%force = F + Q
+        if (self%err%failed()) then
+          err = self%err
+          exit
+        end if
+        r = self%force
+        call self%assemble_dense(q, mass, jac)
+        jac = -jac
+        scratch = 0.0_dp
+        call add_point_loads(self, t, q, scratch, jac)
+        call solve_linear(jac, r, err)                ! r := J^-1 R
+        if (err%failed()) exit
+        q = q - r
+        if (maxval(abs(r)) <= 1.0e-12_dp*max(1.0_dp, maxval(abs(q)))) then
+          converged = .true.
+          exit
+        end if
+      end do
+      if (err%failed()) exit
+      if (.not. converged) then
+        call err%set('static equilibrium', 'Newton did not converge at load step '//str(step)//' of '// &
+                     str(n_steps)//'; use more steps')
+        exit
+      end if
+    end do
+    self%load_scale = scale0
+    if (present(iterations)) iterations = n_it
+  end subroutine static_equilibrium
 end module mechanism_model

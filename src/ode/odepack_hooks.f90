@@ -43,8 +43,8 @@ subroutine xerrwd(msg, nmes, nerr, level, ni, i1, i2, nr, r1, r2)
   line = msg(1:n)
   if (ni >= 1) write(line, '(a,a,i0)') trim(line), ' I1=', i1
   if (ni >= 2) write(line, '(a,a,i0)') trim(line), ' I2=', i2
-  if (nr >= 1) write(line, '(a,a,es13.6)') trim(line), ' R1=', r1
-  if (nr >= 2) write(line, '(a,a,es13.6)') trim(line), ' R2=', r2
+  if (nr >= 1) write(line, '(a,a,es14.6e3)') trim(line), ' R1=', r1
+  if (nr >= 2) write(line, '(a,a,es14.6e3)') trim(line), ' R2=', r2
   call record_lsode_message(line)
   if (level >= 2) then
     write(*, '(a,i0,a)') 'flexmech: fatal ODEPACK error ', nerr, ': '//trim(line)

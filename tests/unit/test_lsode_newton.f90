@@ -75,6 +75,7 @@ contains
     call run_test('bdf_band_is_the_bdf_iteration', test_bdf_band_equals_bdf)
     call run_test('model_newton_matrix_route_matches_closed_form', test_decay_closed_form)
     call run_test('model_failure_ends_a_run_through_its_newton_matrix', test_decay_failure)
+    call run_test('optional_inputs_survive_the_switch_to_the_model_route', test_max_order_kept)
   end subroutine run_all
 
   !> A four-bar model (2 elements per link, 150 rad/s, beta = 1e-5 s).
@@ -275,6 +276,30 @@ contains
     c = ode%counters()
     call assert_true(c%steps < 1000, 'stopped promptly: '//trim(itoa(c%steps))//' steps')
   end subroutine test_decay_failure
+
+  !> The model route re-sizes DLSODE's work arrays at the first call; an
+  !> optional input set after init (MAXORD = 2 in IWORK(5), as the transient
+  !> analysis's max_order does) must survive it: the order never exceeds 2
+  !> (BDF would reach 5 on this smooth decay).
+  subroutine test_max_order_kept()
+    type(decay_t), target :: sys
+    type(lsode_t) :: ode, free
+    type(error_t) :: err
+    type(lsode_counters_t) :: c
+    real(dp) :: y(3)
+    y = 1.0_dp
+    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
+    ode%iwork(5) = 2
+    call ode%integrate_to(sys, y, 1.0_dp, err)
+    c = ode%counters()
+    call assert_true(.not. err%failed() .and. c%model_newton, 'integration through the model route')
+    call assert_true(c%order_last <= 2, 'order limited to 2, got '//trim(itoa(c%order_last)))
+    y = 1.0_dp
+    call free%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
+    call free%integrate_to(sys, y, 1.0_dp, err)
+    c = free%counters()
+    call assert_true(c%order_last > 2, 'without the limit the order exceeds 2: '//trim(itoa(c%order_last)))
+  end subroutine test_max_order_kept
 
   function itoa(i) result(s)
     integer, intent(in) :: i
