@@ -451,7 +451,10 @@ contains
     real(dp), intent(in) :: q(8), phi
     type(stress_report_t) :: rep
     real(dp) :: p(8), eo, eps_n, kap, eps, sig
+    type(ramberg_osgood_t) :: law
     integer :: i, k, fib
+    law = el%material
+    if (.not. el%effects%material) law%e2 = 0.0_dp
     p = to_local(cos(phi), sin(phi), q)
     rep%eps_star = el%eps_star
     rep%max_abs_stress = -1.0_dp
@@ -468,11 +471,7 @@ contains
       do k = 1, 2
         fib = 3 - 2*k                                      ! +1, then -1
         eps = eps_n - real(fib, dp)*el%fibre*kap           ! (K14), y = +-c
-        if (el%effects%material) then
-          sig = ro_stress(el%material, eps)
-        else
-          sig = el%material%e1*eps                         ! linear law: no pow when the effect is off
-        end if
+        sig = ro_stress(law, eps)
         if (abs(sig) > rep%max_abs_stress) then
           rep%max_abs_stress = abs(sig)
           rep%stress = sig
