@@ -41,7 +41,7 @@ contains
     type(lsode_counters_t) :: c
     type(stress_report_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
-    real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done
+    real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done, t_rows
     integer :: k, n_out, e, ml
     character(len=32), allocatable :: names(:)
 
@@ -163,6 +163,20 @@ contains
                        str(min(ml, size(y) - 1))//' (the band of M and K in the interleaved state)')
     end if
 
+    ! rows written (the summary's peaks are over every output time either way)
+    select case (trim(s%output_rows))
+    case ('none')
+      t_rows = huge(1.0_dp)
+      call out%comment('output_rows = ''none'': no rows; the summary''s peaks are over every output time')
+    case ('last_revolution')
+      t_rows = t0
+      if (mech%driver%omega > 0.0_dp .and. s%revolutions > 1.0_dp) &
+        t_rows = t0 + time_to_turn(mech, (s%revolutions - 1.0_dp)*two_pi) - 0.5_dp*dt_out
+      call out%comment('output_rows = ''last_revolution'': rows of the last crank revolution only; '// &
+                       'the summary''s peaks are over every output time')
+    case default
+      t_rows = -huge(1.0_dp)
+    end select
     call write_columns(out, mech, model, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
     peak_stress = 0.0_dp
@@ -243,6 +257,7 @@ contains
           peak_angle(ee) = crank_deg
         end if
       end do
+      if (tt < t_rows) return
       allocate(row(size(names)))
       row(1) = tt
       row(2) = crank_deg

@@ -37,17 +37,18 @@ module transient_settings
     type(element_effects_t) :: effects             !< the papers' tracing constants, all off = linear
     character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
                                                    !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
+    character(len=16) :: output_rows = 'all'       !< rows written: 'all', 'last_revolution' or 'none'
   end type transient_settings_t
 
   ! staging variables of the namelist groups
-  character(len=16) :: method, initial, formulation, kinematics
+  character(len=16) :: method, initial, formulation, kinematics, output_rows
   real(dp) :: rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
   integer :: mode_number, max_steps, table_points, max_order
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
-    table_points, max_order
+    table_points, max_order, output_rows
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -76,6 +77,7 @@ contains
     kinematics = s%kinematics
     table_points = s%table_points
     max_order = s%max_order
+    output_rows = s%output_rows
     call deck%read_group('transient', read_transient_group, .false., found, err)
     if (err%failed()) return
 
@@ -107,6 +109,7 @@ contains
     s%kinematics = kinematics
     s%table_points = table_points
     s%max_order = max_order
+    s%output_rows = output_rows
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
@@ -159,6 +162,7 @@ contains
     call check_choice(deck, g, 'kinematics', s%kinematics, [character(len=16) :: 'table', 'direct'], err)
     call check_integer(deck, g, 'table_points', s%table_points, err, at_least=36, at_most=1000000)
     call check_integer(deck, g, 'max_steps', s%max_steps, err, at_least=1)
+    call check_choice(deck, g, 'output_rows', s%output_rows, [character(len=16) :: 'all', 'last_revolution', 'none'], err)
     call check_choice(deck, 'effects', 'formulation', s%formulation, &
                       [character(len=16) :: 'default', 'consistent', 'exact', 'kear1987'], err)
   end subroutine validate

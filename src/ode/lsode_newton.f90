@@ -45,8 +45,9 @@ module lsode_newton
 
 contains
 
-  !> DPREPJ's contract: NJE + 1, JCUR = 1, IERPJ = 0 (1 when P is singular:
-  !> DSTODE then retries with a smaller step); NFE counts difference quotients.
+  !> DPREPJ's contract: NJE + 1, JCUR = 1, IERPJ = 0 (1 when P is singular
+  !> or the model stopped: DSTODE then retries with a smaller step and gives up
+  !> after MXNCF tries); NFE counts difference quotients.
   subroutine prepare_newton_matrix(neq, y, ewt, ftem, savf, wm, iwm, f, jac)
     integer, intent(in) :: neq(*)
     real(dp), intent(inout) :: y(*), ftem(*), wm(*)
@@ -73,7 +74,10 @@ contains
     if (.not. ok) ierpj = 1
   end subroutine prepare_newton_matrix
 
-  !> DSOLSY's contract: x := P^-1 x, IERSL = 0.
+  !> DSOLSY's contract: x := P^-1 x, IERSL = 0.  A failure is reported as
+  !> IERSL = 1 (recoverable: DSTODE re-forms P or cuts the step and gives up
+  !> after MXNCF tries, ISTATE = -5), never IERSL < 0: DSTODE turns that into
+  !> KFLAG = -3, which DLSODE does not handle (it retries the step forever).
   subroutine solve_newton_matrix(wm, iwm, x)
     real(dp), intent(in) :: wm(*)
     integer, intent(in) :: iwm(*)
@@ -81,7 +85,7 @@ contains
     iersl = 0
     if (active_newton_is_model) then
       call active%newton_solve(x(1:n))
-      if (active%err%failed()) iersl = -1
+      if (active%err%failed()) iersl = 1      ! the model stopped (integrate_to reports why)
       return
     end if
     select case (miter)
@@ -90,7 +94,7 @@ contains
     case (4, 5)
       call band_solve(n, iwm(1), iwm(2), wm(3), iwm(21), x)
     case default
-      iersl = -1
+      iersl = 1
     end select
   end subroutine solve_newton_matrix
 
@@ -138,7 +142,7 @@ contains
     real(dp), intent(inout) :: x(nn)
     type(error_t) :: err
     call lu_solve(p, ipiv, x, err)
-    if (err%failed()) iersl = -1
+    if (err%failed()) iersl = 1
   end subroutine dense_solve
 
   ! ------------------------------------------------------------------ banded
@@ -191,7 +195,7 @@ contains
     real(dp), intent(inout) :: x(nn)
     type(error_t) :: err
     call band_lu_solve(ab, ml, mu, ipiv, x, err)
-    if (err%failed()) iersl = -1
+    if (err%failed()) iersl = 1
   end subroutine band_solve
 
   !> r0 = 1000 |h| uround N ||f||_wrms, or 1 when f vanishes.

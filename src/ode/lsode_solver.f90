@@ -243,6 +243,7 @@ contains
     end if
     if (present(structured)) self%structured = structured
     self%model_newton = .false.
+    if (allocated(self%rwork)) deallocate(self%rwork, self%iwork)   ! a new problem: no optional inputs kept
     call allocate_work(self, mf)
     self%t = t0
     self%istate = 1
@@ -255,8 +256,17 @@ contains
   subroutine allocate_work(self, mf_dlsode)
     type(lsode_t), intent(inout) :: self
     integer, intent(in) :: mf_dlsode
-    integer :: lrw, liw, neq
+    integer :: lrw, liw, neq, iopt_int(3)
+    real(dp) :: iopt_real(3)
     neq = self%neq
+    ! DLSODE's optional inputs (IWORK(5:7) MAXORD, MXSTEP, MXHNIL; RWORK(5:7)
+    ! H0, HMAX, HMIN), which a caller may have set, survive a reallocation
+    iopt_int = 0
+    iopt_real = 0.0_dp
+    if (allocated(self%iwork)) then
+      iopt_int = self%iwork(5:7)
+      iopt_real = self%rwork(5:7)
+    end if
     select case (mod(mf_dlsode, 10))
     case (0)
       lrw = 20 + 16*neq
@@ -278,6 +288,8 @@ contains
     self%iwork = 0
     self%iwork(1) = self%ml
     self%iwork(2) = self%mu
+    self%iwork(5:7) = iopt_int
+    self%rwork(5:7) = iopt_real
     self%iwork(6) = self%max_steps
   end subroutine allocate_work
 

@@ -10,14 +10,62 @@ module test_lsode_newton_suite
   use linkage, only: mechanism_t, build_mechanism
   use kear_element, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
+  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
   use transient_fixtures, only: fourbar_input, make_model, all_effects, state_atol
   use assertions
   implicit none
   private
   public :: run_all
 
+  !> y' = -k y (k = 1 ... n) with its own Newton matrix P = I + hl0 diag(k);
+  !> the right-hand side fails (model error) for t > t_fail.
+  type, extends(ode_system_t) :: decay_t
+    real(dp) :: t_fail = huge(1.0_dp)
+    real(dp) :: hl0 = 0.0_dp
+    integer :: n_factor = 0
+  contains
+    procedure :: rhs => decay_rhs
+    procedure :: has_newton_matrix => decay_has_newton
+    procedure :: newton_factor => decay_factor
+    procedure :: newton_solve => decay_solve
+  end type decay_t
+
 contains
+
+  subroutine decay_rhs(self, t, y, ydot)
+    class(decay_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    integer :: k
+    if (t > self%t_fail) call self%fail(t, 'decay model stops past t_fail')
+    do k = 1, size(y)
+      ydot(k) = -k*y(k)
+    end do
+  end subroutine decay_rhs
+
+  logical function decay_has_newton(self)
+    class(decay_t), intent(in) :: self
+    decay_has_newton = .true.
+    if (.false.) decay_has_newton = self%err%failed()   ! argument intentionally unused
+  end function decay_has_newton
+
+  subroutine decay_factor(self, t, y, hl0, ok)
+    class(decay_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    ok = .not. self%err%failed() .and. t >= 0.0_dp .and. size(y) > 0
+    self%hl0 = hl0
+    self%n_factor = self%n_factor + 1
+  end subroutine decay_factor
+
+  subroutine decay_solve(self, x)
+    class(decay_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    integer :: k
+    do k = 1, size(x)
+      x(k) = x(k)/(1.0_dp + self%hl0*k)
+    end do
+  end subroutine decay_solve
 
   subroutine run_all()
     call run_test('banded_newton_solve_equals_dense_solve_linear_model', test_solve_linear_model)
@@ -25,6 +73,9 @@ contains
     call run_test('banded_newton_solve_equals_dense_solve_kear1987_lu', test_solve_kear1987)
     call run_test('integration_through_model_newton_matrix_equals_dense', test_integration_routes)
     call run_test('bdf_band_is_the_bdf_iteration', test_bdf_band_equals_bdf)
+    call run_test('model_newton_matrix_route_matches_closed_form', test_decay_closed_form)
+    call run_test('model_failure_ends_a_run_through_its_newton_matrix', test_decay_failure)
+    call run_test('optional_inputs_survive_the_switch_to_the_model_route', test_max_order_kept)
   end subroutine run_all
 
   !> A four-bar model (2 elements per link, 150 rad/s, beta = 1e-5 s).
@@ -184,6 +235,71 @@ contains
     call assert_equal(nf_band, nf_full, 'same Newton matrices')
     call assert_all_close(y_band, y_full, 0.0_dp, 1.0e-12_dp*maxval(abs(y_full)), 'same state')
   end subroutine test_bdf_band_equals_bdf
+
+  !> Any system with its own Newton matrix goes through it: y_k = exp(-k t)
+  !> at t = 1 within the tolerance (rtol 1e-8: 1e-6 relative allows the
+  !> global error's growth over the run), one factorization per Jacobian.
+  subroutine test_decay_closed_form()
+    type(decay_t), target :: sys
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    type(lsode_counters_t) :: c
+    real(dp) :: y(3)
+    integer :: k
+    y = 1.0_dp
+    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
+    call ode%integrate_to(sys, y, 1.0_dp, err)
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    do k = 1, 3
+      call assert_rel_close(y(k), exp(-real(k, dp)), 1.0e-6_dp, 'y_'//trim(itoa(k))//'(1) = exp(-k)')
+    end do
+    c = ode%counters()
+    call assert_true(c%model_newton, 'the model''s Newton matrix was used')
+    call assert_equal(sys%n_factor, c%jac_evals, 'one factorization per Jacobian')
+  end subroutine test_decay_closed_form
+
+  !> A model that stops mid-run (RHS error) ends the DLSODE call with the
+  !> model's message, promptly: the Newton routines report a recoverable
+  !> failure, never DSTODE's KFLAG = -3 (which DLSODE would retry forever: with
+  !> IERSL = -1 this call never returns).
+  subroutine test_decay_failure()
+    type(decay_t), target :: sys
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    type(lsode_counters_t) :: c
+    real(dp) :: y(3)
+    y = 1.0_dp
+    sys%t_fail = 0.5_dp
+    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err, max_steps=100000)
+    call ode%integrate_to(sys, y, 1.0_dp, err)
+    call assert_true(err%failed() .and. index(err%text(), 'past t_fail') > 0, 'model error reported: '//err%text())
+    c = ode%counters()
+    call assert_true(c%steps < 1000, 'stopped promptly: '//trim(itoa(c%steps))//' steps')
+  end subroutine test_decay_failure
+
+  !> The model route re-sizes DLSODE's work arrays at the first call; an
+  !> optional input set after init (MAXORD = 2 in IWORK(5), as the transient
+  !> analysis's max_order does) must survive it: the order never exceeds 2
+  !> (BDF would reach 5 on this smooth decay).
+  subroutine test_max_order_kept()
+    type(decay_t), target :: sys
+    type(lsode_t) :: ode, free
+    type(error_t) :: err
+    type(lsode_counters_t) :: c
+    real(dp) :: y(3)
+    y = 1.0_dp
+    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
+    ode%iwork(5) = 2
+    call ode%integrate_to(sys, y, 1.0_dp, err)
+    c = ode%counters()
+    call assert_true(.not. err%failed() .and. c%model_newton, 'integration through the model route')
+    call assert_true(c%order_last <= 2, 'order limited to 2, got '//trim(itoa(c%order_last)))
+    y = 1.0_dp
+    call free%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
+    call free%integrate_to(sys, y, 1.0_dp, err)
+    c = free%counters()
+    call assert_true(c%order_last > 2, 'without the limit the order exceeds 2: '//trim(itoa(c%order_last)))
+  end subroutine test_max_order_kept
 
   function itoa(i) result(s)
     integer, intent(in) :: i
