@@ -11,7 +11,7 @@ module transient_analysis
   use deck_reader, only: deck_t, invalid_value
   use table_output, only: table_t
   use progress, only: progress_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user, mf_bdf_band_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, driver_angle
@@ -155,9 +155,13 @@ contains
       ode%iwork(5) = s%max_order            ! DLSODE's MAXORD (optional input, IOPT = 1)
       call out%comment('DLSODE order limited to '//str(s%max_order))
     end if
-    if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
-      call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(min(ml, size(y) - 1))// &
-                       ' (the band of M and K in the interleaved state)')
+    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
+      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
+                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
+    else if (s%mf == mf_bdf_band_fd) then
+      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '// &
+                       str(min(ml, size(y) - 1))//' (the band of M and K in the interleaved state)')
+    end if
 
     call write_columns(out, mech, model, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
@@ -174,7 +178,9 @@ contains
       if (err%failed()) exit
       call output_row(t)
       if (err%failed()) exit
-      call bar%update(t)
+      c = ode%counters()
+      call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
+                      ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
     end do
     call bar%finish()
     call cpu_time(cpu1)
@@ -203,6 +209,8 @@ contains
     call out%cost('rhs_evaluations', str(c%rhs_evals))
     call out%cost('jacobian_evaluations', str(c%jac_evals))
     call out%cost('lu_factorizations', str(c%lu_factorizations))
+    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%n_newton_factorizations - &
+      model%n_newton_lu)//' Cholesky and '//str(model%n_newton_lu)//' LU factorizations')
     call out%cost('mass_factorizations', str(model%n_mass_factorizations))
     call out%cost('last_method_order', str(c%order_last))
     call out%cost('kinematics_solutions', str(model%n_kinematics))

@@ -128,14 +128,18 @@ contains
     end if
     call check_real(deck, g, 'rtol', s%rtol, err, at_least=1.0e-14_dp, below=0.1_dp, &
                     why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
-    call check_real(deck, g, 'atol', s%atol, err, above=0.0_dp, at_most=1.0e10_dp, why='an absolute error tolerance')
+    call check_real(deck, g, 'atol', s%atol, err, at_least=1.0e-30_dp, at_most=1.0e10_dp, &
+                    why='an absolute error tolerance; below 1e-30 DLSODE''s error weights overflow')
     call check_real(deck, g, 'atol_rate', s%atol_rate, err, at_least=-1.0_dp, at_most=1.0e10_dp, &
                     why='an absolute error tolerance of the rates; leave it out (-1) to use atol')
     if (err%failed()) return
-    if (s%atol_rate <= 0.0_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
-      str(s%atol_rate), 'must be > 0, or left out (-1) to use atol', err)
+    if (s%atol_rate < 1.0e-30_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
+      str(s%atol_rate), 'must be >= 1e-30, or left out (-1) to use atol', err)
     call check_real(deck, g, 'revolutions', s%revolutions, err, above=0.0_dp, at_most=1.0e4_dp)
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, above=0.0_dp, at_most=360.0_dp)
+    if (err%failed()) return
+    if (s%revolutions*360.0_dp > 1.0e7_dp*s%output_step_deg) call invalid_value(deck, g, 'output_step_deg', &
+      str(s%output_step_deg), 'gives more than 1e7 output rows over '//str(s%revolutions)//' revolutions', err)
     call check_real(deck, g, 't_end', s%t_end, err, at_least=0.0_dp, at_most=1.0e6_dp, &
                     why='seconds: the span of a run without a turning driver, or with output_step_t > 0 instead of revolutions')
     call check_real(deck, g, 'output_step_t', s%output_step_t, err, at_least=0.0_dp, at_most=1.0e6_dp)

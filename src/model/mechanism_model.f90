@@ -27,7 +27,8 @@ module mechanism_model
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, lu_factor, lu_solve, sym_generalized_eig, solve_linear
+  use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
+                    sym_generalized_eig, solve_linear
   use lsode_solver, only: ode_system_t
   use correlation_table, only: correlation_table_t, link_end_t
   use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
@@ -79,6 +80,16 @@ module mechanism_model
     ! lumped masses at joints (slider blocks, sleeves): mass, element and node (1, 2) carrying them
     real(dp), allocatable :: point_mass(:)
     integer, allocatable :: point_element(:), point_node(:)
+    ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored
+    real(dp), allocatable :: newton_mass(:, :)    !< (kd+1, n) M, lower band storage
+    real(dp), allocatable :: newton_stiff(:, :)   !< (2kd+1, n) K_t, general band storage kb(kd+1+i-j, j)
+    real(dp), allocatable :: newton_chol(:, :)    !< (kd+1, n) Cholesky factor of S
+    real(dp), allocatable :: newton_lu(:, :)      !< (3kd+1, n) banded LU of S
+    integer, allocatable :: newton_ipiv(:)
+    real(dp) :: newton_hl0 = 0.0_dp               !< h*el0 of the last factorization
+    logical :: newton_cholesky = .true.           !< S was factored by Cholesky (else banded LU)
+    integer :: n_newton_factorizations = 0
+    integer :: n_newton_lu = 0                    !< of which by banded LU (K_t not symmetric or S indefinite)
     ! external loads (src/transient/loads.f90): gravity acceleration and point forces/moments
     real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
     type(point_load_t), allocatable :: loads(:)
@@ -88,6 +99,10 @@ module mechanism_model
     procedure :: init_fixed
     procedure :: rhs => model_rhs
     procedure :: jacobian => model_jacobian
+    procedure :: has_newton_matrix => model_has_newton_matrix
+    procedure :: newton_factor => model_newton_factor
+    procedure :: newton_solve => model_newton_solve
+    procedure :: assemble_band
     procedure :: set_time
     procedure :: build_motion_table
     procedure :: accelerations
@@ -510,30 +525,200 @@ contains
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass(:, :), stiff(:, :)
     real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
-    real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
-    type(kear_eval_info_t) :: info
-    integer :: e
+    integer :: e, i, g(2)
+    real(dp) :: c(2)
     mass = 0.0_dp
     stiff = 0.0_dp
-    zero = 0.0_dp
     do e = 1, size(self%el)
-      qe = self%table%gather(e, q)
-      call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info)
-      call beam_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+      call element_mass_stiffness(self, e, q, me, ke)
       call self%table%scatter_add_matrix(e, me, mass)
       call self%table%scatter_add_matrix(e, ke, stiff)
     end do
     do e = 1, size(self%point_mass)
-      block
-        integer :: g(2), i
-        real(dp) :: c(2)
-        call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
-        do i = 1, 2
-          if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
-        end do
-      end block
+      call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+      do i = 1, 2
+        if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
+      end do
     end do
   end subroutine assemble_dense
+
+  !> Element e's mass matrix and elastic tangent stiffness (global element
+  !> DOFs) at the global displacements q and the current rigid state.
+  subroutine element_mass_stiffness(self, e, q, me, ke)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: me(:, :), ke(:, :)
+    real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
+    type(kear_eval_info_t) :: info
+    zero = 0.0_dp
+    qe = self%table%gather(e, q)
+    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info)
+    call beam_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+  end subroutine element_mass_stiffness
+
+  !> M (lower band storage, kd+1 rows) and K_t (general band storage,
+  !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at (q, current time): O(N).
+  subroutine assemble_band(self, q, mass_lower, stiff_band)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
+    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
+    real(dp) :: cij, c(2)
+    integer :: e, i, j, gi, gj, kd, g(2)
+    kd = self%kd
+    mass_lower = 0.0_dp
+    stiff_band = 0.0_dp
+    do e = 1, size(self%el)
+      call element_mass_stiffness(self, e, q, me, ke)
+      do j = 1, self%table%element_dofs
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, self%table%element_dofs
+          gi = self%table%map(i, e)
+          if (gi == 0) cycle
+          cij = self%table%coef(i, e)*self%table%coef(j, e)
+          stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
+          if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
+        end do
+      end do
+    end do
+    do e = 1, size(self%point_mass)
+      call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+      do i = 1, 2
+        if (g(i) > 0) mass_lower(1, g(i)) = mass_lower(1, g(i)) + self%point_mass(e)*c(i)**2
+      end do
+    end do
+  end subroutine assemble_band
+
+  ! ------------------------------------------------------------------ Newton matrix
+
+  logical function model_has_newton_matrix(self)
+    class(mechanism_model_t), intent(in) :: self
+    model_has_newton_matrix = self%n > 0
+  end function model_has_newton_matrix
+
+  !> DLSODE's Newton matrix P = I - hl0 J for the Jacobian of model_jacobian,
+  !> J = [[0, I], [-M^-1 K_t, -beta M^-1 K_t]] (state interleaved), without
+  !> forming J: eliminating the displacement corrections leaves the N x N band
+  !> matrix (doc/transient.md)
+  !>     S = M + (hl0 beta + hl0^2) K_t,
+  !> factored by banded Cholesky when K_t is symmetric and S positive definite,
+  !> by banded LU otherwise.  O(N kd^2); ok = .false. when S is singular.
+  subroutine model_newton_factor(self, t, y, hl0, ok)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    real(dp) :: c, beta
+    integer :: kd, n, j, i
+    ok = .false.
+    call self%set_time(t)
+    if (self%err%failed()) return
+    kd = self%kd
+    n = self%n
+    if (.not. allocated(self%newton_mass)) &
+      allocate(self%newton_mass(kd + 1, n), self%newton_stiff(2*kd + 1, n), self%newton_chol(kd + 1, n), &
+               self%newton_lu(3*kd + 1, n), self%newton_ipiv(n))
+    call self%assemble_band(y(1::2), self%newton_mass, self%newton_stiff)
+    beta = 0.0_dp
+    if (size(self%el) > 0) beta = self%el(1)%beta
+    c = hl0*beta + hl0**2
+    self%newton_hl0 = hl0
+    self%n_newton_factorizations = self%n_newton_factorizations + 1
+    self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
+    if (self%newton_cholesky) then
+      self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
+      call band_cholesky_factor(self%newton_chol, kd, err)
+      self%newton_cholesky = .not. err%failed()
+      call err%clear()
+    end if
+    if (self%newton_cholesky) then
+      ok = .true.
+      return
+    end if
+    ! banded LU: S in rows kd+1.. of the general band layout ab(2kd+1+i-j, j)
+    self%n_newton_lu = self%n_newton_lu + 1
+    self%newton_lu = 0.0_dp
+    self%newton_lu(kd + 1:, :) = c*self%newton_stiff
+    do j = 1, n
+      do i = j, min(n, j + kd)
+        self%newton_lu(2*kd + 1 + i - j, j) = self%newton_lu(2*kd + 1 + i - j, j) + self%newton_mass(1 + i - j, j)
+        if (i > j) self%newton_lu(2*kd + 1 + j - i, i) = self%newton_lu(2*kd + 1 + j - i, i) + &
+                                                         self%newton_mass(1 + i - j, j)
+      end do
+    end do
+    call band_lu_factor(self%newton_lu, kd, kd, self%newton_ipiv, err)
+    ok = .not. err%failed()
+  end subroutine model_newton_factor
+
+  !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
+  !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:
+  !>     S dv = M r2 - hl0 K_t r1,   dq = r1 + hl0 dv.
+  subroutine model_newton_solve(self, x)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
+    type(error_t) :: err
+    integer :: kd
+    kd = self%kd
+    r1 = x(1::2)
+    r2 = x(2::2)
+    call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
+    if (self%newton_cholesky) then
+      call band_cholesky_solve(self%newton_chol, kd, dv, err)
+    else
+      call band_lu_solve(self%newton_lu, kd, kd, self%newton_ipiv, dv, err)
+    end if
+    if (err%failed()) call self%fail(0.0_dp, 'Newton matrix solve: '//err%text())
+    x(2::2) = dv
+    x(1::2) = r1 + self%newton_hl0*dv
+  end subroutine model_newton_solve
+
+  !> Whether a band matrix in general band storage (half-bandwidth kd) is
+  !> symmetric to round-off (1e-10 of its largest entry).
+  pure logical function symmetric_band(kb, kd) result(sym)
+    real(dp), intent(in) :: kb(:, :)
+    integer, intent(in) :: kd
+    integer :: i, j, n
+    real(dp) :: tol
+    n = size(kb, 2)
+    tol = 1.0e-10_dp*maxval(abs(kb))
+    sym = .true.
+    do j = 1, n
+      do i = j + 1, min(n, j + kd)
+        if (abs(kb(kd + 1 + i - j, j) - kb(kd + 1 + j - i, i)) > tol) then
+          sym = .false.
+          return
+        end if
+      end do
+    end do
+  end function symmetric_band
+
+  !> y = M a - c K b for M symmetric in lower band storage m(1+i-j, j) and K
+  !> in general band storage k(kd+1+i-j, j), both of half-bandwidth kd: O(N kd).
+  pure subroutine band_combination(m, k, kd, a, c, b, y)
+    real(dp), intent(in) :: m(:, :), k(:, :), a(:), c, b(:)
+    integer, intent(in) :: kd
+    real(dp), intent(out) :: y(:)
+    integer :: i, j, n
+    real(dp) :: aj, cbj, s
+    n = size(a)
+    y = 0.0_dp
+    do j = 1, n
+      aj = a(j)
+      cbj = c*b(j)
+      s = m(1, j)*aj
+      do i = max(1, j - kd), min(n, j + kd)
+        y(i) = y(i) - k(kd + 1 + i - j, j)*cbj
+      end do
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*aj
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
+    end do
+  end subroutine band_combination
 
   !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
   !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.
