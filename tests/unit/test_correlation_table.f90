@@ -19,13 +19,15 @@ contains
     call run_test('scatter_is_transpose_of_gather', test_scatter_transpose)
     call run_test('slider_translation_follows_guide', test_slider)
     call run_test('fully_held_structure_is_an_error', test_no_free_dof)
+    call run_test('six_dofs_per_node_for_the_consistent_element', test_axial_dofs)
   end subroutine run_all
 
   !> crank (clamp A, pin B), coupler (pin B, pin C), rocker (pin C, ground pin D)
-  subroutine fourbar(n_each, table, err)
+  subroutine fourbar(n_each, table, err, axial)
     integer, intent(in) :: n_each
     type(correlation_table_t), intent(out) :: table
     type(error_t), intent(inout) :: err
+    logical, intent(in), optional :: axial
     type(link_end_t) :: ends(2, 3)
     ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
     ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
@@ -33,8 +35,49 @@ contains
     ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
     ends(1, 3) = link_end_t(joint_pin, 2, 0.0_dp)
     ends(2, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
-    call table%build([n_each, n_each, n_each], ends, err)
+    call table%build([n_each, n_each, n_each], ends, err, axial_dofs=axial)
   end subroutine fourbar
+
+  !> axial_dofs (doc/correlation_table.md): [U W th m ux uxx] per node; the
+  !> four-bar with one element per link has 27 unknowns: A clamped (m, ux, uxx),
+  !> B and C 2 shared translations each, every link end at a pin or at D its own
+  !> th, m, ux, uxx (4 x 5 ends); a second element per link adds 6 per link.
+  !> The rules for U, W, th are those of Kear's table; scatter = gather^T.
+  subroutine test_axial_dofs()
+    type(correlation_table_t) :: t, k
+    type(error_t) :: err
+    real(dp) :: qg(60), fe(12), lhs, rhs
+    integer :: i
+    call fourbar(1, t, err, axial=.true.)
+    call assert_true(.not. err%failed(), err%text())
+    call assert_equal(t%node_dofs, 6, 'six DOFs per node')
+    call assert_equal(t%element_dofs, 12, 'twelve per element')
+    call assert_equal(t%n_global, 27, 'global unknowns')
+    call assert_true(all(t%map(1:3, 1) == 0) .and. all(t%map(4:6, 1) > 0), 'A: U = W = th = 0; m, ux, uxx free')
+    call assert_true(all(t%map(7:8, 1) == t%map(1:2, 2)), 'B translations shared')
+    call assert_true(all(t%map(10:12, 2) > 0) .and. all(t%map(4:6, 2) > 0), 'pins: m, ux, uxx free')
+    call assert_true(all(t%map(7:8, 3) == 0) .and. all(t%map(9:12, 3) > 0), 'D: U = W = 0; th, m, ux, uxx free')
+    call fourbar(1, k, err)
+    call assert_true(all((t%map([1, 2, 3, 7, 8, 9], :) > 0) .eqv. (k%map([1, 2, 3, 5, 6, 7], :) > 0)), &
+                     'U, W, th held where Kear''s table holds them')
+    call fourbar(2, t, err, axial=.true.)
+    call assert_equal(t%n_global, 27 + 18, 'a second element per link adds an interior node of 6')
+    ! scatter is the transpose of gather: fe . (C qg) = (C^T fe) . qg
+    do i = 1, 60
+      qg(i) = sin(1.3_dp*i)
+    end do
+    do i = 1, 12
+      fe(i) = cos(0.7_dp*i)
+    end do
+    lhs = dot_product(fe, t%gather(3, qg(1:t%n_global)))
+    block
+      real(dp) :: fg(t%n_global)
+      fg = 0.0_dp
+      call t%scatter_add(3, fe, fg)
+      rhs = dot_product(fg, qg(1:t%n_global))
+    end block
+    call assert_close(lhs, rhs, 1.0e-13_dp, 'scatter = gather^T with 12 DOFs')
+  end subroutine test_axial_dofs
 
   !> FORMULATION.md §6: A clamped (m free), B and C shared translations with a
   !> slope per link, D pinned to ground (th free): 10 unknowns.

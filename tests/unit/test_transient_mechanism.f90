@@ -44,12 +44,19 @@ contains
                        rtoa(rtols(i)))
     end do
     call assert_true(drift(2) < drift(1)/30.0_dp, 'drift falls with rtol: '//rtoa(drift(1))//' -> '//rtoa(drift(2)))
+    ! the consistent element (issue 10): the same conservation at rtol 1e-6
+    call energy_drift(1.0e-6_dp, drift(1), ok, 'consistent')
+    if (.not. ok) return
+    write(*, '(4x,a,es10.3)') 'consistent element: energy drift at rtol 1e-6: ', drift(1)
+    call assert_true(drift(1) < 100.0_dp*1.0e-6_dp, 'consistent element: energy drift '//rtoa(drift(1))// &
+                     ' < 100 rtol at rtol = 1e-6')
   end subroutine test_energy_driver_stopped
 
-  subroutine energy_drift(rtol, drift, ok)
+  subroutine energy_drift(rtol, drift, ok, formulation)
     real(dp), intent(in) :: rtol
     real(dp), intent(out) :: drift
     logical, intent(out) :: ok
+    character(len=*), intent(in), optional :: formulation
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(error_t) :: err
@@ -57,7 +64,7 @@ contains
     real(dp) :: ke, se, e0, t, t_half
     integer :: k
     drift = huge(1.0_dp)
-    call make_model(fourbar_input(1, 0.0_dp, 60.0_dp), all_effects(), 0.0_dp, model, ok)
+    call make_model(fourbar_input(1, 0.0_dp, 60.0_dp), all_effects(), 0.0_dp, model, ok, formulation=formulation)
     if (.not. ok) return
     allocate(y(model%state_size()), omega(model%n), shapes(model%n, model%n))
     call model%linear_modes(omega, shapes, err)
