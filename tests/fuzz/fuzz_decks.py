@@ -306,8 +306,8 @@ def run_case(binary, deck_path, out_path, timeout, hang_factor):
         proc = subprocess.Popen([binary, deck_path, '-o', out_path], stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, start_new_session=True,
                                 cwd=os.path.dirname(out_path))
-    except OSError as e:
-        return -999, b'', str(e).encode(), 0.0, False
+    except OSError as e:     # the binary vanished (rebuilt meanwhile?): not a finding
+        sys.exit('fuzz: cannot run %s: %s' % (binary, e))
     try:
         out, err = proc.communicate(timeout=timeout)
         return proc.returncode, out, err, time.time() - start, True
