@@ -25,6 +25,7 @@
 !> callers that do the read themselves; it names the line only for unknown
 !> variables.
 module deck_reader
+  use, intrinsic :: iso_fortran_env, only: iostat_end
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_underflow, ieee_get_halting_mode, &
                                            ieee_set_halting_mode, ieee_set_flag, ieee_support_halting
   use error_status, only: error_t
@@ -70,7 +71,7 @@ contains
     class(deck_t), intent(inout) :: self
     character(len=*), intent(in) :: path
     type(error_t), intent(inout) :: err
-    logical :: exists
+    logical :: exists, at_end
     integer :: ios, n
     character(len=512) :: iomsg
     character(len=:), allocatable :: line
@@ -91,8 +92,9 @@ contains
       return
     end if
     n = 0
+    at_end = .false.
     do
-      call read_line(self%unit, line, ios, iomsg)
+      call read_line(self%unit, line, ios, iomsg, at_end)
       if (ios /= 0) exit
       n = n + 1
     end do
@@ -104,8 +106,9 @@ contains
     self%opened = .true.
     allocate(self%lines(n))
     rewind(self%unit)
+    at_end = .false.
     do n = 1, size(self%lines)
-      call read_line(self%unit, self%lines(n)%text, ios, iomsg)
+      call read_line(self%unit, self%lines(n)%text, ios, iomsg, at_end)
     end do
     rewind(self%unit)
     call read_from_copy(self)
@@ -126,14 +129,19 @@ contains
   end subroutine read_from_copy
 
   !> The next record, whole (non-advancing reads of 512-character pieces).
-  subroutine read_line(unit, line, ios, iomsg)
+  subroutine read_line(unit, line, ios, iomsg, at_end)
     integer, intent(in) :: unit
     character(len=:), allocatable, intent(out) :: line
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: iomsg
+    logical, intent(inout) :: at_end      !< set once the end of file is met
     character(len=512) :: piece
     integer :: got
     line = ''
+    if (at_end) then
+      ios = iostat_end
+      return
+    end if
     do
       got = 0
       read(unit, '(a)', advance='no', size=got, iostat=ios, iomsg=iomsg) piece
@@ -143,8 +151,12 @@ contains
         return
       end if
       if (ios /= 0) then
-        ! a last line without a newline still counts
-        if (is_iostat_end(ios) .and. len(line) > 0) ios = 0
+        ! a last line without a newline still counts; a read after it would
+        ! fail with an error rather than an end of file, so remember the end
+        if (is_iostat_end(ios) .and. len(line) > 0) then
+          ios = 0
+          at_end = .true.
+        end if
         return
       end if
     end do

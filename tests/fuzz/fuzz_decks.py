@@ -15,11 +15,11 @@ their deck and a README, under WORKDIR/failures/).
 Classes (FAIL = the fuzzer exits 1):
   exit0, exit2, exit3    normal outcomes
   timeout                the time limit was hit, and the case then finished
-                         within --hang-factor times the limit (slow, not a
-                         failure)
-  hang           FAIL    no result within --hang-factor times the limit
-                         either (an endless loop, or a case too slow to judge:
-                         replay it)
+                         within --hang-factor times the limit, or was still
+                         writing rows then (slow, not a failure)
+  hang           FAIL    no result within --hang-factor times the limit and
+                         no growth of its output meanwhile (an endless loop,
+                         or a long computation that writes nothing: replay)
   crash          FAIL    killed by a signal, a runtime error, a backtrace, or
                          an exit status other than 0, 2, 3
   nonfinite      FAIL    NaN/Inf (or an unreadable number) in a data row of a
@@ -289,7 +289,15 @@ def bad_number(path):
     return None
 
 
-def run_case(binary, deck_path, out_path, timeout):
+def output_size(out_path):
+    return sum(os.path.getsize(p) for p in tmp_files(out_path) if os.path.exists(p))
+
+
+def run_case(binary, deck_path, out_path, timeout, hang_factor):
+    """(status or None, stdout, stderr, seconds, progressing).  A run still
+    going at `timeout` gets hang_factor times as long in all; if it is still
+    going then, it is killed, and `progressing` says whether its temporary
+    output grew meanwhile (rows being written: slow, not hung)."""
     for p in [out_path] + tmp_files(out_path):
         if os.path.lexists(p):
             os.remove(p)
@@ -298,15 +306,22 @@ def run_case(binary, deck_path, out_path, timeout):
         proc = subprocess.Popen([binary, deck_path, '-o', out_path], stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, start_new_session=True,
                                 cwd=os.path.dirname(out_path))
-        try:
-            out, err = proc.communicate(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            out, err = proc.communicate()
-            return None, out, err, time.time() - start
-        return proc.returncode, out, err, time.time() - start
-    except OSError as e:
-        return -999, b'', str(e).encode(), 0.0
+    except OSError as e:     # the binary vanished (rebuilt meanwhile?): not a finding
+        sys.exit('fuzz: cannot run %s: %s' % (binary, e))
+    try:
+        out, err = proc.communicate(timeout=timeout)
+        return proc.returncode, out, err, time.time() - start, True
+    except subprocess.TimeoutExpired:
+        pass
+    size0 = output_size(out_path)
+    try:
+        out, err = proc.communicate(timeout=max(timeout * (hang_factor - 1), 0.01))
+        return proc.returncode, out, err, time.time() - start, True
+    except subprocess.TimeoutExpired:
+        progressing = output_size(out_path) > size0
+        os.killpg(proc.pid, signal.SIGKILL)
+        out, err = proc.communicate()
+        return None, out, err, time.time() - start, progressing
 
 
 def tmp_files(out_path):
@@ -399,16 +414,14 @@ def main():
             f.write(text)
         for name, binary in binaries:
             out = os.path.join(a.work, 'case.out')
-            status, _, stderr, dt = run_case(binary, case, out, a.timeout)
-            if status is None and a.hang_factor > 1:
-                status, _, stderr, dt = run_case(binary, case, out, a.timeout * a.hang_factor)
-                if status is None:
-                    stderr = b'no result in %.1f s' % (a.timeout * a.hang_factor)
+            status, _, stderr, dt, progressing = run_case(binary, case, out, a.timeout, a.hang_factor)
             result = classify(status, stderr, out, case)
             if status is not None and dt > a.timeout:
                 result = [('timeout', 'finished in %.1f s' % dt)] + result[1:]
+            elif status is None and progressing:
+                result = [('timeout', 'still writing rows after %.1f s' % dt)]
             elif status is None:
-                result = [('hang', 'no result in %.1f s' % (a.timeout * a.hang_factor))]
+                result = [('hang', 'no result and no output growth in %.1f s' % dt)]
             for cls, _ in result:
                 counts[(name, cls)] = counts.get((name, cls), 0) + 1
             bad = [(c, d) for c, d in result if c in FAILING]
