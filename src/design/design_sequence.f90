@@ -29,6 +29,7 @@ module design_sequence
   use optim_problem, only: opt_problem_t
   use gauss_optimizer, only: gauss_optimizer_t, method_gnlc_ns
   use design_problem, only: design_problem_t, design_eval_t
+  use progress, only: progress_t
   implicit none
   private
   public :: design_sequence_t, design_step_t
@@ -91,6 +92,7 @@ contains
     real(dp) :: delta, viol, viol_try, mass, mass_try
     logical :: ok, accepted
     integer :: stalls
+    type(progress_t) :: bar
     character(len=:), allocatable :: events
     n = size(x0)
     nc = prob%n_analysis_constraints()
@@ -112,8 +114,11 @@ contains
     mass = scaled_mass(prob, self%x)
     viol = max(0.0_dp, maxval([0.0_dp, g]))
     call record(0, 'initial design')
+    call bar%start('design iterations', 0.0_dp, real(self%max_iterations, dp), counts=.true.)
     do k = 1, self%max_iterations
       self%iterations = k
+      call bar%update(real(k - 1, dp), str(prob%n_analyses)//' analyses, mass '//str(mass, 5)// &
+                      ', violation '//str(viol, 3))
       call gradients(prob, self%x, g, dg, ok)
       if (.not. ok) then
         call err%set('design', 'iteration '//str(k)//': a finite-difference neighbour of the design cannot be '// &
@@ -175,6 +180,7 @@ contains
         exit
       end if
     end do
+    call bar%finish()
     if (.not. allocated(self%message)) self%message = 'iteration limit reached'
   contains
     subroutine record(kk, text)

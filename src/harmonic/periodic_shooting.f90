@@ -24,6 +24,7 @@ module periodic_shooting
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
+  use progress, only: progress_t
   use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user
   use linalg, only: lu_factor, lu_solve, eigenvalues_general
   use small_dense, only: dense_lu_t
@@ -247,6 +248,7 @@ contains
     integer :: n, n2, it, j, i
     real(dp) :: res, sq, rc, jnorm
     logical :: have_mono, linear
+    type(progress_t) :: bar
     n = sys%n
     n2 = 2*n
     allocate(yt(n2), mono(n2, n2), jac(n2, n2), r(n2), ipiv(n2), wr(n2), wi(n2), d(n2), m(n, n), c(n, n), &
@@ -263,7 +265,9 @@ contains
       d(n + i) = sqrt(max(abs(m(i, i)), tiny(1.0_dp)))
     end do
     have_mono = .false.
+    call bar%start('shooting Newton iterations', 0.0_dp, real(s%max_newton, dp), counts=.true.)
     do it = 0, s%max_newton
+      call bar%update(real(it, dp), str(rep%revolutions)//' revolutions integrated')
       if (linear .and. have_mono) then
         call revolution(sys, s, y0, .false., yt, jac, rep, err)
       else
@@ -271,6 +275,7 @@ contains
         have_mono = .true.
       end if
       if (err%failed()) then
+        call bar%finish()
         call err%add_context('shooting, Newton iteration '//str(it))
         return
       end if
@@ -308,6 +313,7 @@ contains
       call lu_solve(jac, ipiv, r, err)
       y0 = y0 + r/d
     end do
+    call bar%finish()
     ! Floquet multipliers of the (last) monodromy matrix
     call eigenvalues_general(mono, wr, wi, err)
     if (err%failed()) return
