@@ -393,6 +393,10 @@ def main():
 
     decks = sorted(os.path.join(d, f) for d in ('inputs', 'tests/decks')
                    for f in os.listdir(os.path.join(ROOT, d)) if f.endswith('.nml'))
+    # a deck whose own run takes longer than the time limit and writes its
+    # table only at the end (a design, a long sweep) says '! fuzz: long':
+    # every mutation of it would be classed a hang
+    decks = [d for d in decks if '! fuzz: long' not in open(os.path.join(ROOT, d), errors='replace').read()]
     os.chdir(ROOT)
     binaries = [(n, os.path.abspath(b)) for n, b in (('release', a.release), ('debug', a.debug)) if b]
     a.work = os.path.abspath(a.work)
