@@ -17,7 +17,6 @@ expect() {   # expect STATUS FRAGMENT ARGS...
 expect 1 "-o given twice" inputs/lsode_kinetics.nml -o "$work/a.out" -o "$work/b.out"
 expect 1 "unknown option '-q'" -q inputs/lsode_kinetics.nml
 expect 1 "-o needs a file name" inputs/lsode_kinetics.nml -o
-expect 1 "unexpected argument" inputs/lsode_kinetics.nml inputs/lsode_kinetics.nml
 expect 1 "usage:"
 expect 2 "is a directory" "$work"
 expect 2 "file not found" "$work/no_such_deck.nml"
