@@ -630,11 +630,14 @@ contains
         end if
       end do
       do q = 1, nl
-        if (inp%link_length(q) > 1.0e8_dp) then
-          call bad(idx('link_length', q), str(inp%link_length(q)), 'must be at most 1e8'); return
+        if (inp%link_length(q) > 1.0e8_dp .or. (inp%link_length(q) > 0.0_dp .and. inp%link_length(q) < 1.0e-8_dp)) then
+          call bad(idx('link_length', q), str(inp%link_length(q)), 'must be 0 (from the joints) or in [1e-8, 1e8]'); return
         end if
-        if (inp%link_b(q) > 1.0e8_dp .or. inp%link_h(q) > 1.0e8_dp) then
-          call bad(idx('link_h', q), str(inp%link_h(q)), 'section sizes must be at most 1e8'); return
+        if (inp%link_b(q) > 1.0e8_dp .or. inp%link_h(q) > 1.0e8_dp .or. &
+            (inp%link_b(q) > 0.0_dp .and. inp%link_b(q) < 1.0e-8_dp) .or. &
+            (inp%link_h(q) > 0.0_dp .and. inp%link_h(q) < 1.0e-8_dp)) then
+          call bad(idx('link_h', q)//', '//idx('link_b', q), str(inp%link_h(q))//', '//str(inp%link_b(q)), &
+                   'section sizes must lie in [1e-8, 1e8]'); return
         end if
         if (inp%link_rho(q) > 1.0e10_dp .or. inp%link_e1(q) > 1.0e20_dp .or. inp%link_e2(q) > 1.0e30_dp) then
           call bad(idx('link_e1', q), str(inp%link_e1(q)), 'material constants beyond any material '// &

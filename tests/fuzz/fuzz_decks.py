@@ -388,6 +388,7 @@ def main():
     ap.add_argument('--debug', default=os.path.join(ROOT, 'build/debug/bin/flexmech'))
     ap.add_argument('--work', default=os.path.join(ROOT, 'build/fuzz'))
     ap.add_argument('--keep', action='store_true', help='keep every case deck')
+    ap.add_argument('--exclude', default='', help='skip decks whose path matches this regular expression')
     ap.add_argument('-v', '--verbose', action='store_true')
     a = ap.parse_args()
 
@@ -397,6 +398,8 @@ def main():
     # table only at the end (a design, a long sweep) says '! fuzz: long':
     # every mutation of it would be classed a hang
     decks = [d for d in decks if '! fuzz: long' not in open(os.path.join(ROOT, d), errors='replace').read()]
+    if a.exclude:
+        decks = [d for d in decks if not re.search(a.exclude, d)]
     os.chdir(ROOT)
     binaries = [(n, os.path.abspath(b)) for n, b in (('release', a.release), ('debug', a.debug)) if b]
     a.work = os.path.abspath(a.work)

@@ -3,6 +3,7 @@
 !> through its driver, and the output comes back as lines.  One home for what
 !> the analysis suites used to copy.
 module deck_runner
+  use, intrinsic :: iso_c_binding, only: c_int
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
@@ -12,6 +13,12 @@ module deck_runner
   public :: scratch_path, write_deck, run_deck, analysis_runner, has_line, summary_value, count_rows, line_length
 
   integer, parameter :: line_length = 2048
+
+  interface
+    integer(c_int) function c_getpid() bind(c, name='getpid')
+      import :: c_int
+    end function c_getpid
+  end interface
 
   abstract interface
     !> An analysis driver: run_transient, run_steady, run_optimize, ...
@@ -25,15 +32,18 @@ module deck_runner
 
 contains
 
-  !> $TMPDIR/flexmech_<name> (or /tmp/...).
+  !> $TMPDIR/flexmech_<name>_<pid> (or /tmp/...): the process id keeps two
+  !> test runs at once (two checkouts, two optimisation levels) apart.
   function scratch_path(name) result(path)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: path
     character(len=256) :: tmp
+    character(len=16) :: pid
     integer :: length, status
     call get_environment_variable('TMPDIR', tmp, length, status)
     if (status /= 0 .or. length == 0) tmp = '/tmp'
-    path = trim(tmp)//'/flexmech_'//name
+    write(pid, '(i0)') c_getpid()
+    path = trim(tmp)//'/flexmech_'//name//'_'//trim(pid)
   end function scratch_path
 
   !> Write `text` ('|' separates lines) to `path`.
