@@ -83,6 +83,7 @@ module lsode_solver
     logical :: model_newton = .false.  !< this integration uses it (decided at each fresh start)
     integer :: mf_dlsode = mf_adams    !< the MF DLSODE is handed (23 for the model's Newton matrix)
     integer :: max_steps = 20000       !< per output interval (DLSODE's MXSTEP)
+    integer :: max_order = 0           !< DLSODE's MAXORD (0: its default); kept across work reallocations
     real(dp) :: rtol = 1.0e-6_dp
     real(dp), allocatable :: atol(:)
     real(dp) :: t = 0.0_dp             !< current time
@@ -291,6 +292,7 @@ contains
     self%iwork(5:7) = iopt_int
     self%rwork(5:7) = iopt_real
     self%iwork(6) = self%max_steps
+    self%iwork(5) = self%max_order
   end subroutine allocate_work
 
   !> Start afresh from the current (t, y) on the next call, e.g. after a
