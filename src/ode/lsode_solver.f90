@@ -292,7 +292,7 @@ contains
     self%iwork(5:7) = iopt_int
     self%rwork(5:7) = iopt_real
     self%iwork(6) = self%max_steps
-    self%iwork(5) = self%max_order
+    if (self%max_order > 0) self%iwork(5) = self%max_order
   end subroutine allocate_work
 
   !> Start afresh from the current (t, y) on the next call, e.g. after a
