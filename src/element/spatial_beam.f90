@@ -62,6 +62,7 @@ module spatial_beam
     type(element_effects_t) :: effects
     real(dp) :: beta = 0.0_dp                 !< stiffness-proportional damping on p_dot
     real(dp) :: mcon(2) = 0.0_dp              !< concentrated masses at the nodes (paper E's m_con1, m_con2)
+    logical :: local_rotation(2) = .false.    !< node's rotation triple in local, not global, components
     integer :: n_gauss = 8                    !< stations of the nonlinear strain integrals
     real(dp) :: eps_star = huge(1.0_dp)
     real(dp) :: mass0(16, 16) = 0.0_dp        !< M_p (constant)
@@ -93,7 +94,7 @@ contains
 
   !> Build an element: length, section, material, shear modulus and switches.
   pure subroutine spatial_beam_init(el, length, sec, material, shear_modulus, effects, err, &
-                                    n_gauss, damping_beta, masses)
+                                    n_gauss, damping_beta, masses, local_rotation)
     type(spatial_beam_t), intent(out) :: el
     real(dp), intent(in) :: length, shear_modulus
     type(spatial_section_t), intent(in) :: sec
@@ -102,6 +103,7 @@ contains
     type(error_t), intent(inout) :: err
     integer, intent(in), optional :: n_gauss
     real(dp), intent(in), optional :: damping_beta, masses(2)
+    logical, intent(in), optional :: local_rotation(2)   !< unshared link-end rotations (doc/spatial.md)
     real(dp) :: x(n_in), w(n_in), s(16, 3), gp(16, 3), jr(3), z(16, 6)
     integer :: i, k
 
@@ -129,6 +131,7 @@ contains
     end if
     if (present(damping_beta)) el%beta = damping_beta
     if (present(masses)) el%mcon = masses
+    if (present(local_rotation)) el%local_rotation = local_rotation
     if (.not. (el%beta >= 0.0_dp .and. all(el%mcon >= 0.0_dp))) then
       call err%set('spatial_beam_init', 'damping and concentrated masses must be >= 0'); return
     end if
@@ -225,12 +228,12 @@ contains
     real(dp) :: kp(16, 16), rel(3), acc(3), vel(3), wpi(3), xe(3)
     integer :: i
 
-    p = spatial_to_local(rb%rot, q)
-    v = spatial_to_local(rb%rot, qd)
+    p = spatial_to_local(rb%rot, q, el%local_rotation)
+    v = spatial_to_local(rb%rot, qd, el%local_rotation)
     wl = matmul(rb%omega, rb%rot)          ! R^T omega
     al = matmul(rb%alpha, rb%rot)
     a0 = matmul(rb%x1_dd, rb%rot)
-    wp = skew_apply(wl, p)
+    wp = skew_apply(wl, p, el%local_rotation)
     pd = v - wp
 
     ! translational inertia at the stations (and the concentrated masses)
@@ -250,17 +253,18 @@ contains
     ! section rotary and torsional inertia: -int G_phi^T J alpha
     fp = fp - matmul(el%rot_load, al)
     ! transformation terms of p_dd = T^T q_dd - 2 W v + (W^2 - Wdot) p
-    fp = fp - matmul(el%mass0, skew_apply(wl, wp))
-    if (el%effects%coupling) fp = fp + matmul(el%mass0, 2.0_dp*skew_apply(wl, v) + skew_apply(al, p))
+    fp = fp - matmul(el%mass0, skew_apply(wl, wp, el%local_rotation))
+    if (el%effects%coupling) fp = fp + matmul(el%mass0, 2.0_dp*skew_apply(wl, v, el%local_rotation) &
+                                                        + skew_apply(al, p, el%local_rotation))
 
     ! strain energy, internal force, damping on the local strain rates
     call strain_terms(el, p, pd, present(tangent), el%beta > 0.0_dp, info, fint, fdamp, kp)
     fp = fp - fint
     if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
 
-    mass = matrix_to_global(rb%rot, el%mass0)
-    force = spatial_to_global(rb%rot, fp)
-    if (present(tangent)) tangent = matrix_to_global(rb%rot, kp)
+    mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    force = spatial_to_global(rb%rot, fp, el%local_rotation)
+    if (present(tangent)) tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
   end subroutine spatial_beam_eval
 
   !> Internal force dSE/dp in LOCAL DOFs.
@@ -302,9 +306,9 @@ contains
     integer, parameter :: nt = 8
     real(dp) :: p(16), pd(16), wl(3), x(nt), w(nt), s(16, 3), gp(16, 3), z(16, 6), vel(3), om(3), jr(3)
     integer :: i
-    p = spatial_to_local(rb%rot, q)
+    p = spatial_to_local(rb%rot, q, el%local_rotation)
     wl = matmul(rb%omega, rb%rot)
-    pd = spatial_to_local(rb%rot, qd) - skew_apply(wl, p)
+    pd = spatial_to_local(rb%rot, qd, el%local_rotation) - skew_apply(wl, p, el%local_rotation)
     jr = el%material%rho*[el%sec%ip, el%sec%iy, el%sec%iz]
     if (.not. el%effects%rotary_inertia) jr(2:3) = 0.0_dp
     ke = 0.0_dp
@@ -484,7 +488,7 @@ contains
     integer :: i, k
     law = el%material
     if (.not. el%effects%material) law%e2 = 0.0_dp
-    p = spatial_to_local(rot, q)
+    p = spatial_to_local(rot, q, el%local_rotation)
     rep%max_abs_stress = -1.0_dp
     do i = 0, el%n_gauss + 1
       if (i == 0 .or. i == el%n_gauss + 1) then
@@ -524,52 +528,64 @@ contains
 
   ! ------------------------------------------------------------ frames
 
-  !> p = T^T q: both vector triples of each node into the element frame.
-  pure function spatial_to_local(rot, q) result(p)
+  !> p = T^T q: the vector triples of each node into the element frame
+  !> (a rotation triple flagged local is already in it).
+  pure function spatial_to_local(rot, q, local) result(p)
     real(dp), intent(in) :: rot(3, 3), q(16)
+    logical, intent(in), optional :: local(2)
     real(dp) :: p(16)
+    logical :: loc(2)
+    loc = .false.
+    if (present(local)) loc = local
     p = q
     p(1:3) = matmul(q(1:3), rot)
-    p(4:6) = matmul(q(4:6), rot)
+    if (.not. loc(1)) p(4:6) = matmul(q(4:6), rot)
     p(9:11) = matmul(q(9:11), rot)
-    p(12:14) = matmul(q(12:14), rot)
+    if (.not. loc(2)) p(12:14) = matmul(q(12:14), rot)
   end function spatial_to_local
 
   !> q = T p.
-  pure function spatial_to_global(rot, p) result(q)
+  pure function spatial_to_global(rot, p, local) result(q)
     real(dp), intent(in) :: rot(3, 3), p(16)
+    logical, intent(in), optional :: local(2)
     real(dp) :: q(16)
+    logical :: loc(2)
+    loc = .false.
+    if (present(local)) loc = local
     q = p
     q(1:3) = matmul(rot, p(1:3))
-    q(4:6) = matmul(rot, p(4:6))
+    if (.not. loc(1)) q(4:6) = matmul(rot, p(4:6))
     q(9:11) = matmul(rot, p(9:11))
-    q(12:14) = matmul(rot, p(12:14))
+    if (.not. loc(2)) q(12:14) = matmul(rot, p(12:14))
   end function spatial_to_global
 
   !> T A T^T.
-  pure function matrix_to_global(rot, a) result(g)
+  pure function matrix_to_global(rot, a, local) result(g)
     real(dp), intent(in) :: rot(3, 3), a(16, 16)
+    logical, intent(in) :: local(2)
     real(dp) :: g(16, 16), t(16, 16)
     integer :: j
     t = transpose(a)
     do j = 1, 16
-      t(:, j) = spatial_to_global(rot, t(:, j))      ! T A^T
+      t(:, j) = spatial_to_global(rot, t(:, j), local)      ! T A^T
     end do
     g = transpose(t)
     do j = 1, 16
-      g(:, j) = spatial_to_global(rot, g(:, j))      ! T (A T^T)
+      g(:, j) = spatial_to_global(rot, g(:, j), local)      ! T (A T^T)
     end do
   end function matrix_to_global
 
-  !> omega x (each vector triple of p); curvature DOFs map to zero.
-  pure function skew_apply(w, p) result(r)
+  !> W p: omega x each vector triple of p that rotates with the frame
+  !> (T_dot = T W); curvature DOFs and local rotation triples map to zero.
+  pure function skew_apply(w, p, local) result(r)
     real(dp), intent(in) :: w(3), p(16)
+    logical, intent(in) :: local(2)
     real(dp) :: r(16)
     r = 0.0_dp
     r(1:3) = cross(w, p(1:3))
-    r(4:6) = cross(w, p(4:6))
+    if (.not. local(1)) r(4:6) = cross(w, p(4:6))
     r(9:11) = cross(w, p(9:11))
-    r(12:14) = cross(w, p(12:14))
+    if (.not. local(2)) r(12:14) = cross(w, p(12:14))
   end function skew_apply
 
   pure function cross(a, b) result(c)

@@ -361,7 +361,7 @@ contains
   !> central differences (KE quadratic in q_dot); d/dt and d/dq by central
   !> differences with h = 1e-4, 1e-5: truncation ~1e-8 relative; tolerance
   !> 1e-6 of the largest term.  Coupling, rotary inertia and concentrated
-  !> masses on.
+  !> masses on; with node 1's rotations global, then local.
   subroutine test_lagrange_inertia()
     type(spatial_section_t) :: sec
     type(spatial_beam_t) :: el
@@ -370,16 +370,19 @@ contains
     real(dp) :: dp_t(16), dm_t(16), dq(16), kp, km, ht, hq
     type(spatial_rigid_t) :: rb
     type(spatial_eval_info_t) :: info
-    integer :: i
+    integer :: i, variant
     call spatial_section_init(sec, section_rectangular, [0.3_dp, 0.2_dp], soft, err)
-    call spatial_beam_init(el, 1.3_dp, sec, soft, 400.0_dp, effects_all_on(), err, masses=[0.05_dp, 0.02_dp])
+    do variant = 1, 2
+    ! variant 2: node 1's rotation triple in local components (an unshared link end)
+    call spatial_beam_init(el, 1.3_dp, sec, soft, 400.0_dp, effects_all_on(), err, masses=[0.05_dp, 0.02_dp], &
+                           local_rotation=[variant == 2, .false.])
     q0 = 0.1_dp*p_big
     qd0 = pd_big
     qdd = [(0.3_dp*sin(real(3*i, dp)), i=1, 16)]
     rb = motion(0.0_dp)
     call spatial_beam_eval(el, q0, qd0, rb, mass, force, info)
-    call spatial_internal_force(el, spatial_to_local(rb%rot, q0), fint)
-    rhs = matmul(mass, qdd) - (force + spatial_to_global(rb%rot, fint))
+    call spatial_internal_force(el, spatial_to_local(rb%rot, q0, el%local_rotation), fint)
+    rhs = matmul(mass, qdd) - (force + spatial_to_global(rb%rot, fint, el%local_rotation))
     ht = 1.0e-4_dp
     hq = 1.0e-5_dp
     dp_t = dke_dqd(ht)
@@ -393,6 +396,7 @@ contains
       lhs(i) = lhs(i) - (kp - km)/(2.0_dp*hq)
     end do
     call assert_all_close(rhs, lhs, 0.0_dp, 1.0e-6_dp*maxval(abs(lhs)), 'M q_dd - F_inertia = Lagrange')
+    end do
   contains
     function dke_dqd(t) result(g)
       real(dp), intent(in) :: t
