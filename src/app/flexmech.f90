@@ -18,6 +18,7 @@ program flexmech
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
+  use spatial_analysis, only: run_spatial
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -56,6 +57,8 @@ program flexmech
     call run_optimize(deck, out, err)
   case ('steady')
     call run_steady(deck, out, err)
+  case ('spatial')
+    call run_spatial(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)
