@@ -42,6 +42,7 @@ contains
     call run_test('planar_limit_equals_kear_element', test_planar_limit)
     call run_test('rotating_bar_tip_stretch', test_rotating_bar)
     call run_test('paper_e_rotating_cantilever_table', test_paper_e_rotating_table)
+    call run_test('large_deflection_cantilever_vs_elastica', test_elastica)
     call run_test('section_constants_and_material_rule', test_section)
   end subroutine run_all
 
@@ -521,6 +522,79 @@ contains
                      'speed high enough that the rod correction is visible')
     call assert_true(other < 1.0e-12_dp*abs(exact), 'no transverse or twist response')
   end subroutine test_rotating_bar
+
+  !> Large deflection: cantilever L = 20 in, 1 x 0.5 in, tip dead load P
+  !> along local y with alpha = P L^2/(E I_z) = 0.1, 0.3, 1 (tip rotation 2.9,
+  !> 8.5, 26 degrees).  Inextensible elastica (shooting on theta'' = -alpha
+  !> cos theta, RK4, 4000 steps; alpha = 1 is Bisshopp & Drucker's 0.3017):
+  !> v/L = 0.0332953, 0.0989907, 0.301721.  Stretching and curvature on, load
+  !> in 10 increments, Newton with the analytic tangent (converges to 1e-9).
+  !> Kear's interpolation (linear u, quintic v) LOCKS at coarse meshes: the
+  !> printed table (doc/spatial.md, "Large deflection") shows 4 elements
+  !> 13 % stiff at alpha = 0.3 and 33 % at alpha = 1.  Asserted: the error
+  !> falls with the mesh at alpha = 0.1 and 0.3 and 16 elements are within
+  !> 0.2 % and 0.6 % (the nonlinear correction is 0.11 % and 1.0 %).
+  subroutine test_elastica()
+    real(dp), parameter :: len = 20.0_dp, alphas(3) = [0.1_dp, 0.3_dp, 1.0_dp]
+    real(dp), parameter :: v_ref(3) = [0.0332953_dp, 0.0989907_dp, 0.301721_dp]
+    real(dp), parameter :: u_ref(3) = [-0.000665400_dp, -0.00589938_dp, -0.056433_dp]
+    type(spatial_section_t) :: sec
+    type(spatial_beam_t) :: el
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    real(dp), allocatable :: k(:, :), r(:), full(:), x(:), kr(:, :)
+    integer, allocatable :: keep(:)
+    logical, allocatable :: fixed(:)
+    real(dp) :: kt(16, 16), fe(16), p
+    integer :: ia, step, it, e, i0, n, mesh
+    real(dp) :: errs(3, 3)
+    fx = all_off()
+    fx%stretching = .true.
+    fx%curvature = .true.
+    call spatial_section_init(sec, section_rectangular, [1.0_dp, 0.5_dp], alu, err)
+    do mesh = 1, 3
+      n = 2**(mesh + 1)
+      call spatial_beam_init(el, len/n, sec, alu, g_alu, fx, err)
+      if (allocated(fixed)) deallocate(fixed, full, r, k)
+      allocate(fixed(8*(n + 1)), full(8*(n + 1)), r(8*(n + 1)), k(8*(n + 1), 8*(n + 1)))
+      fixed = .false.
+      fixed(1:6) = .true.
+      call keep_dofs(n + 1, fixed, keep)
+      do ia = 1, 3
+        full = 0.0_dp
+        do step = 1, 10
+          p = alphas(ia)*alu%e1*sec%iz/len**2*real(step, dp)/10.0_dp
+          do it = 1, 30
+            r = 0.0_dp
+            k = 0.0_dp
+            do e = 1, n
+              i0 = 8*(e - 1)
+              call spatial_internal_force(el, full(i0 + 1:i0 + 16), fe)
+              call spatial_tangent_stiffness(el, full(i0 + 1:i0 + 16), kt)
+              r(i0 + 1:i0 + 16) = r(i0 + 1:i0 + 16) + fe
+              k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) = k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) + kt
+            end do
+            r(8*n + 2) = r(8*n + 2) - p
+            if (maxval(abs(r(keep))) < 1.0e-9_dp*p) exit
+            call assert_true(it < 30, 'Newton converges')
+            kr = k(keep, keep)
+            x = -r(keep)
+            call solve_linear(kr, x, err)
+            full(keep) = full(keep) + x
+          end do
+        end do
+        print '(a,i3,a,f4.1,a,2f10.6,a,2f10.6)', '    n =', n, ' alpha =', alphas(ia), ' v/L, u/L =', &
+          full(8*n + 2)/len, full(8*n + 1)/len, ' elastica', v_ref(ia), u_ref(ia)
+        errs(mesh, ia) = full(8*n + 2)/len/v_ref(ia) - 1.0_dp
+      end do
+    end do
+    do ia = 1, 2
+      call assert_true(abs(errs(1, ia)) > abs(errs(2, ia)) .and. abs(errs(2, ia)) > abs(errs(3, ia)), &
+                       'error falls with the mesh')
+    end do
+    call assert_close(errs(3, 1), 0.0_dp, 2.0e-3_dp, '16 elements, alpha = 0.1')
+    call assert_close(errs(3, 2), 0.0_dp, 6.0e-3_dp, '16 elements, alpha = 0.3')
+  end subroutine test_elastica
 
   !> Paper E, section 8.3 (FORMULATION.md): L = 20 in, r = 0.2 in,
   !> rho = 2.536e-4, omega = 100, 300, 500 rad/s; printed u_L = 6.3799e-4,
