@@ -113,6 +113,20 @@ test-bins: $(BIN_DIR)/flexmech $(TEST_BIN) $(TOOL_BIN)
 
 bench-bins: $(BIN_DIR)/flexmech $(BENCH_BIN)
 
+# ---------------------------------------------------------------- user problems
+# make PROBLEM=path/to/my_problem.f90: that file (a module `user_problems`,
+# template examples/user_problem/hs71_problem.f90) replaces the default
+# src/optim/user_problems.f90 in build/user/flexmech; decks name its problems.
+ifneq ($(PROBLEM),)
+USER_DIR := $(BUILD_DIR)/user
+all: $(USER_DIR)/flexmech
+$(USER_DIR)/flexmech: $(PROBLEM) $(call obj,$(APP_SRC)) $(filter-out %/user_problems.o,$(LIB_OBJ)) $(ODEPACK_LIB)
+	@mkdir -p $(USER_DIR)/mod
+	$(FC) $(FFLAGS) -J$(USER_DIR)/mod -I$(MOD_DIR) -c $(PROBLEM) -o $(USER_DIR)/user_problems.o
+	$(FC) $(FFLAGS) -o $@ $(USER_DIR)/user_problems.o $(filter %.o %.a,$^) $(LIBS)
+	@echo "built $@ with the problems of $(PROBLEM)"
+endif
+
 # ---------------------------------------------------------------- user targets
 run: all
 	@mkdir -p $(BUILD_DIR)/out

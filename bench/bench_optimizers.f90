@@ -175,6 +175,7 @@ program bench_optimizers
   use optim_problem, only: opt_problem_t
   use problem_library, only: problem_info_t, create_problem
   use gauss_optimizer, only: gauss_optimizer_t, method_from_name, status_converged
+  use hs_collection, only: hs_problem_t, hs_numbers, create_hs
   use nlopt_glue, only: nlopt_run, alg_slsqp, alg_cobyla
   implicit none
 
@@ -203,8 +204,127 @@ program bench_optimizers
   call compare('hs65', 'HS (infeas.)', [real(dp) ::], ['gnlc_ns'])
   call compare('general_convex', '[0,0]', [real(dp) ::], ['gnlc_general'])
   call compare('three_circles', '[1,5]', [real(dp) ::], ['gnlc_ns'])
+  call collection_profile()
 
 contains
+
+  !> The Hock-Schittkowski collection (hs_collection and the HS problems of
+  !> problem_library) from the standard starts: ours with default settings,
+  !> SLSQP and COBYLA.  A run counts as solved when |f - f*| <= 1e-6 (1 + |f*|)
+  !> and the violation <= 1e-6 (the test's criterion).  Writes the NF table
+  !> (build/bench/hs_nf.dat) and the Dolan-More performance profile of NF
+  !> (build/bench/hs_profile.dat): rho_s(tau) = share of problems that solver
+  !> s solves within tau times the fewest NF of any solver.
+  subroutine collection_profile()
+    character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
+                                                    'rosen_suzuki', 'hs65']
+    integer, parameter :: np = size(hs_numbers) + 6
+    integer :: nf(np, 3), k, u, i, j, n_tau
+    character(len=16) :: names(np)
+    real(dp) :: r(np, 3), tau, best, ratio
+    logical :: solved(np, 3)
+    write(output_unit, '(a)') '#'
+    write(output_unit, '(a)') '# Hock-Schittkowski collection, standard starts; ours with default settings (auto).'
+    write(output_unit, '(a)') '# problem      NF_gauss  NF_slsqp NF_cobyla   (-1: not solved to |f - f*| <= 1e-6 (1 + |f*|),' &
+                              //' violation <= 1e-6)'
+    do k = 1, size(hs_numbers)
+      names(k) = 'hs'//str(hs_numbers(k))
+    end do
+    names(size(hs_numbers) + 1:) = lib_names
+    do k = 1, np
+      call run_three(k, names(k), nf(k, :), solved(k, :))
+      write(output_unit, '(a14,3i10)') names(k), merge(nf(k, :), -1, solved(k, :))
+    end do
+    write(output_unit, '(a,3i4)') '# solved (gauss, slsqp, cobyla): ', count(solved, dim=1)
+    open(newunit=u, file='build/bench/hs_nf.dat', status='replace', action='write')
+    write(u, '(a)') '# problem NF_gauss NF_slsqp NF_cobyla (-1: not solved)'
+    do k = 1, np
+      write(u, '(a14,3i10)') names(k), merge(nf(k, :), -1, solved(k, :))
+    end do
+    close(u)
+    ! performance ratios r_ps = NF_ps / min_s NF_ps (unsolved: infinite)
+    r = huge(1.0_dp)
+    do k = 1, np
+      if (.not. any(solved(k, :))) cycle
+      best = minval(real(nf(k, :), dp), mask=solved(k, :))
+      do j = 1, 3
+        if (solved(k, j)) r(k, j) = real(nf(k, j), dp)/best
+      end do
+    end do
+    open(newunit=u, file='build/bench/hs_profile.dat', status='replace', action='write')
+    write(u, '(a)') '# tau rho_gauss rho_slsqp rho_cobyla (Dolan-More profile of NF over '//str(np)//' problems)'
+    n_tau = 400
+    do i = 0, n_tau
+      tau = 2.0_dp**(12.0_dp*real(i, dp)/real(n_tau, dp))
+      write(u, '(es14.6,3f10.5)') tau, (real(count(r(:, j) <= tau), dp)/real(np, dp), j=1, 3)
+    end do
+    close(u)
+    ! ratio of our NF to the best NLopt method's, on the problems both solve
+    write(output_unit, '(a)') '# NF_gauss / min(NF_slsqp, NF_cobyla) on problems solved by ours and one NLopt method:'
+    do k = 1, np
+      if (.not. solved(k, 1) .or. .not. any(solved(k, 2:3))) cycle
+      ratio = real(nf(k, 1), dp)/minval(real(nf(k, 2:3), dp), mask=solved(k, 2:3))
+      write(output_unit, '(a,a14,f8.3)') '#   ', names(k), ratio
+    end do
+  end subroutine collection_profile
+
+    !> Problem k of the collection through ours (defaults), SLSQP and COBYLA.
+    subroutine run_three(k, name, nf, solved)
+      integer, intent(in) :: k
+      character(len=*), intent(in) :: name
+      integer, intent(out) :: nf(3)
+      logical, intent(out) :: solved(3)
+      class(opt_problem_t), allocatable, target :: prob
+      type(hs_problem_t), allocatable, target :: hp
+      type(problem_info_t) :: info
+      type(gauss_optimizer_t) :: opt
+      type(error_t) :: err
+      real(dp), allocatable :: x0(:), xs(:), x(:)
+      real(dp) :: fs, f, v
+      integer :: alg, ires, j
+      logical :: found
+      do j = 1, 3
+        call err%clear()
+        if (k <= size(hs_numbers)) then
+          allocate(hp)
+          call create_hs(hs_numbers(k), hp, x0, xs, fs, found)
+          call move_alloc(hp, prob)
+        else
+          call create_problem(trim(name), prob, info, err)
+          x0 = info%x0
+          fs = info%f_star
+          if (name == 'hs21') x0 = [-1.0_dp, -1.0_dp]
+        end if
+        x = x0
+        if (j == 1) then
+          opt%opts%method = method_from_name('auto')
+          call opt%solve(prob, x0, err)
+          solved(j) = opt%status == status_converged
+          if (allocated(opt%x)) x = opt%x
+          f = opt%f
+        else
+          alg = merge(alg_slsqp, alg_cobyla, j == 2)
+          call nlopt_run(prob, alg, x, f, ires, err)
+          solved(j) = ires > 0
+        end if
+        nf(j) = prob%count%analyses
+        v = violation(prob, x)
+        solved(j) = solved(j) .and. abs(f - fs) <= 1.0e-6_dp*(1.0_dp + abs(fs)) .and. v <= 1.0e-6_dp
+        deallocate(prob)
+      end do
+    end subroutine run_three
+
+  real(dp) function violation(prob, x) result(v)
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:)
+    real(dp), allocatable :: g(:)
+    type(error_t) :: err
+    allocate(g(prob%n_constraints()))
+    v = 0.0_dp
+    if (size(g) == 0) return
+    call prob%constraint_values(x, g, err)
+    v = max(0.0_dp, maxval([0.0_dp, g(1:prob%m)]), maxval([0.0_dp, abs(g(prob%m + 1:))]))
+  end function violation
 
   !> One problem, one start: our methods, then SLSQP and COBYLA.
   subroutine compare(name, start_label, x0_in, methods)

@@ -13,4 +13,9 @@ for b in "$build"/release/bench/bench_*; do
   echo "== $name"
   "$b" | tee "$build/bench/$name.txt"
 done
+# the optimizer collection's performance profile (doc/optimization.md)
+if [ -f "$build/bench/hs_profile.dat" ] && command -v gnuplot > /dev/null; then
+  gnuplot -e "dat='$build/bench/hs_profile.dat'; out='$build/bench/hs_profile.png'" bench/hs_profile.gp &&
+    echo "figure $build/bench/hs_profile.png (copy to doc/figures/optimization_hs_profile.png)"
+fi
 echo "reports in $build/bench/"

@@ -14,11 +14,12 @@ program flexmech
   use table_output, only: table_t
   use run_settings, only: read_run_settings, echo_run_settings, analysis_names
   use command_line, only: parse_arguments, quit
-  use ode_verification, only: run_lsode_check
+  use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
   use spatial_analysis, only: run_spatial
+  use design_analysis, only: run_design
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -59,11 +60,16 @@ program flexmech
     call run_steady(deck, out, err)
   case ('spatial')
     call run_spatial(deck, out, err)
+  case ('design')
+    call run_design(deck, out, err)
   case default
     call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
                        'must be one of '//analysis_names, err)
   end select
   call deck%close()
+  if (.not. err%failed()) then
+    if (out%bad_row > 0) call err%set('output', out%non_finite_text(), 3)
+  end if
 
   if (err%failed()) then
     if (err%code == input_error_code) then

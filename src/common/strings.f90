@@ -4,7 +4,7 @@ module strings
   use kinds, only: dp
   implicit none
   private
-  public :: str, lower, starts_with
+  public :: str, lower, starts_with, compact
 
   interface str
     module procedure str_int, str_real, str_logical
@@ -44,6 +44,53 @@ contains
     write(buf, fmt) x
     s = trim(adjustl(buf))
   end function str_real
+
+  !> Compact number for headers and messages: 6 significant digits, no
+  !> trailing zeros (10.5, 1e-10, 2.5e+06).
+  pure function compact(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    integer :: e, k
+    if (.not. ieee_is_finite(x)) then
+      s = str(x)
+      return
+    end if
+    if (abs(x) < tiny(x)) then
+      s = '0'
+      return
+    end if
+    if (abs(x) >= 0.1_dp .and. abs(x) < 1.0e6_dp) then
+      write(buf, '(g15.6)') x
+    else
+      write(buf, '(es14.5e3)') x
+    end if
+    buf = adjustl(buf)
+    e = scan(buf, 'E')
+    if (e == 0) e = len_trim(buf) + 1
+    k = e - 1
+    if (index(buf(1:k), '.') > 0) then
+      do while (buf(k:k) == '0')
+        k = k - 1
+      end do
+      if (buf(k:k) == '.') k = k - 1
+    end if
+    s = buf(1:k)
+    if (e <= len_trim(buf)) s = s//'e'//exponent_text(buf(e + 1:len_trim(buf)))
+  contains
+    pure function exponent_text(t) result(x_text)
+      character(len=*), intent(in) :: t       ! '+006', '-010'
+      character(len=:), allocatable :: x_text
+      integer :: i
+      x_text = t(1:1)
+      i = 2
+      do while (i < len(t) .and. t(i:i) == '0')
+        i = i + 1
+      end do
+      x_text = x_text//t(i:)
+      if (x_text(1:1) == '+') x_text = x_text(2:)
+    end function exponent_text
+  end function compact
 
   pure function str_logical(b) result(s)
     logical, intent(in) :: b

@@ -63,6 +63,7 @@ module kear_element
   type :: kear_element_t
     real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
     real(dp) :: area = 0.0_dp, inertia = 0.0_dp        !< A = b t, I = b t^3/12 (K4)
+    real(dp) :: fibre = 0.0_dp                          !< outer-fibre distance c for stresses (t/2 for a rectangle)
     type(ramberg_osgood_t) :: material
     type(element_effects_t) :: effects
     integer :: formulation = formulation_exact
@@ -124,7 +125,7 @@ contains
 
   !> Build an element and precompute its constant integrals.
   pure subroutine kear_element_init(el, length, width, depth, material, effects, err, &
-                                    formulation, n_gauss, damping_beta, objective_damping)
+                                    formulation, n_gauss, damping_beta, objective_damping, fibre_distance)
     type(kear_element_t), intent(out) :: el
     real(dp), intent(in) :: length, width, depth
     type(ramberg_osgood_t), intent(in) :: material
@@ -133,6 +134,7 @@ contains
     integer, intent(in), optional :: formulation, n_gauss
     real(dp), intent(in), optional :: damping_beta
     logical, intent(in), optional :: objective_damping
+    real(dp), intent(in), optional :: fibre_distance   !< c of a section given by A, I, c (default t/2)
     real(dp) :: x(n_exact), w(n_exact), n(2), nx(2), h(6), hx(6), hxx(6)
     real(dp) :: su(8), sw(8), gw(8), gww(8), g2(8, 8), jb(8, 8)
     integer :: i
@@ -153,6 +155,8 @@ contains
     el%depth = depth
     el%area = width*depth
     el%inertia = width*depth**3/12.0_dp
+    el%fibre = 0.5_dp*depth
+    if (present(fibre_distance)) el%fibre = fibre_distance
     el%material = material
     el%effects = effects
     if (present(formulation)) el%formulation = formulation
@@ -466,7 +470,7 @@ contains
       call kear_section_strains(el, p, eo, eps_n, kap)
       do k = 1, 2
         fib = 3 - 2*k                                      ! +1, then -1
-        eps = eps_n - real(fib, dp)*0.5_dp*el%depth*kap    ! (K14)
+        eps = eps_n - real(fib, dp)*el%fibre*kap           ! (K14), y = +-c
         sig = ro_stress(law, eps)
         if (abs(sig) > rep%max_abs_stress) then
           rep%max_abs_stress = abs(sig)

@@ -111,6 +111,7 @@ module tennant_element
     integer :: n_sections = 1
     real(dp) :: sec_e0(tennant_max_sections) = 0.0_dp, sec_e1(tennant_max_sections) = 1.0_dp
     real(dp) :: sec_b(tennant_max_sections) = 0.0_dp, sec_h(tennant_max_sections) = 0.0_dp
+    real(dp) :: fibre_ratio = 1.0_dp      !< c/(h/2): outer fibre of a section given by A, I, c (1 for a rectangle)
     logical :: nonlinear = .false.        !< some tracing constant is on
     real(dp) :: eps_star = huge(1.0_dp)   !< peak strain of the material law (with D_k)
     type(local_matrices_t) :: lm
@@ -150,7 +151,7 @@ contains
   end function default_shear_modulus
 
   !> Build an element of the given length from sections tiling [0, 1] of it.
-  pure subroutine tennant_element_init(el, length, sections, material, opt, err, node_mass, sliding)
+  pure subroutine tennant_element_init(el, length, sections, material, opt, err, node_mass, sliding, fibre_ratio)
     type(tennant_element_t), intent(out) :: el
     real(dp), intent(in) :: length
     type(tennant_section_t), intent(in) :: sections(:)
@@ -158,6 +159,7 @@ contains
     type(tennant_options_t), intent(in) :: opt
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: node_mass(2)
+    real(dp), intent(in), optional :: fibre_ratio
     logical, intent(in), optional :: sliding
     integer :: k
     type(ramberg_osgood_t) :: mk
@@ -218,6 +220,7 @@ contains
     el%sec_e1(1:el%n_sections) = sections%e1
     el%sec_b(1:el%n_sections) = sections%b
     el%sec_h(1:el%n_sections) = sections%h
+    if (present(fibre_ratio)) el%fibre_ratio = fibre_ratio
     el%shear_modulus = opt%shear_modulus
     if (opt%shear .and. el%shear_modulus <= 0.0_dp) el%shear_modulus = default_shear_modulus(material%e1, opt%poisson)
     if (present(node_mass)) then
@@ -1165,7 +1168,7 @@ contains
           exit
         end if
       end do
-      es = en - real(fibre, dp)*0.5_dp*depth*kap       ! eps = eps_n - y kappa at y = +-h/2
+      es = en - real(fibre, dp)*el%fibre_ratio*0.5_dp*depth*kap   ! eps = eps_n - y kappa at y = +-c
     end function fibre_strain
   end function tennant_stress_recovery
 end module tennant_element

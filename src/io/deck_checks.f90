@@ -15,7 +15,7 @@ module deck_checks
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str
+  use strings, only: str, compact
   use deck_reader, only: deck_t, invalid_value
   implicit none
   private
@@ -47,7 +47,8 @@ contains
                                      range_text(above, at_least, below, at_most)//reason(why), err)
   end subroutine check_real
 
-  !> Every element of a real array deck value (checked as name(i)).
+  !> Every element of a real array deck value (named name(i), or name(k,i)
+  !> when name is given as 'name(k,:)').
   subroutine check_reals(deck, group, name, values, err, above, at_least, below, at_most, why)
     type(deck_t), intent(in) :: deck
     character(len=*), intent(in) :: group, name
@@ -55,9 +56,14 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: above, at_least, below, at_most
     character(len=*), intent(in), optional :: why
-    integer :: i
+    integer :: i, colon
+    colon = index(name, ':)')      ! 'section_b(3,:)' names element i as 'section_b(3,i)'
     do i = 1, size(values)
-      call check_real(deck, group, name//'('//str(i)//')', values(i), err, above, at_least, below, at_most, why)
+      if (colon > 0) then
+        call check_real(deck, group, name(1:colon - 1)//str(i)//')', values(i), err, above, at_least, below, at_most, why)
+      else
+        call check_real(deck, group, name//'('//str(i)//')', values(i), err, above, at_least, below, at_most, why)
+      end if
       if (err%failed()) return
     end do
   end subroutine check_reals
@@ -122,20 +128,20 @@ contains
     character(len=:), allocatable :: s, lo, hi
     lo = ''
     hi = ''
-    if (present(above)) lo = '('//str(above)
-    if (present(at_least)) lo = '['//str(at_least)
-    if (present(below)) hi = str(below)//')'
-    if (present(at_most)) hi = str(at_most)//']'
+    if (present(above)) lo = '('//compact(above)
+    if (present(at_least)) lo = '['//compact(at_least)
+    if (present(below)) hi = compact(below)//')'
+    if (present(at_most)) hi = compact(at_most)//']'
     if (len(lo) > 0 .and. len(hi) > 0) then
       s = 'must lie in '//lo//', '//hi
     else if (present(above)) then
-      s = 'must be > '//str(above)
+      s = 'must be > '//compact(above)
     else if (present(at_least)) then
-      s = 'must be >= '//str(at_least)
+      s = 'must be >= '//compact(at_least)
     else if (present(below)) then
-      s = 'must be < '//str(below)
+      s = 'must be < '//compact(below)
     else if (present(at_most)) then
-      s = 'must be <= '//str(at_most)
+      s = 'must be <= '//compact(at_most)
     else
       s = 'must be a finite number'
     end if

@@ -20,6 +20,8 @@
 !> for callers that do the read themselves; it names the line only for
 !> unknown variables.
 module deck_reader
+  use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_underflow, ieee_get_halting_mode, &
+                                           ieee_set_halting_mode, ieee_set_flag, ieee_support_halting
   use error_status, only: error_t
   use strings, only: str, lower
   implicit none
@@ -188,7 +190,7 @@ contains
     end if
     call self%rewind()
     iomsg = ''
-    call reader(self%unit, ios, iomsg)
+    call read_quietly(reader, self%unit, ios, iomsg)
     if (ios == 0) then
       found = .true.
       return
@@ -201,6 +203,31 @@ contains
       call err%set(context(self, group), explain(iomsg, ios), input_error_code)
     end if
   end subroutine read_group
+
+  !> Call a group reader with overflow halting off: the C library's strtod
+  !> raises the overflow flag on a value such as 1e309 (read as Infinity and
+  !> rejected afterwards by the finiteness checks), which would otherwise
+  !> trap in a build with -ffpe-trap=overflow.
+  subroutine read_quietly(reader, unit, ios, iomsg)
+    procedure(group_reader) :: reader
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    logical :: halt_overflow, halt_underflow
+    if (.not. (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_underflow))) then
+      call reader(unit, ios, iomsg)
+      return
+    end if
+    call ieee_get_halting_mode(ieee_overflow, halt_overflow)
+    call ieee_get_halting_mode(ieee_underflow, halt_underflow)
+    call ieee_set_halting_mode(ieee_overflow, .false.)
+    call ieee_set_halting_mode(ieee_underflow, .false.)
+    call reader(unit, ios, iomsg)
+    call ieee_set_flag(ieee_overflow, .false.)
+    call ieee_set_flag(ieee_underflow, .false.)
+    call ieee_set_halting_mode(ieee_overflow, halt_overflow)
+    call ieee_set_halting_mode(ieee_underflow, halt_underflow)
+  end subroutine read_quietly
 
   !> Replay the group on growing prefixes of its lines; the first prefix that
   !> fails to read names the offending line.
@@ -225,7 +252,7 @@ contains
       end if
       rewind(u)
       iomsg = ''
-      call reader(u, ios, iomsg)
+      call read_quietly(reader, u, ios, iomsg)
       close(u)
       if (ios /= 0) then
         bad = k

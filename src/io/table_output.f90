@@ -6,6 +6,7 @@
 !> into place by `commit`, so a failed run never leaves a half-written file.
 module table_output
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -24,6 +25,9 @@ module table_output
     logical :: echoing = .false.
     integer :: n_columns = 0
     integer :: n_rows = 0
+    !> The first row offered with a NaN or Inf (never written: the run stops
+    !> with a diagnosis instead of a table gnuplot would plot as gaps).
+    integer :: bad_row = 0, bad_column = 0
   contains
     procedure :: open => table_open
     procedure :: comment
@@ -36,6 +40,7 @@ module table_output
     procedure :: commit
     procedure :: discard
     procedure :: is_open
+    procedure :: non_finite_text
   end type table_t
 
   interface
@@ -129,10 +134,27 @@ contains
   subroutine row(self, values)
     class(table_t), intent(inout) :: self
     real(dp), intent(in) :: values(:)
-    if (.not. self%opened) return
+    integer :: i
+    if (.not. self%opened .or. self%bad_row > 0) return
+    do i = 1, size(values)
+      if (.not. ieee_is_finite(values(i))) then
+        self%bad_row = self%n_rows + 1
+        self%bad_column = i
+        return
+      end if
+    end do
     write(self%unit, row_format) values
     self%n_rows = self%n_rows + 1
   end subroutine row
+
+  !> Empty, or the diagnosis of the first row that held a NaN or Inf.
+  function non_finite_text(self) result(text)
+    class(table_t), intent(in) :: self
+    character(len=:), allocatable :: text
+    text = ''
+    if (self%bad_row > 0) text = 'data row '//str(self%bad_row)//', column '//str(self%bad_column)// &
+      ': the analysis produced a value that is not a finite number (NaN or Inf); rows from there on are not written'
+  end function non_finite_text
 
   subroutine summary(self, key, value)
     class(table_t), intent(inout) :: self

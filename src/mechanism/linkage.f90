@@ -9,9 +9,10 @@
 !> (doc/mechanism_deck.md).  build_mechanism validates every value, naming the
 !> variable and the value, and returns the checked, indexed mechanism_t.
 module linkage
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, pi
   use error_status, only: error_t
-  use strings, only: str, lower
+  use strings, only: str, lower, compact
   use deck_reader, only: deck_t, invalid_value
   implicit none
   private
@@ -19,6 +20,7 @@ module linkage
   public :: joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_slider_link, joint_free
   public :: profile_constant, profile_spinup, branch_open, branch_crossed
   public :: mechanism_input_t, input_issue_t, mechanism_t, link_t, joint_t, driver_t
+  public :: check_section_rules
   public :: build_mechanism, read_mechanism, echo_mechanism, driver_angle, joint_type_name, mechanism_summary, classify_mechanism
   public :: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, tennant_aluminium_rho
 
@@ -67,6 +69,9 @@ module linkage
     real(dp) :: link_h(max_links) = 1.0_dp
     real(dp) :: link_area(max_links) = 0.0_dp
     real(dp) :: link_inertia(max_links) = 0.0_dp
+    character(len=12) :: link_section(max_links) = 'rectangle'
+    real(dp) :: link_c(max_links) = 0.0_dp
+    real(dp) :: link_wall(max_links) = 0.0_dp
     real(dp) :: link_e1(max_links) = tennant_aluminium_e1
     real(dp) :: link_e2(max_links) = tennant_aluminium_e2
     real(dp) :: link_m(max_links) = tennant_aluminium_m
@@ -95,7 +100,11 @@ module linkage
     real(dp) :: length = 0.0_dp       !< fixed length; for a sliding link its physical length (0 = not given)
     logical :: sliding = .false.      !< slides through a sleeve: its active length varies
     integer :: sleeve_end = 0         !< end (1 or 2) at the sleeve, if sliding
+    !> b, h: the rectangle; for another shape the rectangle with its A and I
+    !> (h = sqrt(12 I/A), b = A/h), which is all a linear-elastic beam needs.
     real(dp) :: b = 0.0_dp, h = 0.0_dp, area = 0.0_dp, inertia = 0.0_dp
+    character(len=12) :: section = 'rectangle'
+    real(dp) :: fibre = 0.0_dp        !< outer-fibre distance c from the neutral axis (stresses)
     real(dp) :: e1 = 0.0_dp, e2 = 0.0_dp, m = 0.0_dp, rho = 0.0_dp
     integer :: n_elements = 0
     integer :: first_element = 0      !< global number of its first element
@@ -148,11 +157,13 @@ module linkage
   character(len=8) :: joint_branch(max_joints), branch
   real(dp) :: link_length(max_links), link_b(max_links), link_h(max_links), link_area(max_links), &
               link_inertia(max_links), link_e1(max_links), link_e2(max_links), link_m(max_links), link_rho(max_links)
+  character(len=12) :: link_section(max_links)
+  real(dp) :: link_c(max_links), link_wall(max_links)
   real(dp) :: omega, theta0_deg, spinup_time, toggle_rcond
   namelist /mechanism/ n_joints, joint_name, joint_type, joint_x, joint_y, joint_guide_deg, &
     joint_sliding_link, joint_branch, joint_mass, &
     n_links, link_name, link_joint1, link_joint2, link_length, link_b, link_h, &
-    link_area, link_inertia, link_e1, link_e2, link_m, link_rho, link_n_elements, &
+    link_area, link_inertia, link_section, link_c, link_wall, link_e1, link_e2, link_m, link_rho, link_n_elements, &
     driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond
 
 contains
@@ -187,8 +198,35 @@ contains
 
   logical pure function finite(x)
     real(dp), intent(in) :: x
-    finite = abs(x) <= huge(x)
+    finite = ieee_is_finite(x)
   end function finite
+
+  !> The one rule for sections that are not rectangles, shared by every
+  !> analysis: the Ramberg-Osgood law is integrated through a rectangular
+  !> depth (Kear K16-K17, Tennant T6) and Tennant's shear angle assumes a
+  !> rectangle, so a circle, tube or general section is a linear-elastic beam
+  !> given by A, I and c.  A link that breaks the rule is an input error.
+  subroutine check_section_rules(deck, mech, material, shear, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_t), intent(in) :: mech
+    logical, intent(in) :: material, shear
+    type(error_t), intent(inout) :: err
+    integer :: i
+    if (err%failed() .or. .not. (material .or. shear)) return
+    do i = 1, mech%n_links
+      if (mech%links(i)%section == 'rectangle') cycle
+      if (material) then
+        call invalid_value(deck, 'mechanism', idx('link_section', i), quoted(mech%links(i)%section), &
+          'the material effect integrates the Ramberg-Osgood law through a rectangular depth: a '// &
+          trim(mech%links(i)%section)//' section needs it off (a linear-elastic beam of A, I and c)', err)
+      else
+        call invalid_value(deck, 'mechanism', idx('link_section', i), quoted(mech%links(i)%section), &
+          'the shear angle of Tennant''s element assumes a rectangle: a '//trim(mech%links(i)%section)// &
+          ' section needs shear off', err)
+      end if
+      return
+    end do
+  end subroutine check_section_rules
 
   !> Validate the flat input and build the indexed mechanism.  Any failure is
   !> an input error (err%code = 2) naming the variable and its value.
@@ -214,6 +252,8 @@ contains
     mech%n_joints = nj
     mech%n_links = nl
     allocate(mech%joints(nj), mech%links(nl))
+    if (.not. all_inputs_finite()) return
+    if (.not. inputs_in_range()) return
 
     ! ---- joints: kind, name, ground coordinates, options
     do j = 1, nj
@@ -291,24 +331,8 @@ contains
           call bad(idx('link_joint2', i), str(inp%link_joint2(i)), 'a link must join two different joints'); return
         end if
         lk%joint = [inp%link_joint1(i), inp%link_joint2(i)]
-        if (.not. (inp%link_b(i) > 0.0_dp .and. finite(inp%link_b(i)))) then
-          call bad(idx('link_b', i), str(inp%link_b(i)), 'the section width must be > 0'); return
-        end if
-        if (.not. (inp%link_h(i) > 0.0_dp .and. finite(inp%link_h(i)))) then
-          call bad(idx('link_h', i), str(inp%link_h(i)), 'the section height must be > 0'); return
-        end if
-        lk%b = inp%link_b(i)
-        lk%h = inp%link_h(i)
-        if (.not. (inp%link_area(i) >= 0.0_dp .and. finite(inp%link_area(i)))) then
-          call bad(idx('link_area', i), str(inp%link_area(i)), 'must be > 0 (or 0 for b*h)'); return
-        end if
-        if (.not. (inp%link_inertia(i) >= 0.0_dp .and. finite(inp%link_inertia(i)))) then
-          call bad(idx('link_inertia', i), str(inp%link_inertia(i)), 'must be > 0 (or 0 for b*h**3/12)'); return
-        end if
-        lk%area = inp%link_area(i)
-        if (.not. lk%area > 0.0_dp) lk%area = lk%b*lk%h
-        lk%inertia = inp%link_inertia(i)
-        if (.not. lk%inertia > 0.0_dp) lk%inertia = lk%b*lk%h**3/12.0_dp
+        call set_section(i, lk)
+        if (err%failed()) return
         if (.not. (inp%link_e1(i) > 0.0_dp .and. finite(inp%link_e1(i)))) then
           call bad(idx('link_e1', i), str(inp%link_e1(i)), 'the modulus A must be > 0'); return
         end if
@@ -536,6 +560,154 @@ contains
     end do
     mech%n_elements = k
   contains
+    !> Every real input of the joints and links in use, and the driver's,
+    !> is finite (before any comparison: NaN comparisons trap in debug builds).
+    logical function all_inputs_finite() result(ok)
+      integer :: q
+      ok = .false.
+      do q = 1, nj
+        if (.not. finite_at('joint_x', q, inp%joint_x(q))) return
+        if (.not. finite_at('joint_y', q, inp%joint_y(q))) return
+        if (.not. finite_at('joint_guide_deg', q, inp%joint_guide_deg(q))) return
+        if (.not. finite_at('joint_mass', q, inp%joint_mass(q))) return
+      end do
+      do q = 1, nl
+        if (.not. finite_at('link_length', q, inp%link_length(q))) return
+        if (.not. finite_at('link_b', q, inp%link_b(q))) return
+        if (.not. finite_at('link_h', q, inp%link_h(q))) return
+        if (.not. finite_at('link_area', q, inp%link_area(q))) return
+        if (.not. finite_at('link_inertia', q, inp%link_inertia(q))) return
+        if (.not. finite_at('link_c', q, inp%link_c(q))) return
+        if (.not. finite_at('link_wall', q, inp%link_wall(q))) return
+        if (.not. finite_at('link_e1', q, inp%link_e1(q))) return
+        if (.not. finite_at('link_e2', q, inp%link_e2(q))) return
+        if (.not. finite_at('link_m', q, inp%link_m(q))) return
+        if (.not. finite_at('link_rho', q, inp%link_rho(q))) return
+      end do
+      if (.not. finite_at('omega', 0, inp%omega)) return
+      if (.not. finite_at('theta0_deg', 0, inp%theta0_deg)) return
+      if (.not. finite_at('spinup_time', 0, inp%spinup_time)) return
+      if (.not. finite_at('toggle_rcond', 0, inp%toggle_rcond)) return
+      ok = .true.
+    end function all_inputs_finite
+
+    logical function finite_at(name, q, x) result(ok)
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: q
+      real(dp), intent(in) :: x
+      ok = finite(x)
+      if (ok) return
+      if (q > 0) then
+        call bad(idx(name, q), str(x), 'must be a finite number')
+      else
+        call bad(name, str(x), 'must be a finite number')
+      end if
+    end function finite_at
+
+    !> Physical ranges of the driver and of sizes (doc/mechanism_deck.md):
+    !> a crank angle beyond ten turns or a speed beyond 1e5 rad/s is a typing
+    !> error, and a speed below 1e-6 rad/s (one turn in 70 days) cannot be
+    !> tabulated per revolution.
+    logical function inputs_in_range() result(ok)
+      integer :: q
+      ok = .false.
+      if (abs(inp%omega) > 1.0e5_dp .or. (abs(inp%omega) > 0.0_dp .and. abs(inp%omega) < 1.0e-6_dp)) then
+        call bad('omega', str(inp%omega), 'must be 0 or have a magnitude in [1e-6, 1e5] rad/s'); return
+      end if
+      if (abs(inp%theta0_deg) > 3600.0_dp) then
+        call bad('theta0_deg', str(inp%theta0_deg), 'must lie in [-3600, 3600] degrees'); return
+      end if
+      if (abs(inp%spinup_time) > 1.0e6_dp) then
+        call bad('spinup_time', str(inp%spinup_time), 'must be at most 1e6 s'); return
+      end if
+      do q = 1, nj
+        if (abs(inp%joint_guide_deg(q)) > 3600.0_dp) then
+          call bad(idx('joint_guide_deg', q), str(inp%joint_guide_deg(q)), 'must lie in [-3600, 3600] degrees'); return
+        end if
+        if (is_set(inp%joint_x(q)) .and. (abs(inp%joint_x(q)) > 1.0e8_dp .or. abs(inp%joint_y(q)) > 1.0e8_dp)) then
+          call bad(idx('joint_x', q), str(inp%joint_x(q))//', '//str(inp%joint_y(q)), &
+                   'coordinates must lie in [-1e8, 1e8]'); return
+        end if
+      end do
+      do q = 1, nl
+        if (inp%link_length(q) > 1.0e8_dp) then
+          call bad(idx('link_length', q), str(inp%link_length(q)), 'must be at most 1e8'); return
+        end if
+        if (inp%link_b(q) > 1.0e8_dp .or. inp%link_h(q) > 1.0e8_dp) then
+          call bad(idx('link_h', q), str(inp%link_h(q)), 'section sizes must be at most 1e8'); return
+        end if
+        if (inp%link_rho(q) > 1.0e10_dp .or. inp%link_e1(q) > 1.0e20_dp .or. inp%link_e2(q) > 1.0e30_dp) then
+          call bad(idx('link_e1', q), str(inp%link_e1(q)), 'material constants beyond any material '// &
+                   '(rho <= 1e10, E1 <= 1e20, E2 <= 1e30)'); return
+        end if
+      end do
+      ok = .true.
+    end function inputs_in_range
+
+    !> The section of link q: A, I, the outer-fibre distance c and the
+    !> equivalent rectangle b x h (the same A and I).
+    subroutine set_section(q, lk)
+      integer, intent(in) :: q
+      type(link_t), intent(inout) :: lk
+      real(dp) :: d, di
+      lk%section = lower(adjustl(inp%link_section(q)))
+      select case (lk%section)
+      case ('rectangle')
+        if (inp%link_area(q) > 0.0_dp .or. inp%link_inertia(q) > 0.0_dp .or. inp%link_c(q) > 0.0_dp) then
+          call bad(idx('link_area', q)//', '//idx('link_inertia', q)//', '//idx('link_c', q), 'given', &
+                   'a rectangle is given by link_b and link_h; for a section given by A, I and c set '// &
+                   idx('link_section', q)//' = ''general'''); return
+        end if
+        if (.not. (inp%link_b(q) > 0.0_dp)) then
+          call bad(idx('link_b', q), str(inp%link_b(q)), 'the section width must be > 0'); return
+        end if
+        if (.not. (inp%link_h(q) > 0.0_dp)) then
+          call bad(idx('link_h', q), str(inp%link_h(q)), 'the section height must be > 0'); return
+        end if
+        lk%b = inp%link_b(q)
+        lk%h = inp%link_h(q)
+        lk%area = lk%b*lk%h
+        lk%inertia = lk%b*lk%h**3/12.0_dp
+        lk%fibre = 0.5_dp*lk%h
+        return
+      case ('circle', 'tube')
+        d = inp%link_h(q)
+        if (.not. (d > 0.0_dp)) then
+          call bad(idx('link_h', q), str(d), 'the outer diameter of a '//trim(lk%section)//' must be > 0'); return
+        end if
+        di = 0.0_dp
+        if (lk%section == 'tube') then
+          if (.not. (inp%link_wall(q) > 0.0_dp .and. inp%link_wall(q) < 0.5_dp*d)) then
+            call bad(idx('link_wall', q), str(inp%link_wall(q)), 'the wall of a tube must be > 0 and < half '// &
+                     'its outer diameter link_h'); return
+          end if
+          di = d - 2.0_dp*inp%link_wall(q)
+        end if
+        lk%area = 0.25_dp*pi*(d**2 - di**2)
+        lk%inertia = pi*(d**4 - di**4)/64.0_dp
+        lk%fibre = 0.5_dp*d
+      case ('general')
+        if (.not. (inp%link_area(q) > 0.0_dp)) then
+          call bad(idx('link_area', q), str(inp%link_area(q)), 'a general section needs its area A > 0'); return
+        end if
+        if (.not. (inp%link_inertia(q) > 0.0_dp)) then
+          call bad(idx('link_inertia', q), str(inp%link_inertia(q)), 'a general section needs I > 0'); return
+        end if
+        if (.not. (inp%link_c(q) > 0.0_dp)) then
+          call bad(idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
+                   'c > 0 (for stresses)'); return
+        end if
+        lk%area = inp%link_area(q)
+        lk%inertia = inp%link_inertia(q)
+        lk%fibre = inp%link_c(q)
+      case default
+        call bad(idx('link_section', q), quoted(inp%link_section(q)), &
+                 "must be 'rectangle', 'circle', 'tube' or 'general'"); return
+      end select
+      lk%h = sqrt(12.0_dp*lk%inertia/lk%area)
+      lk%b = lk%area/lk%h
+    end subroutine set_section
+
     !> Record an input error (code 2) naming the variable, its value and the rule.
     subroutine bad(variable, value, rule)
       character(len=*), intent(in) :: variable, value, rule
@@ -626,12 +798,12 @@ contains
         else
           who = 'Grashof double-rocker: the crank cannot turn fully'
         end if
-        text = 'four-bar, Grashof (s + l = '//short(s + l)//' < p + q = '//short(pq)//'), '//who
+        text = 'four-bar, Grashof (s + l = '//compact(s + l)//' < p + q = '//compact(pq)//'), '//who
       else if (s + l > pq) then
-        text = 'four-bar, non-Grashof triple-rocker (s + l = '//short(s + l)//' > p + q = '//short(pq)// &
+        text = 'four-bar, non-Grashof triple-rocker (s + l = '//compact(s + l)//' > p + q = '//compact(pq)// &
                '): the crank cannot turn fully'
       else
-        text = 'four-bar, change point (s + l = p + q = '//short(pq)//'): toggle positions where the branches meet'
+        text = 'four-bar, change point (s + l = p + q = '//compact(pq)//'): toggle positions where the branches meet'
       end if
     else if (mech%n_links == 2 .and. mech%n_joints == 3 .and. ng == 1 .and. nsf == 1 .and. np == 1) then
       r = mech%links(crank)%length
@@ -641,42 +813,15 @@ contains
             (mech%joints(g(1))%y - mech%joints(i)%y)*mech%joints(i)%guide(1)
       offset = abs(sgn)
       if (rod > r + offset) then
-        text = 'slider-crank (crank '//short(r)//', rod '//short(rod)//', offset '//short(offset)// &
+        text = 'slider-crank (crank '//compact(r)//', rod '//compact(rod)//', offset '//compact(offset)// &
                '): the crank turns fully'
       else
-        text = 'slider-crank (crank '//short(r)//', rod '//short(rod)//', offset '//short(offset)// &
+        text = 'slider-crank (crank '//compact(r)//', rod '//compact(rod)//', offset '//compact(offset)// &
                '): rod <= crank + offset, the crank cannot turn fully'
       end if
     end if
   end function classify_mechanism
 
-  !> Compact number for the header: 6 significant digits, no trailing zeros.
-  pure function short(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    integer :: e, k
-    if (abs(x) < tiny(x)) then
-      s = '0'
-      return
-    end if
-    if (abs(x) >= 0.1_dp .and. abs(x) < 1.0e6_dp) then
-      write(buf, '(g15.6)') x
-    else
-      write(buf, '(es13.5e2)') x
-    end if
-    buf = adjustl(buf)
-    e = scan(buf, 'E')
-    if (e == 0) e = len_trim(buf) + 1
-    k = e - 1
-    if (index(buf(1:k), '.') > 0) then
-      do while (buf(k:k) == '0')
-        k = k - 1
-      end do
-      if (buf(k:k) == '.') k = k - 1
-    end if
-    s = buf(1:k)//trim(buf(e:))
-  end function short
 
   !> Lines for the output header: joints, links, driver, branch, classification.
   function mechanism_summary(mech) result(lines)
@@ -696,13 +841,13 @@ contains
     do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
         s = 'joint '//trim(jt%name)//': '//joint_type_name(jt%kind)
-        if (jt%grounded .or. jt%kind == joint_slider_fixed) s = s//' at ('//short(jt%x)//', '//short(jt%y)//')'
-        if (jt%kind == joint_slider_fixed) s = s//', guide '//short(mech%input%joint_guide_deg(j))//' deg'
+        if (jt%grounded .or. jt%kind == joint_slider_fixed) s = s//' at ('//compact(jt%x)//', '//compact(jt%y)//')'
+        if (jt%kind == joint_slider_fixed) s = s//', guide '//compact(mech%input%joint_guide_deg(j))//' deg'
         if (jt%kind == joint_slider_link) then
           s = s//', sleeve for '//trim(mech%links(jt%sliding_link)%name)
           if (jt%grounded) s = s//' pivoting on the ground'
         end if
-        if (jt%mass > 0.0_dp) s = s//', mass '//short(jt%mass)
+        if (jt%mass > 0.0_dp) s = s//', mass '//compact(jt%mass)
         s = s//'; link ends:'
         do k = 1, jt%n_links
           s = s//' '//trim(mech%links(jt%link(k))%name)//'.'//str(jt%link_end(k))
@@ -716,14 +861,14 @@ contains
             trim(mech%joints(lk%joint(2))%name)
         if (lk%sliding) then
           s = s//', slides (active length varies'
-          if (lk%length > 0.0_dp) s = s//', physical length '//short(lk%length)
+          if (lk%length > 0.0_dp) s = s//', physical length '//compact(lk%length)
           s = s//')'
         else
-          s = s//', length '//short(lk%length)
+          s = s//', length '//compact(lk%length)
         end if
-        s = s//', '//str(lk%n_elements)//' element(s); b '//short(lk%b)//', h '//short(lk%h)//', A '// &
-            short(lk%area)//', I '//short(lk%inertia)//'; E1 '//short(lk%e1)//', E2 '//short(lk%e2)// &
-            ', m '//short(lk%m)//', rho '//short(lk%rho)
+        s = s//', '//str(lk%n_elements)//' element(s); b '//compact(lk%b)//', h '//compact(lk%h)//', A '// &
+            compact(lk%area)//', I '//compact(lk%inertia)//'; E1 '//compact(lk%e1)//', E2 '//compact(lk%e2)// &
+            ', m '//compact(lk%m)//', rho '//compact(lk%rho)
         call add(s)
       end associate
     end do
@@ -731,10 +876,10 @@ contains
       if (d%link == 0) then
         s = 'driver: none (driver_link = 0)'
       else
-        s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//short(d%omega)//' rad/s, theta0 '// &
-            short(mech%input%theta0_deg)//' deg, profile '
+        s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//compact(d%omega)//' rad/s, theta0 '// &
+            compact(mech%input%theta0_deg)//' deg, profile '
         if (d%profile == profile_spinup) then
-          s = s//'spinup over '//short(d%spinup_time)//' s (cycloidal)'
+          s = s//'spinup over '//compact(d%spinup_time)//' s (cycloidal)'
         else
           s = s//'constant'
         end if
@@ -812,6 +957,9 @@ contains
     link_h = inp%link_h
     link_area = inp%link_area
     link_inertia = inp%link_inertia
+    link_section = inp%link_section
+    link_c = inp%link_c
+    link_wall = inp%link_wall
     link_e1 = inp%link_e1
     link_e2 = inp%link_e2
     link_m = inp%link_m
@@ -846,6 +994,9 @@ contains
     inp%link_h = link_h
     inp%link_area = link_area
     inp%link_inertia = link_inertia
+    inp%link_section = link_section
+    inp%link_c = link_c
+    inp%link_wall = link_wall
     inp%link_e1 = link_e1
     inp%link_e2 = link_e2
     inp%link_m = link_m

@@ -15,39 +15,45 @@
 !> Convergence (the papers state no test; ours, see doc/optimization.md): at
 !> x_k, after the step s_k and the multipliers have been computed,
 !>   (1) every constraint holds: max(g_i, |h_j|) <= feas_tol;
-!>   (2) the multiplier equations are solved (max |m_i| <= feas_tol/100) and
-!>       every inequality multiplier is >= 0 (drop rule, §9.4);
+!>   (2) the multiplier equations hold to the feasibility tolerance
+!>       (max |m_i| <= feas_tol) and every inequality multiplier is >= 0
+!>       (drop rule, §9.4);
 !>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf);
-!>   (4) the predicted objective change is small:
-!>       |grad F^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
+!>   (4) the predicted change of the Lagrangian is small:
+!>       |(grad F + C lambda)^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
+!> (4) uses the Lagrangian, not F: at a constrained optimum grad F = -C lambda
+!> is large, and grad F^T s would only measure how closely B11 was solved.
 !> A zero step with solved multiplier equations is exactly the KKT system at
 !> x_k, so the test costs no analysis beyond the one that produced x_k.
 module gauss_optimizer
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
-  use linalg, only: lu_factor, sym_generalized_eig
+  use linalg, only: lu_factor, lu_solve, sym_generalized_eig, cholesky_factor
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
   use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
   implicit none
   private
   public :: gauss_optimizer_t, gauss_options_t, gauss_iterate_t
   public :: method_gauss, method_gauss_constrained, method_gnlc, method_gnlc_ns
-  public :: method_gnlc_general, method_gnlc_general_ns
+  public :: method_gnlc_general, method_gnlc_general_ns, method_auto
   public :: method_from_name, method_name, method_names
   public :: hessian_auto, hessian_gauss, hessian_exact, hessian_from_name, hessian_name
   public :: status_not_run, status_converged, status_max_iter, status_failed
   public :: set_text
 
   integer, parameter :: method_gauss = 1, method_gauss_constrained = 2, method_gnlc = 3, &
-                        method_gnlc_ns = 4, method_gnlc_general = 5, method_gnlc_general_ns = 6
+                        method_gnlc_ns = 4, method_gnlc_general = 5, method_gnlc_general_ns = 6, method_auto = 7
   character(len=*), parameter :: method_names = &
-    "'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
+    "'auto', 'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
   integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
+  integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
 
   type :: gauss_options_t
-    integer :: method = method_gnlc
+    integer :: method = method_auto       !< auto: chosen from the problem (see check_setup); solve
+                                          !< leaves the method used here
     integer :: hessian = hessian_auto     !< auto: 2JJ^T for sums of squares, exact otherwise
     integer :: max_iter = 50
     real(dp) :: xtol = 1.0e-8_dp          !< step test (3)
@@ -56,6 +62,8 @@ module gauss_optimizer
     real(dp) :: mult_tol = 1.0e-8_dp      !< drop if lambda_j |c_j| < -mult_tol |grad F|
     real(dp) :: rcond_min = 1.0e-13_dp    !< G with smaller reciprocal condition number is singular
     real(dp) :: regularization = 0.0_dp   !< > 0: add mu I to a singular G, mu = this * max |G_ii|
+    logical :: auto_regularize = .true.   !< regularization = 0 and G singular: choose mu (see curvature);
+                                          !< .false.: stop with the diagnosis
     integer :: newton_max_iter = 30       !< Newton iterations for B11 before Powell takes over
     logical :: potter_repeat = .true.     !< on step-back cycling repeat the step with the violated
                                           !< constraints active (Potter's fix (a)); else stop
@@ -103,14 +111,17 @@ module gauss_optimizer
     real(dp), allocatable, private :: phi(:), gradf(:), jac(:, :), gm(:, :), dg(:, :), hess(:, :, :)
     logical, allocatable, private :: have_hess(:)
     character(len=:), allocatable, private :: ev
+    logical, private :: last_solved = .true.    !< B11 of the previous step solved (multipliers meaningful)
   contains
     procedure :: solve
     procedure :: method_label
     procedure :: reset
     procedure, private :: check_setup
     procedure, private :: curvature
+    procedure, private :: make_convex
     procedure, private :: compute_step
     procedure, private :: step_back
+    procedure, private :: analyse_trial
     procedure, private :: append_log
     procedure, private :: note
   end type gauss_optimizer_t
@@ -134,6 +145,8 @@ contains
       method = method_gnlc_general
     case ('gnlc_general_ns')
       method = method_gnlc_general_ns
+    case ('auto')
+      method = method_auto
     case default
       method = 0
     end select
@@ -155,6 +168,8 @@ contains
       name = 'gnlc_general'
     case (method_gnlc_general_ns)
       name = 'gnlc_general_ns'
+    case (method_auto)
+      name = 'auto'
     case default
       name = 'unknown'
     end select
@@ -213,7 +228,9 @@ contains
   !> Minimise prob from x0.  On return status, x, f, lambda, active and the
   !> log describe the run.  err is set (code 2 for inconsistent input, 1
   !> otherwise) when the run did not converge: the message says why, and the
-  !> best feasible iterate stays in x_best / f_best.
+  !> best feasible iterate stays in x_best / f_best.  err reports this run
+  !> only: an error left in it by an earlier call is cleared first (it would
+  !> otherwise reach the problem's procedures and be blamed on them).
   subroutine solve(self, prob, x0, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
@@ -221,12 +238,16 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
     logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind
+    integer :: n, m, mt, k, repeats, hess_kind, halvings
     real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged
+    logical :: solved, step_back_method, converged, same_point, auto
+    real(dp) :: b11_res
+    logical, allocatable :: active_before(:)
     character(len=:), allocatable :: stage
 
+    call err%clear()
     call self%reset()
+    auto = self%opts%method == method_auto
     call self%check_setup(prob, x0, hess_kind, err)
     if (err%failed()) then
       self%message = err%text()
@@ -239,21 +260,33 @@ contains
     allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
     allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
     allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
+    self%hess = 0.0_dp
     allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
     allocate(self%log(16))
     self%x = x0
     self%lambda = 0.0_dp
     self%ev = ''
+    if (auto) call self%note('method auto: '//self%method_label())
+    if (.not. step_back_method .and. prob%n_bounds > 0) then
+      self%x = prob%project_to_bounds(x0)
+      if (maxval(abs(self%x - x0)) > 0.0_dp) call self%note('start projected onto the bounds')
+    end if
 
     call prob%constraint_values(self%x, self%g, err)
+    if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
+      call err%set('constraints', 'not finite at the start point: g = '//vec_text(self%g))
     if (err%failed()) then
       call start_failed()
       return
     end if
     violated = self%g(1:m) > self%opts%feas_tol
-    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol))) then
+    ! step-back methods keep inequalities and linear equalities satisfied; a
+    ! nonlinear equality cannot hold along a step and is restored by B11
+    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol &
+                                                       .and. prob%con_kind(m + 1:mt) == con_linear))) then
       call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
-        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol])//' violated (max g = ' &
+        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol .and. prob%con_kind(m + 1:mt) == con_linear]) &
+        //' violated (max g = ' &
         //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
         ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
         //ns_variant(self%opts%method)//''', which accepts any start', code=2)
@@ -267,6 +300,8 @@ contains
     self%active(m + 1:mt) = .true.
 
     call prob%analyse(self%x, self%f, self%phi, err)
+    if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
+      call err%set('objective', 'not finite at the start point (F = '//str(self%f)//')')
     if (err%failed()) then
       call start_failed()
       return
@@ -279,25 +314,33 @@ contains
       stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
       call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
-      if (err%failed()) exit outer
-      call self%curvature(prob, hess_kind, k, err)
+      if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
+        call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
       if (err%failed()) exit outer
       if (mt > 0) then
         call prob%constraint_gradients(self%x, self%g, self%dg, err)
+        if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
+          call err%set('constraint gradients', 'not finite at x_'//str(k))
         if (err%failed()) exit outer
       end if
+      call self%curvature(prob, hess_kind, k, err)
+      if (err%failed()) exit outer
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
 
       repeats = 0
       inner: do
-        call self%compute_step(prob, s, solved, err)
+        active_before = self%active
+        call self%compute_step(prob, s, solved, b11_res, err)
         if (err%failed()) exit outer
+        self%last_solved = solved
         ! ---- convergence test at x_k (module header)
         snorm = maxval(abs(s))
         pred = dot_product(self%gradf, s) + 0.5_dp*dot_product(s, matmul(self%gm, s))
+        if (mt > 0) pred = pred + dot_product(matmul(self%dg, self%lambda), s)
         maxviol = max_violation(self%g, m)
-        if (maxviol <= self%opts%feas_tol .and. solved .and. snorm <= self%opts%xtol*(1.0_dp + xnorm) &
+        if (maxviol <= self%opts%feas_tol .and. b11_res <= self%opts%feas_tol &
+            .and. snorm <= self%opts%xtol*(1.0_dp + xnorm) &
             .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f))) then
           converged = .true.
           exit outer
@@ -309,6 +352,23 @@ contains
         if (mt > 0) then
           call prob%constraint_values(x_new, g_new, err)
           if (err%failed()) exit outer
+          ! a non-finite constraint value is a failed trial: shorten the step
+          halvings = 0
+          do while (.not. all(ieee_is_finite(g_new)) .and. halvings < max_halvings)
+            halvings = halvings + 1
+            s = 0.5_dp*s
+            x_new = self%x + s
+            call prob%constraint_values(x_new, g_new, err)
+            if (err%failed()) exit outer
+          end do
+          if (halvings > 0) then
+            snorm = maxval(abs(s))
+            call self%note('constraints not finite at the trial point: step halved '//str(halvings)//' times')
+          end if
+          if (.not. all(ieee_is_finite(g_new))) then
+            call err%set('constraints', 'not finite anywhere along the step (halved '//str(max_halvings)//' times)')
+            exit outer
+          end if
           violated = g_new(1:m) > self%opts%feas_tol
           touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
           if (step_back_method .and. any(violated)) then
@@ -366,14 +426,28 @@ contains
             end if
           end if
         end if
+        ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
+        ! with a changed active set the step is recomputed at x_k; with the
+        ! same set the next iteration would repeat this one exactly
+        same_point = maxval(abs(x_new - self%x)) <= 0.0_dp
+        if (same_point .and. any(self%active .neqv. active_before) .and. repeats < 2*mt) then
+          repeats = repeats + 1
+          call self%note('zero-length step: recomputed at x_k with the new active set')
+          cycle inner
+        end if
+        if (same_point) then
+          call err%set(self%method_label(), 'zero-length step at iteration '//str(k + 1)//' with the active set ' &
+            //set_text(self%active)//' unchanged: the next iteration would repeat this one (max violation ' &
+            //str(maxviol, 3)//', B11 residual '//str(b11_res, 3)//'); stopped without another analysis')
+          exit outer
+        end if
         exit inner
       end do inner
 
-      ! ---- accept x_{k+1}: one analysis
+      ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
+      ! never a value: step back to the midpoint and analyse again
       k = k + 1
-      self%x = x_new
-      if (mt > 0) self%g = g_new
-      call prob%analyse(self%x, self%f, self%phi, err)
+      call self%analyse_trial(prob, x_new, g_new, t, snorm, step_back_method, err)
       if (err%failed()) exit outer
       self%iterations = k
       call self%append_log(prob, k, t*snorm)
@@ -446,6 +520,7 @@ contains
     self%potter_repeats = 0
     self%n_log = 0
     self%ev = ''
+    self%last_solved = .true.
     self%opts = opts
   end subroutine reset
 
@@ -458,6 +533,16 @@ contains
     type(error_t), intent(inout) :: err
     character(len=:), allocatable :: me
     integer :: i
+    if (self%opts%method == method_auto) then
+      ! any start is allowed: the NS variants; Potter's for general constraints
+      if (prob%n_constraints() == 0) then
+        self%opts%method = method_gauss
+      else if (any(prob%con_kind == con_general)) then
+        self%opts%method = method_gnlc_general_ns
+      else
+        self%opts%method = method_gnlc_ns
+      end if
+    end if
     me = self%method_label()
     hess_kind = self%opts%hessian
     if (hess_kind == hessian_auto) then
@@ -467,6 +552,12 @@ contains
     if (size(x0) /= prob%n) then
       call err%set(me, 'the start point has '//str(size(x0))//' values; problem '//prob%name// &
                    ' has '//str(prob%n)//' variables', code=2)
+    else if (.not. all(ieee_is_finite(x0))) then
+      call err%set(me, 'the start point is not finite: x0 = '//vec_text(x0), code=2)
+    else if (.not. all(ieee_is_finite([self%opts%xtol, self%opts%ftol, self%opts%feas_tol, self%opts%mult_tol, &
+                                       self%opts%rcond_min, self%opts%regularization]))) then
+      call err%set(me, 'invalid options: xtol, ftol, feas_tol, mult_tol, rcond_min and regularization must be ' &
+                   //'finite', code=2)
     else if (me == 'unknown') then
       call err%set('gauss_optimizer', 'unknown method; expected one of '//method_names, code=2)
     else if (hess_kind == hessian_gauss .and. .not. prob%is_least_squares()) then
@@ -502,8 +593,10 @@ contains
     real(dp), allocatable :: lu(:, :), ev(:), eye(:, :)
     integer, allocatable :: ipiv(:)
     type(error_t) :: lerr
-    real(dp) :: rc, mu
-    character(len=:), allocatable :: what, rank_text
+    real(dp) :: rc, mu, gmax
+    real(dp), allocatable :: glag(:)
+    real(dp), parameter :: auto_factor = 1.0e-8_dp
+    character(len=:), allocatable :: what, rank_text, how
     integer :: i, n, rank
     n = prob%n
     if (hess_kind == hessian_gauss) then
@@ -511,9 +604,12 @@ contains
       what = 'G = 2 J J^T'
     else
       call prob%objective_hessian(self%x, self%gm, err)
+      if (.not. err%failed() .and. .not. all(ieee_is_finite(self%gm))) &
+        call err%set('objective Hessian', 'not finite at x_'//str(k))
       if (err%failed()) return
       self%gm = 0.5_dp*(self%gm + transpose(self%gm))
       what = 'the objective Hessian G'
+      if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp) call self%make_convex(n)
     end if
     allocate(lu(n, n), ipiv(n))
     lu = self%gm
@@ -542,27 +638,125 @@ contains
         end if
       end if
     end if
-    if (self%opts%regularization > 0.0_dp) then
-      mu = self%opts%regularization*max(maxval([(abs(self%gm(i, i)), i=1, n)]), 1.0e-300_dp)
+    if (self%opts%regularization > 0.0_dp .or. self%opts%auto_regularize) then
+      gmax = maxval([(abs(self%gm(i, i)), i=1, n)])
+      if (self%opts%regularization > 0.0_dp) then
+        mu = self%opts%regularization*max(gmax, 1.0e-300_dp)
+        how = ''
+      else
+        ! automatic (Levenberg): mu = 1e-8 max G_ii shifts the zero eigenvalues
+        ! to 1e-8 of G's scale and leaves the others untouched to 8 digits;
+        ! but at least |grad L|/max(1, |x|) (grad L = grad F + C lambda of the
+        ! last solved step), which bounds a step along a null direction of G
+        ! to about the design's own size (a trust region) and vanishes at a
+        ! KKT point, so that the final convergence is not slowed
+        allocate(glag(n))
+        glag = self%gradf
+        if (self%last_solved .and. size(self%lambda) > 0) glag = glag + matmul(self%dg, self%lambda)
+        mu = max(auto_factor*gmax, maxval(abs(glag))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
+        how = ' (automatic, max(1e-8 max G_ii, |grad L|/max(1, |x|)))'
+      end if
       do i = 1, n
         self%gm(i, i) = self%gm(i, i) + mu
       end do
       self%regularizations = self%regularizations + 1
-      call self%note(what//' singular (rcond = '//str(rc, 3)//'): regularized with mu = '//str(mu, 3))
+      call self%note(what//' singular (rcond = '//str(rc, 3)//'): regularized with mu = '//str(mu, 3)//how)
       return
     end if
     call err%set('curvature', what//' at x_'//str(k)//' is singular or nearly singular (rcond = '//str(rc, 3) &
       //' < rcond_min = '//str(self%opts%rcond_min, 3)//')'//rank_text//'. The Gauss step (B10/B12) is ' &
-      //'undefined; remove redundant variables or set regularization > 0 in &optimize to add mu*I (Levenberg)')
+      //'undefined; remove redundant variables, or set singular_g = ''regularize'' (the default) or ' &
+      //'regularization > 0 in &optimize to add mu*I (Levenberg)')
   end subroutine curvature
+
+  !> An indefinite model (default settings): B10 minimises the Lagrangian
+  !> model with M = G + Sum lambda_j A_j over the tangent space of the active
+  !> constraints.  If the projection P M P (P onto that space; M with the
+  !> multipliers and constraint Hessians of the previous iteration) has a
+  !> negative eigenvalue lambda_min, B10 would step to a saddle or maximum.
+  !> G + mu I with mu = 2 |lambda_min| mirrors that curvature; the fixed point
+  !> (grad F + C lambda = 0) is unchanged, and near a solution satisfying the
+  !> second-order conditions no shift is made (fast convergence kept).
+  subroutine make_convex(self, n)
+    class(gauss_optimizer_t), intent(inout) :: self
+    integer, intent(in) :: n
+    real(dp), allocatable :: c(:, :), ev(:), eye(:, :)
+    type(error_t) :: lerr
+    real(dp) :: mu
+    integer :: i
+    allocate(c(n, n), ev(n), eye(n, n))
+    c = self%gm
+    ! a Powell compromise's multipliers (often huge) describe no model
+    if (self%last_solved) then
+      do i = 1, size(self%lambda)
+        if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) c = c + self%lambda(i)*self%hess(:, :, i)
+      end do
+    end if
+    if (count(self%active) >= n) return        ! no tangent space: nothing to convexify
+    call project_tangent(c)
+    eye = c
+    call cholesky_factor(c, lerr)
+    if (.not. lerr%failed()) return
+    c = eye
+    eye = 0.0_dp
+    do i = 1, n
+      eye(i, i) = 1.0_dp
+    end do
+    call lerr%clear()
+    call sym_generalized_eig(c, eye, ev, lerr)
+    if (lerr%failed()) return
+    if (ev(1) >= -1.0e-8_dp*maxval(abs(ev))) return     ! singular, not indefinite: handled below
+    mu = -2.0_dp*ev(1)
+    do i = 1, n
+      self%gm(i, i) = self%gm(i, i) + mu
+    end do
+    self%regularizations = self%regularizations + 1
+    call self%note('model G + Sum lambda A indefinite (lambda_min = '//str(ev(1), 3)//'): G + mu I, mu = '// &
+                   str(mu, 3)//' (automatic, 2 |lambda_min|)')
+  contains
+    !> c <- P c P, P = I - C (C^T C)^{-1} C^T for the active gradients C
+    !> (unchanged if there are none, or they are dependent).
+    subroutine project_tangent(c)
+      real(dp), intent(inout) :: c(:, :)
+      real(dp), allocatable :: cc(:, :), kk(:, :), w(:, :), pm(:, :)
+      integer, allocatable :: piv(:)
+      type(error_t) :: perr
+      real(dp) :: rc
+      integer :: l, j
+      l = count(self%active)
+      if (l == 0 .or. l >= n) return
+      allocate(cc(n, l), kk(l, l), w(l, n), pm(n, n), piv(l))
+      l = 0
+      do j = 1, size(self%active)
+        if (.not. self%active(j)) cycle
+        l = l + 1
+        cc(:, l) = self%dg(:, j)
+      end do
+      kk = matmul(transpose(cc), cc)
+      call lu_factor(kk, piv, perr, rc)
+      if (perr%failed() .or. rc < 1.0e-12_dp) return
+      w = transpose(cc)
+      call lu_solve(kk, piv, w, perr)
+      if (perr%failed()) return
+      pm = -matmul(cc, w)
+      do j = 1, n
+        pm(j, j) = pm(j, j) + 1.0_dp
+      end do
+      c = matmul(pm, matmul(c, pm))
+      ! the range directions have eigenvalue 0 now: lift them so only the
+      ! tangent-space curvature can fail the test
+      c = c + matmul(cc, transpose(cc))*maxval(abs(c))
+    end subroutine project_tangent
+  end subroutine make_convex
 
   !> Multipliers and step at x_k for the current active set, with the drop
   !> rule of §9.4 (most negative multiplier first, re-solve, repeat).
-  subroutine compute_step(self, prob, s, solved, err)
+  subroutine compute_step(self, prob, s, solved, residual, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
     real(dp), intent(out), contiguous :: s(:)
     logical, intent(out) :: solved
+    real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
     type(multiplier_system_t) :: msys
     type(multiplier_result_t) :: mres
@@ -577,6 +771,7 @@ contains
     allocate(lam_prev(mt))
     lam_prev = self%lambda
     thresh = self%opts%mult_tol*norm2(self%gradf)
+    residual = 0.0_dp
     do
       l = count(self%active)
       if (l == 0) then
@@ -600,17 +795,17 @@ contains
             if (err%failed()) return
             self%have_hess(i) = .true.
           end if
-          actual(j) = .false.
-          if (i <= prob%m) actual(j) = prob%con_kind(i) == con_general
+          actual(j) = prob%con_kind(i) == con_general
         end do
         call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
-                        actual, pprob)
+                        actual, pprob, nonneg=idx <= prob%m)
         lam = lam_prev(idx)                           ! warm start from the previous iteration
         call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
         if (err%failed()) return
         self%newton_solves = self%newton_solves + 1
         s = msys%s
         solved = mres%solved
+        residual = mres%residual
         if (mres%how /= 'newton') then
           self%powell_fallbacks = self%powell_fallbacks + 1
           call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
@@ -727,6 +922,67 @@ contains
     limit = g_lo(1:m) >= -tol .and. g_hi(1:m) > tol
     if (.not. any(limit) .and. ic > 0) limit(ic) = .true.
   end subroutine step_back
+
+  !> Analyse x_new and make it x_{k+1}.  While F (or phi) is not finite, or a
+  !> step-back method meets a violated constraint on the way back, the step
+  !> is halved towards x_k: every analysis counts in NF, none gives a value.
+  subroutine analyse_trial(self, prob, x_new, g_new, t, snorm, step_back_method, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(inout) :: x_new(:), g_new(:), t
+    real(dp), intent(in) :: snorm
+    logical, intent(in) :: step_back_method
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: phi(:)
+    real(dp) :: f
+    integer :: halvings, m
+    logical :: ok
+    m = prob%m
+    allocate(phi(size(self%phi)))
+    halvings = 0
+    do
+      ok = .true.
+      if (halvings > 0 .and. size(g_new) > 0) then
+        call prob%constraint_values(x_new, g_new, err)
+        if (err%failed()) return
+        ok = all(ieee_is_finite(g_new))
+        if (ok .and. step_back_method .and. m > 0) ok = maxval(g_new(1:m)) <= self%opts%feas_tol
+      end if
+      if (ok) then
+        call prob%analyse(x_new, f, phi, err)
+        if (err%failed()) return
+        ok = ieee_is_finite(f) .and. all(ieee_is_finite(phi))
+        if (ok) exit
+      end if
+      halvings = halvings + 1
+      if (halvings > max_halvings) then
+        call err%set('objective', 'not finite (or the constraints not satisfied) anywhere along the step from x_k: ' &
+          //'halved '//str(max_halvings)//' times towards x_k = '//vec_text(self%x))
+        return
+      end if
+      t = 0.5_dp*t
+      x_new = self%x + 0.5_dp*(x_new - self%x)
+    end do
+    if (halvings > 0) call self%note('objective not finite at the trial point: step halved '//str(halvings)// &
+                                     ' times (t = '//str(t, 4)//', |s| = '//str(t*snorm, 3)//')')
+    self%x = x_new
+    self%g = g_new
+    self%f = f
+    self%phi = phi
+  end subroutine analyse_trial
+
+  !> Short text of a vector for messages.
+  function vec_text(v) result(s)
+    real(dp), intent(in) :: v(:)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, min(size(v), 8)
+      if (i > 1) s = s//', '
+      s = s//str(v(i), 4)
+    end do
+    if (size(v) > 8) s = s//', ...'
+  end function vec_text
 
   subroutine note(self, text)
     class(gauss_optimizer_t), intent(inout) :: self

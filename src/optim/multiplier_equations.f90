@@ -21,6 +21,7 @@
 !> the equations are linear and their solution is the closed form of
 !> Paradis & Willmert (P16, P17): `linear_multipliers`.
 module multiplier_equations
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -46,6 +47,7 @@ module multiplier_equations
     real(dp), allocatable :: c(:, :)        !< (n, l) grad g_j(x_k)
     real(dp), allocatable :: a(:, :, :)     !< (n, n, l) A_j
     logical, allocatable :: actual(:)       !< (l) use g_j(x_k + s) in B11 (Potter)
+    logical, allocatable :: nonneg(:)       !< (l) inequality: Powell's compromise keeps lambda_j >= 0
     class(opt_problem_t), pointer :: prob => null()   !< needed only where actual(j)
     real(dp) :: rcond_min = 1.0e-14_dp      !< M with a smaller reciprocal condition is singular
     ! state of the last `evaluate_step`
@@ -55,6 +57,7 @@ module multiplier_equations
     real(dp) :: m_rcond = 0.0_dp
     type(error_t) :: eval_err               !< first failure of an actual constraint inside Powell
     integer :: evaluations = 0              !< evaluations of m(lambda)
+    logical :: in_powell = .false.          !< counting: evaluations now are Powell's
   contains
     procedure :: setup
     procedure :: evaluate_step
@@ -63,6 +66,7 @@ module multiplier_equations
     procedure :: value => h_value
     procedure :: solve
     procedure :: model_positive_definite
+    procedure :: project
   end type multiplier_system_t
 
   type :: multiplier_result_t
@@ -78,12 +82,14 @@ contains
 
   !> Load the data of one iteration and active set.  `prob` is only used for
   !> constraints with actual(j) = .true.
-  subroutine setup(self, gmat, gradf, xk, idx, gval, c, a, actual, prob)
+  subroutine setup(self, gmat, gradf, xk, idx, gval, c, a, actual, prob, nonneg)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(in) :: gmat(:, :), gradf(:), xk(:), gval(:), c(:, :), a(:, :, :)
     integer, intent(in) :: idx(:)
     logical, intent(in) :: actual(:)
     class(opt_problem_t), intent(in), pointer :: prob
+    logical, intent(in), optional :: nonneg(:)   !< default: no sign restriction
+    integer :: j
     self%n = size(xk)
     self%l = size(idx)
     self%gmat = gmat
@@ -94,6 +100,8 @@ contains
     self%c = c
     self%a = a
     self%actual = actual
+    self%nonneg = [(.false., j=1, size(idx))]
+    if (present(nonneg)) self%nonneg = nonneg
     self%prob => prob
     if (allocated(self%mlu)) deallocate(self%mlu, self%ipiv, self%s)
     allocate(self%mlu(self%n, self%n), self%ipiv(self%n), self%s(self%n))
@@ -135,6 +143,8 @@ contains
     do j = 1, self%l
       if (self%actual(j)) then
         call self%prob%constraint_value(self%idx(j), self%xk + self%s, r(j), err)   ! Potter §9.5 item 2
+        self%prob%count%b11_constraint_evals = self%prob%count%b11_constraint_evals + 1
+        if (self%in_powell) self%prob%count%powell_constraint_evals = self%prob%count%powell_constraint_evals + 1
         if (err%failed()) return
       else
         r(j) = self%gval(j) + dot_product(self%c(:, j), self%s) &
@@ -176,7 +186,8 @@ contains
     pd = .not. lerr%failed()
   end function model_positive_definite
 
-  !> H(lambda) = Sum m_i(lambda)^2, the function Powell minimises.
+  !> H(lambda) = Sum m_i(lambda)^2, the function Powell minimises, at the
+  !> projection of lambda on the sign restrictions (see `project`).
   function h_value(self, x) result(h)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(in) :: x(:)
@@ -186,14 +197,30 @@ contains
     h = h_undefined*1.0e100_dp
     if (maxval(abs(x)) > 1.0e50_dp) return
     h = h_undefined*(1.0_dp + sum(x**2))
-    call self%evaluate_step(x, ok)
+    call self%evaluate_step(self%project(x), ok)
     if (.not. ok) return
     allocate(r(self%l))
     call self%residual(r, self%eval_err)
     if (self%eval_err%failed()) return
+    if (.not. all(ieee_is_finite(r))) return
     if (maxval(abs(r)) > 1.0e100_dp) return
     h = sum(r**2)
   end function h_value
+
+  !> lambda with the sign-restricted (inequality) components clipped at 0.
+  !> Powell's compromise for an inconsistent B11 is not a KKT point, and its
+  !> multipliers carry no sign information; unrestricted, H can have local
+  !> minima at negative multipliers (or beyond poles of M) that depend on the
+  !> last bits, and the drop rule would then act on them.  Clipped, the
+  !> compromise of an inequality is the step that best reduces its violation
+  !> with lambda >= 0, i.e. with the Lagrangian model still minimised.
+  pure function project(self, lambda) result(p)
+    class(multiplier_system_t), intent(in) :: self
+    real(dp), intent(in) :: lambda(:)
+    real(dp) :: p(size(lambda))
+    p = lambda
+    where (self%nonneg) p = max(lambda, 0.0_dp)
+  end function project
 
   !> Solve B11 for lambda (in: starting guess, out: solution or Powell's
   !> minimiser of H).  Newton first; on failure Powell, then a Newton polish
@@ -241,9 +268,13 @@ contains
       popts%f_target = (0.01_dp*tol)**2
       popts%initial_step = 0.1_dp*max(1.0_dp, maxval(abs(lam_best)))
       popts%max_iter = 100*max(1, self%l)
-      lambda = lam_best
+      lambda = self%project(lam_best)
+      self%in_powell = .true.
       call powell_minimize(self, lambda, popts, pres)
+      self%in_powell = .false.
+      lambda = self%project(lambda)
       res%powell_evaluations = pres%evaluations
+      if (associated(self%prob)) self%prob%count%powell_h_evals = self%prob%count%powell_h_evals + pres%evaluations
       if (self%eval_err%failed()) then
         err = self%eval_err
         call err%add_context('multiplier equations (Powell)')
@@ -297,6 +328,10 @@ contains
         end if
         call self%residual(r, nerr)
         if (nerr%failed()) return
+        if (.not. all(ieee_is_finite(r)) .or. maxval(abs(r)) > 1.0e100_dp) then
+          reason = 'constraint values overflow at Newton iterate '//str(it)
+          return
+        end if
         h = sum(r**2)
         if (h < h_best) then
           h_best = h

@@ -8,11 +8,17 @@
 !> Jacobian is stored the papers' way, J(n, p) = [grad phi_1 ... grad phi_p]
 !> (P3), so grad F = 2 J phi (B4) and the Gauss matrix is G = 2 J J^T (B5).
 !>
-!> Constraints g_i(x) <= 0, i = 1..m, each of one kind:
-!>   linear     g = b^T x - d                     (data: set_linear_constraint)
-!>   quadratic  g = 1/2 x^T A x + b^T x - d       (data: set_quadratic_constraint, B3)
-!>   general    g from `general_constraint`       (Potter's case, §9.5)
-!> and linear equalities h = D^T x - e = 0 (P5), numbered m+1..m+n_eq.
+!> Constraints g_i(x) <= 0, i = 1..m, and equalities h_j(x) = 0, numbered
+!> i = m+j (j = 1..n_eq), each of one kind:
+!>   linear     g = b^T x - d                     (set_linear_constraint; equalities:
+!>                                                 set_linear_equalities, P5)
+!>   quadratic  g = 1/2 x^T A x + b^T x - d       (set_quadratic_constraint, B3;
+!>                                                 set_quadratic_equality)
+!>   general    g from `general_constraint(i, ...)` (Potter's case, §9.5;
+!>                                                 set_general_constraint / set_general_equality)
+!> The data of constraint i (inequality or equality) is con_kind(i),
+!> con_a(:, :, i), con_b(:, i), con_d(i); equalities are always active and
+!> their multipliers have no sign.
 !>
 !> Counting.  The solver calls the non-overridable, counted entry points
 !> (`analyse`, `objective_derivatives`, ...).  One call of `analyse` is one
@@ -33,13 +39,17 @@ module optim_problem
 
   type :: opt_counters_t
     integer :: analyses = 0              !< NF: objective evaluations asked for by the optimizer
-    integer :: gradients = 0             !< objective gradient (residual Jacobian) evaluations
+    integer :: gradients = 0             !< objective gradients (for sums of squares: via J, one per Jacobian)
+    integer :: jacobians = 0             !< residual Jacobian evaluations (sums of squares)
     integer :: hessians = 0              !< objective Hessian evaluations (hessian = 'exact')
     integer :: fd_analyses = 0           !< objective evaluations spent in finite differences
     integer :: constraint_evals = 0      !< constraint vectors evaluated (each at one point)
     integer :: constraint_gradients = 0  !< gradient sets of the general constraints
     integer :: constraint_hessians = 0   !< Hessians of general constraints (Potter re-approximation)
     integer :: fd_constraint_evals = 0   !< general-constraint evaluations spent in finite differences
+    integer :: b11_constraint_evals = 0  !< single general-constraint evaluations in B11 (Potter's actual g)
+    integer :: powell_h_evals = 0        !< evaluations of H = Sum m_i^2 in Powell's fallback
+    integer :: powell_constraint_evals = 0 !< of b11_constraint_evals: those inside Powell's fallback
   end type opt_counters_t
 
   type, abstract :: opt_problem_t
@@ -47,13 +57,13 @@ module optim_problem
     integer :: n = 0             !< design variables
     integer :: n_residuals = 0   !< p > 0: F = phi^T phi ; 0: general objective
     integer :: m = 0             !< inequality constraints g_i <= 0
-    integer :: n_eq = 0          !< linear equalities D^T x - e = 0
-    integer, allocatable :: con_kind(:)         !< (m) con_linear | con_quadratic | con_general
-    real(dp), allocatable :: con_a(:, :, :)     !< (n, n, m) A_i of quadratic constraints (0 otherwise)
-    real(dp), allocatable :: con_b(:, :)        !< (n, m) b_i
-    real(dp), allocatable :: con_d(:)           !< (m) d_i
-    real(dp), allocatable :: eq_d(:, :)         !< (n, n_eq) D
-    real(dp), allocatable :: eq_e(:)            !< (n_eq) e
+    integer :: n_eq = 0          !< equalities h_j = 0 (constraints m+1..m+n_eq)
+    integer, allocatable :: con_kind(:)         !< (m+n_eq) con_linear | con_quadratic | con_general
+    real(dp), allocatable :: con_a(:, :, :)     !< (n, n, m+n_eq) A_i of quadratic constraints (0 otherwise)
+    real(dp), allocatable :: con_b(:, :)        !< (n, m+n_eq) b_i
+    real(dp), allocatable :: con_d(:)           !< (m+n_eq) d_i
+    real(dp), allocatable :: xl(:), xu(:)       !< (n) simple bounds (-huge, huge: none), see set_bounds
+    integer :: n_bounds = 0                     !< finite bounds, constraints m-n_bounds+1..m
     real(dp) :: fd_rel_step = 1.4901161193847656e-8_dp   !< sqrt(eps): forward-difference step factor
     type(opt_counters_t) :: count
   contains
@@ -73,6 +83,10 @@ module optim_problem
     procedure, non_overridable :: set_quadratic_constraint
     procedure, non_overridable :: set_general_constraint
     procedure, non_overridable :: set_linear_equalities
+    procedure, non_overridable :: set_quadratic_equality
+    procedure, non_overridable :: set_general_equality
+    procedure, non_overridable :: set_bounds
+    procedure, non_overridable :: project_to_bounds
     procedure, non_overridable :: is_least_squares
     procedure, non_overridable :: n_constraints
     ! ---- solver side: counted
@@ -112,6 +126,7 @@ contains
     character(len=*), intent(in) :: name
     integer, intent(in) :: n, n_residuals, m
     integer, intent(in), optional :: n_eq
+    integer :: i
     self%name = name
     self%n = n
     self%n_residuals = n_residuals
@@ -119,15 +134,15 @@ contains
     self%n_eq = 0
     if (present(n_eq)) self%n_eq = n_eq
     if (allocated(self%con_kind)) deallocate(self%con_kind, self%con_a, self%con_b, self%con_d)
-    if (allocated(self%eq_d)) deallocate(self%eq_d, self%eq_e)
-    allocate(self%con_kind(m), self%con_a(n, n, m), self%con_b(n, m), self%con_d(m))
-    allocate(self%eq_d(n, self%n_eq), self%eq_e(self%n_eq))
+    allocate(self%con_kind(m + self%n_eq), self%con_a(n, n, m + self%n_eq), self%con_b(n, m + self%n_eq), &
+             self%con_d(m + self%n_eq))
     self%con_kind = con_linear
     self%con_a = 0.0_dp
     self%con_b = 0.0_dp
     self%con_d = 0.0_dp
-    self%eq_d = 0.0_dp
-    self%eq_e = 0.0_dp
+    self%xl = [(-huge(1.0_dp), i=1, n)]
+    self%xu = [(huge(1.0_dp), i=1, n)]
+    self%n_bounds = 0
     call self%reset_counters()
   end subroutine init_problem
 
@@ -175,13 +190,93 @@ contains
     self%con_d(i) = 0.0_dp
   end subroutine set_general_constraint
 
-  !> h = D^T x - e = 0   (P5); D is n x n_eq.
+  !> h = D^T x - e = 0   (P5); D is n x n_eq (all equalities linear).
   subroutine set_linear_equalities(self, d, e)
     class(opt_problem_t), intent(inout) :: self
     real(dp), intent(in) :: d(:, :), e(:)
-    self%eq_d = d
-    self%eq_e = e
+    integer :: j
+    do j = 1, size(e)
+      call self%set_linear_constraint(self%m + j, d(:, j), e(j))
+    end do
   end subroutine set_linear_equalities
+
+  !> Simple bounds lower <= x <= upper (|value| >= 1e30: none), once, after
+  !> the other constraints are set.  Each finite bound becomes a linear
+  !> inequality with a unit gradient, numbered after the inequalities given
+  !> to init_problem (m grows by their number, so equality j stays m + j);
+  !> the NS methods also keep every trial point inside the box (projection),
+  !> so F is never evaluated outside it.
+  subroutine set_bounds(self, lower, upper)
+    class(opt_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: lower(:), upper(:)
+    integer, allocatable :: kind(:)
+    real(dp), allocatable :: a(:, :, :), b(:, :), d(:)
+    integer :: j, k, nb, m0, mt0
+    real(dp), parameter :: none = 1.0e30_dp
+    m0 = self%m
+    mt0 = self%m + self%n_eq
+    nb = count(lower > -none) + count(upper < none)
+    call move_alloc(self%con_kind, kind)
+    call move_alloc(self%con_a, a)
+    call move_alloc(self%con_b, b)
+    call move_alloc(self%con_d, d)
+    allocate(self%con_kind(mt0 + nb), self%con_a(self%n, self%n, mt0 + nb), self%con_b(self%n, mt0 + nb), &
+             self%con_d(mt0 + nb))
+    self%con_kind(1:m0) = kind(1:m0)
+    self%con_a(:, :, 1:m0) = a(:, :, 1:m0)
+    self%con_b(:, 1:m0) = b(:, 1:m0)
+    self%con_d(1:m0) = d(1:m0)
+    self%con_kind(m0 + nb + 1:) = kind(m0 + 1:)
+    self%con_a(:, :, m0 + nb + 1:) = a(:, :, m0 + 1:)
+    self%con_b(:, m0 + nb + 1:) = b(:, m0 + 1:)
+    self%con_d(m0 + nb + 1:) = d(m0 + 1:)
+    self%m = m0 + nb
+    self%n_bounds = nb
+    k = m0
+    do j = 1, self%n
+      self%xl(j) = merge(lower(j), -huge(1.0_dp), lower(j) > -none)
+      self%xu(j) = merge(upper(j), huge(1.0_dp), upper(j) < none)
+      if (lower(j) > -none) then                    ! lower - x <= 0
+        k = k + 1
+        call self%set_linear_constraint(k, unit(j, -1.0_dp), -lower(j))
+      end if
+      if (upper(j) < none) then                     ! x - upper <= 0
+        k = k + 1
+        call self%set_linear_constraint(k, unit(j, 1.0_dp), upper(j))
+      end if
+    end do
+  contains
+    pure function unit(i, v) result(e)
+      integer, intent(in) :: i
+      real(dp), intent(in) :: v
+      real(dp) :: e(self%n)
+      e = 0.0_dp
+      e(i) = v
+    end function unit
+  end subroutine set_bounds
+
+  !> x clipped into [xl, xu].
+  pure function project_to_bounds(self, x) result(p)
+    class(opt_problem_t), intent(in) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp) :: p(size(x))
+    p = min(max(x, self%xl), self%xu)
+  end function project_to_bounds
+
+  !> Equality j: h_j = 1/2 x^T A x + b^T x - e = 0 (constraint m + j).
+  subroutine set_quadratic_equality(self, j, a, b, e)
+    class(opt_problem_t), intent(inout) :: self
+    integer, intent(in) :: j
+    real(dp), intent(in) :: a(:, :), b(:), e
+    call self%set_quadratic_constraint(self%m + j, a, b, e)
+  end subroutine set_quadratic_equality
+
+  !> Equality j: h_j from `general_constraint(m + j, ...)`.
+  subroutine set_general_equality(self, j)
+    class(opt_problem_t), intent(inout) :: self
+    integer, intent(in) :: j
+    call self%set_general_constraint(self%m + j)
+  end subroutine set_general_equality
 
   logical pure function is_least_squares(self)
     class(opt_problem_t), intent(in) :: self
@@ -435,6 +530,7 @@ contains
     type(error_t), intent(inout) :: err
     self%count%gradients = self%count%gradients + 1
     if (self%n_residuals > 0) then
+      self%count%jacobians = self%count%jacobians + 1
       call self%jacobian(x, phi, jac, err)
       grad = 2.0_dp*matmul(jac, phi)
     else
@@ -462,7 +558,7 @@ contains
     integer :: i
     self%count%constraint_evals = self%count%constraint_evals + 1
     g = 0.0_dp
-    do i = 1, self%m
+    do i = 1, self%m + self%n_eq
       select case (self%con_kind(i))
       case (con_linear)
         g(i) = dot_product(self%con_b(:, i), x) - self%con_d(i)
@@ -477,9 +573,6 @@ contains
         end if
       end select
     end do
-    do i = 1, self%n_eq
-      g(self%m + i) = dot_product(self%eq_d(:, i), x) - self%eq_e(i)
-    end do
   end subroutine constraint_values
 
   !> One constraint (inequality i <= m, or equality i - m) at x.
@@ -491,10 +584,6 @@ contains
     type(error_t), intent(inout) :: err
     self%count%constraint_evals = self%count%constraint_evals + 1
     g = 0.0_dp
-    if (i > self%m) then
-      g = dot_product(self%eq_d(:, i - self%m), x) - self%eq_e(i - self%m)
-      return
-    end if
     select case (self%con_kind(i))
     case (con_linear)
       g = dot_product(self%con_b(:, i), x) - self%con_d(i)
@@ -516,7 +605,7 @@ contains
     logical :: any_general
     dg = 0.0_dp
     any_general = .false.
-    do i = 1, self%m
+    do i = 1, self%m + self%n_eq
       select case (self%con_kind(i))
       case (con_linear)
         dg(:, i) = self%con_b(:, i)
@@ -532,9 +621,6 @@ contains
       end select
     end do
     if (any_general) self%count%constraint_gradients = self%count%constraint_gradients + 1
-    do i = 1, self%n_eq
-      dg(:, self%m + i) = self%eq_d(:, i)
-    end do
   end subroutine constraint_gradients
 
   !> Hessian of constraint i at x: A_i for quadratic, 0 for linear, the
@@ -546,7 +632,6 @@ contains
     real(dp), intent(out) :: hess(:, :)
     type(error_t), intent(inout) :: err
     hess = 0.0_dp
-    if (i > self%m) return
     select case (self%con_kind(i))
     case (con_quadratic)
       hess = self%con_a(:, :, i)

@@ -85,14 +85,42 @@ contains
     block
       type(mechanism_input_t) :: inp
       inp = fourbar_input(5.0_dp, 11.0_dp, 10.5_dp, 10.0_dp)
+      inp%link_section(2) = 'general'
       inp%link_area(2) = 0.3_dp
       inp%link_inertia(2) = 0.05_dp
+      inp%link_c(2) = 0.7_dp
       inp%link_b(3) = 0.5_dp
       inp%link_h(3) = 2.0_dp
       call build_mechanism(inp, mech, err)
+      call assert_true(.not. err%failed(), err%text())
       call assert_close(mech%links(2)%area, 0.3_dp, 0.0_dp, 'given area')
       call assert_close(mech%links(2)%inertia, 0.05_dp, 0.0_dp, 'given inertia')
+      call assert_close(mech%links(2)%fibre, 0.7_dp, 0.0_dp, 'given outer fibre')
+      ! the equivalent rectangle carries the same A and I into the elements
+      call assert_close(mech%links(2)%b*mech%links(2)%h, 0.3_dp, 1.0e-15_dp, 'equivalent rectangle: A')
+      call assert_close(mech%links(2)%b*mech%links(2)%h**3/12.0_dp, 0.05_dp, 1.0e-15_dp, 'equivalent rectangle: I')
       call assert_close(mech%links(3)%inertia, 0.5_dp*8.0_dp/12.0_dp, 1.0e-15_dp, 'I from b, h')
+      call assert_close(mech%links(3)%fibre, 1.0_dp, 0.0_dp, 'rectangle: c = h/2')
+      ! A given for a rectangle is an error, not silently ignored
+      inp%link_section(2) = 'rectangle'
+      call build_mechanism(inp, mech, err)
+      call assert_true(err%failed() .and. index(err%text(), 'link_area(2)') > 0, 'A with a rectangle: '//err%text())
+      call err%clear()
+      ! a circle of diameter 2 and a tube of wall 0.5
+      inp%link_area(2) = 0.0_dp
+      inp%link_inertia(2) = 0.0_dp
+      inp%link_c(2) = 0.0_dp
+      inp%link_section(2) = 'circle'
+      inp%link_h(2) = 2.0_dp
+      inp%link_section(3) = 'tube'
+      inp%link_wall(3) = 0.5_dp
+      call build_mechanism(inp, mech, err)
+      call assert_true(.not. err%failed(), err%text())
+      call assert_close(mech%links(2)%area, pi, 1.0e-15_dp, 'circle: A = pi d^2/4')
+      call assert_close(mech%links(2)%inertia, pi/4.0_dp, 1.0e-15_dp, 'circle: I = pi d^4/64')
+      call assert_close(mech%links(3)%area, 0.75_dp*pi, 1.0e-15_dp, 'tube: A = pi (d^2 - di^2)/4')
+      call assert_close(mech%links(3)%inertia, 15.0_dp*pi/64.0_dp, 1.0e-15_dp, 'tube: I = pi (d^4 - di^4)/64')
+      call assert_close(mech%links(3)%fibre, 1.0_dp, 0.0_dp, 'tube: c = d/2')
     end block
   end subroutine test_defaults
 

@@ -132,14 +132,16 @@ contains
   subroutine test_constraint_data()
     type(objective_only_t) :: p
     type(error_t) :: err
-    real(dp) :: x(3), g(4), dg(3, 4), a(3, 3), hess(3, 3)
+    real(dp) :: x(3), dg(3, 4), a(3, 3), hess(3, 3)
+    real(dp), allocatable :: g(:)
     call p%init_problem('data', 3, 0, 3, n_eq=1)
+    allocate(g(4))
     call p%set_linear_constraint(1, [1.0_dp, -2.0_dp, 0.5_dp], 3.0_dp)
     a = reshape([2.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, 4.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, -2.0_dp], [3, 3])
     call p%set_quadratic_constraint(2, a, [1.0_dp, 0.0_dp, -1.0_dp], 2.0_dp)
     call p%set_general_constraint(3)
     call p%set_linear_equalities(reshape([1.0_dp, 1.0_dp, 1.0_dp], [3, 1]), [1.0_dp])
-    call assert_true(all(p%con_kind == [con_linear, con_quadratic, con_general]), 'kinds recorded')
+    call assert_true(all(p%con_kind == [con_linear, con_quadratic, con_general, con_linear]), 'kinds recorded')
     x = [0.5_dp, -1.0_dp, 2.0_dp]
     call p%constraint_values(x, g, err)
     call assert_close(g(1), 0.5_dp + 2.0_dp + 1.0_dp - 3.0_dp, 1.0e-15_dp, 'linear b^T x - d')
@@ -161,6 +163,19 @@ contains
     call assert_close(g(3), x(2) + x(3) - 2.0_dp, 1.0e-15_dp, 'matrix row 2 -> constraint 3')
     call assert_true(all(p%con_kind(2:3) == con_linear), 'set as linear')
     call assert_true(.not. err%failed(), 'no error')
+    ! simple bounds (issue 11): 0 <= x1, x3 <= 5 become constraints 4 and 5 after
+    ! the three inequalities; the equality moves from 4 to 6 and keeps its data
+    call p%set_bounds([0.0_dp, -1.0e30_dp, -1.0e30_dp], [1.0e30_dp, 1.0e30_dp, 5.0_dp])
+    call assert_equal(p%m, 5, 'm = 3 inequalities + 2 bounds')
+    call assert_equal(p%n_bounds, 2, 'two finite bounds')
+    deallocate(g)
+    allocate(g(6))
+    call p%constraint_values(x, g, err)
+    call assert_close(g(4), -x(1), 0.0_dp, 'lower bound 0 - x1 <= 0')
+    call assert_close(g(5), x(3) - 5.0_dp, 0.0_dp, 'upper bound x3 - 5 <= 0')
+    call assert_close(g(6), 0.5_dp, 1.0e-15_dp, 'the equality, now number m + 1 = 6')
+    call assert_all_close(p%project_to_bounds([-1.0_dp, -7.0_dp, 9.0_dp]), [0.0_dp, -7.0_dp, 5.0_dp], 0.0_dp, 0.0_dp, &
+                          'projection onto the box')
   end subroutine test_constraint_data
 
   subroutine test_counters()

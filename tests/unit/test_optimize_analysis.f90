@@ -26,7 +26,29 @@ contains
     call run_test('bad_values_are_input_errors', test_bad_values)
     call run_test('gnlc_infeasible_start_is_an_input_error', test_infeasible)
     call run_test('iteration_limit_keeps_table_and_best_point', test_iteration_limit)
+    call run_test('deck_posed_quadratic_problem_with_equality', test_deck_problem)
   end subroutine run_all
+
+  !> HS 6 posed by coefficients (issue 11): F = (1 - x1)^2 = 1/2 x^T diag(2, 0) x
+  !> - 2 x1 + 1, h = 1/2 x^T diag(-20, 0) x + 10 x2 = 0 (a quadratic equality),
+  !> from (-1.2, 1) with default settings: x* = (1, 1), F* = 0 (HS).
+  subroutine test_deck_problem()
+    type(error_t) :: err
+    character(len=512), allocatable :: lines(:)
+    call run_deck("&run analysis='optimize' /|&optimize problem='deck', x0 = -1.2, 1 /|" // &
+                  "&problem_data n = 2, f_q(1,1) = 2, f_c = -2, 0, f_0 = 1, n_eq = 1, h_q(1,1,1) = -20, " // &
+                  "h_a(1,2) = 10, h_b(1) = 0, f_star = 0, x_star = 1, 1 /", err, lines)
+    call assert_true(.not. err%failed(), 'no error: '//err%text())
+    call assert_true(has_line(lines, '# summary: status = converged'), 'converged')
+    call assert_true(has_line(lines, 'h3 quadratic equality') .or. has_line(lines, 'h1 quadratic equality'), &
+                     'the equality is recognised as quadratic')
+    ! the step test stops within xtol (1 + |x|) = 2e-8 of x*
+    call assert_true(summary_value(lines, '# summary: |x - x*|_inf =') < 2.0e-8_dp, '|x - x*| < 2e-8')
+    ! a bound above its upper bound is an input error naming both
+    call run_deck("&run analysis='optimize' /|&optimize problem='deck' /|" // &
+                  "&problem_data n = 1, f_q(1,1) = 2, lower = 2, upper = 1 /", err, lines)
+    call assert_true(err%code == 2 .and. index(err%text(), 'upper(1)') > 0, 'lower > upper rejected')
+  end subroutine test_deck_problem
 
   !> Write `text` (lines separated by '|') as a deck, run it, return the
   !> output lines (empty when the output was discarded).
@@ -78,6 +100,20 @@ contains
     open(newunit=u, file=scratch//'.nml', status='old')
     close(u, status='delete')
   end subroutine run_deck
+
+  !> The number after `key` on the first line that starts with it (huge if none).
+  real(dp) function summary_value(lines, key) result(v)
+    character(len=*), intent(in) :: lines(:), key
+    integer :: i, ios
+    v = huge(1.0_dp)
+    do i = 1, size(lines)
+      if (index(lines(i), key) == 1) then
+        read(lines(i)(len(key) + 1:), *, iostat=ios) v
+        if (ios /= 0) v = huge(1.0_dp)
+        return
+      end if
+    end do
+  end function summary_value
 
   logical function has_line(lines, fragment)
     character(len=*), intent(in) :: lines(:), fragment

@@ -94,6 +94,12 @@ contains
     call bad('&steady damping_beta = -1.0 /', 'damping_beta')
     call bad('&tennant d_b = -0.5 /', 'd_b')
     call bad('&tennant poisson = 0.6 /', 'poisson')
+    call bad('&steady outer_tol = NaN /', 'outer_tol = NaN')
+    call bad('&steady atol = Inf /', 'atol = Infinity')
+    call bad('&steady rtol = 1e-300 /', 'rtol')
+    call bad('&tennant shear_modulus = 1e309 /', 'shear_modulus')
+    call bad('&tennant n_sections(1) = 2, section_end(1,1:2) = 0.5, 1.0, section_b(1,1:2) = 1, NaN, '// &
+             'section_h(1,1:2) = 1, 1 /', 'section_b(1,2) = NaN')
     call bad('&tennant n_sections(5) = 1, section_end(5,1) = 1.0, section_b(5,1) = 1, section_h(5,1) = 1 /', &
              'n_sections(5)')
     call bad('&tennant n_sections(1) = 2, section_end(1,1:2) = 0.6, 0.4, section_b(1,1:2) = 1, 1, '// &

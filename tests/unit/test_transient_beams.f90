@@ -11,6 +11,7 @@ module test_transient_beams_suite
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: mf_adams
   use transient_fixtures
+  use linkage, only: mechanism_input_t
   use assertions
   implicit none
   private
@@ -22,9 +23,59 @@ contains
     call run_test('beam_frequencies_converge_fast_with_elements', test_beam_eigen_convergence)
     call run_test('beams_released_from_modes_have_euler_bernoulli_periods', test_beam_periods)
     call run_test('hinged_beam_immovable_ends_follows_duffing_exact_period', test_large_amplitude)
+    call run_test('non_rectangular_sections_give_their_own_frequencies', test_section_shapes)
   end subroutine run_all
 
   ! ------------------------------------------------------------------ 1. beams
+
+  !> A hinged beam of a circle, a tube and a general section (A, I, c given):
+  !> the first frequency is (pi/L)^2 sqrt(E I/(rho A)) with THAT section's A
+  !> and I, to the 4-element discretisation error (< 1e-5).  Before sections
+  !> were honoured the transient model built A and I from link_b, link_h and
+  !> a beam given by A and I was 27 times too stiff.
+  subroutine test_section_shapes()
+    type(mechanism_input_t) :: inp
+    type(mechanism_model_t) :: model
+    type(error_t) :: err
+    real(dp), allocatable :: omega(:), shapes(:, :)
+    real(dp) :: a, i2, d, di, expected
+    logical :: ok
+    integer :: k
+    character(len=8), parameter :: kinds(3) = [character(len=8) :: 'circle', 'tube', 'general']
+    do k = 1, 3
+      inp = beam_input('ground_pin', 4)
+      inp%link_section(1) = kinds(k)
+      d = 0.6_dp
+      di = 0.0_dp
+      select case (k)
+      case (1)
+        inp%link_h(1) = d
+      case (2)
+        inp%link_h(1) = d
+        inp%link_wall(1) = 0.05_dp
+        di = d - 0.1_dp
+      case (3)
+        inp%link_area(1) = 0.012_dp        ! an I-beam-like section: much I for little A
+        inp%link_inertia(1) = 0.004_dp
+        inp%link_c(1) = 0.9_dp
+      end select
+      if (k < 3) then
+        a = 0.25_dp*pi*(d**2 - di**2)
+        i2 = pi*(d**4 - di**4)/64.0_dp
+      else
+        a = 0.012_dp
+        i2 = 0.004_dp
+      end if
+      call make_model(inp, element_effects_t(), 0.0_dp, model, ok)
+      if (.not. ok) return
+      if (allocated(omega)) deallocate(omega, shapes)
+      allocate(omega(model%n), shapes(model%n, model%n))
+      call model%linear_modes(omega, shapes, err)
+      call assert_true(.not. err%failed(), err%text())
+      expected = (pi/beam_length)**2*sqrt(e1*i2/(rho*a))
+      call assert_close(omega(1), expected, 1.0e-5_dp*expected, trim(kinds(k))//': first frequency of its A and I')
+    end do
+  end subroutine test_section_shapes
 
   !> Linear frequencies of hinged and clamped beams, n = 1, 2, 4, 8 quintic
   !> elements: within 0.5 % of Euler-Bernoulli from n = 2, 1e-6 at n = 8, and

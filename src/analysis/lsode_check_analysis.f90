@@ -3,11 +3,12 @@
 !> or on an undamped oscillator with a closed-form solution, and tabulates the
 !> solution with the cost of the run.  It is the smallest real analysis of the
 !> program and the check that the ODEPACK build is sound.
-module ode_verification
+module lsode_check_analysis
   use kinds, only: dp, two_pi
   use error_status, only: error_t
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_from_method, method_names, mf_adams
   implicit none
@@ -67,31 +68,31 @@ contains
     class(ode_system_t), pointer :: sys
     type(lsode_t) :: ode
     type(lsode_counters_t) :: c
+    character(len=*), parameter :: g = 'lsode_check'
 
     call set_defaults()
     call deck%read_group('lsode_check', read_lsode_check, .false., found, err)
     if (err%failed()) return
     mf = mf_from_method(method)
     if (mf == 0) then
-      call invalid_value(deck, 'lsode_check', 'method', ''''//trim(method)//'''', 'must be one of '//method_names, err)
-    else if (problem /= 'kinetics' .and. problem /= 'oscillator') then
-      call invalid_value(deck, 'lsode_check', 'problem', ''''//trim(problem)//'''', &
-                         'must be ''kinetics'' or ''oscillator''', err)
-    else if (.not. (rtol > 0.0_dp .and. rtol < 1.0_dp)) then
-      call invalid_value(deck, 'lsode_check', 'rtol', str(rtol), 'must lie in (0, 1)', err)
-    else if (any(.not. (atol >= 0.0_dp))) then
-      call invalid_value(deck, 'lsode_check', 'atol', str(minval(atol)), 'must be >= 0', err)
-    else if (.not. (t_first > 0.0_dp)) then
-      call invalid_value(deck, 'lsode_check', 't_first', str(t_first), 'must be > 0', err)
-    else if (.not. (factor > 0.0_dp)) then
-      call invalid_value(deck, 'lsode_check', 'factor', str(factor), 'must be > 0', err)
-    else if (n_outputs < 1 .or. n_outputs > 100000) then
-      call invalid_value(deck, 'lsode_check', 'n_outputs', str(n_outputs), 'must lie in 1..100000', err)
-    else if (.not. (omega > 0.0_dp)) then
-      call invalid_value(deck, 'lsode_check', 'omega', str(omega), 'must be > 0', err)
-    else if (max_steps < 1) then
-      call invalid_value(deck, 'lsode_check', 'max_steps', str(max_steps), 'must be >= 1', err)
+      call invalid_value(deck, g, 'method', ''''//trim(method)//'''', 'must be one of '//method_names, err)
+      return
     end if
+    call check_choice(deck, g, 'problem', problem, [character(len=16) :: 'kinetics', 'oscillator'], err)
+    call check_real(deck, g, 'rtol', rtol, err, at_least=1.0e-14_dp, below=1.0_dp, &
+                    why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
+    call check_reals(deck, g, 'atol', atol, err, at_least=0.0_dp, at_most=1.0e10_dp)
+    call check_real(deck, g, 't_first', t_first, err, at_least=1.0e-10_dp, at_most=1.0e10_dp, &
+                    why='the first output time; DLSODE cannot start a step shorter than round-off of t')
+    call check_real(deck, g, 'factor', factor, err, above=1.0_dp, at_most=1.0e3_dp, &
+                    why='output times grow by this factor (kinetics)')
+    call check_integer(deck, g, 'n_outputs', n_outputs, err, at_least=1, at_most=100000)
+    call check_real(deck, g, 'omega', omega, err, above=0.0_dp, at_most=1.0e6_dp, why='rad per unit time')
+    call check_integer(deck, g, 'max_steps', max_steps, err, at_least=1)
+    if (err%failed()) return
+    if (problem == 'kinetics' .and. log10(t_first) + n_outputs*log10(factor) > 300.0_dp) &
+      call invalid_value(deck, g, 'n_outputs', str(n_outputs), 'the last output time t_first*factor**n_outputs '// &
+                         'must stay below 1e300', err)
     if (err%failed()) return
 
     u = out%echo_unit()
@@ -212,4 +213,4 @@ contains
       end do
     end if
   end subroutine store_jacobian
-end module ode_verification
+end module lsode_check_analysis

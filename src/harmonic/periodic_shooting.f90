@@ -31,6 +31,7 @@ module periodic_shooting
   implicit none
   private
   public :: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, flow_t, max_newton_limit
+  public :: shooting_diagnosis
 
   integer, parameter :: max_newton_limit = 50
 
@@ -344,4 +345,24 @@ contains
     rep%steps = rep%steps + cnt%steps
     rep%rhs_evaluations = rep%rhs_evaluations + cnt%rhs_evals
   end subroutine periodic_orbit
+
+  !> An exact periodic solution that must not be printed, as an error: Newton
+  !> did not converge, or the orbit is unstable (parametric resonance).
+  subroutine shooting_diagnosis(ss, rep, omega, allow_resonance, err)
+    type(shooting_settings_t), intent(in) :: ss
+    type(shooting_report_t), intent(in) :: rep
+    real(dp), intent(in) :: omega
+    logical, intent(in) :: allow_resonance
+    type(error_t), intent(inout) :: err
+    if (.not. rep%converged) then
+      call err%set('exact periodic solution', 'Newton on the one-revolution map did not converge in '// &
+                   str(ss%max_newton)//' iterations (residual '// &
+                   str(rep%residual(rep%newton_iterations), 3)//') at crank speed '//str(omega, 6)//' rad/s')
+    else if (.not. rep%stable .and. .not. allow_resonance) then
+      call err%set('exact periodic solution', 'the periodic solution at crank speed '//str(omega, 6)// &
+                   ' rad/s is UNSTABLE: a Floquet multiplier has modulus '//str(rep%max_multiplier, 8)// &
+                   ' > 1 (parametric resonance); the steady state is not printed (allow_resonance = .true. '// &
+                   'prints it anyway)')
+    end if
+  end subroutine shooting_diagnosis
 end module periodic_shooting

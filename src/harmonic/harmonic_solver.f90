@@ -28,7 +28,7 @@
 !> natural frequency of the frozen structure (resonance): reported, and
 !> flagged below resonance_ratio.
 module harmonic_solver
-  use kinds, only: dp, two_pi
+  use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
   use small_dense, only: dense_lu_t
@@ -36,6 +36,7 @@ module harmonic_solver
   implicit none
   private
   public :: harmonic_settings_t, harmonic_report_t, harmonic_solve, fourier_coefficients, max_outer_limit
+  public :: harmonic_diagnosis
 
   integer, parameter :: max_outer_limit = 200
   integer, parameter :: cache_limit = 400000     !< doubles of sample M, K kept without C Q_d
@@ -327,4 +328,31 @@ contains
       q = q + d*rhs
     end do
   end subroutine harmonic_sum
+
+  !> A harmonic-series steady state that must not be printed, as an error:
+  !> strain past the Ramberg-Osgood peak, no convergence, near resonance.
+  subroutine harmonic_diagnosis(hs, rep, omega, allow_resonance, allow_beyond_peak, err)
+    type(harmonic_settings_t), intent(in) :: hs
+    type(harmonic_report_t), intent(in) :: rep
+    real(dp), intent(in) :: omega
+    logical, intent(in) :: allow_resonance, allow_beyond_peak
+    type(error_t), intent(inout) :: err
+    if (rep%beyond_peak .and. .not. allow_beyond_peak) then
+      call err%set('harmonic series', 'strain '//str(rep%max_abs_strain, 5)//' in element '// &
+                   str(rep%strain_element)//' passes the peak of the Ramberg-Osgood law (the material has no '// &
+                   'stable meaning beyond it) at crank speed '//str(omega, 6)//' rad/s; the steady state is not '// &
+                   'printed (allow_beyond_peak = .true. prints it anyway)')
+    else if (.not. rep%converged) then
+      call err%set('harmonic series', 'the outer iteration on K_n did not converge in '// &
+                   str(hs%max_outer)//' iterations (last change '// &
+                   str(rep%change(hs%max_outer), 3)//') at crank speed '//str(omega, 6)//' rad/s')
+    else if (rep%near_resonance .and. .not. allow_resonance) then
+      call err%set('harmonic series', 'near resonance at crank speed '//str(omega, 6)//' rad/s: K - n^2 w^2 M '// &
+                   'is nearly singular for harmonic n = '//str(rep%worst_harmonic)//' ('// &
+                   str(rep%worst_harmonic*omega, 6)//' rad/s) at crank angle '// &
+                   str(modulo(rep%worst_time*omega*180.0_dp/pi, 360.0_dp), 5)//' deg (rcond/rcond(K) = '// &
+                   str(rep%worst_ratio, 3)//' < resonance_ratio = '//str(hs%resonance_ratio, 3)// &
+                   '); the steady state is not printed (allow_resonance = .true. prints it anyway)')
+    end if
+  end subroutine harmonic_diagnosis
 end module harmonic_solver

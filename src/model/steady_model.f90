@@ -92,14 +92,6 @@ contains
     self%moving = .true.
     allocate(ends(2, mech%n_links))
     do k = 1, mech%n_links
-      associate (lk => mech%links(k))
-        if (abs(lk%area - lk%b*lk%h) > 1.0e-12_dp*lk%b*lk%h .or. &
-            abs(lk%inertia - lk%b*lk%h**3/12.0_dp) > 1.0e-12_dp*lk%b*lk%h**3) then
-          call err%set('steady model', 'link '''//trim(lk%name)//''': Tennant''s element integrates rectangular '// &
-                       'sections b x h through the depth; give link_area and link_inertia as 0 (or b h, b h^3/12)')
-          return
-        end if
-      end associate
       do side = 1, 2
         j = mech%links(k)%joint(side)
         ends(side, k) = link_end(mech, k, j)
@@ -129,7 +121,7 @@ contains
           if (i == 1) masses(1) = joint_mass_here(mech, k, 1)
           if (i == lk%n_elements) masses(2) = joint_mass_here(mech, k, 2)
           call tennant_element_init(self%el(e), m%length, es, ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), opt, &
-                                    err, node_mass=masses, sliding=lk%sliding)
+                                    err, node_mass=masses, sliding=lk%sliding, fibre_ratio=lk%fibre/(0.5_dp*lk%h))
           if (err%failed()) then
             call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
             return

@@ -6,6 +6,7 @@ module transient_settings
   use error_status, only: error_t
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
+  use deck_checks, only: check_real, check_integer, check_choice
   use table_output, only: table_t
   use lsode_solver, only: mf_from_method, method_names
   use kear_element, only: element_effects_t
@@ -89,7 +90,6 @@ contains
     s%rtol = rtol
     s%atol = atol
     s%atol_rate = atol_rate
-    if (.not. atol_rate > 0.0_dp) s%atol_rate = atol
     s%revolutions = revolutions
     s%output_step_deg = output_step_deg
     s%t_end = t_end
@@ -106,8 +106,11 @@ contains
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
+    if (err%failed()) return
+    if (s%atol_rate < 0.0_dp) s%atol_rate = s%atol
   end subroutine read_transient_settings
 
+  !> One line per variable: the allowed range and why (doc/decks.md).
   subroutine validate(deck, s, err)
     type(deck_t), intent(in) :: deck
     type(transient_settings_t), intent(in) :: s
@@ -115,42 +118,38 @@ contains
     character(len=*), parameter :: g = 'transient'
     if (s%mf == 0) then
       call invalid_value(deck, g, 'method', ''''//trim(s%method)//'''', 'must be one of '//method_names, err)
-    else if (.not. (s%rtol > 0.0_dp .and. s%rtol < 0.1_dp)) then
-      call invalid_value(deck, g, 'rtol', str(s%rtol), 'must lie in (0, 0.1)', err)
-    else if (.not. (s%atol > 0.0_dp)) then
-      call invalid_value(deck, g, 'atol', str(s%atol), 'must be > 0', err)
-    else if (.not. (atol_rate > 0.0_dp .or. atol_rate < -0.5_dp)) then   ! the default is -1
-      call invalid_value(deck, g, 'atol_rate', str(atol_rate), 'must be > 0 (or left out: then atol)', err)
-    else if (.not. (s%revolutions > 0.0_dp .and. s%revolutions <= 1.0e4_dp)) then
-      call invalid_value(deck, g, 'revolutions', str(s%revolutions), 'must lie in (0, 10000]', err)
-    else if (.not. (s%output_step_deg > 0.0_dp .and. s%output_step_deg <= 360.0_dp)) then
-      call invalid_value(deck, g, 'output_step_deg', str(s%output_step_deg), 'must lie in (0, 360]', err)
-    else if (.not. (s%t_end >= 0.0_dp)) then
-      call invalid_value(deck, g, 't_end', str(s%t_end), 'must be >= 0', err)
-    else if (.not. (s%output_step_t >= 0.0_dp)) then
-      call invalid_value(deck, g, 'output_step_t', str(s%output_step_t), 'must be >= 0', err)
-    else if (s%output_step_t > 0.0_dp .and. s%t_end > 0.0_dp .and. s%t_end/s%output_step_t > 1.0e7_dp) then
-      call invalid_value(deck, g, 'output_step_t', str(s%output_step_t), &
-                         'gives more than 1e7 output rows over t_end = '//str(s%t_end), err)
-    else if (.not. (s%damping_beta >= 0.0_dp .and. s%damping_beta < 1.0_dp)) then
-      call invalid_value(deck, g, 'damping_beta', str(s%damping_beta), 'must lie in [0, 1) seconds', err)
-    else if (all(s%initial /= [character(len=16) :: 'rigid', 'mode', 'restart'])) then
-      call invalid_value(deck, g, 'initial', ''''//trim(s%initial)//'''', &
-                         'must be ''rigid'', ''mode'' or ''restart''', err)
-    else if (s%initial == 'mode' .and. s%mode_number < 1) then
-      call invalid_value(deck, g, 'mode_number', str(s%mode_number), 'must be >= 1', err)
-    else if (s%initial == 'restart' .and. len_trim(s%restart_in) == 0) then
-      call invalid_value(deck, g, 'restart_in', '''''', 'initial = ''restart'' needs a restart file', err)
-    else if (all(s%kinematics /= [character(len=16) :: 'table', 'direct'])) then
-      call invalid_value(deck, g, 'kinematics', ''''//trim(s%kinematics)//'''', 'must be ''table'' or ''direct''', err)
-    else if (s%table_points < 36 .or. s%table_points > 1000000) then
-      call invalid_value(deck, g, 'table_points', str(s%table_points), 'must lie in 36..1000000', err)
-    else if (s%max_steps < 1) then
-      call invalid_value(deck, g, 'max_steps', str(s%max_steps), 'must be >= 1', err)
-    else if (all(s%formulation /= [character(len=16) :: 'exact', 'kear1987'])) then
-      call invalid_value(deck, 'effects', 'formulation', ''''//trim(s%formulation)//'''', &
-                         'must be ''exact'' or ''kear1987''', err)
+      return
     end if
+    call check_real(deck, g, 'rtol', s%rtol, err, at_least=1.0e-14_dp, below=0.1_dp, &
+                    why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
+    call check_real(deck, g, 'atol', s%atol, err, above=0.0_dp, at_most=1.0e10_dp, why='an absolute error tolerance')
+    call check_real(deck, g, 'atol_rate', s%atol_rate, err, at_least=-1.0_dp, at_most=1.0e10_dp, &
+                    why='an absolute error tolerance of the rates; leave it out (-1) to use atol')
+    if (err%failed()) return
+    if (s%atol_rate <= 0.0_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
+      str(s%atol_rate), 'must be > 0, or left out (-1) to use atol', err)
+    call check_real(deck, g, 'revolutions', s%revolutions, err, above=0.0_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, above=0.0_dp, at_most=360.0_dp)
+    call check_real(deck, g, 't_end', s%t_end, err, at_least=0.0_dp, at_most=1.0e6_dp, &
+                    why='seconds of a run whose driver does not turn')
+    call check_real(deck, g, 'output_step_t', s%output_step_t, err, at_least=0.0_dp, at_most=1.0e6_dp)
+    if (err%failed()) return
+    if (s%output_step_t > 0.0_dp .and. s%t_end > 0.0_dp) then
+      if (s%t_end > 1.0e7_dp*s%output_step_t) call invalid_value(deck, g, 'output_step_t', str(s%output_step_t), &
+                                                     'gives more than 1e7 output rows over t_end = '//str(s%t_end), err)
+    end if
+    call check_real(deck, g, 'damping_beta', s%damping_beta, err, at_least=0.0_dp, below=1.0_dp, why='seconds')
+    call check_choice(deck, g, 'initial', s%initial, [character(len=16) :: 'rigid', 'mode', 'restart'], err)
+    call check_real(deck, g, 'mode_amplitude', s%mode_amplitude, err, at_least=-1.0e3_dp, at_most=1.0e3_dp, &
+                    why='length units of the largest modal displacement')
+    if (s%initial == 'mode') call check_integer(deck, g, 'mode_number', s%mode_number, err, at_least=1)
+    if (err%failed()) return
+    if (s%initial == 'restart' .and. len_trim(s%restart_in) == 0) &
+      call invalid_value(deck, g, 'restart_in', '''''', 'initial = ''restart'' needs a restart file', err)
+    call check_choice(deck, g, 'kinematics', s%kinematics, [character(len=16) :: 'table', 'direct'], err)
+    call check_integer(deck, g, 'table_points', s%table_points, err, at_least=36, at_most=1000000)
+    call check_integer(deck, g, 'max_steps', s%max_steps, err, at_least=1)
+    call check_choice(deck, 'effects', 'formulation', s%formulation, [character(len=16) :: 'exact', 'kear1987'], err)
   end subroutine validate
 
   subroutine echo_transient_settings(out)

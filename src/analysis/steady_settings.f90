@@ -7,6 +7,7 @@ module steady_settings
   use error_status, only: error_t
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use linkage, only: max_links
   use tennant_element, only: tennant_options_t, tennant_max_sections
@@ -15,7 +16,7 @@ module steady_settings
   use periodic_shooting, only: shooting_settings_t, max_newton_limit
   implicit none
   private
-  public :: steady_settings_t, read_steady_settings, echo_steady_settings
+  public :: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
 
   integer, parameter :: ms = tennant_max_sections
 
@@ -128,57 +129,37 @@ contains
     type(steady_settings_t), intent(in) :: s
     type(error_t), intent(inout) :: err
     character(len=*), parameter :: g = 'steady', t = 'tennant'
+    character(len=*), parameter :: tracing = 'a tracing constant: 0 = off, 1 = on'
     integer :: k, j
-    if (all(s%method /= [character(len=16) :: 'harmonic', 'shooting', 'both'])) then
-      call invalid_value(deck, g, 'method', ''''//trim(s%method)//'''', &
-                         'must be ''harmonic'' (T26-T28), ''shooting'' (exact periodic) or ''both''', err)
-    else if (s%harmonic%n_harmonics < 1 .or. s%harmonic%n_harmonics > 256) then
-      call invalid_value(deck, g, 'n_harmonics', str(s%harmonic%n_harmonics), 'must lie in 1..256', err)
-    else if (s%harmonic%n_kept < 0 .or. s%harmonic%n_kept > s%harmonic%n_harmonics) then
-      call invalid_value(deck, g, 'harmonics_kept', str(s%harmonic%n_kept), &
-                         'must lie in 0..n_harmonics (0 = all)', err)
-    else if (.not. (s%harmonic%outer_tol > 0.0_dp .and. s%harmonic%outer_tol < 1.0_dp)) then
-      call invalid_value(deck, g, 'outer_tol', str(s%harmonic%outer_tol), 'must lie in (0, 1)', err)
-    else if (s%harmonic%max_outer < 1 .or. s%harmonic%max_outer > max_outer_limit) then
-      call invalid_value(deck, g, 'max_outer', str(s%harmonic%max_outer), 'must lie in 1..'//str(max_outer_limit), err)
-    else if (.not. (s%harmonic%resonance_ratio >= 0.0_dp .and. s%harmonic%resonance_ratio < 1.0_dp)) then
-      call invalid_value(deck, g, 'resonance_ratio', str(s%harmonic%resonance_ratio), 'must lie in [0, 1)', err)
-    else if (.not. (s%output_step_deg > 0.0_dp .and. s%output_step_deg <= 360.0_dp)) then
-      call invalid_value(deck, g, 'output_step_deg', str(s%output_step_deg), 'must lie in (0, 360]', err)
-    else if (.not. (s%element%damping_beta >= 0.0_dp .and. s%element%damping_beta < 1.0_dp)) then
-      call invalid_value(deck, g, 'damping_beta', str(s%element%damping_beta), 'must lie in [0, 1) seconds', err)
-    else if (integrator /= 'bdf' .and. integrator /= 'adams') then
-      call invalid_value(deck, g, 'integrator', ''''//trim(integrator)//'''', 'must be ''bdf'' or ''adams''', err)
-    else if (.not. (s%shooting%rtol > 0.0_dp .and. s%shooting%rtol < 1.0e-2_dp)) then
-      call invalid_value(deck, g, 'rtol', str(s%shooting%rtol), 'must lie in (0, 0.01)', err)
-    else if (.not. (s%shooting%atol > 0.0_dp)) then
-      call invalid_value(deck, g, 'atol', str(s%shooting%atol), 'must be > 0', err)
-    else if (.not. (s%shooting%newton_tol > 0.0_dp .and. s%shooting%newton_tol < 1.0_dp)) then
-      call invalid_value(deck, g, 'newton_tol', str(s%shooting%newton_tol), 'must lie in (0, 1)', err)
-    else if (s%shooting%max_newton < 1 .or. s%shooting%max_newton > max_newton_limit) then
-      call invalid_value(deck, g, 'max_newton', str(s%shooting%max_newton), 'must lie in 1..'//str(max_newton_limit), &
-                         err)
-    else if (s%shooting%max_steps < 1) then
-      call invalid_value(deck, g, 'max_steps', str(s%shooting%max_steps), 'must be >= 1', err)
-    else if (.not. (s%shooting%unit_circle_tol >= 0.0_dp)) then
-      call invalid_value(deck, g, 'unit_circle_tol', str(s%shooting%unit_circle_tol), 'must be >= 0', err)
-    else if (.not. (s%shooting%singular_rcond >= 0.0_dp .and. s%shooting%singular_rcond < 1.0_dp)) then
-      call invalid_value(deck, g, 'singular_rcond', str(s%shooting%singular_rcond), 'must lie in [0, 1)', err)
-    else if (.not. (s%element%d_k >= 0.0_dp .and. s%element%d_k <= 1.0_dp)) then
-      call invalid_value(deck, t, 'd_k', str(s%element%d_k), 'a tracing constant lies in [0, 1] (1 = on)', err)
-    else if (.not. (s%element%d_b >= 0.0_dp .and. s%element%d_b <= 1.0_dp)) then
-      call invalid_value(deck, t, 'd_b', str(s%element%d_b), 'a tracing constant lies in [0, 1] (1 = on)', err)
-    else if (.not. (s%element%d_g >= 0.0_dp .and. s%element%d_g <= 1.0_dp)) then
-      call invalid_value(deck, t, 'd_g', str(s%element%d_g), 'a tracing constant lies in [0, 1] (1 = on)', err)
-    else if (.not. (s%element%shear_modulus >= 0.0_dp)) then
-      call invalid_value(deck, t, 'shear_modulus', str(s%element%shear_modulus), '>= 0 (0 = E1/(2(1 + poisson)))', err)
-    else if (.not. (s%element%poisson > -1.0_dp .and. s%element%poisson < 0.5_dp)) then
-      call invalid_value(deck, t, 'poisson', str(s%element%poisson), 'must lie in (-1, 0.5)', err)
-    else if (.not. (s%element%shear_factor > 0.0_dp .and. s%element%shear_factor <= 1.0_dp)) then
-      call invalid_value(deck, t, 'shear_factor', str(s%element%shear_factor), 'must lie in (0, 1]', err)
-    else if (s%element%n_gauss < 6 .or. s%element%n_gauss > 64) then
-      call invalid_value(deck, t, 'n_gauss', str(s%element%n_gauss), 'must lie in 6..64', err)
-    end if
+    call check_choice(deck, g, 'method', s%method, [character(len=16) :: 'harmonic', 'shooting', 'both'], err)
+    call check_integer(deck, g, 'n_harmonics', s%harmonic%n_harmonics, err, at_least=1, at_most=256)
+    call check_integer(deck, g, 'harmonics_kept', s%harmonic%n_kept, err, at_least=0, &
+                       at_most=max(0, s%harmonic%n_harmonics), why='0 = all')
+    call check_real(deck, g, 'outer_tol', s%harmonic%outer_tol, err, at_least=1.0e-14_dp, below=1.0_dp, &
+                    why='relative change of the outer iteration; below 1e-14 it is round-off')
+    call check_integer(deck, g, 'max_outer', s%harmonic%max_outer, err, at_least=1, at_most=max_outer_limit)
+    call check_real(deck, g, 'resonance_ratio', s%harmonic%resonance_ratio, err, at_least=0.0_dp, below=1.0_dp)
+    call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, at_least=1.0e-3_dp, at_most=360.0_dp, &
+                    why='below 1e-3 degrees a revolution has over 3.6e5 rows')
+    call check_real(deck, g, 'damping_beta', s%element%damping_beta, err, at_least=0.0_dp, below=1.0_dp, why='seconds')
+    call check_choice(deck, g, 'integrator', integrator, [character(len=16) :: 'bdf', 'adams'], err)
+    call check_real(deck, g, 'rtol', s%shooting%rtol, err, at_least=1.0e-14_dp, below=1.0e-2_dp, &
+                    why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
+    call check_real(deck, g, 'atol', s%shooting%atol, err, above=0.0_dp, at_most=1.0e10_dp)
+    call check_real(deck, g, 'newton_tol', s%shooting%newton_tol, err, at_least=1.0e-15_dp, below=1.0_dp)
+    call check_integer(deck, g, 'max_newton', s%shooting%max_newton, err, at_least=1, at_most=max_newton_limit)
+    call check_integer(deck, g, 'max_steps', s%shooting%max_steps, err, at_least=1)
+    call check_real(deck, g, 'unit_circle_tol', s%shooting%unit_circle_tol, err, at_least=0.0_dp, at_most=1.0_dp, &
+                    why='distance of a Floquet multiplier modulus from 1')
+    call check_real(deck, g, 'singular_rcond', s%shooting%singular_rcond, err, at_least=0.0_dp, below=1.0_dp)
+    call check_real(deck, t, 'd_k', s%element%d_k, err, at_least=0.0_dp, at_most=1.0_dp, why=tracing)
+    call check_real(deck, t, 'd_b', s%element%d_b, err, at_least=0.0_dp, at_most=1.0_dp, why=tracing)
+    call check_real(deck, t, 'd_g', s%element%d_g, err, at_least=0.0_dp, at_most=1.0_dp, why=tracing)
+    call check_real(deck, t, 'shear_modulus', s%element%shear_modulus, err, at_least=0.0_dp, at_most=1.0e20_dp, &
+                    why='0 = E1/(2(1 + poisson))')
+    call check_real(deck, t, 'poisson', s%element%poisson, err, above=-1.0_dp, below=0.5_dp)
+    call check_real(deck, t, 'shear_factor', s%element%shear_factor, err, above=0.0_dp, at_most=1.0_dp)
+    call check_integer(deck, t, 'n_gauss', s%element%n_gauss, err, at_least=6, at_most=64)
     if (err%failed()) return
     do k = 1, max_links
       associate (sc => s%sections(k))
@@ -190,6 +171,11 @@ contains
         if (sc%n < 1 .or. sc%n > ms) then
           call invalid_value(deck, t, 'n_sections('//str(k)//')', str(sc%n), 'must lie in 0..'//str(ms), err); return
         end if
+        call check_reals(deck, t, 'section_b('//str(k)//',:)', sc%b(1:sc%n), err, above=0.0_dp, at_most=1.0e8_dp)
+        call check_reals(deck, t, 'section_h('//str(k)//',:)', sc%h(1:sc%n), err, above=0.0_dp, at_most=1.0e8_dp)
+        call check_reals(deck, t, 'section_end('//str(k)//',:)', sc%f1(1:sc%n), err, above=0.0_dp, at_most=1.0_dp, &
+                         why='a section ends at a fraction of the link')
+        if (err%failed()) return
         do j = 1, sc%n
           if (.not. (sc%b(j) > 0.0_dp .and. sc%h(j) > 0.0_dp)) then
             call invalid_value(deck, t, 'section_b('//str(k)//','//str(j)//'), section_h('//str(k)//','//str(j)//')', &
@@ -222,6 +208,19 @@ contains
     write(u, nml=tennant, delim='apostrophe')
     call out%end_echo()
   end subroutine echo_steady_settings
+
+  !> The &steady and &tennant groups as read, with method set, for a deck
+  !> written by the program (the design analysis' final deck).
+  subroutine write_steady_groups(unit, method_text)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: method_text
+    character(len=16) :: method_read
+    method_read = method
+    method = method_text
+    write(unit, nml=steady, delim='apostrophe')
+    write(unit, nml=tennant, delim='apostrophe')
+    method = method_read
+  end subroutine write_steady_groups
 
   subroutine read_steady_group(unit, ios, iomsg)
     integer, intent(in) :: unit

@@ -11,14 +11,18 @@
 !> an error with the diagnosis (the table and the best feasible point stay in
 !> the output).
 module optimize_analysis
+  use, intrinsic :: iso_fortran_env, only: int64
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
   use deck_reader, only: deck_t, invalid_value, input_error_code
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use optim_problem, only: opt_problem_t, con_kind_name
   use problem_library, only: problem_info_t, create_problem, problem_names
-  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, method_names, hessian_from_name, &
+  use user_problems, only: create_user_problem, user_problem_names
+  use deck_problem, only: read_deck_problem
+  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
                              status_converged, status_max_iter, set_text
   implicit none
@@ -26,20 +30,22 @@ module optimize_analysis
   public :: run_optimize
 
   integer, parameter :: max_vars = 50
+  character(len=20), parameter :: method_list(7) = [character(len=20) :: 'auto', 'gauss', 'gauss_constrained', &
+                                                    'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns']
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &optimize group
-  character(len=32) :: problem, method, hessian, potter_fix, step_back
+  character(len=32) :: problem, method, hessian, potter_fix, step_back, singular_g
   real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization
   integer :: max_iter, newton_max_iter
   namelist /optimize/ problem, method, x0, hessian, max_iter, xtol, ftol, feas_tol, mult_tol, rcond_min, &
-                      regularization, newton_max_iter, potter_fix, step_back
+                      regularization, newton_max_iter, potter_fix, step_back, singular_g
 
 contains
 
   subroutine set_defaults()
     problem = 'rosen_suzuki'
-    method = 'gnlc'
+    method = 'auto'
     x0 = unset
     hessian = 'auto'
     max_iter = 50
@@ -52,6 +58,7 @@ contains
     newton_max_iter = 30
     potter_fix = 'repeat'
     step_back = 'farthest'
+    singular_g = 'regularize'
   end subroutine set_defaults
 
   subroutine read_optimize(unit, ios, iomsg)
@@ -73,6 +80,7 @@ contains
     integer :: n, n_given, u
     real(dp), allocatable :: start(:)
     real(dp) :: cpu0, cpu1
+    character(len=:), allocatable :: names
 
     call set_defaults()
     call deck%read_group('optimize', read_optimize, .true., found, err)
@@ -82,45 +90,57 @@ contains
     hessian = lower(hessian)
     potter_fix = lower(potter_fix)
     step_back = lower(step_back)
-    call create_problem(problem, prob, info, err)
+    singular_g = lower(singular_g)
+    ! a problem posed by coefficients in the deck; the user's problems (make
+    ! PROBLEM=...); then the library
+    found = .false.
+    if (problem == 'deck') then
+      call read_deck_problem(deck, prob, info, err)
+      if (err%failed()) return
+      found = .true.
+    end if
+    if (.not. found) call create_user_problem(trim(problem), prob, info, found, err)
+    if (.not. err%failed() .and. .not. found) call create_problem(problem, prob, info, err)
     if (err%failed()) then
       call err%clear()
-      call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//problem_names, err)
+      names = problem_names
+      if (len(user_problem_names()) > 0) names = user_problem_names()//', '//names
+      names = '''deck'' (coefficients in &problem_data), '//names
+      call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//names// &
+                         ' (or a problem of your own: make PROBLEM=file.f90, doc/optimization.md)', err)
       return
     end if
     n = prob%n
-    n_given = count(x0 > 0.5_dp*unset)
-    if (method_from_name(method) == 0) then
-      call invalid_value(deck, 'optimize', 'method', ''''//trim(method)//'''', 'must be one of '//method_names, err)
-    else if (hessian_from_name(hessian) < 0) then
-      call invalid_value(deck, 'optimize', 'hessian', ''''//trim(hessian)//'''', &
-                         'must be ''auto'', ''gauss'' (G = 2JJ^T) or ''exact''', err)
-    else if (n_given /= 0 .and. (n_given /= n .or. any(x0(1:n) <= 0.5_dp*unset))) then
+    if (method == 'gnlc.ns') method = 'gnlc_ns'
+    call check_choice(deck, 'optimize', 'method', method, method_list, err)
+    call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
+    call check_choice(deck, 'optimize', 'potter_fix', potter_fix, [character(len=8) :: 'repeat', 'none'], err)
+    call check_choice(deck, 'optimize', 'step_back', step_back, [character(len=8) :: 'farthest', 'b13'], err)
+    call check_choice(deck, 'optimize', 'singular_g', singular_g, [character(len=12) :: 'regularize', 'stop'], err)
+    if (err%failed()) return
+    ! x0: unset entries hold the sentinel -huge; the given ones must be finite
+    n_given = count(.not. is_unset(x0))
+    if (n_given /= 0 .and. (n_given /= n .or. any(is_unset(x0(1:n))))) then
       call invalid_value(deck, 'optimize', 'x0', str(n_given)//' values', 'problem '//trim(problem)// &
                          ' has '//str(n)//' variables: give all of x0(1:'//str(n)//') or none', err)
-    else if (max_iter < 0) then
-      call invalid_value(deck, 'optimize', 'max_iter', str(max_iter), 'must be >= 0', err)
-    else if (.not. (xtol > 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'xtol', str(xtol), 'must be > 0', err)
-    else if (.not. (ftol > 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'ftol', str(ftol), 'must be > 0', err)
-    else if (.not. (feas_tol > 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'feas_tol', str(feas_tol), 'must be > 0', err)
-    else if (.not. (mult_tol >= 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'mult_tol', str(mult_tol), 'must be >= 0', err)
-    else if (.not. (rcond_min > 0.0_dp .and. rcond_min < 1.0_dp)) then
-      call invalid_value(deck, 'optimize', 'rcond_min', str(rcond_min), 'must lie in (0, 1)', err)
-    else if (.not. (regularization >= 0.0_dp)) then
-      call invalid_value(deck, 'optimize', 'regularization', str(regularization), 'must be >= 0', err)
-    else if (newton_max_iter < 1) then
-      call invalid_value(deck, 'optimize', 'newton_max_iter', str(newton_max_iter), 'must be >= 1', err)
-    else if (potter_fix /= 'repeat' .and. potter_fix /= 'none') then
-      call invalid_value(deck, 'optimize', 'potter_fix', ''''//trim(potter_fix)//'''', &
-                         'must be ''repeat'' (Potter''s fix (a)) or ''none'' (report the cycling)', err)
-    else if (step_back /= 'farthest' .and. step_back /= 'b13') then
-      call invalid_value(deck, 'optimize', 'step_back', ''''//trim(step_back)//'''', &
-                         'must be ''farthest'' (the boundary, P) or ''b13'' (one linear interpolation)', err)
+      return
     end if
+    if (n_given > 0) call check_reals(deck, 'optimize', 'x0', x0(1:n), err, at_least=-1.0e15_dp, at_most=1.0e15_dp, &
+      why='a design variable beyond 1e15 leaves residuals whose squares overflow')
+    call check_integer(deck, 'optimize', 'max_iter', max_iter, err, at_least=0, at_most=100000)
+    call check_integer(deck, 'optimize', 'newton_max_iter', newton_max_iter, err, at_least=1, at_most=1000)
+    call check_real(deck, 'optimize', 'xtol', xtol, err, above=0.0_dp, below=1.0_dp, &
+                    why='a relative step tolerance')
+    call check_real(deck, 'optimize', 'ftol', ftol, err, above=0.0_dp, below=1.0_dp, &
+                    why='a relative objective tolerance')
+    call check_real(deck, 'optimize', 'feas_tol', feas_tol, err, above=0.0_dp, below=1.0_dp, &
+                    why='an absolute constraint tolerance; 1 or more would call violated constraints satisfied')
+    call check_real(deck, 'optimize', 'mult_tol', mult_tol, err, at_least=0.0_dp, below=1.0_dp, &
+                    why='a multiplier threshold relative to |grad F|')
+    call check_real(deck, 'optimize', 'rcond_min', rcond_min, err, above=0.0_dp, below=1.0_dp, &
+                    why='a reciprocal condition number')
+    call check_real(deck, 'optimize', 'regularization', regularization, err, at_least=0.0_dp, at_most=1.0_dp, &
+                    why='mu = regularization max G_ii; above 1 mu I would swamp G and the step become a gradient step')
     if (err%failed()) return
     if (n_given == 0) then
       start = info%x0
@@ -139,7 +159,7 @@ contains
                     ', potter_fix = '''//trim(potter_fix)//''', step_back = '''//trim(step_back)//''','
     write(u, '(a)') ' xtol = '//str(xtol)//', ftol = '//str(ftol)//', feas_tol = '//str(feas_tol)//','
     write(u, '(a)') ' mult_tol = '//str(mult_tol)//', rcond_min = '//str(rcond_min)//', regularization = ' &
-                    //str(regularization)
+                    //str(regularization)//', singular_g = '''//trim(singular_g)//''''
     write(u, '(a)') '/'
     call out%end_echo()
 
@@ -156,11 +176,12 @@ contains
     opt%opts%mult_tol = mult_tol
     opt%opts%rcond_min = rcond_min
     opt%opts%regularization = regularization
+    opt%opts%auto_regularize = singular_g == 'regularize'
     opt%opts%newton_max_iter = newton_max_iter
     opt%opts%potter_repeat = potter_fix == 'repeat'
     opt%opts%step_back_refine = step_back == 'farthest'
     call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
-                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dF_pred| <= ftol (1 + |F|)')
+                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|)')
 
     call cpu_time(cpu0)
     call opt%solve(prob, start, run_err)
@@ -217,9 +238,13 @@ contains
     call out%cost('iterations NI', str(opt%iterations))
     call out%cost('analyses NF (objective evaluations)', str(prob%count%analyses))
     call out%cost('gradient evaluations', str(prob%count%gradients))
+    call out%cost('residual Jacobian evaluations', str(prob%count%jacobians))
     call out%cost('objective evaluations in finite differences', str(prob%count%fd_analyses))
     call out%cost('objective Hessian evaluations', str(prob%count%hessians))
     call out%cost('constraint evaluations', str(prob%count%constraint_evals))
+    call out%cost('general-constraint evaluations in B11 / of them in Powell''s fallback', &
+                  str(prob%count%b11_constraint_evals)//' / '//str(prob%count%powell_constraint_evals))
+    call out%cost('H evaluations in Powell''s fallback', str(prob%count%powell_h_evals))
     call out%cost('general-constraint gradients / Hessians', str(prob%count%constraint_gradients)//' / '// &
                   str(prob%count%constraint_hessians))
     call out%cost('constraint evaluations in finite differences', str(prob%count%fd_constraint_evals))
@@ -233,6 +258,13 @@ contains
     end if
     if (run_err%failed()) err = run_err
   end subroutine run_optimize
+
+  !> x0 entries the deck left at the sentinel (bit comparison: no floating-point
+  !> comparison with a NaN the deck may hold).
+  elemental logical function is_unset(v)
+    real(dp), intent(in) :: v
+    is_unset = transfer(v, 0_int64) == transfer(unset, 0_int64)
+  end function is_unset
 
   !> Rows k, NF, F, max violation, step, |S|, x(1:n), lambda(1:m+n_eq),
   !> active(1:m+n_eq) (1 = in the working set); events as '#' lines.
@@ -326,9 +358,9 @@ contains
       end if
       i = j + 1
     end do
-    if (prob%n_eq > 0) then
+    do i = prob%m + 1, prob%m + prob%n_eq
       if (len(s) > 0) s = s//', '
-      s = s//str(prob%n_eq)//' linear equalities (numbered '//str(prob%m + 1)//'-'//str(prob%m + prob%n_eq)//')'
-    end if
+      s = s//'h'//str(i)//' '//con_kind_name(prob%con_kind(i))//' equality'
+    end do
   end function constraint_text
 end module optimize_analysis

@@ -12,13 +12,14 @@ module steady_analysis
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
   use table_output, only: table_t
-  use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, profile_constant, &
-                     joint_pin, joint_slider_fixed, joint_free, joint_slider_link
+  use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
+                              response_columns_text
+  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, profile_constant
   use tennant_element, only: tennant_stress_t
   use steady_model, only: steady_model_t
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings
-  use harmonic_solver, only: harmonic_report_t, harmonic_solve
-  use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit
+  use harmonic_solver, only: harmonic_report_t, harmonic_solve, harmonic_diagnosis
+  use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit, shooting_diagnosis
   implicit none
   private
   public :: run_steady
@@ -45,7 +46,15 @@ contains
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_steady_settings(deck, mech%n_links, s, err)
+    call check_section_rules(deck, mech, s%element%d_k > 0.0_dp, s%element%shear, err)
     if (err%failed()) return
+    do k = 1, mech%n_links
+      if (s%sections(k)%n > 0 .and. mech%links(k)%section /= 'rectangle') then
+        call invalid_value(deck, 'tennant', 'n_sections('//str(k)//')', str(s%sections(k)%n), 'tapered sections '// &
+                           'are rectangles b x h; link '//str(k)//' has a '//trim(mech%links(k)%section)//' section', err)
+        return
+      end if
+    end do
     omega = mech%driver%omega
     if (.not. omega > 0.0_dp) then
       call invalid_value(deck, 'mechanism', 'omega', str(omega), &
@@ -99,7 +108,7 @@ contains
         call err%add_context('harmonic series')
         return
       end if
-      call harmonic_diagnosis(s, hrep, omega, err)
+      call harmonic_diagnosis(s%harmonic, hrep, omega, s%allow_resonance, s%allow_beyond_peak, err)
       if (err%failed()) return
       if (hrep%beyond_peak) call out%comment('WARNING: a strain passes the peak of the Ramberg-Osgood law ('// &
         str(hrep%max_abs_strain, 5)//' in element '//str(hrep%strain_element)//'); printed because '// &
@@ -124,7 +133,7 @@ contains
         call err%add_context('exact periodic solution (shooting) at crank speed '//str(omega, 6)//' rad/s')
         return
       end if
-      call shooting_diagnosis(s, srep, omega, err)
+      call shooting_diagnosis(s%shooting, srep, omega, s%allow_resonance, err)
       if (err%failed()) return
     end if
 
@@ -196,12 +205,8 @@ contains
     type(steady_settings_t), intent(in) :: s
     type(steady_model_t), intent(in) :: model
     character(len=200), allocatable :: tlines(:)
-    integer :: i
-    associate (lines => mechanism_summary(mech))
-      do i = 1, size(lines)
-        if (len_trim(lines(i)) > 0) call out%comment(trim(lines(i)))
-      end do
-    end associate
+    call model%table%describe(tlines)
+    call write_mechanism_header(out, mech, tlines)
     associate (o => s%element)
       if (o%shear .and. o%shear_modulus <= 0.0_dp) then
         call out%comment('element: Tennant (T17-T19), 14 DOFs with shear angle alpha; shear modulus G = '// &
@@ -220,10 +225,6 @@ contains
       call out%comment('kinetic energy: rotatory inertia '//str(o%rotary_inertia)//', shear-angle inertia (T4) '// &
                        str(o%shear .and. o%shear_inertia)//'; damping beta = '//str(o%damping_beta)//' s')
     end associate
-    call model%table%describe(tlines)
-    do i = 1, size(tlines)
-      call out%comment(trim(tlines(i)))
-    end do
     if (s%method /= 'shooting') then
       call out%comment('harmonic series (T26-T28): N = '//str(s%harmonic%n_harmonics)//' harmonics from '// &
                        str(2*s%harmonic%n_harmonics)//' samples per revolution, '// &
@@ -348,93 +349,26 @@ contains
     end if
   end subroutine report_shooting
 
-  subroutine harmonic_diagnosis(s, rep, omega, err)
-    type(steady_settings_t), intent(in) :: s
-    type(harmonic_report_t), intent(in) :: rep
-    real(dp), intent(in) :: omega
-    type(error_t), intent(inout) :: err
-    if (rep%beyond_peak .and. .not. s%allow_beyond_peak) then
-      call err%set('harmonic series', 'strain '//str(rep%max_abs_strain, 5)//' in element '// &
-                   str(rep%strain_element)//' passes the peak of the Ramberg-Osgood law (the material has no '// &
-                   'stable meaning beyond it) at crank speed '//str(omega, 6)//' rad/s; the steady state is not '// &
-                   'printed (allow_beyond_peak = .true. prints it anyway)')
-    else if (.not. rep%converged) then
-      call err%set('harmonic series', 'the outer iteration on K_n did not converge in '// &
-                   str(s%harmonic%max_outer)//' iterations (last change '// &
-                   str(rep%change(s%harmonic%max_outer), 3)//') at crank speed '//str(omega, 6)//' rad/s')
-    else if (rep%near_resonance .and. .not. s%allow_resonance) then
-      call err%set('harmonic series', 'near resonance at crank speed '//str(omega, 6)//' rad/s: K - n^2 w^2 M '// &
-                   'is nearly singular for harmonic n = '//str(rep%worst_harmonic)//' ('// &
-                   str(rep%worst_harmonic*omega, 6)//' rad/s) at crank angle '// &
-                   str(modulo(rep%worst_time*omega*180.0_dp/pi, 360.0_dp), 5)//' deg (rcond/rcond(K) = '// &
-                   str(rep%worst_ratio, 3)//' < resonance_ratio = '//str(s%harmonic%resonance_ratio, 3)// &
-                   '); the steady state is not printed (allow_resonance = .true. prints it anyway)')
-    end if
-  end subroutine harmonic_diagnosis
 
-  subroutine shooting_diagnosis(s, rep, omega, err)
-    type(steady_settings_t), intent(in) :: s
-    type(shooting_report_t), intent(in) :: rep
-    real(dp), intent(in) :: omega
-    type(error_t), intent(inout) :: err
-    if (.not. rep%converged) then
-      call err%set('exact periodic solution', 'Newton on the one-revolution map did not converge in '// &
-                   str(s%shooting%max_newton)//' iterations (residual '// &
-                   str(rep%residual(rep%newton_iterations), 3)//') at crank speed '//str(omega, 6)//' rad/s')
-    else if (.not. rep%stable .and. .not. s%allow_resonance) then
-      call err%set('exact periodic solution', 'the periodic solution at crank speed '//str(omega, 6)// &
-                   ' rad/s is UNSTABLE: a Floquet multiplier has modulus '//str(rep%max_multiplier, 8)// &
-                   ' > 1 (parametric resonance); the steady state is not printed (allow_resonance = .true. '// &
-                   'prints it anyway)')
-    end if
-  end subroutine shooting_diagnosis
 
   ! ------------------------------------------------------------------ columns
 
-  logical function joint_moves(mech, j)
-    type(mechanism_t), intent(in) :: mech
-    integer, intent(in) :: j
-    integer :: i
-    joint_moves = .false.
-    if (mech%joints(j)%grounded) return
-    if (any(mech%joints(j)%kind == [joint_pin, joint_slider_fixed, joint_free])) then
-      joint_moves = .true.
-    else if (mech%joints(j)%kind == joint_slider_link) then
-      do i = 1, mech%joints(j)%n_links
-        if (mech%joints(j)%link(i) /= mech%joints(j)%sliding_link) joint_moves = .true.
-      end do
-    end if
-  end function joint_moves
-
-  !> Global elastic (U, W) of joint j, at the first link end there that is
-  !> not a link sliding through the joint's sleeve.
+  !> Global elastic (U, W) of joint j (mechanism_report%joint_carrier says where).
   function joint_displacement(model, mech, j, q) result(uw)
     type(steady_model_t), intent(in) :: model
     type(mechanism_t), intent(in) :: mech
     integer, intent(in) :: j
     real(dp), intent(in) :: q(:)
     real(dp) :: uw(2)
-    integer :: i, link, side, e, nn
+    integer :: e, node, first
+    real(dp), allocatable :: qe(:)
     uw = 0.0_dp
-    do i = 1, mech%joints(j)%n_links
-      link = mech%joints(j)%link(i)
-      if (mech%joints(j)%kind == joint_slider_link .and. link == mech%joints(j)%sliding_link) cycle
-      side = mech%joints(j)%link_end(i)
-      if (side == 1) then
-        e = mech%links(link)%first_element
-        uw = model%element_q(e, q)
-        uw = uw(1:2)
-      else
-        e = mech%links(link)%first_element + mech%links(link)%n_elements - 1
-        nn = model%el(e)%nn
-        block
-          real(dp) :: qe(model%el(e)%nd)
-          qe = model%element_q(e, q)
-          uw = qe(nn + 1:nn + 2)
-        end block
-      end if
-      return
-    end do
+    call joint_carrier(mech, j, e, node)
+    if (e == 0) return
+    qe = model%element_q(e, q)
+    first = 1
+    if (node == 2) first = model%el(e)%nn + 1
+    uw = qe(first:first + 1)
   end function joint_displacement
 
   subroutine column_names(out, mech, model, do_h, do_s, names)
@@ -443,37 +377,13 @@ contains
     type(steady_model_t), intent(in) :: model
     logical, intent(in) :: do_h, do_s
     character(len=32), allocatable, intent(out) :: names(:)
-    integer :: pass
-    character(len=:), allocatable :: suffix
     names = [character(len=32) :: 'crank_deg', 't']
-    do pass = 1, 2
-      if (pass == 1 .and. .not. do_h) cycle
-      if (pass == 2 .and. .not. do_s) cycle
-      suffix = ''
-      if (pass == 2 .and. do_h) suffix = '_exact'
-      call add_names(suffix)
-    end do
-    call out%comment('columns: crank_deg = crank angle (deg); t (s) from crank angle theta0; <joint>_U, <joint>_W = '// &
-                     'elastic displacement of the joint along global X, Y (in; T''s U~1 is B_U, U~2 is C_U for the '// &
-                     'four-bar); <link>_u_end, <link>_w_end = axial and transverse elastic displacement of the '// &
-                     'link''s end 2 in its rigid-body axes (in); sigma_max_e<k> = largest |stress| in element k (psi); '// &
+    if (do_h) names = [character(len=32) :: names, response_column_names(mech, size(model%el), '')]
+    if (do_s) names = [character(len=32) :: names, response_column_names(mech, size(model%el), &
+                                                                          trim(merge('_exact', '      ', do_h)))]
+    call out%comment('columns: crank_deg = crank angle (deg); t (s) from crank angle theta0; '// &
+                     response_columns_text//'; T''s U~1 is B_U, U~2 is C_U for the four-bar; '// &
                      'suffix _exact: the exact periodic solution (shooting)')
     call out%columns(names)
-  contains
-    subroutine add_names(sfx)
-      character(len=*), intent(in) :: sfx
-      integer :: j, i, e
-      do j = 1, mech%n_joints
-        if (.not. joint_moves(mech, j)) cycle
-        names = [character(len=32) :: names, trim(mech%joints(j)%name)//'_U'//sfx, trim(mech%joints(j)%name)//'_W'//sfx]
-      end do
-      do i = 1, mech%n_links
-        names = [character(len=32) :: names, trim(mech%links(i)%name)//'_u_end'//sfx, &
-                 trim(mech%links(i)%name)//'_w_end'//sfx]
-      end do
-      do e = 1, size(model%el)
-        names = [character(len=32) :: names, 'sigma_max_e'//str(e)//sfx]
-      end do
-    end subroutine add_names
   end subroutine column_names
 end module steady_analysis

@@ -147,7 +147,7 @@ contains
           m = self%kin%element_motion_global(e)
           call kear_element_init(self%el(e), m%length, lk%b, lk%h, &
                                  ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
-                                 formulation=code, damping_beta=beta)
+                                 formulation=code, damping_beta=beta, fibre_distance=lk%fibre)
           if (err%failed()) then
             call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
             return
@@ -331,9 +331,15 @@ contains
     integer :: k, e
     call driver_angle(self%kin%mech%driver, t, theta, theta_d, theta_dd)
     h = two_pi/self%n_table
-    turns = floor((theta - self%theta_start)/two_pi)
-    x = theta - self%theta_start - turns*two_pi        ! in [0, 2 pi)
-    k = min(int(x/h), self%n_table - 1)
+    turns = aint((theta - self%theta_start)/two_pi)
+    x = theta - self%theta_start - turns*two_pi        ! in (-2 pi, 2 pi)
+    if (x < 0.0_dp) then
+      turns = turns - 1.0_dp
+      x = x + two_pi
+    end if
+    ! the deck's ranges keep theta moderate; the clamp keeps the index in the
+    ! table whatever rounding does at the ends of a turn
+    k = max(0, min(int(x/h), self%n_table - 1))
     x = x - k*h
     call quintic_hermite(x/h, h, hw, hx, hxx)
     do e = 1, size(self%el)

@@ -12,8 +12,9 @@ module transient_analysis
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user, mf_bdf_band_fd
-  use linkage, only: mechanism_t, read_mechanism, echo_mechanism, mechanism_summary, driver_angle, &
-                     joint_pin, joint_slider_fixed, joint_free
+  use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
+                              response_columns_text
+  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, driver_angle
   use kear_element, only: stress_report_t, effects_summary, kear_local_displacement
   use mechanism_model, only: mechanism_model_t
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
@@ -44,6 +45,7 @@ contains
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_transient_settings(deck, s, err)
+    call check_section_rules(deck, mech, s%effects%material, .false., err)
     if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
@@ -227,34 +229,18 @@ contains
     end subroutine output_row
   end subroutine run_transient
 
-  !> Joints whose elastic translation is a model unknown.
-  logical function joint_moves(mech, j)
-    type(mechanism_t), intent(in) :: mech
-    integer, intent(in) :: j
-    joint_moves = any(mech%joints(j)%kind == [joint_pin, joint_slider_fixed, joint_free]) .and. &
-                  .not. mech%joints(j)%grounded
-  end function joint_moves
-
-  !> Global elastic (U, W) of joint j, read at the first link end there.
+  !> Global elastic (U, W) of joint j (mechanism_report%joint_carrier says where).
   subroutine joint_displacement(model, mech, j, q, uw)
     type(mechanism_model_t), intent(in) :: model
     type(mechanism_t), intent(in) :: mech
     integer, intent(in) :: j
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: uw(2)
-    integer :: link, side, e
+    integer :: e, node
     real(dp) :: qe(8)
-    link = mech%joints(j)%link(1)
-    side = mech%joints(j)%link_end(1)
-    if (side == 1) then
-      e = mech%links(link)%first_element
-      qe = model%table%gather(e, q)
-      uw = qe(1:2)
-    else
-      e = mech%links(link)%first_element + mech%links(link)%n_elements - 1
-      qe = model%table%gather(e, q)
-      uw = qe(5:6)
-    end if
+    call joint_carrier(mech, j, e, node)
+    qe = model%table%gather(e, q)
+    uw = qe(4*node - 3:4*node - 2)
   end subroutine joint_displacement
 
   subroutine write_columns(out, mech, model, names)
@@ -262,22 +248,8 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), intent(in) :: model
     character(len=32), allocatable, intent(out) :: names(:)
-    integer :: j, i, e
-    names = [character(len=32) :: 't', 'crank_deg']
-    do j = 1, mech%n_joints
-      if (.not. joint_moves(mech, j)) cycle
-      names = [character(len=32) :: names, trim(mech%joints(j)%name)//'_U', trim(mech%joints(j)%name)//'_W']
-    end do
-    do i = 1, mech%n_links
-      names = [character(len=32) :: names, trim(mech%links(i)%name)//'_u_end', trim(mech%links(i)%name)//'_w_end']
-    end do
-    do e = 1, size(model%el)
-      names = [character(len=32) :: names, 'sigma_max_e'//str(e)]
-    end do
-    call out%comment('columns: t (s); crank_deg = crank angle (deg); <joint>_U, <joint>_W = elastic '// &
-                     'displacement of the joint along global X, Y (in); <link>_u_end, <link>_w_end = axial '// &
-                     'and transverse elastic displacement of the link''s end 2 in the link''s rigid-body axes (in); '// &
-                     'sigma_max_e<k> = largest |stress| in element k over both outer fibres (psi)')
+    names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), '')]
+    call out%comment('columns: t (s); crank_deg = crank angle (deg); '//response_columns_text)
     call out%columns(names)
   end subroutine write_columns
 
@@ -287,20 +259,12 @@ contains
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
     character(len=120), allocatable :: tlines(:)
-    integer :: i
-    associate (lines => mechanism_summary(mech))
-      do i = 1, size(lines)
-        if (len_trim(lines(i)) > 0) call out%comment(trim(lines(i)))
-      end do
-    end associate
+    call model%table%describe(tlines)
+    call write_mechanism_header(out, mech, tlines)
     call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(s%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &
       call out%comment('(all effects off: the linear analysis)')
-    call model%table%describe(tlines)
-    do i = 1, size(tlines)
-      call out%comment(trim(tlines(i)))
-    end do
   end subroutine write_model_header
 
   subroutine write_frequency_header(out, mech, s, omega_n)

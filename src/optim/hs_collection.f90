@@ -1,0 +1,526 @@
+!> A Hock-Schittkowski test collection for the Gauss family (issue 11):
+!> W. Hock and K. Schittkowski, Test Examples for Nonlinear Programming
+!> Codes, Lecture Notes in Economics and Mathematical Systems 187, Springer
+!> (1981), with their standard starts and published optima.
+!>
+!> Each problem is posed as printed: a general objective f, general
+!> inequalities (HS write c(x) >= 0; stored as g = -c <= 0), general
+!> equalities h(x) = 0 and simple bounds (linear constraints, numbered after
+!> the general inequalities).  Derivatives are central differences (error
+!> ~eps^(2/3) for gradients, counted as finite-difference evaluations, not
+!> in NF), Hessians central second differences.  The problems already in
+!> problem_library (HS 15, 21, 28, 35, 43 = Rosen-Suzuki, 65) keep their
+!> own formulations there.
+module hs_collection
+  use kinds, only: dp, pi
+  use error_status, only: error_t
+  use strings, only: str
+  use optim_problem, only: opt_problem_t
+  implicit none
+  private
+  public :: hs_problem_t, hs_numbers, create_hs
+
+  !> The numbers of the problems defined here.
+  integer, parameter :: hs_numbers(42) = [1, 2, 3, 4, 5, 6, 7, 9, 10, 11, 12, 14, 16, 17, 18, 20, 22, 23, 24, 27, &
+                                          29, 30, 31, 32, 34, 36, 37, 38, 39, 40, 42, 48, 50, 51, 52, 53, 60, 71, 76, &
+                                          77, 78, 79]
+  real(dp), parameter :: none = 1.0e30_dp      !< no bound
+  real(dp), parameter :: s2 = 1.4142135623730951_dp, s3 = 1.7320508075688772_dp
+
+  type, extends(opt_problem_t) :: hs_problem_t
+    integer :: number = 0
+    integer :: mg = 0                     !< general inequalities (constraints 1..mg); bounds mg+1..m
+  contains
+    procedure :: objective => hs_objective
+    procedure :: gradient => hs_gradient
+    procedure :: general_constraint => hs_constraint
+    procedure :: general_constraint_gradient => hs_constraint_gradient
+  end type hs_problem_t
+
+contains
+
+  !> Set up HS problem `number`; found = .false. if it is not in hs_numbers.
+  subroutine create_hs(number, prob, x0, x_star, f_star, found)
+    integer, intent(in) :: number
+    type(hs_problem_t), intent(out) :: prob
+    real(dp), allocatable, intent(out) :: x0(:), x_star(:)
+    real(dp), intent(out) :: f_star
+    logical, intent(out) :: found
+    real(dp), allocatable :: lo(:), hi(:)
+    integer :: n, mg, me, i
+    found = any(hs_numbers == number)
+    f_star = 0.0_dp
+    if (.not. found) return
+    call hs_data(number, n, mg, me, lo, hi, x0, x_star, f_star)
+    prob%number = number
+    prob%mg = mg
+    call prob%init_problem('hs'//str(number), n, 0, mg, n_eq=me)
+    do i = 1, mg
+      call prob%set_general_constraint(i)
+    end do
+    do i = 1, me
+      call prob%set_general_equality(i)
+    end do
+    call prob%set_bounds(lo, hi)                    ! constraints mg+1..m, after the general ones
+  end subroutine create_hs
+
+  !> Sizes, bounds, standard start and published optimum of each problem.
+  subroutine hs_data(number, n, mg, me, lo, hi, x0, xs, fs)
+    integer, intent(in) :: number
+    integer, intent(out) :: n, mg, me
+    real(dp), allocatable, intent(out) :: lo(:), hi(:), x0(:), xs(:)
+    real(dp), intent(out) :: fs
+    mg = 0
+    me = 0
+    select case (number)
+    case (1)
+      call dims(2); lo(2) = -1.5_dp
+      x0 = [-2.0_dp, 1.0_dp]; xs = [1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (2)
+      call dims(2); lo(2) = 1.5_dp
+      x0 = [-2.0_dp, 1.0_dp]; xs = [1.224370748736353_dp, 1.5_dp]; fs = 0.0504261879_dp
+    case (3)
+      call dims(2); lo(2) = 0.0_dp
+      x0 = [10.0_dp, 1.0_dp]; xs = [0.0_dp, 0.0_dp]; fs = 0.0_dp
+    case (4)
+      call dims(2); lo = [1.0_dp, 0.0_dp]
+      x0 = [1.125_dp, 0.125_dp]; xs = [1.0_dp, 0.0_dp]; fs = 8.0_dp/3.0_dp
+    case (5)
+      call dims(2); lo = [-1.5_dp, -3.0_dp]; hi = [4.0_dp, 3.0_dp]
+      x0 = [0.0_dp, 0.0_dp]; xs = [-pi/3.0_dp + 0.5_dp, -pi/3.0_dp - 0.5_dp]; fs = -0.5_dp*s3 - pi/3.0_dp
+    case (6)
+      call dims(2); me = 1
+      x0 = [-1.2_dp, 1.0_dp]; xs = [1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (7)
+      call dims(2); me = 1
+      x0 = [2.0_dp, 2.0_dp]; xs = [0.0_dp, s3]; fs = -s3
+    case (9)
+      call dims(2); me = 1
+      x0 = [0.0_dp, 0.0_dp]; xs = [-3.0_dp, -4.0_dp]; fs = -0.5_dp
+    case (10)
+      call dims(2); mg = 1
+      x0 = [-10.0_dp, 10.0_dp]; xs = [0.0_dp, 1.0_dp]; fs = -1.0_dp
+    case (11)
+      call dims(2); mg = 1
+      x0 = [4.9_dp, 0.1_dp]; xs = [1.234779016_dp, 1.524678871_dp]; fs = -8.498464223_dp
+    case (12)
+      call dims(2); mg = 1
+      x0 = [0.0_dp, 0.0_dp]; xs = [2.0_dp, 3.0_dp]; fs = -30.0_dp
+    case (14)
+      call dims(2); mg = 1; me = 1
+      x0 = [2.0_dp, 2.0_dp]; xs = [0.5_dp*(sqrt(7.0_dp) - 1.0_dp), 0.25_dp*(sqrt(7.0_dp) + 1.0_dp)]
+      fs = 9.0_dp - 23.0_dp*sqrt(7.0_dp)/8.0_dp
+    case (16)
+      call dims(2); mg = 2; lo(1) = -2.0_dp; hi = [0.5_dp, 1.0_dp]
+      x0 = [-2.0_dp, 1.0_dp]; xs = [0.5_dp, 0.25_dp]; fs = 0.25_dp
+    case (17)
+      call dims(2); mg = 2; lo(1) = -2.0_dp; hi = [0.5_dp, 1.0_dp]
+      x0 = [-2.0_dp, 1.0_dp]; xs = [0.0_dp, 0.0_dp]; fs = 1.0_dp
+    case (18)
+      call dims(2); mg = 2; lo = [2.0_dp, 0.0_dp]; hi = [50.0_dp, 50.0_dp]
+      x0 = [2.0_dp, 2.0_dp]; xs = [sqrt(250.0_dp), sqrt(2.5_dp)]; fs = 5.0_dp
+    case (20)
+      call dims(2); mg = 3; lo(1) = -0.5_dp; hi(1) = 0.5_dp
+      x0 = [-2.0_dp, 1.0_dp]; xs = [0.5_dp, 0.5_dp*s3]; fs = 81.5_dp - 25.0_dp*s3
+    case (22)
+      call dims(2); mg = 2
+      x0 = [2.0_dp, 2.0_dp]; xs = [1.0_dp, 1.0_dp]; fs = 1.0_dp
+    case (23)
+      call dims(2); mg = 5; lo = -50.0_dp; hi = 50.0_dp
+      x0 = [3.0_dp, 1.0_dp]; xs = [1.0_dp, 1.0_dp]; fs = 2.0_dp
+    case (24)
+      call dims(2); mg = 3; lo = 0.0_dp
+      x0 = [1.0_dp, 0.5_dp]; xs = [3.0_dp, s3]; fs = -1.0_dp
+    case (27)
+      call dims(3); me = 1
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp]; xs = [-1.0_dp, 1.0_dp, 0.0_dp]; fs = 0.04_dp
+    case (29)
+      call dims(3); mg = 1
+      x0 = [1.0_dp, 1.0_dp, 1.0_dp]; xs = [4.0_dp, 2.0_dp*s2, 2.0_dp]; fs = -16.0_dp*s2
+    case (30)
+      call dims(3); mg = 1; lo = [1.0_dp, -10.0_dp, -10.0_dp]; hi = 10.0_dp
+      x0 = [1.0_dp, 1.0_dp, 1.0_dp]; xs = [1.0_dp, 0.0_dp, 0.0_dp]; fs = 1.0_dp
+    case (31)
+      call dims(3); mg = 1; lo = [-10.0_dp, 1.0_dp, -10.0_dp]; hi = [10.0_dp, 10.0_dp, 1.0_dp]
+      x0 = [1.0_dp, 1.0_dp, 1.0_dp]; xs = [1.0_dp/s3, s3, 0.0_dp]; fs = 6.0_dp
+    case (32)
+      call dims(3); mg = 1; me = 1; lo = 0.0_dp
+      x0 = [0.1_dp, 0.7_dp, 0.2_dp]; xs = [0.0_dp, 0.0_dp, 1.0_dp]; fs = 1.0_dp
+    case (34)
+      call dims(3); mg = 2; lo = 0.0_dp; hi = [100.0_dp, 100.0_dp, 10.0_dp]
+      x0 = [0.0_dp, 1.05_dp, 2.9_dp]; xs = [log(log(10.0_dp)), log(10.0_dp), 10.0_dp]; fs = -log(log(10.0_dp))
+    case (36)
+      call dims(3); mg = 1; lo = 0.0_dp; hi = [20.0_dp, 11.0_dp, 42.0_dp]
+      x0 = [10.0_dp, 10.0_dp, 10.0_dp]; xs = [20.0_dp, 11.0_dp, 15.0_dp]; fs = -3300.0_dp
+    case (37)
+      call dims(3); mg = 2; lo = 0.0_dp; hi = 42.0_dp
+      x0 = [10.0_dp, 10.0_dp, 10.0_dp]; xs = [24.0_dp, 12.0_dp, 12.0_dp]; fs = -3456.0_dp
+    case (38)
+      call dims(4); lo = -10.0_dp; hi = 10.0_dp
+      x0 = [-3.0_dp, -1.0_dp, -3.0_dp, -1.0_dp]; xs = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (39)
+      call dims(4); me = 2
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]; xs = [1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp]; fs = -1.0_dp
+    case (40)
+      call dims(4); me = 3
+      x0 = [0.8_dp, 0.8_dp, 0.8_dp, 0.8_dp]
+      xs = [2.0_dp**(-1.0_dp/3.0_dp), 2.0_dp**(-0.5_dp), 2.0_dp**(-11.0_dp/12.0_dp), 2.0_dp**(-0.25_dp)]; fs = -0.25_dp
+    case (42)
+      call dims(4); me = 2
+      x0 = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp]; xs = [2.0_dp, 2.0_dp, 0.6_dp*s2, 0.8_dp*s2]; fs = 28.0_dp - 10.0_dp*s2
+    case (48)
+      call dims(5); me = 2
+      x0 = [3.0_dp, 5.0_dp, -3.0_dp, 2.0_dp, -2.0_dp]; xs = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (50)
+      call dims(5); me = 3
+      x0 = [35.0_dp, -31.0_dp, 11.0_dp, 5.0_dp, -5.0_dp]; xs = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (51)
+      call dims(5); me = 3
+      x0 = [2.5_dp, 0.5_dp, 2.0_dp, -1.0_dp, 0.5_dp]; xs = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (52)
+      call dims(5); me = 3
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]; xs = [-33.0_dp, 11.0_dp, 180.0_dp, -158.0_dp, 11.0_dp]/349.0_dp
+      fs = 1859.0_dp/349.0_dp
+    case (53)
+      call dims(5); me = 3; lo = -10.0_dp; hi = 10.0_dp
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]; xs = [-33.0_dp, 11.0_dp, 27.0_dp, -5.0_dp, 11.0_dp]/43.0_dp
+      fs = 176.0_dp/43.0_dp
+    case (60)
+      call dims(3); me = 1; lo = -10.0_dp; hi = 10.0_dp
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp]; xs = [1.104859024_dp, 1.196674194_dp, 1.535262257_dp]; fs = 0.03256820025_dp
+    case (71)
+      call dims(4); mg = 1; me = 1; lo = 1.0_dp; hi = 5.0_dp
+      x0 = [1.0_dp, 5.0_dp, 5.0_dp, 1.0_dp]; xs = [1.0_dp, 4.742999643_dp, 3.821149981_dp, 1.379408293_dp]
+      fs = 17.0140173_dp
+    case (76)
+      call dims(4); mg = 3; lo = 0.0_dp
+      x0 = [0.5_dp, 0.5_dp, 0.5_dp, 0.5_dp]; xs = [3.0_dp, 23.0_dp, 0.0_dp, 6.0_dp]/11.0_dp
+      fs = -4.681818181818182_dp
+    case (77)
+      call dims(5); me = 2
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]
+      xs = [1.166172_dp, 1.182111_dp, 1.380257_dp, 1.506036_dp, 0.6109203_dp]; fs = 0.24150513_dp
+    case (78)
+      call dims(5); me = 3
+      x0 = [-2.0_dp, 1.5_dp, 2.0_dp, -1.0_dp, -1.0_dp]
+      xs = [-1.717143_dp, 1.595709_dp, 1.827247_dp, -0.7636413_dp, -0.7636450_dp]; fs = -2.91970041_dp
+    case (79)
+      call dims(5); me = 3
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]
+      xs = [1.191127_dp, 1.362603_dp, 1.472818_dp, 1.635017_dp, 1.679081_dp]; fs = 0.0787768209_dp
+    end select
+  contains
+    subroutine dims(nn)
+      integer, intent(in) :: nn
+      n = nn
+      allocate(lo(n), hi(n))
+      lo = -none
+      hi = none
+    end subroutine dims
+  end subroutine hs_data
+
+  !> f(x) as printed by Hock and Schittkowski.
+  real(dp) function hs_f(number, x) result(f)
+    integer, intent(in) :: number
+    real(dp), intent(in) :: x(:)
+    select case (number)
+    case (1, 2, 16, 17, 20)
+      f = 100.0_dp*(x(2) - x(1)**2)**2 + (1.0_dp - x(1))**2
+    case (3)
+      f = x(2) + 1.0e-5_dp*(x(2) - x(1))**2
+    case (4)
+      f = (x(1) + 1.0_dp)**3/3.0_dp + x(2)
+    case (5)
+      f = sin(x(1) + x(2)) + (x(1) - x(2))**2 - 1.5_dp*x(1) + 2.5_dp*x(2) + 1.0_dp
+    case (6)
+      f = (1.0_dp - x(1))**2
+    case (7)
+      f = log(1.0_dp + x(1)**2) - x(2)
+    case (9)
+      f = sin(pi*x(1)/12.0_dp)*cos(pi*x(2)/16.0_dp)
+    case (10)
+      f = x(1) - x(2)
+    case (11)
+      f = (x(1) - 5.0_dp)**2 + x(2)**2 - 25.0_dp
+    case (12)
+      f = 0.5_dp*x(1)**2 + x(2)**2 - x(1)*x(2) - 7.0_dp*x(1) - 7.0_dp*x(2)
+    case (14, 22)
+      f = (x(1) - 2.0_dp)**2 + (x(2) - 1.0_dp)**2
+    case (18)
+      f = 0.01_dp*x(1)**2 + x(2)**2
+    case (23)
+      f = x(1)**2 + x(2)**2
+    case (24)
+      f = ((x(1) - 3.0_dp)**2 - 9.0_dp)*x(2)**3/(27.0_dp*s3)
+    case (27)
+      f = 0.01_dp*(x(1) - 1.0_dp)**2 + (x(2) - x(1)**2)**2
+    case (29, 36, 37)
+      f = -x(1)*x(2)*x(3)
+    case (30)
+      f = x(1)**2 + x(2)**2 + x(3)**2
+    case (31)
+      f = 9.0_dp*x(1)**2 + x(2)**2 + 9.0_dp*x(3)**2
+    case (32)
+      f = (x(1) + 3.0_dp*x(2) + x(3))**2 + 4.0_dp*(x(1) - x(2))**2
+    case (34)
+      f = -x(1)
+    case (38)
+      f = 100.0_dp*(x(2) - x(1)**2)**2 + (1.0_dp - x(1))**2 + 90.0_dp*(x(4) - x(3)**2)**2 + (1.0_dp - x(3))**2 &
+          + 10.1_dp*((x(2) - 1.0_dp)**2 + (x(4) - 1.0_dp)**2) + 19.8_dp*(x(2) - 1.0_dp)*(x(4) - 1.0_dp)
+    case (39)
+      f = -x(1)
+    case (40)
+      f = -x(1)*x(2)*x(3)*x(4)
+    case (42)
+      f = (x(1) - 1.0_dp)**2 + (x(2) - 2.0_dp)**2 + (x(3) - 3.0_dp)**2 + (x(4) - 4.0_dp)**2
+    case (48)
+      f = (x(1) - 1.0_dp)**2 + (x(2) - x(3))**2 + (x(4) - x(5))**2
+    case (50)
+      f = (x(1) - x(2))**2 + (x(2) - x(3))**2 + (x(3) - x(4))**4 + (x(4) - x(5))**2
+    case (51, 53)
+      f = (x(1) - x(2))**2 + (x(2) + x(3) - 2.0_dp)**2 + (x(4) - 1.0_dp)**2 + (x(5) - 1.0_dp)**2
+    case (52)
+      f = (4.0_dp*x(1) - x(2))**2 + (x(2) + x(3) - 2.0_dp)**2 + (x(4) - 1.0_dp)**2 + (x(5) - 1.0_dp)**2
+    case (60)
+      f = (x(1) - 1.0_dp)**2 + (x(1) - x(2))**2 + (x(2) - x(3))**4
+    case (71)
+      f = x(1)*x(4)*(x(1) + x(2) + x(3)) + x(3)
+    case (76)
+      f = x(1)**2 + 0.5_dp*x(2)**2 + x(3)**2 + 0.5_dp*x(4)**2 - x(1)*x(3) + x(3)*x(4) - x(1) - 3.0_dp*x(2) &
+          + x(3) - x(4)
+    case (77)
+      f = (x(1) - 1.0_dp)**2 + (x(1) - x(2))**2 + (x(3) - 1.0_dp)**2 + (x(4) - 1.0_dp)**4 + (x(5) - 1.0_dp)**6
+    case (78)
+      f = x(1)*x(2)*x(3)*x(4)*x(5)
+    case (79)
+      f = (x(1) - 1.0_dp)**2 + (x(1) - x(2))**2 + (x(2) - x(3))**2 + (x(3) - x(4))**4 + (x(4) - x(5))**4
+    case default
+      f = 0.0_dp
+    end select
+  end function hs_f
+
+  !> HS inequality c_j(x) >= 0 (kind 1) or equality h_j(x) = 0 (kind 2).
+  real(dp) function hs_c(number, kind, j, x) result(c)
+    integer, intent(in) :: number, kind, j
+    real(dp), intent(in) :: x(:)
+    c = 0.0_dp
+    if (kind == 1) then
+      select case (number*10 + j)
+      case (101)
+        c = -3.0_dp*x(1)**2 + 2.0_dp*x(1)*x(2) - x(2)**2 + 1.0_dp
+      case (111)
+        c = -x(1)**2 + x(2)
+      case (121)
+        c = 25.0_dp - 4.0_dp*x(1)**2 - x(2)**2
+      case (141)
+        c = -0.25_dp*x(1)**2 - x(2)**2 + 1.0_dp
+      case (161, 201)
+        c = x(1) + x(2)**2
+      case (162, 202)
+        c = x(1)**2 + x(2)
+      case (171)
+        c = x(2)**2 - x(1)
+      case (172)
+        c = x(1)**2 - x(2)
+      case (181)
+        c = x(1)*x(2) - 25.0_dp
+      case (182)
+        c = x(1)**2 + x(2)**2 - 25.0_dp
+      case (203)
+        c = x(1)**2 + x(2)**2 - 1.0_dp
+      case (221)
+        c = -x(1) - x(2) + 2.0_dp
+      case (222)
+        c = -x(1)**2 + x(2)
+      case (231)
+        c = x(1) + x(2) - 1.0_dp
+      case (232)
+        c = x(1)**2 + x(2)**2 - 1.0_dp
+      case (233)
+        c = 9.0_dp*x(1)**2 + x(2)**2 - 9.0_dp
+      case (234)
+        c = x(1)**2 - x(2)
+      case (235)
+        c = x(2)**2 - x(1)
+      case (241)
+        c = x(1)/s3 - x(2)
+      case (242)
+        c = x(1) + s3*x(2)
+      case (243)
+        c = -x(1) - s3*x(2) + 6.0_dp
+      case (291)
+        c = -x(1)**2 - 2.0_dp*x(2)**2 - 4.0_dp*x(3)**2 + 48.0_dp
+      case (301)
+        c = x(1)**2 + x(2)**2 - 1.0_dp
+      case (311)
+        c = x(1)*x(2) - 1.0_dp
+      case (321)
+        c = 6.0_dp*x(2) + 4.0_dp*x(3) - x(1)**3 - 3.0_dp
+      case (341)
+        c = x(2) - exp(min(x(1), 700.0_dp))     ! guarded: trial points far out must not overflow
+      case (342)
+        c = x(3) - exp(min(x(2), 700.0_dp))
+      case (361, 371)
+        c = 72.0_dp - x(1) - 2.0_dp*x(2) - 2.0_dp*x(3)
+      case (372)
+        c = x(1) + 2.0_dp*x(2) + 2.0_dp*x(3)
+      case (711)
+        c = x(1)*x(2)*x(3)*x(4) - 25.0_dp
+      case (761)
+        c = -x(1) - 2.0_dp*x(2) - x(3) - x(4) + 5.0_dp
+      case (762)
+        c = -3.0_dp*x(1) - x(2) - 2.0_dp*x(3) + x(4) + 4.0_dp
+      case (763)
+        c = x(2) + 4.0_dp*x(3) - 1.5_dp
+      end select
+    else
+      select case (number*10 + j)
+      case (61)
+        c = 10.0_dp*(x(2) - x(1)**2)
+      case (71)
+        c = (1.0_dp + x(1)**2)**2 + x(2)**2 - 4.0_dp
+      case (91)
+        c = 4.0_dp*x(1) - 3.0_dp*x(2)
+      case (141)
+        c = x(1) - 2.0_dp*x(2) + 1.0_dp
+      case (271)
+        c = x(1) + x(3)**2 + 1.0_dp
+      case (321)
+        c = 1.0_dp - x(1) - x(2) - x(3)
+      case (391)
+        c = x(2) - x(1)**3 - x(3)**2
+      case (392)
+        c = x(1)**2 - x(2) - x(4)**2
+      case (401)
+        c = x(1)**3 + x(2)**2 - 1.0_dp
+      case (402)
+        c = x(1)**2*x(4) - x(3)
+      case (403)
+        c = x(4)**2 - x(2)
+      case (421)
+        c = x(1) - 2.0_dp
+      case (422)
+        c = x(3)**2 + x(4)**2 - 2.0_dp
+      case (481)
+        c = sum(x(1:5)) - 5.0_dp
+      case (482)
+        c = x(3) - 2.0_dp*(x(4) + x(5)) + 3.0_dp
+      case (501)
+        c = x(1) + 2.0_dp*x(2) + 3.0_dp*x(3) - 6.0_dp
+      case (502)
+        c = x(2) + 2.0_dp*x(3) + 3.0_dp*x(4) - 6.0_dp
+      case (503)
+        c = x(3) + 2.0_dp*x(4) + 3.0_dp*x(5) - 6.0_dp
+      case (511)
+        c = x(1) + 3.0_dp*x(2) - 4.0_dp
+      case (512, 522, 532)
+        c = x(3) + x(4) - 2.0_dp*x(5)
+      case (513, 523, 533)
+        c = x(2) - x(5)
+      case (521, 531)
+        c = x(1) + 3.0_dp*x(2)
+      case (601)
+        c = x(1)*(1.0_dp + x(2)**2) + x(3)**4 - 4.0_dp - 3.0_dp*s2
+      case (711)
+        c = sum(x(1:4)**2) - 40.0_dp
+      case (771)
+        c = x(1)**2*x(4) + sin(x(4) - x(5)) - 2.0_dp*s2
+      case (772)
+        c = x(2) + x(3)**4*x(4)**2 - 8.0_dp - s2
+      case (781)
+        c = sum(x(1:5)**2) - 10.0_dp
+      case (782)
+        c = x(2)*x(3) - 5.0_dp*x(4)*x(5)
+      case (783)
+        c = x(1)**3 + x(2)**3 + 1.0_dp
+      case (791)
+        c = x(1) + x(2)**2 + x(3)**3 - 2.0_dp - 3.0_dp*s2
+      case (792)
+        c = x(2) - x(3)**2 + x(4) + 2.0_dp - 2.0_dp*s2
+      case (793)
+        c = x(1)*x(5) - 2.0_dp
+      end select
+    end if
+  end function hs_c
+
+  subroutine hs_objective(self, x, f, err)
+    class(hs_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: f
+    type(error_t), intent(inout) :: err
+    f = hs_f(self%number, x)
+    if (.false.) call err%clear()
+  end subroutine hs_objective
+
+  !> Central differences, h = eps^(1/3) max(|x_j|, 1): error ~1e-11 relative.
+  subroutine hs_gradient(self, x, f, grad, err)
+    class(hs_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), f
+    real(dp), intent(out) :: grad(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: xp(:), xm(:)
+    real(dp) :: h
+    integer :: j
+    allocate(xp(size(x)), xm(size(x)))
+    xp = x
+    xm = x
+    do j = 1, size(x)
+      h = 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
+      xp(j) = x(j) + h
+      xm(j) = x(j) - h
+      grad(j) = (hs_f(self%number, xp) - hs_f(self%number, xm))/(xp(j) - xm(j))
+      xp(j) = x(j)
+      xm(j) = x(j)
+    end do
+    self%count%fd_analyses = self%count%fd_analyses + 2*size(x)
+    if (.false.) grad(1) = f
+    if (.false.) call err%clear()
+  end subroutine hs_gradient
+
+  !> Constraint i: general inequality (i <= mg: g = -c), equality (i > m).
+  real(dp) function constraint_of(self, i, x) result(g)
+    class(hs_problem_t), intent(in) :: self
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x(:)
+    if (i <= self%mg) then
+      g = -hs_c(self%number, 1, i, x)
+    else
+      g = hs_c(self%number, 2, i - self%m, x)
+    end if
+  end function constraint_of
+
+  subroutine hs_constraint(self, i, x, g, err)
+    class(hs_problem_t), intent(inout) :: self
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: g
+    type(error_t), intent(inout) :: err
+    g = constraint_of(self, i, x)
+    if (i > self%mg .and. i <= self%m) call err%set(self%name, 'constraint '//str(i)//' is a bound, not general')
+  end subroutine hs_constraint
+
+  subroutine hs_constraint_gradient(self, i, x, g, grad, err)
+    class(hs_problem_t), intent(inout) :: self
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x(:), g
+    real(dp), intent(out) :: grad(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: xp(:), xm(:)
+    real(dp) :: h
+    integer :: j
+    allocate(xp(size(x)), xm(size(x)))
+    xp = x
+    xm = x
+    do j = 1, size(x)
+      h = 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
+      xp(j) = x(j) + h
+      xm(j) = x(j) - h
+      grad(j) = (constraint_of(self, i, xp) - constraint_of(self, i, xm))/(xp(j) - xm(j))
+      xp(j) = x(j)
+      xm(j) = x(j)
+    end do
+    self%count%fd_constraint_evals = self%count%fd_constraint_evals + 2*size(x)
+    if (.false.) grad(1) = g
+    if (.false.) call err%clear()
+  end subroutine hs_constraint_gradient
+end module hs_collection
