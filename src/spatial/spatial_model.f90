@@ -99,6 +99,9 @@ contains
     self%links(link_coupler)%length = kin%coupler_length
     self%links(link_rocker)%length = kin%rocker_length
     ne = sum(self%links%n_elements)
+    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link)
+    if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
+    call self%err%clear()
     allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne))
     e = 0
     do k = 1, 3

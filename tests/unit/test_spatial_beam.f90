@@ -9,7 +9,7 @@ module test_spatial_beam_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
-  use linalg, only: sym_generalized_eig, solve_linear
+  use linalg, only: sym_generalized_eig, solve_linear, lu_factor, lu_solve, eigenvalues_general
   use kear_element, only: element_effects_t, effects_all_on, kear_element_t, kear_element_init, &
                           kear_element_eval, kear_eval_info_t, rigid_state_t
   use spatial_section
@@ -43,6 +43,7 @@ contains
     call run_test('rotating_bar_tip_stretch', test_rotating_bar)
     call run_test('paper_e_rotating_cantilever_table', test_paper_e_rotating_table)
     call run_test('large_deflection_cantilever_vs_elastica', test_elastica)
+    call run_test('spinning_cantilever_southwell_coefficients', test_southwell)
     call run_test('section_constants_and_material_rule', test_section)
   end subroutine run_all
 
@@ -595,6 +596,143 @@ contains
     call assert_close(errs(3, 1), 0.0_dp, 2.0e-3_dp, '16 elements, alpha = 0.1')
     call assert_close(errs(3, 2), 0.0_dp, 6.0e-3_dp, '16 elements, alpha = 0.3')
   end subroutine test_elastica
+
+  !> Spinning cantilever (paper E's beam: L = 20 in, circular r = 0.2 in),
+  !> 16 elements, spinning about global Z through its clamped root at
+  !> Omega = 20 rad/s (0.11 of the first bending frequency), stretching on
+  !> (the centrifugal tension stiffens through the exact stretch).
+  !> Linearised about the relative equilibrium in the rotating frame (LTI):
+  !> r(p, p_dot, p_dd) = M_p p_dd - F_p, stiffness by differences at the
+  !> equilibrium; Coriolis coupling left out.  Southwell's relation
+  !> w^2 = w_0^2 + K1 Omega^2 (flapwise, out of the rotation plane) and
+  !> K1 - 1 (lagwise, in the plane: the centrifugal softening -Omega^2).
+  !> Reference, the slope at Omega -> 0 by first-order perturbation of the
+  !> clamped-free mode phi: K1 = int_0^1 (1 - xi^2)/2 phi'^2 / int_0^1 phi^2
+  !> = 1.19334 (exact mode shape, 20000-point midpoint rule; independent of
+  !> this code).  The element's axial force is constant per element (linear
+  !> u), so K1 converges as h^2: 1.19697, 1.19411, 1.19340 with 8, 16, 32
+  !> elements.  Tolerance 1.5e-3 at 16 (measured 6.5e-4); lagwise = flapwise
+  !> - 1 to 1e-6 (the two problems differ by -Omega^2 M only).
+  subroutine test_southwell()
+    integer, parameter :: n = 16
+    real(dp), parameter :: len = 20.0_dp, om = 20.0_dp
+    type(spatial_section_t) :: sec
+    type(spatial_beam_t) :: el
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    type(spatial_rigid_t) :: rb
+    type(spatial_eval_info_t) :: info
+    real(dp), allocatable :: res(:), jac(:, :), x(:), full(:), zero(:), kmat(:, :), mmat(:, :)
+    integer, allocatable :: keep(:)
+    logical :: fixed(8*(n + 1))
+    real(dp) :: w0(2), wspin(2), k1(2)
+    integer :: i, it, grp, spin
+    call spatial_section_init(sec, section_circular, [0.2_dp], alu, err)
+    fx = all_off()
+    fx%stretching = .true.
+    fx%coupling = .true.
+    call spatial_beam_init(el, len/n, sec, alu, g_alu, fx, err)
+    fixed = .false.
+    fixed(1:6) = .true.
+    call keep_dofs(n + 1, fixed, keep)
+    allocate(full(8*(n + 1)), zero(8*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
+    zero = 0.0_dp
+    do spin = 1, 2
+      rb%omega = [0.0_dp, 0.0_dp, merge(0.0_dp, om, spin == 1)]
+      ! relative equilibrium: Newton with a difference Jacobian
+      full = 0.0_dp
+      do it = 1, 6
+        res = residual(full, zero, zero)
+        if (maxval(abs(res)) < 1.0e-10_dp) exit
+        do i = 1, size(keep)
+          full(keep(i)) = full(keep(i)) + 1.0e-7_dp
+          jac(:, i) = (residual(full, zero, zero) - res)/1.0e-7_dp
+          full(keep(i)) = full(keep(i)) - 1.0e-7_dp
+        end do
+        x = -res
+        call solve_linear(jac, x, err)
+        full(keep) = full(keep) + x
+      end do
+      call assert_true(it < 6, 'relative equilibrium converges')
+      ! linearisation: K by central differences, M exactly (affine in p_dd)
+      kmat = jac
+      do i = 1, size(keep)
+        full(keep(i)) = full(keep(i)) + 1.0e-7_dp
+        kmat(:, i) = residual(full, zero, zero)
+        full(keep(i)) = full(keep(i)) - 2.0e-7_dp
+        kmat(:, i) = (kmat(:, i) - residual(full, zero, zero))/2.0e-7_dp
+        full(keep(i)) = full(keep(i)) + 1.0e-7_dp
+      end do
+      mmat = jac
+      do i = 1, size(keep)
+
+        zero(keep(i)) = 1.0_dp
+        mmat(:, i) = residual(full, 0.0_dp*zero, zero) - residual(full, 0.0_dp*zero, 0.0_dp*zero)
+        zero(keep(i)) = 0.0_dp
+      end do
+      do grp = 2, 3
+        if (spin == 1) then
+          w0(grp - 1) = lowest(grp)
+        else
+          wspin(grp - 1) = lowest(grp)
+        end if
+      end do
+    end do
+    k1 = (wspin**2 - w0**2)/om**2
+    call assert_rel_close(k1(2), 1.19334_dp, 1.5e-3_dp, 'flapwise (out of the rotation plane) Southwell K1')
+    call assert_close(k1(1), k1(2) - 1.0_dp, 1.0e-6_dp, 'lagwise (in-plane) Southwell coefficient = K1 - 1')
+  contains
+    !> Lowest frequency of the bending group grp (2: v, in the rotation
+    !> plane; 3: w, out of it): eigenvalues of M^-1 K on the group.
+    real(dp) function lowest(grp)
+      integer, intent(in) :: grp
+      logical :: sel(size(keep))
+      integer, allocatable :: ix(:), ipiv(:)
+      real(dp), allocatable :: a(:, :), b(:, :), wr(:), wi(:)
+      integer :: j, ld
+      do j = 1, size(keep)
+        ld = mod(keep(j) - 1, 8) + 1
+        sel(j) = merge(any(ld == [2, 6, 7]), any(ld == [3, 5, 8]), grp == 2)
+      end do
+      ix = pack([(j, j=1, size(keep))], sel)
+      a = mmat(ix, ix)
+      b = kmat(ix, ix)
+      allocate(ipiv(size(ix)), wr(size(ix)), wi(size(ix)))
+      call lu_factor(a, ipiv, err)
+      call lu_solve(a, ipiv, b, err)
+      call eigenvalues_general(b, wr, wi, err)
+      lowest = sqrt(minval(wr, mask=wr > 0.0_dp))
+    end function lowest
+    !> Local residual M_p p_dd - F_p at R = I, for the frame spinning at
+    !> rb%omega (alpha = 0): F_p = F - M_p (2 W v - W^2 p), v = p_dot + W p.
+    function residual(pall, pdall, pddall) result(rr)
+      real(dp), intent(in) :: pall(:), pdall(:), pddall(:)
+      real(dp), allocatable :: rr(:)
+      real(dp) :: rall(8*(n + 1)), m(16, 16), f(16), p(16), v(16)
+      integer :: e, i0
+      rall = 0.0_dp
+      do e = 1, n
+        i0 = 8*(e - 1)
+        p = pall(i0 + 1:i0 + 16)
+        v = pdall(i0 + 1:i0 + 16) + wx(p)
+        rb%x1 = [real(e - 1, dp)*len/n, 0.0_dp, 0.0_dp]
+        rb%x1_dd = cross3(rb%omega, cross3(rb%omega, rb%x1))
+        call spatial_beam_eval(el, p, v, rb, m, f, info)
+        f = f - matmul(m, 2.0_dp*wx(v) - wx(wx(p)))
+        rall(i0 + 1:i0 + 16) = rall(i0 + 1:i0 + 16) + matmul(m, pddall(i0 + 1:i0 + 16)) - f
+      end do
+      rr = rall(keep)
+    end function residual
+    function wx(q) result(w)
+      real(dp), intent(in) :: q(16)
+      real(dp) :: w(16)
+      w = 0.0_dp
+      w(1:3) = cross3(rb%omega, q(1:3))
+      w(4:6) = cross3(rb%omega, q(4:6))
+      w(9:11) = cross3(rb%omega, q(9:11))
+      w(12:14) = cross3(rb%omega, q(12:14))
+    end function wx
+  end subroutine test_southwell
 
   !> Paper E, section 8.3 (FORMULATION.md): L = 20 in, r = 0.2 in,
   !> rho = 2.536e-4, omega = 100, 300, 500 rad/s; printed u_L = 6.3799e-4,
