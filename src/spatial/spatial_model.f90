@@ -19,7 +19,7 @@ module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, lu_factor, lu_solve
+  use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, dense_to_lower_band
   use lsode_solver, only: ode_system_t
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t
@@ -382,19 +382,26 @@ contains
     real(dp), intent(in) :: t, y(:)
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
-    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n)
-    integer :: ipiv(self%n), i, j
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n), col(self%n)
+    integer :: i, j, kd
     type(error_t) :: err
     logical :: banded
     call self%set_time(t)
     q = y(1::2)
     call self%assemble_dense(q, mass, stiff)
-    call lu_factor(mass, ipiv, err)
+    ! M is banded and positive definite: banded Cholesky, then M^-1 K column by column
+    kd = self%kd
+    call dense_to_lower_band(mass, kd, self%mass_band)
+    call band_cholesky_factor(self%mass_band, kd, err)
     if (err%failed()) then
       call self%fail(t, 'mass matrix in the Jacobian: '//err%text())
       return
     end if
-    call lu_solve(mass, ipiv, stiff, err)      ! stiff := M^-1 K_t
+    do j = 1, self%n
+      col = stiff(:, j)
+      call band_cholesky_solve(self%mass_band, kd, col, err)
+      stiff(:, j) = col                          ! stiff := M^-1 K_t
+    end do
     beta = self%el(1)%beta
     banded = .not. (ml == 0 .and. mu == 0 .and. size(pd, 1) == 2*self%n)
     do j = 1, self%n

@@ -3,9 +3,10 @@
 # steady state: over eight revolutions the change of every deflection column
 # from one revolution to the next decays by about 7x per revolution (zeta_1 =
 # 0.069 at 275 rad/s: exp(-2 pi zeta_1 w_1/w) = 0.30 per turn for mode 1, the
-# higher modes faster) to 7.6e-6 of its largest value in the last one, the
-# level of DLSODE's rtol = 1e-6.  Bound 1e-4: ten times the measured value and
-# a decade below what an undamped or a non-periodic model gives (> 1e-2).
+# higher modes faster) to 2e-6..8e-6 of its largest value in the last one
+# (measured; the level of DLSODE's rtol = 1e-6, depending on its steps).
+# Bound 1e-4: over ten times that and two decades below what an undamped or a
+# non-periodic model gives (> 1e-2).
 # usage: spatial_rssr_periodic.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 flexmech=$1; work=$3
