@@ -194,6 +194,12 @@ contains
         kk = kk + 4
       end do
       row(kk + 1:kk + size(stress)) = stress%max_abs_stress
+      kk = kk + size(stress)
+      call model%support_forces(tt, q, y(2::2), row(kk + 1:kk + 3), row(kk + 4:kk + 6))
+      if (model%err%failed()) then
+        call err%set('', model%err%text())
+        return
+      end if
       call out%row(row)
       if (per_rev > 0) then
         kk = nint(tt/dt_out)
@@ -268,11 +274,13 @@ contains
     do e = 1, size(model%el)
       names = [character(len=32) :: names, 'sigma_max_e'//str(e)]
     end do
+    names = [character(len=32) :: names, 'A_FX', 'A_FY', 'A_FZ', 'D_FX', 'D_FY', 'D_FZ']
     call out%comment('columns: t (s); crank_deg (deg); B_U*, C_U* = elastic translation of joints B, C along '// &
       'global X, Y, Z (in); <link>_u/v/w_end = elastic displacement of the link''s end 2 in its rigid-body axes '// &
       '(in); <link>_tx/ty/tz_end = its small rotation (tx twist, ty = -w_x, tz = v_x; rad); <link>_N/My/Mz/T_root '// &
       '= axial force (lb), bending moments (lb in) and St. Venant torque (lb in) at the link''s end 1; '// &
-      'sigma_max_e<k> = largest |normal stress| in element k over its extreme fibres (psi)')
+      'sigma_max_e<k> = largest |normal stress| in element k over its extreme fibres (psi); A_F*, D_F* = force '// &
+      'the crank shaft A and the rocker pivot D exert on the links, global X, Y, Z (lb)')
     call out%columns(names)
   end subroutine write_columns
 end module spatial_analysis

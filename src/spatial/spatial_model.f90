@@ -72,6 +72,7 @@ module spatial_model
     procedure :: linear_modes
     procedure :: energies
     procedure :: element_stresses
+    procedure :: support_forces
     procedure :: state_size
   end type spatial_model_t
 
@@ -480,6 +481,31 @@ contains
                                                                             self%el(e)%local_rotation))
     end do
   end subroutine energies
+
+  !> Forces (global, lb) the supports exert on the structure at A (crank
+  !> shaft) and D (rocker pivot): the constrained rows of the element
+  !> equations, r = M_e q_dd - F_e at the node on the support, with q_dd from
+  !> the equations of motion.  Internal forces cancel in the sum over the
+  !> structure, so f_A + f_D is the rate of change of its linear momentum.
+  subroutine support_forces(self, t, q, qd, fa, fd)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out) :: fa(3), fd(3)
+    real(dp) :: qdd(self%n), me(sdofs, sdofs), fe(sdofs), r(sdofs)
+    type(spatial_eval_info_t) :: info
+    integer :: k, e
+    call self%accelerations(t, q, qd, qdd)
+    do k = 1, 2
+      e = self%links(merge(link_crank, link_rocker, k == 1))%first_element
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      r = matmul(me, self%table%gather(e, qdd)) - fe
+      if (k == 1) then
+        fa = r(1:3)
+      else
+        fd = r(1:3)
+      end if
+    end do
+  end subroutine support_forces
 
   !> Stress report of every element (rigid states must be current).
   subroutine element_stresses(self, q, reports)

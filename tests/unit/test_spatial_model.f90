@@ -11,8 +11,10 @@ module test_spatial_model_suite
   use mechanism_model, only: mechanism_model_t
   use transient_fixtures, only: fourbar_input, make_model
   use lsode_solver, only: lsode_t, mf_adams
+  use quadrature, only: gauss_legendre_interval
   use spatial_section, only: spatial_section_init, section_rectangular, section_circular
-  use spatial_beam, only: spatial_stress_t
+  use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_local_displacement
+  use spatial_kinematics, only: cross
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
   use spatial_model
   use assertions
@@ -34,6 +36,7 @@ contains
     call run_test('rssr_model_table_modes_and_mass', test_rssr_model)
     call run_test('free_nonlinear_structure_conserves_energy', test_energy)
     call run_test('driven_rssr_jacobi_energy_balance', test_jacobi_balance)
+    call run_test('support_forces_are_momentum_rate', test_support_forces)
   end subroutine run_all
 
   function effects(variant) result(fx)
@@ -315,6 +318,65 @@ contains
     print '(a,es10.3,a,es10.3,a,es10.3)', '    Jacobi balance residual ', ke, ' lb in; max strain energy ', se_max, &
       ' ; int |dL/dt| ~ ', dt*sum(abs(dkdt))
   end subroutine test_jacobi_balance
+  !> Support forces of the driven RSSR (100 rad/s, every effect on, two
+  !> elements per link) at an elastic state (q, q'), against Newton's law
+  !> computed independently from the material points: f_A + f_D =
+  !> sum int rho A a dx, with the absolute acceleration of each point
+  !> a = x1'' + alpha x r + omega x (omega x r) + 2 omega x r_el' + r_el''
+  !> from the element shape functions, the rigid state and the local
+  !> elastic acceleration p'' = T^T q'' - 2 W v + (W^2 - W') p (6 Gauss
+  !> points per element: exact).  Tolerance 1e-9 of the largest force.
+  subroutine test_support_forces()
+    type(spatial_model_t) :: sm
+    type(element_effects_t) :: fx
+    real(dp), allocatable :: q(:), qd(:), qdd(:)
+    real(dp) :: fa(3), fd(3), total(3), t
+    real(dp) :: xg(6), wg(6), p(16), v(16), pd(16), pdd(16), wl(3), al(3), r(3), rd(3), rdd(3), acc(3)
+    integer :: i, e, k
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+    call rssr_model(2, 100.0_dp, fx, 0.0_dp, sm, scale=4.0_dp, radius=0.25_dp)
+    allocate(q(sm%n), qd(sm%n), qdd(sm%n))
+    q = [(1.0e-3_dp*sin(1.3_dp*i), i=1, sm%n)]
+    qd = [(0.5_dp*cos(0.7_dp*i), i=1, sm%n)]
+    t = 0.0041_dp
+    call sm%support_forces(t, q, qd, fa, fd)
+    call sm%accelerations(t, q, qd, qdd)
+    total = 0.0_dp
+    do e = 1, size(sm%el)
+      associate (el => sm%el(e), rb => sm%rb(e))
+        call gauss_legendre_interval(6, 0.0_dp, el%length, xg, wg)
+        wl = matmul(rb%omega, rb%rot)
+        al = matmul(rb%alpha, rb%rot)
+        p = spatial_to_local(rb%rot, sm%table%gather(e, q), el%local_rotation)
+        v = spatial_to_local(rb%rot, sm%table%gather(e, qd), el%local_rotation)
+        pd = v - wtimes(wl, p, el%local_rotation)
+        pdd = spatial_to_local(rb%rot, sm%table%gather(e, qdd), el%local_rotation) &
+              - 2.0_dp*wtimes(wl, v, el%local_rotation) + wtimes(wl, wtimes(wl, p, el%local_rotation), el%local_rotation) &
+              - wtimes(al, p, el%local_rotation)
+        do k = 1, 6
+          r = [xg(k), 0.0_dp, 0.0_dp] + spatial_local_displacement(el, p, xg(k)/el%length)
+          rd = spatial_local_displacement(el, pd, xg(k)/el%length)
+          rdd = spatial_local_displacement(el, pdd, xg(k)/el%length)
+          acc = matmul(rb%x1_dd, rb%rot) + cross(al, r) + cross(wl, cross(wl, r)) + 2.0_dp*cross(wl, rd) + rdd
+          total = total + wg(k)*el%material%rho*el%sec%area*matmul(rb%rot, acc)
+        end do
+      end associate
+    end do
+    call assert_all_close(fa + fd, total, 0.0_dp, 1.0e-9_dp*maxval(abs([fa, fd])), 'f_A + f_D = momentum rate')
+    call assert_true(maxval(abs(fa)) > 1.0_dp .and. maxval(abs(fd)) > 1.0_dp, 'both supports carry load')
+  contains
+    !> omega x each vector triple that turns with the frame (the element's T_dot = T W)
+    function wtimes(w, x, local) result(y)
+      real(dp), intent(in) :: w(3), x(16)
+      logical, intent(in) :: local(2)
+      real(dp) :: y(16)
+      y = 0.0_dp
+      y(1:3) = cross(w, x(1:3))
+      if (.not. local(1)) y(4:6) = cross(w, x(4:6))
+      y(9:11) = cross(w, x(9:11))
+      if (.not. local(2)) y(12:14) = cross(w, x(12:14))
+    end function wtimes
+  end subroutine test_support_forces
 end module test_spatial_model_suite
 
 program test_spatial_model
