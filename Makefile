@@ -3,6 +3,8 @@
 #   make run     build and run the default deck (prints where the output went)
 #   make test    build (release and debug), run unit, deck-error and regression tests
 #   make bench   work-precision and cost studies (figures, not pass/fail)
+#   make plot OUT=run.out   standard figures of an output (PNG, SVG; flexmech plot)
+#   make MPI=1   build/mpi/bin/flexmech: sweeps and batches shared by MPI ranks (Open MPI)
 #   make deps    install missing system packages and fetch ODEPACK (done by every target)
 #
 # Our own code builds with -std=f2008 -Wall -Wextra, warning-free.  ODEPACK is
@@ -13,6 +15,18 @@ ifeq ($(origin FC),default)
 FC        := gfortran
 endif
 BUILD     ?= release
+# MPI=1: Open MPI's mpif90, src/batch/mpi/job_pool.f90 instead of the serial
+# pool, objects in build/<flavour>-mpi, the program in build/mpi/bin.
+MPI       ?=
+ifeq ($(MPI),1)
+FC        := mpif90
+MPI_PKGS  := libopenmpi-dev openmpi-bin
+POOL_SKIP := src/batch/serial/*
+FLAVOUR   := $(BUILD)-mpi
+else
+POOL_SKIP := src/batch/mpi/*
+FLAVOUR   := $(BUILD)
+endif
 BUILD_DIR := build
 ODEPACK_SRC ?= $(BUILD_DIR)/odepack/src
 DECK      ?= inputs/fourbar_150_damped.nml
@@ -24,12 +38,17 @@ FFLAGS_debug   := -O0 -g $(WARN) -fcheck=all -ffpe-trap=invalid,zero,overflow -f
 LEGACY_FFLAGS  := -O2 -g -std=legacy -w
 
 FFLAGS    := $(FFLAGS_$(BUILD))
-OUT       := $(BUILD_DIR)/$(BUILD)
+OUT       := $(BUILD_DIR)/$(FLAVOUR)
+# `make plot OUT=run.out` names an output file; the build directory keeps its name.
+ifeq ($(origin OUT),command line)
+PLOT_OUTPUT := $(OUT)
+override OUT := $(BUILD_DIR)/$(FLAVOUR)
+endif
 OBJ_DIR   := $(OUT)/obj
 MOD_DIR   := $(OUT)/mod
-BIN_DIR   := $(if $(filter release,$(BUILD)),$(BUILD_DIR)/bin,$(OUT)/bin)
+BIN_DIR   := $(if $(filter release,$(BUILD)),$(if $(filter 1,$(MPI)),$(BUILD_DIR)/mpi/bin,$(BUILD_DIR)/bin),$(OUT)/bin)
 
-LIB_SRC   := $(sort $(shell find src -name '*.f90' ! -path 'src/app/*'))
+LIB_SRC   := $(sort $(shell find src -name '*.f90' ! -path 'src/app/*' ! -path '$(POOL_SKIP)'))
 APP_SRC   := src/app/flexmech.f90
 TLIB_SRC  := $(sort $(wildcard tests/lib/*.f90))
 TEST_SRC  := $(sort $(wildcard tests/unit/test_*.f90))
@@ -44,29 +63,34 @@ TEST_BIN  := $(addprefix $(OUT)/tests/,$(notdir $(TEST_SRC:.f90=)))
 TOOL_BIN  := $(addprefix $(OUT)/tools/,$(notdir $(TOOL_SRC:.f90=)))
 BENCH_BIN := $(addprefix $(OUT)/bench/,$(notdir $(BENCH_SRC:.f90=)))
 
-ODEPACK_FILES := dlsode dstode dprepj dsolsy dintdy dcfode dewset dvnorm
+# DPREPJ and DSOLSY (DLSODE's Newton matrix) are ours: src/ode/lsode_newton.f90.
+ODEPACK_FILES := dlsode dstode dintdy dcfode dewset dvnorm
 ODEPACK_LIB   := $(BUILD_DIR)/odepack/libodepack.a
+ODEPACK_LIST  := $(BUILD_DIR)/odepack/files.txt
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
-.PHONY: all deps odepack run test test-bins bench clean distclean help
+.PHONY: all deps odepack run test test-bins bench clean distclean help plot
 .DEFAULT_GOAL := all
 
 all: $(BIN_DIR)/flexmech
 
 help:
-	@sed -n '3,9p' Makefile
+	@sed -n '3,11p' Makefile
 
 # ---------------------------------------------------------------- dependencies
 deps:
-	@sh tools/install_deps.sh $(EXTRA_PKGS)
+	@sh tools/install_deps.sh $(EXTRA_PKGS) $(MPI_PKGS)
 
 $(ODEPACK_SRC)/dlsode.f: | deps
 	@sh tools/fetch_odepack.sh $(BUILD_DIR) $(ODEPACK_SRC)
 
 odepack: $(ODEPACK_LIB)
 
-$(ODEPACK_LIB): $(ODEPACK_SRC)/dlsode.f
+# The file list is rewritten only when it changes, so that the library is rebuilt then.
+$(shell mkdir -p $(BUILD_DIR)/odepack; echo '$(ODEPACK_FILES)' | cmp -s - $(ODEPACK_LIST) || echo '$(ODEPACK_FILES)' > $(ODEPACK_LIST))
+
+$(ODEPACK_LIB): $(ODEPACK_SRC)/dlsode.f $(ODEPACK_LIST)
 	@mkdir -p $(BUILD_DIR)/odepack/obj
 	@for f in $(ODEPACK_FILES); do \
 	  $(FC) $(LEGACY_FFLAGS) -c $(ODEPACK_SRC)/$$f.f -o $(BUILD_DIR)/odepack/obj/$$f.o || exit 1; done
@@ -134,9 +158,15 @@ run: all
 	$(BIN_DIR)/flexmech $(DECK) -o $$out && \
 	echo "output written to $$out" && grep -E '^# (summary|cost)' $$out
 
+plot: all
+	@test -n "$(PLOT_OUTPUT)" || { echo "usage: make plot OUT=run.out" >&2; exit 1; }
+	$(BIN_DIR)/flexmech plot $(PLOT_OUTPUT)
+
 test: deps
 	@$(MAKE) --no-print-directory BUILD=release test-bins
 	@$(MAKE) --no-print-directory BUILD=debug test-bins
+	@if command -v mpif90 >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1; then \
+	  $(MAKE) --no-print-directory BUILD=release MPI=1 all; fi
 	@sh tests/run_tests.sh $(BUILD_DIR)
 
 bench:
@@ -150,3 +180,66 @@ clean:
 # also forgets the ODEPACK download
 distclean:
 	rm -rf $(BUILD_DIR)
+
+# ---------------------------------------------------------------- reliability
+#   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds
+#   make fuzz-ci              the bounded slice CI runs (fixed seed)
+#   make check-debug          every deck of inputs/ and tests/decks/ in the debug build
+#   make check-opt            the test suite under -O0, -O2 and -O3 -march=native
+#   make check-valgrind       valgrind on one deck of each analysis
+RUNS         ?= 300
+SEED         ?= 1
+FUZZ_TIMEOUT ?= 5
+CI_FUZZ_RUNS := 400
+OPT_LEVELS   := O0 O2 O3native
+OPTFLAGS_O0       := -O0
+OPTFLAGS_O2       := -O2
+OPTFLAGS_O3native := -O3 -march=native
+VALGRIND_DECKS := inputs/fourbar_150_damped.nml inputs/tennant_fig4_linear.nml \
+                  inputs/opt_hs35_gauss_constrained.nml inputs/lsode_kinetics.nml
+
+.PHONY: fuzz fuzz-ci fuzz-bins check-debug check-opt check-valgrind $(addprefix check-opt-,$(OPT_LEVELS))
+
+fuzz-bins: deps
+	@command -v python3 >/dev/null 2>&1 || sh tools/install_deps.sh python3
+	@$(MAKE) --no-print-directory BUILD=release all
+	@$(MAKE) --no-print-directory BUILD=debug all
+
+fuzz: fuzz-bins
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(RUNS) --seed $(SEED) --timeout $(FUZZ_TIMEOUT)
+
+fuzz-ci: fuzz-bins
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(CI_FUZZ_RUNS) --seed 20260101 --timeout $(FUZZ_TIMEOUT)
+
+check-debug: deps
+	@$(MAKE) --no-print-directory BUILD=release test-bins
+	@$(MAKE) --no-print-directory BUILD=debug test-bins
+	@SKIP_UNITS=1 sh tests/run_tests.sh $(BUILD_DIR) '' debug
+
+# Each level builds into its own directory (ODEPACK included, from the same
+# sources) and runs the whole suite with unit tests and regression comparisons
+# at that level; make check-opt-O3native runs one level.
+check-opt: deps odepack
+	@fails=""; for l in $(OPT_LEVELS); do \
+	  $(MAKE) --no-print-directory check-opt-$$l || fails="$$fails $$l"; done; \
+	  if [ -n "$$fails" ]; then echo "check-opt: failures at:$$fails"; exit 1; fi; \
+	  echo "check-opt: the suite passes at $(OPT_LEVELS)"
+
+$(addprefix check-opt-,$(OPT_LEVELS)): check-opt-%: deps odepack
+	@echo "== optimization level $* ($(OPTFLAGS_$*))"
+	@nice $(MAKE) --no-print-directory BUILD=release BUILD_DIR=$(BUILD_DIR)/opt/$* \
+	  ODEPACK_SRC=$(abspath $(ODEPACK_SRC)) FFLAGS_release='$(OPTFLAGS_$*) -g $(WARN)' test-bins
+	@UNIT_FLAVOUR=release sh tests/run_tests.sh $(BUILD_DIR)/opt/$* '' release
+
+# valgrind's memcheck on one deck of each analysis (release build, -O2 -g):
+# any invalid access or use of an uninitialised value fails.
+check-valgrind: all
+	@command -v valgrind >/dev/null 2>&1 || sh tools/install_deps.sh valgrind
+	@mkdir -p $(BUILD_DIR)/valgrind; fails=0; \
+	for d in $(VALGRIND_DECKS); do \
+	  n=$$(basename $$d .nml); \
+	  if nice valgrind -q --error-exitcode=99 --track-origins=yes $(BIN_DIR)/flexmech $$d \
+	       -o $(BUILD_DIR)/valgrind/$$n.out > $(BUILD_DIR)/valgrind/$$n.log 2>&1; then \
+	    echo "   $$n: no valgrind errors"; \
+	  else echo "   $$n: FAILED (see $(BUILD_DIR)/valgrind/$$n.log)"; fails=$$((fails + 1)); fi; \
+	done; [ $$fails -eq 0 ]

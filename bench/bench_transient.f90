@@ -5,13 +5,21 @@
 !> (past the start-up: the per-turn peak changes by 3e-5 from the fifth to
 !> the fourteenth), against CPU seconds per crank revolution.
 !>
-!>   1. cost of one right-hand side (assembly + banded Cholesky) and of one
-!>      BDF Jacobian (dense M^-1 K_t) against the number of elements;
-!>   2. elements per link 1, 2, 4, 8, 16 x rtol 1e-3 ... 1e-10 x method
-!>      adams (MF 10) / bdf (MF 21) / bdf_band (MF 24); error against the
-!>      finest, tightest run; each run stops when it exceeds a CPU budget;
-!>   3. the effect of the absolute tolerance on the rates (the deck has one
-!>      atol for displacements and rates alike).
+!>   1. cost of one right-hand side (assembly + banded Cholesky), of one
+!>      banded Newton matrix (M and K_t assembled, S factored) and of one
+!>      dense BDF Jacobian (dense M^-1 K_t) against the number of elements;
+!>   2. CPU per crank turn against elements per link 1 ... 32 (bdf, rtol
+!>      1e-4): DLSODE's Newton matrix through the model's banded elimination
+!>      (now) and DLSODE's dense 2N x 2N P (before, `structured = .false.`);
+!>   3. the terms the analytic Jacobian leaves out (inertial stiffness,
+!>      gyroscopic, damping rotation): bdf against bdf_fd (the exact Jacobian
+!>      by differences), corrector iterations per step;
+!>   4. elements per link 1, 2, 4, 8, 16 x rtol 1e-3 ... 1e-10 x method
+!>      adams (MF 10) / bdf (MF 21); error against the finest, tightest run;
+!>      each run stops when it exceeds a CPU budget;
+!>   5. the effect of the absolute tolerance on the rates.
+!>
+!> `bench_transient scaling` runs 2 and 3 only, `bench_transient cost` 1 only.
 !>
 !> Tables go to standard output (make bench keeps them in
 !> build/bench/bench_transient.txt); data files for doc/figures/*.gp go to
@@ -22,10 +30,10 @@ module bench_transient_cases
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use kear_element, only: element_effects_t, stress_report_t
   use mechanism_model, only: mechanism_model_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user
   implicit none
   private
-  public :: case_result_t, run_case, rhs_cost, jacobian_cost, fourbar
+  public :: case_result_t, run_case, rhs_cost, jacobian_cost, newton_matrix_cost, fourbar
 
   real(dp), parameter :: crank_speed = 150.0_dp, beta = 1.0e-5_dp
   integer, parameter :: revolutions = 5
@@ -37,6 +45,7 @@ module bench_transient_cases
     real(dp) :: cpu_per_rev = 0.0_dp       !< CPU seconds per crank revolution (whole run / turns done)
     real(dp) :: steps_per_rev = 0.0_dp, rhs_per_rev = 0.0_dp, jac_per_rev = 0.0_dp
     real(dp) :: turns = 0.0_dp
+    integer :: n_state = 0                 !< 2N, for the difference columns of bdf_fd
   end type case_result_t
 
 contains
@@ -92,11 +101,15 @@ contains
   !> over the coupler's elements in the fifth turn is the largest sample,
   !> refined by a parabola through it and its neighbours (the peak is a smooth
   !> maximum about 2 degrees wide: quarter-degree samples leave < 1e-4).
-  function run_case(n, mf, rtol, effects, budget, rate_scale) result(res)
+  !> `dense`: DLSODE's dense P from the model's dense Jacobian (the route
+  !> before the banded Newton matrix).
+  function run_case(n, mf, rtol, effects, budget, rate_scale, dense) result(res)
     integer, intent(in) :: n, mf
     real(dp), intent(in) :: rtol, budget, rate_scale
     type(element_effects_t), intent(in) :: effects
+    logical, intent(in), optional :: dense
     type(case_result_t) :: res
+    logical :: structured
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(error_t) :: err
@@ -115,7 +128,10 @@ contains
     atol(1::2) = 1.0e-3_dp*rtol
     atol(2::2) = rate_scale*rtol
     ml = min(2*model%kd + 1, size(y) - 1)
-    call ode%init(size(y), 0.0_dp, mf, rtol, atol, err, ml=ml, mu=ml, max_steps=200000)
+    structured = .true.
+    if (present(dense)) structured = .not. dense
+    res%n_state = size(y)
+    call ode%init(size(y), 0.0_dp, mf, rtol, atol, err, ml=ml, mu=ml, max_steps=200000, structured=structured)
     first = model%table%first_element(2)
     last = model%table%first_element(3) - 1
     deg = pi/180.0_dp/crank_speed
@@ -208,7 +224,32 @@ contains
     if (model%err%failed()) us = -1.0_dp       ! the model stopped: not a cost
   end function rhs_cost
 
-  !> CPU microseconds per BDF Jacobian (model%jacobian, full storage).
+  !> CPU microseconds per banded Newton matrix (model%newton_factor: M and
+  !> K_t assembled in band storage, S = M + c K_t factored).
+  real(dp) function newton_matrix_cost(n) result(us)
+    integer, intent(in) :: n
+    type(mechanism_model_t), target :: model
+    type(error_t) :: err
+    real(dp), allocatable :: y(:)
+    real(dp) :: cpu0, cpu1
+    integer :: calls
+    logical :: ok
+    call make(n, element_effects_t(), model, err)
+    allocate(y(model%state_size()))
+    y = 0.0_dp
+    calls = 0
+    call cpu_time(cpu0)
+    do
+      call model%newton_factor(1.0e-3_dp, y, 3.0e-5_dp, ok)
+      calls = calls + 1
+      call cpu_time(cpu1)
+      if (cpu1 - cpu0 > 0.2_dp) exit
+    end do
+    us = 1.0e6_dp*(cpu1 - cpu0)/calls
+  end function newton_matrix_cost
+
+  !> CPU microseconds per dense BDF Jacobian (model%jacobian, full storage;
+  !> DLSODE's dense route then also factors the 2N x 2N P).
   real(dp) function jacobian_cost(n) result(us)
     integer, intent(in) :: n
     type(mechanism_model_t), target :: model
@@ -235,13 +276,13 @@ end module bench_transient_cases
 program bench_transient
   use kinds, only: dp
   use kear_element, only: element_effects_t
-  use lsode_solver, only: mf_adams, mf_bdf_full_user, mf_bdf_band_user
+  use lsode_solver, only: mf_adams, mf_bdf_full_user, mf_bdf_full_fd
   use bench_transient_cases
   implicit none
   integer, parameter :: ns(5) = [1, 2, 4, 8, 16], ns_cost(6) = [1, 2, 4, 8, 16, 32]
   real(dp), parameter :: rate_atols(4) = [1.0e-3_dp, 1.0e0_dp, 1.0e3_dp, 1.0e6_dp]
-  integer, parameter :: mfs(3) = [mf_adams, mf_bdf_full_user, mf_bdf_band_user]
-  character(len=8), parameter :: method_names(3) = [character(len=8) :: 'adams', 'bdf', 'bdf_band']
+  integer, parameter :: mfs(3) = [mf_adams, mf_bdf_full_user, mf_bdf_full_fd]
+  character(len=8), parameter :: method_names(3) = [character(len=8) :: 'adams', 'bdf', 'bdf_fd']
   real(dp), parameter :: budget = 60.0_dp          ! CPU seconds per run
   real(dp), parameter :: rate_scale = 1.0_dp       ! atol on rates = rate_scale * rtol (in/s)
   type(element_effects_t) :: linear
@@ -261,18 +302,28 @@ program bench_transient
     k = findloc(method_names, trim(arg), dim=1)
     call get_command_argument(4, arg)
     read(arg, *) rtol
-    if (command_argument_count() >= 5) linear = element_effects_t(.true., .true., .true., .true., .true.)
-    r = run_case(i, mfs(k), rtol, linear, 3600.0_dp, rate_scale)
+    if (command_argument_count() >= 5) then
+      call get_command_argument(5, arg)
+      if (trim(arg) == 'all') linear = element_effects_t(.true., .true., .true., .true., .true.)
+    end if
+    r = run_case(i, mfs(k), rtol, linear, 3600.0_dp, rate_scale, dense=trim(arg) == 'dense')
     print '(a,l2,1x,a,f0.4,a,f0.3,a,f0.0,a,f0.0,a,f0.0)', 'finished', r%finished, trim(r%why)//' peak ', r%peak, &
       ' CPU ms/turn ', 1.0e3_dp*r%cpu_per_rev, ' steps/turn ', r%steps_per_rev, ' RHS/turn ', r%rhs_per_rev, &
       ' Jac/turn ', r%jac_per_rev
     stop
   end if
   call execute_command_line('mkdir -p '//data_dir)
+  arg = ''
+  if (command_argument_count() == 1) call get_command_argument(1, arg)
 
   ! ---- 1. cost per right-hand side and per Jacobian against the number of elements
-  call cost_tables(data_dir)
-  if (command_argument_count() == 1) stop      ! `bench_transient cost`: the cost tables only
+  if (trim(arg) /= 'scaling') call cost_tables(data_dir)
+  if (trim(arg) == 'cost') stop      ! `bench_transient cost`: the cost tables only
+
+  ! ---- 2. and 3. cost per turn against the mesh; the terms left out of the Jacobian
+  call scaling_table(data_dir)
+  call left_out_terms()
+  if (trim(arg) == 'scaling') stop
 
   ! ---- 2. work-precision
   print '(a)', '## Work-precision: peak coupler stress in the fifth turn, 150 rad/s, beta = 1e-5 s, linear model'
@@ -291,7 +342,7 @@ program bench_transient
   print '(a)', '|---|---|---|---|---|---|---|---|---|'
   open(newunit=u, file=data_dir//'transient_work_precision.dat', status='replace')
   write(u, '(a)') '# method n_per_link rtol peak rel_error cpu_ms_per_turn steps_per_turn rhs_per_turn jac_per_turn finished'
-  do k = 1, 3
+  do k = 1, 2
     write(u, '(a)') ''
     write(u, '(a)') ''
     write(u, '(a)') '# method '//trim(method_names(k))
@@ -336,12 +387,75 @@ program bench_transient
   end do
 contains
 
+  !> CPU per crank turn, bdf, rtol 1e-4, linear model, elements per link 1 ... 32:
+  !> the banded Newton matrix (now) and DLSODE's dense P (before; over the
+  !> budget the figure is from the turns done).
+  subroutine scaling_table(dir)
+    character(len=*), intent(in) :: dir
+    type(case_result_t) :: now, before
+    integer :: ii, uu
+    real(dp) :: prev
+    print '(a)', '## CPU per crank turn against the mesh (bdf, rtol 1e-4, 150 rad/s, beta = 1e-5 s, linear)'
+    print '(a)', ''
+    print '(a)', '| n per link | unknowns 2N | banded S: ms/turn | ratio to n/2 | steps/turn | RHS/turn | Jac/turn | '// &
+                 'peak (psi) | dense P (before): ms/turn | turns done |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|'
+    open(newunit=uu, file=dir//'transient_scaling.dat', status='replace')
+    write(uu, '(a)') '# n_per_link state_size banded_ms_per_turn dense_ms_per_turn'
+    prev = 0.0_dp
+    do ii = 1, size(ns_cost)
+      now = run_case(ns_cost(ii), mf_bdf_full_user, 1.0e-4_dp, element_effects_t(), budget, rate_scale)
+      before = run_case(ns_cost(ii), mf_bdf_full_user, 1.0e-4_dp, element_effects_t(), budget, rate_scale, dense=.true.)
+      print '(a,i0,a,i0,a,f0.2,a,f0.2,a,f0.0,a,f0.0,a,f0.0,a,f0.2,a,f0.1,a,f0.2,a)', '| ', ns_cost(ii), ' | ', &
+        now%n_state, ' | ', 1.0e3_dp*now%cpu_per_rev, ' | ', merge(now%cpu_per_rev/max(prev, tiny(1.0_dp)), 0.0_dp, &
+        prev > 0.0_dp), ' | ', now%steps_per_rev, ' | ', now%rhs_per_rev, ' | ', now%jac_per_rev, ' | ', now%peak, &
+        ' | ', 1.0e3_dp*before%cpu_per_rev, ' | ', before%turns, ' |'
+      write(uu, '(i4,i6,2es14.5)') ns_cost(ii), now%n_state, 1.0e3_dp*now%cpu_per_rev, 1.0e3_dp*before%cpu_per_rev
+      prev = now%cpu_per_rev
+    end do
+    close(uu)
+    print '(a)', ''
+  end subroutine scaling_table
+
+  !> bdf (analytic Jacobian without inertial stiffness, gyroscopic and
+  !> damping-rotation terms) against bdf_fd (the exact Jacobian by forward
+  !> differences): corrector iterations per step = (RHS - 2N per Jacobian for
+  !> the differences) / steps.  Equal counts mean the left-out terms do not
+  !> slow the chord iteration.
+  subroutine left_out_terms()
+    type(case_result_t) :: a, f
+    type(element_effects_t) :: fx(2)
+    character(len=24) :: fx_name(2) = [character(len=24) :: 'linear', 'geometric + inertia']
+    integer :: ii, jj, nn
+    real(dp) :: rtol
+    fx(1) = element_effects_t()
+    fx(2) = element_effects_t(stretching=.true., curvature=.true., rotary_inertia=.true., coupling=.true.)
+    print '(a)', '## Terms left out of the analytic Jacobian: bdf (approximate J) against bdf_fd (exact J by differences)'
+    print '(a)', ''
+    print '(a)', '| effects | n per link | rtol | bdf steps/turn | bdf iterations/step | bdf_fd steps/turn | '// &
+                 'bdf_fd iterations/step | peak bdf | peak bdf_fd |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|'
+    do jj = 1, 2
+      do ii = 1, 2
+        nn = ii
+        rtol = 1.0e-4_dp
+        a = run_case(nn, mf_bdf_full_user, rtol, fx(jj), budget, rate_scale)
+        f = run_case(nn, mf_bdf_full_fd, rtol, fx(jj), budget, rate_scale)
+        print '(a,a,a,i0,a,es7.0,a,f0.0,a,f0.3,a,f0.0,a,f0.3,a,f0.3,a,f0.3,a)', '| ', trim(fx_name(jj)), ' | ', nn, &
+          ' | ', rtol, ' | ', a%steps_per_rev, ' | ', a%rhs_per_rev/max(a%steps_per_rev, 1.0_dp), ' | ', &
+          f%steps_per_rev, ' | ', (f%rhs_per_rev - f%n_state*f%jac_per_rev)/max(f%steps_per_rev, 1.0_dp), ' | ', &
+          a%peak, ' | ', f%peak, ' |'
+      end do
+    end do
+    print '(a)', ''
+  end subroutine left_out_terms
+
   !> RHS and Jacobian cost against elements: the rocker numbered from D (the
   !> decks) and from C (a chain A-B-C-D), linear and all effects on.
   subroutine cost_tables(dir)
     character(len=*), intent(in) :: dir
     type(element_effects_t) :: full
-    real(dp) :: lin_dc, lin_cd, full_cd, jac
+    real(dp) :: lin_dc, lin_cd, full_cd, jac, newton
     integer :: kd_dc, kd_cd, nu, ii, jj, uu
     full = element_effects_t(.true., .true., .true., .true., .true.)
     print '(a)', '## Cost per right-hand side and per BDF Jacobian (four-bar, 3n elements)'
@@ -350,10 +464,11 @@ contains
     print '(a)', 'Rocker D->C: as in the decks; C->D: links numbered end to end (A-B-C-D), same mechanism.'
     print '(a)', ''
     print '(a)', '| n per link | elements | unknowns | kd (D->C) | RHS linear D->C (us) | kd (C->D) | RHS linear C->D (us) | '// &
-                 'per element | RHS all effects C->D (us) | per element | Jacobian (us) |'
-    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|'
+                 'per element | RHS all effects C->D (us) | per element | dense Jacobian (us) | banded Newton matrix (us) |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|'
     open(newunit=uu, file=dir//'transient_rhs_cost.dat', status='replace')
-    write(uu, '(a)') '# n_per_link elements unknowns kd_dc rhs_linear_dc_us kd_cd rhs_linear_cd_us rhs_all_cd_us jacobian_us'
+    write(uu, '(a)') '# n_per_link elements unknowns kd_dc rhs_linear_dc_us kd_cd rhs_linear_cd_us rhs_all_cd_us jacobian_us '// &
+                     'newton_matrix_us'
     do ii = 1, size(ns_cost)
       jj = ns_cost(ii)
       lin_dc = rhs_cost(jj, element_effects_t(), .false., nu, kd_dc)
@@ -361,10 +476,11 @@ contains
       full_cd = rhs_cost(jj, full, .true., nu, kd_cd)
       jac = -1.0_dp
       if (jj <= 16) jac = jacobian_cost(jj)
-      print '(a,i0,a,i0,a,i0,a,i0,a,f0.2,a,i0,a,f0.2,a,f0.3,a,f0.2,a,f0.3,a,f0.1,a)', '| ', jj, ' | ', 3*jj, ' | ', nu, &
-        ' | ', kd_dc, ' | ', lin_dc, ' | ', kd_cd, ' | ', lin_cd, ' | ', lin_cd/(3*jj), ' | ', full_cd, ' | ', &
-        full_cd/(3*jj), ' | ', jac, ' |'
-      write(uu, '(i4,i6,i6,i5,es14.5,i5,3es14.5)') jj, 3*jj, nu, kd_dc, lin_dc, kd_cd, lin_cd, full_cd, jac
+      newton = newton_matrix_cost(jj)
+      print '(a,i0,a,i0,a,i0,a,i0,a,f0.2,a,i0,a,f0.2,a,f0.3,a,f0.2,a,f0.3,a,f0.1,a,f0.2,a)', '| ', jj, ' | ', 3*jj, ' | ', &
+        nu, ' | ', kd_dc, ' | ', lin_dc, ' | ', kd_cd, ' | ', lin_cd, ' | ', lin_cd/(3*jj), ' | ', full_cd, ' | ', &
+        full_cd/(3*jj), ' | ', jac, ' | ', newton, ' |'
+      write(uu, '(i4,i6,i6,i5,es14.5,i5,4es14.5)') jj, 3*jj, nu, kd_dc, lin_dc, kd_cd, lin_cd, full_cd, jac, newton
     end do
     close(uu)
     print '(a)', ''

@@ -10,7 +10,8 @@ program bench_transient_verification
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use linkage, only: mechanism_input_t
-  use kear_element, only: element_effects_t, kear_local_displacement
+  use kear_element, only: element_effects_t
+  use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_adams, mf_bdf_full_user
   use transient_fixtures   ! the verification tests' own fixtures (tests/lib)
@@ -241,7 +242,7 @@ contains
     y = 0.0_dp
     call settle(model, y, 0.08_dp, okk)
     call model%set_time(0.08_dp)
-    uw = kear_local_displacement(model%el(2), model%table%gather(2, y(1::2)), model%rb(2)%phi, 1.0_dp)
+    uw = beam_local_displacement(model%el(2), model%table%gather(2, y(1::2)), model%rb(2)%phi, 1.0_dp)
     u_tip = uw(1)
   end subroutine tip_stretch
 
@@ -303,7 +304,7 @@ contains
     p%element = n
     p%xi = 1.0_dp
     p%offset = probe_value(p, model, t_settle, y)
-    uw = kear_local_displacement(model%el(n), model%table%gather(n, shapes(:, 1)), model%rb(n)%phi, 1.0_dp)
+    uw = beam_local_displacement(model%el(n), model%table%gather(n, shapes(:, 1)), model%rb(n)%phi, 1.0_dp)
     y(1::2) = y(1::2) + 1.0e-3_dp*shapes(:, 1)/uw(2)
     call measure_period(model, y, t_settle, two_pi/omega0, 4, mf_adams, 1.0e-9_dp, 1.0e-14_dp, p, per, okk)
     if (okk) coef = ((two_pi/per)**2 - omega0**2)/big_omega**2

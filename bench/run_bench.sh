@@ -7,6 +7,7 @@
 set -u
 build=${1:-build}
 mkdir -p "$build/bench"
+export BENCH_DIR="$build/bench"     # where bench_optimizers writes its data files
 for b in "$build"/release/bench/bench_*; do
   [ -x "$b" ] || continue
   name=$(basename "$b")

@@ -5,11 +5,12 @@
 # The downloaded tarball is kept so that later builds do not fetch again.
 #
 # usage: fetch_odepack.sh BUILD_DIR DEST_DIR
-# DEST_DIR receives dlsode.f and its seven support routines.
+# DEST_DIR receives dlsode.f and the five support routines flexmech compiles
+# (DPREPJ and DSOLSY, the Newton matrix, are replaced: src/ode/lsode_newton.f90).
 set -eu
 build=$(cd "$1" && pwd)
 dest=$2
-files="dlsode.f dstode.f dprepj.f dsolsy.f dintdy.f dcfode.f dewset.f dvnorm.f"
+files="dlsode.f dstode.f dintdy.f dcfode.f dewset.f dvnorm.f"
 
 have_all() { for f in $files; do [ -f "$dest/$f" ] || return 1; done; }
 have_all && exit 0

@@ -1,8 +1,9 @@
 #!/bin/sh
 # Install flexmech's system dependencies from Debian/Ubuntu packages when missing.
+# gnuplot-nox draws `flexmech plot` figures (headless: PNG, SVG, GIF).
 # Does nothing when everything is present. Usage: install_deps.sh [extra-package ...]
 set -eu
-pkgs="gfortran liblapack-dev libblas-dev $*"
+pkgs="gfortran liblapack-dev libblas-dev gnuplot-nox $*"
 missing=""
 for p in $pkgs; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

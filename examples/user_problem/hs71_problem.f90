@@ -43,11 +43,11 @@ contains
     type(hs71_t), allocatable :: p
     real(dp) :: eye(4, 4)
     integer :: i
-    found = name == 'hs71'
+    found = name == 'my_hs71'
     if (.not. found) return
     allocate(p)
     ! 4 variables, general objective (0 residuals), 9 inequalities, 1 equality
-    call p%init_problem('hs71', 4, 0, 9, n_eq=1)
+    call p%init_problem('my_hs71', 4, 0, 9, n_eq=1)
     call p%set_general_constraint(1)                          ! 25 - x1 x2 x3 x4 <= 0
     do i = 1, 4                                               ! 1 <= x_i <= 5
       eye = 0.0_dp
@@ -73,7 +73,7 @@ contains
 
   function user_problem_names() result(names)
     character(len=:), allocatable :: names
-    names = '''hs71'''
+    names = '''my_hs71'''
   end function user_problem_names
 
   subroutine hs71_f(self, x, f, err)

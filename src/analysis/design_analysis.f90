@@ -25,8 +25,7 @@ module design_analysis
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_analysis, only: run_steady
   use design_problem, only: design_problem_t, design_variable_t, design_eval_t, parse_variable
-  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, method_gnlc_general, method_gnlc_general_ns, &
-                             status_converged, status_max_iter
+  use design_sequence, only: design_sequence_t
   implicit none
   private
   public :: run_design
@@ -35,13 +34,13 @@ module design_analysis
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &design group
-  character(len=32) :: variables(max_vars), objective, method
+  character(len=32) :: variables(max_vars), objective
   character(len=16) :: evaluator
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
-  real(dp) :: xtol, feas_tol
+  real(dp) :: xtol, feas_tol, move_limit
   integer :: max_iterations, samples
-  namelist /design/ variables, lower, upper, scale, objective, evaluator, method, stress_allowable, &
-                    frequency_factor, max_iterations, samples, xtol, feas_tol
+  namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
+                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit
 
 contains
 
@@ -52,13 +51,13 @@ contains
     scale = 0.0_dp
     objective = 'mass'
     evaluator = 'shooting'
-    method = 'gnlc_general_ns'
     stress_allowable = 0.0_dp
     frequency_factor = 0.0_dp
     max_iterations = 30
     samples = 72
-    xtol = 1.0e-6_dp
-    feas_tol = 1.0e-6_dp
+    xtol = 1.0e-3_dp
+    feas_tol = 1.0e-3_dp
+    move_limit = 0.3_dp
   end subroutine set_defaults
 
   subroutine read_design_group(unit, ios, iomsg)
@@ -75,7 +74,7 @@ contains
     type(mechanism_t) :: mech
     type(steady_settings_t) :: s
     type(design_problem_t) :: prob
-    type(gauss_optimizer_t) :: opt
+    type(design_sequence_t) :: opt
     type(error_t) :: run_err
     real(dp), allocatable :: x0(:)
     real(dp) :: cpu0, cpu1
@@ -97,18 +96,19 @@ contains
     prob%fd_rel_step = merge(1.0e-4_dp, 1.0e-5_dp, evaluator == 'shooting')
     call write_design_header(out, prob)
 
-    opt%opts%method = method_from_name(method)
-    opt%opts%max_iter = max_iterations
-    opt%opts%xtol = xtol
-    opt%opts%feas_tol = feas_tol
-    opt%opts%ftol = 1.0e-10_dp
+    opt%max_iterations = max_iterations
+    opt%xtol = xtol
+    opt%feas_tol = feas_tol
+    opt%move_limit = move_limit
     call cpu_time(cpu0)
     call opt%solve(prob, x0, run_err)
     call cpu_time(cpu1)
 
     call write_history(out, opt, prob)
     call write_results(out, opt, prob, cpu1 - cpu0)
-    if (allocated(opt%x) .and. .not. run_err%failed()) call write_final_design(out, deck, prob, opt%x, run_err)
+    if (.not. run_err%failed() .and. .not. opt%converged) &
+      call run_err%set('design', 'not converged: '//opt%message, 3)
+    if (allocated(opt%x)) call write_final_design(out, deck, prob, opt%x, err)
     if (run_err%failed()) err = run_err
   end subroutine run_design
 
@@ -134,7 +134,6 @@ contains
     end if
     call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass'], err)
     call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic'], err)
-    call check_choice(deck, g, 'method', method, [character(len=32) :: 'gnlc_general', 'gnlc_general_ns'], err)
     call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=0.0_dp, at_most=1.0e12_dp, &
                     why='0 = no stress constraint')
     call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=0.0_dp, at_most=1.0e3_dp, &
@@ -142,8 +141,12 @@ contains
     call check_integer(deck, g, 'max_iterations', max_iterations, err, at_least=1, at_most=1000)
     call check_integer(deck, g, 'samples', samples, err, at_least=8, at_most=3600, &
                        why='crank angles per revolution where stresses and frequencies are taken')
-    call check_real(deck, g, 'xtol', xtol, err, at_least=1.0e-12_dp, below=1.0_dp)
-    call check_real(deck, g, 'feas_tol', feas_tol, err, at_least=1.0e-12_dp, below=1.0_dp)
+    call check_real(deck, g, 'xtol', xtol, err, at_least=1.0e-8_dp, below=1.0_dp, &
+                    why='design step test, relative change of sizes; below 1e-8 it is analysis noise')
+    call check_real(deck, g, 'feas_tol', feas_tol, err, at_least=1.0e-8_dp, below=1.0_dp, &
+                    why='allowed ln(stress/allowable) etc.: a relative violation')
+    call check_real(deck, g, 'move_limit', move_limit, err, above=0.0_dp, at_most=2.0_dp, &
+                    why='initial largest change of ln(size) per design iteration')
     if (err%failed()) return
     if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp)) then
       call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress or a '// &
@@ -269,63 +272,51 @@ contains
     end if
   end function evaluator_text
 
-  !> One row per optimizer iteration: k, analyses so far, mass, the design
-  !> values, the analysis constraints.
+  !> One row per accepted design: k, analyses and CPU so far, mass, worst
+  !> violation, move limit, the design values, the analysis constraints.
   subroutine write_history(out, opt, prob)
     type(table_t), intent(inout) :: out
-    type(gauss_optimizer_t), intent(in) :: opt
-    type(design_problem_t), intent(inout) :: prob
+    type(design_sequence_t), intent(in) :: opt
+    type(design_problem_t), intent(in) :: prob
     character(len=32), allocatable :: names(:)
     real(dp), allocatable :: row(:)
-    type(design_eval_t) :: ev
-    type(error_t) :: ignored
-    integer :: r, i, nc
-    nc = prob%n_stress + merge(1, 0, prob%i_frequency > 0)
-    allocate(names(4 + size(prob%var) + nc))
-    names(1:4) = [character(len=32) :: 'k', 'NF', 'mass', 'max_violation']
-    names(5:4 + size(prob%var)) = prob%var%name
+    integer :: r, i, n, nc
+    n = size(prob%var)
+    nc = prob%n_analysis_constraints()
+    allocate(names(6 + n + nc), row(6 + n + nc))
+    names(1:6) = [character(len=32) :: 'k', 'analyses', 'cpu_s', 'mass', 'max_violation', 'move_limit']
+    names(7:6 + n) = prob%var%name
     do i = 1, nc
-      names(4 + size(prob%var) + i) = 'g'//str(i)
+      names(6 + n + i) = 'g'//str(i)
     end do
-    call out%comment('columns: k = iteration; NF = objective evaluations so far (optimizer count); mass of the '// &
-                     'links; max_violation of all constraints; the design values; g<i> = analysis constraints')
+    call out%comment('columns: k = design iteration; analyses and cpu_s (analysis CPU) so far; mass of the links; '// &
+                     'max_violation = largest g; move_limit = largest change of x in the next approximate problem; '// &
+                     'the design values; g<i> = analysis constraints (<= 0 feasible)')
     call out%columns(names)
-    allocate(row(size(names)))
-    do r = 1, opt%n_log
-      associate (it => opt%log(r))
-        call prob%evaluate(it%x, ev)
-        if (len(it%events) > 0) call out%comment('k = '//str(it%k)//': '//it%events)
-        if (.not. ev%ok) then
-          call out%comment('k = '//str(it%k)//': analysis failed: '//ev%reason)
-          cycle
-        end if
-        row(1:4) = [real(it%k, dp), real(it%nf, dp), ev%mass, it%max_violation]
-        do i = 1, size(prob%var)
-          row(4 + i) = prob%var(i)%value(it%x(i))
+    do r = 1, opt%n_steps
+      associate (st => opt%steps(r))
+        row(1:6) = [real(st%k, dp), real(st%analyses, dp), st%cpu, st%mass, st%max_violation, st%move_limit]
+        do i = 1, n
+          row(6 + i) = prob%var(i)%value(st%x(i))
         end do
-        do i = 1, nc
-          call prob%general_constraint(i, it%x, row(4 + size(prob%var) + i), ignored)
-        end do
-        if (all(ieee_is_finite(row))) call out%row(row)
+        row(7 + n:) = st%g
+        call out%row(row)
+        ! after the row: the column names stay the last '#' line before the first row
+        if (len(st%events) > 0) call out%comment('k = '//str(st%k)//': '//st%events)
       end associate
     end do
   end subroutine write_history
 
   subroutine write_results(out, opt, prob, cpu)
     type(table_t), intent(inout) :: out
-    type(gauss_optimizer_t), intent(in) :: opt
+    type(design_sequence_t), intent(in) :: opt
     type(design_problem_t), intent(inout) :: prob
     real(dp), intent(in) :: cpu
     type(design_eval_t) :: ev
-    integer :: i, n_iterates
-    if (opt%status == status_converged) then
-      call out%summary('status', 'converged')
-    else if (opt%status == status_max_iter) then
-      call out%summary('status', 'iteration limit reached')
-    else
-      call out%summary('status', 'stopped')
-    end if
-    call out%summary('NI', str(opt%iterations))
+    integer :: i
+    call out%summary('status', trim(merge('converged    ', 'not converged', opt%converged))//' ('//opt%message//')')
+    call out%summary('design iterations NI', str(opt%iterations))
+    call out%summary('rejected proposals (move limit halved)', str(opt%rejections))
     if (allocated(opt%x)) then
       call prob%evaluate(opt%x, ev)
       do i = 1, size(prob%var)
@@ -341,16 +332,11 @@ contains
       else
         call out%summary('final design analysis', 'failed: '//ev%reason)
       end if
-      call out%summary('max violation', str(max(0.0_dp, maxval([0.0_dp, opt%g])), 4))
     end if
     if (allocated(prob%last_failure)) call out%comment('last failed analysis: '//prob%last_failure)
-    n_iterates = opt%n_log
-    call out%cost('mechanism analyses (all, each distinct design once)', str(prob%n_analyses))
-    call out%cost('analyses at iterates / for derivatives', str(min(n_iterates, prob%n_analyses))//' / '// &
-                  str(max(0, prob%n_analyses - n_iterates)))
-    call out%cost('failed analyses (infeasible designs, stepped back)', str(prob%n_failed))
-    call out%cost('optimizer NF / FD objective evaluations / constraint evaluations', str(prob%count%analyses)// &
-                  ' / '//str(prob%count%fd_analyses)//' / '//str(prob%count%constraint_evals))
+    call out%cost('mechanism analyses NF (every distinct design, derivatives included)', str(prob%n_analyses))
+    call out%cost('analyses for derivatives (forward differences)', str(opt%iterations*size(prob%var)))
+    call out%cost('failed analyses', str(prob%n_failed))
     call out%cost('cpu_seconds_per_analysis', str(prob%cpu_analyses/max(1, prob%n_analyses), 4))
     call out%cost('cpu_seconds_analyses', str(prob%cpu_analyses, 4))
     call out%cost('cpu_seconds_design', str(cpu, 4))

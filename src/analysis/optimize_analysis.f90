@@ -22,6 +22,7 @@ module optimize_analysis
   use problem_library, only: problem_info_t, create_problem, problem_names
   use user_problems, only: create_user_problem, user_problem_names
   use deck_problem, only: read_deck_problem
+  use hs_collection, only: hs_problem_t, hs_numbers, create_hs
   use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
                              status_converged, status_max_iter, set_text
@@ -100,12 +101,14 @@ contains
       found = .true.
     end if
     if (.not. found) call create_user_problem(trim(problem), prob, info, found, err)
+    if (.not. found .and. .not. err%failed()) call create_collection_problem(trim(problem), prob, info, found)
     if (.not. err%failed() .and. .not. found) call create_problem(problem, prob, info, err)
     if (err%failed()) then
       call err%clear()
       names = problem_names
       if (len(user_problem_names()) > 0) names = user_problem_names()//', '//names
-      names = '''deck'' (coefficients in &problem_data), '//names
+      names = '''deck'' (coefficients in &problem_data), '//names// &
+              ', ''hsN'' for the Hock-Schittkowski collection (N = '//collection_text()//')'
       call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//names// &
                          ' (or a problem of your own: make PROBLEM=file.f90, doc/optimization.md)', err)
       return
@@ -258,6 +261,40 @@ contains
     end if
     if (run_err%failed()) err = run_err
   end subroutine run_optimize
+
+  !> 'hsN' for a problem of the Hock-Schittkowski collection (not those the
+  !> library poses itself): standard start and published optimum.
+  subroutine create_collection_problem(name, prob, info, found)
+    character(len=*), intent(in) :: name
+    class(opt_problem_t), allocatable, intent(out) :: prob
+    type(problem_info_t), intent(out) :: info
+    logical, intent(out) :: found
+    type(hs_problem_t), allocatable :: hp
+    integer :: number, ios
+    found = .false.
+    if (len(name) < 3 .or. name(1:min(2, len(name))) /= 'hs') return
+    read(name(3:), *, iostat=ios) number
+    if (ios /= 0 .or. verify(name(3:), '0123456789') /= 0) return
+    allocate(hp)
+    call create_hs(number, hp, info%x0, info%x_star, info%f_star, found)
+    if (.not. found) return
+    info%name = name
+    info%title = 'Hock-Schittkowski problem '//str(number)//' (collection, central differences)'
+    info%source = 'Hock & Schittkowski, LNEMS 187 (1981), problem '//str(number)
+    info%method = 'auto'
+    info%has_optimum = .true.
+    call move_alloc(hp, prob)
+  end subroutine create_collection_problem
+
+  function collection_text() result(s)
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''
+    do i = 1, size(hs_numbers)
+      if (i > 1) s = s//' '
+      s = s//str(hs_numbers(i))
+    end do
+  end function collection_text
 
   !> x0 entries the deck left at the sentinel (bit comparison: no floating-point
   !> comparison with a NaN the deck may hold).

@@ -145,7 +145,8 @@ contains
     call check_choice(deck, g, 'integrator', integrator, [character(len=16) :: 'bdf', 'adams'], err)
     call check_real(deck, g, 'rtol', s%shooting%rtol, err, at_least=1.0e-14_dp, below=1.0e-2_dp, &
                     why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
-    call check_real(deck, g, 'atol', s%shooting%atol, err, above=0.0_dp, at_most=1.0e10_dp)
+    call check_real(deck, g, 'atol', s%shooting%atol, err, at_least=1.0e-30_dp, at_most=1.0e10_dp, &
+                    why='below 1e-30 DLSODE''s error weights overflow')
     call check_real(deck, g, 'newton_tol', s%shooting%newton_tol, err, at_least=1.0e-15_dp, below=1.0_dp)
     call check_integer(deck, g, 'max_newton', s%shooting%max_newton, err, at_least=1, at_most=max_newton_limit)
     call check_integer(deck, g, 'max_steps', s%shooting%max_steps, err, at_least=1)

@@ -11,12 +11,14 @@ module transient_analysis
   use deck_reader, only: deck_t, invalid_value
   use table_output, only: table_t
   use progress, only: progress_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user, mf_bdf_band_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, driver_angle
-  use kear_element, only: stress_report_t, effects_summary, kear_local_displacement
+  use kear_element, only: stress_report_t, effects_summary
+  use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
+  use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
   implicit none
   private
@@ -32,6 +34,7 @@ contains
     type(error_t), intent(inout) :: err
     type(mechanism_t) :: mech
     type(transient_settings_t) :: s
+    type(loads_input_t) :: loads_in
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
@@ -47,6 +50,8 @@ contains
     call read_transient_settings(deck, s, err)
     call check_section_rules(deck, mech, s%effects%material, .false., err)
     if (err%failed()) return
+    call read_loads(deck, loads_in, err)
+    if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
         'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
@@ -60,6 +65,14 @@ contains
       call out%end_echo()
     end block
     call echo_transient_settings(out)
+    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
+      block
+        integer :: u
+        u = out%echo_unit()
+        call echo_loads(u)
+        call out%end_echo()
+      end block
+    end if
 
     call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
     if (err%failed()) then
@@ -67,6 +80,17 @@ contains
       call err%add_context('deck '''//deck%path//''', group &mechanism')
       return
     end if
+    block
+      real(dp) :: gravity(2)
+      type(point_load_t), allocatable :: point_loads(:)
+      call resolve_loads(loads_in, mech, gravity, point_loads, err)
+      if (err%failed()) then
+        err%code = 2
+        call err%add_context('deck '''//deck%path//''', group &loads')
+        return
+      end if
+      call model%set_loads(gravity, point_loads)
+    end block
     call write_model_header(out, mech, s, model)
     if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
       call model%build_motion_table(s%table_points, err)
@@ -110,7 +134,7 @@ contains
     end select
 
     ! output schedule
-    if (mech%driver%omega > 0.0_dp) then
+    if (mech%driver%omega > 0.0_dp .and. .not. (s%t_end > 0.0_dp .and. s%output_step_t > 0.0_dp)) then
       dt_out = s%output_step_deg*pi/180.0_dp/mech%driver%omega
       t_end = t0 + time_to_turn(mech, s%revolutions*two_pi)
     else
@@ -127,9 +151,17 @@ contains
     call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=min(ml, size(y) - 1), &
                   mu=min(ml, size(y) - 1), max_steps=s%max_steps)
     if (err%failed()) return
-    if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
-      call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(min(ml, size(y) - 1))// &
-                       ' (the band of M and K in the interleaved state)')
+    if (s%max_order > 0) then
+      ode%iwork(5) = s%max_order            ! DLSODE's MAXORD (optional input, IOPT = 1)
+      call out%comment('DLSODE order limited to '//str(s%max_order))
+    end if
+    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
+      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
+                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
+    else if (s%mf == mf_bdf_band_fd) then
+      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '// &
+                       str(min(ml, size(y) - 1))//' (the band of M and K in the interleaved state)')
+    end if
 
     call write_columns(out, mech, model, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
@@ -146,7 +178,9 @@ contains
       if (err%failed()) exit
       call output_row(t)
       if (err%failed()) exit
-      call bar%update(t)
+      c = ode%counters()
+      call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
+                      ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
     end do
     call bar%finish()
     call cpu_time(cpu1)
@@ -175,6 +209,8 @@ contains
     call out%cost('rhs_evaluations', str(c%rhs_evals))
     call out%cost('jacobian_evaluations', str(c%jac_evals))
     call out%cost('lu_factorizations', str(c%lu_factorizations))
+    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%n_newton_factorizations - &
+      model%n_newton_lu)//' Cholesky and '//str(model%n_newton_lu)//' LU factorizations')
     call out%cost('mass_factorizations', str(model%n_mass_factorizations))
     call out%cost('last_method_order', str(c%order_last))
     call out%cost('kinematics_solutions', str(model%n_kinematics))
@@ -218,7 +254,7 @@ contains
       end do
       do i = 1, mech%n_links
         ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        row(kk + 1:kk + 2) = kear_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
+        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
                                                      1.0_dp)
         kk = kk + 2
       end do
@@ -237,10 +273,10 @@ contains
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: uw(2)
     integer :: e, node
-    real(dp) :: qe(8)
+    real(dp) :: qe(model%table%element_dofs)
     call joint_carrier(mech, j, e, node)
     qe = model%table%gather(e, q)
-    uw = qe(4*node - 3:4*node - 2)
+    uw = qe(model%table%node_dofs*(node - 1) + 1:model%table%node_dofs*(node - 1) + 2)   ! 4 or 6 DOFs per node
   end subroutine joint_displacement
 
   subroutine write_columns(out, mech, model, names)
@@ -258,10 +294,10 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
-    character(len=120), allocatable :: tlines(:)
+    character(len=160), allocatable :: tlines(:)
     call model%table%describe(tlines)
     call write_mechanism_header(out, mech, tlines)
-    call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(s%formulation))
+    call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(model%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &
       call out%comment('(all effects off: the linear analysis)')
@@ -335,7 +371,7 @@ contains
     wmax = 0.0_dp
     do e = 1, size(model%el)
       do i = 0, 10
-        uw = kear_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
+        uw = beam_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
         wmax = max(wmax, abs(uw(2)))
       end do
     end do

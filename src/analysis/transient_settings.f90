@@ -31,21 +31,23 @@ module transient_settings
     character(len=256) :: restart_in = ''
     character(len=256) :: restart_out = ''
     integer :: max_steps = 200000
+    integer :: max_order = 0                       !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF)
     character(len=16) :: kinematics = 'table'      !< rigid motion: 'table' (per revolution) or 'direct'
     integer :: table_points = 720                  !< crank angles per revolution in the table
     type(element_effects_t) :: effects             !< the papers' tracing constants, all off = linear
-    character(len=16) :: formulation = 'exact'     !< 'exact' or 'kear1987' (printed simplifications)
+    character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
+                                                   !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
   character(len=16) :: method, initial, formulation, kinematics
   real(dp) :: rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
-  integer :: mode_number, max_steps, table_points
+  integer :: mode_number, max_steps, table_points, max_order
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
-    table_points
+    table_points, max_order
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -73,6 +75,7 @@ contains
     max_steps = s%max_steps
     kinematics = s%kinematics
     table_points = s%table_points
+    max_order = s%max_order
     call deck%read_group('transient', read_transient_group, .false., found, err)
     if (err%failed()) return
 
@@ -103,11 +106,14 @@ contains
     s%max_steps = max_steps
     s%kinematics = kinematics
     s%table_points = table_points
+    s%max_order = max_order
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
     if (err%failed()) return
     if (s%atol_rate < 0.0_dp) s%atol_rate = s%atol
+    call check_integer(deck, 'transient', 'max_order', s%max_order, err, at_least=0, &
+                       at_most=merge(12, 5, s%mf == 10), why='DLSODE''s orders: Adams 1..12, BDF 1..5 (0 = default)')
   end subroutine read_transient_settings
 
   !> One line per variable: the allowed range and why (doc/decks.md).
@@ -122,16 +128,20 @@ contains
     end if
     call check_real(deck, g, 'rtol', s%rtol, err, at_least=1.0e-14_dp, below=0.1_dp, &
                     why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
-    call check_real(deck, g, 'atol', s%atol, err, above=0.0_dp, at_most=1.0e10_dp, why='an absolute error tolerance')
+    call check_real(deck, g, 'atol', s%atol, err, at_least=1.0e-30_dp, at_most=1.0e10_dp, &
+                    why='an absolute error tolerance; below 1e-30 DLSODE''s error weights overflow')
     call check_real(deck, g, 'atol_rate', s%atol_rate, err, at_least=-1.0_dp, at_most=1.0e10_dp, &
                     why='an absolute error tolerance of the rates; leave it out (-1) to use atol')
     if (err%failed()) return
-    if (s%atol_rate <= 0.0_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
-      str(s%atol_rate), 'must be > 0, or left out (-1) to use atol', err)
+    if (s%atol_rate < 1.0e-30_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
+      str(s%atol_rate), 'must be >= 1e-30, or left out (-1) to use atol', err)
     call check_real(deck, g, 'revolutions', s%revolutions, err, above=0.0_dp, at_most=1.0e4_dp)
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, above=0.0_dp, at_most=360.0_dp)
+    if (err%failed()) return
+    if (s%revolutions*360.0_dp > 1.0e7_dp*s%output_step_deg) call invalid_value(deck, g, 'output_step_deg', &
+      str(s%output_step_deg), 'gives more than 1e7 output rows over '//str(s%revolutions)//' revolutions', err)
     call check_real(deck, g, 't_end', s%t_end, err, at_least=0.0_dp, at_most=1.0e6_dp, &
-                    why='seconds of a run whose driver does not turn')
+                    why='seconds: the span of a run without a turning driver, or with output_step_t > 0 instead of revolutions')
     call check_real(deck, g, 'output_step_t', s%output_step_t, err, at_least=0.0_dp, at_most=1.0e6_dp)
     if (err%failed()) return
     if (s%output_step_t > 0.0_dp .and. s%t_end > 0.0_dp) then
@@ -149,7 +159,8 @@ contains
     call check_choice(deck, g, 'kinematics', s%kinematics, [character(len=16) :: 'table', 'direct'], err)
     call check_integer(deck, g, 'table_points', s%table_points, err, at_least=36, at_most=1000000)
     call check_integer(deck, g, 'max_steps', s%max_steps, err, at_least=1)
-    call check_choice(deck, 'effects', 'formulation', s%formulation, [character(len=16) :: 'exact', 'kear1987'], err)
+    call check_choice(deck, 'effects', 'formulation', s%formulation, &
+                      [character(len=16) :: 'default', 'consistent', 'exact', 'kear1987'], err)
   end subroutine validate
 
   subroutine echo_transient_settings(out)

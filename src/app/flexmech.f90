@@ -1,9 +1,11 @@
 !> flexmech DECK.nml [-o OUT]
 !>
 !> Reads a namelist deck, runs the analysis named in its &run group and writes
-!> a tabular output file.  Exit status: 0 success; 1 usage error; 2 bad input
-!> (no output file is left); 3 the analysis stopped with a diagnosis (the
-!> output written so far is kept, with the diagnosis in its footer).
+!> a tabular output file.  Exit status: 0 success; 1 usage error or an output
+!> file that could not be renamed into place at the end; 2 bad input (deck or
+!> output path; no output file is left); 3 the analysis stopped with a
+!> diagnosis (the output written so far is kept, with the diagnosis in its
+!> footer).  See doc/failure_modes.md.
 program flexmech
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use kinds, only: dp
@@ -13,13 +15,14 @@ program flexmech
   use deck_reader, only: deck_t, invalid_value, input_error_code
   use table_output, only: table_t
   use run_settings, only: read_run_settings, echo_run_settings, analysis_names
-  use command_line, only: parse_arguments, quit
+  use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
   use spatial_analysis, only: run_spatial
   use design_analysis, only: run_design
+  use subcommands, only: dispatch_subcommands
   implicit none
 
   character(len=:), allocatable :: deck_path, out_path
@@ -31,17 +34,24 @@ program flexmech
   character(len=256) :: title
 
   call cpu_time(cpu0)
+  call dispatch_subcommands()   ! plot, sweeps, batches (src/batch); returns for a single deck
   call parse_arguments(deck_path, out_path)
 
   call deck%open(deck_path, err)
   if (err%failed()) call fail_input(err)
+  ! the output path is checked before any work: a run never ends in an
+  ! unwritable or dangerous output
+  if (len(output_path_problem(out_path, deck_path)) > 0) then
+    call err%set('output '''//out_path//'''', output_path_problem(out_path, deck_path), input_error_code)
+    call fail_input(err)
+  end if
   call read_run_settings(deck, analysis, title, err)
   if (err%failed()) call fail_input(err)
 
   call out%open(out_path, err)
   if (err%failed()) then
-    write(error_unit, '(a)') program_name//': error: '//err%text()
-    call quit(1)
+    err%code = input_error_code
+    call fail_input(err)
   end if
   call out%comment(program_name//' '//program_version)
   call out%comment('deck: '//deck_path)

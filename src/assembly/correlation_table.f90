@@ -28,7 +28,7 @@ module correlation_table
   integer, parameter :: dofs_per_element = 8
   integer, parameter :: joint_free = 0, joint_pin = 1, joint_ground_pin = 2, joint_clamp = 3, &
                         joint_slider_fixed = 4
-  character(len=*), parameter :: dof_names(4) = ['U ', 'W ', 'th', 'm ']
+  character(len=*), parameter :: dof_names(6) = ['U  ', 'W  ', 'th ', 'm  ', 'ux ', 'uxx']
 
   !> How one end of one link is attached.  Link ends with the same `joint`
   !> id > 0 and kind joint_pin share their translations.
@@ -43,6 +43,8 @@ module correlation_table
     integer :: n_elements = 0
     integer :: n_global = 0
     integer :: half_bandwidth = 0                  !< of assembled M and K
+    integer :: node_dofs = 4                       !< 4: [U W th m] (Kear); 6: also [ux uxx] (axial_dofs)
+    integer :: element_dofs = dofs_per_element     !< 2 * node_dofs
     integer, allocatable :: link_of_element(:)     !< (n_elements)
     integer, allocatable :: first_element(:)       !< (n_links + 1): elements of link k are first(k):first(k+1)-1
     integer, allocatable :: map(:, :)              !< (8, n_elements) global index, 0 = held at zero
@@ -62,15 +64,20 @@ contains
   !> attachments `ends(1:2, k)` (1 = the link's start, 2 = its end).
   !> Unknowns are numbered link by link, node by node (the papers' order);
   !> with reduce_band they are renumbered to narrow the band of M and K.
-  subroutine build(self, n_elem, ends, err, reduce_band)
+  !> With axial_dofs every node also carries the local axial strain u_x and
+  !> its derivative u_xx (the consistent element's quintic u, doc/element.md);
+  !> the curvature-like DOFs m, ux, uxx are then free at every link end (a
+  !> pin's zero moment is a natural condition of that element).
+  subroutine build(self, n_elem, ends, err, reduce_band, axial_dofs)
     class(correlation_table_t), intent(inout) :: self
     integer, intent(in) :: n_elem(:)
     type(link_end_t), intent(in) :: ends(:, :)
     type(error_t), intent(inout) :: err
     logical, intent(in), optional :: reduce_band   !< renumber by reverse Cuthill-McKee when it narrows the band
-    integer :: k, e, j, n_links, next, side, node_dofs(4), max_joint
+    logical, intent(in), optional :: axial_dofs    !< six DOFs per node [U W th m ux uxx]
+    integer :: k, e, j, n_links, next, side, node_dofs(6), max_joint, nd
     integer, allocatable :: joint_u(:), joint_w(:), joint_kind(:)
-    real(dp) :: c(4)
+    real(dp) :: c(6)
 
     n_links = size(n_elem)
     if (size(ends, 1) /= 2 .or. size(ends, 2) /= n_links) then
@@ -81,6 +88,12 @@ contains
       call err%set('correlation table', 'every link needs at least one element')
       return
     end if
+    self%node_dofs = 4
+    if (present(axial_dofs)) then
+      if (axial_dofs) self%node_dofs = 6
+    end if
+    nd = self%node_dofs
+    self%element_dofs = 2*nd
     self%n_links = n_links
     self%n_elements = sum(n_elem)
     allocate(self%first_element(n_links + 1), self%link_of_element(self%n_elements))
@@ -89,7 +102,7 @@ contains
       self%first_element(k + 1) = self%first_element(k) + n_elem(k)
       self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
     end do
-    allocate(self%map(dofs_per_element, self%n_elements), self%coef(dofs_per_element, self%n_elements))
+    allocate(self%map(2*nd, self%n_elements), self%coef(2*nd, self%n_elements))
     self%map = 0
     self%coef = 0.0_dp
     allocate(self%label(0))
@@ -114,20 +127,20 @@ contains
       do e = self%first_element(k), self%first_element(k + 1) - 1
         ! start node: shared with the previous element of the same link, or a link end
         if (e == self%first_element(k)) then
-          call end_node(ends(1, k), k, 1, node_dofs, c)
+          call end_node(ends(1, k), k, 1, node_dofs(1:nd), c(1:nd))
         else
-          node_dofs = self%map(5:8, e - 1)
-          c = self%coef(5:8, e - 1)
+          node_dofs(1:nd) = self%map(nd + 1:2*nd, e - 1)
+          c(1:nd) = self%coef(nd + 1:2*nd, e - 1)
         end if
-        self%map(1:4, e) = node_dofs
-        self%coef(1:4, e) = c
+        self%map(1:nd, e) = node_dofs(1:nd)
+        self%coef(1:nd, e) = c(1:nd)
         if (e == self%first_element(k + 1) - 1) then
-          call end_node(ends(2, k), k, n_elem(k) + 1, node_dofs, c)
+          call end_node(ends(2, k), k, n_elem(k) + 1, node_dofs(1:nd), c(1:nd))
         else
-          call interior_node(k, e - self%first_element(k) + 2, node_dofs, c)
+          call interior_node(k, e - self%first_element(k) + 2, node_dofs(1:nd), c(1:nd))
         end if
-        self%map(5:8, e) = node_dofs
-        self%coef(5:8, e) = c
+        self%map(nd + 1:2*nd, e) = node_dofs(1:nd)
+        self%coef(nd + 1:2*nd, e) = c(1:nd)
       end do
     end do
     self%n_global = next
@@ -151,10 +164,10 @@ contains
 
     subroutine interior_node(link, node, dofs, coefs)
       integer, intent(in) :: link, node
-      integer, intent(out) :: dofs(4)
-      real(dp), intent(out) :: coefs(4)
+      integer, intent(out) :: dofs(:)
+      real(dp), intent(out) :: coefs(:)
       integer :: d
-      do d = 1, 4
+      do d = 1, size(dofs)
         dofs(d) = new_dof('L'//str(link)//' N'//str(node)//' '//trim(dof_names(d)))
       end do
       coefs = 1.0_dp
@@ -163,8 +176,8 @@ contains
     subroutine end_node(attach, link, node, dofs, coefs)
       type(link_end_t), intent(in) :: attach
       integer, intent(in) :: link, node
-      integer, intent(out) :: dofs(4)
-      real(dp), intent(out) :: coefs(4)
+      integer, intent(out) :: dofs(:)
+      real(dp), intent(out) :: coefs(:)
       character(len=:), allocatable :: where
       integer :: jid
       where = 'L'//str(link)//' N'//str(node)
@@ -204,6 +217,13 @@ contains
         dofs(3) = new_dof(where//' th')
         coefs(3) = 1.0_dp
       end select
+      if (size(dofs) == 6 .and. attach%kind /= joint_free) then
+        ! consistent element: curvature and axial-strain DOFs free at every end
+        do jid = 4, 6
+          if (dofs(jid) == 0) dofs(jid) = new_dof(where//' '//trim(dof_names(jid)))
+          coefs(jid) = 1.0_dp
+        end do
+      end if
     end subroutine end_node
   end subroutine build
 
@@ -234,8 +254,8 @@ contains
     allocate(degree(n), start(n + 1))
     degree = 0
     do e = 1, self%n_elements
-      do i = 1, dofs_per_element
-        do j = 1, dofs_per_element
+      do i = 1, self%element_dofs
+        do j = 1, self%element_dofs
           a = self%map(i, e)
           b = self%map(j, e)
           if (a > 0 .and. b > 0 .and. a /= b) degree(a) = degree(a) + 1
@@ -249,8 +269,8 @@ contains
     allocate(adj(max(1, start(n + 1) - 1)), fill(n))
     fill = start(1:n)
     do e = 1, self%n_elements
-      do i = 1, dofs_per_element
-        do j = 1, dofs_per_element
+      do i = 1, self%element_dofs
+        do j = 1, self%element_dofs
           a = self%map(i, e)
           b = self%map(j, e)
           if (a > 0 .and. b > 0 .and. a /= b) then
@@ -307,7 +327,7 @@ contains
     end do
     new_map = self%map
     do e = 1, self%n_elements
-      do i = 1, dofs_per_element
+      do i = 1, self%element_dofs
         if (self%map(i, e) > 0) new_map(i, e) = new_index(self%map(i, e))
       end do
     end do
@@ -326,9 +346,9 @@ contains
     class(correlation_table_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: qg(:)
-    real(dp) :: qe(dofs_per_element)
+    real(dp) :: qe(self%element_dofs)
     integer :: i
-    do i = 1, dofs_per_element
+    do i = 1, self%element_dofs
       if (self%map(i, e) > 0) then
         qe(i) = self%coef(i, e)*qg(self%map(i, e))
       else
@@ -344,7 +364,7 @@ contains
     real(dp), intent(in) :: fe(:)
     real(dp), intent(inout) :: fg(:)
     integer :: i
-    do i = 1, dofs_per_element
+    do i = 1, self%element_dofs
       if (self%map(i, e) > 0) fg(self%map(i, e)) = fg(self%map(i, e)) + self%coef(i, e)*fe(i)
     end do
   end subroutine scatter_add
@@ -356,10 +376,10 @@ contains
     real(dp), intent(in) :: ae(:, :)
     real(dp), intent(inout) :: ag(:, :)
     integer :: i, j, gi, gj
-    do j = 1, dofs_per_element
+    do j = 1, self%element_dofs
       gj = self%map(j, e)
       if (gj == 0) cycle
-      do i = 1, dofs_per_element
+      do i = 1, self%element_dofs
         gi = self%map(i, e)
         if (gi == 0) cycle
         ag(gi, gj) = ag(gi, gj) + self%coef(i, e)*ae(i, j)*self%coef(j, e)
@@ -372,19 +392,25 @@ contains
   !> list of global unknowns.
   subroutine describe(self, lines)
     class(correlation_table_t), intent(in) :: self
-    character(len=120), allocatable, intent(out) :: lines(:)
-    integer :: e, i, n
-    character(len=120) :: l
+    character(len=160), allocatable, intent(out) :: lines(:)
+    integer :: e, i, n, nd
+    character(len=160) :: l
     n = 3 + self%n_elements + 1 + (self%n_global + 3)/4
     allocate(lines(n))
     write(lines(1), '(a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements, ', &
       self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
-    lines(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
+    nd = self%node_dofs
+    if (nd == 6) then
+      lines(2) = '  element link :   U1   W1  th1   m1  ux1 uxx1   U2   W2  th2   m2  ux2 uxx2   (global unknown; ' &
+                 //'0 = held at zero)'
+    else
+      lines(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
+    end if
     lines(3) = ''
     do e = 1, self%n_elements
-      write(l, '(2x,i7,i5,a,8i5)') e, self%link_of_element(e), ' :', self%map(:, e)
+      write(l, '(2x,i7,i5,a,12i5)') e, self%link_of_element(e), ' :', self%map(:, e)
       if (any(self%map(1:2, e) > 0 .and. self%map(1:2, e) == self%map([2, 1], e)) .or. &
-          any(self%map(5:6, e) > 0 .and. self%map(5:6, e) == self%map([6, 5], e))) &
+          any(self%map(nd + 1:nd + 2, e) > 0 .and. self%map(nd + 1:nd + 2, e) == self%map([nd + 2, nd + 1], e))) &
         l = trim(l)//'  (slider: U, W = s * guide direction)'
       lines(3 + e) = l
     end do

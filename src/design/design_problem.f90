@@ -7,13 +7,16 @@
 !> works on x = ln(value/scale) for sizes and lengths (positive whatever the
 !> step; stresses go nearly as a power of the sizes, so their logarithms are
 !> nearly linear in x) and on x = value/scale for coordinates.  The objective is the mass of the links (scaled by
-!> the initial mass) in the Gauss form F = sum phi_i^2, phi_i = sqrt(m_i/m_0)
-!> per link: G = 2 J J^T then carries the curvature of the square roots, which
-!> keeps the steps of a linear objective (mass in the section height) in
-!> proportion to the sizes; the constraints, all g <= 0, are
+!> the initial mass), a general objective whose exact Hessian the Gauss
+!> family uses: in logarithmic sizes the mass sum c_i exp(x_i) is convex with
+!> a positive Hessian, where in the sizes themselves it is linear (no
+!> curvature for G) and a sum-of-squares form sqrt(m_i) would give a
+!> Gauss-Newton model off by a factor 2 at the constrained optimum (the
+!> residuals do not vanish there) and steps that cycle.  The constraints,
+!> all g <= 0, are
 !>   ln(peak |stress| over the steady revolution / allowable), per link;
 !>   ln(factor omega / lowest frozen natural frequency over the revolution);
-!>   the bounds of each variable (linear).
+!> and the bounds of each variable.
 !> An analysis that fails (the linkage does not assemble, resonance, an
 !> unstable periodic orbit, a strain past the Ramberg-Osgood peak, a DLSODE
 !> stop) makes its constraints NaN: the optimizer takes it as a failed trial
@@ -90,10 +93,10 @@ module design_problem
     character(len=:), allocatable :: last_failure
   contains
     procedure :: setup
+    procedure :: n_analysis_constraints
     procedure :: mechanism_at
     procedure :: evaluate
-    procedure :: residuals => design_residuals
-    procedure :: jacobian => design_jacobian
+    procedure :: objective => design_objective
     procedure :: general_constraint => design_constraint
     procedure :: general_constraint_hessian => design_constraint_hessian
   end type design_problem_t
@@ -153,31 +156,21 @@ contains
     ok = .true.
   end subroutine parse_variable
 
-  !> Size the problem: n variables, the constraints the settings ask for, and
-  !> the bounds as linear constraints.
+  !> Size the problem: n variables, the analysis constraints the settings ask
+  !> for (the bounds stay with the variables: module design_sequence).
   subroutine setup(self, name, x_start)
     class(design_problem_t), intent(inout) :: self
     character(len=*), intent(in) :: name
     real(dp), intent(in) :: x_start(:)
-    integer :: n, m, i, k
-    real(dp) :: b(size(self%var))
+    integer :: n, i
     n = size(self%var)
     self%n_stress = 0
     if (self%stress_allowable > 0.0_dp) self%n_stress = self%base%n_links
     self%i_frequency = 0
     if (self%frequency_factor > 0.0_dp) self%i_frequency = self%n_stress + 1
-    m = self%n_stress + merge(1, 0, self%i_frequency > 0) + 2*n
-    call self%init_problem(name, n, self%base%n_links, m)
-    do i = 1, self%n_stress + merge(1, 0, self%i_frequency > 0)
+    call self%init_problem(name, n, 0, self%n_analysis_constraints())
+    do i = 1, self%m
       call self%set_general_constraint(i)
-    end do
-    k = self%n_stress + merge(1, 0, self%i_frequency > 0)
-    do i = 1, n
-      b = 0.0_dp
-      b(i) = -1.0_dp
-      call self%set_linear_constraint(k + 2*i - 1, b, -self%var(i)%to_x(self%var(i)%lower))   ! lower - x <= 0
-      b(i) = 1.0_dp
-      call self%set_linear_constraint(k + 2*i, b, self%var(i)%to_x(self%var(i)%upper))        ! x - upper <= 0
     end do
     self%n_analyses = 0
     self%n_failed = 0
@@ -190,6 +183,11 @@ contains
     self%mass0 = 1.0_dp
     self%mass0 = max(design_mass(self%mechanism_at(x_start, .false.)), tiny(1.0_dp))
   end subroutine setup
+
+  integer pure function n_analysis_constraints(self)
+    class(design_problem_t), intent(in) :: self
+    n_analysis_constraints = self%n_stress + merge(1, 0, self%i_frequency > 0)
+  end function n_analysis_constraints
 
   !> The mechanism input with the design x put in; clamped: each value
   !> inside its bounds (a trial step past them, which the optimizer sees in
@@ -345,43 +343,16 @@ contains
     same_bits = all(transfer(a, 1_int64, size(a)) == transfer(b, 1_int64, size(b)))
   end function same_bits
 
-  !> phi_i = sqrt(m_i / m_0): F = sum phi_i^2 = mass / initial mass (no
-  !> analysis needed).  NaN for a design that is not a mechanism.
-  subroutine design_residuals(self, x, phi, err)
+  !> F = mass / initial mass (no analysis needed); NaN for a design that is
+  !> not a mechanism (a failed trial for the optimizer).
+  subroutine design_objective(self, x, f, err)
     class(design_problem_t), intent(inout) :: self
     real(dp), intent(in) :: x(:)
-    real(dp), intent(out) :: phi(:)
+    real(dp), intent(out) :: f
     type(error_t), intent(inout) :: err
-    real(dp) :: mass(self%base%n_links)
     if (err%failed()) return
-    mass = link_masses(self%mechanism_at(x, .false.))
-    if (all(ieee_is_finite(mass))) then
-      phi = sqrt(max(mass, 0.0_dp)/self%mass0)
-    else
-      phi = mass
-    end if
-  end subroutine design_residuals
-
-  !> Central differences of the residuals (exact functions of the geometry:
-  !> no analysis noise, so a small step).
-  subroutine design_jacobian(self, x, phi, jac, err)
-    class(design_problem_t), intent(inout) :: self
-    real(dp), intent(in) :: x(:), phi(:)
-    real(dp), intent(out) :: jac(:, :)
-    type(error_t), intent(inout) :: err
-    real(dp) :: xp(size(x)), xm(size(x)), pp(size(phi)), pm(size(phi)), h
-    integer :: j
-    do j = 1, size(x)
-      h = 1.0e-6_dp*max(abs(x(j)), 1.0e-3_dp)
-      xp = x
-      xm = x
-      xp(j) = x(j) + h
-      xm(j) = x(j) - h
-      call self%residuals(xp, pp, err)
-      call self%residuals(xm, pm, err)
-      jac(j, :) = (pp - pm)/(xp(j) - xm(j))
-    end do
-  end subroutine design_jacobian
+    f = design_mass(self%mechanism_at(x, .false.))/self%mass0
+  end subroutine design_objective
 
   !> Zero: the analysis constraints enter Potter's quadratic model linearised.
   !> In logarithmic sizes they are nearly linear, the multiplier equations

@@ -6,7 +6,7 @@ module command_line
   use version, only: program_name, program_version
   implicit none
   private
-  public :: parse_arguments, quit, default_output
+  public :: parse_arguments, quit, default_output, output_path_problem
 
   interface
     subroutine c_exit(status) bind(c, name='exit')
@@ -47,11 +47,20 @@ contains
           write(error_unit, '(a)') program_name//': -o needs a file name'
           call quit(1)
         end if
+        if (allocated(out_path)) then
+          write(error_unit, '(a)') program_name//': -o given twice'
+          call quit(1)
+        end if
         i = i + 1
         call get_command_argument(i, length=length)
         allocate(character(len=length) :: out_path)
         call get_command_argument(i, out_path)
       case default
+        if (len(arg) > 1 .and. arg(1:1) == '-') then
+          write(error_unit, '(a)') program_name//': unknown option '''//arg//''''
+          call usage(error_unit)
+          call quit(1)
+        end if
         if (allocated(deck_path)) then
           write(error_unit, '(a)') program_name//': unexpected argument '''//arg//''''
           call usage(error_unit)
@@ -67,6 +76,62 @@ contains
     end if
     if (.not. allocated(out_path)) out_path = default_output(deck_path)
   end subroutine parse_arguments
+
+  !> Why OUT cannot be the output file of a run of DECK ('' if it can).  The
+  !> output is written to OUT.tmpPID and renamed onto OUT at the end, and a
+  !> rename replaces whatever node OUT is: refuse, before any work is done,
+  !> an empty name, a directory, a symbolic link, a FIFO or device node (any
+  !> existing node that is not a regular file) and the deck itself.  Fortran
+  !> cannot tell these apart (inquire says only "exists"), so the POSIX
+  !> shell's `test` classifies the path; if no shell can be started the
+  !> check is skipped and the rename still reports its own failure.
+  function output_path_problem(out, deck) result(problem)
+    character(len=*), intent(in) :: out, deck
+    character(len=:), allocatable :: problem
+    character(len=:), allocatable :: o, d
+    integer :: exitstat, cmdstat
+    character(len=256) :: cmdmsg
+    problem = ''
+    if (len_trim(out) == 0) then
+      problem = 'the output file name is empty'
+      return
+    end if
+    o = shell_quoted(out)
+    d = shell_quoted(deck)
+    exitstat = 0
+    cmdstat = 0
+    call execute_command_line('test -L '//o//' && exit 10; test -d '//o//' && exit 11; ' // &
+                              'test -e '//o//' && ! test -f '//o//' && exit 12; ' // &
+                              'test -e '//o//' && test '//o//' -ef '//d//' && exit 13; exit 0', &
+                              wait=.true., exitstat=exitstat, cmdstat=cmdstat, cmdmsg=cmdmsg)
+    if (cmdstat /= 0) return
+    select case (exitstat)
+    case (10)
+      problem = 'is a symbolic link (the output would replace the link, not write through it)'
+    case (11)
+      problem = 'is a directory (give a file name)'
+    case (12)
+      problem = 'exists and is not a regular file (a FIFO, socket or device node would be replaced)'
+    case (13)
+      problem = 'is the deck itself (the output would overwrite the input)'
+    end select
+  end function output_path_problem
+
+  !> 'text' for a POSIX shell: every ' becomes '\''.
+  pure function shell_quoted(text) result(q)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: q
+    integer :: i
+    q = ''''
+    do i = 1, len(text)
+      if (text(i:i) == '''') then
+        q = q//'''\'''''
+      else
+        q = q//text(i:i)
+      end if
+    end do
+    q = q//''''
+  end function shell_quoted
 
   !> DECK.nml -> DECK.out in the current directory.
   pure function default_output(path) result(name)
@@ -85,5 +150,7 @@ contains
     write(unit, '(a)') 'usage: '//program_name//' DECK.nml [-o OUTPUT]'
     write(unit, '(a)') '  Runs the analysis named in the deck''s &run group (see doc/decks.md).'
     write(unit, '(a)') '  Default OUTPUT: DECK.out in the current directory.'
+    write(unit, '(a)') '  A deck with a &sweep group runs a sweep (doc/sweeps.md); several decks run as a batch.'
+    write(unit, '(a)') '       '//program_name//' plot RUN.out [-d DIR] [--png] [--animate]   figures (doc/plotting.md)'
   end subroutine usage
 end module command_line

@@ -16,9 +16,14 @@
 !>
 !> Given the reader, a failed read is replayed on growing prefixes of the
 !> group to find the line that breaks it (gfortran reports a wrong-type value
-!> as an end of file, with no position).  `check_read` is the simpler form
-!> for callers that do the read themselves; it names the line only for
-!> unknown variables.
+!> as an end of file, with no position).  Before the read, every quoted
+!> value is measured against its variable through the same reader (a text
+!> longer than its variable would be cut silently).  The scanner that finds
+!> groups and lines reads whole lines of any length with tabs as blanks, as
+!> the namelist reader does; the groups are read from a copy of the deck
+!> whose lines all end with a newline.  `check_read` is the simpler form for
+!> callers that do the read themselves; it names the line only for unknown
+!> variables.
 module deck_reader
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_underflow, ieee_get_halting_mode, &
                                            ieee_set_halting_mode, ieee_set_flag, ieee_support_halting
@@ -29,7 +34,7 @@ module deck_reader
   public :: deck_t, group_reader, invalid_value, input_error_code
 
   integer, parameter :: input_error_code = 2
-  integer, parameter :: max_line = 1024
+  integer, parameter :: shown_chars = 200    !< a deck line quoted in a message is cut after this
 
   abstract interface
     subroutine group_reader(unit, ios, iomsg)
@@ -39,11 +44,16 @@ module deck_reader
     end subroutine group_reader
   end interface
 
+  !> One line of the deck, whatever its length (the namelist reader has no limit either).
+  type :: deck_line_t
+    character(len=:), allocatable :: text
+  end type deck_line_t
+
   type :: deck_t
     character(len=:), allocatable :: path
     integer :: unit = 0
     logical :: opened = .false.      ! newunit numbers are negative
-    character(len=max_line), allocatable :: lines(:)   !< the deck's text, for messages
+    type(deck_line_t), allocatable :: lines(:)   !< the deck's text, for locating groups and for messages
   contains
     procedure :: open => deck_open
     procedure :: close => deck_close
@@ -63,11 +73,16 @@ contains
     logical :: exists
     integer :: ios, n
     character(len=512) :: iomsg
-    character(len=max_line) :: line
+    character(len=:), allocatable :: line
     self%path = trim(path)
     inquire(file=self%path, exist=exists)
     if (.not. exists) then
       call err%set('deck '''//self%path//'''', 'file not found', input_error_code)
+      return
+    end if
+    inquire(file=self%path//'/.', exist=exists)
+    if (exists) then
+      call err%set('deck '''//self%path//'''', 'is a directory', input_error_code)
       return
     end if
     open(newunit=self%unit, file=self%path, status='old', action='read', iostat=ios, iomsg=iomsg)
@@ -77,18 +92,89 @@ contains
     end if
     n = 0
     do
-      read(self%unit, '(a)', iostat=ios) line
+      call read_line(self%unit, line, ios, iomsg)
       if (ios /= 0) exit
       n = n + 1
     end do
+    if (.not. is_iostat_end(ios)) then      ! a device that fails
+      close(self%unit)
+      call err%set('deck '''//self%path//'''', 'cannot read: '//trim(iomsg), input_error_code)
+      return
+    end if
     self%opened = .true.
     allocate(self%lines(n))
     rewind(self%unit)
     do n = 1, size(self%lines)
-      read(self%unit, '(a)') self%lines(n)
+      call read_line(self%unit, self%lines(n)%text, ios, iomsg)
     end do
     rewind(self%unit)
+    call read_from_copy(self)
   end subroutine deck_open
+
+  !> The groups are read from a copy of the deck whose lines all end with a
+  !> newline: gfortran's namelist reader does not see a group closed on a
+  !> last line without one (the scanner, reading whole lines, does).
+  subroutine read_from_copy(self)
+    class(deck_t), intent(inout) :: self
+    integer :: i
+    close(self%unit)
+    open(newunit=self%unit, status='scratch', action='readwrite')
+    do i = 1, size(self%lines)
+      write(self%unit, '(a)') self%lines(i)%text
+    end do
+    rewind(self%unit)
+  end subroutine read_from_copy
+
+  !> The next record, whole (non-advancing reads of 512-character pieces).
+  subroutine read_line(unit, line, ios, iomsg)
+    integer, intent(in) :: unit
+    character(len=:), allocatable, intent(out) :: line
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    character(len=512) :: piece
+    integer :: got
+    line = ''
+    do
+      got = 0
+      read(unit, '(a)', advance='no', size=got, iostat=ios, iomsg=iomsg) piece
+      line = line//piece(1:got)
+      if (is_iostat_eor(ios)) then
+        ios = 0
+        return
+      end if
+      if (ios /= 0) then
+        ! a last line without a newline still counts
+        if (is_iostat_end(ios) .and. len(line) > 0) ios = 0
+        return
+      end if
+    end do
+  end subroutine read_line
+
+  !> Line i as the scanner sees it: lower case, tabs and carriage returns as
+  !> blanks (the namelist reader treats them as separators too).
+  pure function scan_line(deck, i) result(l)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: i
+    character(len=:), allocatable :: l
+    integer :: k
+    l = lower(deck%lines(i)%text)
+    do k = 1, len(l)
+      if (l(k:k) == achar(9) .or. l(k:k) == achar(13)) l(k:k) = ' '
+    end do
+  end function scan_line
+
+  !> Line i quoted in a message: without its indentation, cut if very long.
+  function shown_line(deck, i) result(l)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: i
+    character(len=:), allocatable :: l, scanned
+    integer :: a
+    scanned = scan_line(deck, i)
+    a = verify(scanned, ' ')
+    l = ''
+    if (a > 0) l = deck%lines(i)%text(a:len_trim(scanned))
+    if (len(l) > shown_chars) l = l(1:shown_chars)//' ... ('//str(len(l))//' characters)'
+  end function shown_line
 
   subroutine deck_close(self)
     class(deck_t), intent(inout) :: self
@@ -109,6 +195,31 @@ contains
     has_group = first > 0
   end function has_group
 
+  !> Call a group reader with overflow halting off: the C library's strtod
+  !> raises the overflow flag on a value such as 1e309 (read as Infinity and
+  !> rejected afterwards by the finiteness checks), which would otherwise
+  !> trap in a build with -ffpe-trap=overflow.
+  subroutine read_quietly(reader, unit, ios, iomsg)
+    procedure(group_reader) :: reader
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    logical :: halt_overflow, halt_underflow
+    if (.not. (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_underflow))) then
+      call reader(unit, ios, iomsg)
+      return
+    end if
+    call ieee_get_halting_mode(ieee_overflow, halt_overflow)
+    call ieee_get_halting_mode(ieee_underflow, halt_underflow)
+    call ieee_set_halting_mode(ieee_overflow, .false.)
+    call ieee_set_halting_mode(ieee_underflow, .false.)
+    call reader(unit, ios, iomsg)
+    call ieee_set_flag(ieee_overflow, .false.)
+    call ieee_set_flag(ieee_underflow, .false.)
+    call ieee_set_halting_mode(ieee_overflow, halt_overflow)
+    call ieee_set_halting_mode(ieee_underflow, halt_underflow)
+  end subroutine read_quietly
+
   !> Lines [first, last] of the group: from its '&name' to the line holding its
   !> terminating '/'.  first = 0 if absent; last = 0 if never terminated.
   subroutine group_line_range(self, group, first, last)
@@ -116,25 +227,26 @@ contains
     character(len=*), intent(in) :: group
     integer, intent(out) :: first, last
     integer :: i, k
-    character(len=:), allocatable :: key
-    character(len=max_line) :: l
+    character(len=:), allocatable :: key, l
     first = 0
     last = 0
     key = '&'//lower(trim(group))
+    k = len(key)
     do i = 1, size(self%lines)
-      l = adjustl(lower(self%lines(i)))
-      if (l(1:1) == '!') cycle
-      k = len(key)
+      l = trim(adjustl(scan_line(self, i)))
+      if (len(l) < k) cycle
       if (l(1:k) == key) then
-        if (len_trim(l) == k .or. scan(l(k + 1:k + 1), ' ,/') == 1) then
+        if (len(l) == k) then
           first = i
-          exit
+        else if (scan(l(k + 1:k + 1), ' ,/') == 1) then
+          first = i
         end if
+        if (first > 0) exit
       end if
     end do
     if (first == 0) return
     do i = first, size(self%lines)
-      if (has_terminator(self%lines(i), i == first, len(key))) then
+      if (has_terminator(scan_line(self, i), i == first, len(key))) then
         last = i
         return
       end if
@@ -188,6 +300,9 @@ contains
                    ' is not closed with ''/''', input_error_code)
       return
     end if
+    ! before the real read, which then overwrites what the probes wrote
+    call check_string_lengths(self, group, reader, first, last, err)
+    if (err%failed()) return
     call self%rewind()
     iomsg = ''
     call read_quietly(reader, self%unit, ios, iomsg)
@@ -197,37 +312,188 @@ contains
     end if
     bad = first_bad_line(self, group, reader, first, last)
     if (bad > 0) then
-      call err%set(context(self, group), 'cannot read line '//str(bad)//': "'//trim(adjustl(self%lines(bad)))// &
-                   '": '//explain(iomsg, ios), input_error_code)
+      call err%set(context(self, group), 'cannot read line '//str(bad)//': "'//shown_line(self, bad)// &
+                   '": '//explain(iomsg, ios, scan_line(self, bad)), input_error_code)
     else
-      call err%set(context(self, group), explain(iomsg, ios), input_error_code)
+      call err%set(context(self, group), explain(iomsg, ios, ''), input_error_code)
     end if
   end subroutine read_group
 
-  !> Call a group reader with overflow halting off: the C library's strtod
-  !> raises the overflow flag on a value such as 1e309 (read as Infinity and
-  !> rejected afterwards by the finiteness checks), which would otherwise
-  !> trap in a build with -ffpe-trap=overflow.
-  subroutine read_quietly(reader, unit, ios, iomsg)
+  !> A quoted value longer than its character variable is cut silently by the
+  !> namelist reader; make it an error.  Every string assigned in the group is
+  !> measured, and the variable's length is probed through the owner's reader
+  !> with a one-character substring assignment: `name(1)(L:L) = 'x'` for an
+  !> array element, `name(L:L) = 'x'` for a scalar; gfortran answers
+  !> "Substring out of range" when the variable is shorter than L.  A probe
+  !> that succeeds writes one character into the element or scalar the deck
+  !> assigns, which the real read then overwrites.
+  subroutine check_string_lengths(self, group, reader, first, last, err)
+    class(deck_t), intent(in) :: self
+    character(len=*), intent(in) :: group
     procedure(group_reader) :: reader
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    logical :: halt_overflow, halt_underflow
-    if (.not. (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_underflow))) then
-      call reader(unit, ios, iomsg)
+    integer, intent(in) :: first, last
+    type(error_t), intent(inout) :: err
+    character(len=:), allocatable :: l, target, sub
+    integer :: i, k, j, n, longest, fits
+    target = ''
+    sub = ''
+    longest = 0
+    do i = first, last
+      l = scan_line(self, i)
+      k = 1
+      if (i == first) k = index(l, '&') + len_trim(group) + 1
+      do while (k <= len(l))
+        if (l(k:k) == '!' .or. l(k:k) == '/') exit
+        if (l(k:k) == '''' .or. l(k:k) == '"') then
+          call quoted_value(l, k, j, n)
+          if (j > len(l)) then
+            ! the reader would run on into the next lines (and groups)
+            call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": the text opened by '// &
+                         l(k:k)//' is not closed on its line', input_error_code)
+            return
+          end if
+          if (len(target) > 0 .and. n > longest) then
+            longest = n
+            fits = longest_fitting(reader, group, target, sub, n)
+            if (fits < n) then
+              call invalid_value(self, group, target//sub, self%lines(i)%text(k:min(j, k + 40, len(l)))// &
+                                 trim(merge('...', '   ', j > k + 40)), 'the text has '//str(n)// &
+                                 ' characters, at most '//str(fits)//' fit (it would be cut silently)', err)
+              return
+            end if
+          end if
+          k = j + 1
+        else if (scan(l(k:k), 'abcdefghijklmnopqrstuvwxyz_') == 1) then
+          call assignment_target(l, k, j, target, sub, longest)
+          k = j
+        else
+          k = k + 1
+        end if
+      end do
+    end do
+  end subroutine check_string_lengths
+
+  !> The quoted value opening at l(k:k): its closing quote l(j:j) (j > len(l)
+  !> if unterminated) and its length n without trailing blanks, a doubled
+  !> quote counting once.
+  pure subroutine quoted_value(l, k, j, n)
+    character(len=*), intent(in) :: l
+    integer, intent(in) :: k
+    integer, intent(out) :: j, n
+    integer :: m
+    character(len=1) :: q
+    q = l(k:k)
+    j = k + 1
+    m = 0
+    n = 0
+    do while (j <= len(l))
+      if (l(j:j) == q) then
+        if (j == len(l)) exit
+        if (l(j + 1:j + 1) /= q) exit
+        j = j + 1
+      end if
+      m = m + 1
+      if (l(j:j) /= ' ') n = m
+      j = j + 1
+    end do
+  end subroutine quoted_value
+
+  !> The name starting at l(k:k): if `name [(subscript)] =` follows, it is the
+  !> new assignment target (longest string so far reset); j is where scanning
+  !> goes on (after the '=', or after the name if it is a value such as T).
+  pure subroutine assignment_target(l, k, j, target, sub, longest)
+    character(len=*), intent(in) :: l
+    integer, intent(in) :: k
+    integer, intent(out) :: j
+    character(len=:), allocatable, intent(inout) :: target, sub
+    integer, intent(inout) :: longest
+    integer :: e, p, q
+    e = verify(l(k:), 'abcdefghijklmnopqrstuvwxyz0123456789_%')
+    if (e == 0) then
+      j = len(l) + 1
       return
     end if
-    call ieee_get_halting_mode(ieee_overflow, halt_overflow)
-    call ieee_get_halting_mode(ieee_underflow, halt_underflow)
-    call ieee_set_halting_mode(ieee_overflow, .false.)
-    call ieee_set_halting_mode(ieee_underflow, .false.)
-    call reader(unit, ios, iomsg)
-    call ieee_set_flag(ieee_overflow, .false.)
-    call ieee_set_flag(ieee_underflow, .false.)
-    call ieee_set_halting_mode(ieee_overflow, halt_overflow)
-    call ieee_set_halting_mode(ieee_underflow, halt_underflow)
-  end subroutine read_quietly
+    e = k + e - 1                 ! first character after the name
+    j = e
+    if (len_trim(l(e:)) == 0) return
+    p = e + verify(l(e:), ' ') - 1
+    q = p - 1
+    if (l(p:p) == '(') then
+      q = index(l(p:), ')')
+      if (q == 0) return
+      q = p + q - 1
+      if (len_trim(l(q + 1:)) == 0) return
+      p = q + verify(l(q + 1:), ' ')
+    end if
+    if (l(p:p) /= '=') return
+    target = l(k:e - 1)
+    sub = ''
+    if (q >= e) sub = trim(adjustl(l(e:q)))
+    longest = 0
+    j = p + 1
+  end subroutine assignment_target
+
+  !> n if a string of n characters fits the target, else the most that fit.
+  integer function longest_fitting(reader, group, target, sub, n) result(fits)
+    procedure(group_reader) :: reader
+    character(len=*), intent(in) :: group, target, sub
+    integer, intent(in) :: n
+    integer :: lo, hi, mid
+    if (string_fits(reader, group, target, sub, n)) then
+      fits = n
+      return
+    end if
+    lo = 0
+    hi = n
+    do while (hi - lo > 1)
+      mid = (lo + hi)/2
+      if (string_fits(reader, group, target, sub, mid)) then
+        lo = mid
+      else
+        hi = mid
+      end if
+    end do
+    fits = lo
+  end function longest_fitting
+
+  !> Does a string of n characters fit the target?  Probe the element the
+  !> deck assigns first (or element 1); "Missing colon" means a scalar.
+  logical function string_fits(reader, group, target, sub, n) result(fits)
+    procedure(group_reader) :: reader
+    character(len=*), intent(in) :: group, target, sub
+    integer, intent(in) :: n
+    character(len=:), allocatable :: element, range, msg
+    integer :: e
+    element = '1'
+    if (len(sub) > 2) then
+      e = scan(sub, ':,)')
+      if (e > 2) element = sub(2:e - 1)
+    end if
+    range = '('//str(n)//':'//str(n)//')'
+    fits = .true.
+    msg = probe(reader, '&'//group//' '//target//'('//element//')'//range//' = ''x'' /')
+    if (index(msg, 'Substring out of range') > 0) fits = .false.
+    if (index(msg, 'Missing colon') == 0 .or. len(sub) > 0) return
+    msg = probe(reader, '&'//group//' '//target//range//' = ''x'' /')
+    if (index(msg, 'Substring out of range') > 0) fits = .false.
+  end function string_fits
+
+  !> The reader's message on a one-line group ('' if it reads).
+  function probe(reader, text) result(msg)
+    procedure(group_reader) :: reader
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: msg
+    integer :: u, ios
+    character(len=512) :: iomsg
+    open(newunit=u, status='scratch', action='readwrite')
+    write(u, '(a)') text
+    rewind(u)
+    iomsg = ''
+    call read_quietly(reader, u, ios, iomsg)
+    close(u)
+    msg = ''
+    if (ios /= 0) msg = trim(iomsg)
+  end function probe
 
   !> Replay the group on growing prefixes of its lines; the first prefix that
   !> fails to read names the offending line.
@@ -242,10 +508,10 @@ contains
     do k = first, last
       open(newunit=u, status='scratch', action='readwrite')
       do i = first, k
-        write(u, '(a)') trim(self%lines(i))
+        write(u, '(a)') trim(self%lines(i)%text)
       end do
       if (k < last) write(u, '(a)') '/'
-      if (k == first .and. .not. has_terminator(self%lines(first), .true., len_trim(group) + 1)) then
+      if (k == first .and. .not. has_terminator(scan_line(self, first), .true., len_trim(group) + 1)) then
         ! the '&group' line alone: nothing to test yet
         close(u)
         cycle
@@ -288,14 +554,14 @@ contains
     if (i > 0) then
       name = lower(trim(iomsg(i + 12:)))
       do i = first, last
-        if (index(lower(self%lines(i)), name) > 0) then
-          call err%set(context(self, group), 'line '//str(i)//': "'//trim(adjustl(self%lines(i)))//'": ' &
-                       //explain(iomsg, ios), input_error_code)
+        if (index(scan_line(self, i), name) > 0) then
+          call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": ' &
+                       //explain(iomsg, ios, scan_line(self, i)), input_error_code)
           return
         end if
       end do
     end if
-    call err%set(context(self, group), 'lines '//str(first)//'-'//str(last)//': '//explain(iomsg, ios), &
+    call err%set(context(self, group), 'lines '//str(first)//'-'//str(last)//': '//explain(iomsg, ios, ''), &
                  input_error_code)
   end subroutine check_read
 
@@ -313,7 +579,7 @@ contains
       i = index(var, '(')
       if (i > 1) var = var(1:i - 1)
       do i = first, last
-        if (names_variable(lower(deck%lines(i)), var)) then
+        if (names_variable(scan_line(deck, i), var)) then
           at = ' (line '//str(i)//')'
           exit
         end if
@@ -327,6 +593,7 @@ contains
     character(len=*), intent(in) :: line, var
     integer :: i, j
     names_variable = .false.
+    if (len(var) == 0) return
     i = index(line, var)
     do while (i > 0)
       j = i + len(var)
@@ -350,12 +617,29 @@ contains
     s = 'deck '''//deck%path//''', group &'//trim(group)
   end function context
 
-  pure function explain(iomsg, ios) result(s)
-    character(len=*), intent(in) :: iomsg
+  !> The reader's complaint in the deck's terms.  `line` (lower case, '' if
+  !> unknown) is the offending line: gfortran takes a value it cannot read as
+  !> a number (rtol = 'abc', rtol = fast) for the name of the next variable,
+  !> so a name that the line does not assign to is a value of the wrong type.
+  pure function explain(iomsg, ios, line) result(s)
+    character(len=*), intent(in) :: iomsg, line
     integer, intent(in) :: ios
-    character(len=:), allocatable :: s
+    character(len=:), allocatable :: s, name, token
+    integer :: n
+    logical :: known
     if (index(iomsg, 'Cannot match namelist object name') > 0) then
-      s = 'unknown variable '''//trim(iomsg(index(iomsg, 'name ') + 5:))//''''
+      token = trim(iomsg(index(iomsg, 'name ') + 5:))
+      n = verify(lower(token), 'abcdefghijklmnopqrstuvwxyz0123456789_%') - 1
+      if (n < 0) n = len(token)
+      name = lower(token(1:n))
+      known = n > 0 .and. len(line) == 0       ! (Fortran's .and. does not short-circuit)
+      if (n > 0 .and. len(line) > 0) known = names_variable(line, name)
+      if (known) then
+        s = 'unknown variable '''//token(1:n)//''''
+      else
+        if (index(token, '&') > 1) token = token(1:index(token, '&') - 1)
+        s = 'the value '//trim(token)//' has the wrong type or form (e.g. text for a number)'
+      end if
     else if (ios < 0) then
       s = 'a value has the wrong type or form (e.g. text for a number, a real for an integer)'
     else if (len_trim(iomsg) > 0) then

@@ -4,8 +4,12 @@
 !>
 !> Everything is written to a temporary file beside the target and renamed
 !> into place by `commit`, so a failed run never leaves a half-written file.
+!> While the temporary file exists, SIGINT, SIGTERM and SIGHUP remove it
+!> before the program dies of the signal (a C-interoperable handler calling
+!> only async-signal-safe functions: unlink, signal, raise).
 module table_output
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc, c_null_funptr, &
+                                         c_intptr_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
@@ -51,7 +55,32 @@ module table_output
     integer(c_int) function c_getpid() bind(c, name='getpid')
       import :: c_int
     end function c_getpid
+    integer(c_int) function c_unlink(path) bind(c, name='unlink')
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*)
+    end function c_unlink
+    type(c_funptr) function c_signal(signum, handler) bind(c, name='signal')
+      import :: c_int, c_funptr
+      integer(c_int), value :: signum
+      type(c_funptr), value :: handler
+    end function c_signal
+    integer(c_int) function c_raise(signum) bind(c, name='raise')
+      import :: c_int
+      integer(c_int), value :: signum
+    end function c_raise
   end interface
+
+  !> POSIX signal numbers (the same on Linux, the BSDs and macOS).
+  integer(c_int), parameter :: sighup = 1, sigint = 2, sigterm = 15
+  integer(c_int), parameter :: cleanup_signals(3) = [sighup, sigint, sigterm]
+  integer(c_intptr_t), parameter :: sig_ign = 1     !< the address C's SIG_IGN stands for
+  !> The temporary file a signal handler removes: a NUL-terminated C string
+  !> built before the handler is installed (a handler must not allocate).
+  integer, parameter :: max_path = 4096
+  character(kind=c_char) :: pending_tmp(max_path + 1) = c_null_char
+  !> The actions the handler replaced (a background job's ignored SIGINT stays ignored after the run).
+  type(c_funptr) :: saved_action(size(cleanup_signals))
+  logical :: watching = .false.
 
 contains
 
@@ -63,9 +92,13 @@ contains
     character(len=512) :: iomsg
     self%path = trim(path)
     self%tmp_path = self%path//'.tmp'//str(int(c_getpid()))
+    call watch_signals(self%tmp_path)
     open(newunit=self%unit, file=self%tmp_path, status='replace', action='write', iostat=ios, iomsg=iomsg)
     self%opened = ios == 0
-    if (ios /= 0) call err%set('output '''//self%path//'''', 'cannot create: '//trim(iomsg))
+    if (ios /= 0) then
+      call unwatch_signals()
+      call err%set('output '''//self%path//'''', 'cannot create '''//self%tmp_path//''': '//trim(iomsg))
+    end if
     self%n_columns = 0
     self%n_rows = 0
   end subroutine table_open
@@ -178,6 +211,7 @@ contains
     if (c_rename(self%tmp_path//c_null_char, self%path//c_null_char) /= 0) then
       call err%set('output '''//self%path//'''', 'cannot rename the temporary file '//self%tmp_path)
     end if
+    call unwatch_signals()
   end subroutine commit
 
   !> Close and delete the temporary file: no output is left behind.
@@ -186,7 +220,50 @@ contains
     if (.not. self%opened) return
     close(self%unit, status='delete')
     self%opened = .false.
+    call unwatch_signals()
   end subroutine discard
+
+  !> From now on SIGHUP, SIGINT and SIGTERM remove `tmp_path` first.
+  subroutine watch_signals(tmp_path)
+    character(len=*), intent(in) :: tmp_path
+    type(c_funptr) :: previous
+    integer :: i, n
+    n = min(len(tmp_path), max_path)
+    pending_tmp = c_null_char
+    do i = 1, n
+      pending_tmp(i) = tmp_path(i:i)
+    end do
+    do i = 1, size(cleanup_signals)
+      previous = c_signal(cleanup_signals(i), c_funloc(remove_pending_and_die))
+      if (.not. watching) saved_action(i) = previous
+      ! an ignored signal stays ignored (nohup, a background job's SIGINT)
+      if (transfer(saved_action(i), 0_c_intptr_t) == sig_ign) previous = c_signal(cleanup_signals(i), saved_action(i))
+    end do
+    watching = .true.
+  end subroutine watch_signals
+
+  !> The signal actions from before watch_signals; nothing to remove.
+  subroutine unwatch_signals()
+    type(c_funptr) :: previous
+    integer :: i
+    if (.not. watching) return
+    do i = 1, size(cleanup_signals)
+      previous = c_signal(cleanup_signals(i), saved_action(i))
+    end do
+    pending_tmp = c_null_char
+    watching = .false.
+  end subroutine unwatch_signals
+
+  !> The handler: remove the temporary file, restore the default action and
+  !> re-raise, so the parent sees the program killed by the signal.
+  subroutine remove_pending_and_die(signum) bind(c)
+    integer(c_int), value :: signum
+    integer(c_int) :: status
+    type(c_funptr) :: previous
+    if (pending_tmp(1) /= c_null_char) status = c_unlink(pending_tmp)
+    previous = c_signal(signum, c_null_funptr)
+    status = c_raise(signum)
+  end subroutine remove_pending_and_die
   !> Drop the blank padding gfortran writes inside quoted namelist strings
   !> ('bdf                ' -> 'bdf').
   pure function squeeze_quoted(line) result(s)

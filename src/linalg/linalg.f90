@@ -2,7 +2,8 @@
 !> uses, and thin assumed-shape wrappers that turn INFO into a sentence and can
 !> report a reciprocal condition number (1-norm).
 !>
-!> Dense LU (general), dense and banded Cholesky (mass matrices), symmetric
+!> Dense and banded LU (general), dense and banded Cholesky (mass matrices,
+!> the transient Newton matrix), symmetric
 !> generalized eigenproblem (natural frequencies), nonsymmetric eigenvalues
 !> (Floquet multipliers).
 module linalg
@@ -14,6 +15,7 @@ module linalg
   public :: lu_factor, lu_solve, solve_linear
   public :: cholesky_factor, cholesky_solve
   public :: band_cholesky_factor, band_cholesky_solve
+  public :: band_lu_factor, band_lu_solve
   public :: sym_generalized_eig, eigenvalues_general
   public :: dense_to_lower_band
 
@@ -78,6 +80,20 @@ module linalg
       real(dp), intent(inout) :: b(ldb, *)
       integer, intent(out) :: info
     end subroutine dpbtrs
+    subroutine dgbtrf(m, n, kl, ku, ab, ldab, ipiv, info)
+      import :: dp
+      integer, intent(in) :: m, n, kl, ku, ldab
+      real(dp), intent(inout) :: ab(ldab, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgbtrf
+    subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
+      import :: dp
+      character(len=1), intent(in) :: trans
+      integer, intent(in) :: n, kl, ku, nrhs, ldab, ldb, ipiv(*)
+      real(dp), intent(in) :: ab(ldab, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dgbtrs
     subroutine dsygv(itype, jobz, uplo, n, a, lda, b, ldb, w, work, lwork, info)
       import :: dp
       integer, intent(in) :: itype, n, lda, ldb, lwork
@@ -241,6 +257,40 @@ contains
     call dpbtrs('L', size(ab, 2), kd, 1, ab, size(ab, 1), b, size(b), info)
     if (info /= 0) call err%set('band_cholesky_solve', 'DPBTRS: argument '//str(-info)//' has an illegal value')
   end subroutine band_cholesky_solve
+
+  !> Banded LU with partial pivoting (DGBTRF) of an n x n matrix with kl
+  !> sub- and ku super-diagonals in LAPACK general band storage:
+  !> ab(kl + ku + 1 + i - j, j) = A(i, j); ab has 2 kl + ku + 1 rows, the first
+  !> kl hold the fill-in of the pivoting.  Cost O(n kl (kl + ku)).
+  subroutine band_lu_factor(ab, kl, ku, ipiv, err)
+    real(dp), intent(inout) :: ab(:, :)
+    integer, intent(in) :: kl, ku
+    integer, intent(out) :: ipiv(:)
+    type(error_t), intent(inout) :: err
+    integer :: info, n
+    n = size(ab, 2)
+    if (size(ab, 1) < 2*kl + ku + 1 .or. size(ipiv) < n) then
+      call err%set('band_lu_factor', 'band storage needs 2 kl + ku + 1 = '//str(2*kl + ku + 1)// &
+                   ' rows and ipiv n entries')
+      return
+    end if
+    call dgbtrf(n, n, kl, ku, ab, size(ab, 1), ipiv, info)
+    if (info < 0) then
+      call err%set('band_lu_factor', 'DGBTRF: argument '//str(-info)//' has an illegal value')
+    else if (info > 0) then
+      call err%set('band_lu_factor', 'DGBTRF: matrix is exactly singular (U('//str(info)//','//str(info)//') = 0)')
+    end if
+  end subroutine band_lu_factor
+
+  subroutine band_lu_solve(ab, kl, ku, ipiv, b, err)
+    real(dp), intent(in) :: ab(:, :)
+    integer, intent(in) :: kl, ku, ipiv(:)
+    real(dp), intent(inout), contiguous :: b(:)
+    type(error_t), intent(inout) :: err
+    integer :: info
+    call dgbtrs('N', size(ab, 2), kl, ku, 1, ab, size(ab, 1), ipiv, b, size(b), info)
+    if (info /= 0) call err%set('band_lu_solve', 'DGBTRS: argument '//str(-info)//' has an illegal value')
+  end subroutine band_lu_solve
 
   !> Copy the lower band (half-bandwidth kd) of a dense symmetric matrix into
   !> LAPACK lower band storage.

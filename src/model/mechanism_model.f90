@@ -27,12 +27,15 @@ module mechanism_model
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, lu_factor, lu_solve, sym_generalized_eig
+  use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
+                    sym_generalized_eig, solve_linear
   use lsode_solver, only: ode_system_t
-  use correlation_table, only: correlation_table_t, link_end_t, dofs_per_element
-  use kear_element, only: kear_element_t, rigid_state_t, kear_eval_info_t, element_effects_t, &
-                          kear_element_init, kear_element_eval, kear_tangent_stiffness, kear_strain_energy, &
-                          kear_kinetic_energy, kear_stress_recovery, stress_report_t, formulation_from_name
+  use correlation_table, only: correlation_table_t, link_end_t
+  use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
+  use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, &
+                          beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_point_load, &
+                          resolve_formulation, element_kind_consistent
+  use external_loads, only: point_load_t, load_factor_at
   use material_law, only: ramberg_osgood_t
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
   use kinematics, only: kinematics_t, motion_t
@@ -52,7 +55,8 @@ module mechanism_model
     logical :: moving = .true.                    !< rigid motion from kinematics (else fixed states)
     type(kinematics_t) :: kin
     type(correlation_table_t) :: table
-    type(kear_element_t), allocatable :: el(:)
+    type(beam_element_t), allocatable :: el(:)
+    character(len=16) :: formulation = ''         !< the element formulation in effect (resolved 'default')
     type(rigid_state_t), allocatable :: rb(:)     !< current rigid state of each element
     integer :: n = 0                              !< global unknowns
     integer :: kd = 0                             !< half-bandwidth of M
@@ -76,11 +80,29 @@ module mechanism_model
     ! lumped masses at joints (slider blocks, sleeves): mass, element and node (1, 2) carrying them
     real(dp), allocatable :: point_mass(:)
     integer, allocatable :: point_element(:), point_node(:)
+    ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored
+    real(dp), allocatable :: newton_mass(:, :)    !< (kd+1, n) M, lower band storage
+    real(dp), allocatable :: newton_stiff(:, :)   !< (2kd+1, n) K_t, general band storage kb(kd+1+i-j, j)
+    real(dp), allocatable :: newton_chol(:, :)    !< (kd+1, n) Cholesky factor of S
+    real(dp), allocatable :: newton_lu(:, :)      !< (3kd+1, n) banded LU of S
+    integer, allocatable :: newton_ipiv(:)
+    real(dp) :: newton_hl0 = 0.0_dp               !< h*el0 of the last factorization
+    logical :: newton_cholesky = .true.           !< S was factored by Cholesky (else banded LU)
+    integer :: n_newton_factorizations = 0
+    integer :: n_newton_lu = 0                    !< of which by banded LU (K_t not symmetric or S indefinite)
+    ! external loads (src/transient/loads.f90): gravity acceleration and point forces/moments
+    real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
+    type(point_load_t), allocatable :: loads(:)
+    real(dp) :: load_scale = 1.0_dp               !< multiplies every point load (static load stepping)
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
     procedure :: rhs => model_rhs
     procedure :: jacobian => model_jacobian
+    procedure :: has_newton_matrix => model_has_newton_matrix
+    procedure :: newton_factor => model_newton_factor
+    procedure :: newton_solve => model_newton_solve
+    procedure :: assemble_band
     procedure :: set_time
     procedure :: build_motion_table
     procedure :: accelerations
@@ -89,6 +111,8 @@ module mechanism_model
     procedure :: energies
     procedure :: element_stresses
     procedure :: state_size
+    procedure :: set_loads
+    procedure :: static_equilibrium
   end type mechanism_model_t
 
 contains
@@ -105,7 +129,8 @@ contains
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
     type(link_end_t), allocatable :: ends(:, :)
-    integer :: k, side, j, e, code, n_elements(mech%n_links)
+    integer :: k, side, j, e, code, kind, n_elements(mech%n_links)
+    character(len=:), allocatable :: resolved
     real(dp) :: guide_angle
     type(motion_t) :: m
 
@@ -130,7 +155,10 @@ contains
       end do
     end do
     n_elements = mech%links(:)%n_elements
-    call self%table%build(n_elements, ends, err, reduce_band=.true.)
+    call resolve_formulation(formulation, effects, kind, code, resolved, err)
+    if (err%failed()) return
+    self%formulation = resolved
+    call self%table%build(n_elements, ends, err, reduce_band=.true., axial_dofs=kind == element_kind_consistent)
     if (err%failed()) return
 
     call self%kin%init(mech, err)
@@ -138,16 +166,14 @@ contains
     call self%kin%solve(0.0_dp, err)
     if (err%failed()) return
 
-    call formulation_from_name(formulation, code, err)
-    if (err%failed()) return
     allocate(self%el(self%table%n_elements), self%rb(self%table%n_elements))
     do k = 1, mech%n_links
       associate (lk => mech%links(k))
         do e = lk%first_element, lk%first_element + lk%n_elements - 1
           m = self%kin%element_motion_global(e)
-          call kear_element_init(self%el(e), m%length, lk%b, lk%h, &
+          call beam_element_init(self%el(e), kind, m%length, lk%b, lk%h, &
                                  ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
-                                 formulation=code, damping_beta=beta, fibre_distance=lk%fibre)
+                                 kear_code=code, damping_beta=beta, fibre_distance=lk%fibre)
           if (err%failed()) then
             call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
             return
@@ -156,6 +182,7 @@ contains
       end associate
     end do
     call allocate_work(self)
+    allocate(self%loads(0))
     call register_point_masses(self, mech)
     call self%set_time(0.0_dp)
   end subroutine init_mechanism
@@ -204,7 +231,7 @@ contains
     integer, intent(out) :: g(2)
     real(dp), intent(out) :: c(2)
     integer :: first
-    first = 1 + 4*(node - 1)
+    first = 1 + self%table%node_dofs*(node - 1)
     g = self%table%map(first:first + 1, e)
     c = self%table%coef(first:first + 1, e)
   end subroutine node_translation_dofs
@@ -221,22 +248,24 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
-    integer :: e, code
+    integer :: e, code, kind
+    character(len=:), allocatable :: resolved
     self%moving = .false.
-    allocate(self%point_mass(0), self%point_element(0), self%point_node(0))
-    call self%table%build(n_elem, ends, err)
+    allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0))
+    call resolve_formulation(formulation, effects, kind, code, resolved, err)
+    if (err%failed()) return
+    self%formulation = resolved
+    call self%table%build(n_elem, ends, err, axial_dofs=kind == element_kind_consistent)
     if (err%failed()) return
     if (size(specs) /= self%table%n_elements .or. size(states) /= self%table%n_elements) then
       call err%set('flexible model', 'need one element spec and rigid state per element')
       return
     end if
-    call formulation_from_name(formulation, code, err)
-    if (err%failed()) return
     allocate(self%el(self%table%n_elements))
     self%rb = states
     do e = 1, self%table%n_elements
-      call kear_element_init(self%el(e), specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
-                             effects, err, formulation=code, damping_beta=beta)
+      call beam_element_init(self%el(e), kind, specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
+                             effects, err, kear_code=code, damping_beta=beta)
       if (err%failed()) return
     end do
     call allocate_work(self)
@@ -364,18 +393,20 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(8, 8), fe(8)
+    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
     type(kear_eval_info_t) :: info
     type(error_t) :: err
-    integer :: e, i, j, gi, gj, kd
+    integer :: e, i, j, gi, gj, kd, nd
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     kd = self%kd
+    nd = self%table%element_dofs
     self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call kear_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      call beam_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), loaded_state(self, e), &
+                             me, fe, info)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)//' (x/l = '// &
@@ -384,10 +415,10 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      do j = 1, dofs_per_element
+      do j = 1, nd
         gj = self%table%map(j, e)
         if (gj == 0) cycle
-        do i = 1, dofs_per_element
+        do i = 1, nd
           gi = self%table%map(i, e)
           if (gi < gj) cycle
           self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
@@ -396,6 +427,7 @@ contains
       end do
     end do
     call add_point_masses(self)
+    call add_point_loads(self, t, q, self%force)
     call band_cholesky_factor(self%mass_band, kd, err)
     self%n_mass_factorizations = self%n_mass_factorizations + 1
     if (err%failed()) then
@@ -416,7 +448,7 @@ contains
       e = self%point_element(k)
       m = self%point_mass(k)
       call node_translation_dofs(self, e, self%point_node(k), g, c)
-      a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k))
+      a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k)) - self%gravity
       do i = 1, 2
         if (g(i) == 0) cycle
         self%mass_band(1, g(i)) = self%mass_band(1, g(i)) + m*c(i)**2
@@ -492,34 +524,201 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass(:, :), stiff(:, :)
-    real(dp) :: me(8, 8), fe(8), ke(8, 8), qe(8)
-    type(kear_eval_info_t) :: info
-    integer :: e
+    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
+    integer :: e, i, g(2)
+    real(dp) :: c(2)
     mass = 0.0_dp
     stiff = 0.0_dp
     do e = 1, size(self%el)
-      qe = self%table%gather(e, q)
-      call kear_element_eval(self%el(e), qe, zeros8(), self%rb(e), me, fe, info)
-      call kear_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+      call element_mass_stiffness(self, e, q, me, ke)
       call self%table%scatter_add_matrix(e, me, mass)
       call self%table%scatter_add_matrix(e, ke, stiff)
     end do
     do e = 1, size(self%point_mass)
-      block
-        integer :: g(2), i
-        real(dp) :: c(2)
-        call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
-        do i = 1, 2
-          if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
-        end do
-      end block
+      call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+      do i = 1, 2
+        if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
+      end do
     end do
   end subroutine assemble_dense
 
-  pure function zeros8() result(z)
-    real(dp) :: z(8)
-    z = 0.0_dp
-  end function zeros8
+  !> Element e's mass matrix and elastic tangent stiffness (global element
+  !> DOFs) at the global displacements q and the current rigid state.
+  subroutine element_mass_stiffness(self, e, q, me, ke)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: me(:, :), ke(:, :)
+    real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
+    type(kear_eval_info_t) :: info
+    zero = 0.0_dp
+    qe = self%table%gather(e, q)
+    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info)
+    call beam_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+  end subroutine element_mass_stiffness
+
+  !> M (lower band storage, kd+1 rows) and K_t (general band storage,
+  !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at (q, current time): O(N).
+  subroutine assemble_band(self, q, mass_lower, stiff_band)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
+    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
+    real(dp) :: cij, c(2)
+    integer :: e, i, j, gi, gj, kd, g(2)
+    kd = self%kd
+    mass_lower = 0.0_dp
+    stiff_band = 0.0_dp
+    do e = 1, size(self%el)
+      call element_mass_stiffness(self, e, q, me, ke)
+      do j = 1, self%table%element_dofs
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, self%table%element_dofs
+          gi = self%table%map(i, e)
+          if (gi == 0) cycle
+          cij = self%table%coef(i, e)*self%table%coef(j, e)
+          stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
+          if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
+        end do
+      end do
+    end do
+    do e = 1, size(self%point_mass)
+      call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+      do i = 1, 2
+        if (g(i) > 0) mass_lower(1, g(i)) = mass_lower(1, g(i)) + self%point_mass(e)*c(i)**2
+      end do
+    end do
+  end subroutine assemble_band
+
+  ! ------------------------------------------------------------------ Newton matrix
+
+  logical function model_has_newton_matrix(self)
+    class(mechanism_model_t), intent(in) :: self
+    model_has_newton_matrix = self%n > 0
+  end function model_has_newton_matrix
+
+  !> DLSODE's Newton matrix P = I - hl0 J for the Jacobian of model_jacobian,
+  !> J = [[0, I], [-M^-1 K_t, -beta M^-1 K_t]] (state interleaved), without
+  !> forming J: eliminating the displacement corrections leaves the N x N band
+  !> matrix (doc/transient.md)
+  !>     S = M + (hl0 beta + hl0^2) K_t,
+  !> factored by banded Cholesky when K_t is symmetric and S positive definite,
+  !> by banded LU otherwise.  O(N kd^2); ok = .false. when S is singular.
+  subroutine model_newton_factor(self, t, y, hl0, ok)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    real(dp) :: c, beta
+    integer :: kd, n, j, i
+    ok = .false.
+    call self%set_time(t)
+    if (self%err%failed()) return
+    kd = self%kd
+    n = self%n
+    if (.not. allocated(self%newton_mass)) &
+      allocate(self%newton_mass(kd + 1, n), self%newton_stiff(2*kd + 1, n), self%newton_chol(kd + 1, n), &
+               self%newton_lu(3*kd + 1, n), self%newton_ipiv(n))
+    call self%assemble_band(y(1::2), self%newton_mass, self%newton_stiff)
+    beta = 0.0_dp
+    if (size(self%el) > 0) beta = self%el(1)%beta
+    c = hl0*beta + hl0**2
+    self%newton_hl0 = hl0
+    self%n_newton_factorizations = self%n_newton_factorizations + 1
+    self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
+    if (self%newton_cholesky) then
+      self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
+      call band_cholesky_factor(self%newton_chol, kd, err)
+      self%newton_cholesky = .not. err%failed()
+      call err%clear()
+    end if
+    if (self%newton_cholesky) then
+      ok = .true.
+      return
+    end if
+    ! banded LU: S in rows kd+1.. of the general band layout ab(2kd+1+i-j, j)
+    self%n_newton_lu = self%n_newton_lu + 1
+    self%newton_lu = 0.0_dp
+    self%newton_lu(kd + 1:, :) = c*self%newton_stiff
+    do j = 1, n
+      do i = j, min(n, j + kd)
+        self%newton_lu(2*kd + 1 + i - j, j) = self%newton_lu(2*kd + 1 + i - j, j) + self%newton_mass(1 + i - j, j)
+        if (i > j) self%newton_lu(2*kd + 1 + j - i, i) = self%newton_lu(2*kd + 1 + j - i, i) + &
+                                                         self%newton_mass(1 + i - j, j)
+      end do
+    end do
+    call band_lu_factor(self%newton_lu, kd, kd, self%newton_ipiv, err)
+    ok = .not. err%failed()
+  end subroutine model_newton_factor
+
+  !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
+  !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:
+  !>     S dv = M r2 - hl0 K_t r1,   dq = r1 + hl0 dv.
+  subroutine model_newton_solve(self, x)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
+    type(error_t) :: err
+    integer :: kd
+    kd = self%kd
+    r1 = x(1::2)
+    r2 = x(2::2)
+    call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
+    if (self%newton_cholesky) then
+      call band_cholesky_solve(self%newton_chol, kd, dv, err)
+    else
+      call band_lu_solve(self%newton_lu, kd, kd, self%newton_ipiv, dv, err)
+    end if
+    if (err%failed()) call self%fail(0.0_dp, 'Newton matrix solve: '//err%text())
+    x(2::2) = dv
+    x(1::2) = r1 + self%newton_hl0*dv
+  end subroutine model_newton_solve
+
+  !> Whether a band matrix in general band storage (half-bandwidth kd) is
+  !> symmetric to round-off (1e-10 of its largest entry).
+  pure logical function symmetric_band(kb, kd) result(sym)
+    real(dp), intent(in) :: kb(:, :)
+    integer, intent(in) :: kd
+    integer :: i, j, n
+    real(dp) :: tol
+    n = size(kb, 2)
+    tol = 1.0e-10_dp*maxval(abs(kb))
+    sym = .true.
+    do j = 1, n
+      do i = j + 1, min(n, j + kd)
+        if (abs(kb(kd + 1 + i - j, j) - kb(kd + 1 + j - i, i)) > tol) then
+          sym = .false.
+          return
+        end if
+      end do
+    end do
+  end function symmetric_band
+
+  !> y = M a - c K b for M symmetric in lower band storage m(1+i-j, j) and K
+  !> in general band storage k(kd+1+i-j, j), both of half-bandwidth kd: O(N kd).
+  pure subroutine band_combination(m, k, kd, a, c, b, y)
+    real(dp), intent(in) :: m(:, :), k(:, :), a(:), c, b(:)
+    integer, intent(in) :: kd
+    real(dp), intent(out) :: y(:)
+    integer :: i, j, n
+    real(dp) :: aj, cbj, s
+    n = size(a)
+    y = 0.0_dp
+    do j = 1, n
+      aj = a(j)
+      cbj = c*b(j)
+      s = m(1, j)*aj
+      do i = max(1, j - kd), min(n, j + kd)
+        y(i) = y(i) - k(kd + 1 + i - j, j)*cbj
+      end do
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*aj
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
+    end do
+  end subroutine band_combination
 
   !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
   !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.
@@ -543,14 +742,14 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out) :: kinetic, strain
     integer :: e
-    real(dp) :: qe(8)
+    real(dp) :: qe(self%table%element_dofs)
     call self%set_time(t)
     kinetic = 0.0_dp
     strain = 0.0_dp
     do e = 1, size(self%el)
       qe = self%table%gather(e, q)
-      kinetic = kinetic + kear_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
-      strain = strain + kear_strain_energy(self%el(e), qe, self%rb(e)%phi)
+      kinetic = kinetic + beam_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
+      strain = strain + beam_strain_energy(self%el(e), qe, self%rb(e)%phi)
     end do
     do e = 1, size(self%point_mass)
       block
@@ -581,7 +780,101 @@ contains
     type(stress_report_t), intent(out) :: reports(:)
     integer :: e
     do e = 1, size(self%el)
-      reports(e) = kear_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%phi)
+      reports(e) = beam_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%phi)
     end do
   end subroutine element_stresses
+
+  ! ------------------------------------------------------------------ external loads
+
+  !> Gravity (global acceleration vector) and point loads (already resolved
+  !> to elements, src/transient/loads.f90).
+  subroutine set_loads(self, gravity, point_loads)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: gravity(2)
+    type(point_load_t), intent(in) :: point_loads(:)
+    self%gravity = gravity
+    self%loads = point_loads
+  end subroutine set_loads
+
+  !> Rigid state of element e as the element sees it: gravity g acts on every
+  !> mass like a frame acceleration -g (rho A int B^T g = -rho A int B^T (-g)).
+  pure function loaded_state(self, e) result(rb)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    type(rigid_state_t) :: rb
+    rb = self%rb(e)
+    rb%x1_dd = rb%x1_dd - self%gravity(1)
+    rb%y1_dd = rb%y1_dd - self%gravity(2)
+  end function loaded_state
+
+  !> f += generalized forces of the point loads at time t (times load_scale);
+  !> optionally jac += their Jacobian d/dq (moments work through the section angle).
+  subroutine add_point_loads(self, t, q, f, jac)
+    type(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: t, q(:)
+    real(dp), intent(inout) :: f(:)
+    real(dp), intent(inout), optional :: jac(:, :)
+    real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
+    integer :: k, e
+    do k = 1, size(self%loads)
+      e = self%loads(k)%element
+      fac = self%load_scale*load_factor_at(self%loads(k), t)
+      call beam_point_load(self%el(e), self%table%gather(e, q), self%rb(e)%phi, self%loads(k)%x_over_l, &
+                           fac*self%loads(k)%force, fac*self%loads(k)%moment, gen, dgen)
+      call self%table%scatter_add(e, gen, f)
+      if (present(jac)) call self%table%scatter_add_matrix(e, dgen, jac)
+    end do
+  end subroutine add_point_loads
+
+  !> Static equilibrium of a structure at rest (init_fixed) under its loads
+  !> at time t: F(q, 0, t) + Q(q, t) = 0, by Newton's method with the tangent
+  !> -K_t + dQ/dq, the point loads applied in n_steps equal increments
+  !> (natural-parameter continuation).  q holds the start and the result.
+  subroutine static_equilibrium(self, t, q, n_steps, err, iterations)
+    class(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    real(dp), intent(inout) :: q(:)
+    integer, intent(in) :: n_steps
+    type(error_t), intent(inout) :: err
+    integer, intent(out), optional :: iterations
+    real(dp) :: r(self%n), jac(self%n, self%n), mass(self%n, self%n), zero(self%n), qdd(self%n), scratch(self%n)
+    real(dp) :: scale0
+    integer :: step, it, n_it
+    logical :: converged
+    scale0 = self%load_scale
+    zero = 0.0_dp
+    n_it = 0
+    do step = 1, n_steps
+      self%load_scale = scale0*real(step, dp)/real(n_steps, dp)
+      converged = .false.
+      do it = 1, 50
+        n_it = n_it + 1
+        call self%accelerations(t, q, zero, qdd)      ! fills self%force = F + Q
+        if (self%err%failed()) then
+          err = self%err
+          exit
+        end if
+        r = self%force
+        call self%assemble_dense(q, mass, jac)
+        jac = -jac
+        scratch = 0.0_dp
+        call add_point_loads(self, t, q, scratch, jac)
+        call solve_linear(jac, r, err)                ! r := J^-1 R
+        if (err%failed()) exit
+        q = q - r
+        if (maxval(abs(r)) <= 1.0e-12_dp*max(1.0_dp, maxval(abs(q)))) then
+          converged = .true.
+          exit
+        end if
+      end do
+      if (err%failed()) exit
+      if (.not. converged) then
+        call err%set('static equilibrium', 'Newton did not converge at load step '//str(step)//' of '// &
+                     str(n_steps)//'; use more steps')
+        exit
+      end if
+    end do
+    self%load_scale = scale0
+    if (present(iterations)) iterations = n_it
+  end subroutine static_equilibrium
 end module mechanism_model

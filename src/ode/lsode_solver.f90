@@ -10,6 +10,13 @@
 !> analyses in separate processes).  The model reaches the F77 callback through
 !> a module-level pointer that is set for the duration of each DLSODE call.
 !>
+!> BDF with a user Jacobian (MF = 21, 24) on a model that supplies its own
+!> Newton matrix (`has_newton_matrix`, `newton_factor`, `newton_solve`: e.g.
+!> the mechanism model's banded elimination of I - h*el0*J) never forms J:
+!> DLSODE's DPREPJ and DSOLSY are ours (module lsode_newton) and call the
+!> model; DLSODE is then handed MF = 23 only so that its work array WM is N + 2
+!> long.  `structured = .false.` in init forces DLSODE's own dense/banded J.
+!>
 !> A model whose RHS fails (e.g. mass matrix not positive definite) records the
 !> error in `self%err` and returns; the shim then returns zero derivatives until
 !> the current DLSODE call ends, and `integrate_to` reports the model's error.
@@ -23,6 +30,7 @@ module lsode_solver
   public :: ode_system_t, lsode_t, lsode_counters_t
   public :: mf_adams, mf_bdf_full_user, mf_bdf_full_fd, mf_bdf_band_user, mf_bdf_band_fd
   public :: istate_sentence, mf_from_method, method_names
+  public :: active, active_newton_is_model
 
   !> Method names accepted in decks, and the DLSODE method flag each means.
   character(len=*), parameter :: method_names = 'adams (MF=10), bdf (21), bdf_fd (22), bdf_band (24), bdf_band_fd (25)'
@@ -40,6 +48,9 @@ module lsode_solver
   contains
     procedure(rhs_interface), deferred :: rhs
     procedure :: jacobian => jacobian_not_provided
+    procedure :: has_newton_matrix
+    procedure :: newton_factor => newton_factor_not_provided
+    procedure :: newton_solve => newton_solve_not_provided
     procedure :: fail
   end type ode_system_t
 
@@ -61,12 +72,16 @@ module lsode_solver
     integer :: order_last = 0
     real(dp) :: step_last = 0.0_dp
     real(dp) :: cpu_seconds = 0.0_dp
+    logical :: model_newton = .false. !< the system's own Newton matrix stood in for DLSODE's
   end type lsode_counters_t
 
   type :: lsode_t
     integer :: neq = 0
     integer :: mf = mf_adams
     integer :: ml = 0, mu = 0          !< half-bandwidths for MF = 24/25
+    logical :: structured = .true.     !< use the system's own Newton matrix when it has one (MF 21/24)
+    logical :: model_newton = .false.  !< this integration uses it (decided at each fresh start)
+    integer :: mf_dlsode = mf_adams    !< the MF DLSODE is handed (23 for the model's Newton matrix)
     integer :: max_steps = 20000       !< per output interval (DLSODE's MXSTEP)
     real(dp) :: rtol = 1.0e-6_dp
     real(dp), allocatable :: atol(:)
@@ -108,7 +123,10 @@ module lsode_solver
     end subroutine dlsode
   end interface
 
-  class(ode_system_t), pointer :: active => null()
+  !> The system DLSODE is integrating (set for the duration of each call), and
+  !> whether its own Newton matrix stands in for J (read by lsode_newton).
+  class(ode_system_t), pointer, protected :: active => null()
+  logical, protected :: active_newton_is_model = .false.
 
 contains
 
@@ -123,6 +141,32 @@ contains
     if (.false.) pd(1, 1) = t + y(1) + ml + mu   ! arguments intentionally unused
     call self%fail(t, 'this model supplies no analytic Jacobian; use MF = 22 or 25')
   end subroutine jacobian_not_provided
+
+  !> Default: no Newton matrix of its own (DLSODE forms I - h*el0*J from J).
+  logical function has_newton_matrix(self)
+    class(ode_system_t), intent(in) :: self
+    has_newton_matrix = .false.
+    if (.false.) has_newton_matrix = self%err%failed()   ! argument intentionally unused
+  end function has_newton_matrix
+
+  !> Form and factor P = I - hl0 J at (t, y), hl0 = h*el0 of DLSODE's step;
+  !> ok = .false. when P is singular (DLSODE then cuts the step).
+  subroutine newton_factor_not_provided(self, t, y, hl0, ok)
+    class(ode_system_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    ok = .false.
+    if (.false.) ok = y(1) + hl0 > 0.0_dp   ! arguments intentionally unused
+    call self%fail(t, 'this model supplies no Newton matrix of its own')
+  end subroutine newton_factor_not_provided
+
+  !> x := P^-1 x with the P of the last newton_factor.
+  subroutine newton_solve_not_provided(self, x)
+    class(ode_system_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    x = 0.0_dp
+    call self%fail(0.0_dp, 'this model supplies no Newton matrix of its own')
+  end subroutine newton_solve_not_provided
 
   !> Record the first failure of the model at time t.
   subroutine fail(self, t, message)
@@ -160,13 +204,13 @@ contains
 
   !> Prepare for a new problem of `neq` equations starting at t0.  `atol` is a
   !> scalar or a vector of length neq.
-  subroutine init(self, neq, t0, mf, rtol, atol, err, ml, mu, max_steps)
+  subroutine init(self, neq, t0, mf, rtol, atol, err, ml, mu, max_steps, structured)
     class(lsode_t), intent(inout) :: self
     integer, intent(in) :: neq, mf
     real(dp), intent(in) :: t0, rtol, atol(:)
     type(error_t), intent(inout) :: err
     integer, intent(in), optional :: ml, mu, max_steps
-    integer :: lrw, liw
+    logical, intent(in), optional :: structured
     if (neq < 1) then
       call err%set('lsode init', 'number of equations must be positive, got '//str(neq))
       return
@@ -197,17 +241,37 @@ contains
                    //str(self%ml)//', mu = '//str(self%mu))
       return
     end if
-    select case (mf)
-    case (10)
+    if (present(structured)) self%structured = structured
+    self%model_newton = .false.
+    call allocate_work(self, mf)
+    self%t = t0
+    self%istate = 1
+    self%cpu_seconds = 0.0_dp
+  end subroutine init
+
+  !> DLSODE's work arrays for the method flag it will be handed (sizes from
+  !> the DLSODE documentation: LRW = 20 + 16 NEQ for MF = 10, 22 + 9 NEQ + LWM
+  !> with LWM = NEQ**2, NEQ or (2 ML + MU + 1) NEQ for MITER = 1-2, 3, 4-5).
+  subroutine allocate_work(self, mf_dlsode)
+    type(lsode_t), intent(inout) :: self
+    integer, intent(in) :: mf_dlsode
+    integer :: lrw, liw, neq
+    neq = self%neq
+    select case (mod(mf_dlsode, 10))
+    case (0)
       lrw = 20 + 16*neq
       liw = 20
-    case (21, 22)
+    case (1, 2)
       lrw = 22 + 9*neq + neq**2
       liw = 20 + neq
+    case (3)
+      lrw = 22 + 10*neq
+      liw = 20
     case default
       lrw = 22 + 10*neq + (2*self%ml + self%mu)*neq
       liw = 20 + neq
     end select
+    self%mf_dlsode = mf_dlsode
     if (allocated(self%rwork)) deallocate(self%rwork, self%iwork)
     allocate(self%rwork(lrw), self%iwork(liw))
     self%rwork = 0.0_dp
@@ -215,10 +279,7 @@ contains
     self%iwork(1) = self%ml
     self%iwork(2) = self%mu
     self%iwork(6) = self%max_steps
-    self%t = t0
-    self%istate = 1
-    self%cpu_seconds = 0.0_dp
-  end subroutine init
+  end subroutine allocate_work
 
   !> Start afresh from the current (t, y) on the next call, e.g. after a
   !> discontinuity in the model.  Counters restart from zero in DLSODE.
@@ -235,6 +296,7 @@ contains
     real(dp), intent(in) :: tout
     type(error_t), intent(inout) :: err
     class(ode_system_t), pointer :: previous
+    logical :: previous_model_newton
     integer :: itol, neq(1)
     real(dp) :: cpu0, cpu1
     if (.not. allocated(self%rwork)) then
@@ -248,15 +310,25 @@ contains
     itol = 1
     if (size(self%atol) > 1) itol = 2
     neq(1) = self%neq
+    if (self%istate == 1) then
+      ! a fresh start: the Newton matrix's route may change (its work array with it)
+      self%model_newton = self%structured .and. (self%mf == mf_bdf_full_user .or. self%mf == mf_bdf_band_user) &
+                          .and. sys%has_newton_matrix()
+      if (self%model_newton .and. self%mf_dlsode /= 23) call allocate_work(self, 23)
+      if (.not. self%model_newton .and. self%mf_dlsode /= self%mf) call allocate_work(self, self%mf)
+    end if
     call clear_lsode_messages()
     previous => active
+    previous_model_newton = active_newton_is_model
     active => sys
+    active_newton_is_model = self%model_newton
     call cpu_time(cpu0)
     ! IOPT = 1 so that MXSTEP (iwork(6)) is honoured.
     call dlsode(rhs_shim, neq, y, self%t, tout, itol, [self%rtol], self%atol, 1, self%istate, 1, &
-                self%rwork, size(self%rwork), self%iwork, size(self%iwork), jac_shim, self%mf)
+                self%rwork, size(self%rwork), self%iwork, size(self%iwork), jac_shim, self%mf_dlsode)
     call cpu_time(cpu1)
     active => previous
+    active_newton_is_model = previous_model_newton
     self%cpu_seconds = self%cpu_seconds + (cpu1 - cpu0)
     if (sys%err%failed()) then
       call err%set('', sys%err%text()//' (at t = '//str(sys%t_failed)//')')
@@ -279,6 +351,7 @@ contains
     c%step_last = self%rwork(11)
     if (self%mf /= mf_adams) c%lu_factorizations = self%iwork(13)
     c%cpu_seconds = self%cpu_seconds
+    c%model_newton = self%model_newton
   end function counters
 
   !> Method flag for a deck's method name; 0 when the name is unknown.

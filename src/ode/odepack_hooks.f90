@@ -1,4 +1,5 @@
-! The two routines ODEPACK documents as machine-dependent or user-replaceable.
+! The routines ODEPACK documents as machine-dependent or user-replaceable, and
+! our replacements of its Newton-matrix routines DPREPJ and DSOLSY.
 ! They are external procedures (not module procedures) because the legacy code
 ! calls them by their F77 names.
 
@@ -42,11 +43,39 @@ subroutine xerrwd(msg, nmes, nerr, level, ni, i1, i2, nr, r1, r2)
   line = msg(1:n)
   if (ni >= 1) write(line, '(a,a,i0)') trim(line), ' I1=', i1
   if (ni >= 2) write(line, '(a,a,i0)') trim(line), ' I2=', i2
-  if (nr >= 1) write(line, '(a,a,es13.6)') trim(line), ' R1=', r1
-  if (nr >= 2) write(line, '(a,a,es13.6)') trim(line), ' R2=', r2
+  if (nr >= 1) write(line, '(a,a,es14.6e3)') trim(line), ' R1=', r1
+  if (nr >= 2) write(line, '(a,a,es14.6e3)') trim(line), ' R2=', r2
   call record_lsode_message(line)
   if (level >= 2) then
     write(*, '(a,i0,a)') 'flexmech: fatal ODEPACK error ', nerr, ': '//trim(line)
     error stop 3
   end if
 end subroutine xerrwd
+
+!> DLSODE's Newton matrix routines, replaced (module lsode_newton): form and
+!> factor P = I - h*el0*J.  Arguments as DSTODE passes them (YH and NYH unused).
+subroutine dprepj(neq, y, yh, nyh, ewt, ftem, savf, wm, iwm, f, jac)
+  use kinds, only: dp
+  use lsode_newton, only: prepare_newton_matrix, rhs_f77, jac_f77
+  implicit none
+  integer, intent(in) :: neq(*), nyh
+  real(dp), intent(inout) :: y(*), ftem(*), wm(*)
+  real(dp), intent(in) :: yh(nyh, *), ewt(*), savf(*)
+  integer, intent(inout) :: iwm(*)
+  procedure(rhs_f77) :: f
+  procedure(jac_f77) :: jac
+  if (.false.) y(1) = yh(1, 1)   ! YH: intentionally unused
+  call prepare_newton_matrix(neq, y, ewt, ftem, savf, wm, iwm, f, jac)
+end subroutine dprepj
+
+!> Solve P x = b in place with the P of the last dprepj (TEM unused).
+subroutine dsolsy(wm, iwm, x, tem)
+  use kinds, only: dp
+  use lsode_newton, only: solve_newton_matrix
+  implicit none
+  real(dp), intent(in) :: wm(*), tem(*)
+  integer, intent(in) :: iwm(*)
+  real(dp), intent(inout) :: x(*)
+  if (.false.) x(1) = tem(1)     ! TEM: intentionally unused
+  call solve_newton_matrix(wm, iwm, x)
+end subroutine dsolsy

@@ -173,6 +173,6 @@ contains
   function real_text(v) result(s)
     real(dp), intent(in) :: v
     character(len=32) :: s
-    write(s, '(es12.4)') v
+    write(s, '(es13.4e3)') v
   end function real_text
 end module fourbar_path

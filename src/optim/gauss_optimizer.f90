@@ -117,11 +117,15 @@ module gauss_optimizer
     procedure :: method_label
     procedure :: reset
     procedure, private :: check_setup
+    procedure, private :: start
+    procedure, private :: add_to_active
+    procedure, private :: release_satisfied
     procedure, private :: curvature
     procedure, private :: make_convex
     procedure, private :: compute_step
     procedure, private :: step_back
     procedure, private :: analyse_trial
+    procedure, private :: check_cycling
     procedure, private :: append_log
     procedure, private :: note
   end type gauss_optimizer_t
@@ -238,7 +242,7 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
     logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind, halvings
+    integer :: n, m, mt, k, repeats, hess_kind, halvings, stalls, escapes
     real(dp) :: xnorm, snorm, pred, t, maxviol
     logical :: solved, step_back_method, converged, same_point, auto
     real(dp) :: b11_res
@@ -257,58 +261,13 @@ contains
     m = prob%m
     mt = prob%m + prob%n_eq
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
-    allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
-    allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
-    allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
-    self%hess = 0.0_dp
+    call self%start(prob, x0, step_back_method, auto, err)
+    if (err%failed()) return
     allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
-    allocate(self%log(16))
-    self%x = x0
-    self%lambda = 0.0_dp
-    self%ev = ''
-    if (auto) call self%note('method auto: '//self%method_label())
-    if (.not. step_back_method .and. prob%n_bounds > 0) then
-      self%x = prob%project_to_bounds(x0)
-      if (maxval(abs(self%x - x0)) > 0.0_dp) call self%note('start projected onto the bounds')
-    end if
-
-    call prob%constraint_values(self%x, self%g, err)
-    if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
-      call err%set('constraints', 'not finite at the start point: g = '//vec_text(self%g))
-    if (err%failed()) then
-      call start_failed()
-      return
-    end if
-    violated = self%g(1:m) > self%opts%feas_tol
-    ! step-back methods keep inequalities and linear equalities satisfied; a
-    ! nonlinear equality cannot hold along a step and is restored by B11
-    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol &
-                                                       .and. prob%con_kind(m + 1:mt) == con_linear))) then
-      call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
-        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol .and. prob%con_kind(m + 1:mt) == con_linear]) &
-        //' violated (max g = ' &
-        //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
-        ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
-        //ns_variant(self%opts%method)//''', which accepts any start', code=2)
-      self%message = err%text()
-      return
-    end if
-    ! initial active set: constraints at zero (within feas_tol), all equalities;
-    ! the NS variants also take the violated ones (§9.4)
-    self%active(1:m) = abs(self%g(1:m)) <= self%opts%feas_tol
-    if (.not. step_back_method) self%active(1:m) = self%active(1:m) .or. violated
-    self%active(m + 1:mt) = .true.
-
-    call prob%analyse(self%x, self%f, self%phi, err)
-    if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
-      call err%set('objective', 'not finite at the start point (F = '//str(self%f)//')')
-    if (err%failed()) then
-      call start_failed()
-      return
-    end if
-    call self%append_log(prob, 0, 0.0_dp)
 
     k = 0
+    stalls = 0
+    escapes = 0
     converged = .false.
     outer: do
       stage = 'iteration '//str(k + 1)
@@ -405,26 +364,9 @@ contains
             self%additions = self%additions + count(limit .and. .not. self%active(1:m))
             self%active(1:m) = self%active(1:m) .or. limit
           else
-            ! GNLC.NS: a violated constraint is treated as an active one (§9.4);
-            ! every method adds the constraints the step makes active
-            if (.not. step_back_method) touched = touched .or. (violated .and. .not. self%active(1:m))
-            if (any(touched)) then
-              call self%note('added '//set_text(touched))
-              self%additions = self%additions + count(touched)
-              self%active(1:m) = self%active(1:m) .or. touched
-            end if
+            call self%add_to_active(violated, touched, step_back_method)
           end if
-          if (.not. solved) then
-            ! our rule (the papers are silent): when B11 had no solution the
-            ! active set was inconsistent; members strictly satisfied at the
-            ! new point leave it, so a Powell compromise cannot pin the set
-            limit = self%active(1:m) .and. g_new(1:m) < -self%opts%feas_tol
-            if (any(limit)) then
-              call self%note('released '//set_text(limit)//' (B11 unsolved; strictly satisfied at the new point)')
-              self%releases = self%releases + count(limit)
-              self%active(1:m) = self%active(1:m) .and. .not. limit
-            end if
-          end if
+          if (.not. solved) call self%release_satisfied(g_new(1:m))
         end if
         ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
         ! with a changed active set the step is recomputed at x_k; with the
@@ -443,6 +385,14 @@ contains
         end if
         exit inner
       end do inner
+
+      ! ---- cycling and stalls (issue 11): a trial point that returns to one
+      ! of the last iterates.  Back to an earlier one: damp the step (halved
+      ! per detection, 3 times); then, or when the run keeps repeating x_k
+      ! (3 steps below xtol in a row without convergence), stop with the
+      ! diagnosis instead of spending analyses on the same designs
+      call self%check_cycling(prob, x_new, g_new, t, xnorm, stalls, escapes, err)
+      if (err%failed()) exit outer
 
       ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
       ! never a value: step back to the midpoint and analyse again
@@ -476,12 +426,106 @@ contains
       end if
       call err%set(self%method_label(), self%message)
     end if
-  contains
-    subroutine start_failed()
+  end subroutine solve
+
+  !> GNLC.NS: a violated constraint is treated as an active one (§9.4); every
+  !> method adds the constraints the step makes active (touched).
+  subroutine add_to_active(self, violated, touched, step_back_method)
+    class(gauss_optimizer_t), intent(inout) :: self
+    logical, intent(in) :: violated(:), step_back_method
+    logical, intent(inout) :: touched(:)
+    integer :: m
+    m = size(violated)
+    if (.not. step_back_method) touched = touched .or. (violated .and. .not. self%active(1:m))
+    if (.not. any(touched)) return
+    call self%note('added '//set_text(touched))
+    self%additions = self%additions + count(touched)
+    self%active(1:m) = self%active(1:m) .or. touched
+  end subroutine add_to_active
+
+  !> Our rule (the papers are silent): when B11 had no solution the active
+  !> set was inconsistent; members strictly satisfied at the new point leave
+  !> it, so a Powell compromise cannot pin the set.  g: inequalities there.
+  subroutine release_satisfied(self, g)
+    class(gauss_optimizer_t), intent(inout) :: self
+    real(dp), intent(in) :: g(:)
+    logical :: leave(size(g))
+    integer :: m
+    m = size(g)
+    leave = self%active(1:m) .and. g < -self%opts%feas_tol
+    if (.not. any(leave)) return
+    call self%note('released '//set_text(leave)//' (B11 unsolved; strictly satisfied at the new point)')
+    self%releases = self%releases + count(leave)
+    self%active(1:m) = self%active(1:m) .and. .not. leave
+  end subroutine release_satisfied
+
+  !> The start: working arrays, x0 (projected into the bounds for the NS
+  !> variants), constraints and the initial active set (§9.4), the check of a
+  !> step-back method's start (code 2 if infeasible), and the analysis at x0.
+  subroutine start(self, prob, x0, step_back_method, auto, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x0(:)
+    logical, intent(in) :: step_back_method, auto
+    type(error_t), intent(inout) :: err
+    logical, allocatable :: violated(:)
+    integer :: n, m, mt
+    n = prob%n
+    m = prob%m
+    mt = prob%m + prob%n_eq
+    allocate(violated(m))
+    allocate(self%x(n), self%g(mt), self%lambda(mt), self%active(mt), self%x_best(n))
+    allocate(self%phi(prob%n_residuals), self%gradf(n), self%jac(n, prob%n_residuals), self%gm(n, n))
+    allocate(self%dg(n, mt), self%hess(n, n, mt), self%have_hess(mt))
+    self%hess = 0.0_dp
+    allocate(self%log(16))
+    self%x = x0
+    self%lambda = 0.0_dp
+    self%ev = ''
+    if (auto) call self%note('method auto: '//self%method_label())
+    if (.not. step_back_method .and. prob%n_bounds > 0) then
+      self%x = prob%project_to_bounds(x0)
+      if (maxval(abs(self%x - x0)) > 0.0_dp) call self%note('start projected onto the bounds')
+    end if
+
+    call prob%constraint_values(self%x, self%g, err)
+    if (.not. err%failed() .and. .not. all(ieee_is_finite(self%g))) &
+      call err%set('constraints', 'not finite at the start point: g = '//vec_text(self%g))
+    if (err%failed()) then
       call err%add_context(self%method_label()//', at the start point')
       self%message = err%text()
-    end subroutine start_failed
-  end subroutine solve
+      return
+    end if
+    violated = self%g(1:m) > self%opts%feas_tol
+    ! step-back methods keep inequalities and linear equalities satisfied; a
+    ! nonlinear equality cannot hold along a step and is restored by B11
+    if (step_back_method .and. (any(violated) .or. any(abs(self%g(m + 1:mt)) > self%opts%feas_tol &
+                                                       .and. prob%con_kind(m + 1:mt) == con_linear))) then
+      call err%set(self%method_label(), 'the starting point is infeasible: constraint(s) ' &
+        //set_text([violated, abs(self%g(m + 1:mt)) > self%opts%feas_tol .and. prob%con_kind(m + 1:mt) == con_linear]) &
+        //' violated (max g = ' &
+        //str(max_violation(self%g, m), 6)//'). Method '//self%method_label()// &
+        ' steps back to keep every iterate feasible and needs a feasible start; use method = ''' &
+        //ns_variant(self%opts%method)//''', which accepts any start', code=2)
+      self%message = err%text()
+      return
+    end if
+    ! initial active set: constraints at zero (within feas_tol), all equalities;
+    ! the NS variants also take the violated ones (§9.4)
+    self%active(1:m) = abs(self%g(1:m)) <= self%opts%feas_tol
+    if (.not. step_back_method) self%active(1:m) = self%active(1:m) .or. violated
+    self%active(m + 1:mt) = .true.
+
+    call prob%analyse(self%x, self%f, self%phi, err)
+    if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
+      call err%set('objective', 'not finite at the start point (F = '//str(self%f)//')')
+    if (err%failed()) then
+      call err%add_context(self%method_label()//', at the start point')
+      self%message = err%text()
+      return
+    end if
+    call self%append_log(prob, 0, 0.0_dp)
+  end subroutine start
 
   !> Forget the previous run (outcome, log, event counts); options stay.
   subroutine reset(self)
@@ -595,7 +639,8 @@ contains
     type(error_t) :: lerr
     real(dp) :: rc, mu, gmax
     real(dp), allocatable :: glag(:)
-    real(dp), parameter :: auto_factor = 1.0e-8_dp
+    real(dp), parameter :: auto_factor = 1.0e-8_dp, auto_rcond = 1.4901161193847656e-8_dp
+    logical :: auto_exact
     character(len=:), allocatable :: what, rank_text, how
     integer :: i, n, rank
     n = prob%n
@@ -615,7 +660,13 @@ contains
     lu = self%gm
     call lu_factor(lu, ipiv, lerr, rc)
     if (lerr%failed()) rc = 0.0_dp
-    if (rc >= self%opts%rcond_min) return
+    ! with the automatic choice (default) an objective Hessian is treated as
+    ! singular below sqrt(eps): a difference Hessian is only good to ~1e-8
+    ! relative, so smaller eigenvalues are noise, and M would be too
+    ! ill-conditioned for B11 to be solved to feas_tol/100 (G = 2 J J^T is
+    ! positive semi-definite by construction and keeps rcond_min)
+    auto_exact = hess_kind /= hessian_gauss .and. self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp
+    if (rc >= self%opts%rcond_min .and. .not. (auto_exact .and. rc < auto_rcond)) return
     ! eigenvalues of G (DSYGV with M = I) give the numerical rank; for
     ! G = 2JJ^T they are 2 sigma_i^2 of the residual Jacobian
     rank_text = ''
@@ -653,8 +704,9 @@ contains
         allocate(glag(n))
         glag = self%gradf
         if (self%last_solved .and. size(self%lambda) > 0) glag = glag + matmul(self%dg, self%lambda)
-        mu = max(auto_factor*gmax, maxval(abs(glag))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
-        how = ' (automatic, max(1e-8 max G_ii, |grad L|/max(1, |x|)))'
+        mu = max(merge(100.0_dp, 1.0_dp, auto_exact)*auto_factor*gmax, &
+                 maxval(abs(glag))/max(1.0_dp, maxval(abs(self%x))), 1.0e-300_dp)
+        how = ' (automatic, max('//merge('1e-6', '1e-8', auto_exact)//' max G_ii, |grad L|/max(1, |x|)))'
       end if
       do i = 1, n
         self%gm(i, i) = self%gm(i, i) + mu
@@ -970,6 +1022,50 @@ contains
     self%f = f
     self%phi = phi
   end subroutine analyse_trial
+
+  !> Does x_new repeat one of the last four iterates (within xtol (1 + |x|))?
+  !> x_k itself: a stall (counted; the third in a row stops the run); an
+  !> earlier one: a cycle, escaped by damping the step (x_new, t and g_new
+  !> updated: halved, quartered, /8); the fourth stops the run.
+  subroutine check_cycling(self, prob, x_new, g_new, t, xnorm, stalls, escapes, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(inout) :: x_new(:), g_new(:), t
+    real(dp), intent(in) :: xnorm
+    integer, intent(inout) :: stalls, escapes
+    type(error_t), intent(inout) :: err
+    integer :: j, hit, m
+    real(dp) :: tol
+    m = prob%m
+    tol = self%opts%xtol*(1.0_dp + xnorm)
+    hit = 0
+    do j = self%n_log, max(1, self%n_log - 3), -1
+      if (maxval(abs(x_new - self%log(j)%x)) <= tol) then
+        hit = j
+        exit
+      end if
+    end do
+    if (hit == self%n_log) then
+      stalls = stalls + 1
+      if (stalls >= 3) call err%set(self%method_label(), 'stalled at iteration '//str(self%log(hit)%k + 1)// &
+        ': three steps in a row below xtol without convergence (max violation '// &
+        str(max_violation(self%g, m), 3)//'); the iterates no longer move')
+      return
+    end if
+    stalls = 0
+    if (hit == 0) return
+    escapes = escapes + 1
+    if (escapes > 3) then
+      call err%set(self%method_label(), 'cycling: iteration '//str(self%log(self%n_log)%k + 1)// &
+        ' returns to the design of iteration '//str(self%log(hit)%k)//' again after 3 damped escapes')
+      return
+    end if
+    call self%note('cycling: the step returns to the design of iteration '//str(self%log(hit)%k)// &
+                   '; step damped by '//str(0.5_dp**escapes, 3))
+    x_new = self%x + 0.5_dp**escapes*(x_new - self%x)
+    t = t*0.5_dp**escapes
+    if (size(g_new) > 0) call prob%constraint_values(x_new, g_new, err)
+  end subroutine check_cycling
 
   !> Short text of a vector for messages.
   function vec_text(v) result(s)

@@ -7,7 +7,8 @@ module transient_fixtures
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
-  use kear_element, only: element_effects_t, kear_local_displacement
+  use kear_element, only: element_effects_t
+  use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_bdf_full_fd
   use assertions, only: assert_true
@@ -98,20 +99,27 @@ contains
     inp%theta0_deg = theta0_deg
   end function fourbar_input
 
-  subroutine make_model(inp, effects, beta, model, ok, table)
+  subroutine make_model(inp, effects, beta, model, ok, table, formulation)
     type(mechanism_input_t), intent(in) :: inp
     type(element_effects_t), intent(in) :: effects
     real(dp), intent(in) :: beta
     type(mechanism_model_t), intent(out) :: model
     logical, intent(out) :: ok
     logical, intent(in), optional :: table     !< tabulate a turning crank's motion (default yes)
+    character(len=*), intent(in), optional :: formulation   !< default 'exact' (Kear's element)
     type(mechanism_t) :: mech
     type(error_t) :: err
     logical :: tabulate
     tabulate = .true.
     if (present(table)) tabulate = table
     call build_mechanism(inp, mech, err)
-    if (.not. err%failed()) call model%init_mechanism(mech, effects, 'exact', beta, err)
+    if (.not. err%failed()) then
+      if (present(formulation)) then
+        call model%init_mechanism(mech, effects, formulation, beta, err)
+      else
+        call model%init_mechanism(mech, effects, 'exact', beta, err)
+      end if
+    end if
     ! as the decks do (&transient kinematics = 'table'): the rigid motion of a
     ! turning crank tabulated once per revolution at 720 crank angles
     if (.not. err%failed() .and. inp%omega > 0.0_dp .and. tabulate) call model%build_motion_table(720, err)
@@ -155,7 +163,7 @@ contains
       v = dot_product(p%c, q)
     else
       call model%set_time(t)
-      uw = kear_local_displacement(model%el(p%element), model%table%gather(p%element, q), &
+      uw = beam_local_displacement(model%el(p%element), model%table%gather(p%element, q), &
                                    model%rb(p%element)%phi, p%xi)
       v = uw(2)
     end if

@@ -1,0 +1,62 @@
+# Standard figures of reference_outputs/tennant_fig3_linear.out (analysis: steady).
+# Written by `flexmech plot`; rerun with gnuplot from the directory it ran in.
+# Formats: gnuplot -e 'formats="png"' SCRIPT draws the PNG files only.
+data = "reference_outputs/tennant_fig3_linear.out"
+base = "doc/figures/standard/tennant_fig3_linear"
+if (!exists("formats")) formats = "png svg"
+term_png = "set terminal pngcairo size 1000,640 font ',11' noenhanced"
+term_svg = "set terminal svg size 1000,640 dynamic font ',11' noenhanced"
+common = "set grid; set key outside right top; set datafile missing 'NaN'"
+title = "T Fig. 3: deformation U~1 at 100 rad/sec, linear analysis (slender element, E = A)"
+
+do for [fmt in formats] {
+  reset
+  eval (fmt eq "png" ? term_png : term_svg)
+  eval common
+  set output base."_stress.".fmt
+  set title title."\nlargest |stress| per element"
+  set xrange [0:360]
+  set xtics 45
+  set xlabel "crank angle (deg)"
+  set ylabel "stress (psi)"
+  plot data u 1:13 w l lw 2 lc rgb "#000072b2" t "sigma_max_e1", \
+       data u 1:14 w l lw 2 lc rgb "#00d55e00" t "sigma_max_e2", \
+       data u 1:15 w l lw 2 lc rgb "#00009e73" t "sigma_max_e3"
+  set output
+}
+
+do for [fmt in formats] {
+  reset
+  eval (fmt eq "png" ? term_png : term_svg)
+  eval common
+  set output base."_joints.".fmt
+  set title title."\njoint elastic displacement U (global X), W (global Y)"
+  set xrange [0:360]
+  set xtics 45
+  set xlabel "crank angle (deg)"
+  set ylabel "displacement (in)"
+  plot data u 1:3 w l lw 2 lc rgb "#000072b2" t "B_U", \
+       data u 1:4 w l lw 2 lc rgb "#00d55e00" t "B_W", \
+       data u 1:5 w l lw 2 lc rgb "#00009e73" t "C_U", \
+       data u 1:6 w l lw 2 lc rgb "#00cc79a7" t "C_W"
+  set output
+}
+
+do for [fmt in formats] {
+  reset
+  eval (fmt eq "png" ? term_png : term_svg)
+  eval common
+  set output base."_links.".fmt
+  set title title."\nlink end 2 deformation in the link's rigid-body axes"
+  set xrange [0:360]
+  set xtics 45
+  set xlabel "crank angle (deg)"
+  set ylabel "displacement (in)"
+  plot data u 1:7 w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
+       data u 1:8 w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
+       data u 1:9 w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
+       data u 1:10 w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end", \
+       data u 1:11 w l lw 2 lc rgb "#00e69f00" t "rocker_u_end", \
+       data u 1:12 w l lw 2 lc rgb "#0056b4e9" t "rocker_w_end"
+  set output
+}

@@ -1,0 +1,294 @@
+!> The design loop: sequential approximate problems solved by GNLC.
+!>
+!> A mechanism analysis costs milliseconds to seconds, the algebra of a
+!> Gauss step microseconds; so, as in the approximation concepts of
+!> structural optimization (Schmit & Farshi 1974; Vanderplaats 1984), each
+!> design iteration k
+!>   1. analyses the design x_k and its n forward-difference neighbours
+!>      (n + 1 analyses: the constraints g and their gradients);
+!>   2. poses the approximate problem: the exact mass (no analysis) plus a
+!>      proximal term rho/2 |x - x_k|^2 (the move limit: steps of about
+!>      |grad mass|/rho; x are logarithms of sizes, so a step is a relative
+!>      size change) subject to the linearised analysis constraints
+!>      g_k + grad g_k (x - x_k) <= 0 and the bounds, and solves it with
+!>      GNLC.NS (module gauss_optimizer) at no analysis cost: a strongly
+!>      convex objective with its exact Hessian and linear constraints, the
+!>      class the Gauss step with multipliers (B10, B11) solves exactly;
+!>   3. analyses the proposal: accepted when the analysis succeeds and the
+!>      worst constraint violation falls, or stays within feas_tol while the
+!>      mass falls; otherwise rho is quadrupled (shorter step) and step 2
+!>      repeated; after an accepted step rho is halved.
+!> It stops when the design is feasible and rho |x_try - x_k| (the Lagrangian
+!> gradient of the linearised problem at x_k) is below xtol/move_limit.  Every analysis is counted
+!> (design_problem).
+module design_sequence
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use optim_problem, only: opt_problem_t
+  use gauss_optimizer, only: gauss_optimizer_t, method_gnlc_ns
+  use design_problem, only: design_problem_t, design_eval_t
+  implicit none
+  private
+  public :: design_sequence_t, design_step_t
+
+  !> The approximate problem of one design iteration (explicit: no analysis).
+  type, extends(opt_problem_t) :: approximate_problem_t
+    type(design_problem_t), pointer :: design => null()
+    real(dp), allocatable :: center(:)      !< x_k
+    real(dp) :: rho = 1.0_dp                !< proximal weight: the move limit
+  contains
+    procedure :: objective => approximate_objective
+  end type approximate_problem_t
+
+  !> One accepted design (a row of the history).
+  type :: design_step_t
+    integer :: k = 0
+    integer :: analyses = 0                 !< analyses so far
+    real(dp) :: cpu = 0.0_dp                !< analysis CPU so far
+    real(dp) :: mass = 0.0_dp
+    real(dp) :: max_violation = 0.0_dp
+    real(dp) :: move_limit = 0.0_dp         !< 1/rho of the next approximate problem
+    real(dp), allocatable :: x(:), g(:)
+    character(len=:), allocatable :: events
+  end type design_step_t
+
+  type :: design_sequence_t
+    integer :: max_iterations = 30
+    real(dp) :: xtol = 1.0e-3_dp            !< step test on x (log sizes: relative)
+    real(dp) :: feas_tol = 1.0e-3_dp        !< constraint test (log ratios: relative)
+    real(dp) :: move_limit = 0.3_dp         !< initial rho = 1/move_limit
+    logical :: converged = .false.
+    character(len=:), allocatable :: message
+    integer :: iterations = 0
+    integer :: rejections = 0
+    real(dp), allocatable :: x(:)
+    integer :: n_steps = 0
+    type(design_step_t), allocatable :: steps(:)
+  contains
+    procedure :: solve => sequence_solve
+  end type design_sequence_t
+
+contains
+
+  subroutine approximate_objective(self, x, f, err)
+    class(approximate_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: f
+    type(error_t), intent(inout) :: err
+    call self%design%objective(x, f, err)
+    f = f + 0.5_dp*self%rho*sum((x - self%center)**2)
+  end subroutine approximate_objective
+
+  subroutine sequence_solve(self, prob, x0, err)
+    class(design_sequence_t), intent(inout) :: self
+    type(design_problem_t), target, intent(inout) :: prob
+    real(dp), intent(in) :: x0(:)
+    type(error_t), intent(inout) :: err
+    integer :: n, nc, k
+    real(dp), allocatable :: g(:), dg(:, :), x_try(:), g_try(:)
+    real(dp) :: delta, viol, viol_try, mass, mass_try
+    logical :: ok, accepted
+    integer :: stalls
+    character(len=:), allocatable :: events
+    n = size(x0)
+    nc = prob%n_analysis_constraints()
+    self%x = x0
+    self%converged = .false.
+    self%n_steps = 0
+    self%rejections = 0
+    allocate(self%steps(0))
+    delta = 1.0_dp/self%move_limit           ! rho of the proximal term
+    stalls = 0
+    ok = .false.
+    viol_try = huge(1.0_dp)
+    mass_try = huge(1.0_dp)
+    call constraints_at(prob, self%x, g, ok)
+    if (.not. ok) then
+      call err%set('design', 'the initial design cannot be analysed: '//prob%last_failure)
+      return
+    end if
+    mass = scaled_mass(prob, self%x)
+    viol = max(0.0_dp, maxval([0.0_dp, g]))
+    call record(0, 'initial design')
+    do k = 1, self%max_iterations
+      self%iterations = k
+      call gradients(prob, self%x, g, dg, ok)
+      if (.not. ok) then
+        call err%set('design', 'iteration '//str(k)//': a finite-difference neighbour of the design cannot be '// &
+                     'analysed: '//prob%last_failure)
+        return
+      end if
+      events = ''
+      accepted = .false.
+      do while (delta <= 1.0e6_dp)
+        call approximate_step(prob, self%x, g, dg, delta, 0.5_dp*self%feas_tol, x_try, events)
+        ! rho |step| is the size of the gradient of the Lagrangian of the
+        ! linearised problem at x_k (the proximal term has no gradient there):
+        ! small, and x_k feasible, is the KKT test; no analysis is spent on it
+        if (delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol .and. viol <= self%feas_tol) then
+          self%converged = .true.
+          exit
+        end if
+        call constraints_at(prob, x_try, g_try, ok)
+        if (ok) then
+          viol_try = max(0.0_dp, maxval([0.0_dp, g_try]))
+          mass_try = scaled_mass(prob, x_try)
+          accepted = viol_try < viol - 0.1_dp*self%feas_tol .or. &
+                     (viol_try <= max(viol, self%feas_tol) .and. mass_try <= mass)
+        end if
+        if (accepted) exit
+        self%rejections = self%rejections + 1
+        if (ok) then
+          events = events//'rejected (violation '//str(viol_try, 3)//', mass '//str(mass_try, 6)//'); '
+        else
+          events = events//'rejected: '//prob%last_failure//'; '
+        end if
+        delta = 4.0_dp*delta
+      end do
+      if (self%converged) then
+        self%message = 'feasible, and the approximate problem''s KKT residual below xtol'
+        exit
+      end if
+      if (.not. accepted) then
+        self%message = 'no step is accepted however short (rho > 1e6)'
+        exit
+      end if
+      delta = max(0.5_dp*delta, 1.0e-3_dp)
+      ! a stall: two accepted designs in a row that lower the mass by less
+      ! than xtol/10 (the peak stress over sampled crank angles has kinks
+      ! where the KKT test cannot be met to xtol)
+      if (viol_try <= self%feas_tol .and. mass - mass_try < 0.1_dp*self%xtol*mass) then
+        stalls = stalls + 1
+      else
+        stalls = 0
+      end if
+      self%x = x_try
+      g = g_try
+      viol = viol_try
+      mass = mass_try
+      call record(k, events)
+      if (stalls >= 2) then
+        self%converged = .true.
+        self%message = 'feasible, and the mass changed by less than xtol/10 twice in a row'
+        exit
+      end if
+    end do
+    if (.not. allocated(self%message)) self%message = 'iteration limit reached'
+  contains
+    subroutine record(kk, text)
+      integer, intent(in) :: kk
+      character(len=*), intent(in) :: text
+      type(design_step_t) :: st
+      st%k = kk
+      st%analyses = prob%n_analyses
+      st%cpu = prob%cpu_analyses
+      st%mass = mass*prob%mass0
+      st%max_violation = viol
+      st%move_limit = 1.0_dp/delta
+      st%x = self%x
+      st%g = g
+      st%events = trim(text)
+      self%steps = [self%steps, st]
+      self%n_steps = self%n_steps + 1
+    end subroutine record
+  end subroutine sequence_solve
+
+  !> The analysis constraints at x (ok = .false. when the analysis fails).
+  subroutine constraints_at(prob, x, g, ok)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:)
+    real(dp), allocatable, intent(out) :: g(:)
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    integer :: i
+    allocate(g(prob%n_analysis_constraints()))
+    do i = 1, size(g)
+      call prob%general_constraint(i, x, g(i), err)
+    end do
+    ok = all(ieee_is_finite(g)) .and. .not. err%failed()
+  end subroutine constraints_at
+
+  !> Forward differences of the analysis constraints: n analyses.
+  subroutine gradients(prob, x, g, dg, ok)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:), g(:)
+    real(dp), allocatable, intent(out) :: dg(:, :)
+    logical, intent(out) :: ok
+    real(dp) :: xp(size(x))
+    real(dp), allocatable :: gp(:)
+    real(dp) :: h
+    integer :: j
+    allocate(dg(size(x), size(g)))
+    ok = .true.
+    do j = 1, size(x)
+      xp = x
+      h = prob%fd_rel_step*max(abs(x(j)), 1.0_dp)
+      xp(j) = x(j) + h
+      call constraints_at(prob, xp, gp, ok)
+      if (.not. ok) return
+      dg(j, :) = (gp - g)/(xp(j) - x(j))
+    end do
+  end subroutine gradients
+
+  real(dp) function scaled_mass(prob, x) result(f)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:)
+    type(error_t) :: err
+    call prob%objective(x, f, err)
+  end function scaled_mass
+
+  !> Solve the approximate problem within the move limit (GNLC.NS, no
+  !> analysis); the proposal is its solution, or its last iterate.
+  subroutine approximate_step(prob, x, g, dg, delta, margin, x_try, events)
+    type(design_problem_t), target, intent(inout) :: prob
+    real(dp), intent(in) :: x(:), g(:), dg(:, :), delta     !< delta: rho of the proximal term
+    real(dp), intent(in) :: margin
+    real(dp), allocatable, intent(out) :: x_try(:)
+    character(len=:), allocatable, intent(inout) :: events
+    type(approximate_problem_t) :: ap
+    type(gauss_optimizer_t) :: opt
+    type(error_t) :: err
+    real(dp) :: lower(size(x)), upper(size(x))
+    integer :: i
+    ap%design => prob
+    ap%center = x
+    ap%rho = delta
+    call ap%init_problem('approximate design problem', size(x), 0, size(g) + 2*size(x))
+    do i = 1, size(g)
+      ! aim inside by half the tolerance: the linearisation error at the
+      ! boundary then does not push every proposal just outside it
+      call ap%set_linear_constraint(i, dg(:, i), dot_product(dg(:, i), x) - g(i) - margin)
+    end do
+    do i = 1, size(x)
+      lower(i) = prob%var(i)%to_x(prob%var(i)%lower)
+      upper(i) = prob%var(i)%to_x(prob%var(i)%upper)
+      call ap%set_linear_constraint(size(g) + 2*i - 1, unit(i, -1.0_dp), -lower(i))
+      call ap%set_linear_constraint(size(g) + 2*i, unit(i, 1.0_dp), upper(i))
+    end do
+    opt%opts%method = method_gnlc_ns
+    opt%opts%max_iter = 100
+    opt%opts%xtol = 1.0e-7_dp
+    opt%opts%feas_tol = 1.0e-7_dp
+    opt%opts%ftol = 1.0e-10_dp
+    call opt%solve(ap, min(max(x, lower), upper), err)
+    ! its solution; if GNLC stopped short, its best feasible iterate
+    if (.not. err%failed() .and. allocated(opt%x)) then
+      x_try = min(max(opt%x, lower), upper)
+    else if (opt%have_best) then
+      x_try = min(max(opt%x_best, lower), upper)
+    else
+      x_try = min(max(x, lower), upper)
+    end if
+    if (err%failed()) events = events//'approximate problem: '//err%text()//'; '
+  contains
+    pure function unit(j, v) result(e)
+      integer, intent(in) :: j
+      real(dp), intent(in) :: v
+      real(dp) :: e(size(x))
+      e = 0.0_dp
+      e(j) = v
+    end function unit
+  end subroutine approximate_step
+end module design_sequence

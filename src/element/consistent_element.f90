@@ -1,0 +1,671 @@
+!> The consistent planar beam element: Kear's kinematics (K5), exact stretch
+!> and curvature, Ramberg-Osgood material through the depth, exact rotary
+!> inertia -- with the axial displacement interpolated by the same quintic
+!> Hermite functions as the transverse one.  Kear's linear u makes
+!> 1 + u_x constant on an element, so with exact stretching an element cannot
+!> bend without stretching (membrane locking, doc/element.md section 15); with
+!> quintic u and w both components of the tangent r_x = (1 + u_x, w_x) are
+!> quartics and inextensible bending is approximated to the same order as the
+!> curvature.  Any planar curve, a full circle included, is representable.
+!>
+!> Element DOFs  q = [U1 W1 th1 m1 a1 b1  U2 W2 th2 m2 a2 b2]:  U, W global X/Y
+!> elastic translations of the nodes, th = w_x, m = w_xx, a = u_x, b = u_xx
+!> (local, relative to the link's rigid-body axes).  p = T(phi) q rotates the
+!> two translation pairs into the element frame.
+!>
+!>   M_e qddot = F_e  with  M_e = rho int( A B^T B + I theta_q theta_q^T ),
+!>   F_e = -dSE/dq - rho int[ A B^T (c_dd + B_dd q + 2 B_d q_d)
+!>                            + I theta_q (theta_dd - theta_q . q_dd) ] - beta K_t pdot
+!>
+!> the same Lagrange equations as kear_element (doc/element.md sections 3-8),
+!> with S (2 x 12) in place of Kear's 2 x 8 interpolation.  All procedures
+!> are pure.
+module consistent_element
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use quadrature, only: gauss_legendre_interval, max_gauss_points
+  use shape_functions, only: quintic_hermite
+  use material_law, only: ramberg_osgood_t, section_resultants_t, validate_material, section_response, &
+                          ro_stress, peak_strain
+  use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t
+  implicit none
+  private
+  public :: consistent_ndof, consistent_element_t
+  public :: consistent_element_init, consistent_element_eval, consistent_internal_force
+  public :: consistent_tangent_stiffness, consistent_strain_energy, consistent_kinetic_energy
+  public :: consistent_stress_recovery, consistent_section_strains, consistent_local_displacement
+  public :: consistent_local_dofs, consistent_shape, consistent_point_load
+
+  integer, parameter :: consistent_ndof = 12
+  integer, parameter :: nd = consistent_ndof
+  integer, parameter :: n_exact = 6      !< Gauss points exact for the constant integrals (degree <= 11)
+
+  !> One element.  Arrays in the local DOF order p = [u1 w1 th1 m1 a1 b1 u2 w2 th2 m2 a2 b2].
+  type :: consistent_element_t
+    real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
+    real(dp) :: area = 0.0_dp, inertia = 0.0_dp
+    real(dp) :: fibre = 0.0_dp                !< outer-fibre distance c for stresses (t/2 for a rectangle)
+    type(ramberg_osgood_t) :: material
+    type(element_effects_t) :: effects
+    integer :: n_gauss = 8
+    real(dp) :: beta = 0.0_dp
+    logical :: objective_damping = .true.
+    real(dp) :: eps_star = huge(1.0_dp)
+    real(dp) :: mass_trans(nd, nd) = 0.0_dp   !< int S^T S
+    real(dp) :: coupling(nd, nd) = 0.0_dp     !< int S^T (J S - S J_b)
+    real(dp) :: centrifugal(nd, nd) = 0.0_dp  !< int S^T (S J_b^2 - S - 2 J S J_b)
+    real(dp) :: load0(nd, 2) = 0.0_dp         !< int S^T dx
+    real(dp) :: load1(nd, 2) = 0.0_dp         !< int x S^T dx
+    real(dp) :: k_linear(nd, nd) = 0.0_dp     !< E1 A int gu gu^T + E1 I int gww gww^T
+    real(dp) :: rot_linear(nd, nd) = 0.0_dp   !< int gw gw^T
+    real(dp) :: rot_load(nd) = 0.0_dp         !< int gw dx
+    real(dp), allocatable :: xg(:), wg(:)     !< stations of the nonlinear integrals
+    real(dp), allocatable :: g(:, :, :)       !< (nd, 4, n): d(u_x, w_x, w_xx, u_xx)/dp at the stations
+  end type consistent_element_t
+
+  !> Strain state at a station: value and derivatives in (a, b, c, d) =
+  !> (1 + u_x, w_x, w_xx, u_xx).
+  type :: strain_point_t
+    real(dp) :: eps = 0.0_dp, kap = 0.0_dp
+    real(dp) :: de(4) = 0.0_dp, dk(4) = 0.0_dp
+    real(dp) :: he(4, 4) = 0.0_dp, hk(4, 4) = 0.0_dp
+  end type strain_point_t
+
+contains
+
+  pure subroutine consistent_element_init(el, length, width, depth, material, effects, err, &
+                                          n_gauss, damping_beta, objective_damping, fibre_distance)
+    type(consistent_element_t), intent(out) :: el
+    real(dp), intent(in) :: length, width, depth
+    type(ramberg_osgood_t), intent(in) :: material
+    type(element_effects_t), intent(in) :: effects
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: n_gauss
+    real(dp), intent(in), optional :: damping_beta
+    logical, intent(in), optional :: objective_damping
+    real(dp), intent(in), optional :: fibre_distance   !< c of a section given by A, I, c (default t/2)
+    real(dp) :: x(n_exact), w(n_exact), su(nd), sw(nd), gs(nd, 4), g2(nd, nd), jb(nd, nd)
+    integer :: i
+
+    if (.not. (length > 0.0_dp)) then
+      call err%set('consistent_element_init', 'element length must be positive, got '//str(length)); return
+    end if
+    if (.not. (width > 0.0_dp .and. depth > 0.0_dp)) then
+      call err%set('consistent_element_init', 'section width and depth must be positive, got b = ' &
+                   //str(width)//', t = '//str(depth)); return
+    end if
+    call validate_material(material, err)
+    if (err%failed()) then
+      call err%add_context('consistent_element_init'); return
+    end if
+    el%length = length
+    el%width = width
+    el%depth = depth
+    el%area = width*depth
+    el%inertia = width*depth**3/12.0_dp
+    el%fibre = 0.5_dp*depth
+    if (present(fibre_distance)) el%fibre = fibre_distance
+    el%material = material
+    el%effects = effects
+    if (present(n_gauss)) el%n_gauss = n_gauss
+    if (el%n_gauss < 2 .or. el%n_gauss > max_gauss_points) then
+      call err%set('consistent_element_init', 'n_gauss must be in 2..'//str(max_gauss_points)//', got ' &
+                   //str(el%n_gauss)); return
+    end if
+    if (present(damping_beta)) el%beta = damping_beta
+    if (.not. (el%beta >= 0.0_dp)) then
+      call err%set('consistent_element_init', 'damping beta must be >= 0, got '//str(el%beta)); return
+    end if
+    if (present(objective_damping)) el%objective_damping = objective_damping
+    el%eps_star = peak_strain(material)
+
+    ! constant integrals: S^T S has degree 10, exact with 6 points
+    g2 = 0.0_dp
+    call gauss_legendre_interval(n_exact, 0.0_dp, length, x, w)
+    do i = 1, n_exact
+      call consistent_shape(x(i)/length, length, su, sw, gs)
+      el%mass_trans = el%mass_trans + w(i)*(outer(su, su) + outer(sw, sw))
+      g2 = g2 + w(i)*(outer(sw, su) - outer(su, sw))             ! int S^T J S
+      el%load0(:, 1) = el%load0(:, 1) + w(i)*su
+      el%load0(:, 2) = el%load0(:, 2) + w(i)*sw
+      el%load1(:, 1) = el%load1(:, 1) + w(i)*x(i)*su
+      el%load1(:, 2) = el%load1(:, 2) + w(i)*x(i)*sw
+      el%k_linear = el%k_linear + w(i)*(material%e1*el%area*outer(gs(:, 1), gs(:, 1)) &
+                                        + material%e1*el%inertia*outer(gs(:, 3), gs(:, 3)))
+      el%rot_linear = el%rot_linear + w(i)*outer(gs(:, 2), gs(:, 2))
+      el%rot_load = el%rot_load + w(i)*gs(:, 2)
+    end do
+    jb = 0.0_dp
+    jb(1, 2) = -1.0_dp
+    jb(2, 1) = 1.0_dp
+    jb(7, 8) = -1.0_dp
+    jb(8, 7) = 1.0_dp
+    el%coupling = g2 - matmul(el%mass_trans, jb)
+    el%centrifugal = matmul(el%mass_trans, matmul(jb, jb)) - el%mass_trans - 2.0_dp*matmul(g2, jb)
+
+    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%g(nd, 4, el%n_gauss))
+    call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
+    do i = 1, el%n_gauss
+      call consistent_shape(el%xg(i)/length, length, su, sw, el%g(:, :, i))
+    end do
+  end subroutine consistent_element_init
+
+  !> Interpolation at x = e l: u = su.p, w = sw.p and the gradients
+  !> g(:, 1:4) of (u_x, w_x, w_xx, u_xx) with respect to p.
+  pure subroutine consistent_shape(e, l, su, sw, g)
+    real(dp), intent(in) :: e, l
+    real(dp), intent(out) :: su(nd), sw(nd), g(nd, 4)
+    real(dp) :: h(6), hx(6), hxx(6)
+    call quintic_hermite(e, l, h, hx, hxx)
+    su = spread_u(h)
+    sw = spread_w(h)
+    g(:, 1) = spread_u(hx)
+    g(:, 2) = spread_w(hx)
+    g(:, 3) = spread_w(hxx)
+    g(:, 4) = spread_u(hxx)
+  end subroutine consistent_shape
+
+  ! ---------------------------------------------------------- main routine
+
+  !> Mass matrix, force vector and optionally the tangent stiffness d^2SE/dq^2.
+  pure subroutine consistent_element_eval(el, q, qd, rb, mass, force, info, tangent)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), qd(nd)
+    type(rigid_state_t), intent(in) :: rb
+    real(dp), intent(out) :: mass(nd, nd), force(nd)
+    type(kear_eval_info_t), intent(out) :: info
+    real(dp), intent(out), optional :: tangent(nd, nd)
+    real(dp) :: c, s, p(nd), v(nd), jp(nd), jv(nd), j2p(nd), pdd_nm(nd), prel(nd)
+    real(dp) :: mp(nd, nd), fp(nd), kp(nd, nd), fint(nd), fdamp(nd), acc0(2), rhoa, rhoi
+    logical :: want_k
+
+    c = cos(rb%phi)
+    s = sin(rb%phi)
+    p = to_local(c, s, q)
+    v = to_local(c, s, qd)
+    jp = jb_times(p)
+    jv = jb_times(v)
+    j2p = jb_times(jp)
+    rhoa = el%material%rho*el%area
+    rhoi = el%material%rho*el%inertia
+
+    ! translational inertia (exact, constant matrices)
+    acc0(1) = c*rb%x1_dd + s*rb%y1_dd
+    acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
+    mp = rhoa*el%mass_trans
+    fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
+                + rb%phi_d**2*matmul(el%centrifugal, p))
+    if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
+
+    ! strain energy, internal force, damping
+    want_k = present(tangent)
+    prel = v
+    if (el%objective_damping) prel = v - rb%phi_d*jp
+    if (is_linear_strain(el)) then
+      fint = matmul(el%k_linear, p)
+      info%strain_energy = 0.5_dp*dot_product(p, fint)
+      fp = fp - fint
+      if (el%beta > 0.0_dp) fp = fp - el%beta*matmul(el%k_linear, prel)
+      if (want_k) kp = el%k_linear
+      call linear_strain_peak(el, p, info)
+    else
+      call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
+      fp = fp - fint
+      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
+    end if
+
+    ! rotary inertia
+    if (el%effects%rotary_inertia) then
+      pdd_nm = rb%phi_d**2*j2p
+      if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
+      if (.not. el%effects%curvature) then
+        mp = mp + rhoi*el%rot_linear
+        fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
+      else
+        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
+      end if
+    end if
+
+    mass = to_global_matrix(c, s, mp)
+    force = to_global(c, s, fp)
+    if (want_k) tangent = to_global_matrix(c, s, kp)
+  end subroutine consistent_element_eval
+
+  !> Internal force dSE/dq.
+  pure subroutine consistent_internal_force(el, q, phi, f)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi
+    real(dp), intent(out) :: f(nd)
+    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
+    type(kear_eval_info_t) :: info
+    p = to_local(cos(phi), sin(phi), q)
+    if (is_linear_strain(el)) then
+      fint = matmul(el%k_linear, p)
+    else
+      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
+    end if
+    f = to_global(cos(phi), sin(phi), fint)
+  end subroutine consistent_internal_force
+
+  !> K_t = d(internal force)/dq, analytic and symmetric.
+  pure subroutine consistent_tangent_stiffness(el, q, phi, kt)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi
+    real(dp), intent(out) :: kt(nd, nd)
+    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
+    type(kear_eval_info_t) :: info
+    p = to_local(cos(phi), sin(phi), q)
+    if (is_linear_strain(el)) then
+      kp = el%k_linear
+    else
+      call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
+    end if
+    kt = to_global_matrix(cos(phi), sin(phi), kp)
+  end subroutine consistent_tangent_stiffness
+
+  pure real(dp) function consistent_strain_energy(el, q, phi) result(se)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi
+    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
+    type(kear_eval_info_t) :: info
+    p = to_local(cos(phi), sin(phi), q)
+    if (is_linear_strain(el)) then
+      se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
+    else
+      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
+      se = info%strain_energy
+    end if
+  end function consistent_strain_energy
+
+  !> Kinetic energy from the positions (K5) and the section angle (K8)
+  !> directly, independent of the precomputed matrices (a check of them).
+  pure real(dp) function consistent_kinetic_energy(el, q, qd, rb) result(ke)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), qd(nd)
+    type(rigid_state_t), intent(in) :: rb
+    integer, parameter :: nt = 8
+    real(dp) :: c, s, p(nd), pd(nd), x(nt), w(nt), su(nd), sw(nd), g(nd, 4)
+    real(dp) :: vloc(2), rdot(2), a, b, ad, bd, thd
+    integer :: i
+    c = cos(rb%phi)
+    s = sin(rb%phi)
+    p = to_local(c, s, q)
+    pd = to_local(c, s, qd) - rb%phi_d*jb_times(p)
+    vloc(1) = c*rb%x1_d + s*rb%y1_d
+    vloc(2) = -s*rb%x1_d + c*rb%y1_d
+    ke = 0.0_dp
+    call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
+    do i = 1, nt
+      call consistent_shape(x(i)/el%length, el%length, su, sw, g)
+      rdot(1) = vloc(1) + dot_product(su, pd) - rb%phi_d*dot_product(sw, p)
+      rdot(2) = vloc(2) + dot_product(sw, pd) + rb%phi_d*(x(i) + dot_product(su, p))
+      ke = ke + 0.5_dp*el%material%rho*el%area*w(i)*(rdot(1)**2 + rdot(2)**2)
+    end do
+    if (el%effects%rotary_inertia) then
+      do i = 1, el%n_gauss
+        a = 1.0_dp + dot_product(el%g(:, 1, i), p)
+        b = dot_product(el%g(:, 2, i), p)
+        ad = dot_product(el%g(:, 1, i), pd)
+        bd = dot_product(el%g(:, 2, i), pd)
+        if (el%effects%curvature) then
+          thd = rb%phi_d + (bd*a - b*ad)/(a*a + b*b)
+        else
+          thd = rb%phi_d + bd
+        end if
+        ke = ke + 0.5_dp*el%material%rho*el%inertia*el%wg(i)*thd**2
+      end do
+    end if
+  end function consistent_kinetic_energy
+
+  ! ------------------------------------------------------ loads and output
+
+  !> Generalized force of a point force f (global X, Y) and a moment mz
+  !> (counter-clockwise) at x = e l, and optionally its Jacobian dQ/dq (the
+  !> moment's work mz theta depends on q through the section angle).
+  pure subroutine consistent_point_load(el, q, phi, e, f, mz, gen, dgen)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi, e, f(2), mz
+    real(dp), intent(out) :: gen(nd)
+    real(dp), intent(out), optional :: dgen(nd, nd)
+    real(dp) :: c, s, p(nd), su(nd), sw(nd), g(nd, 4), fl(2), a, b, r2, r4, hp(nd, nd)
+    c = cos(phi)
+    s = sin(phi)
+    p = to_local(c, s, q)
+    call consistent_shape(e, el%length, su, sw, g)
+    fl = [c*f(1) + s*f(2), -s*f(1) + c*f(2)]
+    hp = 0.0_dp
+    if (el%effects%curvature) then
+      a = 1.0_dp + dot_product(g(:, 1), p)
+      b = dot_product(g(:, 2), p)
+      r2 = a*a + b*b
+      r4 = r2*r2
+      gen = fl(1)*su + fl(2)*sw + mz*(-b*g(:, 1) + a*g(:, 2))/r2
+      hp = mz*(2.0_dp*a*b/r4*(outer(g(:, 1), g(:, 1)) - outer(g(:, 2), g(:, 2))) &
+               + (b*b - a*a)/r4*(outer(g(:, 1), g(:, 2)) + outer(g(:, 2), g(:, 1))))
+    else
+      gen = fl(1)*su + fl(2)*sw + mz*g(:, 2)             ! theta = phi + w_x
+    end if
+    gen = to_global(c, s, gen)
+    if (present(dgen)) dgen = to_global_matrix(c, s, hp)
+  end subroutine consistent_point_load
+
+  !> Fibre strain and stress at y = +-t/2 at the ends and the stations.
+  pure function consistent_stress_recovery(el, q, phi) result(rep)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi
+    type(stress_report_t) :: rep
+    real(dp) :: p(nd), eo, eps_n, kap, eps, sig
+    type(ramberg_osgood_t) :: law
+    integer :: i, k, fib
+    law = el%material
+    if (.not. el%effects%material) law%e2 = 0.0_dp
+    p = to_local(cos(phi), sin(phi), q)
+    rep%eps_star = el%eps_star
+    rep%max_abs_stress = -1.0_dp
+    rep%max_abs_strain = -1.0_dp
+    do i = 0, el%n_gauss + 1
+      if (i == 0) then
+        eo = 0.0_dp
+      else if (i == el%n_gauss + 1) then
+        eo = 1.0_dp
+      else
+        eo = el%xg(i)/el%length
+      end if
+      call consistent_section_strains(el, p, eo, eps_n, kap)
+      do k = 1, 2
+        fib = 3 - 2*k
+        eps = eps_n - real(fib, dp)*el%fibre*kap           ! y = +-c
+        sig = ro_stress(law, eps)
+        if (abs(sig) > rep%max_abs_stress) then
+          rep%max_abs_stress = abs(sig)
+          rep%stress = sig
+          rep%stress_x_over_l = eo
+          rep%stress_fibre = fib
+        end if
+        if (abs(eps) > rep%max_abs_strain) then
+          rep%max_abs_strain = abs(eps)
+          rep%strain = eps
+          rep%strain_x_over_l = eo
+          rep%strain_fibre = fib
+        end if
+      end do
+    end do
+    rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
+  end function consistent_stress_recovery
+
+  !> Axial strain and curvature at x = e l from LOCAL nodal values p.
+  pure subroutine consistent_section_strains(el, p, e, eps_n, kap)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(nd), e
+    real(dp), intent(out) :: eps_n, kap
+    real(dp) :: su(nd), sw(nd), g(nd, 4)
+    type(strain_point_t) :: sp
+    call consistent_shape(e, el%length, su, sw, g)
+    call strain_state(el, matmul(p, g), .false., sp)
+    eps_n = sp%eps
+    kap = sp%kap
+  end subroutine consistent_section_strains
+
+  pure function consistent_local_dofs(phi, q) result(p)
+    real(dp), intent(in) :: phi, q(nd)
+    real(dp) :: p(nd)
+    p = to_local(cos(phi), sin(phi), q)
+  end function consistent_local_dofs
+
+  !> Local elastic displacements (u, w) at x = e l.
+  pure function consistent_local_displacement(el, q, phi, e) result(uw)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi, e
+    real(dp) :: uw(2)
+    real(dp) :: p(nd), su(nd), sw(nd), g(nd, 4)
+    p = to_local(cos(phi), sin(phi), q)
+    call consistent_shape(e, el%length, su, sw, g)
+    uw = [dot_product(su, p), dot_product(sw, p)]
+  end function consistent_local_displacement
+
+  ! ------------------------------------------------------------ internals
+
+  logical pure function is_linear_strain(el)
+    type(consistent_element_t), intent(in) :: el
+    is_linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
+  end function is_linear_strain
+
+  pure subroutine linear_strain_peak(el, p, info)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(nd)
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp) :: e
+    integer :: i
+    info%max_abs_strain = 0.0_dp
+    do i = 1, el%n_gauss
+      e = abs(dot_product(el%g(:, 1, i), p)) + 0.5_dp*el%depth*abs(dot_product(el%g(:, 3, i), p))
+      if (e > info%max_abs_strain) then
+        info%max_abs_strain = e
+        info%x_over_l_max_strain = el%xg(i)/el%length
+      end if
+    end do
+    info%beyond_peak = .false.
+  end subroutine linear_strain_peak
+
+  !> Strain energy, internal force, tangent K_pp (want_k) and K_pp prel
+  !> (want_damp).  Per station f = G (N de + M dk), K = G H G^T with
+  !> G = [gu gw gww guu] (12 x 4).
+  pure subroutine nonlinear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(nd), prel(nd)
+    logical, intent(in) :: want_k, want_damp
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp), intent(out) :: fint(nd), fdamp(nd), kp(nd, nd)
+    real(dp) :: h4(4, 4), f4(4), tn(4), tk(4), gh(nd, 4), e, ht
+    type(strain_point_t) :: sp
+    type(section_resultants_t) :: res
+    integer :: i
+    fint = 0.0_dp
+    fdamp = 0.0_dp
+    kp = 0.0_dp
+    info%strain_energy = 0.0_dp
+    info%max_abs_strain = 0.0_dp
+    ht = 0.5_dp*el%depth
+    do i = 1, el%n_gauss
+      associate (g => el%g(:, :, i))
+        call strain_state(el, matmul(p, g), .true., sp)
+        res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
+        info%strain_energy = info%strain_energy + el%wg(i)*res%energy
+        f4 = res%axial_force*sp%de + res%moment*sp%dk
+        fint = fint + el%wg(i)*matmul(g, f4)
+        if (want_k .or. want_damp) then
+          tn = res%tangent(1, 1)*sp%de + res%tangent(1, 2)*sp%dk
+          tk = res%tangent(2, 1)*sp%de + res%tangent(2, 2)*sp%dk
+          h4 = outer(sp%de, tn) + outer(sp%dk, tk) + res%axial_force*sp%he + res%moment*sp%hk
+          if (want_k) then
+            gh = el%wg(i)*matmul(g, h4)
+            kp = kp + matmul(gh, transpose(g))
+          end if
+          if (want_damp) fdamp = fdamp + el%wg(i)*matmul(g, matmul(h4, matmul(prel, g)))
+        end if
+      end associate
+      e = abs(sp%eps) + ht*abs(sp%kap)
+      if (e > info%max_abs_strain) then
+        info%max_abs_strain = e
+        info%x_over_l_max_strain = el%xg(i)/el%length
+      end if
+    end do
+    info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
+    info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star
+  end subroutine nonlinear_strain_terms
+
+  !> eps_n and kappa from z = (u_x, w_x, w_xx, u_xx) with derivatives in
+  !> (a, b, c, d) = (1 + u_x, w_x, w_xx, u_xx):
+  !>   eps_n = sqrt(a^2 + b^2) - 1          (stretching on; off: u_x)
+  !>   kappa = (c a - b d)/(a^2 + b^2)^1.5  (curvature on; off: w_xx)
+  pure subroutine strain_state(el, z, derivs, sp)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: z(4)
+    logical, intent(in) :: derivs
+    type(strain_point_t), intent(out) :: sp
+    real(dp) :: a, b, c, d, r2, r, r3, f, fa, fb, faa, fab, fbb, n, r5, r7
+    a = 1.0_dp + z(1)
+    b = z(2)
+    c = z(3)
+    d = z(4)
+    r2 = a*a + b*b
+    r = sqrt(r2)
+    r3 = r2*r
+    if (el%effects%stretching) then
+      sp%eps = (z(1)*(2.0_dp + z(1)) + b*b)/(r + 1.0_dp)      ! r - 1 without cancellation
+      if (derivs) then
+        sp%de = [a/r, b/r, 0.0_dp, 0.0_dp]
+        sp%he(1, 1) = b*b/r3
+        sp%he(1, 2) = -a*b/r3
+        sp%he(2, 1) = -a*b/r3
+        sp%he(2, 2) = a*a/r3
+      end if
+    else
+      sp%eps = z(1)
+      if (derivs) sp%de = [1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+    end if
+    if (.not. el%effects%curvature) then
+      sp%kap = c
+      if (derivs) sp%dk = [0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp]
+      return
+    end if
+    n = c*a - b*d
+    f = 1.0_dp/r3
+    sp%kap = n*f
+    if (.not. derivs) return
+    r5 = r3*r2
+    r7 = r5*r2
+    fa = -3.0_dp*a/r5
+    fb = -3.0_dp*b/r5
+    faa = -3.0_dp/r5 + 15.0_dp*a*a/r7
+    fab = 15.0_dp*a*b/r7
+    fbb = -3.0_dp/r5 + 15.0_dp*b*b/r7
+    sp%dk = [c*f + n*fa, -d*f + n*fb, a*f, -b*f]
+    sp%hk(1, 1) = 2.0_dp*c*fa + n*faa
+    sp%hk(1, 2) = c*fb - d*fa + n*fab
+    sp%hk(2, 2) = -2.0_dp*d*fb + n*fbb
+    sp%hk(1, 3) = f + a*fa
+    sp%hk(1, 4) = -b*fa
+    sp%hk(2, 3) = a*fb
+    sp%hk(2, 4) = -f - b*fb
+    sp%hk(2, 1) = sp%hk(1, 2)
+    sp%hk(3, 1) = sp%hk(1, 3)
+    sp%hk(4, 1) = sp%hk(1, 4)
+    sp%hk(3, 2) = sp%hk(2, 3)
+    sp%hk(4, 2) = sp%hk(2, 4)
+  end subroutine strain_state
+
+  !> Rotary inertia with the exact section angle theta = phi + atan2(w_x, 1 + u_x)
+  !> (curvature on): adds rho I int theta_q theta_q^T to mp and
+  !> -rho I int theta_q (theta_dd - theta_q.q_dd) to fp.
+  pure subroutine rotary_nonlinear(el, p, v, jp, pdd_nm, phi_d, phi_dd, rhoi, mp, fp, info)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(nd), v(nd), jp(nd), pdd_nm(nd), phi_d, phi_dd, rhoi
+    real(dp), intent(inout) :: mp(nd, nd), fp(nd)
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp) :: a, b, r2, r4, xa, xb, xaa, xab, xbb, tq(nd), acc, quad, pd(nd), ua, ub, ja, jbb
+    integer :: i
+    pd = v - phi_d*jp
+    do i = 1, el%n_gauss
+      associate (gu => el%g(:, 1, i), gw => el%g(:, 2, i))
+        a = 1.0_dp + dot_product(gu, p)
+        b = dot_product(gw, p)
+        r2 = a*a + b*b
+        r4 = r2*r2
+        xa = -b/r2
+        xb = a/r2
+        xaa = 2.0_dp*a*b/r4
+        xab = (b*b - a*a)/r4
+        xbb = -xaa
+        if (el%effects%coupling) then
+          ua = dot_product(gu, pd)
+          ub = dot_product(gw, pd)
+          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub
+        else
+          ua = dot_product(gu, v)
+          ub = dot_product(gw, v)
+          ja = dot_product(gu, jp)
+          jbb = dot_product(gw, jp)
+          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub &
+                 + phi_d**2*(xaa*ja*ja + 2.0_dp*xab*ja*jbb + xbb*jbb*jbb)
+        end if
+        tq = xa*gu + xb*gw
+      end associate
+      acc = phi_dd + dot_product(tq, pdd_nm) + quad
+      mp = mp + rhoi*el%wg(i)*outer(tq, tq)
+      fp = fp - rhoi*el%wg(i)*acc*tq
+    end do
+    info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
+  end subroutine rotary_nonlinear
+
+  !> The six Hermite functions at the u DOFs (1, 5, 6, 7, 11, 12) ...
+  pure function spread_u(h) result(s)
+    real(dp), intent(in) :: h(6)
+    real(dp) :: s(nd)
+    s = [h(1), 0.0_dp, 0.0_dp, 0.0_dp, h(2), h(3), h(4), 0.0_dp, 0.0_dp, 0.0_dp, h(5), h(6)]
+  end function spread_u
+
+  !> ... and at the w DOFs (2, 3, 4, 8, 9, 10).
+  pure function spread_w(h) result(s)
+    real(dp), intent(in) :: h(6)
+    real(dp) :: s(nd)
+    s = [0.0_dp, h(1), h(2), h(3), 0.0_dp, 0.0_dp, 0.0_dp, h(4), h(5), h(6), 0.0_dp, 0.0_dp]
+  end function spread_w
+
+  !> p = T(phi) q: rotate the node translations (1, 2) and (7, 8).
+  pure function to_local(c, s, q) result(p)
+    real(dp), intent(in) :: c, s, q(nd)
+    real(dp) :: p(nd)
+    p = q
+    p(1) = c*q(1) + s*q(2)
+    p(2) = -s*q(1) + c*q(2)
+    p(7) = c*q(7) + s*q(8)
+    p(8) = -s*q(7) + c*q(8)
+  end function to_local
+
+  pure function to_global(c, s, f) result(g)
+    real(dp), intent(in) :: c, s, f(nd)
+    real(dp) :: g(nd)
+    g = f
+    g(1) = c*f(1) - s*f(2)
+    g(2) = s*f(1) + c*f(2)
+    g(7) = c*f(7) - s*f(8)
+    g(8) = s*f(7) + c*f(8)
+  end function to_global
+
+  pure function to_global_matrix(c, s, a) result(g)
+    real(dp), intent(in) :: c, s, a(nd, nd)
+    real(dp) :: g(nd, nd), t(nd, nd)
+    integer :: k
+    t = a
+    do k = 1, 7, 6
+      t(k, :) = c*a(k, :) - s*a(k + 1, :)
+      t(k + 1, :) = s*a(k, :) + c*a(k + 1, :)
+    end do
+    g = t
+    do k = 1, 7, 6
+      g(:, k) = c*t(:, k) - s*t(:, k + 1)
+      g(:, k + 1) = s*t(:, k) + c*t(:, k + 1)
+    end do
+  end function to_global_matrix
+
+  pure function jb_times(p) result(r)
+    real(dp), intent(in) :: p(nd)
+    real(dp) :: r(nd)
+    r = 0.0_dp
+    r(1) = -p(2)
+    r(2) = p(1)
+    r(7) = -p(8)
+    r(8) = p(7)
+  end function jb_times
+
+  pure function outer(x, y) result(m)
+    real(dp), intent(in) :: x(:), y(:)
+    real(dp) :: m(size(x), size(y))
+    integer :: j
+    do j = 1, size(y)
+      m(:, j) = x*y(j)
+    end do
+  end function outer
+end module consistent_element

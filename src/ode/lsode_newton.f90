@@ -1,0 +1,204 @@
+!> DLSODE's Newton (chord) iteration matrix P = I - h*el0*J, in our code: the
+!> contracts of ODEPACK's DPREPJ (form and factor P at the predicted y) and
+!> DSOLSY (solve P x = b in place), which DSTODE calls through the external
+!> names `dprepj` and `dsolsy` (src/ode/odepack_hooks.f90).  The two ODEPACK
+!> files are not compiled (Makefile ODEPACK_FILES); DSTODE, DLSODE and the rest
+!> are unchanged.
+!>
+!> Routes, by what lsode_solver set up:
+!> - the model's own Newton matrix (lsode_solver's `active_newton_is_model`):
+!>   the system factors and solves P in its own structure (for the mechanism
+!>   model the banded N x N elimination of the 2N x 2N P, doc/transient.md);
+!>   DLSODE sees MITER = 3 only so that WM is N + 2 long;
+!> - MITER = 1, 2: dense J from the user's JAC or by forward differences, dense LU;
+!> - MITER = 4, 5: banded J from JAC or by grouped forward differences
+!>   (Curtis, Powell & Reid 1974), banded LU.
+!> WM(1) holds sqrt(uround) (set by DLSODE), WM(3:) the factored matrix in
+!> LAPACK's dense or general band layout, IWM(1:2) = ML, MU, IWM(21:) pivots.
+!> Difference increments as documented for DLSODE: r_j = max(sqrt(uround)
+!> |y_j|, r0 / ewt_j), r0 = 1000 |h| uround N ||f||_wrms (ewt holds the
+!> reciprocal weights).
+module lsode_newton
+  use kinds, only: dp
+  use error_status, only: error_t
+  use linalg, only: lu_factor, lu_solve, band_lu_factor, band_lu_solve
+  use lsode_solver, only: active, active_newton_is_model
+  use dlsode_state, only: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur
+  implicit none
+  private
+  public :: prepare_newton_matrix, solve_newton_matrix, rhs_f77, jac_f77
+
+  abstract interface
+    subroutine rhs_f77(neq, t, y, ydot)
+      import :: dp
+      integer, intent(in) :: neq(*)
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(out) :: ydot(*)
+    end subroutine rhs_f77
+    subroutine jac_f77(neq, t, y, ml, mu, pd, nrowpd)
+      import :: dp
+      integer, intent(in) :: neq(*), ml, mu, nrowpd
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(inout) :: pd(nrowpd, *)
+    end subroutine jac_f77
+  end interface
+
+contains
+
+  !> DPREPJ's contract: NJE + 1, JCUR = 1, IERPJ = 0 (1 when P is singular:
+  !> DSTODE then retries with a smaller step); NFE counts difference quotients.
+  subroutine prepare_newton_matrix(neq, y, ewt, ftem, savf, wm, iwm, f, jac)
+    integer, intent(in) :: neq(*)
+    real(dp), intent(inout) :: y(*), ftem(*), wm(*)
+    real(dp), intent(in) :: ewt(*), savf(*)
+    integer, intent(inout) :: iwm(*)
+    procedure(rhs_f77) :: f
+    procedure(jac_f77) :: jac
+    logical :: ok
+    nje = nje + 1
+    ierpj = 0
+    jcur = 1
+    if (active_newton_is_model) then
+      call active%newton_factor(tn, y(1:n), h*el0, ok)
+    else
+      select case (miter)
+      case (1, 2)
+        call dense_matrix(neq, n, y, ewt, ftem, savf, wm(1), wm(3), iwm(21), f, jac, ok)
+      case (4, 5)
+        call band_matrix(neq, n, iwm(1), iwm(2), y, ewt, ftem, savf, wm(1), wm(3), iwm(21), f, jac, ok)
+      case default
+        ok = .false.          ! MITER = 3 (diagonal J) is not offered by lsode_solver
+      end select
+    end if
+    if (.not. ok) ierpj = 1
+  end subroutine prepare_newton_matrix
+
+  !> DSOLSY's contract: x := P^-1 x, IERSL = 0.
+  subroutine solve_newton_matrix(wm, iwm, x)
+    real(dp), intent(in) :: wm(*)
+    integer, intent(in) :: iwm(*)
+    real(dp), intent(inout) :: x(*)
+    iersl = 0
+    if (active_newton_is_model) then
+      call active%newton_solve(x(1:n))
+      if (active%err%failed()) iersl = -1
+      return
+    end if
+    select case (miter)
+    case (1, 2)
+      call dense_solve(n, wm(3), iwm(21), x)
+    case (4, 5)
+      call band_solve(n, iwm(1), iwm(2), wm(3), iwm(21), x)
+    case default
+      iersl = -1
+    end select
+  end subroutine solve_newton_matrix
+
+  ! ------------------------------------------------------------------ dense
+
+  subroutine dense_matrix(neq, nn, y, ewt, ftem, savf, srur, p, ipiv, f, jac, ok)
+    integer, intent(in) :: neq(*), nn
+    real(dp), intent(inout) :: y(nn), ftem(nn)
+    real(dp), intent(in) :: ewt(nn), savf(nn), srur
+    real(dp), intent(out) :: p(nn, nn)
+    integer, intent(out) :: ipiv(nn)
+    procedure(rhs_f77) :: f
+    procedure(jac_f77) :: jac
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    real(dp) :: r0, yj, r
+    integer :: j
+    p = 0.0_dp
+    if (miter == 1) then
+      call jac(neq, tn, y, 0, 0, p, nn)
+    else
+      r0 = increment_floor(nn, savf, ewt)
+      do j = 1, nn
+        yj = y(j)
+        r = max(srur*abs(yj), r0/ewt(j))
+        y(j) = yj + r
+        call f(neq, tn, y, ftem)
+        p(:, j) = (ftem - savf)/r
+        y(j) = yj
+      end do
+      nfe = nfe + nn
+    end if
+    p = -(h*el0)*p
+    do j = 1, nn
+      p(j, j) = p(j, j) + 1.0_dp
+    end do
+    call lu_factor(p, ipiv, err)
+    ok = .not. err%failed()
+  end subroutine dense_matrix
+
+  subroutine dense_solve(nn, p, ipiv, x)
+    integer, intent(in) :: nn
+    real(dp), intent(in) :: p(nn, nn)
+    integer, intent(in) :: ipiv(nn)
+    real(dp), intent(inout) :: x(nn)
+    type(error_t) :: err
+    call lu_solve(p, ipiv, x, err)
+    if (err%failed()) iersl = -1
+  end subroutine dense_solve
+
+  ! ------------------------------------------------------------------ banded
+
+  !> P in LAPACK general band storage ab(ml + mu + 1 + i - j, j) (the first ml
+  !> rows are DGBTRF's fill-in); JAC writes its band at row ml + 1.
+  subroutine band_matrix(neq, nn, ml, mu, y, ewt, ftem, savf, srur, ab, ipiv, f, jac, ok)
+    integer, intent(in) :: neq(*), nn, ml, mu
+    real(dp), intent(inout) :: y(nn), ftem(nn)
+    real(dp), intent(in) :: ewt(nn), savf(nn), srur
+    real(dp), intent(out) :: ab(2*ml + mu + 1, nn)
+    integer, intent(out) :: ipiv(nn)
+    procedure(rhs_f77) :: f
+    procedure(jac_f77) :: jac
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    real(dp) :: r0, inc(nn), y0(nn)
+    integer :: j, j0, width, d
+    d = ml + mu + 1                          ! row of the diagonal
+    ab = 0.0_dp
+    if (miter == 4) then
+      call jac(neq, tn, y, ml, mu, ab(ml + 1, 1), 2*ml + mu + 1)
+    else
+      ! columns j0, j0 + width, ... share no row of the band: one RHS per group
+      width = ml + mu + 1
+      r0 = increment_floor(nn, savf, ewt)
+      y0 = y(1:nn)
+      inc = max(srur*abs(y0), r0/ewt(1:nn))
+      do j0 = 1, min(width, nn)
+        y(j0:nn:width) = y0(j0:nn:width) + inc(j0:nn:width)
+        call f(neq, tn, y, ftem)
+        y(j0:nn:width) = y0(j0:nn:width)
+        do j = j0, nn, width
+          ab(d + max(1, j - mu) - j:d + min(nn, j + ml) - j, j) = &
+            (ftem(max(1, j - mu):min(nn, j + ml)) - savf(max(1, j - mu):min(nn, j + ml)))/inc(j)
+        end do
+      end do
+      nfe = nfe + min(width, nn)
+    end if
+    ab(ml + 1:, :) = -(h*el0)*ab(ml + 1:, :)
+    ab(d, :) = ab(d, :) + 1.0_dp
+    call band_lu_factor(ab, ml, mu, ipiv, err)
+    ok = .not. err%failed()
+  end subroutine band_matrix
+
+  subroutine band_solve(nn, ml, mu, ab, ipiv, x)
+    integer, intent(in) :: nn, ml, mu
+    real(dp), intent(in) :: ab(2*ml + mu + 1, nn)
+    integer, intent(in) :: ipiv(nn)
+    real(dp), intent(inout) :: x(nn)
+    type(error_t) :: err
+    call band_lu_solve(ab, ml, mu, ipiv, x, err)
+    if (err%failed()) iersl = -1
+  end subroutine band_solve
+
+  !> r0 = 1000 |h| uround N ||f||_wrms, or 1 when f vanishes.
+  real(dp) function increment_floor(nn, savf, ewt) result(r0)
+    integer, intent(in) :: nn
+    real(dp), intent(in) :: savf(nn), ewt(nn)
+    r0 = 1000.0_dp*abs(h)*uround*nn*sqrt(sum((savf*ewt)**2)/nn)
+    if (.not. r0 > 0.0_dp) r0 = 1.0_dp
+  end function increment_floor
+end module lsode_newton

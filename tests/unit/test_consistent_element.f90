@@ -1,0 +1,342 @@
+!> Tests of the consistent beam element (module consistent_element) and of
+!> the beam_element contract (point loads for both interpolations).
+module test_consistent_element_suite
+  use kinds, only: dp, pi
+  use error_status, only: error_t
+  use material_law, only: ramberg_osgood_t
+  use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, effects_all_on, effects_summary, &
+                          kear_element_t, kear_element_init, kear_section_strains
+  use consistent_element
+  use beam_element, only: beam_element_t, beam_element_init, beam_point_load, beam_local_displacement, &
+                          element_kind_kear, element_kind_consistent, resolve_formulation
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+  type(ramberg_osgood_t), parameter :: soft = ramberg_osgood_t(e1=1000.0_dp, e2=2.0e6_dp, m=3.0_dp, rho=2.0_dp)
+  real(dp), parameter :: l_u = 1.3_dp, b_u = 0.2_dp, t_u = 0.3_dp
+  !> a strongly deformed state and rates, DOFs [U W th m ux uxx] per node
+  real(dp), parameter :: q_big(12) = [0.02_dp, -0.03_dp, 0.15_dp, 0.3_dp, -0.04_dp, 0.1_dp, &
+                                      -0.05_dp, 0.08_dp, -0.2_dp, 0.4_dp, 0.03_dp, -0.12_dp]
+  real(dp), parameter :: qd_big(12) = [0.5_dp, -0.7_dp, 1.1_dp, -2.0_dp, 0.4_dp, -0.6_dp, &
+                                       0.3_dp, 0.9_dp, -1.3_dp, 2.2_dp, -0.5_dp, 0.8_dp]
+  real(dp), parameter :: qdd_big(12) = [3.0_dp, -2.0_dp, 5.0_dp, -8.0_dp, 2.5_dp, -3.0_dp, &
+                                        -4.0_dp, 6.0_dp, 7.0_dp, -9.0_dp, 1.5_dp, 4.0_dp]
+
+contains
+
+  subroutine run_all()
+    call run_test('internal_force_is_gradient_of_strain_energy', test_force_is_gradient)
+    call run_test('tangent_stiffness_is_symmetric_jacobian_of_internal_force', test_tangent_is_jacobian)
+    call run_test('inertial_operator_equals_fd_lagrange_equations', test_lagrange_fd)
+    call run_test('large_rigid_rotation_gives_zero_strain', test_rigid_rotation)
+    call run_test('circular_arc_is_inextensible_where_kear_element_locks', test_arc_no_locking)
+    call run_test('bending_block_of_linear_model_equals_kear_element', test_linear_bending_block)
+    call run_test('point_load_is_gradient_of_its_work', test_point_load)
+    call run_test('default_formulation_follows_stretching_switch', test_default_formulation)
+  end subroutine run_all
+
+  function unit_element(fx) result(el)
+    type(element_effects_t), intent(in) :: fx
+    type(consistent_element_t) :: el
+    type(error_t) :: err
+    call consistent_element_init(el, l_u, b_u, t_u, soft, fx, err)
+    if (err%failed()) call assert_true(.false., 'unit element: '//err%text())
+  end function unit_element
+
+  pure function rigid_at(t) result(rb)
+    real(dp), intent(in) :: t
+    type(rigid_state_t) :: rb
+    rb%phi = 0.3_dp + 2.0_dp*t + 0.7_dp*t**2 + 0.2_dp*sin(3.0_dp*t)
+    rb%phi_d = 2.0_dp + 1.4_dp*t + 0.6_dp*cos(3.0_dp*t)
+    rb%phi_dd = 1.4_dp - 1.8_dp*sin(3.0_dp*t)
+    rb%x1 = 0.5_dp + 0.3_dp*t + 0.4_dp*t**2 + 0.1_dp*cos(2.0_dp*t)
+    rb%x1_d = 0.3_dp + 0.8_dp*t - 0.2_dp*sin(2.0_dp*t)
+    rb%x1_dd = 0.8_dp - 0.4_dp*cos(2.0_dp*t)
+    rb%y1 = -0.2_dp + 0.6_dp*t - 0.3_dp*t**2 + 0.05_dp*sin(5.0_dp*t)
+    rb%y1_d = 0.6_dp - 0.6_dp*t + 0.25_dp*cos(5.0_dp*t)
+    rb%y1_dd = -0.6_dp - 1.25_dp*sin(5.0_dp*t)
+  end function rigid_at
+
+  !> dSE/dq by 4th-order differences (h = 1e-4: truncation ~h^4) against the
+  !> analytic internal force, each nonlinear effect alone and all on: 1e-8
+  !> of the largest component.
+  subroutine test_force_is_gradient()
+    type(consistent_element_t) :: el
+    type(element_effects_t) :: fx(4)
+    real(dp) :: f(12), g(12), e(12), h, phi
+    integer :: k, j
+    fx(1) = element_effects_t(stretching=.true.)
+    fx(2) = element_effects_t(curvature=.true.)
+    fx(3) = element_effects_t(material=.true.)
+    fx(4) = effects_all_on()
+    phi = 0.7_dp
+    h = 1.0e-4_dp
+    do k = 1, 4
+      el = unit_element(fx(k))
+      call consistent_internal_force(el, q_big, phi, f)
+      do j = 1, 12
+        e = 0.0_dp
+        e(j) = h
+        g(j) = (consistent_strain_energy(el, q_big - 2*e, phi) - 8*consistent_strain_energy(el, q_big - e, phi) &
+                + 8*consistent_strain_energy(el, q_big + e, phi) - consistent_strain_energy(el, q_big + 2*e, phi)) &
+               /(12*h)
+      end do
+      call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
+    end do
+  end subroutine test_force_is_gradient
+
+  !> d(internal force)/dq by 4th-order differences (h = 1e-4) against K_t:
+  !> 1e-7 of max|K|; K_t symmetric to 1e-12 (a Hessian).  Also the tangent
+  !> returned by the evaluation equals the stand-alone one.
+  subroutine test_tangent_is_jacobian()
+    type(consistent_element_t) :: el
+    real(dp) :: kt(12, 12), k2(12, 12), kfd(12, 12), fp(12), fm(12), fp2(12), fm2(12), e(12), h, phi
+    real(dp) :: m(12, 12), f(12)
+    type(kear_eval_info_t) :: info
+    type(rigid_state_t) :: rb
+    integer :: j
+    phi = -0.4_dp
+    h = 1.0e-4_dp
+    el = unit_element(effects_all_on())
+    call consistent_tangent_stiffness(el, q_big, phi, kt)
+    do j = 1, 12
+      e = 0.0_dp
+      e(j) = h
+      call consistent_internal_force(el, q_big + e, phi, fp)
+      call consistent_internal_force(el, q_big - e, phi, fm)
+      call consistent_internal_force(el, q_big + 2*e, phi, fp2)
+      call consistent_internal_force(el, q_big - 2*e, phi, fm2)
+      kfd(:, j) = (fm2 - 8*fm + 8*fp - fp2)/(12*h)
+    end do
+    call assert_all_close(reshape(kt, [144]), reshape(kfd, [144]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
+                          'K_t vs FD Jacobian')
+    call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), 'K_t symmetric')
+    rb = rigid_at(0.0_dp)
+    call consistent_element_eval(el, q_big, qd_big, rb, m, f, info, k2)
+    call consistent_tangent_stiffness(el, q_big, rb%phi, kt)
+    call assert_all_close(reshape(k2, [144]), reshape(kt, [144]), 0.0_dp, 1.0e-13_dp*maxval(abs(kt)), &
+                          'tangent of eval = consistent_tangent_stiffness')
+  end subroutine test_tangent_is_jacobian
+
+  !> M qdd - F - dSE/dq of the element against d/dt dT/dqdot - dT/dq by finite
+  !> differences of the kinetic energy evaluated directly from the positions
+  !> (K5) and the section angle (K8), along q(t) = q0 + qd0 s + qdd0 s^2/2
+  !> with phi, X1, Y1 all accelerating: 1e-7 of the largest component (FD
+  !> accuracy), all effects on, the linear section angle, the linear model.
+  subroutine test_lagrange_fd()
+    type(consistent_element_t) :: el
+    type(element_effects_t) :: fx(3)
+    real(dp) :: op(12), lag(12), m(12, 12), f(12), fint(12)
+    type(kear_eval_info_t) :: info
+    type(rigid_state_t) :: rb
+    integer :: k
+    fx(1) = effects_all_on()
+    fx(2) = element_effects_t(stretching=.true., rotary_inertia=.true., coupling=.true.)
+    fx(3) = element_effects_t(coupling=.true.)
+    do k = 1, 3
+      el = unit_element(fx(k))
+      rb = rigid_at(0.37_dp)
+      call consistent_element_eval(el, q_big, qd_big, rb, m, f, info)
+      call consistent_internal_force(el, q_big, rb%phi, fint)
+      op = matmul(m, qdd_big) - f - fint
+      lag = fd_lagrange(el, 0.37_dp)
+      call assert_all_close(op, lag, 0.0_dp, 1.0e-7_dp*maxval(abs(lag)), 'Lagrange: '//effects_summary(fx(k)))
+    end do
+  end subroutine test_lagrange_fd
+
+  function fd_lagrange(el, t0) result(lag)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: t0
+    real(dp) :: lag(12), pq(12, -2:2), ht, hq, q(12), qd(12), e(12), s
+    integer :: i, j
+    ht = 1.0e-3_dp
+    hq = 1.0e-4_dp
+    do i = -2, 2
+      s = real(i, dp)*ht
+      q = q_big + qd_big*s + 0.5_dp*qdd_big*s*s
+      qd = qd_big + qdd_big*s
+      pq(:, i) = dt_dqdot(q, qd, rigid_at(t0 + s))
+    end do
+    lag = (pq(:, -2) - 8*pq(:, -1) + 8*pq(:, 1) - pq(:, 2))/(12*ht)
+    do j = 1, 12
+      e = 0.0_dp
+      e(j) = hq
+      lag(j) = lag(j) - (consistent_kinetic_energy(el, q_big - 2*e, qd_big, rigid_at(t0)) &
+                         - 8*consistent_kinetic_energy(el, q_big - e, qd_big, rigid_at(t0)) &
+                         + 8*consistent_kinetic_energy(el, q_big + e, qd_big, rigid_at(t0)) &
+                         - consistent_kinetic_energy(el, q_big + 2*e, qd_big, rigid_at(t0)))/(12*hq)
+    end do
+  contains
+    function dt_dqdot(q, qd, rb) result(g)
+      real(dp), intent(in) :: q(12), qd(12)
+      type(rigid_state_t), intent(in) :: rb
+      real(dp) :: g(12), d(12)
+      integer :: jj
+      do jj = 1, 12
+        d = 0.0_dp
+        d(jj) = 0.5_dp
+        g(jj) = (consistent_kinetic_energy(el, q, qd + d, rb) - consistent_kinetic_energy(el, q, qd - d, rb))/(2*d(jj))
+      end do
+    end function dt_dqdot
+  end function fd_lagrange
+
+  !> A straight element turned rigidly by alpha = 2.5 rad about node 1
+  !> (u = x (cos a - 1), w = x sin a: ux = cos a - 1, th = sin a) has zero
+  !> strain energy to round-off (1e-20 of EA l, the energy of a unit strain).
+  subroutine test_rigid_rotation()
+    type(consistent_element_t) :: el
+    real(dp) :: p(12), alpha, se
+    alpha = 2.5_dp
+    el = unit_element(effects_all_on())
+    p = 0.0_dp
+    p(3) = sin(alpha)
+    p(5) = cos(alpha) - 1.0_dp
+    p(7) = l_u*(cos(alpha) - 1.0_dp)
+    p(8) = l_u*sin(alpha)
+    p(9) = sin(alpha)
+    p(11) = cos(alpha) - 1.0_dp
+    se = consistent_strain_energy(el, p, 0.0_dp)      ! phi = 0: q = p
+    call assert_true(abs(se) <= 1.0e-20_dp*soft%e1*b_u*t_u*l_u, 'rigid rotation energy '//trim(rstr(se)))
+  end subroutine test_rigid_rotation
+
+  !> An element bent into a circular arc of angle beta = pi/4 (one eighth of
+  !> a circle: the elastica rolled up by M = 2 pi EI/L with 8 elements) with
+  !> the nodal values of the exact inextensible arc u = R sin(x/R) - x,
+  !> w = R (1 - cos(x/R)).  Consistent element: |eps_n| <= 2e-5 and kappa
+  !> within 1e-3 of 1/R at every station (quintic interpolation error,
+  !> O(beta^6)).  Kear's element given the same nodal u, w, w_x, w_xx has
+  !> 1 + u_x constant = sin(beta)/beta, so eps_n reaches 0.02 -- a
+  !> membrane strain 1000 times the bending strain t/(2R) of a slender beam:
+  !> locking.
+  subroutine test_arc_no_locking()
+    type(consistent_element_t) :: el
+    type(kear_element_t) :: kel
+    type(error_t) :: err
+    real(dp) :: r, beta, p(12), pk(8), eps, kap, worst_eps, worst_kap, kear_eps, x
+    integer :: i
+    beta = pi/4
+    r = l_u/beta
+    el = unit_element(element_effects_t(stretching=.true., curvature=.true.))
+    p = [0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp/r, 0.0_dp, 0.0_dp, &
+         r*sin(beta) - l_u, r*(1.0_dp - cos(beta)), sin(beta), cos(beta)/r, cos(beta) - 1.0_dp, -sin(beta)/r]
+    worst_eps = 0.0_dp
+    worst_kap = 0.0_dp
+    do i = 0, 20
+      x = i/20.0_dp
+      call consistent_section_strains(el, p, x, eps, kap)
+      worst_eps = max(worst_eps, abs(eps))
+      worst_kap = max(worst_kap, abs(kap*r - 1.0_dp))
+    end do
+    call assert_true(worst_eps <= 2.0e-5_dp, 'consistent: arc strain '//trim(rstr(worst_eps)))
+    call assert_true(worst_kap <= 1.0e-3_dp, 'consistent: arc curvature error '//trim(rstr(worst_kap)))
+    call kear_element_init(kel, l_u, b_u, t_u, soft, element_effects_t(stretching=.true., curvature=.true.), err)
+    pk = [p(1), p(2), p(3), p(4), p(7), p(8), p(9), p(10)]
+    kear_eps = 0.0_dp
+    do i = 0, 20
+      call kear_section_strains(kel, pk, i/20.0_dp, eps, kap)
+      kear_eps = max(kear_eps, abs(eps))
+    end do
+    call assert_true(kear_eps > 0.02_dp, 'Kear element: arc strain '//trim(rstr(kear_eps))//' (locks)')
+  end subroutine test_arc_no_locking
+
+  !> With all effects off the w-w block of the linear stiffness is Kear's
+  !> (the same quintic w, EI int h'' h''), and the u-u block is EA int h' h'
+  !> of the quintics: for a uniform stretch (u = eps x) the energy is
+  !> EA eps^2 l/2 exactly.
+  subroutine test_linear_bending_block()
+    type(consistent_element_t) :: el
+    type(kear_element_t) :: kel
+    type(error_t) :: err
+    integer, parameter :: wc(6) = [2, 3, 4, 8, 9, 10], wk(6) = [2, 3, 4, 6, 7, 8]
+    real(dp) :: p(12), eps
+    el = unit_element(element_effects_t())
+    call kear_element_init(kel, l_u, b_u, t_u, soft, element_effects_t(), err)
+    call assert_all_close(reshape(el%k_linear(wc, wc), [36]), reshape(kel%k_linear(wk, wk), [36]), 0.0_dp, &
+                          1.0e-12_dp*maxval(abs(kel%k_linear)), 'bending block = Kear element')
+    eps = 1.0e-3_dp
+    p = 0.0_dp
+    p(5) = eps
+    p(7) = eps*l_u
+    p(11) = eps
+    call assert_rel_close(consistent_strain_energy(el, p, 0.0_dp), 0.5_dp*soft%e1*b_u*t_u*eps**2*l_u, 1.0e-12_dp, &
+                          'uniform stretch energy')
+  end subroutine test_linear_bending_block
+
+  !> The generalized force of a point force f and moment mz at x = 0.6 l is
+  !> the gradient of the work f . r(x) + mz theta(x), r and theta computed
+  !> from the displacement field (beam_local_displacement; theta =
+  !> atan2(w_x, 1 + u_x) with w_x, u_x by differences in x); its Jacobian
+  !> the FD derivative.  Both interpolations; 1e-7 relative.
+  subroutine test_point_load()
+    type(beam_element_t) :: el
+    type(error_t) :: err
+    real(dp) :: gen(12), g(12), dgen(12, 12), gp(12), gm(12), dfd(12, 12), e(12), q(12), f(2), mz, phi, h
+    integer :: kind, n, j
+    f = [0.7_dp, -1.3_dp]
+    mz = 0.45_dp
+    phi = 0.6_dp
+    h = 1.0e-5_dp
+    do kind = element_kind_kear, element_kind_consistent
+      call beam_element_init(el, kind, l_u, b_u, t_u, soft, effects_all_on(), err)
+      n = el%ndof
+      q(1:n) = q_big(1:n)
+      call beam_point_load(el, q(1:n), phi, 0.6_dp, f, mz, gen(1:n), dgen(1:n, 1:n))
+      do j = 1, n
+        e = 0.0_dp
+        e(j) = h
+        g(j) = (work(q(1:n) + e(1:n)) - work(q(1:n) - e(1:n)))/(2*h)
+        call beam_point_load(el, q(1:n) + e(1:n), phi, 0.6_dp, f, mz, gp(1:n))
+        call beam_point_load(el, q(1:n) - e(1:n), phi, 0.6_dp, f, mz, gm(1:n))
+        dfd(1:n, j) = (gp(1:n) - gm(1:n))/(2*h)
+      end do
+      call assert_all_close(gen(1:n), g(1:n), 0.0_dp, 1.0e-7_dp*maxval(abs(g(1:n))), 'point load = d(work)/dq')
+      call assert_all_close(reshape(dgen(1:n, 1:n), [n*n]), reshape(dfd(1:n, 1:n), [n*n]), 0.0_dp, &
+                            1.0e-6_dp*maxval(abs(dfd(1:n, 1:n))), 'point load Jacobian')
+    end do
+  contains
+    real(dp) function work(qq)
+      real(dp), intent(in) :: qq(:)
+      real(dp) :: uw(2), up(2), um(2), dx, r(2), th
+      uw = beam_local_displacement(el, qq, phi, 0.6_dp)
+      dx = 1.0e-4_dp
+      up = beam_local_displacement(el, qq, phi, 0.6_dp + dx)
+      um = beam_local_displacement(el, qq, phi, 0.6_dp - dx)
+      th = atan2((up(2) - um(2))/(2*dx*l_u), 1.0_dp + (up(1) - um(1))/(2*dx*l_u))
+      ! position relative to the rigid frame origin, in global axes
+      r = [cos(phi)*(0.6_dp*l_u + uw(1)) - sin(phi)*uw(2), sin(phi)*(0.6_dp*l_u + uw(1)) + cos(phi)*uw(2)]
+      work = dot_product(f, r) + mz*th
+    end function work
+  end subroutine test_point_load
+
+  !> 'default' is the consistent element with stretching on, Kear's element
+  !> (exact equations) otherwise; unknown names are an error naming them.
+  subroutine test_default_formulation()
+    integer :: kind, code
+    character(len=:), allocatable :: resolved
+    type(error_t) :: err
+    call resolve_formulation('default', element_effects_t(stretching=.true.), kind, code, resolved, err)
+    call assert_true(kind == element_kind_consistent .and. resolved == 'consistent', 'stretching on: '//resolved)
+    call resolve_formulation('default', element_effects_t(curvature=.true.), kind, code, resolved, err)
+    call assert_true(kind == element_kind_kear .and. resolved == 'exact', 'stretching off: '//resolved)
+    call resolve_formulation('kear1987', element_effects_t(stretching=.true.), kind, code, resolved, err)
+    call assert_true(kind == element_kind_kear .and. code == 2, 'kear1987 stays selectable')
+    call resolve_formulation('corotational', element_effects_t(), kind, code, resolved, err)
+    call assert_true(err%failed() .and. index(err%text(), 'corotational') > 0, 'unknown: '//err%text())
+  end subroutine test_default_formulation
+
+  function rstr(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=24) :: s
+    write(s, '(es12.4)') x
+  end function rstr
+end module test_consistent_element_suite
+
+program test_consistent_element
+  use test_consistent_element_suite, only: run_all
+  use assertions, only: finish_suite
+  implicit none
+  call run_all()
+  call finish_suite('test_consistent_element')
+end program test_consistent_element

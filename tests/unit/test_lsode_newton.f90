@@ -1,0 +1,201 @@
+!> Tests of DLSODE's Newton matrix (module lsode_newton, and the mechanism
+!> model's banded elimination behind it): the banded solve equals an
+!> independent dense solve of the 2N x 2N P = I - hl0 J; integrations through
+!> the model's Newton matrix equal those through DLSODE-style dense P; bdf_band
+!> (MF 24) is now the same iteration as bdf (MF 21), no truncated band.
+module test_lsode_newton_suite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use linalg, only: solve_linear
+  use linkage, only: mechanism_t, build_mechanism
+  use kear_element, only: element_effects_t
+  use mechanism_model, only: mechanism_model_t
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
+  use transient_fixtures, only: fourbar_input, make_model, all_effects, state_atol
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+contains
+
+  subroutine run_all()
+    call run_test('banded_newton_solve_equals_dense_solve_linear_model', test_solve_linear_model)
+    call run_test('banded_newton_solve_equals_dense_solve_all_effects', test_solve_all_effects)
+    call run_test('banded_newton_solve_equals_dense_solve_kear1987_lu', test_solve_kear1987)
+    call run_test('integration_through_model_newton_matrix_equals_dense', test_integration_routes)
+    call run_test('bdf_band_is_the_bdf_iteration', test_bdf_band_equals_bdf)
+  end subroutine run_all
+
+  !> A four-bar model (2 elements per link, 150 rad/s, beta = 1e-5 s).
+  subroutine fourbar_model(effects, formulation, model, ok)
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
+    type(mechanism_model_t), intent(out) :: model
+    logical, intent(out) :: ok
+    type(mechanism_t) :: mech
+    type(error_t) :: err
+    call build_mechanism(fourbar_input(2, 150.0_dp, 0.0_dp), mech, err)
+    if (.not. err%failed()) call model%init_mechanism(mech, effects, formulation, 1.0e-5_dp, err)
+    call assert_true(.not. err%failed(), 'model: '//err%text())
+    ok = .not. err%failed()
+  end subroutine fourbar_model
+
+  !> A deformed state (displacements ~1e-3 in, slopes, curvatures; rates ~0.1 in/s).
+  subroutine deformed_state(n2, y)
+    integer, intent(in) :: n2
+    real(dp), intent(out) :: y(n2)
+    integer :: k
+    do k = 1, n2/2
+      y(2*k - 1) = 1.0e-3_dp*sin(1.7_dp*k)
+      y(2*k) = 0.1_dp*cos(0.3_dp*k)
+    end do
+  end subroutine deformed_state
+
+  !> x_band from the model's banded Newton matrix against x_dense from the
+  !> dense P = I - hl0 J (J from model%jacobian in full storage: dense M^-1 K_t
+  !> by LU) solved by LU, for hl0 from a small to a large BDF step.  The two
+  !> share only the element matrices.  Tolerance: P's 1-norm condition number
+  !> reaches ~1e7 at hl0 = 1e-3 s (hl0^2 omega_max^2); both solves are
+  !> backward stable, so they agree to ~cond * eps = 1e-9 of |x|: 1e-8 allows
+  !> a factor 10.  A wrong term (beta, a sign, hl0 for hl0^2) changes x by
+  !> 1e-3 or more.  Also the residual |P x_band - b| <= 1e-12 |P| |x_band|.
+  subroutine check_solve(model, expect_cholesky)
+    type(mechanism_model_t), intent(inout) :: model
+    logical, intent(in) :: expect_cholesky
+    real(dp), allocatable :: y(:), pd(:, :), p(:, :), b(:), x_dense(:), x_band(:)
+    real(dp), parameter :: hl0s(3) = [1.0e-6_dp, 3.0e-5_dp, 1.0e-3_dp], t = 2.0e-3_dp
+    type(error_t) :: err
+    logical :: ok
+    integer :: n2, k, i
+    n2 = model%state_size()
+    allocate(y(n2), pd(n2, n2), p(n2, n2), b(n2), x_dense(n2), x_band(n2))
+    call deformed_state(n2, y)
+    do i = 1, n2
+      b(i) = cos(0.7_dp*i) + 0.1_dp
+    end do
+    do k = 1, size(hl0s)
+      pd = 0.0_dp
+      call model%jacobian(t, y, 0, 0, pd)
+      p = -hl0s(k)*pd
+      do i = 1, n2
+        p(i, i) = p(i, i) + 1.0_dp
+      end do
+      x_dense = b
+      call solve_linear(p, x_dense, err)
+      call assert_true(.not. err%failed(), 'dense solve: '//err%text())
+      call model%newton_factor(t, y, hl0s(k), ok)
+      call assert_true(ok, 'banded Newton matrix factored')
+      x_band = b
+      call model%newton_solve(x_band)
+      call assert_true(.not. model%err%failed(), 'model: '//model%err%text())
+      call assert_all_close(x_band, x_dense, 0.0_dp, 1.0e-8_dp*maxval(abs(x_dense)), &
+                            'banded = dense solve at hl0 = '//trim(rtoa(hl0s(k))))
+      call assert_true(maxval(abs(matmul(p, x_band) - b)) <= 1.0e-12_dp*maxval(sum(abs(p), dim=2))* &
+                       maxval(abs(x_band)), 'residual of the banded solve at hl0 = '//trim(rtoa(hl0s(k))))
+      call assert_true(model%newton_cholesky .eqv. expect_cholesky, 'factorization: Cholesky expected '// &
+                       merge('yes', 'no ', expect_cholesky))
+    end do
+  end subroutine check_solve
+
+  function rtoa(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=16) :: s
+    write(s, '(es9.2)') x
+  end function rtoa
+
+  subroutine test_solve_linear_model()
+    type(mechanism_model_t) :: model
+    logical :: ok
+    call fourbar_model(element_effects_t(), 'exact', model, ok)
+    if (ok) call check_solve(model, .true.)
+  end subroutine test_solve_linear_model
+
+  !> All effects on: K_t and M depend on q (exact strains, R-O material, rotary inertia).
+  subroutine test_solve_all_effects()
+    type(mechanism_model_t) :: model
+    logical :: ok
+    call fourbar_model(all_effects(), 'exact', model, ok)
+    if (ok) call check_solve(model, .true.)
+  end subroutine test_solve_all_effects
+
+  !> Kear's printed simplifications: K_t is not symmetric, S goes through banded LU.
+  subroutine test_solve_kear1987()
+    type(mechanism_model_t) :: model
+    logical :: ok
+    call fourbar_model(all_effects(), 'kear1987', model, ok)
+    if (ok) call check_solve(model, .false.)
+  end subroutine test_solve_kear1987
+
+  !> One run of the damped four-bar (1 element per link) over a quarter turn.
+  subroutine run_quarter_turn(mf, structured, y, c, newton_factorizations)
+    integer, intent(in) :: mf
+    logical, intent(in) :: structured
+    real(dp), allocatable, intent(out) :: y(:)
+    type(lsode_counters_t), intent(out) :: c
+    integer, intent(out) :: newton_factorizations
+    type(mechanism_model_t), target :: model
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    logical :: ok
+    integer :: ml
+    call make_model(fourbar_input(1, 150.0_dp, 0.0_dp), element_effects_t(), 1.0e-5_dp, model, ok)
+    allocate(y(model%state_size()))
+    y = 0.0_dp
+    newton_factorizations = 0
+    if (.not. ok) return
+    ml = min(2*model%kd + 1, size(y) - 1)
+    call ode%init(size(y), 0.0_dp, mf, 1.0e-6_dp, state_atol(size(y), 1.0e-9_dp, 1.0e-6_dp), err, ml=ml, mu=ml, &
+                  structured=structured)
+    call ode%integrate_to(model, y, 0.25_dp*2.0_dp*acos(-1.0_dp)/150.0_dp, err)
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    c = ode%counters()
+    newton_factorizations = model%n_newton_factorizations
+  end subroutine run_quarter_turn
+
+  !> The model's Newton matrix solves the same linear systems as DLSODE's dense
+  !> P, so the two runs take the same steps up to round-off in the solves;
+  !> the states agree to the integration error (rtol 1e-6: 1e-4 of the
+  !> largest component allows a hundredfold margin over rtol; a wrong Newton
+  !> matrix would instead show as many more steps or a failed corrector).
+  subroutine test_integration_routes()
+    real(dp), allocatable :: y_model(:), y_dense(:)
+    type(lsode_counters_t) :: c_model, c_dense
+    integer :: nf_model, nf_dense
+    call run_quarter_turn(mf_bdf_full_user, .true., y_model, c_model, nf_model)
+    call run_quarter_turn(mf_bdf_full_user, .false., y_dense, c_dense, nf_dense)
+    call assert_true(c_model%model_newton .and. .not. c_dense%model_newton, 'routes taken')
+    call assert_equal(nf_model, c_model%jac_evals, 'one banded factorization per Jacobian')
+    call assert_equal(nf_dense, 0, 'dense route does not use the model''s Newton matrix')
+    call assert_all_close(y_model, y_dense, 0.0_dp, 1.0e-4_dp*maxval(abs(y_dense)), 'same state after a quarter turn')
+    call assert_true(abs(c_model%steps - c_dense%steps) <= c_dense%steps/20, 'steps within 5 %: '// &
+                     trim(itoa(c_model%steps))//' vs '//trim(itoa(c_dense%steps)))
+  end subroutine test_integration_routes
+
+  !> MF 24 used to hand DLSODE d(q_dd)/dq truncated to a band; it now takes
+  !> the same route as MF 21: identical steps and states.
+  subroutine test_bdf_band_equals_bdf()
+    real(dp), allocatable :: y_full(:), y_band(:)
+    type(lsode_counters_t) :: c_full, c_band
+    integer :: nf_full, nf_band
+    call run_quarter_turn(mf_bdf_full_user, .true., y_full, c_full, nf_full)
+    call run_quarter_turn(mf_bdf_band_user, .true., y_band, c_band, nf_band)
+    call assert_equal(c_band%steps, c_full%steps, 'same steps')
+    call assert_equal(nf_band, nf_full, 'same Newton matrices')
+    call assert_all_close(y_band, y_full, 0.0_dp, 1.0e-12_dp*maxval(abs(y_full)), 'same state')
+  end subroutine test_bdf_band_equals_bdf
+
+  function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=16) :: s
+    write(s, '(i0)') i
+  end function itoa
+end module test_lsode_newton_suite
+
+program test_lsode_newton
+  use assertions, only: finish_suite
+  use test_lsode_newton_suite, only: run_all
+  implicit none
+  call run_all()
+  call finish_suite('test_lsode_newton')
+end program test_lsode_newton
