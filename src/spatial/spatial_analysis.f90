@@ -224,9 +224,10 @@ contains
     else if (s%initial /= 'rigid') then
       call invalid_value(deck, 'transient', 'initial', ''''//trim(s%initial)//'''', &
                          'the spatial analysis starts from the rigid-body state only (''rigid'')', err)
-    else if (s%formulation /= 'exact') then
+    else if (s%formulation /= 'exact' .and. s%formulation /= 'default') then
+      ! the spatial element has one formulation: Kear's 'exact' strains (doc/spatial.md)
       call invalid_value(deck, 'effects', 'formulation', ''''//trim(s%formulation)//'''', &
-                         'the spatial element has the exact formulation only', err)
+                         'the spatial element has the exact formulation only (''exact'' or ''default'')', err)
     else if (len_trim(s%restart_out) > 0) then
       call invalid_value(deck, 'transient', 'restart_out', ''''//trim(s%restart_out)//'''', &
                          'restart files are not written by the spatial analysis yet', err)
