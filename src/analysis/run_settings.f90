@@ -9,7 +9,8 @@ module run_settings
   public :: read_run_settings, echo_run_settings, write_run_header, analysis_names
 
   !> Analyses the program knows, for messages.
-  character(len=*), parameter :: analysis_names = '''transient'', ''steady'', ''optimize'', ''design'', ''lsode_check'''
+  character(len=*), parameter :: analysis_names = '''transient'', ''steady'', ''optimize'', ''design'', '// &
+                                                  '''spatial'', ''lsode_check'''
 
   character(len=32) :: analysis
   character(len=256) :: title

@@ -20,6 +20,7 @@ program flexmech
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
+  use spatial_analysis, only: run_spatial
   use design_analysis, only: run_design
   use subcommands, only: dispatch_subcommands
   implicit none
@@ -63,6 +64,8 @@ program flexmech
     call run_optimize(deck, out, err)
   case ('steady')
     call run_steady(deck, out, err)
+  case ('spatial')
+    call run_spatial(deck, out, err)
   case ('design')
     call run_design(deck, out, err)
   case default

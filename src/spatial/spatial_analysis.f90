@@ -1,0 +1,287 @@
+!> The `spatial` analysis (paper E, El-Sawy, Willmert & Sathyamoorthy 1987):
+!> vibration of a flexible spatial four-bar about its rigid-body motion,
+!> integrated by DLSODE from the rigid-body state over a number of crank
+!> revolutions.  Re-uses the &transient and &effects groups of the planar
+!> analysis.  Output rows at equal crank-angle increments: elastic
+!> translations of joints B and C (global), local deflections and rotations
+!> of each link's end 2, end-1 resultants of each link (N, M_y, M_z, T) and
+!> every element's maximum |stress|.  doc/spatial.md.
+module spatial_analysis
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t, invalid_value
+  use table_output, only: table_t
+  use progress, only: progress_t
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_band_user, mf_bdf_band_fd
+  use kear_element, only: effects_summary
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
+  use spatial_beam, only: spatial_stress_t, spatial_to_local
+  use spatial_kinematics, only: spatial_fourbar_t
+  use spatial_model, only: spatial_model_t, spatial_link_t
+  use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
+  implicit none
+  private
+  public :: run_spatial
+
+  character(len=7), parameter :: link_names(3) = ['crank  ', 'coupler', 'rocker ']
+
+contains
+
+  subroutine run_spatial(deck, out, err)
+    type(deck_t), intent(inout) :: deck
+    type(table_t), intent(inout) :: out
+    type(error_t), intent(inout) :: err
+    type(spatial_input_t) :: inp
+    type(transient_settings_t) :: s
+    type(spatial_fourbar_t) :: kin
+    type(spatial_link_t) :: links(3)
+    type(spatial_model_t), target :: model
+    type(lsode_t) :: ode
+    type(progress_t) :: bar
+    type(lsode_counters_t) :: c
+    type(spatial_stress_t), allocatable :: stress(:)
+    real(dp), allocatable :: y(:), omega_n(:), peak_stress(:), peak_angle(:), atol_vector(:), ring(:, :)
+    real(dp) :: t_end, dt_out, t, cpu0, cpu1, revolutions_done, ke, se
+    integer :: k, n_out, e, jb, jc, ml, per_rev
+    real(dp) :: defect, dscale
+    character(len=32), allocatable :: names(:)
+
+    call read_spatial_mechanism(deck, inp, err)
+    if (err%failed()) return
+    call read_transient_settings(deck, s, err)
+    if (err%failed()) return
+    call check_supported(deck, s, inp, err)
+    if (err%failed()) return
+    call echo_spatial_mechanism(out)
+    call echo_transient_settings(out)
+    call build_spatial(deck, inp, kin, links, jb, jc, err)
+    if (err%failed()) return
+    call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err)
+    if (err%failed()) then
+      if (err%code /= 2) err%code = 2
+      call err%add_context('deck '''//deck%path//''', group &spatial_mechanism')
+      return
+    end if
+    call write_header(out, inp, s, model)
+
+    allocate(omega_n(model%n))
+    call model%linear_modes(omega_n, err)
+    if (err%failed()) return
+    block
+      character(len=:), allocatable :: line
+      line = 'natural frequencies of the linearised structure at the start position (rad/s):'
+      do k = 1, min(5, model%n)
+        line = line//' '//str(omega_n(k), 6)
+      end do
+      call out%comment(line)
+      if (inp%omega > 0.0_dp) call out%comment('crank speed '//str(inp%omega, 6)//' rad/s = '// &
+                                               str(inp%omega/omega_n(1), 6)//' of the first natural frequency')
+      if (s%damping_beta > 0.0_dp) call out%comment('stiffness-proportional damping beta = '// &
+        str(s%damping_beta)//' s: zeta_1 = '//str(0.5_dp*s%damping_beta*omega_n(1), 6))
+    end block
+
+    allocate(y(model%state_size()))
+    y = 0.0_dp
+    call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+    dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
+    t_end = s%revolutions*two_pi/inp%omega
+    n_out = max(1, nint(t_end/dt_out))
+    ml = min(2*model%kd + 1, size(y) - 1)
+    allocate(atol_vector(size(y)))
+    atol_vector(1::2) = s%atol
+    atol_vector(2::2) = s%atol_rate
+    call ode%init(size(y), 0.0_dp, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
+    if (err%failed()) return
+    if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
+      call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(ml))
+
+    call write_columns(out, model, names)
+    allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
+    peak_stress = 0.0_dp
+    peak_angle = 0.0_dp
+    ! periodicity defect: the deflection columns one revolution apart, when
+    ! the output step divides a revolution
+    per_rev = nint(360.0_dp/s%output_step_deg)
+    if (abs(per_rev*s%output_step_deg - 360.0_dp) > 1.0e-9_dp .or. n_out < 2*per_rev) per_rev = 0
+    allocate(ring(24, 0:max(per_rev, 1) - 1))
+    defect = 0.0_dp
+    dscale = 0.0_dp
+    call bar%start('spatial', 0.0_dp, t_end)
+    call cpu_time(cpu0)
+    call output_row(0.0_dp)
+    do k = 1, n_out
+      t = k*dt_out
+      if (k == n_out) t = max(t, t_end)
+      call ode%integrate_to(model, y, t, err)
+      if (err%failed()) exit
+      call output_row(t)
+      if (err%failed()) exit
+      call bar%update(t)
+    end do
+    call bar%finish()
+    call cpu_time(cpu1)
+    if (err%failed()) then
+      if (model%err%failed()) then
+        t = model%t_failed
+      else
+        t = ode%t
+      end if
+      call err%add_context('spatial analysis stopped at crank angle '// &
+                           str((inp%theta0_deg*pi/180.0_dp + inp%omega*t)*180.0_dp/pi, 7)//' deg')
+    end if
+
+    do e = 1, size(model%el)
+      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
+                       str(peak_angle(e), 6)//' deg')
+    end do
+    if (per_rev > 0 .and. .not. err%failed() .and. dscale > 0.0_dp) &
+      call out%summary('periodicity defect over the last revolution', str(defect/dscale, 4)// &
+                       ' (largest change of a deflection column in one revolution / its largest value)')
+    call model%energies(ode%t, y(1::2), y(2::2), ke, se)
+    call out%summary('final elastic strain energy', str(se, 8)//' lb in')
+    c = ode%counters()
+    revolutions_done = max(0.0_dp, ode%t*inp%omega/two_pi)
+    call out%cost('cpu_seconds_integration', str(cpu1 - cpu0, 4))
+    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str((cpu1 - cpu0)/revolutions_done, 4))
+    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
+    call out%cost('steps', str(c%steps))
+    call out%cost('rhs_evaluations', str(c%rhs_evals))
+    call out%cost('jacobian_evaluations', str(c%jac_evals))
+    call out%cost('lu_factorizations', str(c%lu_factorizations))
+    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
+    call out%cost('kinematics_solutions', str(model%n_kinematics))
+    call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
+    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+
+  contains
+
+    subroutine output_row(tt)
+      real(dp), intent(in) :: tt
+      real(dp), allocatable :: row(:)
+      real(dp) :: q(model%n), p(16), crank_deg
+      integer :: kk, i, ee
+      call model%set_time(tt)
+      if (model%err%failed()) then
+        call err%set('', model%err%text())
+        return
+      end if
+      q = y(1::2)
+      crank_deg = inp%theta0_deg + inp%omega*tt*180.0_dp/pi
+      call model%element_stresses(q, stress)
+      do ee = 1, size(stress)
+        if (stress(ee)%max_abs_stress > peak_stress(ee)) then
+          peak_stress(ee) = stress(ee)%max_abs_stress
+          peak_angle(ee) = crank_deg
+        end if
+      end do
+      allocate(row(size(names)))
+      row(1) = tt
+      row(2) = crank_deg
+      row(3:5) = q(model%b_dofs)
+      row(6:8) = q(model%c_dofs)
+      kk = 8
+      do i = 1, 3
+        ee = model%links(i)%first_element + model%links(i)%n_elements - 1
+        p = spatial_to_local(model%rb(ee)%rot, model%table%gather(ee, q), model%el(ee)%local_rotation)
+        row(kk + 1:kk + 6) = p(9:14)
+        kk = kk + 6
+      end do
+      do i = 1, 3
+        ee = model%links(i)%first_element
+        row(kk + 1:kk + 4) = [stress(ee)%axial_force(1), stress(ee)%moment_y(1), stress(ee)%moment_z(1), &
+                              stress(ee)%torque(1)]
+        kk = kk + 4
+      end do
+      row(kk + 1:kk + size(stress)) = stress%max_abs_stress
+      kk = kk + size(stress)
+      call model%support_forces(tt, q, y(2::2), row(kk + 1:kk + 3), row(kk + 4:kk + 6))
+      if (model%err%failed()) then
+        call err%set('', model%err%text())
+        return
+      end if
+      call out%row(row)
+      if (per_rev > 0) then
+        kk = nint(tt/dt_out)
+        if (kk >= n_out - per_rev) then
+          defect = max(defect, maxval(abs(row(3:26) - ring(:, mod(kk, per_rev)))))
+          dscale = max(dscale, maxval(abs(row(3:26))))
+        end if
+        ring(:, mod(kk, per_rev)) = row(3:26)
+      end if
+    end subroutine output_row
+  end subroutine run_spatial
+
+  !> What the spatial analysis does not (yet) take from the shared groups.
+  subroutine check_supported(deck, s, inp, err)
+    type(deck_t), intent(in) :: deck
+    type(transient_settings_t), intent(in) :: s
+    type(spatial_input_t), intent(in) :: inp
+    type(error_t), intent(inout) :: err
+    if (.not. inp%omega > 0.0_dp) then
+      call invalid_value(deck, 'spatial_mechanism', 'omega', str(inp%omega), &
+                         'the spatial analysis follows a turning crank: give omega > 0', err)
+    else if (s%initial /= 'rigid') then
+      call invalid_value(deck, 'transient', 'initial', ''''//trim(s%initial)//'''', &
+                         'the spatial analysis starts from the rigid-body state only (''rigid'')', err)
+    else if (s%formulation /= 'exact' .and. s%formulation /= 'default') then
+      ! the spatial element has one formulation: Kear's 'exact' strains (doc/spatial.md)
+      call invalid_value(deck, 'effects', 'formulation', ''''//trim(s%formulation)//'''', &
+                         'the spatial element has the exact formulation only (''exact'' or ''default'')', err)
+    else if (len_trim(s%restart_out) > 0) then
+      call invalid_value(deck, 'transient', 'restart_out', ''''//trim(s%restart_out)//'''', &
+                         'restart files are not written by the spatial analysis yet', err)
+    end if
+  end subroutine check_supported
+
+  subroutine write_header(out, inp, s, model)
+    type(table_t), intent(inout) :: out
+    type(spatial_input_t), intent(in) :: inp
+    type(transient_settings_t), intent(in) :: s
+    type(spatial_model_t), intent(in) :: model
+    character(len=160), allocatable :: lines(:)
+    integer :: i
+    call out%comment('spatial four-bar: joints B '//trim(inp%joint_b)//', C '//trim(inp%joint_c)// &
+                     '; crank '//str(model%kin%crank_radius, 6)//', coupler '//str(model%kin%coupler_length, 6)// &
+                     ', rocker '//str(model%kin%rocker_length, 6)//' in; elements per link '// &
+                     str(inp%link_n_elements(1))//', '//str(inp%link_n_elements(2))//', '//str(inp%link_n_elements(3)))
+    call out%comment('effects on: '//effects_summary(s%effects)//' (torsional inertia always; twist linear, '// &
+                     'St. Venant, warping neglected)')
+    call out%comment('rigid-body motion: loop closure solved by Newton at every time the integrator asks for')
+    call model%table%describe(lines)
+    do i = 1, size(lines)
+      call out%comment(trim(lines(i)))
+    end do
+  end subroutine write_header
+
+  subroutine write_columns(out, model, names)
+    type(table_t), intent(inout) :: out
+    type(spatial_model_t), intent(in) :: model
+    character(len=32), allocatable, intent(out) :: names(:)
+    integer :: i, e
+    character(len=3), parameter :: local(6) = ['u  ', 'v  ', 'w  ', 'tx ', 'ty ', 'tz ']
+    character(len=3), parameter :: res(4) = ['N  ', 'My ', 'Mz ', 'T  ']
+    names = [character(len=32) :: 't', 'crank_deg', 'B_UX', 'B_UY', 'B_UZ', 'C_UX', 'C_UY', 'C_UZ']
+    do i = 1, 3
+      do e = 1, 6
+        names = [character(len=32) :: names, trim(link_names(i))//'_'//trim(local(e))//'_end']
+      end do
+    end do
+    do i = 1, 3
+      do e = 1, 4
+        names = [character(len=32) :: names, trim(link_names(i))//'_'//trim(res(e))//'_root']
+      end do
+    end do
+    do e = 1, size(model%el)
+      names = [character(len=32) :: names, 'sigma_max_e'//str(e)]
+    end do
+    names = [character(len=32) :: names, 'A_FX', 'A_FY', 'A_FZ', 'D_FX', 'D_FY', 'D_FZ']
+    call out%comment('columns: t (s); crank_deg (deg); B_U*, C_U* = elastic translation of joints B, C along '// &
+      'global X, Y, Z (in); <link>_u/v/w_end = elastic displacement of the link''s end 2 in its rigid-body axes '// &
+      '(in); <link>_tx/ty/tz_end = its small rotation (tx twist, ty = -w_x, tz = v_x; rad); <link>_N/My/Mz/T_root '// &
+      '= axial force (lb), bending moments (lb in) and St. Venant torque (lb in) at the link''s end 1; '// &
+      'sigma_max_e<k> = largest |normal stress| in element k over its extreme fibres (psi); A_F*, D_F* = force '// &
+      'the crank shaft A and the rocker pivot D exert on the links, global X, Y, Z (lb)')
+    call out%columns(names)
+  end subroutine write_columns
+end module spatial_analysis

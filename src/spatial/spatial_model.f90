@@ -1,0 +1,520 @@
+!> The flexible spatial four-bar as a first-order system for DLSODE:
+!> M(q, t) q_dd = F(q, q_d, t) about the rigid-body motion of
+!> spatial_kinematics, spatial beam elements assembled through the spatial
+!> correlation table, M in band storage, banded Cholesky (cost linear in the
+!> number of elements).  State interleaved, y(2i-1) = q_i, y(2i) = q_d_i, as
+!> in the planar mechanism_model.
+!>
+!> Joint rules (doc/spatial.md, "Joints"):
+!>  A  clamp to the driving shaft: translations and rotations zero;
+!>  D  ground revolute about d: translations zero, rotation = s d (one
+!>     unknown), curvature about d (v_xx, the rocker's z = d) zero;
+!>  B, C spherical: translations shared; each link end keeps its own rotation
+!>     triple in local components; both curvatures zero (no moment); the
+!>     coupler's twist is held at B (its spin about BC is idle);
+!>  B, C revolute (planar linkage, axis a along a global axis): translations
+!>     and the two rotations normal to a shared, rotation about a and w_xx
+!>     per link, v_xx zero.
+module spatial_model
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use strings, only: str
+  use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, dense_to_lower_band
+  use lsode_solver, only: ode_system_t
+  use material_law, only: ramberg_osgood_t
+  use kear_element, only: element_effects_t
+  use spatial_section, only: spatial_section_t
+  use spatial_beam, only: spatial_beam_t, spatial_rigid_t, spatial_eval_info_t, spatial_stress_t, &
+                          spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &
+                          spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local
+  use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
+                                link_crank, link_coupler, link_rocker
+  use spatial_correlation, only: spatial_table_t, sdofs
+  implicit none
+  private
+  public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute
+
+  integer, parameter :: spatial_joint_spherical = 1, spatial_joint_revolute = 2
+  character(len=7), parameter :: link_names(3) = ['crank  ', 'coupler', 'rocker ']
+
+  type :: spatial_link_t
+    integer :: n_elements = 1
+    type(spatial_section_t) :: sec
+    type(ramberg_osgood_t) :: material
+    real(dp) :: shear_modulus = 0.0_dp
+    real(dp) :: length = 0.0_dp          !< set by the model from the geometry
+    integer :: first_element = 0
+  end type spatial_link_t
+
+  type, extends(ode_system_t) :: spatial_model_t
+    type(spatial_fourbar_t) :: kin
+    real(dp) :: omega = 0.0_dp, theta0 = 0.0_dp
+    integer :: joint_b = spatial_joint_spherical, joint_c = spatial_joint_spherical
+    type(spatial_link_t) :: links(3)
+    type(spatial_beam_t), allocatable :: el(:)
+    type(spatial_rigid_t), allocatable :: rb(:)
+    integer, allocatable :: link_of(:), index_in_link(:)
+    type(spatial_table_t) :: table
+    integer :: n = 0, kd = 0
+    integer :: b_dofs(3) = 0, c_dofs(3) = 0     !< global unknowns of the joint translations
+    real(dp), allocatable :: mass_band(:, :), force(:)
+    type(spatial_pose_t) :: pose
+    real(dp) :: t_states = -huge(1.0_dp)
+    logical :: stop_beyond_peak = .true.
+    integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
+  contains
+    procedure :: init => model_init
+    procedure :: rhs => model_rhs
+    procedure :: jacobian => model_jacobian
+    procedure :: set_time
+    procedure :: accelerations
+    procedure :: assemble_dense
+    procedure :: linear_modes
+    procedure :: energies
+    procedure :: element_stresses
+    procedure :: support_forces
+    procedure :: state_size
+  end type spatial_model_t
+
+contains
+
+  !> Elements, joint rules and the correlation table.  kin must be
+  !> initialised; links(:) carry section, material and element counts.
+  subroutine model_init(self, kin, omega, theta0, joint_b, joint_c, links, effects, beta, err)
+    class(spatial_model_t), intent(inout) :: self
+    type(spatial_fourbar_t), intent(in) :: kin
+    real(dp), intent(in) :: omega, theta0, beta
+    integer, intent(in) :: joint_b, joint_c
+    type(spatial_link_t), intent(in) :: links(3)
+    type(element_effects_t), intent(in) :: effects
+    type(error_t), intent(inout) :: err
+    integer :: k, i, e, ne
+    logical :: loc(2)
+    self%kin = kin
+    self%omega = omega
+    self%theta0 = theta0
+    self%joint_b = joint_b
+    self%joint_c = joint_c
+    self%links = links
+    self%links(link_crank)%length = kin%crank_radius
+    self%links(link_coupler)%length = kin%coupler_length
+    self%links(link_rocker)%length = kin%rocker_length
+    ne = sum(self%links%n_elements)
+    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link)
+    if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
+    call self%err%clear()
+    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne))
+    e = 0
+    do k = 1, 3
+      self%links(k)%first_element = e + 1
+      do i = 1, self%links(k)%n_elements
+        e = e + 1
+        self%link_of(e) = k
+        self%index_in_link(e) = i
+        loc = .false.
+        ! unshared rotations at spherical ends are local (the coupler's twist is held there)
+        if (i == self%links(k)%n_elements) then
+          loc(2) = (k == link_crank .and. joint_b == spatial_joint_spherical) .or. &
+                   (k /= link_crank .and. joint_c == spatial_joint_spherical)
+        end if
+        if (i == 1 .and. k == link_coupler) loc(1) = joint_b == spatial_joint_spherical
+        associate (lk => self%links(k))
+          call spatial_beam_init(self%el(e), lk%length/lk%n_elements, lk%sec, lk%material, lk%shear_modulus, &
+                                 effects, err, damping_beta=beta, local_rotation=loc)
+        end associate
+        if (err%failed()) then
+          call err%add_context(trim(link_names(k))//' element '//str(i))
+          return
+        end if
+      end do
+    end do
+    self%t_states = -huge(1.0_dp)
+    call self%set_time(0.0_dp)
+    if (self%err%failed()) then
+      call err%set('spatial model', self%err%text())
+      return
+    end if
+    call build_table(self, err)
+    if (err%failed()) return
+    self%n = self%table%n_global
+    self%kd = self%table%half_bandwidth
+    allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+  end subroutine model_init
+
+  !> Node rules in chain order A -> B -> C -> D (narrow band).
+  subroutine build_table(self, err)
+    type(spatial_model_t), intent(inout) :: self
+    type(error_t), intent(inout) :: err
+    integer :: nmax, k, j, ax
+    integer, allocatable :: nm(:, :, :)
+    real(dp), allocatable :: nc(:, :, :)
+    integer :: b_rot(2), c_rot(2)
+    real(dp) :: a(3)
+    nmax = maxval(self%links%n_elements)
+    allocate(nm(8, 0:nmax, 3), nc(8, 0:nmax, 3))
+    nm = 0
+    nc = 0.0_dp
+    call self%table%init(size(self%el))
+    a = self%kin%a_axis
+    ax = 0
+    if (self%joint_b == spatial_joint_revolute .or. self%joint_c == spatial_joint_revolute) then
+      ! a revolute joint between moving links: planar linkage about a global axis
+      ax = maxloc(abs(a), 1)
+      if (abs(abs(a(ax)) - 1.0_dp) > 1.0e-12_dp .or. abs(abs(dot_product(a, self%kin%d_axis)) - 1.0_dp) > 1.0e-12_dp &
+          .or. abs(dot_product(a, self%pose%rot(:, 1, link_coupler))) > 1.0e-9_dp) then
+        call err%set('spatial model', 'revolute joints at B or C need a planar linkage: crank and rocker axes '// &
+                     'parallel to one global axis and the coupler normal to it (use spherical joints otherwise)')
+        err%code = 2
+        return
+      end if
+    end if
+    b_rot = 0
+    c_rot = 0
+    ! crank: A (clamp), interior, B
+    do j = 0, self%links(link_crank)%n_elements
+      if (j == 0) then
+        nm(7:8, j, 1) = [fresh(1, j, 7), fresh(1, j, 8)]
+        nc(7:8, j, 1) = 1.0_dp
+      else if (j == self%links(link_crank)%n_elements) then
+        call joint_end(1, j, self%joint_b, self%b_dofs, b_rot, 'B', .false.)
+      else
+        call interior(1, j)
+      end if
+    end do
+    ! coupler: B, interior, C
+    do j = 0, self%links(link_coupler)%n_elements
+      if (j == 0) then
+        call joint_end(2, j, self%joint_b, self%b_dofs, b_rot, 'B', .true.)
+      else if (j == self%links(link_coupler)%n_elements) then
+        call joint_end(2, j, self%joint_c, self%c_dofs, c_rot, 'C', .false.)
+      else
+        call interior(2, j)
+      end if
+    end do
+    ! rocker from C down to D
+    do j = self%links(link_rocker)%n_elements, 0, -1
+      if (j == self%links(link_rocker)%n_elements) then
+        call joint_end(3, j, self%joint_c, self%c_dofs, c_rot, 'C', .false.)
+      else if (j == 0) then
+        ! ground revolute about d: rotation = s d, no moment about d
+        block
+          integer :: s, i
+          s = fresh(3, j, 6)
+          self%table%label(s) = 'rocker N0 R_d'
+          do i = 1, 3
+            if (abs(self%kin%d_axis(i)) > 0.0_dp) then
+              nm(3 + i, j, 3) = s
+              nc(3 + i, j, 3) = self%kin%d_axis(i)
+            end if
+          end do
+          nm(8, j, 3) = fresh(3, j, 8)
+          nc(8, j, 3) = 1.0_dp
+        end block
+      else
+        call interior(3, j)
+      end if
+    end do
+    do k = 1, 3
+      do j = 1, self%links(k)%n_elements
+        associate (e => self%links(k)%first_element + j - 1)
+          self%table%map(1:8, e) = nm(:, j - 1, k)
+          self%table%coef(1:8, e) = nc(:, j - 1, k)
+          self%table%map(9:16, e) = nm(:, j, k)
+          self%table%coef(9:16, e) = nc(:, j, k)
+        end associate
+      end do
+    end do
+    call self%table%finish()
+
+  contains
+
+    integer function fresh(link, node, slot)
+      integer, intent(in) :: link, node, slot
+      character(len=4), parameter :: names(8) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ']
+      fresh = self%table%new_unknown(trim(link_names(link))//' N'//str(node)//' '//trim(names(slot)))
+    end function fresh
+
+    subroutine interior(link, node)
+      integer, intent(in) :: link, node
+      integer :: s
+      do s = 1, 8
+        nm(s, node, link) = fresh(link, node, s)
+      end do
+      nc(:, node, link) = 1.0_dp
+    end subroutine interior
+
+    !> A link end at joint B or C; trans/rot: the joint's shared unknowns
+    !> (created at the first visit).
+    subroutine joint_end(link, node, kind, trans, rot, jname, hold_twist)
+      integer, intent(in) :: link, node, kind
+      integer, intent(inout) :: trans(3), rot(2)
+      character(len=1), intent(in) :: jname
+      logical, intent(in) :: hold_twist
+      integer :: i, s, others(2)
+      if (trans(1) == 0) then
+        do i = 1, 3
+          trans(i) = self%table%new_unknown(jname//' U'//achar(iachar('X') + i - 1))
+        end do
+      end if
+      nm(1:3, node, link) = trans
+      nc(1:3, node, link) = 1.0_dp
+      if (kind == spatial_joint_spherical) then
+        ! local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
+        do s = 4, 6
+          if (s == 4 .and. hold_twist) cycle
+          nm(s, node, link) = fresh(link, node, s)
+          nc(s, node, link) = 1.0_dp
+        end do
+      else
+        others = pack([1, 2, 3], [1, 2, 3] /= ax)
+        if (rot(1) == 0) then
+          do i = 1, 2
+            rot(i) = self%table%new_unknown(jname//' R'//achar(iachar('X') + others(i) - 1))
+          end do
+        end if
+        nm(3 + others, node, link) = rot
+        nc(3 + others, node, link) = 1.0_dp
+        nm(3 + ax, node, link) = fresh(link, node, 3 + ax)
+        nc(3 + ax, node, link) = 1.0_dp
+        nm(8, node, link) = fresh(link, node, 8)         ! w_xx: out-of-plane moment passes the pin
+        nc(8, node, link) = 1.0_dp
+      end if
+    end subroutine joint_end
+  end subroutine build_table
+
+  integer function state_size(self)
+    class(spatial_model_t), intent(in) :: self
+    state_size = 2*self%n
+  end function state_size
+
+  !> Rigid states of all elements at time t (crank angle theta0 + omega t).
+  subroutine set_time(self, t)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    type(error_t) :: err
+    integer :: e, k
+    real(dp) :: r(3), x(3)
+    if (.not. (t < self%t_states .or. t > self%t_states)) return
+    call spatial_fourbar_solve(self%kin, self%theta0 + self%omega*t, self%omega, 0.0_dp, self%pose, err)
+    self%n_kinematics = self%n_kinematics + 1
+    if (err%failed()) then
+      call self%fail(t, err%text())
+      return
+    end if
+    do e = 1, size(self%el)
+      k = self%link_of(e)
+      associate (rb => self%rb(e), ps => self%pose)
+        rb%rot = ps%rot(:, :, k)
+        x = rb%rot(:, 1)
+        r = real(self%index_in_link(e) - 1, dp)*self%el(e)%length*x
+        rb%x1 = ps%origin(:, k) + r
+        rb%omega = ps%omega(:, k)
+        rb%alpha = ps%alpha(:, k)
+        rb%x1_d = ps%origin_d(:, k) + cross(rb%omega, r)
+        rb%x1_dd = ps%origin_dd(:, k) + cross(rb%alpha, r) + cross(rb%omega, cross(rb%omega, r))
+      end associate
+    end do
+    self%t_states = t
+  end subroutine set_time
+
+  !> q_dd from M q_dd = F (banded Cholesky).
+  subroutine accelerations(self, t, q, qd, qdd)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out), contiguous :: qdd(:)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs)
+    type(spatial_eval_info_t) :: info
+    type(error_t) :: err
+    integer :: e, i, j, gi, gj
+    call self%set_time(t)
+    qdd = 0.0_dp
+    if (self%err%failed()) return
+    self%mass_band = 0.0_dp
+    self%force = 0.0_dp
+    do e = 1, size(self%el)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
+      if (info%beyond_peak .and. self%stop_beyond_peak) then
+        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
+                       ' is past the peak of the Ramberg-Osgood curve, eps* = '//str(self%el(e)%eps_star, 6))
+        return
+      end if
+      call self%table%scatter_add(e, fe, self%force)
+      do j = 1, sdofs
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, sdofs
+          gi = self%table%map(i, e)
+          if (gi < gj) cycle
+          self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
+            self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
+        end do
+      end do
+    end do
+    call band_cholesky_factor(self%mass_band, self%kd, err)
+    self%n_mass_factorizations = self%n_mass_factorizations + 1
+    if (err%failed()) then
+      call self%fail(t, 'mass matrix: '//err%text())
+      return
+    end if
+    qdd = self%force
+    call band_cholesky_solve(self%mass_band, self%kd, qdd, err)
+  end subroutine accelerations
+
+  subroutine model_rhs(self, t, y, ydot)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    real(dp) :: q(self%n), qd(self%n), qdd(self%n)
+    self%n_rhs = self%n_rhs + 1
+    q = y(1::2)
+    qd = y(2::2)
+    call self%accelerations(t, q, qd, qdd)
+    ydot(1::2) = qd
+    ydot(2::2) = qdd
+  end subroutine model_rhs
+
+  !> Approximate Jacobian for DLSODE's BDF options (MF = 21, 24), as the
+  !> planar model: d(q_d)/dq_d = I, d(q_dd)/dq = -M^-1 K_t,
+  !> d(q_dd)/dq_d = -beta M^-1 K_t (inertial stiffness and gyroscopic terms
+  !> left out: the chord iteration needs an approximation only).
+  subroutine model_jacobian(self, t, y, ml, mu, pd)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n), col(self%n)
+    integer :: i, j, kd
+    type(error_t) :: err
+    logical :: banded
+    call self%set_time(t)
+    q = y(1::2)
+    call self%assemble_dense(q, mass, stiff)
+    ! M is banded and positive definite: banded Cholesky, then M^-1 K column by column
+    kd = self%kd
+    call dense_to_lower_band(mass, kd, self%mass_band)
+    call band_cholesky_factor(self%mass_band, kd, err)
+    if (err%failed()) then
+      call self%fail(t, 'mass matrix in the Jacobian: '//err%text())
+      return
+    end if
+    do j = 1, self%n
+      col = stiff(:, j)
+      call band_cholesky_solve(self%mass_band, kd, col, err)
+      stiff(:, j) = col                          ! stiff := M^-1 K_t
+    end do
+    beta = self%el(1)%beta
+    banded = .not. (ml == 0 .and. mu == 0 .and. size(pd, 1) == 2*self%n)
+    do j = 1, self%n
+      call put(2*j - 1, 2*j, 1.0_dp)
+      do i = 1, self%n
+        call put(2*i, 2*j - 1, -stiff(i, j))
+        if (beta > 0.0_dp) call put(2*i, 2*j, -beta*stiff(i, j))
+      end do
+    end do
+  contains
+    subroutine put(row, col, value)
+      integer, intent(in) :: row, col
+      real(dp), intent(in) :: value
+      if (banded) then
+        if (row - col > ml .or. col - row > mu) return
+        pd(row - col + mu + 1, col) = value
+      else
+        pd(row, col) = value
+      end if
+    end subroutine put
+  end subroutine model_jacobian
+
+  !> Dense M and elastic tangent K at q (current rigid states).
+  subroutine assemble_dense(self, q, mass, stiff)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: mass(:, :), stiff(:, :)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs)
+    type(spatial_eval_info_t) :: info
+    integer :: e, i, j, gi, gj
+    mass = 0.0_dp
+    stiff = 0.0_dp
+    do e = 1, size(self%el)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), [(0.0_dp, i=1, sdofs)], self%rb(e), me, fe, info, &
+                             tangent=ke)
+      do j = 1, sdofs
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, sdofs
+          gi = self%table%map(i, e)
+          if (gi == 0) cycle
+          mass(gi, gj) = mass(gi, gj) + self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
+          stiff(gi, gj) = stiff(gi, gj) + self%table%coef(i, e)*ke(i, j)*self%table%coef(j, e)
+        end do
+      end do
+    end do
+  end subroutine assemble_dense
+
+  !> Natural frequencies (rad/s) of the linearised structure at the current position.
+  subroutine linear_modes(self, omega, err)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(out) :: omega(:)
+    type(error_t), intent(inout) :: err
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q0(self%n)
+    q0 = 0.0_dp
+    call self%assemble_dense(q0, mass, stiff)
+    call sym_generalized_eig(stiff, mass, omega, err)
+    if (err%failed()) return
+    omega = sign(sqrt(abs(omega)), omega)
+  end subroutine linear_modes
+
+  !> Kinetic energy (rigid plus elastic motion) and strain energy at time t.
+  subroutine energies(self, t, q, qd, kinetic, strain)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out) :: kinetic, strain
+    integer :: e
+    real(dp) :: qe(sdofs)
+    call self%set_time(t)
+    kinetic = 0.0_dp
+    strain = 0.0_dp
+    do e = 1, size(self%el)
+      qe = self%table%gather(e, q)
+      kinetic = kinetic + spatial_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
+      strain = strain + spatial_strain_energy(self%el(e), spatial_to_local(self%rb(e)%rot, qe, &
+                                                                            self%el(e)%local_rotation))
+    end do
+  end subroutine energies
+
+  !> Forces (global, lb) the supports exert on the structure at A (crank
+  !> shaft) and D (rocker pivot): the constrained rows of the element
+  !> equations, r = M_e q_dd - F_e at the node on the support, with q_dd from
+  !> the equations of motion.  Internal forces cancel in the sum over the
+  !> structure, so f_A + f_D is the rate of change of its linear momentum.
+  subroutine support_forces(self, t, q, qd, fa, fd)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out) :: fa(3), fd(3)
+    real(dp) :: qdd(self%n), me(sdofs, sdofs), fe(sdofs), r(sdofs)
+    type(spatial_eval_info_t) :: info
+    integer :: k, e
+    call self%accelerations(t, q, qd, qdd)
+    do k = 1, 2
+      e = self%links(merge(link_crank, link_rocker, k == 1))%first_element
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      r = matmul(me, self%table%gather(e, qdd)) - fe
+      if (k == 1) then
+        fa = r(1:3)
+      else
+        fd = r(1:3)
+      end if
+    end do
+  end subroutine support_forces
+
+  !> Stress report of every element (rigid states must be current).
+  subroutine element_stresses(self, q, reports)
+    class(spatial_model_t), intent(in) :: self
+    real(dp), intent(in) :: q(:)
+    type(spatial_stress_t), intent(out) :: reports(:)
+    integer :: e
+    do e = 1, size(self%el)
+      reports(e) = spatial_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%rot)
+    end do
+  end subroutine element_stresses
+end module spatial_model

@@ -1,0 +1,175 @@
+!> The &spatial_mechanism group of a spatial deck (doc/spatial.md, "Deck"):
+!> the single-loop spatial four-bar (RSSR, or the planar four-bar with
+!> revolute joints), its driver and its three links.  Every value is checked
+!> here (code 2 on bad input); the geometry is then checked by
+!> spatial_fourbar_init.
+module spatial_settings
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t, invalid_value
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
+  use table_output, only: table_t
+  use material_law, only: ramberg_osgood_t
+  use spatial_section, only: spatial_section_init, section_rectangular, section_circular
+  use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
+  use spatial_model, only: spatial_link_t, spatial_joint_spherical, spatial_joint_revolute
+  implicit none
+  private
+  public :: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
+
+  type :: spatial_input_t
+    real(dp) :: crank_pivot(3) = 0.0_dp, crank_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp], crank_pin(3) = 0.0_dp
+    real(dp) :: rocker_pivot(3) = 0.0_dp, rocker_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp]
+    real(dp) :: rocker_length = 0.0_dp, coupler_length = 0.0_dp
+    integer :: branch = 1
+    character(len=16) :: joint_b = 'spherical', joint_c = 'spherical'
+    real(dp) :: omega = 0.0_dp, theta0_deg = 0.0_dp
+    integer :: link_n_elements(3) = 1
+    character(len=16) :: link_section(3) = 'rectangular'
+    real(dp) :: link_depth(3) = 1.0_dp, link_width(3) = 0.25_dp, link_radius(3) = 0.0_dp
+    real(dp) :: link_e1(3) = 10.87e6_dp, link_e2(3) = 0.8387e11_dp, link_m(3) = 3.0_dp
+    real(dp) :: link_rho(3) = 2.536e-4_dp, link_poisson(3) = 0.33_dp
+  end type spatial_input_t
+
+  ! staging variables of the namelist group
+  real(dp) :: crank_pivot(3), crank_axis(3), crank_pin(3), rocker_pivot(3), rocker_axis(3)
+  real(dp) :: rocker_length, coupler_length, omega, theta0_deg
+  integer :: branch, link_n_elements(3)
+  character(len=16) :: joint_b, joint_c, link_section(3)
+  real(dp) :: link_depth(3), link_width(3), link_radius(3), link_e1(3), link_e2(3), link_m(3), link_rho(3), &
+              link_poisson(3)
+  namelist /spatial_mechanism/ crank_pivot, crank_axis, crank_pin, rocker_pivot, rocker_axis, rocker_length, &
+    coupler_length, branch, joint_b, joint_c, omega, theta0_deg, link_n_elements, link_section, link_depth, &
+    link_width, link_radius, link_e1, link_e2, link_m, link_rho, link_poisson
+
+  character(len=*), parameter :: g = 'spatial_mechanism'
+
+contains
+
+  subroutine read_spatial_mechanism(deck, s, err)
+    type(deck_t), intent(inout) :: deck
+    type(spatial_input_t), intent(out) :: s
+    type(error_t), intent(inout) :: err
+    logical :: found
+    crank_pivot = s%crank_pivot
+    crank_axis = s%crank_axis
+    crank_pin = s%crank_pin
+    rocker_pivot = s%rocker_pivot
+    rocker_axis = s%rocker_axis
+    rocker_length = s%rocker_length
+    coupler_length = s%coupler_length
+    branch = s%branch
+    joint_b = s%joint_b
+    joint_c = s%joint_c
+    omega = s%omega
+    theta0_deg = s%theta0_deg
+    link_n_elements = s%link_n_elements
+    link_section = s%link_section
+    link_depth = s%link_depth
+    link_width = s%link_width
+    link_radius = s%link_radius
+    link_e1 = s%link_e1
+    link_e2 = s%link_e2
+    link_m = s%link_m
+    link_rho = s%link_rho
+    link_poisson = s%link_poisson
+    call deck%read_group(g, read_group, .true., found, err)
+    if (err%failed()) return
+    s = spatial_input_t(crank_pivot, crank_axis, crank_pin, rocker_pivot, rocker_axis, rocker_length, &
+                        coupler_length, branch, joint_b, joint_c, omega, theta0_deg, link_n_elements, link_section, &
+                        link_depth, link_width, link_radius, link_e1, link_e2, link_m, link_rho, link_poisson)
+    call validate(deck, s, err)
+  end subroutine read_spatial_mechanism
+
+  !> Ranges (doc/decks.md): lengths positive and below 1e4 in (a linkage,
+  !> not a bridge); speeds below 1e5 rad/s; material constants positive
+  !> (E2 >= 0), 1 < m <= 9 (the section rule is exact to m = 5 and
+  !> accurate beyond), Poisson's ratio in (-1, 0.5) (G > 0).
+  subroutine validate(deck, s, err)
+    type(deck_t), intent(in) :: deck
+    type(spatial_input_t), intent(in) :: s
+    type(error_t), intent(inout) :: err
+    integer :: k
+    call check_reals(deck, g, 'crank_pivot', s%crank_pivot, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
+    call check_reals(deck, g, 'crank_axis', s%crank_axis, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
+    call check_reals(deck, g, 'crank_pin', s%crank_pin, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
+    call check_reals(deck, g, 'rocker_pivot', s%rocker_pivot, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
+    call check_reals(deck, g, 'rocker_axis', s%rocker_axis, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'rocker_length', s%rocker_length, err, above=0.0_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'coupler_length', s%coupler_length, err, above=0.0_dp, at_most=1.0e4_dp)
+    call check_integer(deck, g, 'branch', s%branch, err, at_least=-1, at_most=1)
+    if (.not. err%failed() .and. s%branch == 0) &
+      call invalid_value(deck, g, 'branch', '0', 'must be +1 or -1 (the side of the coupler-rocker dyad)', err)
+    call check_choice(deck, g, 'joint_b', s%joint_b, [character(16) :: 'spherical', 'revolute'], err)
+    call check_choice(deck, g, 'joint_c', s%joint_c, [character(16) :: 'spherical', 'revolute'], err)
+    call check_real(deck, g, 'omega', s%omega, err, at_least=0.0_dp, at_most=1.0e5_dp, why='constant crank speed')
+    call check_real(deck, g, 'theta0_deg', s%theta0_deg, err, at_least=-3600.0_dp, at_most=3600.0_dp)
+    do k = 1, 3
+      call check_integer(deck, g, 'link_n_elements', s%link_n_elements(k), err, at_least=1, at_most=200)
+      call check_choice(deck, g, 'link_section', s%link_section(k), [character(16) :: 'rectangular', 'circular'], &
+                        err)
+    end do
+    call check_reals(deck, g, 'link_depth', s%link_depth, err, above=0.0_dp, at_most=100.0_dp)
+    call check_reals(deck, g, 'link_width', s%link_width, err, above=0.0_dp, at_most=100.0_dp)
+    call check_reals(deck, g, 'link_radius', s%link_radius, err, at_least=0.0_dp, at_most=100.0_dp)
+    call check_reals(deck, g, 'link_e1', s%link_e1, err, above=0.0_dp, at_most=1.0e9_dp)
+    call check_reals(deck, g, 'link_e2', s%link_e2, err, at_least=0.0_dp, at_most=1.0e15_dp)
+    call check_reals(deck, g, 'link_m', s%link_m, err, above=1.0_dp, at_most=9.0_dp)
+    call check_reals(deck, g, 'link_rho', s%link_rho, err, above=0.0_dp, at_most=1.0_dp)
+    call check_reals(deck, g, 'link_poisson', s%link_poisson, err, above=-1.0_dp, below=0.5_dp)
+    do k = 1, 3
+      if (err%failed()) exit
+      if (s%link_section(k) == 'circular' .and. .not. s%link_radius(k) > 0.0_dp) &
+        call invalid_value(deck, g, 'link_radius', str(s%link_radius(k)), 'a circular link needs a radius > 0 '// &
+                           '(link '//str(k)//')', err)
+    end do
+  end subroutine validate
+
+  !> Kinematics and link data from the input; geometry errors are input errors.
+  subroutine build_spatial(deck, s, kin, links, joint_b, joint_c, err)
+    type(deck_t), intent(in) :: deck
+    type(spatial_input_t), intent(in) :: s
+    type(spatial_fourbar_t), intent(out) :: kin
+    type(spatial_link_t), intent(out) :: links(3)
+    integer, intent(out) :: joint_b, joint_c
+    type(error_t), intent(inout) :: err
+    integer :: k
+    type(ramberg_osgood_t) :: mat
+    call spatial_fourbar_init(kin, s%crank_pivot, s%crank_axis, s%crank_pin, s%rocker_pivot, s%rocker_axis, &
+                              s%rocker_length, s%coupler_length, s%branch, err)
+    do k = 1, 3
+      if (err%failed()) exit
+      mat = ramberg_osgood_t(s%link_e1(k), s%link_e2(k), s%link_m(k), s%link_rho(k))
+      links(k)%n_elements = s%link_n_elements(k)
+      links(k)%material = mat
+      links(k)%shear_modulus = s%link_e1(k)/(2.0_dp*(1.0_dp + s%link_poisson(k)))
+      if (s%link_section(k) == 'circular') then
+        call spatial_section_init(links(k)%sec, section_circular, [s%link_radius(k)], mat, err)
+      else
+        call spatial_section_init(links(k)%sec, section_rectangular, [s%link_depth(k), s%link_width(k)], mat, err)
+      end if
+    end do
+    joint_b = merge(spatial_joint_revolute, spatial_joint_spherical, s%joint_b == 'revolute')
+    joint_c = merge(spatial_joint_revolute, spatial_joint_spherical, s%joint_c == 'revolute')
+    if (err%failed()) then
+      err%code = 2
+      call err%add_context('deck '''//deck%path//''', group &'//g)
+    end if
+  end subroutine build_spatial
+
+  subroutine echo_spatial_mechanism(out)
+    type(table_t), intent(inout) :: out
+    integer :: u
+    u = out%echo_unit()
+    write(u, nml=spatial_mechanism, delim='apostrophe')
+    call out%end_echo()
+  end subroutine echo_spatial_mechanism
+
+  subroutine read_group(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=spatial_mechanism, iostat=ios, iomsg=iomsg)
+  end subroutine read_group
+end module spatial_settings
