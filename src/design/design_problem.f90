@@ -98,7 +98,6 @@ module design_problem
     procedure :: evaluate
     procedure :: objective => design_objective
     procedure :: general_constraint => design_constraint
-    procedure :: general_constraint_hessian => design_constraint_hessian
   end type design_problem_t
 
 contains
@@ -353,20 +352,6 @@ contains
     if (err%failed()) return
     f = design_mass(self%mechanism_at(x, .false.))/self%mass0
   end subroutine design_objective
-
-  !> Zero: the analysis constraints enter Potter's quadratic model linearised.
-  !> In logarithmic sizes they are nearly linear, the multiplier equations
-  !> (B11) still see their actual values, and second differences of a peak
-  !> over sampled crank angles would be noise (and n^2 analyses per iterate).
-  subroutine design_constraint_hessian(self, i, x, hess, err)
-    class(design_problem_t), intent(inout) :: self
-    integer, intent(in) :: i
-    real(dp), intent(in) :: x(:)
-    real(dp), intent(out) :: hess(:, :)
-    type(error_t), intent(inout) :: err
-    if (err%failed() .or. i < 0 .or. size(x) < 0 .or. self%n < 0) return
-    hess = 0.0_dp
-  end subroutine design_constraint_hessian
 
   !> Stress constraints, then the frequency constraint (NaN when the analysis failed).
   subroutine design_constraint(self, i, x, g, err)
