@@ -22,6 +22,7 @@
 !> are pure.
 module consistent_element
   use kinds, only: dp
+  use linalg, only: outer
   use error_status, only: error_t
   use strings, only: str
   use quadrature, only: gauss_legendre_interval, max_gauss_points
@@ -659,13 +660,4 @@ contains
     r(7) = -p(8)
     r(8) = p(7)
   end function jb_times
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
 end module consistent_element

@@ -22,6 +22,7 @@
 !> constant integrals of the linear model once per element.
 module kear_element
   use kinds, only: dp
+  use linalg, only: outer
   use error_status, only: error_t
   use strings, only: str, lower
   use quadrature, only: gauss_legendre_interval, max_gauss_points
@@ -586,7 +587,7 @@ contains
       if (want_k .or. want_damp) then
         tn = res%tangent(1, 1)*sp%de_true + res%tangent(1, 2)*sp%dk  ! dN/d(a,b,c)
         tk = res%tangent(2, 1)*sp%de_true + res%tangent(2, 2)*sp%dk  ! dM/d(a,b,c)
-        h3 = outer3(sp%de_used, tn) + outer3(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
+        h3 = outer(sp%de_used, tn) + outer(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
         if (want_k) then
           gh = el%wg(i)*matmul(g, h3)
           kp = kp + matmul(gh, transpose(g))
@@ -782,22 +783,4 @@ contains
     r(5) = -p(6)
     r(6) = p(5)
   end function jb_times
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
-
-  pure function outer3(x, y) result(m)
-    real(dp), intent(in) :: x(3), y(3)
-    real(dp) :: m(3, 3)
-    integer :: j
-    do j = 1, 3
-      m(:, j) = x*y(j)
-    end do
-  end function outer3
 end module kear_element
