@@ -5,7 +5,8 @@ Every case takes one deck of inputs/ or tests/decks/, applies one to three
 mutations (numbers to 0, +-tiny, +-huge, subnormal, NaN, +-Inf, wrong types,
 deleted / duplicated lines, truncation, unknown groups and variables, long
 lines, tabs, binary garbage, line endings, ...), runs it with each binary under a time limit
-and classifies the run.  A case is a pure function of (seed, index), so
+and classifies the run.  The time limits count the case's CPU seconds, not wall time, so a
+loaded host (several builds at once) does not turn slow cases into hangs.  A case is a pure function of (seed, index), so
 
     python3 tests/fuzz/fuzz_decks.py --seed S --only I
 
@@ -36,6 +37,7 @@ Classes (FAIL = the fuzzer exits 1):
                          a missing group has none)
 """
 import argparse
+import threading
 import os
 import random
 import re
@@ -293,11 +295,24 @@ def output_size(out_path):
     return sum(os.path.getsize(p) for p in tmp_files(out_path) if os.path.exists(p))
 
 
+def cpu_seconds(pid):
+    """CPU time (user + system) of a running process, from /proc; None when gone."""
+    try:
+        with open('/proc/%d/stat' % pid) as f:
+            fields = f.read().rsplit(')', 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+    except (OSError, IndexError, ValueError):
+        return None
+
+
 def run_case(binary, deck_path, out_path, timeout, hang_factor):
-    """(status or None, stdout, stderr, seconds, progressing).  A run still
-    going at `timeout` gets hang_factor times as long in all; if it is still
-    going then, it is killed, and `progressing` says whether its temporary
-    output grew meanwhile (rows being written: slow, not hung)."""
+    """(status or None, stdout, stderr, seconds, progressing).  The limits are
+    CPU seconds of the case, not wall time, so that a loaded host does not turn
+    slow cases into hangs: a run past `timeout` CPU seconds gets hang_factor
+    times as long in all; if it is still going then, it is killed, and
+    `progressing` says whether its temporary output grew meanwhile (rows being
+    written: slow, not hung).  A run that uses no CPU for 20 times the whole
+    budget of wall time (blocked) is killed as well.  `seconds` is CPU time."""
     for p in [out_path] + tmp_files(out_path):
         if os.path.lexists(p):
             os.remove(p)
@@ -308,20 +323,25 @@ def run_case(binary, deck_path, out_path, timeout, hang_factor):
                                 cwd=os.path.dirname(out_path))
     except OSError as e:     # the binary vanished (rebuilt meanwhile?): not a finding
         sys.exit('fuzz: cannot run %s: %s' % (binary, e))
-    try:
-        out, err = proc.communicate(timeout=timeout)
-        return proc.returncode, out, err, time.time() - start, True
-    except subprocess.TimeoutExpired:
-        pass
-    size0 = output_size(out_path)
-    try:
-        out, err = proc.communicate(timeout=max(timeout * (hang_factor - 1), 0.01))
-        return proc.returncode, out, err, time.time() - start, True
-    except subprocess.TimeoutExpired:
-        progressing = output_size(out_path) > size0
-        os.killpg(proc.pid, signal.SIGKILL)
-        out, err = proc.communicate()
-        return None, out, err, time.time() - start, progressing
+    # the pipes are drained by a thread so that a talkative case cannot block
+    result = {}
+    reader = threading.Thread(target=lambda: result.update(zip(('out', 'err'), proc.communicate())))
+    reader.start()
+    size0 = None
+    cpu = 0.0
+    while True:
+        reader.join(0.05)
+        if not reader.is_alive():
+            return proc.returncode, result['out'], result['err'], max(cpu, 0.0), True
+        c = cpu_seconds(proc.pid)
+        cpu = c if c is not None else cpu
+        if size0 is None and cpu > timeout:
+            size0 = output_size(out_path)
+        if cpu > timeout * hang_factor or time.time() - start > 20 * timeout * hang_factor:
+            progressing = size0 is not None and output_size(out_path) > size0
+            os.killpg(proc.pid, signal.SIGKILL)
+            reader.join()
+            return None, result.get('out', b''), result.get('err', b''), cpu, progressing
 
 
 def tmp_files(out_path):
@@ -424,11 +444,11 @@ def main():
             status, _, stderr, dt, progressing = run_case(binary, case, out, a.timeout, a.hang_factor)
             result = classify(status, stderr, out, case)
             if status is not None and dt > a.timeout:
-                result = [('timeout', 'finished in %.1f s' % dt)] + result[1:]
+                result = [('timeout', 'finished in %.1f CPU s' % dt)] + result[1:]
             elif status is None and progressing:
-                result = [('timeout', 'still writing rows after %.1f s' % dt)]
+                result = [('timeout', 'still writing rows after %.1f CPU s' % dt)]
             elif status is None:
-                result = [('hang', 'no result and no output growth in %.1f s' % dt)]
+                result = [('hang', 'no result and no output growth in %.1f CPU s' % dt)]
             for cls, _ in result:
                 counts[(name, cls)] = counts.get((name, cls), 0) + 1
             bad = [(c, d) for c, d in result if c in FAILING]
