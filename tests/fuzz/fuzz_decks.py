@@ -37,6 +37,8 @@ Classes (FAIL = the fuzzer exits 1):
                          a missing group has none)
 """
 import argparse
+import functools
+import multiprocessing
 import threading
 import os
 import random
@@ -395,6 +397,55 @@ def classify(status, stderr, out_path, deck_path):
 FAILING = {'crash', 'warning', 'hang', 'nonfinite', 'bad_number', 'leftover', 'no_context'}
 
 
+def fuzz_case(i, a, decks, binaries):
+    """Run case i with every binary: (per-binary results, failures, slow lines).
+    Each worker process works in its own folder (case.nml, case.out)."""
+    rng = random.Random('%d/%d' % (a.seed, i))
+    deck, text, steps = make_case(rng, decks)
+    work = os.path.join(a.work, 'w%d' % os.getpid())
+    os.makedirs(work, exist_ok=True)
+    case = os.path.join(work, 'case.nml')
+    with open(case, 'wb') as f:
+        f.write(text)
+    results, failures, slow = [], [], []
+    for name, binary in binaries:
+        out = os.path.join(work, 'case.out')
+        status, _, stderr, dt, progressing = run_case(binary, case, out, a.timeout, a.hang_factor)
+        result = classify(status, stderr, out, case)
+        if status is not None and dt > a.timeout:
+            result = [('timeout', 'finished in %.1f CPU s' % dt)] + result[1:]
+        elif status is None and progressing:
+            result = [('timeout', 'still writing rows after %.1f CPU s' % dt)]
+        elif status is None:
+            result = [('hang', 'no result and no output growth in %.1f CPU s' % dt)]
+        results.append((name, result))
+        bad = [(c, d) for c, d in result if c in FAILING]
+        if result[0][0] == 'timeout':
+            slow.append('case %d (%s, from %s): %s [%s]' % (i, name, deck, result[0][1], '; '.join(steps)))
+        if a.verbose or a.only is not None:
+            print('case %d %s %s: %s  [%.1fs] %s' % (i, name, deck, result, dt, '; '.join(steps)))
+            if a.only is not None:
+                sys.stdout.write(stderr.decode('latin-1')[:2000])
+        if bad:
+            with open(os.path.join(a.work, 'failures', 'case_%d.nml' % i), 'wb') as f:
+                f.write(text)
+            failures.append((i, name, deck, steps, bad, stderr.decode('latin-1').strip()))
+            print('FAIL case %d (%s, from %s): %s  [%s]' % (i, name, deck,
+                  '; '.join('%s: %s' % cd for cd in bad), '; '.join(steps)), flush=True)
+    if a.keep:
+        shutil.copy(case, os.path.join(a.work, 'case_%d.nml' % i))
+    return results, failures, slow
+
+
+def collect(outcome, counts, failures, slow):
+    results, fails, slows = outcome
+    for name, result in results:
+        for cls, _ in result:
+            counts[(name, cls)] = counts.get((name, cls), 0) + 1
+    failures.extend(fails)
+    slow.extend(slows)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--runs', type=int, default=200)
@@ -409,6 +460,7 @@ def main():
     ap.add_argument('--work', default=os.path.join(ROOT, 'build/fuzz'))
     ap.add_argument('--keep', action='store_true', help='keep every case deck')
     ap.add_argument('--exclude', default='', help='skip decks whose path matches this regular expression')
+    ap.add_argument('-j', '--jobs', type=int, default=1, help='cases run at once (worker processes)')
     ap.add_argument('-v', '--verbose', action='store_true')
     a = ap.parse_args()
 
@@ -433,40 +485,14 @@ def main():
     failures = []
     slow = []
     t0 = time.time()
-    for i in indices:
-        rng = random.Random('%d/%d' % (a.seed, i))
-        deck, text, steps = make_case(rng, decks)
-        case = os.path.join(a.work, 'case.nml')
-        with open(case, 'wb') as f:
-            f.write(text)
-        for name, binary in binaries:
-            out = os.path.join(a.work, 'case.out')
-            status, _, stderr, dt, progressing = run_case(binary, case, out, a.timeout, a.hang_factor)
-            result = classify(status, stderr, out, case)
-            if status is not None and dt > a.timeout:
-                result = [('timeout', 'finished in %.1f CPU s' % dt)] + result[1:]
-            elif status is None and progressing:
-                result = [('timeout', 'still writing rows after %.1f CPU s' % dt)]
-            elif status is None:
-                result = [('hang', 'no result and no output growth in %.1f CPU s' % dt)]
-            for cls, _ in result:
-                counts[(name, cls)] = counts.get((name, cls), 0) + 1
-            bad = [(c, d) for c, d in result if c in FAILING]
-            if result[0][0] == 'timeout':
-                slow.append('case %d (%s, from %s): %s [%s]' % (i, name, deck, result[0][1], '; '.join(steps)))
-            if a.verbose or a.only is not None:
-                print('case %d %s %s: %s  [%.1fs] %s' % (i, name, deck, result, dt, '; '.join(steps)))
-                if a.only is not None:
-                    sys.stdout.write(stderr.decode('latin-1')[:2000])
-            if bad:
-                keep = os.path.join(a.work, 'failures', 'case_%d.nml' % i)
-                with open(keep, 'wb') as f:
-                    f.write(text)
-                failures.append((i, name, deck, steps, bad, stderr.decode('latin-1').strip()))
-                print('FAIL case %d (%s, from %s): %s  [%s]' % (i, name, deck,
-                      '; '.join('%s: %s' % cd for cd in bad), '; '.join(steps)), flush=True)
-        if a.keep:
-            shutil.copy(case, os.path.join(a.work, 'case_%d.nml' % i))
+    job = functools.partial(fuzz_case, a=a, decks=decks, binaries=binaries)
+    if a.jobs > 1 and a.only is None:
+        with multiprocessing.Pool(a.jobs) as pool:
+            for outcome in pool.imap(job, indices, chunksize=4):
+                collect(outcome, counts, failures, slow)
+    else:
+        for i in indices:
+            collect(job(i), counts, failures, slow)
     with open(os.path.join(a.work, 'failures', 'README'), 'w') as f:
         for i, name, deck, steps, bad, err in failures:
             f.write('case %d (%s binary, from %s): %s\n  mutations: %s\n  replay: python3 '
