@@ -716,6 +716,20 @@ contains
           call bad(idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
                    'c > 0 (for stresses)'); return
         end if
+        ! the size ranges of b and h, squared and to the fourth power, and
+        ! I <= c^2 A (no section has its radius of gyration beyond its
+        ! outer fibre); without them 12 I/A overflowed for I = 1.8e308
+        if (inp%link_area(q) < 1.0e-16_dp .or. inp%link_area(q) > 1.0e16_dp) then
+          call bad(idx('link_area', q), str(inp%link_area(q)), 'must lie in [1e-16, 1e16]'); return
+        end if
+        if (inp%link_c(q) < 1.0e-8_dp .or. inp%link_c(q) > 1.0e8_dp) then
+          call bad(idx('link_c', q), str(inp%link_c(q)), 'must lie in [1e-8, 1e8]'); return
+        end if
+        if (inp%link_inertia(q) > inp%link_c(q)**2*inp%link_area(q) .or. inp%link_inertia(q) < 1.0e-32_dp) then
+          call bad(idx('link_inertia', q), str(inp%link_inertia(q)), 'must lie in [1e-32, c^2 A = '// &
+                   str(inp%link_c(q)**2*inp%link_area(q))//']: no section has its radius of gyration beyond its '// &
+                   'outer fibre c'); return
+        end if
         lk%area = inp%link_area(q)
         lk%inertia = inp%link_inertia(q)
         lk%fibre = inp%link_c(q)
