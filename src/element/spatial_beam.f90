@@ -46,6 +46,8 @@ module spatial_beam
   integer, parameter :: n_in = 6            !< inertia stations: S^T S has degree 10, exact
   !> rotation components carried by each node's second triple
   integer, parameter :: iu = 1, iv = 2, iw = 3, itx = 4, ity = 5, itz = 6, ivxx = 7, iwxx = 8
+  !> the DOFs each displacement component's functions touch (u linear; v, w quintic)
+  integer, parameter :: u_set(2) = [1, 9], v_set(6) = [2, 6, 7, 10, 14, 15], w_set(6) = [3, 5, 8, 11, 13, 16]
 
   !> Rigid-body state of the element frame, global components.
   type :: spatial_rigid_t
@@ -216,14 +218,18 @@ contains
 
   ! ------------------------------------------------------------ main routine
 
-  !> Mass matrix and force vector of the element in global DOFs q.
-  pure subroutine spatial_beam_eval(el, q, qd, rb, mass, force, info, tangent)
+  !> Mass matrix and force vector of the element in global DOFs q.  The
+  !> mass depends on the rigid state only (a model that reuses it at the
+  !> same time passes mass_wanted = .false.: mass is then not touched).
+  pure subroutine spatial_beam_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
     type(spatial_beam_t), intent(in) :: el
     real(dp), intent(in) :: q(16), qd(16)
     type(spatial_rigid_t), intent(in) :: rb
-    real(dp), intent(out) :: mass(16, 16), force(16)
+    real(dp), intent(inout) :: mass(16, 16)
+    real(dp), intent(out) :: force(16)
     type(spatial_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(16, 16)
+    logical, intent(in), optional :: mass_wanted
     real(dp) :: p(16), v(16), pd(16), wl(3), al(3), a0(3), wp(16), fp(16), fint(16), fdamp(16)
     real(dp) :: kp(16, 16), rel(3), acc(3), vel(3), wpi(3), xe(3)
     integer :: i
@@ -241,14 +247,14 @@ contains
     do i = 1, n_in + 2
       if (.not. (el%wi(i) > 0.0_dp)) cycle
       xe = [el%xi(i), 0.0_dp, 0.0_dp]
-      rel = matmul(p, el%si(:, :, i))
-      wpi = matmul(wp, el%si(:, :, i))
+      rel = station_rows(el%si(:, :, i), p)
+      wpi = station_rows(el%si(:, :, i), wp)
       acc = a0 + cross(al, xe) + cross(wl, cross(wl, xe + rel)) - 2.0_dp*cross(wl, wpi)
       if (el%effects%coupling) then
-        vel = matmul(v, el%si(:, :, i))
+        vel = station_rows(el%si(:, :, i), v)
         acc = acc + cross(al, rel) + 2.0_dp*cross(wl, vel)
       end if
-      fp = fp - el%wi(i)*matmul(el%si(:, :, i), acc)
+      call station_scatter(el%si(:, :, i), -el%wi(i)*acc, fp)
     end do
     ! section rotary and torsional inertia: -int G_phi^T J alpha
     fp = fp - matmul(el%rot_load, al)
@@ -262,7 +268,11 @@ contains
     fp = fp - fint
     if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
 
-    mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    if (.not. present(mass_wanted)) then
+      mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    else if (mass_wanted) then
+      mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    end if
     force = spatial_to_global(rb%rot, fp, el%local_rotation)
     if (present(tangent)) tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
   end subroutine spatial_beam_eval
@@ -349,11 +359,7 @@ contains
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       if (want_k) kp = el%k_lin
       if (want_damp) fdamp = matmul(el%k_lin, prel)
-      do i = 1, el%n_gauss
-        z = matmul(p, el%gz(:, :, i))
-        call section_extreme_fibre_strain(el%sec, [z(1), -z(5), z(4)], emax, yf, zf)
-        info%max_abs_strain = max(info%max_abs_strain, emax)
-      end do
+      ! material off here: no Ramberg-Osgood peak to watch, max_abs_strain is not computed
       return
     end if
     do i = 1, el%n_gauss
@@ -526,6 +532,25 @@ contains
     d = matmul(p, s)
   end function spatial_local_displacement
 
+  !> (u, v, w) = s^T p at a station, over the DOFs each component touches
+  !> (s is zero elsewhere: a third of the dense product's work).
+  pure function station_rows(s, p) result(d)
+    real(dp), intent(in) :: s(16, 3), p(16)
+    real(dp) :: d(3)
+    d(1) = dot_product(s(u_set, 1), p(u_set))
+    d(2) = dot_product(s(v_set, 2), p(v_set))
+    d(3) = dot_product(s(w_set, 3), p(w_set))
+  end function station_rows
+
+  !> f := f + s a at a station (the transpose of station_rows).
+  pure subroutine station_scatter(s, a, f)
+    real(dp), intent(in) :: s(16, 3), a(3)
+    real(dp), intent(inout) :: f(16)
+    f(u_set) = f(u_set) + s(u_set, 1)*a(1)
+    f(v_set) = f(v_set) + s(v_set, 2)*a(2)
+    f(w_set) = f(w_set) + s(w_set, 3)*a(3)
+  end subroutine station_scatter
+
   ! ------------------------------------------------------------ frames
 
   !> p = T^T q: the vector triples of each node into the element frame
@@ -559,19 +584,25 @@ contains
     if (.not. loc(2)) q(12:14) = matmul(rot, p(12:14))
   end function spatial_to_global
 
-  !> T A T^T.
+  !> T A T^T, by the 3 x 3 blocks of the vector triples that rotate.
   pure function matrix_to_global(rot, a, local) result(g)
     real(dp), intent(in) :: rot(3, 3), a(16, 16)
     logical, intent(in) :: local(2)
-    real(dp) :: g(16, 16), t(16, 16)
-    integer :: j
-    t = transpose(a)
-    do j = 1, 16
-      t(:, j) = spatial_to_global(rot, t(:, j), local)      ! T A^T
+    real(dp) :: g(16, 16), t(16, 16), rt(3, 3)
+    integer, parameter :: first(4) = [1, 4, 9, 12]
+    logical :: rotates(4)
+    integer :: b, r
+    rotates = [.true., .not. local(1), .true., .not. local(2)]
+    rt = transpose(rot)
+    t = a
+    do b = 1, 4
+      r = first(b)
+      if (rotates(b)) t(r:r + 2, :) = matmul(rot, a(r:r + 2, :))       ! T A
     end do
-    g = transpose(t)
-    do j = 1, 16
-      g(:, j) = spatial_to_global(rot, g(:, j), local)      ! T (A T^T)
+    g = t
+    do b = 1, 4
+      r = first(b)
+      if (rotates(b)) g(:, r:r + 2) = matmul(t(:, r:r + 2), rt)        ! (T A) T^T
     end do
   end function matrix_to_global
 

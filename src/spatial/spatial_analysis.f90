@@ -13,7 +13,7 @@ module spatial_analysis
   use deck_reader, only: deck_t, invalid_value
   use table_output, only: table_t
   use progress, only: progress_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_band_user, mf_bdf_band_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use kear_element, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
   use spatial_beam, only: spatial_stress_t, spatial_to_local
@@ -93,8 +93,12 @@ contains
     atol_vector(2::2) = s%atol_rate
     call ode%init(size(y), 0.0_dp, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
     if (err%failed()) return
-    if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
-      call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(ml))
+    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
+      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
+                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
+    else if (s%mf == mf_bdf_band_fd) then
+      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '//str(ml))
+    end if
 
     call write_columns(out, model, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
@@ -149,6 +153,8 @@ contains
     call out%cost('rhs_evaluations', str(c%rhs_evals))
     call out%cost('jacobian_evaluations', str(c%jac_evals))
     call out%cost('lu_factorizations', str(c%lu_factorizations))
+    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%newton%n_factorizations - &
+      model%newton%n_lu)//' Cholesky and '//str(model%newton%n_lu)//' LU factorizations')
     call out%cost('mass_factorizations', str(model%n_mass_factorizations))
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))

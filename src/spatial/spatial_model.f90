@@ -21,6 +21,7 @@ module spatial_model
   use strings, only: str
   use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, dense_to_lower_band
   use lsode_solver, only: ode_system_t
+  use second_order_newton, only: second_order_newton_t
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t
@@ -54,18 +55,25 @@ module spatial_model
     type(spatial_beam_t), allocatable :: el(:)
     type(spatial_rigid_t), allocatable :: rb(:)
     integer, allocatable :: link_of(:), index_in_link(:)
+    logical, allocatable :: mass_as_previous(:)   !< element e's global mass equals e-1's (same link, M_p, flags)
     type(spatial_table_t) :: table
     integer :: n = 0, kd = 0
     integer :: b_dofs(3) = 0, c_dofs(3) = 0     !< global unknowns of the joint translations
     real(dp), allocatable :: mass_band(:, :), force(:)
     type(spatial_pose_t) :: pose
     real(dp) :: t_states = -huge(1.0_dp)
+    real(dp) :: t_mass = -huge(1.0_dp)           !< time of the factored mass_band (M depends on t only)
     logical :: stop_beyond_peak = .true.
     integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
+    type(second_order_newton_t) :: newton          !< DLSODE's Newton matrix, banded (shared with the planar model's scheme)
   contains
     procedure :: init => model_init
     procedure :: rhs => model_rhs
     procedure :: jacobian => model_jacobian
+    procedure :: has_newton_matrix => model_has_newton_matrix
+    procedure :: newton_factor => model_newton_factor
+    procedure :: newton_solve => model_newton_solve
+    procedure :: assemble_band
     procedure :: set_time
     procedure :: accelerations
     procedure :: assemble_dense
@@ -100,10 +108,10 @@ contains
     self%links(link_coupler)%length = kin%coupler_length
     self%links(link_rocker)%length = kin%rocker_length
     ne = sum(self%links%n_elements)
-    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link)
+    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous)
     if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
     call self%err%clear()
-    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne))
+    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne))
     e = 0
     do k = 1, 3
       self%links(k)%first_element = e + 1
@@ -128,7 +136,14 @@ contains
         end if
       end do
     end do
+    self%mass_as_previous = .false.
+    do e = 2, ne
+      self%mass_as_previous(e) = self%link_of(e) == self%link_of(e - 1) .and. &
+        all(self%el(e)%local_rotation .eqv. self%el(e - 1)%local_rotation) .and. &
+        maxval(abs(self%el(e)%mass0 - self%el(e - 1)%mass0)) <= 0.0_dp
+    end do
     self%t_states = -huge(1.0_dp)
+    self%t_mass = -huge(1.0_dp)
     call self%set_time(0.0_dp)
     if (self%err%failed()) then
       call err%set('spatial model', self%err%text())
@@ -317,7 +332,9 @@ contains
     self%t_states = t
   end subroutine set_time
 
-  !> q_dd from M q_dd = F (banded Cholesky).
+  !> q_dd from M q_dd = F (banded Cholesky).  M depends on the rigid state
+  !> only (the element's M_p is constant): its factor is reused while t is
+  !> unchanged (DLSODE's corrector iterations), which is exact.
   subroutine accelerations(self, t, q, qd, qdd)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
@@ -326,13 +343,17 @@ contains
     type(spatial_eval_info_t) :: info
     type(error_t) :: err
     integer :: e, i, j, gi, gj
+    logical :: new_mass
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
-    self%mass_band = 0.0_dp
+    new_mass = t < self%t_mass .or. t > self%t_mass
+    if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      ! consecutive elements of a link with equal M_p share one global mass (same rotation)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
+                             mass_wanted=new_mass .and. .not. self%mass_as_previous(e))
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
@@ -340,6 +361,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
+      if (.not. new_mass) cycle
       do j = 1, sdofs
         gj = self%table%map(j, e)
         if (gj == 0) cycle
@@ -351,11 +373,15 @@ contains
         end do
       end do
     end do
-    call band_cholesky_factor(self%mass_band, self%kd, err)
-    self%n_mass_factorizations = self%n_mass_factorizations + 1
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix: '//err%text())
-      return
+    if (new_mass) then
+      self%t_mass = huge(1.0_dp)                ! invalid until factored
+      call band_cholesky_factor(self%mass_band, self%kd, err)
+      self%n_mass_factorizations = self%n_mass_factorizations + 1
+      if (err%failed()) then
+        call self%fail(t, 'mass matrix: '//err%text())
+        return
+      end if
+      self%t_mass = t
     end if
     qdd = self%force
     call band_cholesky_solve(self%mass_band, self%kd, qdd, err)
@@ -392,6 +418,7 @@ contains
     call self%assemble_dense(q, mass, stiff)
     ! M is banded and positive definite: banded Cholesky, then M^-1 K column by column
     kd = self%kd
+    self%t_mass = -huge(1.0_dp)                  ! mass_band is reused here
     call dense_to_lower_band(mass, kd, self%mass_band)
     call band_cholesky_factor(self%mass_band, kd, err)
     if (err%failed()) then
@@ -424,6 +451,66 @@ contains
       end if
     end subroutine put
   end subroutine model_jacobian
+
+  ! ------------------------------------------------------------------ Newton matrix
+
+  logical function model_has_newton_matrix(self)
+    class(spatial_model_t), intent(in) :: self
+    model_has_newton_matrix = self%n > 0
+  end function model_has_newton_matrix
+
+  !> DLSODE's Newton matrix P = I - hl0 J for the Jacobian of model_jacobian,
+  !> without forming J: the banded S = M + (hl0 beta + hl0^2) K_t of
+  !> second_order_newton, O(N kd^2) (as the planar mechanism model).
+  subroutine model_newton_factor(self, t, y, hl0, ok)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    ok = .false.
+    call self%set_time(t)
+    if (self%err%failed()) return
+    call self%newton%size_for(self%n, self%kd)
+    call self%assemble_band(y(1::2), self%newton%mass, self%newton%stiff)
+    call self%newton%factor(hl0, self%el(1)%beta, ok)
+  end subroutine model_newton_factor
+
+  !> x := P^-1 x with the P of the last model_newton_factor.
+  subroutine model_newton_solve(self, x)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    type(error_t) :: err
+    call self%newton%solve(x, err)
+    if (err%failed()) call self%fail(0.0_dp, err%text())
+  end subroutine model_newton_solve
+
+  !> M (lower band storage, kd+1 rows) and K_t (general band storage,
+  !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at q (current rigid states): O(N).
+  subroutine assemble_band(self, q, mass_lower, stiff_band)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs), cij
+    type(spatial_eval_info_t) :: info
+    integer :: e, i, j, gi, gj, kd
+    kd = self%kd
+    mass_lower = 0.0_dp
+    stiff_band = 0.0_dp
+    do e = 1, size(self%el)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), [(0.0_dp, i=1, sdofs)], self%rb(e), me, fe, info, &
+                             tangent=ke)
+      do j = 1, sdofs
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, sdofs
+          gi = self%table%map(i, e)
+          if (gi == 0) cycle
+          cij = self%table%coef(i, e)*self%table%coef(j, e)
+          stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
+          if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
+        end do
+      end do
+    end do
+  end subroutine assemble_band
 
   !> Dense M and elastic tangent K at q (current rigid states).
   subroutine assemble_dense(self, q, mass, stiff)
