@@ -21,7 +21,7 @@ program bench_spatial
   use spatial_section, only: spatial_section_init, section_rectangular
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
   use spatial_model, only: spatial_model_t, spatial_link_t, spatial_joint_revolute
-  use spatial_beam, only: spatial_stress_t
+  use spatial_beam, only: spatial_stress_t, spatial_formulation_kear
   implicit none
   type(ramberg_osgood_t), parameter :: alu = ramberg_osgood_t(e1=10.87e6_dp, e2=0.8387e11_dp, m=3.0_dp, &
                                                               rho=2.536e-4_dp)
@@ -179,7 +179,8 @@ contains
       links(j)%shear_modulus = alu%e1/2.66_dp
       call spatial_section_init(links(j)%sec, section_rectangular, [1.0_dp, 0.25_dp], alu, e)
     end do
-    call model%init(kin, 150.0_dp, 0.0_dp, spatial_joint_revolute, spatial_joint_revolute, links, fx, beta, e)
+    call model%init(kin, 150.0_dp, 0.0_dp, spatial_joint_revolute, spatial_joint_revolute, links, fx, beta, e, &
+                    formulation=spatial_formulation_kear)    ! the mechanism decks' element (doc/spatial.md)
     if (e%failed()) error stop 'bench_spatial: model'
   end subroutine build
 end program bench_spatial

@@ -16,7 +16,8 @@ module spatial_analysis
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use kear_element, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
-  use spatial_beam, only: spatial_stress_t, spatial_to_local
+  use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
+  use spatial_correlation, only: sdofs
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
@@ -57,7 +58,8 @@ contains
     call echo_transient_settings(out)
     call build_spatial(deck, inp, kin, links, jb, jc, err)
     if (err%failed()) return
-    call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err)
+    call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err, &
+                    formulation=spatial_formulation_of(s))
     if (err%failed()) then
       if (err%code /= 2) err%code = 2
       call err%add_context('deck '''//deck%path//''', group &spatial_mechanism')
@@ -165,7 +167,7 @@ contains
     subroutine output_row(tt)
       real(dp), intent(in) :: tt
       real(dp), allocatable :: row(:)
-      real(dp) :: q(model%n), p(16), crank_deg
+      real(dp) :: q(model%n), p(sdofs), crank_deg
       integer :: kk, i, ee
       call model%set_time(tt)
       if (model%err%failed()) then
@@ -190,7 +192,7 @@ contains
       do i = 1, 3
         ee = model%links(i)%first_element + model%links(i)%n_elements - 1
         p = spatial_to_local(model%rb(ee)%rot, model%table%gather(ee, q), model%el(ee)%local_rotation)
-        row(kk + 1:kk + 6) = p(9:14)
+        row(kk + 1:kk + 6) = p(11:16)
         kk = kk + 6
       end do
       do i = 1, 3
@@ -218,6 +220,16 @@ contains
     end subroutine output_row
   end subroutine run_spatial
 
+  !> The element formulation a deck asks for: 'default' is the consistent
+  !> element with stretching on (where Kear's linear u locks), Kear's otherwise
+  !> (as the planar analysis' 'default').
+  integer function spatial_formulation_of(s) result(f)
+    type(transient_settings_t), intent(in) :: s
+    f = spatial_formulation_kear
+    if (s%formulation == 'consistent' .or. (s%formulation == 'default' .and. s%effects%stretching)) &
+      f = spatial_formulation_consistent
+  end function spatial_formulation_of
+
   !> What the spatial analysis does not (yet) take from the shared groups.
   subroutine check_supported(deck, s, inp, err)
     type(deck_t), intent(in) :: deck
@@ -230,10 +242,11 @@ contains
     else if (s%initial /= 'rigid') then
       call invalid_value(deck, 'transient', 'initial', ''''//trim(s%initial)//'''', &
                          'the spatial analysis starts from the rigid-body state only (''rigid'')', err)
-    else if (s%formulation /= 'exact' .and. s%formulation /= 'default') then
-      ! the spatial element has one formulation: Kear's 'exact' strains (doc/spatial.md)
+    else if (all(s%formulation /= [character(len=16) :: 'exact', 'consistent', 'default'])) then
+      ! the spatial element's two interpolations of u (doc/spatial.md)
       call invalid_value(deck, 'effects', 'formulation', ''''//trim(s%formulation)//'''', &
-                         'the spatial element has the exact formulation only (''exact'' or ''default'')', err)
+                         'the spatial element has the formulations ''consistent'' (quintic u) and ''exact'' '// &
+                         '(Kear''s linear u); ''default'' is consistent with stretching on, else exact', err)
     else if (len_trim(s%restart_out) > 0) then
       call invalid_value(deck, 'transient', 'restart_out', ''''//trim(s%restart_out)//'''', &
                          'restart files are not written by the spatial analysis yet', err)
@@ -253,6 +266,11 @@ contains
                      str(inp%link_n_elements(1))//', '//str(inp%link_n_elements(2))//', '//str(inp%link_n_elements(3)))
     call out%comment('effects on: '//effects_summary(s%effects)//' (torsional inertia always; twist linear, '// &
                      'St. Venant, warping neglected)')
+    if (model%formulation == spatial_formulation_consistent) then
+      call out%comment('element formulation: consistent (u quintic with nodal u_x, u_xx: no membrane locking)')
+    else
+      call out%comment('element formulation: exact (Kear''s interpolation, u linear)')
+    end if
     call out%comment('rigid-body motion: loop closure solved by Newton at every time the integrator asks for')
     call model%table%describe(lines)
     do i = 1, size(lines)

@@ -27,7 +27,8 @@ module spatial_model
   use spatial_section, only: spatial_section_t
   use spatial_beam, only: spatial_beam_t, spatial_rigid_t, spatial_eval_info_t, spatial_stress_t, &
                           spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &
-                          spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local
+                          spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local, &
+                          spatial_formulation_consistent
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
@@ -51,6 +52,7 @@ module spatial_model
     type(spatial_fourbar_t) :: kin
     real(dp) :: omega = 0.0_dp, theta0 = 0.0_dp
     integer :: joint_b = spatial_joint_spherical, joint_c = spatial_joint_spherical
+    integer :: formulation = spatial_formulation_consistent   !< of every element (spatial_beam)
     type(spatial_link_t) :: links(3)
     type(spatial_beam_t), allocatable :: el(:)
     type(spatial_rigid_t), allocatable :: rb(:)
@@ -88,7 +90,7 @@ contains
 
   !> Elements, joint rules and the correlation table.  kin must be
   !> initialised; links(:) carry section, material and element counts.
-  subroutine model_init(self, kin, omega, theta0, joint_b, joint_c, links, effects, beta, err)
+  subroutine model_init(self, kin, omega, theta0, joint_b, joint_c, links, effects, beta, err, formulation)
     class(spatial_model_t), intent(inout) :: self
     type(spatial_fourbar_t), intent(in) :: kin
     real(dp), intent(in) :: omega, theta0, beta
@@ -96,8 +98,11 @@ contains
     type(spatial_link_t), intent(in) :: links(3)
     type(element_effects_t), intent(in) :: effects
     type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: formulation   !< spatial_formulation_* (default: consistent)
     integer :: k, i, e, ne
     logical :: loc(2)
+    self%formulation = spatial_formulation_consistent
+    if (present(formulation)) self%formulation = formulation
     self%kin = kin
     self%omega = omega
     self%theta0 = theta0
@@ -128,7 +133,7 @@ contains
         if (i == 1 .and. k == link_coupler) loc(1) = joint_b == spatial_joint_spherical
         associate (lk => self%links(k))
           call spatial_beam_init(self%el(e), lk%length/lk%n_elements, lk%sec, lk%material, lk%shear_modulus, &
-                                 effects, err, damping_beta=beta, local_rotation=loc)
+                                 effects, err, damping_beta=beta, local_rotation=loc, formulation=self%formulation)
         end associate
         if (err%failed()) then
           call err%add_context(trim(link_names(k))//' element '//str(i))
@@ -166,7 +171,7 @@ contains
     integer :: b_rot(2), c_rot(2)
     real(dp) :: a(3)
     nmax = maxval(self%links%n_elements)
-    allocate(nm(8, 0:nmax, 3), nc(8, 0:nmax, 3))
+    allocate(nm(10, 0:nmax, 3), nc(10, 0:nmax, 3))
     nm = 0
     nc = 0.0_dp
     call self%table%init(size(self%el))
@@ -190,6 +195,7 @@ contains
       if (j == 0) then
         nm(7:8, j, 1) = [fresh(1, j, 7), fresh(1, j, 8)]
         nc(7:8, j, 1) = 1.0_dp
+        call axial_slopes(1, j)
       else if (j == self%links(link_crank)%n_elements) then
         call joint_end(1, j, self%joint_b, self%b_dofs, b_rot, 'B', .false.)
       else
@@ -224,6 +230,7 @@ contains
           end do
           nm(8, j, 3) = fresh(3, j, 8)
           nc(8, j, 3) = 1.0_dp
+          call axial_slopes(3, j)
         end block
       else
         call interior(3, j)
@@ -232,10 +239,10 @@ contains
     do k = 1, 3
       do j = 1, self%links(k)%n_elements
         associate (e => self%links(k)%first_element + j - 1)
-          self%table%map(1:8, e) = nm(:, j - 1, k)
-          self%table%coef(1:8, e) = nc(:, j - 1, k)
-          self%table%map(9:16, e) = nm(:, j, k)
-          self%table%coef(9:16, e) = nc(:, j, k)
+          self%table%map(1:10, e) = nm(:, j - 1, k)
+          self%table%coef(1:10, e) = nc(:, j - 1, k)
+          self%table%map(11:20, e) = nm(:, j, k)
+          self%table%coef(11:20, e) = nc(:, j, k)
         end associate
       end do
     end do
@@ -245,7 +252,8 @@ contains
 
     integer function fresh(link, node, slot)
       integer, intent(in) :: link, node, slot
-      character(len=4), parameter :: names(8) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ']
+      character(len=4), parameter :: names(10) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ', &
+                                                  'ux  ', 'uxx ']
       fresh = self%table%new_unknown(trim(link_names(link))//' N'//str(node)//' '//trim(names(slot)))
     end function fresh
 
@@ -255,8 +263,19 @@ contains
       do s = 1, 8
         nm(s, node, link) = fresh(link, node, s)
       end do
-      nc(:, node, link) = 1.0_dp
+      nc(1:8, node, link) = 1.0_dp
+      call axial_slopes(link, node)
     end subroutine interior
+
+    !> u's slope and curvature DOFs (consistent formulation): free at every
+    !> node, local to the link (axial strain and its rate are not transmitted
+    !> by a joint); held in Kear's formulation, whose u is linear.
+    subroutine axial_slopes(link, node)
+      integer, intent(in) :: link, node
+      if (self%formulation /= spatial_formulation_consistent) return
+      nm(9:10, node, link) = [fresh(link, node, 9), fresh(link, node, 10)]
+      nc(9:10, node, link) = 1.0_dp
+    end subroutine axial_slopes
 
     !> A link end at joint B or C; trans/rot: the joint's shared unknowns
     !> (created at the first visit).
@@ -273,6 +292,7 @@ contains
       end if
       nm(1:3, node, link) = trans
       nc(1:3, node, link) = 1.0_dp
+      call axial_slopes(link, node)
       if (kind == spatial_joint_spherical) then
         ! local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
         do s = 4, 6
