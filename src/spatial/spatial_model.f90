@@ -558,15 +558,21 @@ contains
     end do
   end subroutine assemble_dense
 
-  !> Natural frequencies (rad/s) of the linearised structure at the current position.
-  subroutine linear_modes(self, omega, err)
+  !> Natural frequencies (rad/s) of the linearised structure at the current
+  !> position and, if asked, the M-normalised mode shapes (columns).
+  subroutine linear_modes(self, omega, err, shapes)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(out) :: omega(:)
     type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: shapes(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q0(self%n)
     q0 = 0.0_dp
     call self%assemble_dense(q0, mass, stiff)
-    call sym_generalized_eig(stiff, mass, omega, err)
+    if (present(shapes)) then
+      call sym_generalized_eig(stiff, mass, omega, err, shapes)
+    else
+      call sym_generalized_eig(stiff, mass, omega, err)
+    end if
     if (err%failed()) return
     omega = sign(sqrt(abs(omega)), omega)
   end subroutine linear_modes
