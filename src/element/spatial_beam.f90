@@ -39,6 +39,7 @@ module spatial_beam
   use material_law, only: ramberg_osgood_t, validate_material, ro_stress, peak_strain
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t, spatial_section_resultants, section_extreme_fibre_strain
+  use linalg, only: outer
   implicit none
   private
   public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
@@ -667,13 +668,4 @@ contains
     real(dp) :: c(3)
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
   end function cross
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
 end module spatial_beam
