@@ -858,7 +858,10 @@ contains
         s = msys%s
         solved = mres%solved
         residual = mres%residual
-        if (mres%how /= 'newton') then
+        if (mres%how == 'kkt') then
+          call self%note('B11 on '//set_text(self%active)//': Newton in lambda failed ('//mres%newton_failure// &
+            '); B10 and B11 solved together by Newton in (s, lambda)')
+        else if (mres%how /= 'newton') then
           self%powell_fallbacks = self%powell_fallbacks + 1
           call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
             '); Powell minimised H = Sum g^2 ('//str(mres%powell_evaluations)//' evaluations, '// &
