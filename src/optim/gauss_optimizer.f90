@@ -67,6 +67,8 @@ module gauss_optimizer
     integer :: newton_max_iter = 30       !< Newton iterations for B11 before Powell takes over
     logical :: potter_repeat = .true.     !< on step-back cycling repeat the step with the violated
                                           !< constraints active (Potter's fix (a)); else stop
+    logical :: hold_bounds = .true.       !< simple bounds as bounds (held variables in the step); .false.:
+                                          !< as unit-gradient linear constraints of the active set
     logical :: step_back_refine = .true.  !< step back to the boundary (farthest feasible point, P);
                                           !< .false.: one B13 interpolation, feasible side kept
   end type gauss_options_t
@@ -123,6 +125,9 @@ module gauss_optimizer
     procedure, private :: curvature
     procedure, private :: make_convex
     procedure, private :: compute_step
+    procedure, private :: step_for_set
+    procedure, private :: limit_violated
+    procedure, private :: note_b11
     procedure, private :: step_back
     procedure, private :: analyse_trial
     procedure, private :: check_cycling
@@ -307,6 +312,8 @@ contains
         if (k >= self%opts%max_iter) exit outer
 
         x_new = self%x + s
+        ! a held variable lands on its bound exactly (not a rounding beyond it)
+        if (prob%n_bounds > 0 .and. self%opts%hold_bounds) x_new = prob%project_to_bounds(x_new)
         t = 1.0_dp
         if (mt > 0) then
           call prob%constraint_values(x_new, g_new, err)
@@ -802,7 +809,13 @@ contains
   end subroutine make_convex
 
   !> Multipliers and step at x_k for the current active set, with the drop
-  !> rule of §9.4 (most negative multiplier first, re-solve, repeat).
+  !> rule of §9.4 (most negative multiplier first, re-solve, repeat) and the
+  !> simple bounds as bounds: an active bound holds its variable at the
+  !> bound in the step (the multiplier system sees only the free variables),
+  !> and a free variable whose step crosses its bound is held there and the
+  !> step recomputed (no analysis).  A bound added here is not dropped in the
+  !> same call (its sign is judged at the next iterate, on the bound), so
+  !> the loop ends.
   subroutine compute_step(self, prob, s, solved, residual, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
@@ -810,85 +823,198 @@ contains
     logical, intent(out) :: solved
     real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
-    type(multiplier_system_t) :: msys
-    type(multiplier_result_t) :: mres
-    class(opt_problem_t), pointer :: pprob
-    integer, allocatable :: idx(:)
-    real(dp), allocatable :: lam(:), lam_prev(:)
-    logical, allocatable :: actual(:)
+    real(dp), allocatable :: lam_prev(:), xt(:)
+    logical, allocatable :: new_bound(:), hit(:)
     real(dp) :: crit, worst, thresh
-    integer :: i, j, l, mt, jdrop
+    integer :: i, j, m0, mt, jdrop, round
     mt = prob%m + prob%n_eq
-    pprob => prob
-    allocate(lam_prev(mt))
+    m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
     lam_prev = self%lambda
     thresh = self%opts%mult_tol*norm2(self%gradf)
-    residual = 0.0_dp
-    do
-      l = count(self%active)
-      if (l == 0) then
-        call gauss_step(self%gm, self%gradf, s, err)       ! B12
-        self%lambda = 0.0_dp
-        solved = .true.
-        return
-      end if
-      idx = pack([(i, i=1, mt)], self%active)
-      allocate(lam(l), actual(l))
-      if (self%opts%method == method_gauss_constrained) then
-        call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, err)   ! P16, P17
-        if (err%failed()) return
-        solved = .true.
-      else
-        do j = 1, l
-          i = idx(j)
-          if (.not. self%have_hess(i)) then
-            ! Potter §9.5 item 1: Hessians of general constraints re-evaluated at every iterate
-            call prob%constraint_hessian(i, self%x, self%hess(:, :, i), err)
-            if (err%failed()) return
-            self%have_hess(i) = .true.
-          end if
-          actual(j) = prob%con_kind(i) == con_general
-        end do
-        call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
-                        actual, pprob, nonneg=idx <= prob%m)
-        lam = lam_prev(idx)                           ! warm start from the previous iteration
-        call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
-        if (err%failed()) return
-        self%newton_solves = self%newton_solves + 1
-        s = msys%s
-        solved = mres%solved
-        residual = mres%residual
-        if (mres%how == 'kkt') then
-          call self%note('B11 on '//set_text(self%active)//': Newton in lambda failed ('//mres%newton_failure// &
-            '); B10 and B11 solved together by Newton in (s, lambda)')
-        else if (mres%how /= 'newton') then
-          self%powell_fallbacks = self%powell_fallbacks + 1
-          call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
-            '); Powell minimised H = Sum g^2 ('//str(mres%powell_evaluations)//' evaluations, '// &
-            mres%how//'), max |g| = '//str(mres%residual, 3))
-        end if
-      end if
-      self%lambda = 0.0_dp
-      self%lambda(idx) = lam
+    allocate(new_bound(mt), hit(mt), xt(prob%n))
+    new_bound = .false.
+    do round = 1, 2*(mt + prob%n) + 2
+      call self%limit_violated(prob)
+      call self%step_for_set(prob, lam_prev, s, solved, residual, err)
+      if (err%failed()) return
       ! drop rule: the most negative multiplier of an inequality leaves the set
       jdrop = 0
       worst = 0.0_dp
-      do j = 1, l
-        i = idx(j)
-        if (i > prob%m) cycle
-        crit = lam(j)*norm2(self%dg(:, i))
+      do i = 1, prob%m
+        if (.not. self%active(i) .or. new_bound(i)) cycle
+        crit = self%lambda(i)*norm2(self%dg(:, i))
         if (crit < -thresh .and. crit < worst) then
           worst = crit
           jdrop = i
         end if
       end do
-      if (jdrop == 0) return
-      self%active(jdrop) = .false.
-      self%drops = self%drops + 1
-      call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
-      deallocate(lam, actual)
+      if (jdrop /= 0) then
+        self%active(jdrop) = .false.
+        self%drops = self%drops + 1
+        call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
+        cycle
+      end if
+      ! free variables whose step leaves the box: held at the bound, step recomputed
+      xt = self%x + s
+      hit = .false.
+      do i = m0 + 1, prob%m
+        j = abs(prob%bound_var(i - m0))
+        if (self%active(i)) cycle
+        if (prob%bound_var(i - m0) < 0) hit(i) = xt(j) < prob%xl(j)
+        if (prob%bound_var(i - m0) > 0) hit(i) = xt(j) > prob%xu(j)
+      end do
+      if (.not. any(hit)) return
+      call self%note('bound(s) '//set_text(hit)//' reached by the step: variables held there, step recomputed')
+      self%additions = self%additions + count(hit)
+      self%active = self%active .or. hit
+      new_bound = new_bound .or. hit
     end do
   end subroutine compute_step
+
+  !> GNLC.NS makes every violated constraint active; with more active
+  !> general constraints than free variables B11 has no solution (HS 18 from
+  !> (2, 2): x1 held at its bound, both constraints violated; HS 23 at
+  !> (0, 0): five in two variables) and Powell's compromise pins the set.
+  !> The least violated (by g / |grad g|, the linearised distance) leave the
+  !> set for this step until it is square; still violated at the next
+  !> iterate, they rejoin.
+  subroutine limit_violated(self, prob)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer :: i, m0, nfree, ngen, iout
+    real(dp) :: dist, dmin
+    logical, allocatable :: held(:), out(:)
+    m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
+    allocate(held(prob%n), out(size(self%active)))
+    held = .false.
+    do i = m0 + 1, prob%m
+      if (self%active(i)) held(abs(prob%bound_var(i - m0))) = .true.
+    end do
+    nfree = count(.not. held)
+    out = .false.
+    do
+      ngen = count(self%active(1:m0)) + count(self%active(prob%m + 1:))
+      if (ngen <= nfree) exit
+      iout = 0
+      dmin = huge(1.0_dp)
+      do i = 1, m0
+        if (.not. self%active(i) .or. self%g(i) <= self%opts%feas_tol) cycle
+        dist = self%g(i)/max(norm2(self%dg(:, i)), sqrt(epsilon(1.0_dp)))
+        if (dist < dmin) then
+          dmin = dist
+          iout = i
+        end if
+      end do
+      if (iout == 0) exit
+      self%active(iout) = .false.
+      out(iout) = .true.
+    end do
+    if (any(out)) call self%note('active set over-determined ('//str(ngen + count(out))//' for '//str(nfree)// &
+      ' free variables): violated '//set_text(out)//' left out of this step')
+  end subroutine limit_violated
+
+  !> Multipliers and step for the current active set: general constraints
+  !> and equalities through B10/B11 (or P16/P17), active bounds as fixed
+  !> variables; the multiplier of a bound is the force it carries.
+  subroutine step_for_set(self, prob, lam_prev, s, solved, residual, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout), target :: prob
+    real(dp), intent(in) :: lam_prev(:)
+    real(dp), intent(out), contiguous :: s(:)
+    logical, intent(out) :: solved
+    real(dp), intent(out) :: residual
+    type(error_t), intent(inout) :: err
+    type(multiplier_system_t) :: msys
+    type(multiplier_result_t) :: mres
+    class(opt_problem_t), pointer :: pprob
+    integer, allocatable :: idx(:)
+    real(dp), allocatable :: lam(:), s_fix(:), force(:)
+    logical, allocatable :: actual(:), fixed(:), general(:)
+    logical :: ok
+    integer :: i, j, l, mt, m0, v
+    mt = prob%m + prob%n_eq
+    m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
+    pprob => prob
+    residual = 0.0_dp
+    solved = .true.
+    allocate(fixed(prob%n), s_fix(prob%n), general(mt))
+    fixed = .false.
+    s_fix = 0.0_dp
+    general = .true.
+    do i = m0 + 1, prob%m
+      general(i) = .false.
+      if (.not. self%active(i)) cycle
+      v = prob%bound_var(i - m0)
+      j = abs(v)
+      if (fixed(j)) cycle                        ! both bounds active (lower = upper): the first holds
+      fixed(j) = .true.
+      s_fix(j) = merge(prob%xu(j), prob%xl(j), v > 0) - self%x(j)
+    end do
+    idx = pack([(i, i=1, mt)], self%active .and. general)
+    l = size(idx)
+    allocate(lam(l), actual(l))
+    self%lambda = 0.0_dp
+    if (l == 0 .and. .not. any(fixed)) then
+      call gauss_step(self%gm, self%gradf, s, err)       ! B12
+      return
+    end if
+    if (self%opts%method == method_gauss_constrained .and. .not. any(fixed)) then
+      call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, err)   ! P16, P17
+      if (err%failed()) return
+      self%lambda(idx) = lam
+      return
+    end if
+    do j = 1, l
+      i = idx(j)
+      if (.not. self%have_hess(i)) then
+        ! Potter §9.5 item 1: Hessians of general constraints re-evaluated at every iterate
+        call prob%constraint_hessian(i, self%x, self%hess(:, :, i), err)
+        if (err%failed()) return
+        self%have_hess(i) = .true.
+      end if
+      actual(j) = prob%con_kind(i) == con_general
+    end do
+    call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
+                    actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
+    if (l == 0) then
+      call msys%evaluate_step(lam, ok)                   ! B12 on the free variables
+      if (.not. ok) call err%set('gauss_step', 'G restricted to the free variables is singular (rcond = '// &
+                                 str(msys%m_rcond, 3)//')')
+      if (err%failed()) return
+    else
+      lam = lam_prev(idx)                               ! warm start from the previous iteration
+      call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
+      if (err%failed()) return
+      self%newton_solves = self%newton_solves + 1
+      solved = mres%solved
+      residual = mres%residual
+      call self%note_b11(mres)
+      self%lambda(idx) = lam
+    end if
+    s = msys%s
+    ! bound multipliers: lower = force_j, upper = -force_j
+    force = msys%bound_multipliers(lam)
+    do i = m0 + 1, prob%m
+      if (.not. self%active(i)) cycle
+      v = prob%bound_var(i - m0)
+      self%lambda(i) = merge(-force(abs(v)), force(abs(v)), v > 0)
+    end do
+  end subroutine step_for_set
+
+  !> Log how B11 was solved when Newton in lambda did not.
+  subroutine note_b11(self, mres)
+    class(gauss_optimizer_t), intent(inout) :: self
+    type(multiplier_result_t), intent(in) :: mres
+    if (mres%how == 'kkt') then
+      call self%note('B11 on '//set_text(self%active)//': Newton in lambda failed ('//mres%newton_failure// &
+        '); B10 and B11 solved together by Newton in (s, lambda)')
+    else if (mres%how /= 'newton') then
+      self%powell_fallbacks = self%powell_fallbacks + 1
+      call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
+        '); Powell minimised H = Sum g^2 ('//str(mres%powell_evaluations)//' evaluations, '// &
+        mres%how//'), max |g| = '//str(mres%residual, 3))
+    end if
+  end subroutine note_b11
 
   !> Farthest feasible point x_k + t s on the segment (P), located by B13's
   !> linear interpolation, repeated (Illinois regula falsi) until the
