@@ -125,6 +125,8 @@ module gauss_optimizer
     procedure, private :: curvature
     procedure, private :: make_convex
     procedure, private :: compute_step
+    procedure, private :: derivatives
+    procedure, private :: trial_point
     procedure, private :: step_for_set
     procedure, private :: limit_violated
     procedure, private :: note_b11
@@ -245,11 +247,10 @@ contains
     class(opt_problem_t), intent(inout), target :: prob
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
-    logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind, halvings, stalls, escapes
+    real(dp), allocatable :: s(:), x_new(:), g_new(:)
+    integer :: n, m, mt, k, repeats, hess_kind, stalls, escapes
     real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged, same_point, auto
+    logical :: solved, step_back_method, converged, same_point, auto, again
     real(dp) :: b11_res
     logical, allocatable :: active_before(:)
     character(len=:), allocatable :: stage
@@ -268,7 +269,7 @@ contains
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
     call self%start(prob, x0, step_back_method, auto, err)
     if (err%failed()) return
-    allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
+    allocate(s(n), x_new(n), g_new(mt))
 
     k = 0
     stalls = 0
@@ -277,17 +278,7 @@ contains
     outer: do
       stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
-      call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
-      if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
-        call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
-      if (err%failed()) exit outer
-      if (mt > 0) then
-        call prob%constraint_gradients(self%x, self%g, self%dg, err)
-        if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
-          call err%set('constraint gradients', 'not finite at x_'//str(k))
-        if (err%failed()) exit outer
-      end if
-      call self%curvature(prob, hess_kind, k, err)
+      call self%derivatives(prob, hess_kind, k, err)
       if (err%failed()) exit outer
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
@@ -311,70 +302,10 @@ contains
         end if
         if (k >= self%opts%max_iter) exit outer
 
-        x_new = self%x + s
-        ! a held variable lands on its bound exactly (not a rounding beyond it)
-        if (prob%n_bounds > 0 .and. self%opts%hold_bounds) x_new = prob%project_to_bounds(x_new)
-        t = 1.0_dp
-        if (mt > 0) then
-          call prob%constraint_values(x_new, g_new, err)
-          if (err%failed()) exit outer
-          ! a non-finite constraint value is a failed trial: shorten the step
-          halvings = 0
-          do while (.not. all(ieee_is_finite(g_new)) .and. halvings < max_halvings)
-            halvings = halvings + 1
-            s = 0.5_dp*s
-            x_new = self%x + s
-            call prob%constraint_values(x_new, g_new, err)
-            if (err%failed()) exit outer
-          end do
-          if (halvings > 0) then
-            snorm = maxval(abs(s))
-            call self%note('constraints not finite at the trial point: step halved '//str(halvings)//' times')
-          end if
-          if (.not. all(ieee_is_finite(g_new))) then
-            call err%set('constraints', 'not finite anywhere along the step (halved '//str(max_halvings)//' times)')
-            exit outer
-          end if
-          violated = g_new(1:m) > self%opts%feas_tol
-          touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
-          if (step_back_method .and. any(violated)) then
-            ! ---- step back to the farthest feasible point of the segment (B13)
-            call self%step_back(prob, s, g_new, t, g_t, limit, err)
-            if (err%failed()) exit outer
-            if (t*snorm <= self%opts%xtol*(1.0_dp + xnorm) .and. .not. any(limit .and. .not. self%active(1:m))) then
-              ! Potter §9.5 item 3: backing out of the new violation entered the
-              ! violated region of an active constraint; the step-back ends at
-              ! x_k with the same active set and would repeat the same design.
-              if (self%opts%potter_repeat .and. any(violated .and. .not. self%active(1:m)) &
-                  .and. repeats < m) then
-                repeats = repeats + 1
-                self%potter_repeats = self%potter_repeats + 1
-                call self%note('step-back cycling (Potter 9.5 item 3): limited by active ' &
-                  //set_text(limit)//' at t = '//str(t, 3)//'; step repeated with ' &
-                  //set_text(violated .and. .not. self%active(1:m))//' active (fix (a))')
-                self%additions = self%additions + count(violated .and. .not. self%active(1:m))
-                self%active(1:m) = self%active(1:m) .or. violated
-                cycle inner
-              end if
-              call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
-                ' (Potter, FORMULATION.md 9.5 item 3): backing out of violated constraint(s) ' &
-                //set_text(violated .and. .not. self%active(1:m))//' entered the violated region of active ' &
-                //set_text(limit)//'; the step-back returns to x_k with the same active set, so the ' &
-                //'next iteration would reproduce the same design')
-              exit outer
-            end if
-            self%step_backs = self%step_backs + 1
-            x_new = self%x + t*s
-            g_new = g_t
-            call self%note('step-back (B13) to t = '//str(t, 6)//', added '//set_text(limit .and. &
-                           .not. self%active(1:m)))
-            self%additions = self%additions + count(limit .and. .not. self%active(1:m))
-            self%active(1:m) = self%active(1:m) .or. limit
-          else
-            call self%add_to_active(violated, touched, step_back_method)
-          end if
-          if (.not. solved) call self%release_satisfied(g_new(1:m))
-        end if
+        call self%trial_point(prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
+                              again, err)
+        if (err%failed()) exit outer
+        if (again) cycle inner
         ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
         ! with a changed active set the step is recomputed at x_k; with the
         ! same set the next iteration would repeat this one exactly
@@ -434,6 +365,120 @@ contains
       call err%set(self%method_label(), self%message)
     end if
   end subroutine solve
+
+  !> grad F (and J), the constraint gradients and G at x_k; a non-finite
+  !> derivative stops the run with the diagnosis.
+  subroutine derivatives(self, prob, hess_kind, k, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    integer, intent(in) :: hess_kind, k
+    type(error_t), intent(inout) :: err
+    integer :: mt
+    mt = prob%m + prob%n_eq
+    call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
+    if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
+      call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
+    if (err%failed()) return
+    if (mt > 0) then
+      call prob%constraint_gradients(self%x, self%g, self%dg, err)
+      if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
+        call err%set('constraint gradients', 'not finite at x_'//str(k))
+      if (err%failed()) return
+    end if
+    call self%curvature(prob, hess_kind, k, err)
+    if (err%failed()) return
+  end subroutine derivatives
+
+  !> The trial point x_k + s: constraints there (a non-finite value halves
+  !> the step), the step-back of the step-back methods (B13, with Potter's
+  !> cycling check: again = .true. asks for the step to be recomputed with
+  !> the newly violated constraints active), the additions of §9.4 and the
+  !> release rule.  On return x_new, g_new and t (the fraction of s taken).
+  subroutine trial_point(self, prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
+                         again, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(inout) :: s(:), snorm
+    real(dp), intent(in) :: xnorm
+    integer, intent(in) :: k
+    logical, intent(in) :: step_back_method, solved
+    real(dp), intent(out) :: x_new(:), g_new(:), t
+    integer, intent(inout) :: repeats
+    logical, intent(out) :: again
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: g_t(:)
+    logical, allocatable :: violated(:), touched(:), limit(:)
+    integer :: m, mt, halvings
+    m = prob%m
+    mt = prob%m + prob%n_eq
+    again = .false.
+    allocate(g_t(mt), violated(m), touched(m), limit(m))
+    x_new = self%x + s
+    ! a held variable lands on its bound exactly (not a rounding beyond it)
+    if (prob%n_bounds > 0 .and. self%opts%hold_bounds) x_new = prob%project_to_bounds(x_new)
+    t = 1.0_dp
+    if (mt > 0) then
+      call prob%constraint_values(x_new, g_new, err)
+      if (err%failed()) return
+      ! a non-finite constraint value is a failed trial: shorten the step
+      halvings = 0
+      do while (.not. all(ieee_is_finite(g_new)) .and. halvings < max_halvings)
+        halvings = halvings + 1
+        s = 0.5_dp*s
+        x_new = self%x + s
+        call prob%constraint_values(x_new, g_new, err)
+        if (err%failed()) return
+      end do
+      if (halvings > 0) then
+        snorm = maxval(abs(s))
+        call self%note('constraints not finite at the trial point: step halved '//str(halvings)//' times')
+      end if
+      if (.not. all(ieee_is_finite(g_new))) then
+        call err%set('constraints', 'not finite anywhere along the step (halved '//str(max_halvings)//' times)')
+        return
+      end if
+      violated = g_new(1:m) > self%opts%feas_tol
+      touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
+      if (step_back_method .and. any(violated)) then
+        ! ---- step back to the farthest feasible point of the segment (B13)
+        call self%step_back(prob, s, g_new, t, g_t, limit, err)
+        if (err%failed()) return
+        if (t*snorm <= self%opts%xtol*(1.0_dp + xnorm) .and. .not. any(limit .and. .not. self%active(1:m))) then
+          ! Potter §9.5 item 3: backing out of the new violation entered the
+          ! violated region of an active constraint; the step-back ends at
+          ! x_k with the same active set and would repeat the same design.
+          if (self%opts%potter_repeat .and. any(violated .and. .not. self%active(1:m)) &
+              .and. repeats < m) then
+            repeats = repeats + 1
+            self%potter_repeats = self%potter_repeats + 1
+            call self%note('step-back cycling (Potter 9.5 item 3): limited by active ' &
+              //set_text(limit)//' at t = '//str(t, 3)//'; step repeated with ' &
+              //set_text(violated .and. .not. self%active(1:m))//' active (fix (a))')
+            self%additions = self%additions + count(violated .and. .not. self%active(1:m))
+            self%active(1:m) = self%active(1:m) .or. violated
+            again = .true.
+            return
+          end if
+          call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
+            ' (Potter, FORMULATION.md 9.5 item 3): backing out of violated constraint(s) ' &
+            //set_text(violated .and. .not. self%active(1:m))//' entered the violated region of active ' &
+            //set_text(limit)//'; the step-back returns to x_k with the same active set, so the ' &
+            //'next iteration would reproduce the same design')
+          return
+        end if
+        self%step_backs = self%step_backs + 1
+        x_new = self%x + t*s
+        g_new = g_t
+        call self%note('step-back (B13) to t = '//str(t, 6)//', added '//set_text(limit .and. &
+                       .not. self%active(1:m)))
+        self%additions = self%additions + count(limit .and. .not. self%active(1:m))
+        self%active(1:m) = self%active(1:m) .or. limit
+      else
+        call self%add_to_active(violated, touched, step_back_method)
+      end if
+      if (.not. solved) call self%release_satisfied(g_new(1:m))
+    end if
+  end subroutine trial_point
 
   !> GNLC.NS: a violated constraint is treated as an active one (§9.4); every
   !> method adds the constraints the step makes active (touched).
@@ -829,9 +874,9 @@ contains
     integer :: i, j, m0, mt, jdrop, round
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
+    allocate(new_bound(mt), hit(mt), xt(prob%n), lam_prev(mt))
     lam_prev = self%lambda
     thresh = self%opts%mult_tol*norm2(self%gradf)
-    allocate(new_bound(mt), hit(mt), xt(prob%n))
     new_bound = .false.
     do round = 1, 2*(mt + prob%n) + 2
       call self%limit_violated(prob)
