@@ -251,7 +251,7 @@ contains
     character(len=:), allocatable, intent(out) :: reason
     integer, intent(out) :: iterations
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: mm(:, :), kk(:, :), w(:, :), r1(:), r2(:), d(:), s(:)
+    real(dp), allocatable :: mm(:, :), kk(:, :), w(:, :), r1(:), r2(:), d(:), s(:), dsc(:)
     integer, allocatable :: free(:), piv(:)
     integer :: nf, l, nk, it, j
     real(dp) :: rc, scale
@@ -260,7 +260,7 @@ contains
     free = pack([(j, j=1, self%n)], .not. self%fixed)
     nf = size(free)
     nk = nf + l
-    allocate(mm(self%n, self%n), kk(nk, nk), w(self%n, l), r1(self%n), r2(l), d(nk), piv(nk))
+    allocate(mm(self%n, self%n), kk(nk, nk), w(self%n, l), r1(self%n), r2(l), d(nk), piv(nk), dsc(nk))
     s = merge(self%s_fix, 0.0_dp, self%fixed)
     ok = .false.
     reason = ''
@@ -284,8 +284,17 @@ contains
         return
       end if
       do j = 1, l
-        w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), s)
+        if (self%actual(j) .and. it > 0) then
+          ! Potter's actual constraint: its own gradient at x_k + s, so that
+          ! Newton converges quadratically (the model's c + A s is O(|s|^2) off)
+          call self%prob%general_constraint_gradient(self%idx(j), self%xk + s, r2(j), w(:, j), err)
+          self%prob%count%constraint_gradients = self%prob%count%constraint_gradients + 1
+          if (err%failed()) return
+        else
+          w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), s)
+        end if
       end do
+      if (it == 0) call first_order_multipliers()
       kk = 0.0_dp
       kk(1:nf, 1:nf) = mm(free, free)
       kk(1:nf, nf + 1:nk) = w(free, :)
@@ -301,12 +310,22 @@ contains
       end if
       d(1:nf) = -r1(free)
       d(nf + 1:nk) = -r2
+      ! symmetric equilibration: the multipliers and the step live on
+      ! different scales, and rcond should judge singularity, not units
+      do j = 1, nk
+        dsc(j) = 1.0_dp/sqrt(max(maxval(abs(kk(j, :))), tiny(1.0_dp)))
+      end do
+      do j = 1, nk
+        kk(:, j) = dsc*kk(:, j)*dsc(j)
+      end do
+      d = dsc*d
       call lu_factor(kk, piv, lerr, rc)
       if (lerr%failed() .or. rc < 1.0e-14_dp) then
         reason = 'singular KKT matrix at iterate '//str(it)
         return
       end if
       call lu_solve(kk, piv, d, lerr)
+      d = dsc*d
       s(free) = s(free) + d(1:nf)
       lam = lam + d(nf + 1:nk)
       if (maxval(abs(lam)) > 1.0e12_dp .or. .not. all(ieee_is_finite(s))) then
@@ -315,6 +334,33 @@ contains
       end if
     end do
   contains
+    !> The start: least-squares multipliers of grad F + W lambda = 0 on the
+    !> free variables at x_k (the warm start may be a Powell compromise,
+    !> huge and meaningless); r1 follows them.  Kept if W_F is rank-deficient.
+    subroutine first_order_multipliers()
+      real(dp), allocatable :: ww(:, :), rhs(:)
+      integer, allocatable :: p(:)
+      real(dp) :: rcw
+      type(error_t) :: werr
+      integer :: i
+      if (nf == 0) return
+      allocate(ww(l, l), rhs(l), p(l))
+      ww = matmul(transpose(w(free, :)), w(free, :))
+      rhs = -matmul(transpose(w(free, :)), self%gradf(free))
+      call lu_factor(ww, p, werr, rcw)
+      if (werr%failed() .or. rcw < 1.0e-12_dp) return
+      call lu_solve(ww, p, rhs, werr)
+      if (werr%failed()) return
+      lam = rhs
+      mm = self%gmat
+      r1 = self%gradf
+      do i = 1, l
+        mm = mm + lam(i)*self%a(:, :, i)
+        r1 = r1 + lam(i)*self%c(:, i)
+      end do
+      r1 = r1 + matmul(mm, s)
+    end subroutine first_order_multipliers
+
     logical function minimiser_inertia() result(good)
       real(dp), allocatable :: eye(:, :), ev(:)
       real(dp) :: big
