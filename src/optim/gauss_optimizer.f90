@@ -69,6 +69,7 @@ module gauss_optimizer
                                           !< constraints active (Potter's fix (a)); else stop
     logical :: hold_bounds = .true.       !< simple bounds as bounds (held variables in the step); .false.:
                                           !< as unit-gradient linear constraints of the active set
+    logical :: hold_crossing = .true.
     logical :: step_back_refine = .true.  !< step back to the boundary (farthest feasible point, P);
                                           !< .false.: one B13 interpolation, feasible side kept
   end type gauss_options_t
@@ -694,7 +695,7 @@ contains
     real(dp), parameter :: auto_factor = 1.0e-8_dp, auto_rcond = 1.4901161193847656e-8_dp
     logical :: auto_exact
     character(len=:), allocatable :: what, rank_text, how
-    integer :: i, n, rank
+    integer :: i, j, n, rank
     n = prob%n
     if (hess_kind == hessian_gauss) then
       self%gm = 2.0_dp*matmul(self%jac, transpose(self%jac))
@@ -710,6 +711,25 @@ contains
     end if
     allocate(lu(n, n), ipiv(n))
     lu = self%gm
+    ! (default settings) B10 needs M = G + Sum lambda_j A_j, not G, to be
+    ! regular, and the step only on the tangent space of the equalities,
+    ! which are active at every step: judge M (multipliers and constraint
+    ! Hessians of the last solved step) + scale Sum_eq c c^T/|c|^2.  Where
+    ! that is regular and G is not, no Levenberg shift slows the iteration:
+    ! where M itself is singular, B10 in lambda fails and B10/B11 are solved
+    ! together in (s, lambda) (HS 28, 2 residuals in 3 variables and one
+    ! linear equality: x* in one step; HS 27: f independent of x3, M regular
+    ! through the equality's curvature)
+    if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp .and. self%last_solved) then
+      do i = 1, size(self%lambda)
+        if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) lu = lu + self%lambda(i)*self%hess(:, :, i)
+      end do
+    end if
+    do i = prob%m + 1, prob%m + prob%n_eq
+      if (.not. self%opts%auto_regularize .or. self%opts%regularization > 0.0_dp) exit   ! the user's choice
+      if (norm2(self%dg(:, i)) > 0.0_dp) lu = lu + max(maxval([(abs(self%gm(j, j)), j=1, n)]), 1.0_dp)* &
+        spread(self%dg(:, i), 2, n)*spread(self%dg(:, i), 1, n)/norm2(self%dg(:, i))**2
+    end do
     call lu_factor(lu, ipiv, lerr, rc)
     if (lerr%failed()) rc = 0.0_dp
     ! with the automatic choice (default) an objective Hessian is treated as
@@ -900,6 +920,7 @@ contains
         cycle
       end if
       ! free variables whose step leaves the box: held at the bound, step recomputed
+      if (.not. self%opts%hold_crossing) return
       xt = self%x + s
       hit = .false.
       do i = m0 + 1, prob%m
@@ -976,6 +997,7 @@ contains
     real(dp), allocatable :: lam(:), s_fix(:), force(:)
     logical, allocatable :: actual(:), fixed(:), general(:)
     logical :: ok
+    type(error_t) :: lerr
     integer :: i, j, l, mt, m0, v
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
@@ -1004,10 +1026,13 @@ contains
       return
     end if
     if (self%opts%method == method_gauss_constrained .and. .not. any(fixed)) then
-      call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, err)   ! P16, P17
-      if (err%failed()) return
-      self%lambda(idx) = lam
-      return
+      ! P16, P17; G singular off the equalities' tangent space (see curvature): as below
+      call lerr%clear()
+      call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, lerr)
+      if (.not. lerr%failed()) then
+        self%lambda(idx) = lam
+        return
+      end if
     end if
     do j = 1, l
       i = idx(j)

@@ -413,12 +413,16 @@ contains
     call assert_true(err%failed() .and. index(err%text(), 'numerical rank 3 of 4') > 0, &
                      'Powell singular: rank loss at the solution detected')
     call assert_true(opt%have_best .and. opt%f_best < 1.0e-15_dp, 'best point near x* kept')
-    ! default: G singular is regularised automatically (mu = 1e-8 max G_ii)
+    ! default: G = 2 J J^T is singular, but not on the tangent space of the
+    ! equality, so no shift: B10/B11 are solved together in (s, lambda), which
+    ! for a quadratic F and a linear equality is the exact KKT step: x* in one
+    ! iteration (NF = 2; 10 with the Levenberg shift before)
     call err%clear()
     call run_problem('hs28', 'gauss_constrained', opt, prob, info, err)
     call assert_true(opt%status == status_converged, 'HS28 with defaults converges: '//err%text())
     call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-7_dp, 'HS28 x* with defaults')
-    call assert_true(index(opt%log(2)%events, 'automatic') > 0, 'automatic regularization logged')
+    call assert_true(index(opt%log(2)%events, '(s, lambda)') > 0, '(s, lambda) Newton logged')
+    call assert_equal(opt%iterations, 1, 'HS28: x* in one iteration')
     call err%clear()
     call run_problem('powell_singular', 'gauss', opt, prob, info, err)
     call assert_true(opt%status == status_converged, 'Powell singular with defaults converges: '//err%text())
