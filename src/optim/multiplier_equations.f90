@@ -267,26 +267,20 @@ contains
     iterations = 0
     do it = 0, max_it
       iterations = it
-      mm = self%gmat
-      r1 = self%gradf
-      scale = maxval(abs(self%gradf))
-      do j = 1, l
-        mm = mm + lam(j)*self%a(:, :, j)
-        r1 = r1 + lam(j)*self%c(:, j)
-        scale = scale + abs(lam(j))*maxval(abs(self%c(:, j)))
-      end do
-      r1 = r1 + matmul(mm, s)
       self%s = s
       call self%residual(r2, err)
       if (err%failed()) return
-      if (.not. (all(ieee_is_finite(r2)) .and. all(ieee_is_finite(r1))) .or. maxval(abs(r2)) > 1.0e100_dp) then
+      if (.not. all(ieee_is_finite(r2)) .or. maxval(abs(r2)) > 1.0e100_dp) then
         reason = 'constraint values overflow at iterate '//str(it)
         return
       end if
+      ! constraint gradients at x_k + s: the model's c + A s, or for Potter's
+      ! actual constraints their own gradient (the stationarity of the
+      ! quadratic F model under the actual constraint; with the model
+      ! gradient the multipliers pass a pole where c + A s vanishes, as for
+      ! exp(x) at s = -1 in HS 34, and Newton converges only linearly)
       do j = 1, l
         if (self%actual(j) .and. it > 0) then
-          ! Potter's actual constraint: its own gradient at x_k + s, so that
-          ! Newton converges quadratically (the model's c + A s is O(|s|^2) off)
           call self%prob%general_constraint_gradient(self%idx(j), self%xk + s, r2(j), w(:, j), err)
           self%prob%count%constraint_gradients = self%prob%count%constraint_gradients + 1
           if (err%failed()) return
@@ -295,6 +289,16 @@ contains
         end if
       end do
       if (it == 0) call first_order_multipliers()
+      mm = self%gmat
+      r1 = self%gradf + matmul(self%gmat, s) + matmul(w, lam)
+      scale = maxval(abs(self%gradf)) + maxval(abs(matmul(self%gmat, s))) + sum(abs(lam)*maxval(abs(w), dim=1))
+      do j = 1, l
+        mm = mm + lam(j)*self%a(:, :, j)
+      end do
+      if (.not. all(ieee_is_finite(r1))) then
+        reason = 'stationarity residual overflows at iterate '//str(it)
+        return
+      end if
       kk = 0.0_dp
       kk(1:nf, 1:nf) = mm(free, free)
       kk(1:nf, nf + 1:nk) = w(free, :)
@@ -336,13 +340,12 @@ contains
   contains
     !> The start: least-squares multipliers of grad F + W lambda = 0 on the
     !> free variables at x_k (the warm start may be a Powell compromise,
-    !> huge and meaningless); r1 follows them.  Kept if W_F is rank-deficient.
+    !> huge and meaningless).  Kept if W_F is rank-deficient.
     subroutine first_order_multipliers()
       real(dp), allocatable :: ww(:, :), rhs(:)
       integer, allocatable :: p(:)
       real(dp) :: rcw
       type(error_t) :: werr
-      integer :: i
       if (nf == 0) return
       allocate(ww(l, l), rhs(l), p(l))
       ww = matmul(transpose(w(free, :)), w(free, :))
@@ -352,13 +355,6 @@ contains
       call lu_solve(ww, p, rhs, werr)
       if (werr%failed()) return
       lam = rhs
-      mm = self%gmat
-      r1 = self%gradf
-      do i = 1, l
-        mm = mm + lam(i)*self%a(:, :, i)
-        r1 = r1 + lam(i)*self%c(:, i)
-      end do
-      r1 = r1 + matmul(mm, s)
     end subroutine first_order_multipliers
 
     logical function minimiser_inertia() result(good)
