@@ -69,7 +69,6 @@ module gauss_optimizer
                                           !< constraints active (Potter's fix (a)); else stop
     logical :: hold_bounds = .true.       !< simple bounds as bounds (held variables in the step); .false.:
                                           !< as unit-gradient linear constraints of the active set
-    logical :: hold_crossing = .true.
     logical :: step_back_refine = .true.  !< step back to the boundary (farthest feasible point, P);
                                           !< .false.: one B13 interpolation, feasible side kept
   end type gauss_options_t
@@ -920,7 +919,6 @@ contains
         cycle
       end if
       ! free variables whose step leaves the box: held at the bound, step recomputed
-      if (.not. self%opts%hold_crossing) return
       xt = self%x + s
       hit = .false.
       do i = m0 + 1, prob%m
