@@ -126,6 +126,7 @@ module gauss_optimizer
     procedure, private :: make_convex
     procedure, private :: compute_step
     procedure, private :: derivatives
+    procedure, private :: finish
     procedure, private :: trial_point
     procedure, private :: step_for_set
     procedure, private :: limit_violated
@@ -347,6 +348,16 @@ contains
       self%message = err%text()
       return
     end if
+    call self%finish(k, converged, mt, err)
+  end subroutine solve
+
+  !> Outcome of a run that did not fail: KKT residual, status and message
+  !> (the iteration limit sets err with the best feasible iterate).
+  subroutine finish(self, k, converged, mt, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    integer, intent(in) :: k, mt
+    logical, intent(in) :: converged
+    type(error_t), intent(inout) :: err
     self%final_events = self%ev                 ! events of the last step computation (the test)
     if (mt > 0) self%kkt_residual = maxval(abs(self%gradf + matmul(self%dg, self%lambda)))
     if (mt == 0) self%kkt_residual = maxval(abs(self%gradf))
@@ -364,7 +375,7 @@ contains
       end if
       call err%set(self%method_label(), self%message)
     end if
-  end subroutine solve
+  end subroutine finish
 
   !> grad F (and J), the constraint gradients and G at x_k; a non-finite
   !> derivative stops the run with the diagnosis.
