@@ -212,6 +212,9 @@ contains
       t_rows = huge(1.0_dp)
       call out%comment('with stop_when_periodic: the rows of the last complete revolution')
     end if
+    if (s%stop_when_periodic > 0.0_dp) call out%comment('stop_when_periodic = '//str(s%stop_when_periodic)// &
+      ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
+      'previous revolution''s by at most that fraction')
     call write_columns(out, mech, model, resp, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
     peak_stress = 0.0_dp
@@ -222,9 +225,6 @@ contains
     if (buffer_rows) allocate(rev_rows(size(names), 16), last_rows(size(names), 0))
     periodic = .false.
     call driver_angle(mech%driver, t0, theta_start, theta_d, theta_dd)
-    if (s%stop_when_periodic > 0.0_dp) call out%comment('stop_when_periodic = '//str(s%stop_when_periodic)// &
-      ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
-      'previous revolution''s by at most that fraction')
 
     call bar%start('transient', t0, t_end)
     call cpu_time(cpu0)

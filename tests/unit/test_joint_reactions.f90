@@ -38,6 +38,7 @@ contains
     call run_test('simply_supported_central_load_chord_deflection_pl3_48ei', test_simply_supported)
     call run_test('spinning_bar_axial_force_rho_a_w2_l2_minus_x2_over_2', test_spinning_bar)
     call run_test('moving_flexible_fourbar_pin_forces_equal_and_opposite', test_action_reaction)
+    call run_test('frictionless_slider_guide_pushes_only_normal_to_the_guide', test_slider_guide)
   end subroutine run_all
 
   subroutine build(inp, effects, formulation, mech, model, ok)
@@ -368,6 +369,63 @@ contains
       call assert_true(abs(jr%ends(1)%moment) > 1.0e-3_dp*scale, 'the clamp carries the driving torque')
     end do
   end subroutine test_action_reaction
+
+  !> Slider-crank (crank 5 clamped, coupler 11, block of 3.5e-4 lb s^2/in on
+  !> a guide at 30 deg through the crank axis), 2 Kear elements per link,
+  !> linear, 150 rad/s, damped, integrated by bdf: every 15 deg the guide's
+  !> force on the mechanism has no component along the guide (the block's
+  !> translation along it is a free unknown: 1e-9 of the force), while its
+  !> normal component is of the order of the crank's inertia loads.
+  subroutine test_slider_guide()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(mechanism_model_t), target :: model
+    type(joint_reactions_t) :: jr
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    real(dp), allocatable :: y(:), atol(:)
+    real(dp) :: t, guide(2), along, normal
+    integer :: k
+    real(dp), parameter :: w = 150.0_dp, guide_deg = 30.0_dp
+    inp%n_joints = 3
+    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_x(3) = 0.0_dp
+    inp%joint_y(3) = 0.0_dp
+    inp%joint_guide_deg(3) = guide_deg
+    inp%joint_mass(3) = 3.5e-4_dp
+    inp%n_links = 2
+    inp%link_joint1(1:2) = [1, 2]
+    inp%link_joint2(1:2) = [2, 3]
+    inp%link_length(1:2) = [5.0_dp, 11.0_dp]
+    inp%link_n_elements(1:2) = 2
+    inp%omega = w
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), 'mechanism: '//err%text())
+    if (err%failed()) return
+    call model%init_mechanism(mech, element_effects_t(), 'exact', 1.0e-5_dp, err)
+    call assert_true(.not. err%failed(), 'model: '//err%text())
+    if (err%failed()) return
+    call jr%init(mech)
+    guide = [cos(guide_deg*pi/180.0_dp), sin(guide_deg*pi/180.0_dp)]
+    allocate(y(model%state_size()), atol(model%state_size()))
+    y = 0.0_dp
+    atol = 1.0e-10_dp
+    call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-7_dp, atol, err)
+    do k = 1, 24
+      t = (15.0_dp*k*pi/180.0_dp)/w
+      call ode%integrate_to(model, y, t, err)
+      call assert_true(.not. err%failed(), 'integration: '//err%text())
+      if (err%failed()) return
+      call jr%compute(model, t, y(1::2), y(2::2), err)
+      along = dot_product(jr%support(1:2, 3), guide)
+      normal = abs(guide(1)*jr%support(2, 3) - guide(2)*jr%support(1, 3))
+      call assert_close(along, 0.0_dp, 1.0e-9_dp*maxval(abs(jr%ends(1)%force)), 'no force along the guide at '// &
+                        rtoa(15.0_dp*k)//' deg')
+      if (k == 6) call assert_true(normal > 1.0e-3_dp*maxval(abs(jr%ends(1)%force)), 'the guide carries a normal force')
+    end do
+  end subroutine test_slider_guide
 end module test_joint_reactions_suite
 
 program test_joint_reactions
