@@ -215,6 +215,7 @@ contains
     if (s%stop_when_periodic > 0.0_dp) call out%comment('stop_when_periodic = '//str(s%stop_when_periodic)// &
       ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
       'previous revolution''s by at most that fraction')
+    if (s%output_digits > 0) call out%set_digits(s%output_digits)
     call write_columns(out, mech, model, resp, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
     peak_stress = 0.0_dp

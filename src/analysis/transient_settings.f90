@@ -10,6 +10,7 @@ module transient_settings
   use table_output, only: table_t
   use lsode_solver, only: mf_from_method, method_names
   use kear_element, only: element_effects_t
+  use fast_format, only: min_digits, max_digits
   implicit none
   private
   public :: transient_settings_t, read_transient_settings, echo_transient_settings, max_points
@@ -47,6 +48,7 @@ module transient_settings
     real(dp) :: point_at(max_points) = 0.5_dp     !< position along the link, 0 (end 1) .. 1 (end 2)
     logical :: reactions = .false.                 !< columns of joint reaction forces
     real(dp) :: stop_when_periodic = 0.0_dp        !< > 0: stop when successive revolutions' peaks agree to this
+    integer :: output_digits = 0                   !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
@@ -55,13 +57,13 @@ module transient_settings
   logical :: link_points, reactions
   character(len=16) :: point_link(max_points)
   real(dp) :: point_at(max_points), stop_when_periodic
-  integer :: mode_number, max_steps, table_points, max_order
+  integer :: mode_number, max_steps, table_points, max_order, output_digits
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
     table_points, max_order, output_rows, stress_columns, link_points, point_link, point_at, reactions, &
-    stop_when_periodic
+    stop_when_periodic, output_digits
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -97,6 +99,7 @@ contains
     point_at = s%point_at
     reactions = s%reactions
     stop_when_periodic = s%stop_when_periodic
+    output_digits = s%output_digits
     call deck%read_group('transient', read_transient_group, .false., found, err)
     if (err%failed()) return
 
@@ -135,6 +138,7 @@ contains
     s%point_at = point_at
     s%reactions = reactions
     s%stop_when_periodic = stop_when_periodic
+    s%output_digits = output_digits
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
@@ -193,6 +197,12 @@ contains
                      why='a fraction of the link''s length from its end 1')
     call check_real(deck, g, 'stop_when_periodic', s%stop_when_periodic, err, at_least=0.0_dp, below=1.0_dp, &
                     why='a relative change of the per-revolution peaks (0 = off); 1 or more would stop at once')
+    call check_integer(deck, g, 'output_digits', s%output_digits, err, at_least=0, at_most=max_digits, &
+                       why='significant digits of the rows: 0 (16, the default) or '//str(min_digits)//'..'// &
+                       str(max_digits)//' (the fast formatter; beyond 12 its last digit is not reliable)')
+    if (err%failed()) return
+    if (s%output_digits > 0 .and. s%output_digits < min_digits) call invalid_value(deck, g, 'output_digits', &
+      str(s%output_digits), 'must be 0 or '//str(min_digits)//'..'//str(max_digits), err)
     call check_choice(deck, 'effects', 'formulation', s%formulation, &
                       [character(len=16) :: 'default', 'consistent', 'exact', 'kear1987'], err)
   end subroutine validate
