@@ -167,7 +167,8 @@ contains
     if (err%failed()) return
     if (s%atol_rate < 1.0e-30_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
       str(s%atol_rate), 'must be >= 1e-30, or left out (-1) to use atol', err)
-    call check_real(deck, g, 'revolutions', s%revolutions, err, above=0.0_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'revolutions', s%revolutions, err, at_least=1.0e-6_dp, at_most=1.0e4_dp, &
+                    why='a millionth of a turn is shorter than any output step; 4.9e-324 made the span vanish')
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, above=0.0_dp, at_most=360.0_dp)
     if (err%failed()) return
     if (s%revolutions*360.0_dp > 1.0e7_dp*s%output_step_deg) call invalid_value(deck, g, 'output_step_deg', &

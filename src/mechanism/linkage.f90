@@ -504,6 +504,13 @@ contains
             call bad(idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
                      ' needs a length > 0, or the coordinates of both its joints'); return
           end if
+          ! the range of a given link_length holds for one taken from the joints
+          if (lk%length < 1.0e-8_dp .or. lk%length > 1.0e8_dp) then
+            call bad(idx('joint_x', lk%joint(2))//', '//idx('joint_y', lk%joint(2)), &
+                     str(mech%joints(lk%joint(2))%x)//', '//str(mech%joints(lk%joint(2))%y), 'link '// &
+                     trim(lk%name)//' taken from its joints is '//str(lk%length)//' long: it must lie in [1e-8, 1e8]')
+            return
+          end if
         end if
         if (lk%length > 0.0_dp) then
           total = total + lk%length
@@ -642,6 +649,15 @@ contains
         if (inp%link_rho(q) > 1.0e10_dp .or. inp%link_e1(q) > 1.0e20_dp .or. inp%link_e2(q) > 1.0e30_dp) then
           call bad(idx('link_e1', q), str(inp%link_e1(q)), 'material constants beyond any material '// &
                    '(rho <= 1e10, E1 <= 1e20, E2 <= 1e30)'); return
+        end if
+        ! E1/rho is the square of the bar wave speed: 1e2..1e18 holds every
+        ! solid in any consistent units (m/s: 1e4..4e8, mm/s: 1e10..4e14);
+        ! outside it the model's frequencies over- or underflow (written as
+        ! products: E1/rho itself overflows for a subnormal rho)
+        if (inp%link_rho(q) > 0.0_dp .and. inp%link_e1(q) > 0.0_dp .and. &
+            (inp%link_e1(q) > 1.0e18_dp*inp%link_rho(q) .or. inp%link_e1(q) < 1.0e2_dp*inp%link_rho(q))) then
+          call bad(idx('link_e1', q)//', '//idx('link_rho', q), str(inp%link_e1(q))//', '//str(inp%link_rho(q)), &
+                   'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]'); return
         end if
       end do
       ok = .true.
