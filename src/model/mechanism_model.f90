@@ -113,6 +113,7 @@ module mechanism_model
     procedure :: state_size
     procedure :: set_loads
     procedure :: static_equilibrium
+    procedure :: element_joint_force
   end type mechanism_model_t
 
 contains
@@ -877,4 +878,34 @@ contains
     self%load_scale = scale0
     if (present(iterations)) iterations = n_it
   end subroutine static_equilibrium
+
+  ! ------------------------------------------------------------------ joint forces
+
+  !> The generalized force that the rest of the mechanism (its joints and
+  !> neighbours) exerts on element e, in the element's global DOFs:
+  !>     r_e = M_e q_dd_e - F_e(q, q_d, t) - Q_e(q, t)
+  !> (F_e: elastic, damping, rigid-body inertia and gravity loads; Q_e: the
+  !> point loads on e).  Its node-translation rows are the global X, Y forces
+  !> on the element's ends, its slope rows the moments (src/model/joint_reactions.f90).
+  !> The rigid states must be current (set_time(t)); q, qd, qdd global.
+  subroutine element_joint_force(self, e, t, q, qd, qdd, r)
+    class(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: t, q(:), qd(:), qdd(:)
+    real(dp), intent(out) :: r(:)
+    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs), qe(size(r))
+    real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
+    type(kear_eval_info_t) :: info
+    integer :: k
+    qe = self%table%gather(e, q)
+    call beam_element_eval(self%el(e), qe, self%table%gather(e, qd), loaded_state(self, e), me, fe, info)
+    r = matmul(me, self%table%gather(e, qdd)) - fe
+    do k = 1, size(self%loads)
+      if (self%loads(k)%element /= e) cycle
+      fac = self%load_scale*load_factor_at(self%loads(k), t)
+      call beam_point_load(self%el(e), qe, self%rb(e)%phi, self%loads(k)%x_over_l, fac*self%loads(k)%force, &
+                           fac*self%loads(k)%moment, gen, dgen)
+      r = r - gen
+    end do
+  end subroutine element_joint_force
 end module mechanism_model
