@@ -20,6 +20,7 @@ module transient_analysis
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
+  use clearance_run, only: clearance_monitor_t
   implicit none
   private
   public :: run_transient
@@ -38,6 +39,7 @@ contains
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
+    type(clearance_monitor_t) :: clearance       ! joints with clearance (&clearance; doc/clearance.md)
     type(lsode_counters_t) :: c
     type(stress_report_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
@@ -52,6 +54,8 @@ contains
     if (err%failed()) return
     call read_loads(deck, loads_in, err)
     if (err%failed()) return
+    call clearance%read(deck, mech, s%initial, err)
+    if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
         'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
@@ -65,6 +69,7 @@ contains
       call out%end_echo()
     end block
     call echo_transient_settings(out)
+    call clearance%echo(out)
     if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
       block
         integer :: u
@@ -106,6 +111,8 @@ contains
     call model%linear_modes(omega_n, shapes, err)
     if (err%failed()) return
     call write_frequency_header(out, mech, s, omega_n)
+    call clearance%attach(model, mech, out, err)
+    if (err%failed()) return
 
     ! initial state
     allocate(y(model%state_size()))
@@ -178,7 +185,7 @@ contains
     case default
       t_rows = -huge(1.0_dp)
     end select
-    call write_columns(out, mech, model, names)
+    call write_columns(out, mech, model, names, clearance%column_names())
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
     peak_stress = 0.0_dp
     peak_angle = 0.0_dp
@@ -189,7 +196,11 @@ contains
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
-      call ode%integrate_to(model, y, t, err)
+      if (clearance%active) then
+        call clearance%integrate_to(ode, model, y, t, err)
+      else
+        call ode%integrate_to(model, y, t, err)
+      end if
       if (err%failed()) exit
       call output_row(t)
       if (err%failed()) exit
@@ -231,6 +242,7 @@ contains
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    if (clearance%active) call clearance%report(out, revolutions_done)
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
       call write_restart(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
@@ -277,6 +289,7 @@ contains
       do ee = 1, size(stress)
         row(kk + ee) = stress(ee)%max_abs_stress
       end do
+      if (clearance%active) row(kk + size(stress) + 1:) = clearance%row_values(model, y)
       call out%row(row)
     end subroutine output_row
   end subroutine run_transient
@@ -295,13 +308,17 @@ contains
     uw = qe(model%table%node_dofs*(node - 1) + 1:model%table%node_dofs*(node - 1) + 2)   ! 4 or 6 DOFs per node
   end subroutine joint_displacement
 
-  subroutine write_columns(out, mech, model, names)
+  subroutine write_columns(out, mech, model, names, extra)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), intent(in) :: model
     character(len=32), allocatable, intent(out) :: names(:)
-    names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), '')]
+    character(len=32), intent(in) :: extra(:)   !< clearance joints' columns (none without clearance)
+    names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), ''), extra]
     call out%comment('columns: t (s); crank_deg = crank angle (deg); '//response_columns_text)
+    if (size(extra) > 0) call out%comment('clearance columns: <joint>_ex, <joint>_ey = journal centre relative to '// &
+      'the bearing centre along global X, Y (in); <joint>_Fn = normal contact force (lb); <joint>_mode = 0 free, '// &
+      '1 in contact, 2 an impact since the previous row')
     call out%columns(names)
   end subroutine write_columns
 
