@@ -341,13 +341,32 @@ contains
     end do
   end function row_values
 
-  !> Summary and cost lines.
-  subroutine report(self, out, revolutions)
+  !> Summary and cost lines.  The contact's frequency at the peak force,
+  !> omega_c = sqrt(k_c/m) with k_c = n K^(1/n) F^((n-1)/n) the Hertz
+  !> slope and m the journal's mass (the diagonal of M at its unknown), bounds
+  !> Adams' step by stability (h omega_c ~ 1): with Adams the summary says so.
+  subroutine report(self, out, revolutions, model, y, adams)
     class(clearance_monitor_t), intent(in) :: self
     type(table_t), intent(inout) :: out
     real(dp), intent(in) :: revolutions
+    type(mechanism_model_t), intent(inout) :: model
+    real(dp), intent(in) :: y(:)
+    logical, intent(in) :: adams
     integer :: k
     character(len=:), allocatable :: per_rev
+    real(dp) :: mass(model%n, model%n), stiff(model%n, model%n), kc, omega_c
+    call model%assemble_dense(y(1::2), mass, stiff)
+    do k = 1, self%n
+      associate (law => model%clearance(k)%law, g => model%clearance(k)%journal(1))
+        kc = law%exponent*law%stiffness**(1.0_dp/law%exponent)*self%peak_force(k)**(1.0_dp - 1.0_dp/law%exponent)
+        omega_c = sqrt(kc/mass(g, g))
+        call out%summary('joint '//trim(self%name(k))//' contact frequency at the peak force', str(omega_c, 6)// &
+                         ' rad/s (Hertz slope '//str(kc, 6)//' lb/in, journal mass '//str(mass(g, g), 6)//')')
+        if (adams .and. omega_c > 0.0_dp) call out%summary('warning', 'Adams (functional iteration) is stable only '// &
+          'for steps below about 1/omega_c = '//str(1.0_dp/omega_c, 4)//' s at joint '//trim(self%name(k))// &
+          ' while in contact: the contact makes the equations stiff; method = ''bdf'' is not bound by it')
+      end associate
+    end do
     do k = 1, self%n
       call out%summary('joint '//trim(self%name(k))//' peak contact force', str(self%peak_force(k), 8)// &
                        ' lb at crank angle '//str(self%peak_angle(k), 6)//' deg')

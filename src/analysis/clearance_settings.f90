@@ -81,7 +81,7 @@ contains
         if (.not. ((jt%kind == joint_pin .and. jt%n_links == 2) .or. (jt%kind == joint_ground_pin .and. &
                                                                        jt%n_links == 1))) then
           call invalid_value(deck, g, 'joint_clearance('//str(j)//')', str(s%clearance(j)), 'joint '//trim(jt%name)// &
-            ' is a '//joint_type_name(jt%kind)//' of '//str(jt%n_links)//' links: clearance is modelled at a pin '// &
+            ' is a '//joint_type_name(jt%kind)//' joining '//str(jt%n_links)//' link(s): clearance is modelled at a pin '// &
             'between two links or a ground pin of one link', err)
           return
         end if

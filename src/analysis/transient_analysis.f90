@@ -242,7 +242,7 @@ contains
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
-    if (clearance%active) call clearance%report(out, revolutions_done)
+    if (clearance%active) call clearance%report(out, revolutions_done, model, y, s%mf == mf_adams)
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
       call write_restart(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))

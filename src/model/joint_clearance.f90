@@ -68,8 +68,11 @@ contains
     cj%journal = [p + 1, p + 2]
     table%map(first:first + 1, e) = cj%journal
     table%coef(first:first + 1, e) = 1.0_dp
-    label = [character(len=24) :: table%label(1:p), 'J'//str(cj%joint)//' U journal', 'J'//str(cj%joint)//' W journal', &
-             table%label(p + 1:table%n_global)]
+    allocate(label(table%n_global + 2))
+    label(1:p) = table%label(1:p)
+    label(p + 1) = 'J'//str(cj%joint)//' U journal'
+    label(p + 2) = 'J'//str(cj%joint)//' W journal'
+    label(p + 3:) = table%label(p + 1:table%n_global)
     call move_alloc(label, table%label)
     table%n_global = table%n_global + 2
     table%half_bandwidth = max(band_of(table), pair_span(cj))
