@@ -16,6 +16,7 @@ module test_harmonic_solver_suite
   use harmonic_solver
   use linalg, only: solve_linear
   use assertions
+  use transient_fixtures, only: fourbar_input
   implicit none
   private
   public :: run_all
@@ -129,18 +130,8 @@ contains
     type(mechanism_t) :: mech
     type(link_sections_t) :: secs(3)
     type(error_t) :: err
-    inp%n_joints = 4
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = 10.0_dp
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
+    inp = fourbar_input(1, w, 0.0_dp)
     if (present(n_elem)) inp%link_n_elements(1:3) = n_elem
-    inp%omega = w
     call build_mechanism(inp, mech, err)
     if (present(sections)) secs = sections
     call model%init_mechanism(mech, opt, secs, err)
