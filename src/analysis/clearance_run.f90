@@ -105,8 +105,10 @@ contains
         side = mech%joints(j)%n_links
         c%element_journal = end_element(mech, mech%joints(j)%link(side), mech%joints(j)%link_end(side))
         c%journal_node = mech%joints(j)%link_end(side)
-        if (mech%joints(j)%kind == joint_pin) &
+        if (mech%joints(j)%kind == joint_pin) then
           c%element_bearing = end_element(mech, mech%joints(j)%link(1), mech%joints(j)%link_end(1))
+          c%bearing_node = mech%joints(j)%link_end(1)
+        end if
         cj = [cj, c]
       end block
     end do

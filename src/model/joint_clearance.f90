@@ -32,6 +32,7 @@ module joint_clearance
     integer :: element_bearing = 0       !< elements whose rigid rotation rates give the sliding speed
     integer :: element_journal = 0       !< (0: ground)
     integer :: journal_node = 0          !< node (1, 2) of element_journal at the joint
+    integer :: bearing_node = 0          !< node (1, 2) of element_bearing at the joint
     real(dp) :: v_impact = 1.0_dp        !< approach speed of the current contact (set at its onset)
   end type clearance_joint_t
 
@@ -124,22 +125,25 @@ contains
   end subroutine contact_state
 
   !> Contact forces on the journal (f_e = -F_n n + F_t t) and the bearing
-  !> (-f_e) added to the global force; F_n returned.  spin = the rigid
+  !> (-f_e) added to the global force; F_n and F_t returned.  spin = the rigid
   !> rotation rate of the journal's link minus the bearing's (rad/s).
-  subroutine add_contact_forces(cj, q, qd, spin, force, fn)
+  subroutine add_contact_forces(cj, q, qd, spin, force, fn, ft)
     type(clearance_joint_t), intent(in) :: cj
     real(dp), intent(in) :: q(:), qd(:), spin
     real(dp), intent(inout) :: force(:)
     real(dp), intent(out) :: fn
-    real(dp) :: e(2), ed(2), delta, delta_d, n(2), t(2), d1, d2, ft, dft, fe(2)
+    real(dp), intent(out), optional :: ft
+    real(dp) :: e(2), ed(2), delta, delta_d, n(2), t(2), d1, d2, f_t, dft, fe(2)
     integer :: i
     call contact_state(cj, q, qd, e, ed, delta, delta_d, n)
     fn = 0.0_dp
+    if (present(ft)) ft = 0.0_dp
     if (.not. delta > 0.0_dp) return
     call normal_force(cj%law, delta, delta_d, cj%v_impact, fn, d1, d2)
     t = [-n(2), n(1)]
-    call friction_force(cj%law, fn, t(1)*ed(1) + t(2)*ed(2) + cj%journal_radius*spin, ft, dft)
-    fe = -fn*n + ft*t
+    call friction_force(cj%law, fn, t(1)*ed(1) + t(2)*ed(2) + cj%journal_radius*spin, f_t, dft)
+    if (present(ft)) ft = f_t
+    fe = -fn*n + f_t*t
     do i = 1, 2
       force(cj%journal(i)) = force(cj%journal(i)) + fe(i)
       if (cj%bearing(i) > 0) force(cj%bearing(i)) = force(cj%bearing(i)) - fe(i)

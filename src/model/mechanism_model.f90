@@ -772,15 +772,36 @@ contains
     if (self%clearance(k)%element_bearing > 0) spin = spin - self%rb(self%clearance(k)%element_bearing)%phi_d
   end function clearance_spin
 
+  !> Contact forces of the clearance joints; with friction and a journal
+  !> radius r, the friction force F_t acting on the pin's surface also turns
+  !> each link end: r F_t on the journal's, -r F_t on the bearing's (moments
+  !> working through the section angle, like a point load's).
   subroutine add_clearance_forces(self, q, qd)
     type(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:), qd(:)
     integer :: k
-    real(dp) :: fn
+    real(dp) :: fn, ft, moment
     do k = 1, size(self%clearance)
-      call add_contact_forces(self%clearance(k), q, qd, self%clearance_spin(k), self%force, fn)
+      associate (cj => self%clearance(k))
+        call add_contact_forces(cj, q, qd, self%clearance_spin(k), self%force, fn, ft)
+        if (.not. (cj%journal_radius > 0.0_dp .and. abs(ft) > 0.0_dp)) cycle
+        moment = cj%journal_radius*ft
+        call add_end_moment(self, cj%element_journal, cj%journal_node, q, moment)
+        if (cj%element_bearing > 0) call add_end_moment(self, cj%element_bearing, cj%bearing_node, q, -moment)
+      end associate
     end do
   end subroutine add_clearance_forces
+
+  !> force += generalized force of a moment at node `node` of element e.
+  subroutine add_end_moment(self, e, node, q, moment)
+    type(mechanism_model_t), intent(inout) :: self
+    integer, intent(in) :: e, node
+    real(dp), intent(in) :: q(:), moment
+    real(dp) :: gen(self%table%element_dofs)
+    call beam_point_load(self%el(e), self%table%gather(e, q), self%rb(e)%phi, real(node - 1, dp), [0.0_dp, 0.0_dp], &
+                         moment, gen)
+    call self%table%scatter_add(e, gen, self%force)
+  end subroutine add_end_moment
 
   !> Contact stiffness into K_t of the Newton matrix (newton_stiff); the
   !> contact's own damping goes in by add_clearance_damping.

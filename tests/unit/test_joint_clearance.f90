@@ -11,6 +11,9 @@ module test_joint_clearance_suite
   use contact_law, only: contact_law_t, contact_law_init
   use joint_clearance
   use lsode_solver, only: ode_system_t, lsode_t, mf_adams
+  use kear_element, only: element_effects_t
+  use mechanism_model, only: mechanism_model_t
+  use transient_fixtures, only: fourbar_input, make_model
   use assertions
   implicit none
   private
@@ -31,6 +34,7 @@ contains
     call run_test('contact_force_is_hertz_along_the_normal_action_reaction', test_prescribed_force)
     call run_test('newton_blocks_equal_difference_jacobians_of_the_force', test_blocks)
     call run_test('oblique_impact_restitution_and_friction_impulse', test_oblique_impact)
+    call run_test('friction_turns_the_link_ends_by_r_ft_in_the_model', test_friction_moment)
   end subroutine run_all
 
   !> The four-bar (clamp A, pins B and C, ground pin D, one element per
@@ -230,6 +234,50 @@ contains
     call assert_close(y(2), -8.0_dp, 1.0e-2_dp, 'normal speed -e v')
     call assert_close(y(4), 10.0_dp - 0.3_dp*1.8_dp*10.0_dp, 1.0e-2_dp, 'tangential speed w - mu (1+e) v')
   end subroutine test_oblique_impact
+  !> The four-bar model (Kear's linear element) with clearance at C: journal
+  !> the rocker's end 2 (element 3), bearing the coupler's end 2 (element 2).
+  !> The journal pressed 1e-4 in into the wall along +X (F_n = K delta^1.5 =
+  !> 10 lb, no normal rate) and sliding along +Y at 100 in/s, far above v_s
+  !> and the rigid spin r (phi_rocker' - phi_coupler') ~ 25 in/s, so that
+  !> F_t = -mu F_n with r = 0 and r = 0.25 alike.  With r = 0.25 the model's
+  !> force differs only by the moments r F_t = -0.75 lb in on the rocker's
+  !> slope at C and +0.75 on the coupler's (for the linear element an end
+  !> moment's generalized force is the moment itself on the end slope).
+  subroutine test_friction_moment()
+    type(mechanism_model_t), target :: model
+    type(clearance_joint_t) :: cj
+    type(error_t) :: err
+    logical :: ok
+    real(dp), allocatable :: q(:), qd(:), qdd(:), f0(:), f1(:), want(:)
+    call make_model(fourbar_input(1, 150.0_dp, 0.0_dp), element_effects_t(), 0.0_dp, model, ok, table=.false.)
+    call assert_true(ok, 'four-bar model')
+    cj%joint = 3
+    cj%name = 'C'
+    cj%clearance = 0.005_dp
+    cj%v_impact = 10.0_dp
+    cj%element_journal = 3
+    cj%journal_node = 2
+    cj%element_bearing = 2
+    cj%bearing_node = 2
+    call contact_law_init(cj%law, 'lankarani_nikravesh', 1.0e7_dp, 1.5_dp, 0.9_dp, 0.3_dp, 1.0e-3_dp, err)
+    call model%add_clearance([cj], err)
+    call assert_true(.not. err%failed(), err%text())
+    allocate(q(model%n), qd(model%n), qdd(model%n), want(model%n))
+    q = 0.0_dp
+    qd = 0.0_dp
+    q(model%clearance(1)%journal) = [0.005_dp + 1.0e-4_dp, 0.0_dp]
+    qd(model%clearance(1)%journal) = [0.0_dp, 100.0_dp]
+    call model%accelerations(0.0_dp, q, qd, qdd)
+    f0 = model%force
+    model%clearance(1)%journal_radius = 0.25_dp
+    call model%accelerations(0.0_dp, q, qd, qdd)
+    f1 = model%force
+    call assert_true(.not. model%err%failed(), model%err%text())
+    want = 0.0_dp
+    want(model%table%map(7, 3)) = -0.75_dp
+    want(model%table%map(7, 2)) = 0.75_dp
+    call assert_all_close(f1 - f0, want, 0.0_dp, 1.0e-12_dp, 'friction moments on the slopes at C only')
+  end subroutine test_friction_moment
 end module test_joint_clearance_suite
 
 program test_joint_clearance
