@@ -262,7 +262,7 @@ contains
     call contact_law_init(cj%law, 'lankarani_nikravesh', 1.0e7_dp, 1.5_dp, 0.9_dp, 0.3_dp, 1.0e-3_dp, err)
     call model%add_clearance([cj], err)
     call assert_true(.not. err%failed(), err%text())
-    allocate(q(model%n), qd(model%n), qdd(model%n), want(model%n))
+    allocate(q(model%n), qd(model%n), qdd(model%n), want(model%n), f0(model%n), f1(model%n))
     q = 0.0_dp
     qd = 0.0_dp
     q(model%clearance(1)%journal) = [0.005_dp + 1.0e-4_dp, 0.0_dp]
