@@ -124,6 +124,14 @@ module lsode_solver
       integer, intent(inout) :: istate, iwork(liw)
       real(dp), intent(inout) :: rwork(lrw)
     end subroutine dlsode
+    !> DLSODE's interpolant of the last step (K-th derivative at t; YH = RWORK(21), NYH = NEQ)
+    subroutine dintdy(t, k, yh, nyh, dky, iflag)
+      import :: dp
+      integer, intent(in) :: k, nyh
+      real(dp), intent(in) :: t, yh(nyh, *)
+      real(dp), intent(out) :: dky(*)
+      integer, intent(out) :: iflag
+    end subroutine dintdy
   end interface
 
   !> The system DLSODE is integrating (set for the duration of each call), and
@@ -299,7 +307,8 @@ contains
   end subroutine allocate_work
 
   !> Start afresh from the current (t, y) on the next call, e.g. after a
-  !> discontinuity in the model.  Counters restart from zero in DLSODE.
+  !> discontinuity in the model.  DLSODE's counters restart from zero; counters()
+  !> adds those of the integrations before.
   subroutine restart(self)
     class(lsode_t), intent(inout) :: self
     if (self%istate /= 1 .and. allocated(self%iwork)) self%done_before = self%done_before + self%iwork(11:13)
@@ -314,15 +323,6 @@ contains
     real(dp), intent(out) :: y(:)
     type(error_t), intent(inout) :: err
     integer :: iflag
-    interface
-      subroutine dintdy(t, k, yh, nyh, dky, iflag)
-        import :: dp
-        integer, intent(in) :: k, nyh
-        real(dp), intent(in) :: t, yh(nyh, *)
-        real(dp), intent(out) :: dky(*)
-        integer, intent(out) :: iflag
-      end subroutine dintdy
-    end interface
     ! DLSODE's Nordsieck history starts at RWORK(21), NYH = NEQ (its documentation)
     call dintdy(t, 0, self%rwork(21:), self%neq, y, iflag)
     if (iflag /= 0) call err%set('DLSODE dense output', 't = '//str(t)//' is outside the last step')
