@@ -24,6 +24,7 @@ module transient_analysis
   use joint_reactions, only: joint_reactions_t
   use revolution_peaks, only: revolution_peaks_t
   use linkage, only: joint_clamp
+  use clearance_run, only: clearance_monitor_t
   implicit none
   private
   public :: run_transient
@@ -53,6 +54,7 @@ contains
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
+    type(clearance_monitor_t) :: clearance       ! joints with clearance (&clearance; doc/clearance.md)
     type(lsode_counters_t) :: c
     type(stress_report_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
@@ -73,6 +75,8 @@ contains
     if (err%failed()) return
     call read_loads(deck, loads_in, err)
     if (err%failed()) return
+    call clearance%read(deck, mech, s%initial, err)
+    if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
         'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
@@ -86,6 +90,7 @@ contains
       call out%end_echo()
     end block
     call echo_transient_settings(out)
+    call clearance%echo(out)
     if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
       block
         integer :: u
@@ -134,6 +139,8 @@ contains
     call model%linear_modes(omega_n, shapes, err)
     if (err%failed()) return
     call write_frequency_header(out, mech, s, omega_n)
+    call clearance%attach(model, mech, out, err)
+    if (err%failed()) return
 
     ! initial state
     allocate(y(model%state_size()))
@@ -216,7 +223,7 @@ contains
       ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
       'previous revolution''s by at most that fraction')
     if (s%output_digits > 0) call out%set_digits(s%output_digits)
-    call write_columns(out, mech, model, resp, names)
+    call write_columns(out, mech, model, resp, names, clearance%column_names())
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
     peak_stress = 0.0_dp
     peak_angle = 0.0_dp
@@ -233,7 +240,11 @@ contains
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
-      call ode%integrate_to(model, y, t, err)
+      if (clearance%active) then
+        call clearance%integrate_to(ode, model, y, t, err)
+      else
+        call ode%integrate_to(model, y, t, err)
+      end if
       if (err%failed()) exit
       call output_row(t)
       if (err%failed()) exit
@@ -296,6 +307,7 @@ contains
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    if (clearance%active) call clearance%report(out, revolutions_done, model, y, s%mf == mf_adams)
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
       call write_restart(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
@@ -344,6 +356,7 @@ contains
       kk = kk + size(stress)
       call fill_responses(resp, model, mech, tt, y, row, kk, err)
       if (err%failed()) return
+      if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
       call pk%add(row(3:), crank_deg)
       if (buffer_rows) then
         if (n_rev_rows == size(rev_rows, 2)) rev_rows = reshape(rev_rows, [size(rev_rows, 1), 2*n_rev_rows], &
@@ -398,12 +411,13 @@ contains
     uw = qe(model%table%node_dofs*(node - 1) + 1:model%table%node_dofs*(node - 1) + 2)   ! 4 or 6 DOFs per node
   end subroutine joint_displacement
 
-  subroutine write_columns(out, mech, model, resp, names)
+  subroutine write_columns(out, mech, model, resp, names, extra)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), intent(in) :: model
     type(responses_t), intent(in) :: resp
     character(len=32), allocatable, intent(out) :: names(:)
+    character(len=32), intent(in) :: extra(:)   !< clearance joints' columns (none without clearance)
     integer :: e, k, j, ne
     character(len=:), allocatable :: jn
     names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), '')]
@@ -443,6 +457,10 @@ contains
         'other link end at a massless pin carries the opposite); <joint>_Gx, _Gy = force of the ground (or '// &
         'slider guide) on the mechanism at the joint (lb), _Gm its moment at a clamp (lb in: the driving torque)')
     end if
+    names = [character(len=32) :: names, extra]
+    if (size(extra) > 0) call out%comment('clearance columns: <joint>_ex, <joint>_ey = journal centre relative to '// &
+      'the bearing centre along global X, Y (in); <joint>_Fn = normal contact force (lb); <joint>_mode = 0 free, '// &
+      '1 in contact, 2 an impact since the previous row')
     call out%columns(names)
   end subroutine write_columns
 

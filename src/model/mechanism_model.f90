@@ -40,6 +40,7 @@ module mechanism_model
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
   use kinematics, only: kinematics_t, motion_t
   use kinds, only: two_pi
+  use joint_clearance, only: clearance_joint_t, split_journal, add_contact_forces, contact_blocks, add_pair_block
   use shape_functions, only: quintic_hermite
   implicit none
   private
@@ -94,6 +95,10 @@ module mechanism_model
     real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
     type(point_load_t), allocatable :: loads(:)
     real(dp) :: load_scale = 1.0_dp               !< multiplies every point load (static load stepping)
+    ! pin joints with radial clearance (doc/clearance.md): none unless add_clearance was called
+    logical :: has_clearance = .false.
+    type(clearance_joint_t), allocatable :: clearance(:)
+    real(dp), allocatable :: contact_k(:, :, :), contact_c(:, :, :)   !< (2, 2, joint) at the last Newton matrix
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -114,6 +119,8 @@ module mechanism_model
     procedure :: set_loads
     procedure :: static_equilibrium
     procedure :: element_joint_force
+    procedure :: add_clearance
+    procedure :: clearance_spin
   end type mechanism_model_t
 
 contains
@@ -429,6 +436,7 @@ contains
     end do
     call add_point_masses(self)
     call add_point_loads(self, t, q, self%force)
+    if (self%has_clearance) call add_clearance_forces(self, q, qd)
     call band_cholesky_factor(self%mass_band, kd, err)
     self%n_mass_factorizations = self%n_mass_factorizations + 1
     if (err%failed()) then
@@ -622,6 +630,7 @@ contains
       allocate(self%newton_mass(kd + 1, n), self%newton_stiff(2*kd + 1, n), self%newton_chol(kd + 1, n), &
                self%newton_lu(3*kd + 1, n), self%newton_ipiv(n))
     call self%assemble_band(y(1::2), self%newton_mass, self%newton_stiff)
+    if (self%has_clearance) call add_clearance_stiffness(self, y)
     beta = 0.0_dp
     if (size(self%el) > 0) beta = self%el(1)%beta
     c = hl0*beta + hl0**2
@@ -630,6 +639,7 @@ contains
     self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
     if (self%newton_cholesky) then
       self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
+      if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_chol, 1, .true.)
       call band_cholesky_factor(self%newton_chol, kd, err)
       self%newton_cholesky = .not. err%failed()
       call err%clear()
@@ -649,6 +659,7 @@ contains
                                                          self%newton_mass(1 + i - j, j)
       end do
     end do
+    if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_lu, 2*kd + 1, .false.)
     call band_lu_factor(self%newton_lu, kd, kd, self%newton_ipiv, err)
     ok = .not. err%failed()
   end subroutine model_newton_factor
@@ -720,6 +731,107 @@ contains
       y(j) = y(j) + s
     end do
   end subroutine band_combination
+
+  ! ------------------------------------------------------------------ clearance joints
+
+  !> Give every joint in `joints` its clearance: the journal's translations
+  !> become their own unknowns (joint_clearance%split_journal) and the
+  !> contact force acts between journal and bearing.  Called after
+  !> init_mechanism; the work arrays follow the new size and band.
+  subroutine add_clearance(self, joints, err)
+    class(mechanism_model_t), intent(inout) :: self
+    type(clearance_joint_t), intent(in) :: joints(:)
+    type(error_t), intent(inout) :: err
+    integer :: k, m, p
+    if (size(joints) == 0) return
+    self%clearance = joints
+    do k = 1, size(joints)
+      call split_journal(self%table, self%clearance(k)%element_journal, self%clearance(k)%journal_node, &
+                         self%clearance(k), err)
+      if (err%failed()) return
+      p = self%clearance(k)%journal(1) - 1
+      do m = 1, k - 1
+        where (self%clearance(m)%bearing > p) self%clearance(m)%bearing = self%clearance(m)%bearing + 2
+        where (self%clearance(m)%journal > p) self%clearance(m)%journal = self%clearance(m)%journal + 2
+      end do
+    end do
+    deallocate(self%mass_band, self%force)
+    if (allocated(self%newton_mass)) deallocate(self%newton_mass, self%newton_stiff, self%newton_chol, &
+                                                self%newton_lu, self%newton_ipiv)
+    call allocate_work(self)
+    allocate(self%contact_k(2, 2, size(joints)), self%contact_c(2, 2, size(joints)))
+    self%has_clearance = .true.
+  end subroutine add_clearance
+
+  !> Rigid rotation rate of clearance joint k's journal link minus its
+  !> bearing's (the rotational part of the sliding speed).
+  pure real(dp) function clearance_spin(self, k) result(spin)
+    class(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: k
+    spin = 0.0_dp
+    if (self%clearance(k)%element_journal > 0) spin = self%rb(self%clearance(k)%element_journal)%phi_d
+    if (self%clearance(k)%element_bearing > 0) spin = spin - self%rb(self%clearance(k)%element_bearing)%phi_d
+  end function clearance_spin
+
+  !> Contact forces of the clearance joints; with friction and a journal
+  !> radius r, the friction force F_t acting on the pin's surface also turns
+  !> each link end: r F_t on the journal's, -r F_t on the bearing's (moments
+  !> working through the section angle, like a point load's).
+  subroutine add_clearance_forces(self, q, qd)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:), qd(:)
+    integer :: k
+    real(dp) :: fn, ft, moment
+    do k = 1, size(self%clearance)
+      associate (cj => self%clearance(k))
+        call add_contact_forces(cj, q, qd, self%clearance_spin(k), self%force, fn, ft)
+        if (.not. (cj%journal_radius > 0.0_dp .and. abs(ft) > 0.0_dp)) cycle
+        moment = cj%journal_radius*ft
+        call add_end_moment(self, cj%element_journal, cj%journal_node, q, moment)
+        if (cj%element_bearing > 0) call add_end_moment(self, cj%element_bearing, cj%bearing_node, q, -moment)
+      end associate
+    end do
+  end subroutine add_clearance_forces
+
+  !> force += generalized force of a moment at node `node` of element e.
+  subroutine add_end_moment(self, e, node, q, moment)
+    type(mechanism_model_t), intent(inout) :: self
+    integer, intent(in) :: e, node
+    real(dp), intent(in) :: q(:), moment
+    real(dp) :: gen(self%table%element_dofs)
+    call beam_point_load(self%el(e), self%table%gather(e, q), self%rb(e)%phi, real(node - 1, dp), [0.0_dp, 0.0_dp], &
+                         moment, gen)
+    call self%table%scatter_add(e, gen, self%force)
+  end subroutine add_end_moment
+
+  !> Contact stiffness into K_t of the Newton matrix (newton_stiff); the
+  !> contact's own damping goes in by add_clearance_damping.
+  subroutine add_clearance_stiffness(self, y)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: y(:)
+    integer :: k
+    do k = 1, size(self%clearance)
+      call contact_blocks(self%clearance(k), y(1::2), y(2::2), self%clearance_spin(k), self%contact_k(:, :, k), &
+                          self%contact_c(:, :, k))
+      call add_pair_block(self%clearance(k), self%contact_k(:, :, k), 1.0_dp, self%newton_stiff, self%kd + 1, .false.)
+    end do
+  end subroutine add_clearance_stiffness
+
+  !> S += hl0 (C - beta K) of the contacts: S = M + (hl0 beta + hl0^2) K_t
+  !> already holds their K with the elements' stiffness-proportional damping,
+  !> the contact damps by its own C instead.
+  subroutine add_clearance_damping(self, hl0, beta, band, off, lower)
+    type(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: hl0, beta
+    real(dp), intent(inout) :: band(:, :)
+    integer, intent(in) :: off
+    logical, intent(in) :: lower
+    integer :: k
+    do k = 1, size(self%clearance)
+      call add_pair_block(self%clearance(k), self%contact_c(:, :, k) - beta*self%contact_k(:, :, k), hl0, band, off, &
+                          lower)
+    end do
+  end subroutine add_clearance_damping
 
   !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
   !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.
