@@ -82,8 +82,10 @@ contains
     call check_real(deck, g, 'rtol', rtol, err, at_least=1.0e-14_dp, below=1.0_dp, &
                     why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
     call check_reals(deck, g, 'atol', atol, err, at_least=0.0_dp, at_most=1.0e10_dp)
-    if (.not. err%failed() .and. any(atol > 0.0_dp .and. atol < 1.0e-30_dp)) call invalid_value(deck, g, 'atol', &
-      str(minval(atol, mask=atol > 0.0_dp)), 'must be 0 or >= 1e-30 (below, DLSODE''s error weights overflow)', err)
+    if (.not. err%failed()) then    ! (nested: .and. does not short-circuit, and a NaN comparison traps)
+      if (any(atol > 0.0_dp .and. atol < 1.0e-30_dp)) call invalid_value(deck, g, 'atol', &
+        str(minval(atol, mask=atol > 0.0_dp)), 'must be 0 or >= 1e-30 (below, DLSODE''s error weights overflow)', err)
+    end if
     call check_real(deck, g, 't_first', t_first, err, at_least=1.0e-10_dp, at_most=1.0e10_dp, &
                     why='the first output time; DLSODE cannot start a step shorter than round-off of t')
     call check_real(deck, g, 'factor', factor, err, above=1.0_dp, at_most=1.0e3_dp, &

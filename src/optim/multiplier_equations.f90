@@ -144,7 +144,12 @@ contains
       return
     end if
     call lu_solve(self%mlu, self%ipiv, self%s, lerr)
-    ok = .not. lerr%failed()
+    ok = .not. lerr%failed() .and. all(ieee_is_finite(self%s))
+    ! a step 1e10 times the size of the point is no model step: M is nearly
+    ! singular for this lambda (and the constraints evaluated there would
+    ! overflow: fuzz seed 8, general_convex from x0 = (1e9, 0))
+    if (ok) ok = maxval(abs(self%s)) <= 1.0e10_dp*(1.0_dp + maxval(abs(self%xk)))
+    if (.not. ok) self%s = 0.0_dp
   end subroutine evaluate_step
 
   !> m(lambda) (B11) at the step of the last `evaluate_step`.
@@ -169,9 +174,12 @@ contains
 
   !> dm_i/dlambda_j = -w_i^T M^{-1} w_j, w_j = c_j + A_j s (the model gradient
   !> at x_k + s; for Potter's actual constraints an approximation).
-  subroutine newton_matrix(self, jm)
+  !> ok = .false. when M is too nearly singular for the products to stay
+  !> finite (an overflow would trap in the debug build: fuzz seed 8).
+  subroutine newton_matrix(self, jm, ok)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(out) :: jm(:, :)
+    logical, intent(out) :: ok
     real(dp), allocatable :: w(:, :), z(:, :)
     type(error_t) :: lerr
     integer :: j
@@ -182,6 +190,12 @@ contains
     end do
     z = w
     call lu_solve(self%mlu, self%ipiv, z, lerr)
+    ok = .not. lerr%failed() .and. all(ieee_is_finite(z)) .and. all(ieee_is_finite(w))
+    if (ok) ok = maxval(abs(z)) <= 1.0e300_dp/(real(max(1, self%n), dp)*max(maxval(abs(w)), 1.0_dp))
+    if (.not. ok) then
+      jm = 0.0_dp
+      return
+    end if
     jm = -matmul(transpose(w), z)
   end subroutine newton_matrix
 
@@ -548,7 +562,7 @@ contains
       integer, allocatable :: piv(:)
       real(dp) :: rc, h
       type(error_t) :: lerr
-      logical :: okstep
+      logical :: okstep, ok_matrix
       integer :: it, halvings
       allocate(jm(self%l, self%l), d(self%l), piv(self%l))
       converged = .false.
@@ -581,7 +595,11 @@ contains
                    //str(maxval(abs(r)), 3)//')'
           return
         end if
-        call self%newton_matrix(jm)
+        call self%newton_matrix(jm, ok_matrix)
+        if (.not. ok_matrix) then
+          reason = 'the Newton matrix for the multipliers overflows (G + Sum lambda A nearly singular)'
+          return
+        end if
         call lu_factor(jm, piv, lerr, rc)
         if (lerr%failed() .or. rc < 1.0e-14_dp) then
           reason = 'singular Newton matrix for the multipliers (active constraints dependent, ' &
