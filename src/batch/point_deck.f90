@@ -79,7 +79,8 @@ contains
       s = int_text(nint(value))
       return
     end if
-    do digits = 15, 17
+    do digits = merge(17, 15, abs(value) > 1.0e307_dp), 17
+      ! (near huge() a shorter text rounds up past it: reading it back overflows)
       write(buf, '(es32.'//int_text(digits - 1)//'e3)') value
       read(buf, *, iostat=ios) back
       if (ios == 0 .and. abs(back - value) <= 0.0_dp) exit
