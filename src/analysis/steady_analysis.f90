@@ -204,7 +204,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(steady_settings_t), intent(in) :: s
     type(steady_model_t), intent(in) :: model
-    character(len=200), allocatable :: tlines(:)
+    character(len=160), allocatable :: tlines(:)
     call model%table%describe(tlines)
     call write_mechanism_header(out, mech, tlines)
     associate (o => s%element)

@@ -16,6 +16,19 @@
 !>    U = s cos(alpha), W = s sin(alpha) with one global unknown s; th free, m = 0;
 !>  - 'free': all four DOFs free (a free end carries no moment either, but
 !>    m = 0 is a natural condition there, not imposed).
+!> Two layers extend the node DOFs, one table for every model:
+!>  - axial_dofs (the consistent element): [ux uxx] at every node, free at
+!>    every link end together with m;
+!>  - shear_dofs (Tennant's 14-DOF element): [a psi lam], the shear angle,
+!>    its derivative and second derivative; a follows th (0 at a clamp), psi
+!>    follows m (own at a clamp or free end, else 0), lam is always own.
+!> and one more attachment, for Tennant's slider_link joint:
+!>  - 'sleeve' (end 2 of a link sliding through a sleeve): the link's local
+!>    axial displacement is an own unknown s and its transverse displacement
+!>    is the sleeve's (U_s, W_s) across the link (T22), so the element map
+!>    depends on the link angle (element_map); th, a own; m = psi = 0. Links
+!>    that carry the sleeve are pinned to it (U_s, W_s shared, `carried`);
+!>    with no carrier the sleeve pivots on the ground (U_s = W_s = 0).
 module correlation_table
   use kinds, only: dp
   use error_status, only: error_t
@@ -23,19 +36,22 @@ module correlation_table
   implicit none
   private
   public :: correlation_table_t, link_end_t, dofs_per_element
-  public :: joint_free, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed
+  public :: joint_free, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_sleeve
 
   integer, parameter :: dofs_per_element = 8
   integer, parameter :: joint_free = 0, joint_pin = 1, joint_ground_pin = 2, joint_clamp = 3, &
-                        joint_slider_fixed = 4
-  character(len=*), parameter :: dof_names(6) = ['U  ', 'W  ', 'th ', 'm  ', 'ux ', 'uxx']
+                        joint_slider_fixed = 4, joint_sleeve = 5
+  character(len=*), parameter :: axial_names(6) = ['U  ', 'W  ', 'th ', 'm  ', 'ux ', 'uxx']
+  character(len=*), parameter :: shear_names(7) = ['U  ', 'W  ', 'th ', 'm  ', 'a  ', 'psi', 'lam']
 
   !> How one end of one link is attached.  Link ends with the same `joint`
-  !> id > 0 and kind joint_pin share their translations.
+  !> id > 0 and kind joint_pin share their translations; a sleeve end names
+  !> its joint, whose translations are those of the carriers pinned there.
   type :: link_end_t
     integer :: kind = joint_free
     integer :: joint = 0
     real(dp) :: guide_angle = 0.0_dp   !< slider_fixed: guide direction from +X (rad)
+    logical :: carried = .false.       !< sleeve: carried by a moving link (else on the ground)
   end type link_end_t
 
   type :: correlation_table_t
@@ -43,18 +59,24 @@ module correlation_table
     integer :: n_elements = 0
     integer :: n_global = 0
     integer :: half_bandwidth = 0                  !< of assembled M and K
-    integer :: node_dofs = 4                       !< 4: [U W th m] (Kear); 6: also [ux uxx] (axial_dofs)
+    integer :: node_dofs = 4                       !< 4: [U W th m] (Kear); 6: also [ux uxx]; 7: also [a psi lam]
     integer :: element_dofs = dofs_per_element     !< 2 * node_dofs
     integer, allocatable :: link_of_element(:)     !< (n_elements)
     integer, allocatable :: first_element(:)       !< (n_links + 1): elements of link k are first(k):first(k+1)-1
-    integer, allocatable :: map(:, :)              !< (8, n_elements) global index, 0 = held at zero
-    real(dp), allocatable :: coef(:, :)            !< (8, n_elements) element DOF = coef * global
+    integer, allocatable :: map(:, :)              !< (element_dofs, n_elements) global index, 0 = held at zero
+    real(dp), allocatable :: coef(:, :)            !< (element_dofs, n_elements) element DOF = coef * global
     character(len=24), allocatable :: label(:)     !< (n_global) e.g. 'L2 N1 U' or 'J3 s'
+    integer, allocatable :: sleeve_s(:)            !< (n_elements) axial unknown of a sleeve end at node 2 (0: none)
+    integer, allocatable :: sleeve_u(:), sleeve_w(:) !< the sleeve's translations (0: on the ground)
+    integer, allocatable :: glob(:, :)             !< (element_dofs + 2, n_elements) globals an element uses
+    integer, allocatable :: n_glob(:)              !< (n_elements)
   contains
     procedure :: build
     procedure :: gather
     procedure :: scatter_add
     procedure :: scatter_add_matrix
+    procedure :: element_map
+    procedure :: is_sleeve_element
     procedure :: describe
   end type correlation_table_t
 
@@ -67,30 +89,29 @@ contains
   !> With axial_dofs every node also carries the local axial strain u_x and
   !> its derivative u_xx (the consistent element's quintic u, doc/element.md);
   !> the curvature-like DOFs m, ux, uxx are then free at every link end (a
-  !> pin's zero moment is a natural condition of that element).
-  subroutine build(self, n_elem, ends, err, reduce_band, axial_dofs)
-    class(correlation_table_t), intent(inout) :: self
+  !> pin's zero moment is a natural condition of that element). With
+  !> shear_dofs every node carries Tennant's shear-angle DOFs [a psi lam].
+  subroutine build(self, n_elem, ends, err, reduce_band, axial_dofs, shear_dofs)
+    class(correlation_table_t), intent(out) :: self
     integer, intent(in) :: n_elem(:)
     type(link_end_t), intent(in) :: ends(:, :)
     type(error_t), intent(inout) :: err
     logical, intent(in), optional :: reduce_band   !< renumber by reverse Cuthill-McKee when it narrows the band
     logical, intent(in), optional :: axial_dofs    !< six DOFs per node [U W th m ux uxx]
-    integer :: k, e, j, n_links, next, side, node_dofs(6), max_joint, nd
+    logical, intent(in), optional :: shear_dofs    !< seven DOFs per node [U W th m a psi lam]
+    integer :: k, e, n_links, next, node_dofs(7), max_joint, nd
     integer, allocatable :: joint_u(:), joint_w(:), joint_kind(:)
-    real(dp) :: c(6)
+    real(dp) :: c(7)
 
     n_links = size(n_elem)
-    if (size(ends, 1) /= 2 .or. size(ends, 2) /= n_links) then
-      call err%set('correlation table', 'need two end descriptions per link')
-      return
-    end if
-    if (any(n_elem < 1)) then
-      call err%set('correlation table', 'every link needs at least one element')
-      return
-    end if
+    call check_ends(n_elem, ends, err)
+    if (err%failed()) return
     self%node_dofs = 4
     if (present(axial_dofs)) then
       if (axial_dofs) self%node_dofs = 6
+    end if
+    if (present(shear_dofs)) then
+      if (shear_dofs) self%node_dofs = 7
     end if
     nd = self%node_dofs
     self%element_dofs = 2*nd
@@ -103,8 +124,12 @@ contains
       self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
     end do
     allocate(self%map(2*nd, self%n_elements), self%coef(2*nd, self%n_elements))
+    allocate(self%sleeve_s(self%n_elements), self%sleeve_u(self%n_elements), self%sleeve_w(self%n_elements))
     self%map = 0
     self%coef = 0.0_dp
+    self%sleeve_s = 0
+    self%sleeve_u = 0
+    self%sleeve_w = 0
     allocate(self%label(0))
 
     max_joint = max(0, maxval(ends%joint))
@@ -112,22 +137,12 @@ contains
     joint_u = 0
     joint_w = 0
     joint_kind = -1
-    do k = 1, n_links
-      do side = 1, 2
-        j = ends(side, k)%joint
-        if (ends(side, k)%kind == joint_pin .and. j <= 0) then
-          call err%set('correlation table', 'link '//str(k)//' end '//str(side)//' is a pin without a joint id')
-          return
-        end if
-      end do
-    end do
-
     next = 0
     do k = 1, n_links
       do e = self%first_element(k), self%first_element(k + 1) - 1
         ! start node: shared with the previous element of the same link, or a link end
         if (e == self%first_element(k)) then
-          call end_node(ends(1, k), k, 1, node_dofs(1:nd), c(1:nd))
+          call end_node(ends(1, k), k, 1, e, node_dofs(1:nd), c(1:nd))
         else
           node_dofs(1:nd) = self%map(nd + 1:2*nd, e - 1)
           c(1:nd) = self%coef(nd + 1:2*nd, e - 1)
@@ -135,7 +150,7 @@ contains
         self%map(1:nd, e) = node_dofs(1:nd)
         self%coef(1:nd, e) = c(1:nd)
         if (e == self%first_element(k + 1) - 1) then
-          call end_node(ends(2, k), k, n_elem(k) + 1, node_dofs(1:nd), c(1:nd))
+          call end_node(ends(2, k), k, n_elem(k) + 1, e, node_dofs(1:nd), c(1:nd))
         else
           call interior_node(k, e - self%first_element(k) + 2, node_dofs(1:nd), c(1:nd))
         end if
@@ -148,9 +163,10 @@ contains
       call err%set('correlation table', 'the supports leave no free degree of freedom')
       return
     end if
-    self%half_bandwidth = bandwidth(self%map)
+    call collect_globals(self)
     if (present(reduce_band)) then
-      if (reduce_band) call reduce_bandwidth(self)
+      ! (a sleeve couples unknowns the map does not show: keep its numbering)
+      if (reduce_band .and. all(self%sleeve_s == 0)) call reduce_bandwidth(self)
     end if
 
   contains
@@ -162,24 +178,33 @@ contains
       new_dof = next
     end function new_dof
 
+    character(len=3) function dof_name(d)
+      integer, intent(in) :: d
+      if (nd == 7) then
+        dof_name = shear_names(d)
+      else
+        dof_name = axial_names(d)
+      end if
+    end function dof_name
+
     subroutine interior_node(link, node, dofs, coefs)
       integer, intent(in) :: link, node
       integer, intent(out) :: dofs(:)
       real(dp), intent(out) :: coefs(:)
       integer :: d
       do d = 1, size(dofs)
-        dofs(d) = new_dof('L'//str(link)//' N'//str(node)//' '//trim(dof_names(d)))
+        dofs(d) = new_dof('L'//str(link)//' N'//str(node)//' '//trim(dof_name(d)))
       end do
       coefs = 1.0_dp
     end subroutine interior_node
 
-    subroutine end_node(attach, link, node, dofs, coefs)
+    subroutine end_node(attach, link, node, ee, dofs, coefs)
       type(link_end_t), intent(in) :: attach
-      integer, intent(in) :: link, node
+      integer, intent(in) :: link, node, ee
       integer, intent(out) :: dofs(:)
       real(dp), intent(out) :: coefs(:)
       character(len=:), allocatable :: where
-      integer :: jid
+      integer :: jid, d
       where = 'L'//str(link)//' N'//str(node)
       dofs = 0
       coefs = 0.0_dp
@@ -187,12 +212,9 @@ contains
       select case (attach%kind)
       case (joint_free)
         call interior_node(link, node, dofs, coefs)
+        return
       case (joint_pin)
-        if (joint_kind(jid) == -1) then
-          joint_kind(jid) = joint_pin
-          joint_u(jid) = new_dof('J'//str(jid)//' U')
-          joint_w(jid) = new_dof('J'//str(jid)//' W')
-        end if
+        call pin_translations(jid)
         dofs(1:2) = [joint_u(jid), joint_w(jid)]
         dofs(3) = new_dof(where//' th')
         coefs(1:3) = 1.0_dp
@@ -216,16 +238,112 @@ contains
         coefs(1:2) = [cos(attach%guide_angle), sin(attach%guide_angle)]
         dofs(3) = new_dof(where//' th')
         coefs(3) = 1.0_dp
+      case (joint_sleeve)
+        ! (U2, W2) depend on the link angle: element_map builds them; map(U2)
+        ! records the axial unknown for the printed table
+        self%sleeve_s(ee) = new_dof(where//' s (sleeve)')
+        if (attach%carried) then
+          call pin_translations(jid)
+          self%sleeve_u(ee) = joint_u(jid)
+          self%sleeve_w(ee) = joint_w(jid)
+        end if
+        dofs(1) = self%sleeve_s(ee)
+        coefs(1) = 1.0_dp
+        dofs(3) = new_dof(where//' th')
+        coefs(3) = 1.0_dp
       end select
-      if (size(dofs) == 6 .and. attach%kind /= joint_free) then
+      if (nd == 6) then
         ! consistent element: curvature and axial-strain DOFs free at every end
-        do jid = 4, 6
-          if (dofs(jid) == 0) dofs(jid) = new_dof(where//' '//trim(dof_names(jid)))
-          coefs(jid) = 1.0_dp
+        do d = 4, 6
+          if (dofs(d) == 0) dofs(d) = new_dof(where//' '//trim(axial_names(d)))
+          coefs(d) = 1.0_dp
         end do
+      else if (nd == 7) then
+        ! shear angle a follows th, psi follows m, lam is always own
+        if (attach%kind /= joint_clamp) then
+          dofs(5) = new_dof(where//' a')
+          coefs(5) = 1.0_dp
+        else
+          dofs(6) = new_dof(where//' psi')
+          coefs(6) = 1.0_dp
+        end if
+        dofs(7) = new_dof(where//' lam')
+        coefs(7) = 1.0_dp
       end if
     end subroutine end_node
+
+    subroutine pin_translations(jid)
+      integer, intent(in) :: jid
+      if (joint_kind(jid) == -1) then
+        joint_kind(jid) = joint_pin
+        joint_u(jid) = new_dof('J'//str(jid)//' U')
+        joint_w(jid) = new_dof('J'//str(jid)//' W')
+      end if
+    end subroutine pin_translations
   end subroutine build
+
+  !> Shape and joint ids of the end descriptions; a sleeve is end 2 of a
+  !> one-element link (its length varies with the sleeve, T24).
+  subroutine check_ends(n_elem, ends, err)
+    integer, intent(in) :: n_elem(:)
+    type(link_end_t), intent(in) :: ends(:, :)
+    type(error_t), intent(inout) :: err
+    integer :: k, side
+    if (size(ends, 1) /= 2 .or. size(ends, 2) /= size(n_elem)) then
+      call err%set('correlation table', 'need two end descriptions per link')
+      return
+    end if
+    if (any(n_elem < 1)) then
+      call err%set('correlation table', 'every link needs at least one element')
+      return
+    end if
+    do k = 1, size(n_elem)
+      do side = 1, 2
+        if (any(ends(side, k)%kind == [joint_pin, joint_sleeve]) .and. ends(side, k)%joint <= 0) then
+          call err%set('correlation table', 'link '//str(k)//' end '//str(side)//' needs a joint id')
+          return
+        end if
+      end do
+      if (ends(1, k)%kind == joint_sleeve) then
+        call err%set('correlation table', 'link '//str(k)//': the sleeve must be at end 2 of the sliding link')
+        return
+      end if
+      if (ends(2, k)%kind == joint_sleeve .and. n_elem(k) /= 1) then
+        call err%set('correlation table', 'link '//str(k)//' slides through a sleeve: it must be one element '// &
+                     '(its length varies with the sleeve, T24)')
+        return
+      end if
+    end do
+  end subroutine check_ends
+
+  !> The globals each element uses (a sleeve element also uses the sleeve's
+  !> U_s, W_s) and the half-bandwidth they give.
+  subroutine collect_globals(self)
+    type(correlation_table_t), intent(inout) :: self
+    integer :: e, i
+    if (allocated(self%glob)) deallocate(self%glob, self%n_glob)
+    allocate(self%glob(self%element_dofs + 2, self%n_elements), self%n_glob(self%n_elements))
+    self%glob = 0
+    self%n_glob = 0
+    self%half_bandwidth = 0
+    do e = 1, self%n_elements
+      do i = 1, self%element_dofs
+        call add_glob(e, self%map(i, e))
+      end do
+      call add_glob(e, self%sleeve_u(e))
+      call add_glob(e, self%sleeve_w(e))
+      if (self%n_glob(e) > 0) self%half_bandwidth = max(self%half_bandwidth, &
+        maxval(self%glob(1:self%n_glob(e), e)) - minval(self%glob(1:self%n_glob(e), e)))
+    end do
+  contains
+    subroutine add_glob(ee, g)
+      integer, intent(in) :: ee, g
+      if (g <= 0) return
+      if (any(self%glob(1:self%n_glob(ee), ee) == g)) return
+      self%n_glob(ee) = self%n_glob(ee) + 1
+      self%glob(self%n_glob(ee), ee) = g
+    end subroutine add_glob
+  end subroutine collect_globals
 
   !> Half-bandwidth of the assembled matrices for a given numbering.
   pure integer function bandwidth(map) result(kd)
@@ -338,7 +456,7 @@ contains
     end do
     self%map = new_map
     self%label = new_label
-    self%half_bandwidth = bandwidth(new_map)
+    call collect_globals(self)
   end subroutine reduce_bandwidth
 
   !> Element DOF vector from the global vector.
@@ -387,6 +505,61 @@ contains
     end do
   end subroutine scatter_add_matrix
 
+  logical pure function is_sleeve_element(self, e)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    is_sleeve_element = self%sleeve_s(e) > 0
+  end function is_sleeve_element
+
+  !> The map of element e as a dense matrix: q_e = C Q(glob(1:ng)), with its
+  !> time derivatives (nonzero only for a sleeve end, where C depends on the
+  !> sliding link's angle phi).
+  pure subroutine element_map(self, e, phi, phi_d, phi_dd, ng, c0, c1, c2)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: phi, phi_d, phi_dd
+    integer, intent(out) :: ng
+    real(dp), intent(out) :: c0(:, :), c1(:, :), c2(:, :)
+    integer :: i, col, js, ju, jw, iu
+    real(dp) :: c, s, c2a, s2a, dphi(2, 3), ddphi(2, 3)
+    ng = self%n_glob(e)
+    c0(1:self%element_dofs, 1:ng) = 0.0_dp
+    c1(1:self%element_dofs, 1:ng) = 0.0_dp
+    c2(1:self%element_dofs, 1:ng) = 0.0_dp
+    do i = 1, self%element_dofs
+      if (self%map(i, e) == 0) cycle
+      col = findloc(self%glob(1:ng, e), self%map(i, e), dim=1)
+      c0(i, col) = self%coef(i, e)
+    end do
+    if (self%sleeve_s(e) == 0) return
+    ! sleeve at node 2: (U2, W2) = s u(phi) + (u_perp . (U_s, W_s)) u_perp
+    iu = self%node_dofs + 1
+    c = cos(phi)
+    s = sin(phi)
+    c2a = cos(2.0_dp*phi)
+    s2a = sin(2.0_dp*phi)
+    js = findloc(self%glob(1:ng, e), self%sleeve_s(e), dim=1)
+    c0(iu:iu + 1, js) = [c, s]
+    dphi(:, 1) = [-s, c]
+    ddphi(:, 1) = [-c, -s]
+    if (self%sleeve_u(e) > 0) then
+      ju = findloc(self%glob(1:ng, e), self%sleeve_u(e), dim=1)
+      jw = findloc(self%glob(1:ng, e), self%sleeve_w(e), dim=1)
+      c0(iu:iu + 1, ju) = [0.5_dp*(1.0_dp - c2a), -0.5_dp*s2a]
+      c0(iu:iu + 1, jw) = [-0.5_dp*s2a, 0.5_dp*(1.0_dp + c2a)]
+      dphi(:, 2) = [s2a, -c2a]
+      dphi(:, 3) = [-c2a, -s2a]
+      ddphi(:, 2) = [2.0_dp*c2a, 2.0_dp*s2a]
+      ddphi(:, 3) = [2.0_dp*s2a, -2.0_dp*c2a]
+      c1(iu:iu + 1, ju) = phi_d*dphi(:, 2)
+      c1(iu:iu + 1, jw) = phi_d*dphi(:, 3)
+      c2(iu:iu + 1, ju) = phi_d*phi_d*ddphi(:, 2) + phi_dd*dphi(:, 2)
+      c2(iu:iu + 1, jw) = phi_d*phi_d*ddphi(:, 3) + phi_dd*dphi(:, 3)
+    end if
+    c1(iu:iu + 1, js) = phi_d*dphi(:, 1)
+    c2(iu:iu + 1, js) = phi_d*phi_d*ddphi(:, 1) + phi_dd*dphi(:, 1)
+  end subroutine element_map
+
   !> The table as text lines, for the output header: one line per element
   !> with the global unknown of each element DOF (0 = held at zero), then the
   !> list of global unknowns.
@@ -397,24 +570,33 @@ contains
     character(len=160) :: l
     n = 3 + self%n_elements + 1 + (self%n_global + 3)/4
     allocate(lines(n))
-    write(lines(1), '(a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements, ', &
-      self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
+    write(lines(1), '(a,i0,a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements of ', &
+      self%element_dofs, ' DOFs, ', self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
     nd = self%node_dofs
-    if (nd == 6) then
+    select case (nd)
+    case (6)
       lines(2) = '  element link :   U1   W1  th1   m1  ux1 uxx1   U2   W2  th2   m2  ux2 uxx2   (global unknown; ' &
                  //'0 = held at zero)'
-    else
+    case (7)
+      lines(2) = '  element link :   U1   W1  th1   m1   a1 psi1 lam1   U2   W2  th2   m2   a2 psi2 lam2   (global ' &
+                 //'unknown; 0 = held at zero)'
+    case default
       lines(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
-    end if
-    lines(3) = ''
+    end select
+    lines(3) = '  ----------------------------------------------------------------------'
     do e = 1, self%n_elements
-      write(l, '(2x,i7,i5,a,12i5)') e, self%link_of_element(e), ' :', self%map(:, e)
-      if (any(self%map(1:2, e) > 0 .and. self%map(1:2, e) == self%map([2, 1], e)) .or. &
-          any(self%map(nd + 1:nd + 2, e) > 0 .and. self%map(nd + 1:nd + 2, e) == self%map([nd + 2, nd + 1], e))) &
+      write(l, '(2x,i7,i5,a,14i5)') e, self%link_of_element(e), ' :', self%map(:, e)
+      if (self%sleeve_s(e) > 0 .and. self%sleeve_u(e) > 0) then
+        write(l(len_trim(l) + 1:), '(a,i0,a,i0,a,i0,a)') '  (sleeve: U2, W2 from s = ', self%sleeve_s(e), &
+          ' and U_s, W_s = ', self%sleeve_u(e), ', ', self%sleeve_w(e), ')'
+      else if (self%sleeve_s(e) > 0) then
+        write(l(len_trim(l) + 1:), '(a,i0,a)') '  (ground sleeve: U2, W2 = s u(phi), s = ', self%sleeve_s(e), ')'
+      else if (any(self%map(1:2, e) > 0 .and. self%map(1:2, e) == self%map([2, 1], e)) .or. &
+               any(self%map(nd + 1:nd + 2, e) > 0 .and. self%map(nd + 1:nd + 2, e) == self%map([nd + 2, nd + 1], e))) then
         l = trim(l)//'  (slider: U, W = s * guide direction)'
+      end if
       lines(3 + e) = l
     end do
-    lines(3) = '  ----------------------------------------------------------------------'
     lines(4 + self%n_elements) = '  global unknowns:'
     do i = 1, (self%n_global + 3)/4
       l = ''

@@ -22,12 +22,12 @@
 !> are pure.
 module consistent_element
   use kinds, only: dp
+  use linalg, only: outer
   use error_status, only: error_t
-  use strings, only: str
-  use quadrature, only: gauss_legendre_interval, max_gauss_points
+  use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite
-  use material_law, only: ramberg_osgood_t, section_resultants_t, validate_material, section_response, &
-                          ro_stress, peak_strain
+  use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
+  use beam_properties, only: beam_properties_t, init_beam_properties
   use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t
   implicit none
   private
@@ -42,16 +42,7 @@ module consistent_element
   integer, parameter :: n_exact = 6      !< Gauss points exact for the constant integrals (degree <= 11)
 
   !> One element.  Arrays in the local DOF order p = [u1 w1 th1 m1 a1 b1 u2 w2 th2 m2 a2 b2].
-  type :: consistent_element_t
-    real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
-    real(dp) :: area = 0.0_dp, inertia = 0.0_dp
-    real(dp) :: fibre = 0.0_dp                !< outer-fibre distance c for stresses (t/2 for a rectangle)
-    type(ramberg_osgood_t) :: material
-    type(element_effects_t) :: effects
-    integer :: n_gauss = 8
-    real(dp) :: beta = 0.0_dp
-    logical :: objective_damping = .true.
-    real(dp) :: eps_star = huge(1.0_dp)
+  type, extends(beam_properties_t) :: consistent_element_t
     real(dp) :: mass_trans(nd, nd) = 0.0_dp   !< int S^T S
     real(dp) :: coupling(nd, nd) = 0.0_dp     !< int S^T (J S - S J_b)
     real(dp) :: centrifugal(nd, nd) = 0.0_dp  !< int S^T (S J_b^2 - S - 2 J S J_b)
@@ -88,37 +79,9 @@ contains
     real(dp) :: x(n_exact), w(n_exact), su(nd), sw(nd), gs(nd, 4), g2(nd, nd), jb(nd, nd)
     integer :: i
 
-    if (.not. (length > 0.0_dp)) then
-      call err%set('consistent_element_init', 'element length must be positive, got '//str(length)); return
-    end if
-    if (.not. (width > 0.0_dp .and. depth > 0.0_dp)) then
-      call err%set('consistent_element_init', 'section width and depth must be positive, got b = ' &
-                   //str(width)//', t = '//str(depth)); return
-    end if
-    call validate_material(material, err)
-    if (err%failed()) then
-      call err%add_context('consistent_element_init'); return
-    end if
-    el%length = length
-    el%width = width
-    el%depth = depth
-    el%area = width*depth
-    el%inertia = width*depth**3/12.0_dp
-    el%fibre = 0.5_dp*depth
-    if (present(fibre_distance)) el%fibre = fibre_distance
-    el%material = material
-    el%effects = effects
-    if (present(n_gauss)) el%n_gauss = n_gauss
-    if (el%n_gauss < 2 .or. el%n_gauss > max_gauss_points) then
-      call err%set('consistent_element_init', 'n_gauss must be in 2..'//str(max_gauss_points)//', got ' &
-                   //str(el%n_gauss)); return
-    end if
-    if (present(damping_beta)) el%beta = damping_beta
-    if (.not. (el%beta >= 0.0_dp)) then
-      call err%set('consistent_element_init', 'damping beta must be >= 0, got '//str(el%beta)); return
-    end if
-    if (present(objective_damping)) el%objective_damping = objective_damping
-    el%eps_star = peak_strain(material)
+    call init_beam_properties(el%beam_properties_t, 'consistent_element_init', length, width, depth, material, &
+                              effects, err, n_gauss, damping_beta, objective_damping, fibre_distance)
+    if (err%failed()) return
 
     ! constant integrals: S^T S has degree 10, exact with 6 points
     g2 = 0.0_dp
@@ -659,13 +622,4 @@ contains
     r(7) = -p(8)
     r(8) = p(7)
   end function jb_times
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
 end module consistent_element

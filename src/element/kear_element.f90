@@ -22,12 +22,13 @@
 !> constant integrals of the linear model once per element.
 module kear_element
   use kinds, only: dp
+  use linalg, only: outer
   use error_status, only: error_t
   use strings, only: str, lower
-  use quadrature, only: gauss_legendre_interval, max_gauss_points
+  use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite, linear_lagrange
-  use material_law, only: ramberg_osgood_t, section_resultants_t, validate_material, section_response, &
-                          ro_stress, peak_strain
+  use beam_properties, only: element_effects_t, beam_properties_t, init_beam_properties
+  use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
   implicit none
   private
   public :: kear_ndof, formulation_exact, formulation_kear1987
@@ -42,15 +43,6 @@ module kear_element
   integer, parameter :: formulation_kear1987 = 2   !< as printed: (K9), (K11), (K20), (K23)
   integer, parameter :: n_exact = 6                !< Gauss points exact for the linear integrals (degree <= 11)
 
-  !> The papers' effects ("tracing constants").  All .false. is the linear analysis.
-  type :: element_effects_t
-    logical :: stretching = .false.      !< exact axial strain (K19); off: eps_n = u_x
-    logical :: curvature = .false.       !< exact curvature (K23) and section angle (K8); off: kappa = w_xx, theta = phi + w_x
-    logical :: material = .false.        !< Ramberg-Osgood E2 term (K13); off: linear elastic E1
-    logical :: rotary_inertia = .false.  !< rho I theta_dot^2 / 2 in (K3); off: dropped
-    logical :: coupling = .false.        !< Coriolis and Euler terms of the elastic motion; off: dropped
-  end type element_effects_t
-
   !> Rigid-body state of the element reference line (from kinematics).
   type :: rigid_state_t
     real(dp) :: x1 = 0.0_dp, y1 = 0.0_dp, phi = 0.0_dp            !< end 1 and inclination
@@ -60,17 +52,8 @@ module kear_element
 
   !> One element: geometry, material, switches and precomputed integrals.
   !> Arrays in the local DOF order p = [u1 w1 th1 m1 u2 w2 th2 m2].
-  type :: kear_element_t
-    real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
-    real(dp) :: area = 0.0_dp, inertia = 0.0_dp        !< A = b t, I = b t^3/12 (K4)
-    real(dp) :: fibre = 0.0_dp                          !< outer-fibre distance c for stresses (t/2 for a rectangle)
-    type(ramberg_osgood_t) :: material
-    type(element_effects_t) :: effects
+  type, extends(beam_properties_t) :: kear_element_t
     integer :: formulation = formulation_exact
-    integer :: n_gauss = 8                              !< points for the nonlinear integrals (doc/element.md)
-    real(dp) :: beta = 0.0_dp                           !< stiffness-proportional damping
-    logical :: objective_damping = .true.               !< damp strain rates, not global q_dot
-    real(dp) :: eps_star = huge(1.0_dp)                 !< peak strain of the material law
     ! constant integrals (exact rule)
     real(dp) :: mass_trans(8, 8) = 0.0_dp   !< int S^T S
     real(dp) :: coupling(8, 8) = 0.0_dp     !< int S^T (J S - S J_b)
@@ -139,41 +122,13 @@ contains
     real(dp) :: su(8), sw(8), gw(8), gww(8), g2(8, 8), jb(8, 8)
     integer :: i
 
-    if (.not. (length > 0.0_dp)) then
-      call err%set('kear_element_init', 'element length must be positive, got '//str(length)); return
-    end if
-    if (.not. (width > 0.0_dp .and. depth > 0.0_dp)) then
-      call err%set('kear_element_init', 'section width and depth must be positive, got b = ' &
-                   //str(width)//', t = '//str(depth)); return
-    end if
-    call validate_material(material, err)
-    if (err%failed()) then
-      call err%add_context('kear_element_init'); return
-    end if
-    el%length = length
-    el%width = width
-    el%depth = depth
-    el%area = width*depth
-    el%inertia = width*depth**3/12.0_dp
-    el%fibre = 0.5_dp*depth
-    if (present(fibre_distance)) el%fibre = fibre_distance
-    el%material = material
-    el%effects = effects
+    call init_beam_properties(el%beam_properties_t, 'kear_element_init', length, width, depth, material, effects, &
+                              err, n_gauss, damping_beta, objective_damping, fibre_distance)
+    if (err%failed()) return
     if (present(formulation)) el%formulation = formulation
     if (el%formulation /= formulation_exact .and. el%formulation /= formulation_kear1987) then
       call err%set('kear_element_init', 'unknown formulation code '//str(el%formulation)); return
     end if
-    if (present(n_gauss)) el%n_gauss = n_gauss
-    if (el%n_gauss < 2 .or. el%n_gauss > max_gauss_points) then
-      call err%set('kear_element_init', 'n_gauss must be in 2..'//str(max_gauss_points)//', got ' &
-                   //str(el%n_gauss)); return
-    end if
-    if (present(damping_beta)) el%beta = damping_beta
-    if (.not. (el%beta >= 0.0_dp)) then
-      call err%set('kear_element_init', 'damping beta must be >= 0, got '//str(el%beta)); return
-    end if
-    if (present(objective_damping)) el%objective_damping = objective_damping
-    el%eps_star = peak_strain(material)
 
     ! constant integrals, 6-point rule: S^T S has degree 10 (h_i h_j), the rest less
     el%gu = 0.0_dp
@@ -586,7 +541,7 @@ contains
       if (want_k .or. want_damp) then
         tn = res%tangent(1, 1)*sp%de_true + res%tangent(1, 2)*sp%dk  ! dN/d(a,b,c)
         tk = res%tangent(2, 1)*sp%de_true + res%tangent(2, 2)*sp%dk  ! dM/d(a,b,c)
-        h3 = outer3(sp%de_used, tn) + outer3(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
+        h3 = outer(sp%de_used, tn) + outer(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
         if (want_k) then
           gh = el%wg(i)*matmul(g, h3)
           kp = kp + matmul(gh, transpose(g))
@@ -782,22 +737,4 @@ contains
     r(5) = -p(6)
     r(6) = p(5)
   end function jb_times
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
-
-  pure function outer3(x, y) result(m)
-    real(dp), intent(in) :: x(3), y(3)
-    real(dp) :: m(3, 3)
-    integer :: j
-    do j = 1, 3
-      m(:, j) = x*y(j)
-    end do
-  end function outer3
 end module kear_element

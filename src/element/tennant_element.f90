@@ -27,6 +27,7 @@
 !> (every evaluation for an element whose length varies).
 module tennant_element
   use kinds, only: dp
+  use linalg, only: outer
   use error_status, only: error_t
   use strings, only: str
   use quadrature, only: gauss_legendre, gauss_legendre_interval
@@ -327,15 +328,6 @@ contains
       satt(a_slots(el)) = vtt
     end if
   end subroutine station_rates
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
 
   !> Section properties: rectangle b x h.
   pure subroutine section_props(el, k, area, inertia)

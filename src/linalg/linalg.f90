@@ -17,7 +17,7 @@ module linalg
   public :: band_cholesky_factor, band_cholesky_solve
   public :: band_lu_factor, band_lu_solve
   public :: sym_generalized_eig, eigenvalues_general
-  public :: dense_to_lower_band
+  public :: dense_to_lower_band, outer
 
   interface
     subroutine dgetrf(m, n, a, lda, ipiv, info)
@@ -360,4 +360,13 @@ contains
                    ' onward not computed')
     end if
   end subroutine eigenvalues_general
+  !> The outer product x y^T (the element routines' rank-one terms).
+  pure function outer(x, y) result(m)
+    real(dp), intent(in) :: x(:), y(:)
+    real(dp) :: m(size(x), size(y))
+    integer :: j
+    do j = 1, size(y)
+      m(:, j) = x*y(j)
+    end do
+  end function outer
 end module linalg

@@ -597,15 +597,63 @@ contains
     real(dp), intent(in) :: theta, theta_d, theta_dd
     type(error_t), intent(inout) :: err
     real(dp) :: qn(self%n), qp(self%n), lu(self%n, self%n), rhs(self%n), qd(self%n), qdd(self%n), rc
-    integer :: ipiv(self%n), its, k, sg(self%n_steps), i
-    logical :: ok, rescued
-    character(len=:), allocatable :: reason
+    integer :: ipiv(self%n), its
+    logical :: rescued
     type(error_t) :: e
 
     if (self%at_rest) then
       call solve_at_rest(self, theta, err)
       return
     end if
+    call solve_positions(self, theta, qn, its, rescued, err)
+    if (err%failed()) return
+    call check_configuration(self, theta, qn, lu, ipiv, rc, err)
+    if (err%failed()) return
+
+    ! velocities: Phi_q qd = -Phi_t (only the driver row depends on t)
+    rhs = 0.0_dp
+    rhs(self%row_driver) = 1.0_dp
+    call solve_scaled(self, lu, ipiv, rhs, qp, e)
+    qd = qp*theta_d
+    ! accelerations: Phi_q qdd = gamma
+    call accel_rhs(self, qn, qd, theta_dd, rhs)
+    call solve_scaled(self, lu, ipiv, rhs, qdd, e)
+    if (e%failed()) then
+      call err%set('kinematics', e%text()//' at '//crank_angle_text(theta))
+      return
+    end if
+
+    self%q = qn
+    self%q_theta = qp
+    self%qd = qd
+    self%qdd = qdd
+    self%theta = theta
+    self%theta_d = theta_d
+    self%theta_dd = theta_dd
+    self%rcond = rc
+    self%iterations = its
+    self%total_iterations = self%total_iterations + its
+    self%n_solutions = self%n_solutions + 1
+    if (rescued) self%n_reassemblies = self%n_reassemblies + 1
+    self%assembled = .true.
+    self%time_driven = .false.
+  end subroutine kin_solve_angle
+
+  !> Positions at theta: closed-form assembly and Newton the first time, then
+  !> Newton from a first-order predictor, falling back to a fresh closed-form
+  !> assembly (rescued) when the predictor does not converge.
+  subroutine solve_positions(self, theta, qn, its, rescued, err)
+    type(kinematics_t), intent(in) :: self
+    real(dp), intent(in) :: theta
+    real(dp), intent(out) :: qn(self%n)
+    integer, intent(out) :: its
+    logical, intent(out) :: rescued
+    type(error_t), intent(inout) :: err
+    real(dp) :: qp(self%n)
+    integer :: i, k
+    logical :: ok
+    character(len=:), allocatable :: reason
+
     rescued = .false.
     if (.not. self%assembled) then
       ! closed-form placement; joints the plan cannot reach keep the
@@ -653,6 +701,19 @@ contains
         rescued = .true.
       end if
     end if
+  end subroutine solve_positions
+
+  !> The solution at theta is usable: the constraint Jacobian is regular
+  !> (factored here for the rates), no dyad flipped branch since the last
+  !> solution, and every sliding link is inside its sleeve.
+  subroutine check_configuration(self, theta, qn, lu, ipiv, rc, err)
+    type(kinematics_t), intent(in) :: self
+    real(dp), intent(in) :: theta, qn(self%n)
+    real(dp), intent(out) :: lu(self%n, self%n), rc
+    integer, intent(out) :: ipiv(self%n)
+    type(error_t), intent(inout) :: err
+    integer :: sg(self%n_steps), i, k
+    type(error_t) :: e
 
     ! toggle: singular Jacobian
     call factor_scaled(self, qn, lu, ipiv, rc, e)
@@ -696,35 +757,7 @@ contains
         return
       end if
     end do
-
-    ! velocities: Phi_q qd = -Phi_t (only the driver row depends on t)
-    rhs = 0.0_dp
-    rhs(self%row_driver) = 1.0_dp
-    call solve_scaled(self, lu, ipiv, rhs, qp, e)
-    qd = qp*theta_d
-    ! accelerations: Phi_q qdd = gamma
-    call accel_rhs(self, qn, qd, theta_dd, rhs)
-    call solve_scaled(self, lu, ipiv, rhs, qdd, e)
-    if (e%failed()) then
-      call err%set('kinematics', e%text()//' at '//crank_angle_text(theta))
-      return
-    end if
-
-    self%q = qn
-    self%q_theta = qp
-    self%qd = qd
-    self%qdd = qdd
-    self%theta = theta
-    self%theta_d = theta_d
-    self%theta_dd = theta_dd
-    self%rcond = rc
-    self%iterations = its
-    self%total_iterations = self%total_iterations + its
-    self%n_solutions = self%n_solutions + 1
-    if (rescued) self%n_reassemblies = self%n_reassemblies + 1
-    self%assembled = .true.
-    self%time_driven = .false.
-  end subroutine kin_solve_angle
+  end subroutine check_configuration
 
   !> A structure without a driver: place it once (closed-form dyads from the
   !> ground, deck positions for the other joints), check that every link

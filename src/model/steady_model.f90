@@ -1,7 +1,7 @@
 !> The flexible linkage of a steady-state analysis as a periodic system:
 !> rigid-body kinematics (module kinematics), one Tennant element per link
 !> segment, assembled through the variable correlation table of module
-!> tennant_table into dense global M(t), C(t), K_e(t), F(t) and the
+!> correlation_table into dense global M(t), C(t), K_e(t), F(t) and the
 !> nonlinear force f_n(Q, t) of (T25).
 !>
 !> Most element DOFs equal one global unknown times a constant (pins, clamps,
@@ -20,8 +20,9 @@ module steady_model
   use tennant_element, only: tennant_element_t, tennant_options_t, tennant_section_t, frame_state_t, tennant_info_t, &
                              tennant_stress_t, tennant_element_init, tennant_linear_terms, tennant_nonlinear_terms, &
                              tennant_stress_recovery, tennant_local_field, tennant_max_sections, tennant_max_dof
-  use tennant_table, only: tennant_table_t, table_end_t, end_free, end_pin, end_ground_pin, end_clamp, &
-                           end_slider_fixed, end_sleeve
+  use correlation_table, only: correlation_table_t, link_end_t, end_free => joint_free, end_pin => joint_pin, &
+                               end_ground_pin => joint_ground_pin, end_clamp => joint_clamp, &
+                               end_slider_fixed => joint_slider_fixed, end_sleeve => joint_sleeve
   use periodic_system, only: periodic_system_t, nonlinear_info_t
   use linalg, only: sym_generalized_eig
   implicit none
@@ -45,7 +46,7 @@ module steady_model
   type, extends(periodic_system_t) :: steady_model_t
     logical :: moving = .true.
     type(kinematics_t) :: kin
-    type(tennant_table_t) :: table
+    type(correlation_table_t) :: table
     type(tennant_element_t), allocatable :: el(:)
     type(frame_state_t), allocatable :: fs(:)
     real(dp) :: t_states = -huge(1.0_dp)
@@ -86,7 +87,7 @@ contains
     type(tennant_options_t), intent(in) :: opt
     type(link_sections_t), intent(in) :: sections(:)
     type(error_t), intent(inout) :: err
-    type(table_end_t), allocatable :: ends(:, :)
+    type(link_end_t), allocatable :: ends(:, :)
     type(motion_t) :: m
     type(tennant_section_t), allocatable :: es(:)
     real(dp) :: masses(2)
@@ -102,7 +103,7 @@ contains
       end do
     end do
     n_elem = mech%links(:)%n_elements
-    call self%table%build(n_elem, ends, opt%shear, err)
+    call self%table%build(n_elem, ends, err, shear_dofs=opt%shear)
     if (err%failed()) return
     call self%kin%init(mech, err)
     if (err%failed()) return
@@ -160,12 +161,12 @@ contains
     type(ramberg_osgood_t), intent(in) :: materials(:)
     type(frame_state_t), intent(in) :: states(:)
     integer, intent(in) :: n_elem(:)
-    type(table_end_t), intent(in) :: ends(:, :)
+    type(link_end_t), intent(in) :: ends(:, :)
     type(tennant_options_t), intent(in) :: opt
     type(error_t), intent(inout) :: err
     integer :: e
     self%moving = .false.
-    call self%table%build(n_elem, ends, opt%shear, err)
+    call self%table%build(n_elem, ends, err, shear_dofs=opt%shear)
     if (err%failed()) return
     allocate(self%el(self%table%n_elements))
     self%fs = states
@@ -196,7 +197,7 @@ contains
   function link_end(mech, k, j) result(te)
     type(mechanism_t), intent(in) :: mech
     integer, intent(in) :: k, j
-    type(table_end_t) :: te
+    type(link_end_t) :: te
     integer :: i
     te%joint = j
     select case (mech%joints(j)%kind)

@@ -10,7 +10,8 @@ module deck_runner
   use table_output, only: table_t
   implicit none
   private
-  public :: scratch_path, write_deck, run_deck, analysis_runner, has_line, summary_value, count_rows, line_length
+  public :: scratch_path, write_deck, run_deck, analysis_runner, read_deck_text, group_reader
+  public :: has_line, summary_value, count_rows, line_length
 
   integer, parameter :: line_length = 2048
 
@@ -28,6 +29,14 @@ module deck_runner
       type(table_t), intent(inout) :: out
       type(error_t), intent(inout) :: err
     end subroutine analysis_runner
+
+    !> A settings reader: read_steady_settings, read_sweep_settings, ...
+    !> wrapped by the test so that it fills the test's own variable.
+    subroutine group_reader(deck, err)
+      import :: deck_t, error_t
+      type(deck_t), intent(inout) :: deck
+      type(error_t), intent(inout) :: err
+    end subroutine group_reader
   end interface
 
 contains
@@ -105,6 +114,21 @@ contains
     open(newunit=u, file=stem//'.nml', status='old')
     close(u, status='delete')
   end subroutine run_deck
+
+  !> Write the deck to stem.nml, let `reader` read its groups, remove the file.
+  subroutine read_deck_text(reader, stem, text, err)
+    procedure(group_reader) :: reader
+    character(len=*), intent(in) :: stem, text
+    type(error_t), intent(inout) :: err
+    type(deck_t) :: deck
+    integer :: u
+    call write_deck(stem//'.nml', text)
+    call deck%open(stem//'.nml', err)
+    if (.not. err%failed()) call reader(deck, err)
+    call deck%close()
+    open(newunit=u, file=stem//'.nml', status='old')
+    close(u, status='delete')
+  end subroutine read_deck_text
 
   logical function has_line(lines, fragment)
     character(len=*), intent(in) :: lines(:), fragment

@@ -16,7 +16,7 @@ module transient_fixtures
   private
   public :: e1, rho, width, depth, area, inertia, radius_gyration, beam_length, bl_clamped, bl_cantilever
   public :: probe_t, probe_modal, probe_local_w
-  public :: beam_input, cantilever_input, fourbar_input, make_model, all_effects, euler_bernoulli
+  public :: beam_input, cantilever_input, fourbar_abcd, fourbar_input, make_model, all_effects, euler_bernoulli
   public :: modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
 
   ! FORMULATION.md §8.1 section (b = 0.25, h = 1 in) and aluminium.
@@ -78,22 +78,33 @@ contains
     inp%omega = omega
   end function cantilever_input
 
-  !> The four-bar of FORMULATION.md §8.1 (crank 5 clamped at A, coupler 11,
-  !> rocker 10.5 pinned at D = (10, 0)).
+  !> Four-bar A-B-C-D: crank AB = a clamped at A = (0, 0), coupler BC = b,
+  !> rocker DC = c pinned at D = (d, 0). The rocker runs from D to C, so its
+  !> angle is Norton's theta4.
+  function fourbar_abcd(a, b, c, d) result(inp)
+    real(dp), intent(in) :: a, b, c, d
+    type(mechanism_input_t) :: inp
+    inp%n_joints = 4
+    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
+    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_x(4) = d
+    inp%joint_y(4) = 0.0_dp
+    inp%n_links = 3
+    inp%link_name(1:3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
+    inp%link_joint1(1:3) = [1, 2, 4]
+    inp%link_joint2(1:3) = [2, 3, 3]
+    inp%link_length(1:3) = [a, b, c]
+  end function fourbar_abcd
+
+  !> The four-bar of FORMULATION.md §8.1 (crank 5, coupler 11, rocker 10.5,
+  !> D = (10, 0)) with n elements per link.
   function fourbar_input(n, omega, theta0_deg) result(inp)
     integer, intent(in) :: n
     real(dp), intent(in) :: omega, theta0_deg
     type(mechanism_input_t) :: inp
-    inp%n_joints = 4
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = 10.0_dp
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
+    inp = fourbar_abcd(5.0_dp, 11.0_dp, 10.5_dp, 10.0_dp)
     inp%link_n_elements(1:3) = n
     inp%omega = omega
     inp%theta0_deg = theta0_deg

@@ -10,6 +10,7 @@ module test_consistent_element_suite
   use beam_element, only: beam_element_t, beam_element_init, beam_point_load, beam_local_displacement, &
                           element_kind_kear, element_kind_consistent, resolve_formulation
   use assertions
+  use lagrange_check, only: fd_lagrange
   implicit none
   private
   public :: run_all
@@ -141,46 +142,15 @@ contains
       call consistent_element_eval(el, q_big, qd_big, rb, m, f, info)
       call consistent_internal_force(el, q_big, rb%phi, fint)
       op = matmul(m, qdd_big) - f - fint
-      lag = fd_lagrange(el, 0.37_dp)
+      lag = fd_lagrange(energy, q_big, qd_big, qdd_big, 0.37_dp)
       call assert_all_close(op, lag, 0.0_dp, 1.0e-7_dp*maxval(abs(lag)), 'Lagrange: '//effects_summary(fx(k)))
     end do
-  end subroutine test_lagrange_fd
-
-  function fd_lagrange(el, t0) result(lag)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: t0
-    real(dp) :: lag(12), pq(12, -2:2), ht, hq, q(12), qd(12), e(12), s
-    integer :: i, j
-    ht = 1.0e-3_dp
-    hq = 1.0e-4_dp
-    do i = -2, 2
-      s = real(i, dp)*ht
-      q = q_big + qd_big*s + 0.5_dp*qdd_big*s*s
-      qd = qd_big + qdd_big*s
-      pq(:, i) = dt_dqdot(q, qd, rigid_at(t0 + s))
-    end do
-    lag = (pq(:, -2) - 8*pq(:, -1) + 8*pq(:, 1) - pq(:, 2))/(12*ht)
-    do j = 1, 12
-      e = 0.0_dp
-      e(j) = hq
-      lag(j) = lag(j) - (consistent_kinetic_energy(el, q_big - 2*e, qd_big, rigid_at(t0)) &
-                         - 8*consistent_kinetic_energy(el, q_big - e, qd_big, rigid_at(t0)) &
-                         + 8*consistent_kinetic_energy(el, q_big + e, qd_big, rigid_at(t0)) &
-                         - consistent_kinetic_energy(el, q_big + 2*e, qd_big, rigid_at(t0)))/(12*hq)
-    end do
   contains
-    function dt_dqdot(q, qd, rb) result(g)
-      real(dp), intent(in) :: q(12), qd(12)
-      type(rigid_state_t), intent(in) :: rb
-      real(dp) :: g(12), d(12)
-      integer :: jj
-      do jj = 1, 12
-        d = 0.0_dp
-        d(jj) = 0.5_dp
-        g(jj) = (consistent_kinetic_energy(el, q, qd + d, rb) - consistent_kinetic_energy(el, q, qd - d, rb))/(2*d(jj))
-      end do
-    end function dt_dqdot
-  end function fd_lagrange
+    real(dp) function energy(q, qd, t)
+      real(dp), intent(in) :: q(:), qd(:), t
+      energy = consistent_kinetic_energy(el, q, qd, rigid_at(t))
+    end function energy
+  end subroutine test_lagrange_fd
 
   !> A straight element turned rigidly by alpha = 2.5 rad about node 1
   !> (u = x (cos a - 1), w = x sin a: ux = cos a - 1, th = sin a) has zero

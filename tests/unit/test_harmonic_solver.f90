@@ -11,11 +11,12 @@ module test_harmonic_solver_suite
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use material_law, only: ramberg_osgood_t
   use tennant_element, only: tennant_options_t, tennant_section_t, frame_state_t
-  use tennant_table, only: table_end_t, end_clamp, end_free
+  use correlation_table, only: link_end_t, joint_clamp, joint_free
   use steady_model, only: steady_model_t, link_sections_t
   use harmonic_solver
   use linalg, only: solve_linear
   use assertions
+  use transient_fixtures, only: fourbar_input
   implicit none
   private
   public :: run_all
@@ -69,14 +70,14 @@ contains
   subroutine make_beam(beam, beta)
     type(forced_beam_t), intent(out) :: beam
     real(dp), intent(in) :: beta
-    type(table_end_t) :: ends(2, 1)
+    type(link_end_t) :: ends(2, 1)
     type(tennant_options_t) :: opt
     type(error_t) :: err
     type(frame_state_t) :: fs(2)
     fs(1)%length = 10.0_dp
     fs(2) = fs(1)
     fs(2)%x1 = 10.0_dp
-    ends(:, 1) = [table_end_t(end_clamp, 1), table_end_t(end_free, 2)]
+    ends(:, 1) = [link_end_t(joint_clamp, 1), link_end_t(joint_free, 2)]
     opt%damping_beta = beta
     call beam%init_fixed([10.0_dp, 10.0_dp], [tennant_section_t(0.0_dp, 1.0_dp, 0.25_dp, 1.0_dp)], &
                          [ramberg_osgood_t(e1, e2, 3.0_dp, rho), ramberg_osgood_t(e1, e2, 3.0_dp, rho)], fs, [2], &
@@ -129,18 +130,8 @@ contains
     type(mechanism_t) :: mech
     type(link_sections_t) :: secs(3)
     type(error_t) :: err
-    inp%n_joints = 4
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = 10.0_dp
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
+    inp = fourbar_input(1, w, 0.0_dp)
     if (present(n_elem)) inp%link_n_elements(1:3) = n_elem
-    inp%omega = w
     call build_mechanism(inp, mech, err)
     if (present(sections)) secs = sections
     call model%init_mechanism(mech, opt, secs, err)

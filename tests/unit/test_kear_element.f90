@@ -12,6 +12,7 @@ module test_kear_element_suite
   use linalg, only: cholesky_factor
   use kear_element
   use assertions
+  use lagrange_check, only: fd_lagrange
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
   private
@@ -464,46 +465,15 @@ contains
     do k = 1, 3
       el = unit_element(fx(k))
       op = element_operator(el, q_big, qd_big, qdd_big, rigid_at(0.37_dp))
-      lag = fd_lagrange(el, 0.37_dp)
+      lag = fd_lagrange(energy, q_big, qd_big, qdd_big, 0.37_dp)
       call assert_all_close(op, lag, 0.0_dp, 1.0e-7_dp*maxval(abs(lag)), 'Lagrange operator: '//trim(label(k)))
     end do
-  end subroutine test_lagrange_fd
-
-  function fd_lagrange(el, t0) result(lag)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: t0
-    real(dp) :: lag(8), pq(8, -2:2), ht, hq, q(8), qd(8), e(8), s
-    integer :: i, j
-    ht = 1.0e-3_dp
-    hq = 1.0e-4_dp
-    do i = -2, 2
-      s = real(i, dp)*ht
-      q = q_big + qd_big*s + 0.5_dp*qdd_big*s*s
-      qd = qd_big + qdd_big*s
-      pq(:, i) = dt_dqdot(q, qd, rigid_at(t0 + s))
-    end do
-    lag = (pq(:, -2) - 8*pq(:, -1) + 8*pq(:, 1) - pq(:, 2))/(12*ht)
-    do j = 1, 8
-      e = 0.0_dp
-      e(j) = hq
-      lag(j) = lag(j) - (kear_kinetic_energy(el, q_big - 2*e, qd_big, rigid_at(t0)) &
-                         - 8*kear_kinetic_energy(el, q_big - e, qd_big, rigid_at(t0)) &
-                         + 8*kear_kinetic_energy(el, q_big + e, qd_big, rigid_at(t0)) &
-                         - kear_kinetic_energy(el, q_big + 2*e, qd_big, rigid_at(t0)))/(12*hq)
-    end do
   contains
-    function dt_dqdot(q, qd, rb) result(g)
-      real(dp), intent(in) :: q(8), qd(8)
-      type(rigid_state_t), intent(in) :: rb
-      real(dp) :: g(8), d(8)
-      integer :: jj
-      do jj = 1, 8
-        d = 0.0_dp
-        d(jj) = 0.5_dp
-        g(jj) = (kear_kinetic_energy(el, q, qd + d, rb) - kear_kinetic_energy(el, q, qd - d, rb))/(2*d(jj))
-      end do
-    end function dt_dqdot
-  end function fd_lagrange
+    real(dp) function energy(q, qd, t)
+      real(dp), intent(in) :: q(:), qd(:), t
+      energy = kear_kinetic_energy(el, q, qd, rigid_at(t))
+    end function energy
+  end subroutine test_lagrange_fd
 
   !> The printed internal force (K17) with (K20) and (K24):
   !>   F_j = int [ N ((1+u_x) u_x,qj + w_x w_x,qj) + M dkappa_K23/dq_j ] dx,

@@ -7,6 +7,7 @@ module test_linkage_suite
   use deck_reader, only: deck_t
   use linkage
   use assertions
+  use transient_fixtures, only: fourbar_abcd
   implicit none
   private
   public :: run_all
@@ -32,18 +33,7 @@ contains
   function fourbar_input(a, b, c, d) result(inp)
     real(dp), intent(in) :: a, b, c, d
     type(mechanism_input_t) :: inp
-    inp%n_joints = 4
-    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = d
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_name(1:3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [a, b, c]
+    inp = fourbar_abcd(a, b, c, d)
     inp%omega = 150.0_dp
   end function fourbar_input
 

@@ -13,6 +13,7 @@ module test_mechanism_model_suite
   use linalg, only: solve_linear
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use assertions
+  use transient_fixtures, only: fourbar_input
   implicit none
   private
   public :: run_all
@@ -175,29 +176,16 @@ contains
     call assert_true(.not. err%failed(), 'integration: '//err%text())
     call assert_true(drift < 1.0e-5_dp, 'relative energy drift over 20 periods < 1e-5')
   end subroutine test_energy_conservation
-  !> The four-bar of FORMULATION.md §8.1 as a mechanism_input_t.
-  function fourbar_input(omega, profile) result(inp)
+  !> The four-bar of FORMULATION.md §8.1 (2 elements per link) turned at
+  !> omega from rest ('spinup', 0.02 s) or at constant speed.
+  function profiled_fourbar(omega, profile) result(inp)
     real(dp), intent(in) :: omega
     character(len=*), intent(in) :: profile
     type(mechanism_input_t) :: inp
-    inp%n_joints = 4
-    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = 10.0_dp
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_name(1:3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
-    inp%link_n_elements(1:3) = 2
-    inp%driver_link = 1
-    inp%omega = omega
+    inp = fourbar_input(2, omega, 0.0_dp)
     inp%profile = profile
     if (profile == 'spinup') inp%spinup_time = 0.02_dp
-  end function fourbar_input
+  end function profiled_fourbar
 
   !> Rigid states interpolated from the per-revolution table against the
   !> kinematics solved directly, at times spread over three revolutions
@@ -218,7 +206,7 @@ contains
     real(dp) :: t, scale_p, scale_v, scale_a, w
     integer :: k, e
     w = 150.0_dp
-    call build_mechanism(fourbar_input(w, profile), mech, err)
+    call build_mechanism(profiled_fourbar(w, profile), mech, err)
     call direct%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
     call table%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
     call table%build_motion_table(720, err)
@@ -359,7 +347,7 @@ contains
     type(mechanism_model_t) :: model
     type(error_t) :: err
     real(dp), allocatable :: q(:), qd(:), qdd(:), mass(:, :), stiff(:, :), load(:)
-    inp = fourbar_input(150.0_dp, 'constant')
+    inp = profiled_fourbar(150.0_dp, 'constant')
     inp%link_n_elements(1:3) = 1
     call build_mechanism(inp, mech, err)
     call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())

@@ -20,6 +20,7 @@ module test_periodic_shooting_suite
   use mechanism_model, only: mechanism_model_t
   use kear_element, only: element_effects_t
   use assertions
+  use transient_fixtures, only: fourbar_input
   implicit none
   private
   public :: run_all
@@ -205,17 +206,7 @@ contains
     type(mechanism_t), intent(out) :: mech
     type(mechanism_input_t) :: inp
     type(error_t) :: err
-    inp%n_joints = 4
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = 10.0_dp
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [5.0_dp, 11.0_dp, 10.5_dp]
-    inp%omega = w
+    inp = fourbar_input(1, w, 0.0_dp)
     call build_mechanism(inp, mech, err)
     call assert_true(.not. err%failed(), 'mechanism')
   end subroutine four_bar_mech

@@ -5,7 +5,7 @@ module test_steady_settings_suite
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
-  use deck_runner, only: scratch_path, write_deck
+  use deck_runner, only: scratch_path, read_deck_text
   use steady_settings, only: steady_settings_t, read_steady_settings
   use assertions
   implicit none
@@ -17,7 +17,7 @@ module test_steady_settings_suite
 contains
 
   subroutine run_all()
-    scratch = scratch_path('test_steady_settings.nml')
+    scratch = scratch_path('test_steady_settings')
     call run_test('defaults_without_the_groups', test_defaults)
     call run_test('values_reach_the_solvers_and_the_element', test_values)
     call run_test('rule_violations_are_input_errors', test_violations)
@@ -27,14 +27,13 @@ contains
     character(len=*), intent(in) :: text
     type(steady_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
-    type(deck_t) :: deck
-    integer :: u
-    call write_deck(scratch, text)
-    call deck%open(scratch, err)
-    call read_steady_settings(deck, 3, s, err)
-    call deck%close()
-    open(newunit=u, file=scratch, status='old')
-    close(u, status='delete')
+    call read_deck_text(read_groups, scratch, text, err)
+  contains
+    subroutine read_groups(deck, rerr)
+      type(deck_t), intent(inout) :: deck
+      type(error_t), intent(inout) :: rerr
+      call read_steady_settings(deck, 3, s, rerr)
+    end subroutine read_groups
   end subroutine read_text
 
   subroutine test_defaults()

@@ -6,15 +6,17 @@ module test_sweep_settings_suite
   use deck_reader, only: deck_t
   use sweep_settings, only: sweep_settings_t, read_sweep_settings
   use assertions
+  use deck_runner, only: scratch_path, read_deck_text
   implicit none
   private
   public :: run_all
 
-  character(len=*), parameter :: path = 'test_sweep_settings.nml'
+  character(len=:), allocatable :: scratch
 
 contains
 
   subroutine run_all()
+    scratch = scratch_path('test_sweep_settings')
     call run_test('list_of_values', test_list)
     call run_test('linear_range', test_linear)
     call run_test('log_range', test_log)
@@ -25,17 +27,13 @@ contains
     character(len=*), intent(in) :: text
     type(sweep_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
-    type(deck_t) :: deck
-    integer :: u
-    open(newunit=u, file=path, status='replace')
-    write(u, '(a)') '&run analysis = ''steady'' /'
-    write(u, '(a)') text
-    close(u)
-    call deck%open(path, err)
-    call read_sweep_settings(deck, s, err)
-    call deck%close()
-    open(newunit=u, file=path, status='old')
-    close(u, status='delete')
+    call read_deck_text(read_groups, scratch, '&run analysis = ''steady'' /|'//text, err)
+  contains
+    subroutine read_groups(deck, rerr)
+      type(deck_t), intent(inout) :: deck
+      type(error_t), intent(inout) :: rerr
+      call read_sweep_settings(deck, s, rerr)
+    end subroutine read_groups
   end subroutine read_text
 
   subroutine test_list()
