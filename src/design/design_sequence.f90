@@ -233,7 +233,7 @@ contains
       call record(k, events)
       if (stalls >= 2) then
         self%converged = .true.
-        self%message = 'feasible, and the mass changed by less than xtol/10 twice in a row'
+        self%message = 'feasible, and the objective changed by less than xtol/10 twice in a row'
         exit
       end if
     end do
