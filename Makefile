@@ -182,7 +182,7 @@ distclean:
 	rm -rf $(BUILD_DIR)
 
 # ---------------------------------------------------------------- reliability
-#   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds
+#   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds (FUZZ_JOBS at once)
 #   make fuzz-ci              the bounded slice CI runs (fixed seed)
 #   make check-debug          every deck of inputs/ and tests/decks/ in the debug build
 #   make check-opt            the test suite under -O0, -O2 and -O3 -march=native
@@ -190,6 +190,7 @@ distclean:
 RUNS         ?= 300
 SEED         ?= 1
 FUZZ_TIMEOUT ?= 5
+FUZZ_JOBS    ?= $(shell nproc 2>/dev/null || echo 1)
 CI_FUZZ_RUNS := 400
 OPT_LEVELS   := O0 O2 O3native
 OPTFLAGS_O0       := -O0
@@ -206,13 +207,13 @@ fuzz-bins: deps
 	@$(MAKE) --no-print-directory BUILD=debug all
 
 fuzz: fuzz-bins
-	@nice python3 tests/fuzz/fuzz_decks.py --runs $(RUNS) --seed $(SEED) --timeout $(FUZZ_TIMEOUT)
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(RUNS) --seed $(SEED) --timeout $(FUZZ_TIMEOUT) --jobs $(FUZZ_JOBS)
 
 # The design and sweep decks run many analyses and write nothing until they
 # end; the fuzzer cannot cap their work yet (it caps transient revolutions),
 # so the CI slice leaves them to the full run.
 fuzz-ci: fuzz-bins
-	@nice python3 tests/fuzz/fuzz_decks.py --runs $(CI_FUZZ_RUNS) --seed 20260101 --timeout $(FUZZ_TIMEOUT) \
+	@nice python3 tests/fuzz/fuzz_decks.py --runs $(CI_FUZZ_RUNS) --seed 20260101 --timeout $(FUZZ_TIMEOUT) --jobs $(FUZZ_JOBS) \
 	  --exclude '/(design|sweep)_'
 
 check-debug: deps

@@ -19,7 +19,12 @@
 !>      each run stops when it exceeds a CPU budget;
 !>   5. the effect of the absolute tolerance on the rates.
 !>
-!> `bench_transient scaling` runs 2 and 3 only, `bench_transient cost` 1 only.
+!>   6. (`bench_transient output`) the cost of writing and of the optional
+!>      columns: the damped four-bar deck through the whole analysis, output
+!>      every 0.5 deg, rows all / last revolution / none, 16 or 8 digits.
+!>
+!> `bench_transient scaling` runs 2 and 3 only, `bench_transient cost` 1 only,
+!> `bench_transient output` 6 only.
 !>
 !> Tables go to standard output (make bench keeps them in
 !> build/bench/bench_transient.txt); data files for doc/figures/*.gp go to
@@ -275,6 +280,10 @@ end module bench_transient_cases
 
 program bench_transient
   use kinds, only: dp
+  use error_status, only: error_t
+  use deck_reader, only: deck_t
+  use table_output, only: table_t
+  use transient_analysis, only: run_transient
   use kear_element, only: element_effects_t
   use lsode_solver, only: mf_adams, mf_bdf_full_user, mf_bdf_full_fd
   use bench_transient_cases
@@ -317,6 +326,10 @@ program bench_transient
   if (command_argument_count() == 1) call get_command_argument(1, arg)
 
   ! ---- 1. cost per right-hand side and per Jacobian against the number of elements
+  if (trim(arg) == 'output') then
+    call output_costs(data_dir)
+    stop
+  end if
   if (trim(arg) /= 'scaling') call cost_tables(data_dir)
   if (trim(arg) == 'cost') stop      ! `bench_transient cost`: the cost tables only
 
@@ -485,4 +498,68 @@ contains
     close(uu)
     print '(a)', ''
   end subroutine cost_tables
+  !> Whole-analysis CPU (best of three; the deck read and the header are
+  !> included) of the damped four-bar, five turns, output every 0.5 deg
+  !> (3,601 output times): how much of a cheap run the rows and the optional
+  !> columns cost.
+  subroutine output_costs(dir)
+    character(len=*), intent(in) :: dir
+    character(len=*), parameter :: mech = &
+      "&run|  analysis = 'transient'|/|&mechanism|  n_joints = 4|  joint_name = 'A', 'B', 'C', 'D'|"// &
+      "  joint_type = 'clamp', 'pin', 'pin', 'ground_pin'|  joint_x(1) = 0.0, joint_y(1) = 0.0|"// &
+      "  joint_x(4) = 10.0, joint_y(4) = 0.0|  n_links = 3|  link_name = 'crank', 'coupler', 'rocker'|"// &
+      "  link_joint1 = 1, 2, 4|  link_joint2 = 2, 3, 3|  link_length = 5.0, 11.0, 10.5|  link_n_elements = 3*1|"// &
+      "  driver_link = 1|  omega = 150.0|/|&transient|  method = 'bdf', rtol = 1.0e-7, atol = 1.0e-11, "// &
+      "revolutions = 5, output_step_deg = 0.5, damping_beta = 1.0e-5|"
+    character(len=96), parameter :: variants(10) = [character(len=96) :: &
+      "output_rows = 'all'", "output_rows = 'all', output_digits = 8", &
+      "output_rows = 'last_revolution'", "output_rows = 'last_revolution', output_digits = 8", &
+      "output_rows = 'none'", "output_rows = 'none', stress_columns = 'all'", &
+      "output_rows = 'none', link_points = T", "output_rows = 'none', reactions = T", &
+      "output_rows = 'all', stress_columns = 'all', link_points = T, reactions = T", &
+      "output_rows = 'all', stress_columns = 'all', link_points = T, reactions = T, output_digits = 8"]
+    integer :: v, k
+    real(dp) :: best, cpu
+    print '(a)', '## Output cost: damped four-bar, 5 turns, output every 0.5 deg (3,601 output times)'
+    print '(a)', ''
+    print '(a)', '| &transient | CPU s (best of 3) |'
+    print '(a)', '|---|---|'
+    do v = 1, size(variants)
+      best = huge(1.0_dp)
+      do k = 1, 3
+        cpu = deck_cpu(dir, mech//'  '//trim(variants(v))//'|/|')
+        best = min(best, cpu)
+      end do
+      print '(a,a,a,f0.4,a)', '| ', trim(variants(v)), ' | ', best, ' |'
+    end do
+    print '(a)', ''
+  end subroutine output_costs
+
+  !> CPU seconds of one transient analysis of the deck text ('|' separates lines).
+  real(dp) function deck_cpu(dir, text) result(cpu)
+    character(len=*), intent(in) :: dir, text
+    type(deck_t) :: deck
+    type(table_t) :: out
+    type(error_t) :: err
+    real(dp) :: c0, c1
+    integer :: u, i0, i
+    open(newunit=u, file=dir//'bench_output.nml', status='replace', action='write')
+    i0 = 1
+    do i = 1, len(text)
+      if (text(i:i) == '|') then
+        write(u, '(a)') text(i0:i - 1)
+        i0 = i + 1
+      end if
+    end do
+    close(u)
+    call cpu_time(c0)
+    call deck%open(dir//'bench_output.nml', err)
+    call out%open(dir//'bench_output.out', err)
+    if (.not. err%failed()) call run_transient(deck, out, err)
+    call deck%close()
+    call out%commit(err)
+    call cpu_time(c1)
+    cpu = c1 - c0
+    if (err%failed()) print '(a)', 'run failed: '//err%text()
+  end function deck_cpu
 end program bench_transient

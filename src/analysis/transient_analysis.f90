@@ -19,12 +19,28 @@ module transient_analysis
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
-  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points
+  use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
+  use joint_reactions, only: joint_reactions_t
+  use revolution_peaks, only: revolution_peaks_t
+  use linkage, only: joint_clamp
+  use clearance_run, only: clearance_monitor_t
   implicit none
   private
   public :: run_transient
 
   integer, parameter :: n_modes_reported = 5
+
+  !> The optional response columns of a run (each off = not computed).
+  type :: responses_t
+    logical :: sections = .false.                 !< bending, axial stress, M, N of every element
+    type(link_point_t), allocatable :: points(:)  !< link points
+    character(len=24), allocatable :: point_label(:)
+    logical :: reactions = .false.
+    type(joint_reactions_t) :: jr
+    integer, allocatable :: react_end(:)          !< jr%ends written (force on the link end)
+    integer, allocatable :: react_joint(:)        !< joints whose ground/guide force is written
+  end type responses_t
 
 contains
 
@@ -38,12 +54,19 @@ contains
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
+    type(clearance_monitor_t) :: clearance       ! joints with clearance (&clearance; doc/clearance.md)
     type(lsode_counters_t) :: c
     type(stress_report_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
     real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done, t_rows
     integer :: k, n_out, e, ml
     character(len=32), allocatable :: names(:)
+    type(responses_t) :: resp
+    type(revolution_peaks_t) :: pk
+    real(dp), allocatable :: rev_rows(:, :), last_rows(:, :)
+    integer :: n_rev_rows, n_last_rows
+    logical :: buffer_rows, periodic
+    real(dp) :: theta_start
 
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
@@ -51,6 +74,8 @@ contains
     call check_section_rules(deck, mech, s%effects%material, .false., err)
     if (err%failed()) return
     call read_loads(deck, loads_in, err)
+    if (err%failed()) return
+    call clearance%read(deck, mech, s%initial, err)
     if (err%failed()) return
     if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
       call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
@@ -65,6 +90,7 @@ contains
       call out%end_echo()
     end block
     call echo_transient_settings(out)
+    call clearance%echo(out)
     if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
       block
         integer :: u
@@ -91,6 +117,13 @@ contains
       end if
       call model%set_loads(gravity, point_loads)
     end block
+    call setup_responses(deck, mech, s, resp, err)
+    if (err%failed()) return
+    if (s%stop_when_periodic > 0.0_dp .and. .not. mech%driver%omega > 0.0_dp) then
+      call invalid_value(deck, 'transient', 'stop_when_periodic', str(s%stop_when_periodic), &
+                         'needs a turning crank (omega > 0): periodicity is judged per revolution', err)
+      return
+    end if
     call write_model_header(out, mech, s, model)
     if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
       call model%build_motion_table(s%table_points, err)
@@ -106,6 +139,8 @@ contains
     call model%linear_modes(omega_n, shapes, err)
     if (err%failed()) return
     call write_frequency_header(out, mech, s, omega_n)
+    call clearance%attach(model, mech, out, err)
+    if (err%failed()) return
 
     ! initial state
     allocate(y(model%state_size()))
@@ -178,10 +213,26 @@ contains
     case default
       t_rows = -huge(1.0_dp)
     end select
-    call write_columns(out, mech, model, names)
+    ! stopping early, 'last_revolution' means the last complete one: its rows are kept until it is
+    buffer_rows = s%output_rows == 'last_revolution' .and. s%stop_when_periodic > 0.0_dp
+    if (buffer_rows) then
+      t_rows = huge(1.0_dp)
+      call out%comment('with stop_when_periodic: the rows of the last complete revolution')
+    end if
+    if (s%stop_when_periodic > 0.0_dp) call out%comment('stop_when_periodic = '//str(s%stop_when_periodic)// &
+      ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
+      'previous revolution''s by at most that fraction')
+    if (s%output_digits > 0) call out%set_digits(s%output_digits)
+    call write_columns(out, mech, model, resp, names, clearance%column_names())
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
     peak_stress = 0.0_dp
     peak_angle = 0.0_dp
+    call pk%init(size(names) - 2)
+    n_rev_rows = 0
+    n_last_rows = 0
+    if (buffer_rows) allocate(rev_rows(size(names), 16), last_rows(size(names), 0))
+    periodic = .false.
+    call driver_angle(mech%driver, t0, theta_start, theta_d, theta_dd)
 
     call bar%start('transient', t0, t_end)
     call cpu_time(cpu0)
@@ -189,10 +240,16 @@ contains
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
-      call ode%integrate_to(model, y, t, err)
+      if (clearance%active) then
+        call clearance%integrate_to(ode, model, y, t, err)
+      else
+        call ode%integrate_to(model, y, t, err)
+      end if
       if (err%failed()) exit
       call output_row(t)
       if (err%failed()) exit
+      call close_revolutions(t)
+      if (periodic) exit
       c = ode%counters()
       call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
                       ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
@@ -210,11 +267,30 @@ contains
       call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
     end if
 
+    if (buffer_rows .and. n_last_rows > 0) then
+      call out%columns(names)          ! again: the names are the last '#' line before the rows
+      do k = 1, n_last_rows
+        call out%row(last_rows(:, k))
+      end do
+    end if
+
     ! summary and cost
     do e = 1, size(model%el)
       call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
                        str(peak_angle(e), 6)//' deg')
     end do
+    call write_peaks(out, names, pk)
+    if (s%stop_when_periodic > 0.0_dp) then
+      if (periodic) then
+        call out%summary('periodic', 'at revolution '//str(pk%n_complete)//': peaks within '// &
+                         str(pk%change, 4)//' of revolution '//str(pk%n_complete - 1)//'; run stopped')
+      else if (pk%change >= 0.0_dp) then
+        call out%summary('periodic', 'not reached in '//str(pk%n_complete)//' revolutions: last change of the '// &
+                         'peaks '//str(pk%change, 4)//' > '//str(s%stop_when_periodic))
+      else
+        call out%summary('periodic', 'not judged: fewer than two complete revolutions')
+      end if
+    end if
     c = ode%counters()
     revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
     call out%cost('cpu_seconds_integration', str(cpu1 - cpu0, 4))
@@ -231,6 +307,7 @@ contains
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    if (clearance%active) call clearance%report(out, revolutions_done, model, y, s%mf == mf_adams)
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
       call write_restart(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
@@ -258,7 +335,6 @@ contains
           peak_angle(ee) = crank_deg
         end if
       end do
-      if (tt < t_rows) return
       allocate(row(size(names)))
       row(1) = tt
       row(2) = crank_deg
@@ -277,8 +353,48 @@ contains
       do ee = 1, size(stress)
         row(kk + ee) = stress(ee)%max_abs_stress
       end do
+      kk = kk + size(stress)
+      call fill_responses(resp, model, mech, tt, y, row, kk, err)
+      if (err%failed()) return
+      if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
+      call pk%add(row(3:), crank_deg)
+      if (buffer_rows) then
+        if (n_rev_rows == size(rev_rows, 2)) rev_rows = reshape(rev_rows, [size(rev_rows, 1), 2*n_rev_rows], &
+                                                                 pad=[0.0_dp])
+        n_rev_rows = n_rev_rows + 1
+        rev_rows(:, n_rev_rows) = row
+      end if
+      if (tt < t_rows) return
       call out%row(row)
     end subroutine output_row
+
+    !> Close every revolution the crank has completed by time tt (its turns
+    !> counted from t0); with stop_when_periodic, set periodic when the
+    !> peaks of the one just closed agree with the previous one's.
+    subroutine close_revolutions(tt)
+      real(dp), intent(in) :: tt
+      real(dp) :: turns
+      if (.not. mech%driver%omega > 0.0_dp) return
+      call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
+      turns = (theta - theta_start)/two_pi
+      do while (turns >= pk%n_complete + 1 - 1.0e-9_dp)
+        call pk%close_revolution()
+        if (buffer_rows) then
+          last_rows = rev_rows(:, 1:n_rev_rows)
+          n_last_rows = n_rev_rows
+          n_rev_rows = 0
+        end if
+        if (s%stop_when_periodic > 0.0_dp .and. pk%change >= 0.0_dp) call out%comment('revolution '// &
+          str(pk%n_complete)//': largest relative change of a column''s peak from revolution '// &
+          str(pk%n_complete - 1)//': '//str(pk%change, 4))
+        if (s%stop_when_periodic > 0.0_dp .and. pk%change >= 0.0_dp .and. pk%change <= s%stop_when_periodic) then
+          periodic = .true.
+          call out%comment('periodic at revolution '//str(pk%n_complete)//' (crank angle '// &
+                           str(theta*180.0_dp/pi, 6)//' deg): stopped')
+          return
+        end if
+      end do
+    end subroutine close_revolutions
   end subroutine run_transient
 
   !> Global elastic (U, W) of joint j (mechanism_report%joint_carrier says where).
@@ -295,15 +411,194 @@ contains
     uw = qe(model%table%node_dofs*(node - 1) + 1:model%table%node_dofs*(node - 1) + 2)   ! 4 or 6 DOFs per node
   end subroutine joint_displacement
 
-  subroutine write_columns(out, mech, model, names)
+  subroutine write_columns(out, mech, model, resp, names, extra)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), intent(in) :: model
+    type(responses_t), intent(in) :: resp
     character(len=32), allocatable, intent(out) :: names(:)
+    character(len=32), intent(in) :: extra(:)   !< clearance joints' columns (none without clearance)
+    integer :: e, k, j, ne
+    character(len=:), allocatable :: jn
     names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), '')]
-    call out%comment('columns: t (s); crank_deg = crank angle (deg); '//response_columns_text)
+    call out%comment('columns: t (s); crank_deg = crank angle (deg); '//response_columns_text// &
+                     ' (the outer-fibre stress: axial + bending)')
+    ne = size(model%el)
+    if (resp%sections) then
+      names = [character(len=32) :: names, ('sigma_b_e'//str(e), e = 1, ne), ('sigma_a_e'//str(e), e = 1, ne), &
+               ('M_e'//str(e), e = 1, ne), ('N_e'//str(e), e = 1, ne)]
+      call out%comment('sigma_b_e<k>, sigma_a_e<k> = bending and axial stress (psi; half the difference and the '// &
+                       'mean of the outer-fibre stresses: M c/I and N/A for a linear material), M_e<k> = bending '// &
+                       'moment (lb in), N_e<k> = axial force (lb); each the signed value of largest magnitude in '// &
+                       'element k (ends and Gauss points)')
+    end if
+    do k = 1, size(resp%points)
+      names = [character(len=32) :: names, trim(resp%point_label(k))//'_u', trim(resp%point_label(k))//'_w', &
+               trim(resp%point_label(k))//'_chord']
+    end do
+    if (size(resp%points) > 0) call out%comment('<link>_s<x>_u, _w = elastic axial and transverse displacement '// &
+      'of the point of the link at x times its length from end 1, in the link''s rigid-body axes (in); _chord = its '// &
+      'transverse distance from the deformed chord through the link''s displaced ends (in, + to the left of '// &
+      'end 1 -> end 2)')
+    if (resp%reactions) then
+      do k = 1, size(resp%react_end)
+        associate (ef => resp%jr%ends(resp%react_end(k)))
+          jn = trim(mech%joints(ef%joint)%name)//'_'//trim(mech%links(ef%link)%name)
+          names = [character(len=32) :: names, jn//'_Fx', jn//'_Fy']
+        end associate
+      end do
+      do k = 1, size(resp%react_joint)
+        j = resp%react_joint(k)
+        jn = trim(mech%joints(j)%name)
+        names = [character(len=32) :: names, jn//'_Gx', jn//'_Gy']
+        if (mech%joints(j)%kind == joint_clamp) names = [character(len=32) :: names, jn//'_Gm']
+      end do
+      call out%comment('<joint>_<link>_Fx, _Fy = force of the joint on that link''s end, global X, Y (lb; the '// &
+        'other link end at a massless pin carries the opposite); <joint>_Gx, _Gy = force of the ground (or '// &
+        'slider guide) on the mechanism at the joint (lb), _Gm its moment at a clamp (lb in: the driving torque)')
+    end if
+    names = [character(len=32) :: names, extra]
+    if (size(extra) > 0) call out%comment('clearance columns: <joint>_ex, <joint>_ey = journal centre relative to '// &
+      'the bearing centre along global X, Y (in); <joint>_Fn = normal contact force (lb); <joint>_mode = 0 free, '// &
+      '1 in contact, 2 an impact since the previous row')
     call out%columns(names)
   end subroutine write_columns
+
+  !> The optional response columns the deck asks for (validated: a point's
+  !> link must exist).
+  subroutine setup_responses(deck, mech, s, resp, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    type(responses_t), intent(inout) :: resp
+    type(error_t), intent(inout) :: err
+    integer :: k, i, j, n_keep
+    type(link_point_t) :: p
+    resp%sections = s%stress_columns == 'all'
+    allocate(resp%points(0), resp%point_label(0))
+    if (s%link_points .or. any(len_trim(s%point_link) > 0)) then
+      do k = 1, max_points
+        if (len_trim(s%point_link(k)) == 0) cycle
+        p%link = 0
+        do i = 1, mech%n_links
+          if (mech%links(i)%name == s%point_link(k)) p%link = i
+        end do
+        if (p%link == 0) then
+          call invalid_value(deck, 'transient', 'point_link('//str(k)//')', ''''//trim(s%point_link(k))//'''', &
+                             'is not a link of &mechanism', err)
+          return
+        end if
+        p%s = s%point_at(k)
+        resp%points = [resp%points, p]
+      end do
+      if (size(resp%points) == 0) then
+        do i = 1, mech%n_links
+          resp%points = [resp%points, link_point_t(link=i, s=0.5_dp)]
+        end do
+      end if
+      do k = 1, size(resp%points)
+        resp%point_label = [character(len=24) :: resp%point_label, point_label(mech, resp%points(k))]
+      end do
+    end if
+    resp%reactions = s%reactions
+    allocate(resp%react_end(0), resp%react_joint(0))
+    if (.not. resp%reactions) return
+    call resp%jr%init(mech)
+    do j = 1, mech%n_joints
+      if (resp%jr%supported(j)) then
+        resp%react_joint = [resp%react_joint, j]
+        cycle
+      end if
+      ! a massless joint's forces on its link ends sum to zero: the last is left out
+      n_keep = count(resp%jr%ends(:)%joint == j)
+      if (.not. mech%joints(j)%mass > 0.0_dp) n_keep = n_keep - 1
+      do k = 1, size(resp%jr%ends)
+        if (resp%jr%ends(k)%joint /= j .or. n_keep == 0) cycle
+        resp%react_end = [resp%react_end, k]
+        n_keep = n_keep - 1
+      end do
+    end do
+  end subroutine setup_responses
+
+  !> '<link>_s<position>', the position with at most 4 decimals, no trailing zeros.
+  function point_label(mech, p) result(label)
+    type(mechanism_t), intent(in) :: mech
+    type(link_point_t), intent(in) :: p
+    character(len=24) :: label
+    character(len=16) :: num
+    integer :: i
+    write(num, '(f6.4)') p%s
+    i = len_trim(num)
+    do while (num(i:i) == '0')
+      i = i - 1
+    end do
+    if (num(i:i) == '.') i = i - 1
+    label = trim(mech%links(p%link)%name)//'_s'//trim(adjustl(num(1:i)))
+  end function point_label
+
+  !> The optional columns at time tt from the state y, into row(kk+1:).
+  subroutine fill_responses(resp, model, mech, tt, y, row, kk, err)
+    type(responses_t), intent(inout) :: resp
+    type(mechanism_model_t), intent(inout) :: model
+    type(mechanism_t), intent(in) :: mech
+    real(dp), intent(in) :: tt, y(:)
+    real(dp), intent(inout) :: row(:)
+    integer, intent(inout) :: kk
+    type(error_t), intent(inout) :: err
+    integer :: e, ne, k, j
+    type(section_values_t) :: v
+    ne = size(model%el)
+    if (resp%sections) then
+      do e = 1, ne
+        v = element_section_peaks(model, e, y(1::2))
+        row(kk + e) = v%bending_stress
+        row(kk + ne + e) = v%axial_stress
+        row(kk + 2*ne + e) = v%moment
+        row(kk + 3*ne + e) = v%axial_force
+      end do
+      kk = kk + 4*ne
+    end if
+    do k = 1, size(resp%points)
+      call link_point_response(model, mech, y(1::2), resp%points(k))
+      row(kk + 1:kk + 3) = [resp%points(k)%u, resp%points(k)%w, resp%points(k)%chord]
+      kk = kk + 3
+    end do
+    if (.not. resp%reactions) return
+    call resp%jr%compute(model, tt, y(1::2), y(2::2), err)
+    if (err%failed()) return
+    do k = 1, size(resp%react_end)
+      row(kk + 1:kk + 2) = resp%jr%ends(resp%react_end(k))%force
+      kk = kk + 2
+    end do
+    do k = 1, size(resp%react_joint)
+      j = resp%react_joint(k)
+      row(kk + 1:kk + 2) = resp%jr%support(1:2, j)
+      kk = kk + 2
+      if (mech%joints(j)%kind == joint_clamp) then
+        row(kk + 1) = resp%jr%support(3, j)
+        kk = kk + 1
+      end if
+    end do
+  end subroutine fill_responses
+
+  !> One summary line per column: its peak |value| over the last complete
+  !> revolution and over the whole run, with the crank angles.
+  subroutine write_peaks(out, names, pk)
+    type(table_t), intent(inout) :: out
+    character(len=*), intent(in) :: names(:)
+    type(revolution_peaks_t), intent(in) :: pk
+    integer :: i
+    do i = 1, size(pk%whole)
+      if (pk%n_complete > 0) then
+        call out%summary('peak |'//trim(names(i + 2))//'|', str(pk%last(i), 8)//' at '//str(pk%last_deg(i), 6)// &
+          ' deg in revolution '//str(pk%n_complete)//' (the last complete); whole run '//str(pk%whole(i), 8)// &
+          ' at '//str(pk%whole_deg(i), 6)//' deg')
+      else
+        call out%summary('peak |'//trim(names(i + 2))//'|', str(pk%whole(i), 8)//' at '//str(pk%whole_deg(i), 6)// &
+          ' deg (whole run; no complete revolution)')
+      end if
+    end do
+  end subroutine write_peaks
 
   subroutine write_model_header(out, mech, s, model)
     type(table_t), intent(inout) :: out

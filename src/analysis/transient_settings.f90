@@ -6,13 +6,16 @@ module transient_settings
   use error_status, only: error_t
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value
-  use deck_checks, only: check_real, check_integer, check_choice
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use lsode_solver, only: mf_from_method, method_names
   use kear_element, only: element_effects_t
+  use fast_format, only: min_digits, max_digits
   implicit none
   private
-  public :: transient_settings_t, read_transient_settings, echo_transient_settings
+  public :: transient_settings_t, read_transient_settings, echo_transient_settings, max_points
+
+  integer, parameter :: max_points = 20          !< link points a deck can name
 
   type :: transient_settings_t
     character(len=16) :: method = 'adams'
@@ -38,17 +41,29 @@ module transient_settings
     character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
                                                    !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
     character(len=16) :: output_rows = 'all'       !< rows written: 'all', 'last_revolution' or 'none'
+    ! optional response columns (off: not computed; doc/transient.md, "Output")
+    character(len=16) :: stress_columns = 'outer'  !< 'outer' (sigma_max only) or 'all' (+ bending, axial, M, N)
+    logical :: link_points = .false.               !< columns of link points (u, w, deflection from the chord)
+    character(len=16) :: point_link(max_points) = ''   !< links of the points; none named: every link's mid-span
+    real(dp) :: point_at(max_points) = 0.5_dp     !< position along the link, 0 (end 1) .. 1 (end 2)
+    logical :: reactions = .false.                 !< columns of joint reaction forces
+    real(dp) :: stop_when_periodic = 0.0_dp        !< > 0: stop when successive revolutions' peaks agree to this
+    integer :: output_digits = 0                   !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
-  character(len=16) :: method, initial, formulation, kinematics, output_rows
+  character(len=16) :: method, initial, formulation, kinematics, output_rows, stress_columns
   real(dp) :: rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, damping_beta, mode_amplitude
-  integer :: mode_number, max_steps, table_points, max_order
+  logical :: link_points, reactions
+  character(len=16) :: point_link(max_points)
+  real(dp) :: point_at(max_points), stop_when_periodic
+  integer :: mode_number, max_steps, table_points, max_order, output_digits
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
-    table_points, max_order, output_rows
+    table_points, max_order, output_rows, stress_columns, link_points, point_link, point_at, reactions, &
+    stop_when_periodic, output_digits
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -78,6 +93,13 @@ contains
     table_points = s%table_points
     max_order = s%max_order
     output_rows = s%output_rows
+    stress_columns = s%stress_columns
+    link_points = s%link_points
+    point_link = s%point_link
+    point_at = s%point_at
+    reactions = s%reactions
+    stop_when_periodic = s%stop_when_periodic
+    output_digits = s%output_digits
     call deck%read_group('transient', read_transient_group, .false., found, err)
     if (err%failed()) return
 
@@ -110,6 +132,13 @@ contains
     s%table_points = table_points
     s%max_order = max_order
     s%output_rows = output_rows
+    s%stress_columns = stress_columns
+    s%link_points = link_points
+    s%point_link = point_link
+    s%point_at = point_at
+    s%reactions = reactions
+    s%stop_when_periodic = stop_when_periodic
+    s%output_digits = output_digits
     s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
     s%formulation = formulation
     call validate(deck, s, err)
@@ -138,7 +167,8 @@ contains
     if (err%failed()) return
     if (s%atol_rate < 1.0e-30_dp .and. s%atol_rate > -1.0_dp) call invalid_value(deck, g, 'atol_rate', &
       str(s%atol_rate), 'must be >= 1e-30, or left out (-1) to use atol', err)
-    call check_real(deck, g, 'revolutions', s%revolutions, err, above=0.0_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'revolutions', s%revolutions, err, at_least=1.0e-6_dp, at_most=1.0e4_dp, &
+                    why='a millionth of a turn is shorter than any output step; 4.9e-324 made the span vanish')
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, above=0.0_dp, at_most=360.0_dp)
     if (err%failed()) return
     if (s%revolutions*360.0_dp > 1.0e7_dp*s%output_step_deg) call invalid_value(deck, g, 'output_step_deg', &
@@ -163,6 +193,17 @@ contains
     call check_integer(deck, g, 'table_points', s%table_points, err, at_least=36, at_most=1000000)
     call check_integer(deck, g, 'max_steps', s%max_steps, err, at_least=1)
     call check_choice(deck, g, 'output_rows', s%output_rows, [character(len=16) :: 'all', 'last_revolution', 'none'], err)
+    call check_choice(deck, g, 'stress_columns', s%stress_columns, [character(len=16) :: 'outer', 'all'], err)
+    call check_reals(deck, g, 'point_at', s%point_at, err, at_least=0.0_dp, at_most=1.0_dp, &
+                     why='a fraction of the link''s length from its end 1')
+    call check_real(deck, g, 'stop_when_periodic', s%stop_when_periodic, err, at_least=0.0_dp, below=1.0_dp, &
+                    why='a relative change of the per-revolution peaks (0 = off); 1 or more would stop at once')
+    call check_integer(deck, g, 'output_digits', s%output_digits, err, at_least=0, at_most=max_digits, &
+                       why='significant digits of the rows: 0 (16, the default) or '//str(min_digits)//'..'// &
+                       str(max_digits)//' (the fast formatter; beyond 12 its last digit is not reliable)')
+    if (err%failed()) return
+    if (s%output_digits > 0 .and. s%output_digits < min_digits) call invalid_value(deck, g, 'output_digits', &
+      str(s%output_digits), 'must be 0 or '//str(min_digits)//'..'//str(max_digits), err)
     call check_choice(deck, 'effects', 'formulation', s%formulation, &
                       [character(len=16) :: 'default', 'consistent', 'exact', 'kear1987'], err)
   end subroutine validate

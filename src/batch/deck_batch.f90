@@ -6,7 +6,8 @@ module deck_batch
   use, intrinsic :: iso_fortran_env, only: output_unit
   use version, only: program_name
   use command_line, only: default_output
-  use process_runner, only: shell_quote, flexmech_command
+  use strings, only: shell_quote
+  use process_runner, only: flexmech_command
   use job_pool, only: pool_start, pool_stop, pool_is_root, pool_run
   use sweep_run, only: status_meaning
   implicit none

@@ -5,9 +5,10 @@
 !> result is the same whether the batch runs serially or on MPI ranks.
 module process_runner
   use, intrinsic :: iso_c_binding, only: c_char, c_size_t, c_null_char, c_long
+  use strings, only: shell_quote
   implicit none
   private
-  public :: shell_quote, run_command, self_executable, flexmech_command, is_child
+  public :: run_command, self_executable, flexmech_command, is_child
 
   interface
     function c_readlink(path, buf, bufsize) bind(c, name='readlink') result(n)
@@ -20,22 +21,6 @@ module process_runner
   end interface
 
 contains
-
-  !> A word for /bin/sh: single-quoted, embedded quotes as '\''.
-  pure function shell_quote(word) result(s)
-    character(len=*), intent(in) :: word
-    character(len=:), allocatable :: s
-    integer :: i
-    s = ''''
-    do i = 1, len(word)
-      if (word(i:i) == '''') then
-        s = s//'''\'''''
-      else
-        s = s//word(i:i)
-      end if
-    end do
-    s = s//''''
-  end function shell_quote
 
   !> Runs a shell command and waits.  status: the command's exit status, or
   !> -1 when it could not be started (message in `why`).

@@ -16,7 +16,7 @@ module sweep_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str
+  use strings, only: str, shell_quote
   use version, only: program_name, program_version
   use deck_reader, only: deck_t
   use run_settings, only: read_run_settings
@@ -24,7 +24,7 @@ module sweep_run
   use sweep_settings, only: sweep_settings_t, read_sweep_settings, echo_sweep_settings
   use point_deck, only: write_point_deck, assignment_text
   use point_metrics, only: metric_t, read_point_metrics, metric_name
-  use process_runner, only: shell_quote, run_command, flexmech_command
+  use process_runner, only: run_command, flexmech_command
   use job_pool, only: pool_start, pool_stop, pool_is_root, pool_size, pool_run
   implicit none
   private

@@ -4,7 +4,7 @@ module strings
   use kinds, only: dp
   implicit none
   private
-  public :: str, lower, starts_with, compact
+  public :: str, lower, starts_with, compact, shell_quote
 
   interface str
     module procedure str_int, str_real, str_logical
@@ -118,4 +118,19 @@ contains
     starts_with = .false.
     if (len(s) >= len(prefix)) starts_with = s(1:len(prefix)) == prefix
   end function starts_with
+  !> A word for /bin/sh: single-quoted, embedded quotes as '\''.
+  pure function shell_quote(word) result(s)
+    character(len=*), intent(in) :: word
+    character(len=:), allocatable :: s
+    integer :: i
+    s = ''''
+    do i = 1, len(word)
+      if (word(i:i) == '''') then
+        s = s//'''\'''''
+      else
+        s = s//word(i:i)
+      end if
+    end do
+    s = s//''''
+  end function shell_quote
 end module strings

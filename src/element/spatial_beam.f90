@@ -5,19 +5,23 @@
 !> columns = local axes in global components), elastic displacements are
 !> measured in that frame.
 !>
-!> Local DOFs per node (8):  u v w  (translations)  tx ty tz  (small rotation
+!> Local DOFs per node (10):  u v w  (translations)  tx ty tz  (small rotation
 !> vector: tx = twist theta, ty = -w_x, tz = v_x)  vxx wxx (curvature DOFs of
-!> the quintic Hermite functions).  Element: p = [node 1, node 2] (16).
-!> Global element DOFs q: the two vector triples of each node in global
-!> components, q = T p with T = diag(R, R, 1, 1) per node; the curvature
-!> DOFs stay local (as Kear's th and m do).
+!> the quintic Hermite functions)  ux uxx (slope and curvature of u).
+!> Element: p = [node 1, node 2] (20).  Global element DOFs q: the two vector
+!> triples of each node in global components, q = T p with
+!> T = diag(R, R, 1, 1, 1, 1) per node; curvature and u-slope DOFs stay
+!> local (as Kear's th and m do).
 !>
-!> Interpolation: u, theta linear; v, w quintic Hermite (C2, as Kear's w).
-!> Strains: eps = |r'| - 1 (exact stretch), curvature vector r' x r''/|r'|^3
-!> of the centroid line (exact for u_xx = 0), twist rate theta_x (St. Venant,
-!> warping neglected); each nonlinearity has a switch (element_effects_t of
-!> the planar element).  In the x-y plane with w = theta = 0 every term is
-!> Kear's 'exact' formulation (doc/spatial.md, "Planar limit").
+!> Interpolation: theta linear; v, w quintic Hermite (C2, as Kear's w); u
+!> quintic Hermite on (u, ux, uxx) in the consistent formulation (default:
+!> no membrane locking, as the planar consistent element), linear in Kear's
+!> (ux, uxx unused; the model holds them).  Strains: eps = |r'| - 1 (exact
+!> stretch), curvature vector r' x r''/|r'|^3 of the centroid line, twist
+!> rate theta_x (St. Venant, warping neglected); each nonlinearity has a
+!> switch (element_effects_t of the planar element).  In the x-y plane with
+!> w = theta = 0, Kear's formulation is every term of the planar Kear
+!> 'exact' element (doc/spatial.md, "Planar limit").
 !>
 !> M_e qddot = F_e is the element's part of Lagrange's equations:
 !>   M_e = T M_p T^T,  F_e = T [F_p + M_p (2 W v + Wdot p - W^2 p)]
@@ -35,17 +39,28 @@ module spatial_beam
   use material_law, only: ramberg_osgood_t, validate_material, ro_stress, peak_strain
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t, spatial_section_resultants, section_extreme_fibre_strain
+  use linalg, only: outer
   implicit none
   private
   public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
+  public :: spatial_formulation_kear, spatial_formulation_consistent
   public :: spatial_beam_init, spatial_beam_eval, spatial_internal_force, spatial_tangent_stiffness
   public :: spatial_strain_energy, spatial_kinetic_energy, spatial_to_local, spatial_to_global
   public :: spatial_section_state, spatial_stress_recovery, spatial_local_displacement
 
-  integer, parameter :: sb_ndof = 16
+  integer, parameter :: sb_ndof = 20
+  integer, parameter :: nd = sb_ndof, no = 10   !< element DOFs, node 2's offset
+  !> interpolation of u: Kear's linear u (locks in large deflection with the
+  !> exact stretch; DOFs u_x, u_xx unused, held by the model), or the consistent
+  !> element's quintic u with nodal u_x, u_xx (as the planar consistent element)
+  integer, parameter :: spatial_formulation_kear = 1, spatial_formulation_consistent = 2
+  integer, parameter :: nz = 7               !< station variables z = (u_x v_x w_x v_xx w_xx theta_x u_xx)
   integer, parameter :: n_in = 6            !< inertia stations: S^T S has degree 10, exact
   !> rotation components carried by each node's second triple
-  integer, parameter :: iu = 1, iv = 2, iw = 3, itx = 4, ity = 5, itz = 6, ivxx = 7, iwxx = 8
+  integer, parameter :: iu = 1, iv = 2, iw = 3, itx = 4, ity = 5, itz = 6, ivxx = 7, iwxx = 8, iux = 9, iuxx = 10
+  !> the DOFs each displacement component's functions touch (u linear; v, w quintic)
+  integer, parameter :: u_set(6) = [1, 9, 10, 11, 19, 20], v_set(6) = [2, 6, 7, 12, 16, 17], &
+                        w_set(6) = [3, 5, 8, 13, 15, 18]
 
   !> Rigid-body state of the element frame, global components.
   type :: spatial_rigid_t
@@ -64,14 +79,16 @@ module spatial_beam
     real(dp) :: mcon(2) = 0.0_dp              !< concentrated masses at the nodes (paper E's m_con1, m_con2)
     logical :: local_rotation(2) = .false.    !< node's rotation triple in local, not global, components
     integer :: n_gauss = 8                    !< stations of the nonlinear strain integrals
+    integer :: formulation = spatial_formulation_consistent
+    logical :: quintic_u = .true.             !< consistent formulation: u quintic with nodal u_x, u_xx DOFs
     real(dp) :: eps_star = huge(1.0_dp)
-    real(dp) :: mass0(16, 16) = 0.0_dp        !< M_p (constant)
-    real(dp) :: k_lin(16, 16) = 0.0_dp        !< linear stiffness
-    real(dp) :: rot_load(16, 3) = 0.0_dp      !< int G_phi^T J dx
+    real(dp) :: mass0(nd, nd) = 0.0_dp        !< M_p (constant)
+    real(dp) :: k_lin(nd, nd) = 0.0_dp        !< linear stiffness
+    real(dp) :: rot_load(nd, 3) = 0.0_dp      !< int G_phi^T J dx
     real(dp) :: xi(n_in + 2) = 0.0_dp, wi(n_in + 2) = 0.0_dp   !< inertia stations (last two: the nodes)
-    real(dp) :: si(16, 3, n_in + 2) = 0.0_dp  !< displacement rows (u, v, w) at the inertia stations
+    real(dp) :: si(nd, 3, n_in + 2) = 0.0_dp  !< displacement rows (u, v, w) at the inertia stations
     real(dp), allocatable :: xg(:), wg(:)
-    real(dp), allocatable :: gz(:, :, :)      !< (16, 6, n_gauss): d z / d p, z = (u_x v_x w_x v_xx w_xx theta_x)
+    real(dp), allocatable :: gz(:, :, :)      !< (nd, nz, n_gauss): d z / d p, z = (u_x v_x w_x v_xx w_xx theta_x u_xx)
   end type spatial_beam_t
 
   type :: spatial_eval_info_t
@@ -94,7 +111,7 @@ contains
 
   !> Build an element: length, section, material, shear modulus and switches.
   pure subroutine spatial_beam_init(el, length, sec, material, shear_modulus, effects, err, &
-                                    n_gauss, damping_beta, masses, local_rotation)
+                                    n_gauss, damping_beta, masses, local_rotation, formulation)
     type(spatial_beam_t), intent(out) :: el
     real(dp), intent(in) :: length, shear_modulus
     type(spatial_section_t), intent(in) :: sec
@@ -104,7 +121,8 @@ contains
     integer, intent(in), optional :: n_gauss
     real(dp), intent(in), optional :: damping_beta, masses(2)
     logical, intent(in), optional :: local_rotation(2)   !< unshared link-end rotations (doc/spatial.md)
-    real(dp) :: x(n_in), w(n_in), s(16, 3), gp(16, 3), jr(3), z(16, 6)
+    integer, intent(in), optional :: formulation         !< spatial_formulation_* (default: consistent)
+    real(dp) :: x(n_in), w(n_in), s(nd, 3), gp(nd, 3), jr(3), z(nd, nz)
     integer :: i, k
 
     if (.not. (length > 0.0_dp)) then
@@ -132,6 +150,11 @@ contains
     if (present(damping_beta)) el%beta = damping_beta
     if (present(masses)) el%mcon = masses
     if (present(local_rotation)) el%local_rotation = local_rotation
+    if (present(formulation)) el%formulation = formulation
+    if (el%formulation /= spatial_formulation_kear .and. el%formulation /= spatial_formulation_consistent) then
+      call err%set('spatial_beam_init', 'unknown formulation '//str(el%formulation)); return
+    end if
+    el%quintic_u = el%formulation == spatial_formulation_consistent
     if (.not. (el%beta >= 0.0_dp .and. all(el%mcon >= 0.0_dp))) then
       call err%set('spatial_beam_init', 'damping and concentrated masses must be >= 0'); return
     end if
@@ -142,7 +165,7 @@ contains
     if (.not. effects%rotary_inertia) jr(2:3) = 0.0_dp      ! torsional inertia stays: it is the twist's mass
     call gauss_legendre_interval(n_in, 0.0_dp, length, x, w)
     do i = 1, n_in
-      call rows_at(x(i)/length, length, s, gp, z)
+      call rows_at(x(i)/length, length, el%quintic_u, s, gp, z)
       el%xi(i) = x(i)
       el%wi(i) = material%rho*sec%area*w(i)
       el%si(:, :, i) = s
@@ -156,7 +179,7 @@ contains
                                   + shear_modulus*sec%torsion_j*outer(z(:, 6), z(:, 6)))
     end do
     do i = 1, 2                                    ! concentrated masses at the nodes
-      call rows_at(real(i - 1, dp), length, s, gp, z)
+      call rows_at(real(i - 1, dp), length, el%quintic_u, s, gp, z)
       el%xi(n_in + i) = real(i - 1, dp)*length
       el%wi(n_in + i) = el%mcon(i)
       el%si(:, :, n_in + i) = s
@@ -165,67 +188,81 @@ contains
       end do
     end do
 
-    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%gz(16, 6, el%n_gauss))
+    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%gz(nd, nz, el%n_gauss))
     call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
     do i = 1, el%n_gauss
-      call rows_at(el%xg(i)/length, length, s, gp, el%gz(:, :, i))
+      call rows_at(el%xg(i)/length, length, el%quintic_u, s, gp, el%gz(:, :, i))
     end do
   end subroutine spatial_beam_init
 
   !> Rows at x = e l: s(:, k) gives displacement k (u, v, w), gp(:, k) the
   !> small rotation k (theta, -w_x, v_x), z(:, j) the station variables
-  !> (u_x, v_x, w_x, v_xx, w_xx, theta_x), all as dot products with p.
-  pure subroutine rows_at(e, l, s, gp, z)
+  !> (u_x, v_x, w_x, v_xx, w_xx, theta_x, u_xx), all as dot products with p.
+  !> u: quintic Hermite on (u, u_x, u_xx) of both nodes (quintic_u), else
+  !> linear (Kear's) with the u_x, u_xx DOFs unused.
+  pure subroutine rows_at(e, l, quintic_u, s, gp, z)
     real(dp), intent(in) :: e, l
-    real(dp), intent(out) :: s(16, 3), gp(16, 3), z(16, 6)
+    logical, intent(in) :: quintic_u
+    real(dp), intent(out) :: s(nd, 3), gp(nd, 3), z(nd, nz)
     real(dp) :: n(2), nx(2), h(6), hx(6), hxx(6)
+    integer, parameter :: uq(6) = [iu, iux, iuxx, no + iu, no + iux, no + iuxx]
     call linear_lagrange(e, l, n, nx)
     call quintic_hermite(e, l, h, hx, hxx)
     s = 0.0_dp
     gp = 0.0_dp
     z = 0.0_dp
-    s([iu, 8 + iu], 1) = n
+    if (quintic_u) then
+      s(uq, 1) = h
+      z(uq, 1) = hx
+      z(uq, 7) = hxx
+    else
+      s([iu, no + iu], 1) = n
+      z([iu, no + iu], 1) = nx
+    end if
     s(:, 2) = spread_v(h)
     s(:, 3) = spread_w(h)
-    gp([itx, 8 + itx], 1) = n
+    gp([itx, no + itx], 1) = n
     gp(:, 2) = -spread_w(hx)
     gp(:, 3) = spread_v(hx)
-    z([iu, 8 + iu], 1) = nx
     z(:, 2) = spread_v(hx)
     z(:, 3) = spread_w(hx)
     z(:, 4) = spread_v(hxx)
     z(:, 5) = spread_w(hxx)
-    z([itx, 8 + itx], 6) = nx
+    z([itx, no + itx], 6) = nx
   end subroutine rows_at
 
   !> v's quintic functions: value, slope (= tz), curvature DOFs.
   pure function spread_v(h) result(r)
     real(dp), intent(in) :: h(6)
-    real(dp) :: r(16)
+    real(dp) :: r(nd)
     r = 0.0_dp
-    r([iv, itz, ivxx, 8 + iv, 8 + itz, 8 + ivxx]) = h
+    r([iv, itz, ivxx, no + iv, no + itz, no + ivxx]) = h
   end function spread_v
 
   !> w's quintic functions: w_x = -ty.
   pure function spread_w(h) result(r)
     real(dp), intent(in) :: h(6)
-    real(dp) :: r(16)
+    real(dp) :: r(nd)
     r = 0.0_dp
-    r([iw, ity, iwxx, 8 + iw, 8 + ity, 8 + iwxx]) = [h(1), -h(2), h(3), h(4), -h(5), h(6)]
+    r([iw, ity, iwxx, no + iw, no + ity, no + iwxx]) = [h(1), -h(2), h(3), h(4), -h(5), h(6)]
   end function spread_w
 
   ! ------------------------------------------------------------ main routine
 
-  !> Mass matrix and force vector of the element in global DOFs q.
-  pure subroutine spatial_beam_eval(el, q, qd, rb, mass, force, info, tangent)
+  !> Mass matrix and force vector of the element in global DOFs q.  The
+  !> mass depends on the rigid state only (a model that reuses it at the
+  !> same time passes mass_wanted = .false.: mass is then not touched).
+  pure subroutine spatial_beam_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: q(16), qd(16)
+    real(dp), intent(in) :: q(nd), qd(nd)
     type(spatial_rigid_t), intent(in) :: rb
-    real(dp), intent(out) :: mass(16, 16), force(16)
+    real(dp), intent(inout) :: mass(nd, nd)
+    real(dp), intent(out) :: force(nd)
     type(spatial_eval_info_t), intent(out) :: info
-    real(dp), intent(out), optional :: tangent(16, 16)
-    real(dp) :: p(16), v(16), pd(16), wl(3), al(3), a0(3), wp(16), fp(16), fint(16), fdamp(16)
-    real(dp) :: kp(16, 16), rel(3), acc(3), vel(3), wpi(3), xe(3)
+    real(dp), intent(out), optional :: tangent(nd, nd)
+    logical, intent(in), optional :: mass_wanted
+    real(dp) :: p(nd), v(nd), pd(nd), wl(3), al(3), a0(3), wp(nd), fp(nd), fint(nd), fdamp(nd)
+    real(dp) :: kp(nd, nd), rel(3), acc(3), vel(3), wpi(3), xe(3)
     integer :: i
 
     p = spatial_to_local(rb%rot, q, el%local_rotation)
@@ -241,14 +278,14 @@ contains
     do i = 1, n_in + 2
       if (.not. (el%wi(i) > 0.0_dp)) cycle
       xe = [el%xi(i), 0.0_dp, 0.0_dp]
-      rel = matmul(p, el%si(:, :, i))
-      wpi = matmul(wp, el%si(:, :, i))
+      rel = station_rows(el%si(:, :, i), p)
+      wpi = station_rows(el%si(:, :, i), wp)
       acc = a0 + cross(al, xe) + cross(wl, cross(wl, xe + rel)) - 2.0_dp*cross(wl, wpi)
       if (el%effects%coupling) then
-        vel = matmul(v, el%si(:, :, i))
+        vel = station_rows(el%si(:, :, i), v)
         acc = acc + cross(al, rel) + 2.0_dp*cross(wl, vel)
       end if
-      fp = fp - el%wi(i)*matmul(el%si(:, :, i), acc)
+      call station_scatter(el%si(:, :, i), -el%wi(i)*acc, fp)
     end do
     ! section rotary and torsional inertia: -int G_phi^T J alpha
     fp = fp - matmul(el%rot_load, al)
@@ -262,7 +299,11 @@ contains
     fp = fp - fint
     if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
 
-    mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    if (.not. present(mass_wanted)) then
+      mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    else if (mass_wanted) then
+      mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    end if
     force = spatial_to_global(rb%rot, fp, el%local_rotation)
     if (present(tangent)) tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
   end subroutine spatial_beam_eval
@@ -270,9 +311,9 @@ contains
   !> Internal force dSE/dp in LOCAL DOFs.
   pure subroutine spatial_internal_force(el, p, f)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(16)
-    real(dp), intent(out) :: f(16)
-    real(dp) :: fdamp(16), kp(16, 16)
+    real(dp), intent(in) :: p(nd)
+    real(dp), intent(out) :: f(nd)
+    real(dp) :: fdamp(nd), kp(nd, nd)
     type(spatial_eval_info_t) :: info
     call strain_terms(el, p, p, .false., .false., info, f, fdamp, kp)
   end subroutine spatial_internal_force
@@ -280,9 +321,9 @@ contains
   !> Tangent d^2 SE / dp^2 in LOCAL DOFs.
   pure subroutine spatial_tangent_stiffness(el, p, k)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(16)
-    real(dp), intent(out) :: k(16, 16)
-    real(dp) :: f(16), fdamp(16)
+    real(dp), intent(in) :: p(nd)
+    real(dp), intent(out) :: k(nd, nd)
+    real(dp) :: f(nd), fdamp(nd)
     type(spatial_eval_info_t) :: info
     call strain_terms(el, p, p, .true., .false., info, f, fdamp, k)
   end subroutine spatial_tangent_stiffness
@@ -290,8 +331,8 @@ contains
   !> Strain energy in LOCAL DOFs.
   pure real(dp) function spatial_strain_energy(el, p) result(se)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(16)
-    real(dp) :: f(16), fdamp(16), kp(16, 16)
+    real(dp), intent(in) :: p(nd)
+    real(dp) :: f(nd), fdamp(nd), kp(nd, nd)
     type(spatial_eval_info_t) :: info
     call strain_terms(el, p, p, .false., .false., info, f, fdamp, kp)
     se = info%strain_energy
@@ -301,10 +342,10 @@ contains
   !> (8-point rule, exact), independent of the precomputed matrices.
   pure real(dp) function spatial_kinetic_energy(el, q, qd, rb) result(ke)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: q(16), qd(16)
+    real(dp), intent(in) :: q(nd), qd(nd)
     type(spatial_rigid_t), intent(in) :: rb
     integer, parameter :: nt = 8
-    real(dp) :: p(16), pd(16), wl(3), x(nt), w(nt), s(16, 3), gp(16, 3), z(16, 6), vel(3), om(3), jr(3)
+    real(dp) :: p(nd), pd(nd), wl(3), x(nt), w(nt), s(nd, 3), gp(nd, 3), z(nd, nz), vel(3), om(3), jr(3)
     integer :: i
     p = spatial_to_local(rb%rot, q, el%local_rotation)
     wl = matmul(rb%omega, rb%rot)
@@ -314,13 +355,13 @@ contains
     ke = 0.0_dp
     call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
     do i = 1, nt
-      call rows_at(x(i)/el%length, el%length, s, gp, z)
+      call rows_at(x(i)/el%length, el%length, el%quintic_u, s, gp, z)
       vel = matmul(rb%x1_d, rb%rot) + matmul(pd, s) + cross(wl, [x(i), 0.0_dp, 0.0_dp] + matmul(p, s))
       om = wl + matmul(pd, gp)
       ke = ke + 0.5_dp*w(i)*(el%material%rho*el%sec%area*dot_product(vel, vel) + sum(jr*om*om))
     end do
     do i = 1, 2
-      call rows_at(real(i - 1, dp), el%length, s, gp, z)
+      call rows_at(real(i - 1, dp), el%length, el%quintic_u, s, gp, z)
       vel = matmul(rb%x1_d, rb%rot) + matmul(pd, s) &
             + cross(wl, [real(i - 1, dp)*el%length, 0.0_dp, 0.0_dp] + matmul(p, s))
       ke = ke + 0.5_dp*el%mcon(i)*dot_product(vel, vel)
@@ -333,11 +374,11 @@ contains
   !> (want_damp), by Gauss quadrature along the element; LOCAL DOFs.
   pure subroutine strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(16), prel(16)
+    real(dp), intent(in) :: p(nd), prel(nd)
     logical, intent(in) :: want_k, want_damp
     type(spatial_eval_info_t), intent(inout) :: info
-    real(dp), intent(out) :: fint(16), fdamp(16), kp(16, 16)
-    real(dp) :: z(6), fz(6), hz(6, 6), en, gh(16, 6), emax, yf, zf, s(3)
+    real(dp), intent(out) :: fint(nd), fdamp(nd), kp(nd, nd)
+    real(dp) :: z(nz), fz(nz), hz(nz, nz), en, gh(nd, nz), emax, yf, zf, s(3)
     integer :: i
     fint = 0.0_dp
     fdamp = 0.0_dp
@@ -349,11 +390,7 @@ contains
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       if (want_k) kp = el%k_lin
       if (want_damp) fdamp = matmul(el%k_lin, prel)
-      do i = 1, el%n_gauss
-        z = matmul(p, el%gz(:, :, i))
-        call section_extreme_fibre_strain(el%sec, [z(1), -z(5), z(4)], emax, yf, zf)
-        info%max_abs_strain = max(info%max_abs_strain, emax)
-      end do
+      ! material off here: no Ramberg-Osgood peak to watch, max_abs_strain is not computed
       return
     end if
     do i = 1, el%n_gauss
@@ -378,10 +415,10 @@ contains
   !> s = (eps, kappa_y, kappa_z) on return.
   pure subroutine station_energy(el, z, want_h, en, fz, hz, s)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: z(6)
+    real(dp), intent(in) :: z(nz)
     logical, intent(in) :: want_h
-    real(dp), intent(out) :: en, fz(6), hz(6, 6), s(3)
-    real(dp) :: js(3, 6), hs(6, 6, 3), g(3), h(3, 3), gj
+    real(dp), intent(out) :: en, fz(nz), hz(nz, nz), s(3)
+    real(dp) :: js(3, nz), hs(nz, nz, 3), g(3), h(3, 3), gj
     integer :: k
     call strain_measures(el%effects, z, want_h, s, js, hs)
     call spatial_section_resultants(el%sec, el%material, s, el%effects%material, en, g, h)
@@ -400,17 +437,19 @@ contains
   end subroutine station_energy
 
   !> s = (eps, kappa_y, kappa_z) from z, Jacobian js = ds/dz and Hessians
-  !> hs(:, :, k) = d^2 s_k / dz^2.  With r' = (1 + u_x, v_x, w_x) and
-  !> r'' = (0, v_xx, w_xx) (u_xx = 0 for linear u): eps = |r'| - 1,
-  !> kappa = r' x r'' / |r'|^3, of which the y, z components are the bending
-  !> curvatures: kappa_z = a v_xx / r^3, kappa_y = -a w_xx / r^3.
+  !> hs(:, :, k) = d^2 s_k / dz^2.  With r' = (a, v_x, w_x), a = 1 + u_x,
+  !> r'' = (u_xx, v_xx, w_xx) and r = |r'|: eps = r - 1, kappa = r' x r'' / r^3
+  !> (exact stretch and curvature of the centroid line), of which the y, z
+  !> components are the bending curvatures
+  !>   kappa_z = (a v_xx - v_x u_xx) / r^3,  kappa_y = -(a w_xx - w_x u_xx) / r^3
+  !> (u_xx = 0 in Kear's linear u; the planar consistent element's kappa in the x-y plane).
   pure subroutine strain_measures(fx, z, want_h, s, js, hs)
     type(element_effects_t), intent(in) :: fx
-    real(dp), intent(in) :: z(6)
+    real(dp), intent(in) :: z(nz)
     logical, intent(in) :: want_h
-    real(dp), intent(out) :: s(3), js(3, 6), hs(6, 6, 3)
-    real(dp) :: gv(3), r, r2, r3, r5, r7, a, xk, sg
-    integer :: i, j, k, ix
+    real(dp), intent(out) :: s(3), js(3, nz), hs(nz, nz, 3)
+    real(dp) :: gv(3), r, r2, a, sg, num, rm3, dn(nz), dr(nz), d2r(nz, nz)
+    integer :: i, j, k, ix, it
     a = 1.0_dp + z(1)
     gv = [a, z(2), z(3)]
     r2 = dot_product(gv, gv)
@@ -438,27 +477,38 @@ contains
       js(3, 4) = 1.0_dp
       return
     end if
-    r3 = r2*r
-    r5 = r3*r2
-    r7 = r5*r2
-    do k = 2, 3
-      ix = merge(5, 4, k == 2)          ! kappa_y uses w_xx, kappa_z uses v_xx
-      sg = merge(-1.0_dp, 1.0_dp, k == 2)
-      xk = z(ix)
-      s(k) = sg*a*xk/r3
-      do i = 1, 3
-        js(k, i) = sg*xk*(merge(1.0_dp, 0.0_dp, i == 1)/r3 - 3.0_dp*a*gv(i)/r5)
-      end do
-      js(k, ix) = sg*a/r3
-      if (want_h) then
-        do j = 1, 3
-          do i = 1, 3
-            hs(i, j, k) = sg*xk*(-3.0_dp*(merge(gv(j), 0.0_dp, i == 1) + merge(gv(i), 0.0_dp, j == 1))/r5 &
-                                 + a*(-3.0_dp*merge(1.0_dp, 0.0_dp, i == j)/r5 + 15.0_dp*gv(i)*gv(j)/r7))
-          end do
-          hs(j, ix, k) = sg*(merge(1.0_dp, 0.0_dp, j == 1)/r3 - 3.0_dp*a*gv(j)/r5)
-          hs(ix, j, k) = hs(j, ix, k)
+    ! r^-3 and its derivatives in z(1:3)
+    rm3 = 1.0_dp/(r2*r)
+    dr = 0.0_dp
+    dr(1:3) = -3.0_dp*gv*rm3/r2
+    d2r = 0.0_dp
+    if (want_h) then
+      do j = 1, 3
+        do i = 1, 3
+          d2r(i, j) = rm3/r2*(-3.0_dp*merge(1.0_dp, 0.0_dp, i == j) + 15.0_dp*gv(i)*gv(j)/r2)
         end do
+      end do
+    end if
+    do k = 2, 3
+      ix = merge(5, 4, k == 2)          ! kappa_y uses w_xx and w_x, kappa_z v_xx and v_x
+      it = merge(3, 2, k == 2)
+      sg = merge(-1.0_dp, 1.0_dp, k == 2)
+      num = a*z(ix) - z(it)*z(7)
+      dn = 0.0_dp
+      dn(1) = z(ix)
+      dn(ix) = a
+      dn(it) = -z(7)
+      dn(7) = -z(it)
+      s(k) = sg*num*rm3
+      js(k, :) = sg*(dn*rm3 + num*dr)
+      if (want_h) then
+        do j = 1, nz
+          hs(:, j, k) = sg*(dn*dr(j) + dr*dn(j) + num*d2r(:, j))
+        end do
+        hs(1, ix, k) = hs(1, ix, k) + sg*rm3
+        hs(ix, 1, k) = hs(ix, 1, k) + sg*rm3
+        hs(it, 7, k) = hs(it, 7, k) - sg*rm3
+        hs(7, it, k) = hs(7, it, k) - sg*rm3
       end if
     end do
   end subroutine strain_measures
@@ -468,10 +518,10 @@ contains
   !> Strains s = (eps, kappa_y, kappa_z) and twist rate at x = e l, LOCAL p.
   pure subroutine spatial_section_state(el, p, e, s, twist)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(16), e
+    real(dp), intent(in) :: p(nd), e
     real(dp), intent(out) :: s(3), twist
-    real(dp) :: sr(16, 3), gp(16, 3), zr(16, 6), z(6), js(3, 6), hs(6, 6, 3)
-    call rows_at(e, el%length, sr, gp, zr)
+    real(dp) :: sr(nd, 3), gp(nd, 3), zr(nd, nz), z(nz), js(3, nz), hs(nz, nz, 3)
+    call rows_at(e, el%length, el%quintic_u, sr, gp, zr)
     z = matmul(p, zr)
     call strain_measures(el%effects, z, .false., s, js, hs)
     twist = z(6)
@@ -481,9 +531,9 @@ contains
   !> and the end resultants N, M_y, M_z, T; global q.
   pure function spatial_stress_recovery(el, q, rot) result(rep)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: q(16), rot(3, 3)
+    real(dp), intent(in) :: q(nd), rot(3, 3)
     type(spatial_stress_t) :: rep
-    real(dp) :: p(16), s(3), tw, e, emax, yf, zf, sig, en, g(3), h(3, 3), ef
+    real(dp) :: p(nd), s(3), tw, e, emax, yf, zf, sig, en, g(3), h(3, 3), ef
     type(ramberg_osgood_t) :: law
     integer :: i, k
     law = el%material
@@ -519,73 +569,98 @@ contains
   !> Local elastic displacement (u, v, w) at x = e l from LOCAL p.
   pure function spatial_local_displacement(el, p, e) result(d)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(16), e
+    real(dp), intent(in) :: p(nd), e
     real(dp) :: d(3)
-    real(dp) :: s(16, 3), gp(16, 3), z(16, 6)
-    call rows_at(e, el%length, s, gp, z)
+    real(dp) :: s(nd, 3), gp(nd, 3), z(nd, nz)
+    call rows_at(e, el%length, el%quintic_u, s, gp, z)
     d = matmul(p, s)
   end function spatial_local_displacement
+
+  !> (u, v, w) = s^T p at a station, over the DOFs each component touches
+  !> (s is zero elsewhere: a third of the dense product's work).
+  pure function station_rows(s, p) result(d)
+    real(dp), intent(in) :: s(nd, 3), p(nd)
+    real(dp) :: d(3)
+    d(1) = dot_product(s(u_set, 1), p(u_set))
+    d(2) = dot_product(s(v_set, 2), p(v_set))
+    d(3) = dot_product(s(w_set, 3), p(w_set))
+  end function station_rows
+
+  !> f := f + s a at a station (the transpose of station_rows).
+  pure subroutine station_scatter(s, a, f)
+    real(dp), intent(in) :: s(nd, 3), a(3)
+    real(dp), intent(inout) :: f(nd)
+    f(u_set) = f(u_set) + s(u_set, 1)*a(1)
+    f(v_set) = f(v_set) + s(v_set, 2)*a(2)
+    f(w_set) = f(w_set) + s(w_set, 3)*a(3)
+  end subroutine station_scatter
 
   ! ------------------------------------------------------------ frames
 
   !> p = T^T q: the vector triples of each node into the element frame
   !> (a rotation triple flagged local is already in it).
   pure function spatial_to_local(rot, q, local) result(p)
-    real(dp), intent(in) :: rot(3, 3), q(16)
+    real(dp), intent(in) :: rot(3, 3), q(nd)
     logical, intent(in), optional :: local(2)
-    real(dp) :: p(16)
+    real(dp) :: p(nd)
     logical :: loc(2)
     loc = .false.
     if (present(local)) loc = local
     p = q
     p(1:3) = matmul(q(1:3), rot)
     if (.not. loc(1)) p(4:6) = matmul(q(4:6), rot)
-    p(9:11) = matmul(q(9:11), rot)
-    if (.not. loc(2)) p(12:14) = matmul(q(12:14), rot)
+    p(11:13) = matmul(q(11:13), rot)
+    if (.not. loc(2)) p(14:16) = matmul(q(14:16), rot)
   end function spatial_to_local
 
   !> q = T p.
   pure function spatial_to_global(rot, p, local) result(q)
-    real(dp), intent(in) :: rot(3, 3), p(16)
+    real(dp), intent(in) :: rot(3, 3), p(nd)
     logical, intent(in), optional :: local(2)
-    real(dp) :: q(16)
+    real(dp) :: q(nd)
     logical :: loc(2)
     loc = .false.
     if (present(local)) loc = local
     q = p
     q(1:3) = matmul(rot, p(1:3))
     if (.not. loc(1)) q(4:6) = matmul(rot, p(4:6))
-    q(9:11) = matmul(rot, p(9:11))
-    if (.not. loc(2)) q(12:14) = matmul(rot, p(12:14))
+    q(11:13) = matmul(rot, p(11:13))
+    if (.not. loc(2)) q(14:16) = matmul(rot, p(14:16))
   end function spatial_to_global
 
-  !> T A T^T.
+  !> T A T^T, by the 3 x 3 blocks of the vector triples that rotate.
   pure function matrix_to_global(rot, a, local) result(g)
-    real(dp), intent(in) :: rot(3, 3), a(16, 16)
+    real(dp), intent(in) :: rot(3, 3), a(nd, nd)
     logical, intent(in) :: local(2)
-    real(dp) :: g(16, 16), t(16, 16)
-    integer :: j
-    t = transpose(a)
-    do j = 1, 16
-      t(:, j) = spatial_to_global(rot, t(:, j), local)      ! T A^T
+    real(dp) :: g(nd, nd), t(nd, nd), rt(3, 3)
+    integer, parameter :: first(4) = [1, 4, 11, 14]
+    logical :: rotates(4)
+    integer :: b, r
+    rotates = [.true., .not. local(1), .true., .not. local(2)]
+    rt = transpose(rot)
+    t = a
+    do b = 1, 4
+      r = first(b)
+      if (rotates(b)) t(r:r + 2, :) = matmul(rot, a(r:r + 2, :))       ! T A
     end do
-    g = transpose(t)
-    do j = 1, 16
-      g(:, j) = spatial_to_global(rot, g(:, j), local)      ! T (A T^T)
+    g = t
+    do b = 1, 4
+      r = first(b)
+      if (rotates(b)) g(:, r:r + 2) = matmul(t(:, r:r + 2), rt)        ! (T A) T^T
     end do
   end function matrix_to_global
 
   !> W p: omega x each vector triple of p that rotates with the frame
   !> (T_dot = T W); curvature DOFs and local rotation triples map to zero.
   pure function skew_apply(w, p, local) result(r)
-    real(dp), intent(in) :: w(3), p(16)
+    real(dp), intent(in) :: w(3), p(nd)
     logical, intent(in) :: local(2)
-    real(dp) :: r(16)
+    real(dp) :: r(nd)
     r = 0.0_dp
     r(1:3) = cross(w, p(1:3))
     if (.not. local(1)) r(4:6) = cross(w, p(4:6))
-    r(9:11) = cross(w, p(9:11))
-    if (.not. local(2)) r(12:14) = cross(w, p(12:14))
+    r(11:13) = cross(w, p(11:13))
+    if (.not. local(2)) r(14:16) = cross(w, p(14:16))
   end function skew_apply
 
   pure function cross(a, b) result(c)
@@ -593,13 +668,4 @@ contains
     real(dp) :: c(3)
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
   end function cross
-
-  pure function outer(x, y) result(m)
-    real(dp), intent(in) :: x(:), y(:)
-    real(dp) :: m(size(x), size(y))
-    integer :: j
-    do j = 1, size(y)
-      m(:, j) = x*y(j)
-    end do
-  end function outer
 end module spatial_beam

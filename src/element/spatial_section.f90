@@ -16,6 +16,7 @@ module spatial_section
   use strings, only: str
   use quadrature, only: gauss_legendre, gauss_legendre_interval
   use material_law, only: ramberg_osgood_t, ro_stress, ro_tangent, has_odd_integer_exponent
+  use linalg, only: outer
   implicit none
   private
   public :: spatial_section_t, section_rectangular, section_circular
@@ -162,7 +163,7 @@ contains
       e2law = -mat%e2*abs(ef)**(mat%m + 1.0_dp)/(mat%m + 1.0_dp)
       energy = energy + sec%pw(k)*e2law
       g = g + sec%pw(k)*sig*a
-      h = h + sec%pw(k)*et*outer3(a, a)
+      h = h + sec%pw(k)*et*outer(a, a)
     end do
   end subroutine spatial_section_resultants
 
@@ -210,13 +211,4 @@ contains
       z = cz
     end if
   end subroutine section_extreme_fibre_strain
-
-  pure function outer3(x, y) result(m)
-    real(dp), intent(in) :: x(3), y(3)
-    real(dp) :: m(3, 3)
-    integer :: j
-    do j = 1, 3
-      m(:, j) = x*y(j)
-    end do
-  end function outer3
 end module spatial_section

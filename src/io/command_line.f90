@@ -4,6 +4,7 @@ module command_line
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int
   use version, only: program_name, program_version
+  use strings, only: shell_quote
   implicit none
   private
   public :: parse_arguments, quit, default_output, output_path_problem
@@ -96,8 +97,8 @@ contains
       problem = 'the output file name is empty'
       return
     end if
-    o = shell_quoted(out)
-    d = shell_quoted(deck)
+    o = shell_quote(out)
+    d = shell_quote(deck)
     exitstat = 0
     cmdstat = 0
     call execute_command_line('test -L '//o//' && exit 10; test -d '//o//' && exit 11; ' // &
@@ -116,22 +117,6 @@ contains
       problem = 'is the deck itself (the output would overwrite the input)'
     end select
   end function output_path_problem
-
-  !> 'text' for a POSIX shell: every ' becomes '\''.
-  pure function shell_quoted(text) result(q)
-    character(len=*), intent(in) :: text
-    character(len=:), allocatable :: q
-    integer :: i
-    q = ''''
-    do i = 1, len(text)
-      if (text(i:i) == '''') then
-        q = q//'''\'''''
-      else
-        q = q//text(i:i)
-      end if
-    end do
-    q = q//''''
-  end function shell_quoted
 
   !> DECK.nml -> DECK.out in the current directory.
   pure function default_output(path) result(name)

@@ -48,6 +48,7 @@ module deck_reader
   !> One line of the deck, whatever its length (the namelist reader has no limit either).
   type :: deck_line_t
     character(len=:), allocatable :: text
+    logical :: ends_in_lone_cr = .false.   !< cut by a carriage return without a line feed
   end type deck_line_t
 
   type :: deck_t
@@ -112,7 +113,38 @@ contains
     end do
     rewind(self%unit)
     call read_from_copy(self)
+    call mark_lone_returns(self)   ! (after the copy: gfortran opens a file on one unit at a time)
   end subroutine deck_open
+
+  !> gfortran's formatted reads end a record at a carriage return that no
+  !> line feed follows, and its namelist reader then joins a name cut there
+  !> ('link_n<CR>ame' reads as link_name) where the scanner sees two words:
+  !> mark those lines, so that a group containing one is refused (read_group).
+  subroutine mark_lone_returns(self)
+    class(deck_t), intent(inout) :: self
+    character(len=:), allocatable :: bytes
+    integer :: u, ios, n, k, line
+    inquire(file=self%path, size=n)
+    if (n <= 0) return
+    allocate(character(len=n) :: bytes)
+    open(newunit=u, file=self%path, access='stream', form='unformatted', status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    read(u, iostat=ios) bytes
+    close(u)
+    if (ios /= 0) return
+    line = 1
+    do k = 1, n
+      if (bytes(k:k) == achar(10)) then
+        line = line + 1
+      else if (bytes(k:k) == achar(13)) then
+        if (k < n) then
+          if (bytes(k + 1:k + 1) == achar(10)) cycle   ! CRLF: the line feed ends the line
+        end if
+        if (line <= size(self%lines)) self%lines(line)%ends_in_lone_cr = .true.
+        line = line + 1
+      end if
+    end do
+  end subroutine mark_lone_returns
 
   !> The groups are read from a copy of the deck whose lines all end with a
   !> newline: gfortran's namelist reader does not see a group closed on a
@@ -310,6 +342,13 @@ contains
     if (last == 0) then
       call err%set(context(self, group), 'group starting on line '//str(first)// &
                    ' is not closed with ''/''', input_error_code)
+      return
+    end if
+    bad = findloc(self%lines(first:last)%ends_in_lone_cr, .true., dim=1)
+    if (bad > 0) then
+      call err%set(context(self, group), 'line '//str(first + bad - 1)//': "'//shown_line(self, first + bad - 1)// &
+                   '" ends in a carriage return without a line feed: save the deck with LF (or CRLF) line ends', &
+                   input_error_code)
       return
     end if
     ! before the real read, which then overwrites what the probes wrote

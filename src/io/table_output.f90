@@ -14,6 +14,7 @@ module table_output
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
+  use fast_format, only: format_es, es_width
   implicit none
   private
   public :: table_t, column_width
@@ -32,6 +33,9 @@ module table_output
     !> The first row offered with a NaN or Inf (never written: the run stops
     !> with a diagnosis instead of a table gnuplot would plot as gaps).
     integer :: bad_row = 0, bad_column = 0
+    !> Significant digits of the rows: 0 = 16 (ES23.15E3, correctly rounded);
+    !> 3..12 = the fast formatter (src/io/fast_format.f90), narrower columns.
+    integer :: digits = 0
   contains
     procedure :: open => table_open
     procedure :: comment
@@ -45,6 +49,7 @@ module table_output
     procedure :: discard
     procedure :: is_open
     procedure :: non_finite_text
+    procedure :: set_digits
   end type table_t
 
   interface
@@ -149,16 +154,23 @@ contains
     character(len=*), intent(in) :: names(:)
     character(len=:), allocatable :: line
     character(len=column_width) :: cell
+    integer :: w
     integer :: i
     self%n_columns = size(names)
+    w = column_width
+    if (self%digits > 0) w = es_width(self%digits) + 1
     line = '#'
     do i = 1, size(names)
+      if (len_trim(names(i)) >= w) then       ! a long name: separated, no longer aligned
+        line = line//' '//trim(names(i))
+        cycle
+      end if
       cell = names(i)
-      cell = adjustr(cell)
+      cell(1:w) = adjustr(cell(1:w))
       if (i == 1) then
-        line = line//cell(2:)
+        line = line//cell(2:w)
       else
-        line = line//cell
+        line = line//cell(1:w)
       end if
     end do
     if (self%opened) write(self%unit, '(a)') line
@@ -176,9 +188,34 @@ contains
         return
       end if
     end do
-    write(self%unit, row_format) values
+    if (self%digits > 0) then
+      call write_fast(self, values)
+    else
+      write(self%unit, row_format) values
+    end if
     self%n_rows = self%n_rows + 1
   end subroutine row
+
+  !> A row through the fast formatter: one blank and es_width characters per value.
+  subroutine write_fast(self, values)
+    class(table_t), intent(inout) :: self
+    real(dp), intent(in) :: values(:)
+    character(len=(es_width(self%digits) + 1)*size(values)) :: line
+    integer :: i, w
+    w = es_width(self%digits) + 1
+    do i = 1, size(values)
+      line((i - 1)*w + 1:(i - 1)*w + 1) = ' '
+      call format_es(values(i), self%digits, line((i - 1)*w + 2:i*w))
+    end do
+    write(self%unit, '(a)') line
+  end subroutine write_fast
+
+  !> Rows with d significant digits (3..12, the fast formatter) or 0 (16, the default).
+  subroutine set_digits(self, d)
+    class(table_t), intent(inout) :: self
+    integer, intent(in) :: d
+    self%digits = d
+  end subroutine set_digits
 
   !> Empty, or the diagnosis of the first row that held a NaN or Inf.
   function non_finite_text(self) result(text)

@@ -525,6 +525,13 @@ contains
             call bad(idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
                      ' needs a length > 0, or the coordinates of both its joints'); return
           end if
+          ! the range of a given link_length holds for one taken from the joints
+          if (lk%length < 1.0e-8_dp .or. lk%length > 1.0e8_dp) then
+            call bad(idx('joint_x', lk%joint(2))//', '//idx('joint_y', lk%joint(2)), &
+                     str(mech%joints(lk%joint(2))%x)//', '//str(mech%joints(lk%joint(2))%y), 'link '// &
+                     trim(lk%name)//' taken from its joints is '//str(lk%length)//' long: it must lie in [1e-8, 1e8]')
+            return
+          end if
         end if
         if (lk%length > 0.0_dp) then
           total = total + lk%length
@@ -667,6 +674,15 @@ contains
           call bad(idx('link_e1', q), str(inp%link_e1(q)), 'material constants beyond any material '// &
                    '(rho <= 1e10, E1 <= 1e20, E2 <= 1e30)'); return
         end if
+        ! E1/rho is the square of the bar wave speed: 1e2..1e18 holds every
+        ! solid in any consistent units (m/s: 1e4..4e8, mm/s: 1e10..4e14);
+        ! outside it the model's frequencies over- or underflow (written as
+        ! products: E1/rho itself overflows for a subnormal rho)
+        if (inp%link_rho(q) > 0.0_dp .and. inp%link_e1(q) > 0.0_dp .and. &
+            (inp%link_e1(q) > 1.0e18_dp*inp%link_rho(q) .or. inp%link_e1(q) < 1.0e2_dp*inp%link_rho(q))) then
+          call bad(idx('link_e1', q)//', '//idx('link_rho', q), str(inp%link_e1(q))//', '//str(inp%link_rho(q)), &
+                   'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]'); return
+        end if
       end do
       ok = .true.
     end function inputs_in_range
@@ -723,6 +739,20 @@ contains
         if (.not. (inp%link_c(q) > 0.0_dp)) then
           call bad(idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
                    'c > 0 (for stresses)'); return
+        end if
+        ! the size ranges of b and h, squared and to the fourth power, and
+        ! I <= c^2 A (no section has its radius of gyration beyond its
+        ! outer fibre); without them 12 I/A overflowed for I = 1.8e308
+        if (inp%link_area(q) < 1.0e-16_dp .or. inp%link_area(q) > 1.0e16_dp) then
+          call bad(idx('link_area', q), str(inp%link_area(q)), 'must lie in [1e-16, 1e16]'); return
+        end if
+        if (inp%link_c(q) < 1.0e-8_dp .or. inp%link_c(q) > 1.0e8_dp) then
+          call bad(idx('link_c', q), str(inp%link_c(q)), 'must lie in [1e-8, 1e8]'); return
+        end if
+        if (inp%link_inertia(q) > inp%link_c(q)**2*inp%link_area(q) .or. inp%link_inertia(q) < 1.0e-32_dp) then
+          call bad(idx('link_inertia', q), str(inp%link_inertia(q)), 'must lie in [1e-32, c^2 A = '// &
+                   str(inp%link_c(q)**2*inp%link_area(q))//']: no section has its radius of gyration beyond its '// &
+                   'outer fibre c'); return
         end if
         lk%area = inp%link_area(q)
         lk%inertia = inp%link_inertia(q)

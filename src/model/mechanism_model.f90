@@ -40,6 +40,7 @@ module mechanism_model
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
   use kinematics, only: kinematics_t, motion_t
   use kinds, only: two_pi
+  use joint_clearance, only: clearance_joint_t, split_journal, add_contact_forces, contact_blocks, add_pair_block
   use shape_functions, only: quintic_hermite
   implicit none
   private
@@ -94,6 +95,10 @@ module mechanism_model
     real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
     type(point_load_t), allocatable :: loads(:)
     real(dp) :: load_scale = 1.0_dp               !< multiplies every point load (static load stepping)
+    ! pin joints with radial clearance (doc/clearance.md): none unless add_clearance was called
+    logical :: has_clearance = .false.
+    type(clearance_joint_t), allocatable :: clearance(:)
+    real(dp), allocatable :: contact_k(:, :, :), contact_c(:, :, :)   !< (2, 2, joint) at the last Newton matrix
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -113,6 +118,9 @@ module mechanism_model
     procedure :: state_size
     procedure :: set_loads
     procedure :: static_equilibrium
+    procedure :: element_joint_force
+    procedure :: add_clearance
+    procedure :: clearance_spin
   end type mechanism_model_t
 
 contains
@@ -435,6 +443,7 @@ contains
     end do
     call add_point_masses(self)
     call add_point_loads(self, t, q, self%force)
+    if (self%has_clearance) call add_clearance_forces(self, q, qd)
     call band_cholesky_factor(self%mass_band, kd, err)
     self%n_mass_factorizations = self%n_mass_factorizations + 1
     if (err%failed()) then
@@ -628,6 +637,7 @@ contains
       allocate(self%newton_mass(kd + 1, n), self%newton_stiff(2*kd + 1, n), self%newton_chol(kd + 1, n), &
                self%newton_lu(3*kd + 1, n), self%newton_ipiv(n))
     call self%assemble_band(y(1::2), self%newton_mass, self%newton_stiff)
+    if (self%has_clearance) call add_clearance_stiffness(self, y)
     beta = 0.0_dp
     if (size(self%el) > 0) beta = self%el(1)%beta
     c = hl0*beta + hl0**2
@@ -636,6 +646,7 @@ contains
     self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
     if (self%newton_cholesky) then
       self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
+      if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_chol, 1, .true.)
       call band_cholesky_factor(self%newton_chol, kd, err)
       self%newton_cholesky = .not. err%failed()
       call err%clear()
@@ -655,6 +666,7 @@ contains
                                                          self%newton_mass(1 + i - j, j)
       end do
     end do
+    if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_lu, 2*kd + 1, .false.)
     call band_lu_factor(self%newton_lu, kd, kd, self%newton_ipiv, err)
     ok = .not. err%failed()
   end subroutine model_newton_factor
@@ -726,6 +738,107 @@ contains
       y(j) = y(j) + s
     end do
   end subroutine band_combination
+
+  ! ------------------------------------------------------------------ clearance joints
+
+  !> Give every joint in `joints` its clearance: the journal's translations
+  !> become their own unknowns (joint_clearance%split_journal) and the
+  !> contact force acts between journal and bearing.  Called after
+  !> init_mechanism; the work arrays follow the new size and band.
+  subroutine add_clearance(self, joints, err)
+    class(mechanism_model_t), intent(inout) :: self
+    type(clearance_joint_t), intent(in) :: joints(:)
+    type(error_t), intent(inout) :: err
+    integer :: k, m, p
+    if (size(joints) == 0) return
+    self%clearance = joints
+    do k = 1, size(joints)
+      call split_journal(self%table, self%clearance(k)%element_journal, self%clearance(k)%journal_node, &
+                         self%clearance(k), err)
+      if (err%failed()) return
+      p = self%clearance(k)%journal(1) - 1
+      do m = 1, k - 1
+        where (self%clearance(m)%bearing > p) self%clearance(m)%bearing = self%clearance(m)%bearing + 2
+        where (self%clearance(m)%journal > p) self%clearance(m)%journal = self%clearance(m)%journal + 2
+      end do
+    end do
+    deallocate(self%mass_band, self%force)
+    if (allocated(self%newton_mass)) deallocate(self%newton_mass, self%newton_stiff, self%newton_chol, &
+                                                self%newton_lu, self%newton_ipiv)
+    call allocate_work(self)
+    allocate(self%contact_k(2, 2, size(joints)), self%contact_c(2, 2, size(joints)))
+    self%has_clearance = .true.
+  end subroutine add_clearance
+
+  !> Rigid rotation rate of clearance joint k's journal link minus its
+  !> bearing's (the rotational part of the sliding speed).
+  pure real(dp) function clearance_spin(self, k) result(spin)
+    class(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: k
+    spin = 0.0_dp
+    if (self%clearance(k)%element_journal > 0) spin = self%rb(self%clearance(k)%element_journal)%phi_d
+    if (self%clearance(k)%element_bearing > 0) spin = spin - self%rb(self%clearance(k)%element_bearing)%phi_d
+  end function clearance_spin
+
+  !> Contact forces of the clearance joints; with friction and a journal
+  !> radius r, the friction force F_t acting on the pin's surface also turns
+  !> each link end: r F_t on the journal's, -r F_t on the bearing's (moments
+  !> working through the section angle, like a point load's).
+  subroutine add_clearance_forces(self, q, qd)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:), qd(:)
+    integer :: k
+    real(dp) :: fn, ft, moment
+    do k = 1, size(self%clearance)
+      associate (cj => self%clearance(k))
+        call add_contact_forces(cj, q, qd, self%clearance_spin(k), self%force, fn, ft)
+        if (.not. (cj%journal_radius > 0.0_dp .and. abs(ft) > 0.0_dp)) cycle
+        moment = cj%journal_radius*ft
+        call add_end_moment(self, cj%element_journal, cj%journal_node, q, moment)
+        if (cj%element_bearing > 0) call add_end_moment(self, cj%element_bearing, cj%bearing_node, q, -moment)
+      end associate
+    end do
+  end subroutine add_clearance_forces
+
+  !> force += generalized force of a moment at node `node` of element e.
+  subroutine add_end_moment(self, e, node, q, moment)
+    type(mechanism_model_t), intent(inout) :: self
+    integer, intent(in) :: e, node
+    real(dp), intent(in) :: q(:), moment
+    real(dp) :: gen(self%table%element_dofs)
+    call beam_point_load(self%el(e), self%table%gather(e, q), self%rb(e)%phi, real(node - 1, dp), [0.0_dp, 0.0_dp], &
+                         moment, gen)
+    call self%table%scatter_add(e, gen, self%force)
+  end subroutine add_end_moment
+
+  !> Contact stiffness into K_t of the Newton matrix (newton_stiff); the
+  !> contact's own damping goes in by add_clearance_damping.
+  subroutine add_clearance_stiffness(self, y)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: y(:)
+    integer :: k
+    do k = 1, size(self%clearance)
+      call contact_blocks(self%clearance(k), y(1::2), y(2::2), self%clearance_spin(k), self%contact_k(:, :, k), &
+                          self%contact_c(:, :, k))
+      call add_pair_block(self%clearance(k), self%contact_k(:, :, k), 1.0_dp, self%newton_stiff, self%kd + 1, .false.)
+    end do
+  end subroutine add_clearance_stiffness
+
+  !> S += hl0 (C - beta K) of the contacts: S = M + (hl0 beta + hl0^2) K_t
+  !> already holds their K with the elements' stiffness-proportional damping,
+  !> the contact damps by its own C instead.
+  subroutine add_clearance_damping(self, hl0, beta, band, off, lower)
+    type(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: hl0, beta
+    real(dp), intent(inout) :: band(:, :)
+    integer, intent(in) :: off
+    logical, intent(in) :: lower
+    integer :: k
+    do k = 1, size(self%clearance)
+      call add_pair_block(self%clearance(k), self%contact_c(:, :, k) - beta*self%contact_k(:, :, k), hl0, band, off, &
+                          lower)
+    end do
+  end subroutine add_clearance_damping
 
   !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
   !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.
@@ -884,4 +997,34 @@ contains
     self%load_scale = scale0
     if (present(iterations)) iterations = n_it
   end subroutine static_equilibrium
+
+  ! ------------------------------------------------------------------ joint forces
+
+  !> The generalized force that the rest of the mechanism (its joints and
+  !> neighbours) exerts on element e, in the element's global DOFs:
+  !>     r_e = M_e q_dd_e - F_e(q, q_d, t) - Q_e(q, t)
+  !> (F_e: elastic, damping, rigid-body inertia and gravity loads; Q_e: the
+  !> point loads on e).  Its node-translation rows are the global X, Y forces
+  !> on the element's ends, its slope rows the moments (src/model/joint_reactions.f90).
+  !> The rigid states must be current (set_time(t)); q, qd, qdd global.
+  subroutine element_joint_force(self, e, t, q, qd, qdd, r)
+    class(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: t, q(:), qd(:), qdd(:)
+    real(dp), intent(out) :: r(:)
+    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs), qe(size(r))
+    real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
+    type(kear_eval_info_t) :: info
+    integer :: k
+    qe = self%table%gather(e, q)
+    call beam_element_eval(self%el(e), qe, self%table%gather(e, qd), loaded_state(self, e), me, fe, info)
+    r = matmul(me, self%table%gather(e, qdd)) - fe
+    do k = 1, size(self%loads)
+      if (self%loads(k)%element /= e) cycle
+      fac = self%load_scale*load_factor_at(self%loads(k), t)
+      call beam_point_load(self%el(e), qe, self%rb(e)%phi, self%loads(k)%x_over_l, fac*self%loads(k)%force, &
+                           fac*self%loads(k)%moment, gen, dgen)
+      r = r - gen
+    end do
+  end subroutine element_joint_force
 end module mechanism_model

@@ -91,11 +91,13 @@ module lsode_solver
     real(dp), allocatable :: rwork(:)
     integer, allocatable :: iwork(:)
     real(dp) :: cpu_seconds = 0.0_dp
+    integer :: done_before(3) = 0      !< steps, RHS and Jacobian evaluations before the last restart
   contains
     procedure :: init
     procedure :: integrate_to
     procedure :: counters
     procedure :: restart
+    procedure :: dense_output
   end type lsode_t
 
   interface
@@ -122,6 +124,14 @@ module lsode_solver
       integer, intent(inout) :: istate, iwork(liw)
       real(dp), intent(inout) :: rwork(lrw)
     end subroutine dlsode
+    !> DLSODE's interpolant of the last step (K-th derivative at t; YH = RWORK(21), NYH = NEQ)
+    subroutine dintdy(t, k, yh, nyh, dky, iflag)
+      import :: dp
+      integer, intent(in) :: k, nyh
+      real(dp), intent(in) :: t, yh(nyh, *)
+      real(dp), intent(out) :: dky(*)
+      integer, intent(out) :: iflag
+    end subroutine dintdy
   end interface
 
   !> The system DLSODE is integrating (set for the duration of each call), and
@@ -249,6 +259,7 @@ contains
     self%t = t0
     self%istate = 1
     self%cpu_seconds = 0.0_dp
+    self%done_before = 0
   end subroutine init
 
   !> DLSODE's work arrays for the method flag it will be handed (sizes from
@@ -296,22 +307,40 @@ contains
   end subroutine allocate_work
 
   !> Start afresh from the current (t, y) on the next call, e.g. after a
-  !> discontinuity in the model.  Counters restart from zero in DLSODE.
+  !> discontinuity in the model.  DLSODE's counters restart from zero; counters()
+  !> adds those of the integrations before.
   subroutine restart(self)
     class(lsode_t), intent(inout) :: self
+    if (self%istate /= 1 .and. allocated(self%iwork)) self%done_before = self%done_before + self%iwork(11:13)
     self%istate = 1
   end subroutine restart
 
+  !> The solution at t within the last step (DLSODE's interpolant, DINTDY
+  !> with K = 0): dense output for locating events.
+  subroutine dense_output(self, t, y, err)
+    class(lsode_t), intent(in) :: self
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: y(:)
+    type(error_t), intent(inout) :: err
+    integer :: iflag
+    ! DLSODE's Nordsieck history starts at RWORK(21), NYH = NEQ (its documentation)
+    call dintdy(t, 0, self%rwork(21:), self%neq, y, iflag)
+    if (iflag /= 0) call err%set('DLSODE dense output', 't = '//str(t)//' is outside the last step')
+  end subroutine dense_output
+
   !> Advance `sys` from the current time to `tout`; y holds the state in and out.
-  subroutine integrate_to(self, sys, y, tout, err)
+  !> With one_step, DLSODE takes one step towards tout and never passes it
+  !> (ITASK = 5, TCRIT = tout): the caller examines every step (events).
+  subroutine integrate_to(self, sys, y, tout, err, one_step)
     class(lsode_t), intent(inout) :: self
     class(ode_system_t), intent(inout), target :: sys
     real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: tout
     type(error_t), intent(inout) :: err
+    logical, intent(in), optional :: one_step
     class(ode_system_t), pointer :: previous
     logical :: previous_model_newton
-    integer :: itol, neq(1)
+    integer :: itol, neq(1), itask
     real(dp) :: cpu0, cpu1
     if (.not. allocated(self%rwork)) then
       call err%set('lsode', 'integrate_to called before init')
@@ -337,8 +366,15 @@ contains
     active => sys
     active_newton_is_model = self%model_newton
     call cpu_time(cpu0)
+    itask = 1
+    if (present(one_step)) then
+      if (one_step) then
+        itask = 5
+        self%rwork(1) = tout
+      end if
+    end if
     ! IOPT = 1 so that MXSTEP (iwork(6)) is honoured.
-    call dlsode(rhs_shim, neq, y, self%t, tout, itol, [self%rtol], self%atol, 1, self%istate, 1, &
+    call dlsode(rhs_shim, neq, y, self%t, tout, itol, [self%rtol], self%atol, itask, self%istate, 1, &
                 self%rwork, size(self%rwork), self%iwork, size(self%iwork), jac_shim, self%mf_dlsode)
     call cpu_time(cpu1)
     active => previous
@@ -358,12 +394,12 @@ contains
     class(lsode_t), intent(in) :: self
     type(lsode_counters_t) :: c
     if (.not. allocated(self%iwork)) return
-    c%steps = self%iwork(11)
-    c%rhs_evals = self%iwork(12)
-    c%jac_evals = self%iwork(13)
+    c%steps = self%done_before(1) + self%iwork(11)
+    c%rhs_evals = self%done_before(2) + self%iwork(12)
+    c%jac_evals = self%done_before(3) + self%iwork(13)
     c%order_last = self%iwork(14)
     c%step_last = self%rwork(11)
-    if (self%mf /= mf_adams) c%lu_factorizations = self%iwork(13)
+    if (self%mf /= mf_adams) c%lu_factorizations = c%jac_evals
     c%cpu_seconds = self%cpu_seconds
     c%model_newton = self%model_newton
   end function counters

@@ -67,6 +67,8 @@ module gauss_optimizer
     integer :: newton_max_iter = 30       !< Newton iterations for B11 before Powell takes over
     logical :: potter_repeat = .true.     !< on step-back cycling repeat the step with the violated
                                           !< constraints active (Potter's fix (a)); else stop
+    logical :: hold_bounds = .true.       !< simple bounds as bounds (held variables in the step); .false.:
+                                          !< as unit-gradient linear constraints of the active set
     logical :: step_back_refine = .true.  !< step back to the boundary (farthest feasible point, P);
                                           !< .false.: one B13 interpolation, feasible side kept
   end type gauss_options_t
@@ -123,6 +125,12 @@ module gauss_optimizer
     procedure, private :: curvature
     procedure, private :: make_convex
     procedure, private :: compute_step
+    procedure, private :: derivatives
+    procedure, private :: finish
+    procedure, private :: trial_point
+    procedure, private :: step_for_set
+    procedure, private :: limit_violated
+    procedure, private :: note_b11
     procedure, private :: step_back
     procedure, private :: analyse_trial
     procedure, private :: check_cycling
@@ -240,11 +248,10 @@ contains
     class(opt_problem_t), intent(inout), target :: prob
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: s(:), x_new(:), g_new(:), g_t(:)
-    logical, allocatable :: violated(:), touched(:), limit(:)
-    integer :: n, m, mt, k, repeats, hess_kind, halvings, stalls, escapes
+    real(dp), allocatable :: s(:), x_new(:), g_new(:)
+    integer :: n, m, mt, k, repeats, hess_kind, stalls, escapes
     real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged, same_point, auto
+    logical :: solved, step_back_method, converged, same_point, auto, again
     real(dp) :: b11_res
     logical, allocatable :: active_before(:)
     character(len=:), allocatable :: stage
@@ -263,7 +270,7 @@ contains
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
     call self%start(prob, x0, step_back_method, auto, err)
     if (err%failed()) return
-    allocate(s(n), x_new(n), g_new(mt), g_t(mt), violated(m), touched(m), limit(m))
+    allocate(s(n), x_new(n), g_new(mt))
 
     k = 0
     stalls = 0
@@ -272,17 +279,7 @@ contains
     outer: do
       stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
-      call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
-      if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
-        call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
-      if (err%failed()) exit outer
-      if (mt > 0) then
-        call prob%constraint_gradients(self%x, self%g, self%dg, err)
-        if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
-          call err%set('constraint gradients', 'not finite at x_'//str(k))
-        if (err%failed()) exit outer
-      end if
-      call self%curvature(prob, hess_kind, k, err)
+      call self%derivatives(prob, hess_kind, k, err)
       if (err%failed()) exit outer
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
@@ -306,68 +303,10 @@ contains
         end if
         if (k >= self%opts%max_iter) exit outer
 
-        x_new = self%x + s
-        t = 1.0_dp
-        if (mt > 0) then
-          call prob%constraint_values(x_new, g_new, err)
-          if (err%failed()) exit outer
-          ! a non-finite constraint value is a failed trial: shorten the step
-          halvings = 0
-          do while (.not. all(ieee_is_finite(g_new)) .and. halvings < max_halvings)
-            halvings = halvings + 1
-            s = 0.5_dp*s
-            x_new = self%x + s
-            call prob%constraint_values(x_new, g_new, err)
-            if (err%failed()) exit outer
-          end do
-          if (halvings > 0) then
-            snorm = maxval(abs(s))
-            call self%note('constraints not finite at the trial point: step halved '//str(halvings)//' times')
-          end if
-          if (.not. all(ieee_is_finite(g_new))) then
-            call err%set('constraints', 'not finite anywhere along the step (halved '//str(max_halvings)//' times)')
-            exit outer
-          end if
-          violated = g_new(1:m) > self%opts%feas_tol
-          touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
-          if (step_back_method .and. any(violated)) then
-            ! ---- step back to the farthest feasible point of the segment (B13)
-            call self%step_back(prob, s, g_new, t, g_t, limit, err)
-            if (err%failed()) exit outer
-            if (t*snorm <= self%opts%xtol*(1.0_dp + xnorm) .and. .not. any(limit .and. .not. self%active(1:m))) then
-              ! Potter §9.5 item 3: backing out of the new violation entered the
-              ! violated region of an active constraint; the step-back ends at
-              ! x_k with the same active set and would repeat the same design.
-              if (self%opts%potter_repeat .and. any(violated .and. .not. self%active(1:m)) &
-                  .and. repeats < m) then
-                repeats = repeats + 1
-                self%potter_repeats = self%potter_repeats + 1
-                call self%note('step-back cycling (Potter 9.5 item 3): limited by active ' &
-                  //set_text(limit)//' at t = '//str(t, 3)//'; step repeated with ' &
-                  //set_text(violated .and. .not. self%active(1:m))//' active (fix (a))')
-                self%additions = self%additions + count(violated .and. .not. self%active(1:m))
-                self%active(1:m) = self%active(1:m) .or. violated
-                cycle inner
-              end if
-              call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
-                ' (Potter, FORMULATION.md 9.5 item 3): backing out of violated constraint(s) ' &
-                //set_text(violated .and. .not. self%active(1:m))//' entered the violated region of active ' &
-                //set_text(limit)//'; the step-back returns to x_k with the same active set, so the ' &
-                //'next iteration would reproduce the same design')
-              exit outer
-            end if
-            self%step_backs = self%step_backs + 1
-            x_new = self%x + t*s
-            g_new = g_t
-            call self%note('step-back (B13) to t = '//str(t, 6)//', added '//set_text(limit .and. &
-                           .not. self%active(1:m)))
-            self%additions = self%additions + count(limit .and. .not. self%active(1:m))
-            self%active(1:m) = self%active(1:m) .or. limit
-          else
-            call self%add_to_active(violated, touched, step_back_method)
-          end if
-          if (.not. solved) call self%release_satisfied(g_new(1:m))
-        end if
+        call self%trial_point(prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
+                              again, err)
+        if (err%failed()) exit outer
+        if (again) cycle inner
         ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
         ! with a changed active set the step is recomputed at x_k; with the
         ! same set the next iteration would repeat this one exactly
@@ -409,6 +348,16 @@ contains
       self%message = err%text()
       return
     end if
+    call self%finish(k, converged, mt, err)
+  end subroutine solve
+
+  !> Outcome of a run that did not fail: KKT residual, status and message
+  !> (the iteration limit sets err with the best feasible iterate).
+  subroutine finish(self, k, converged, mt, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    integer, intent(in) :: k, mt
+    logical, intent(in) :: converged
+    type(error_t), intent(inout) :: err
     self%final_events = self%ev                 ! events of the last step computation (the test)
     if (mt > 0) self%kkt_residual = maxval(abs(self%gradf + matmul(self%dg, self%lambda)))
     if (mt == 0) self%kkt_residual = maxval(abs(self%gradf))
@@ -426,7 +375,121 @@ contains
       end if
       call err%set(self%method_label(), self%message)
     end if
-  end subroutine solve
+  end subroutine finish
+
+  !> grad F (and J), the constraint gradients and G at x_k; a non-finite
+  !> derivative stops the run with the diagnosis.
+  subroutine derivatives(self, prob, hess_kind, k, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    integer, intent(in) :: hess_kind, k
+    type(error_t), intent(inout) :: err
+    integer :: mt
+    mt = prob%m + prob%n_eq
+    call prob%objective_derivatives(self%x, self%f, self%phi, self%gradf, self%jac, err)
+    if (.not. err%failed() .and. .not. (all(ieee_is_finite(self%gradf)) .and. all(ieee_is_finite(self%jac)))) &
+      call err%set('objective derivatives', 'not finite at x_'//str(k)//' (grad F = '//vec_text(self%gradf)//')')
+    if (err%failed()) return
+    if (mt > 0) then
+      call prob%constraint_gradients(self%x, self%g, self%dg, err)
+      if (.not. err%failed() .and. .not. all(ieee_is_finite(self%dg))) &
+        call err%set('constraint gradients', 'not finite at x_'//str(k))
+      if (err%failed()) return
+    end if
+    call self%curvature(prob, hess_kind, k, err)
+    if (err%failed()) return
+  end subroutine derivatives
+
+  !> The trial point x_k + s: constraints there (a non-finite value halves
+  !> the step), the step-back of the step-back methods (B13, with Potter's
+  !> cycling check: again = .true. asks for the step to be recomputed with
+  !> the newly violated constraints active), the additions of §9.4 and the
+  !> release rule.  On return x_new, g_new and t (the fraction of s taken).
+  subroutine trial_point(self, prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
+                         again, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(inout) :: s(:), snorm
+    real(dp), intent(in) :: xnorm
+    integer, intent(in) :: k
+    logical, intent(in) :: step_back_method, solved
+    real(dp), intent(out) :: x_new(:), g_new(:), t
+    integer, intent(inout) :: repeats
+    logical, intent(out) :: again
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: g_t(:)
+    logical, allocatable :: violated(:), touched(:), limit(:)
+    integer :: m, mt, halvings
+    m = prob%m
+    mt = prob%m + prob%n_eq
+    again = .false.
+    allocate(g_t(mt), violated(m), touched(m), limit(m))
+    x_new = self%x + s
+    ! a held variable lands on its bound exactly (not a rounding beyond it)
+    if (prob%n_bounds > 0 .and. self%opts%hold_bounds) x_new = prob%project_to_bounds(x_new)
+    t = 1.0_dp
+    if (mt > 0) then
+      call prob%constraint_values(x_new, g_new, err)
+      if (err%failed()) return
+      ! a non-finite constraint value is a failed trial: shorten the step
+      halvings = 0
+      do while (.not. all(ieee_is_finite(g_new)) .and. halvings < max_halvings)
+        halvings = halvings + 1
+        s = 0.5_dp*s
+        x_new = self%x + s
+        call prob%constraint_values(x_new, g_new, err)
+        if (err%failed()) return
+      end do
+      if (halvings > 0) then
+        snorm = maxval(abs(s))
+        call self%note('constraints not finite at the trial point: step halved '//str(halvings)//' times')
+      end if
+      if (.not. all(ieee_is_finite(g_new))) then
+        call err%set('constraints', 'not finite anywhere along the step (halved '//str(max_halvings)//' times)')
+        return
+      end if
+      violated = g_new(1:m) > self%opts%feas_tol
+      touched = (.not. self%active(1:m)) .and. (g_new(1:m) >= -self%opts%feas_tol)
+      if (step_back_method .and. any(violated)) then
+        ! ---- step back to the farthest feasible point of the segment (B13)
+        call self%step_back(prob, s, g_new, t, g_t, limit, err)
+        if (err%failed()) return
+        if (t*snorm <= self%opts%xtol*(1.0_dp + xnorm) .and. .not. any(limit .and. .not. self%active(1:m))) then
+          ! Potter §9.5 item 3: backing out of the new violation entered the
+          ! violated region of an active constraint; the step-back ends at
+          ! x_k with the same active set and would repeat the same design.
+          if (self%opts%potter_repeat .and. any(violated .and. .not. self%active(1:m)) &
+              .and. repeats < m) then
+            repeats = repeats + 1
+            self%potter_repeats = self%potter_repeats + 1
+            call self%note('step-back cycling (Potter 9.5 item 3): limited by active ' &
+              //set_text(limit)//' at t = '//str(t, 3)//'; step repeated with ' &
+              //set_text(violated .and. .not. self%active(1:m))//' active (fix (a))')
+            self%additions = self%additions + count(violated .and. .not. self%active(1:m))
+            self%active(1:m) = self%active(1:m) .or. violated
+            again = .true.
+            return
+          end if
+          call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
+            ' (Potter, FORMULATION.md 9.5 item 3): backing out of violated constraint(s) ' &
+            //set_text(violated .and. .not. self%active(1:m))//' entered the violated region of active ' &
+            //set_text(limit)//'; the step-back returns to x_k with the same active set, so the ' &
+            //'next iteration would reproduce the same design')
+          return
+        end if
+        self%step_backs = self%step_backs + 1
+        x_new = self%x + t*s
+        g_new = g_t
+        call self%note('step-back (B13) to t = '//str(t, 6)//', added '//set_text(limit .and. &
+                       .not. self%active(1:m)))
+        self%additions = self%additions + count(limit .and. .not. self%active(1:m))
+        self%active(1:m) = self%active(1:m) .or. limit
+      else
+        call self%add_to_active(violated, touched, step_back_method)
+      end if
+      if (.not. solved) call self%release_satisfied(g_new(1:m))
+    end if
+  end subroutine trial_point
 
   !> GNLC.NS: a violated constraint is treated as an active one (§9.4); every
   !> method adds the constraints the step makes active (touched).
@@ -642,7 +705,7 @@ contains
     real(dp), parameter :: auto_factor = 1.0e-8_dp, auto_rcond = 1.4901161193847656e-8_dp
     logical :: auto_exact
     character(len=:), allocatable :: what, rank_text, how
-    integer :: i, n, rank
+    integer :: i, j, n, rank
     n = prob%n
     if (hess_kind == hessian_gauss) then
       self%gm = 2.0_dp*matmul(self%jac, transpose(self%jac))
@@ -658,6 +721,25 @@ contains
     end if
     allocate(lu(n, n), ipiv(n))
     lu = self%gm
+    ! (default settings) B10 needs M = G + Sum lambda_j A_j, not G, to be
+    ! regular, and the step only on the tangent space of the equalities,
+    ! which are active at every step: judge M (multipliers and constraint
+    ! Hessians of the last solved step) + scale Sum_eq c c^T/|c|^2.  Where
+    ! that is regular and G is not, no Levenberg shift slows the iteration:
+    ! where M itself is singular, B10 in lambda fails and B10/B11 are solved
+    ! together in (s, lambda) (HS 28, 2 residuals in 3 variables and one
+    ! linear equality: x* in one step; HS 27: f independent of x3, M regular
+    ! through the equality's curvature)
+    if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp .and. self%last_solved) then
+      do i = 1, size(self%lambda)
+        if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) lu = lu + self%lambda(i)*self%hess(:, :, i)
+      end do
+    end if
+    do i = prob%m + 1, prob%m + prob%n_eq
+      if (.not. self%opts%auto_regularize .or. self%opts%regularization > 0.0_dp) exit   ! the user's choice
+      if (norm2(self%dg(:, i)) > 0.0_dp) lu = lu + max(maxval([(abs(self%gm(j, j)), j=1, n)]), 1.0_dp)* &
+        spread(self%dg(:, i), 2, n)*spread(self%dg(:, i), 1, n)/norm2(self%dg(:, i))**2
+    end do
     call lu_factor(lu, ipiv, lerr, rc)
     if (lerr%failed()) rc = 0.0_dp
     ! with the automatic choice (default) an objective Hessian is treated as
@@ -802,7 +884,13 @@ contains
   end subroutine make_convex
 
   !> Multipliers and step at x_k for the current active set, with the drop
-  !> rule of §9.4 (most negative multiplier first, re-solve, repeat).
+  !> rule of §9.4 (most negative multiplier first, re-solve, repeat) and the
+  !> simple bounds as bounds: an active bound holds its variable at the
+  !> bound in the step (the multiplier system sees only the free variables),
+  !> and a free variable whose step crosses its bound is held there and the
+  !> step recomputed (no analysis).  A bound added here is not dropped in the
+  !> same call (its sign is judged at the next iterate, on the bound), so
+  !> the loop ends.
   subroutine compute_step(self, prob, s, solved, residual, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
@@ -810,82 +898,202 @@ contains
     logical, intent(out) :: solved
     real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
-    type(multiplier_system_t) :: msys
-    type(multiplier_result_t) :: mres
-    class(opt_problem_t), pointer :: pprob
-    integer, allocatable :: idx(:)
-    real(dp), allocatable :: lam(:), lam_prev(:)
-    logical, allocatable :: actual(:)
+    real(dp), allocatable :: lam_prev(:), xt(:)
+    logical, allocatable :: new_bound(:), hit(:)
     real(dp) :: crit, worst, thresh
-    integer :: i, j, l, mt, jdrop
+    integer :: i, j, m0, mt, jdrop, round
     mt = prob%m + prob%n_eq
-    pprob => prob
-    allocate(lam_prev(mt))
+    m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
+    allocate(new_bound(mt), hit(mt), xt(prob%n), lam_prev(mt))
     lam_prev = self%lambda
     thresh = self%opts%mult_tol*norm2(self%gradf)
-    residual = 0.0_dp
-    do
-      l = count(self%active)
-      if (l == 0) then
-        call gauss_step(self%gm, self%gradf, s, err)       ! B12
-        self%lambda = 0.0_dp
-        solved = .true.
-        return
-      end if
-      idx = pack([(i, i=1, mt)], self%active)
-      allocate(lam(l), actual(l))
-      if (self%opts%method == method_gauss_constrained) then
-        call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, err)   ! P16, P17
-        if (err%failed()) return
-        solved = .true.
-      else
-        do j = 1, l
-          i = idx(j)
-          if (.not. self%have_hess(i)) then
-            ! Potter §9.5 item 1: Hessians of general constraints re-evaluated at every iterate
-            call prob%constraint_hessian(i, self%x, self%hess(:, :, i), err)
-            if (err%failed()) return
-            self%have_hess(i) = .true.
-          end if
-          actual(j) = prob%con_kind(i) == con_general
-        end do
-        call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
-                        actual, pprob, nonneg=idx <= prob%m)
-        lam = lam_prev(idx)                           ! warm start from the previous iteration
-        call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
-        if (err%failed()) return
-        self%newton_solves = self%newton_solves + 1
-        s = msys%s
-        solved = mres%solved
-        residual = mres%residual
-        if (mres%how /= 'newton') then
-          self%powell_fallbacks = self%powell_fallbacks + 1
-          call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
-            '); Powell minimised H = Sum g^2 ('//str(mres%powell_evaluations)//' evaluations, '// &
-            mres%how//'), max |g| = '//str(mres%residual, 3))
-        end if
-      end if
-      self%lambda = 0.0_dp
-      self%lambda(idx) = lam
+    new_bound = .false.
+    do round = 1, 2*(mt + prob%n) + 2
+      call self%limit_violated(prob)
+      call self%step_for_set(prob, lam_prev, s, solved, residual, err)
+      if (err%failed()) return
       ! drop rule: the most negative multiplier of an inequality leaves the set
       jdrop = 0
       worst = 0.0_dp
-      do j = 1, l
-        i = idx(j)
-        if (i > prob%m) cycle
-        crit = lam(j)*norm2(self%dg(:, i))
+      do i = 1, prob%m
+        if (.not. self%active(i) .or. new_bound(i)) cycle
+        crit = self%lambda(i)*norm2(self%dg(:, i))
         if (crit < -thresh .and. crit < worst) then
           worst = crit
           jdrop = i
         end if
       end do
-      if (jdrop == 0) return
-      self%active(jdrop) = .false.
-      self%drops = self%drops + 1
-      call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
-      deallocate(lam, actual)
+      if (jdrop /= 0) then
+        self%active(jdrop) = .false.
+        self%drops = self%drops + 1
+        call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
+        cycle
+      end if
+      ! free variables whose step leaves the box: held at the bound, step recomputed
+      xt = self%x + s
+      hit = .false.
+      do i = m0 + 1, prob%m
+        j = abs(prob%bound_var(i - m0))
+        if (self%active(i)) cycle
+        if (prob%bound_var(i - m0) < 0) hit(i) = xt(j) < prob%xl(j)
+        if (prob%bound_var(i - m0) > 0) hit(i) = xt(j) > prob%xu(j)
+      end do
+      if (.not. any(hit)) return
+      call self%note('bound(s) '//set_text(hit)//' reached by the step: variables held there, step recomputed')
+      self%additions = self%additions + count(hit)
+      self%active = self%active .or. hit
+      new_bound = new_bound .or. hit
     end do
   end subroutine compute_step
+
+  !> GNLC.NS makes every violated constraint active; with more active
+  !> general constraints than free variables B11 has no solution (HS 18 from
+  !> (2, 2): x1 held at its bound, both constraints violated; HS 23 at
+  !> (0, 0): five in two variables) and Powell's compromise pins the set.
+  !> The least violated (by g / |grad g|, the linearised distance) leave the
+  !> set for this step until it is square; still violated at the next
+  !> iterate, they rejoin.
+  subroutine limit_violated(self, prob)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer :: i, m0, nfree, ngen, iout
+    real(dp) :: dist, dmin
+    logical, allocatable :: held(:), out(:)
+    m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
+    allocate(held(prob%n), out(size(self%active)))
+    held = .false.
+    do i = m0 + 1, prob%m
+      if (self%active(i)) held(abs(prob%bound_var(i - m0))) = .true.
+    end do
+    nfree = count(.not. held)
+    out = .false.
+    do
+      ngen = count(self%active(1:m0)) + count(self%active(prob%m + 1:))
+      if (ngen <= nfree) exit
+      iout = 0
+      dmin = huge(1.0_dp)
+      do i = 1, m0
+        if (.not. self%active(i) .or. self%g(i) <= self%opts%feas_tol) cycle
+        dist = self%g(i)/max(norm2(self%dg(:, i)), sqrt(epsilon(1.0_dp)))
+        if (dist < dmin) then
+          dmin = dist
+          iout = i
+        end if
+      end do
+      if (iout == 0) exit
+      self%active(iout) = .false.
+      out(iout) = .true.
+    end do
+    if (any(out)) call self%note('active set over-determined ('//str(ngen + count(out))//' for '//str(nfree)// &
+      ' free variables): violated '//set_text(out)//' left out of this step')
+  end subroutine limit_violated
+
+  !> Multipliers and step for the current active set: general constraints
+  !> and equalities through B10/B11 (or P16/P17), active bounds as fixed
+  !> variables; the multiplier of a bound is the force it carries.
+  subroutine step_for_set(self, prob, lam_prev, s, solved, residual, err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout), target :: prob
+    real(dp), intent(in) :: lam_prev(:)
+    real(dp), intent(out), contiguous :: s(:)
+    logical, intent(out) :: solved
+    real(dp), intent(out) :: residual
+    type(error_t), intent(inout) :: err
+    type(multiplier_system_t) :: msys
+    type(multiplier_result_t) :: mres
+    class(opt_problem_t), pointer :: pprob
+    integer, allocatable :: idx(:)
+    real(dp), allocatable :: lam(:), s_fix(:), force(:)
+    logical, allocatable :: actual(:), fixed(:), general(:)
+    logical :: ok
+    type(error_t) :: lerr
+    integer :: i, j, l, mt, m0, v
+    mt = prob%m + prob%n_eq
+    m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
+    pprob => prob
+    residual = 0.0_dp
+    solved = .true.
+    allocate(fixed(prob%n), s_fix(prob%n), general(mt))
+    fixed = .false.
+    s_fix = 0.0_dp
+    general = .true.
+    do i = m0 + 1, prob%m
+      general(i) = .false.
+      if (.not. self%active(i)) cycle
+      v = prob%bound_var(i - m0)
+      j = abs(v)
+      if (fixed(j)) cycle                        ! both bounds active (lower = upper): the first holds
+      fixed(j) = .true.
+      s_fix(j) = merge(prob%xu(j), prob%xl(j), v > 0) - self%x(j)
+    end do
+    idx = pack([(i, i=1, mt)], self%active .and. general)
+    l = size(idx)
+    allocate(lam(l), actual(l))
+    self%lambda = 0.0_dp
+    if (l == 0 .and. .not. any(fixed)) then
+      call gauss_step(self%gm, self%gradf, s, err)       ! B12
+      return
+    end if
+    if (self%opts%method == method_gauss_constrained .and. .not. any(fixed)) then
+      ! P16, P17; G singular off the equalities' tangent space (see curvature): as below
+      call lerr%clear()
+      call linear_multipliers(self%gm, self%gradf, self%dg(:, idx), self%g(idx), lam, s, lerr)
+      if (.not. lerr%failed()) then
+        self%lambda(idx) = lam
+        return
+      end if
+    end if
+    do j = 1, l
+      i = idx(j)
+      if (.not. self%have_hess(i)) then
+        ! Potter §9.5 item 1: Hessians of general constraints re-evaluated at every iterate
+        call prob%constraint_hessian(i, self%x, self%hess(:, :, i), err)
+        if (err%failed()) return
+        self%have_hess(i) = .true.
+      end if
+      actual(j) = prob%con_kind(i) == con_general
+    end do
+    call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
+                    actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
+    if (l == 0) then
+      call msys%evaluate_step(lam, ok)                   ! B12 on the free variables
+      if (.not. ok) call err%set('gauss_step', 'G restricted to the free variables is singular (rcond = '// &
+                                 str(msys%m_rcond, 3)//')')
+      if (err%failed()) return
+    else
+      lam = lam_prev(idx)                               ! warm start from the previous iteration
+      call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
+      if (err%failed()) return
+      self%newton_solves = self%newton_solves + 1
+      solved = mres%solved
+      residual = mres%residual
+      call self%note_b11(mres)
+      self%lambda(idx) = lam
+    end if
+    s = msys%s
+    ! bound multipliers: lower = force_j, upper = -force_j
+    force = msys%bound_multipliers(lam)
+    do i = m0 + 1, prob%m
+      if (.not. self%active(i)) cycle
+      v = prob%bound_var(i - m0)
+      self%lambda(i) = merge(-force(abs(v)), force(abs(v)), v > 0)
+    end do
+  end subroutine step_for_set
+
+  !> Log how B11 was solved when Newton in lambda did not.
+  subroutine note_b11(self, mres)
+    class(gauss_optimizer_t), intent(inout) :: self
+    type(multiplier_result_t), intent(in) :: mres
+    if (mres%how == 'kkt') then
+      call self%note('B11 on '//set_text(self%active)//': Newton in lambda failed ('//mres%newton_failure// &
+        '); B10 and B11 solved together by Newton in (s, lambda)')
+    else if (mres%how /= 'newton') then
+      self%powell_fallbacks = self%powell_fallbacks + 1
+      call self%note('B11 on '//set_text(self%active)//': Newton failed ('//mres%newton_failure// &
+        '); Powell minimised H = Sum g^2 ('//str(mres%powell_evaluations)//' evaluations, '// &
+        mres%how//'), max |g| = '//str(mres%residual, 3))
+    end if
+  end subroutine note_b11
 
   !> Farthest feasible point x_k + t s on the segment (P), located by B13's
   !> linear interpolation, repeated (Illinois regula falsi) until the

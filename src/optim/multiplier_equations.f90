@@ -25,7 +25,7 @@ module multiplier_equations
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: lu_factor, lu_solve, cholesky_factor
+  use linalg, only: lu_factor, lu_solve, cholesky_factor, sym_generalized_eig
   use optim_problem, only: opt_problem_t
   use powell_minimizer, only: powell_function_t, powell_options_t, powell_result_t, powell_minimize
   implicit none
@@ -48,6 +48,9 @@ module multiplier_equations
     real(dp), allocatable :: a(:, :, :)     !< (n, n, l) A_j
     logical, allocatable :: actual(:)       !< (l) use g_j(x_k + s) in B11 (Potter)
     logical, allocatable :: nonneg(:)       !< (l) inequality: Powell's compromise keeps lambda_j >= 0
+    logical, allocatable :: fixed(:)        !< (n) variables held at a simple bound: s_j = s_fix(j)
+    real(dp), allocatable :: s_fix(:)       !< (n) their prescribed step (bound - x_k)
+    real(dp) :: fix_scale = 1.0_dp          !< diagonal put in the rows of fixed variables (G's scale)
     class(opt_problem_t), pointer :: prob => null()   !< needed only where actual(j)
     real(dp) :: rcond_min = 1.0e-14_dp      !< M with a smaller reciprocal condition is singular
     ! state of the last `evaluate_step`
@@ -67,6 +70,9 @@ module multiplier_equations
     procedure :: solve
     procedure :: model_positive_definite
     procedure :: project
+    procedure :: fix_rows
+    procedure :: kkt_newton
+    procedure :: bound_multipliers
   end type multiplier_system_t
 
   type :: multiplier_result_t
@@ -82,13 +88,15 @@ contains
 
   !> Load the data of one iteration and active set.  `prob` is only used for
   !> constraints with actual(j) = .true.
-  subroutine setup(self, gmat, gradf, xk, idx, gval, c, a, actual, prob, nonneg)
+  subroutine setup(self, gmat, gradf, xk, idx, gval, c, a, actual, prob, nonneg, fixed, s_fix)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(in) :: gmat(:, :), gradf(:), xk(:), gval(:), c(:, :), a(:, :, :)
     integer, intent(in) :: idx(:)
     logical, intent(in) :: actual(:)
     class(opt_problem_t), intent(in), pointer :: prob
     logical, intent(in), optional :: nonneg(:)   !< default: no sign restriction
+    logical, intent(in), optional :: fixed(:)    !< (n) variables held at a bound (default none)
+    real(dp), intent(in), optional :: s_fix(:)   !< (n) their step
     integer :: j
     self%n = size(xk)
     self%l = size(idx)
@@ -102,6 +110,11 @@ contains
     self%actual = actual
     self%nonneg = [(.false., j=1, size(idx))]
     if (present(nonneg)) self%nonneg = nonneg
+    self%fixed = [(.false., j=1, size(xk))]
+    self%s_fix = [(0.0_dp, j=1, size(xk))]
+    if (present(fixed)) self%fixed = fixed
+    if (present(s_fix)) self%s_fix = s_fix
+    self%fix_scale = max(maxval([(abs(gmat(j, j)), j=1, size(xk))]), 1.0e-300_dp)
     self%prob => prob
     if (allocated(self%mlu)) deallocate(self%mlu, self%ipiv, self%s)
     allocate(self%mlu(self%n, self%n), self%ipiv(self%n), self%s(self%n))
@@ -123,6 +136,7 @@ contains
       self%mlu = self%mlu + lambda(j)*self%a(:, :, j)
       self%s = self%s - lambda(j)*self%c(:, j)
     end do
+    call self%fix_rows(self%mlu, self%s)
     call lu_factor(self%mlu, self%ipiv, lerr, self%m_rcond)
     ok = .not. lerr%failed() .and. self%m_rcond >= self%rcond_min
     if (.not. ok) then
@@ -164,11 +178,202 @@ contains
     allocate(w(self%n, self%l), z(self%n, self%l))
     do j = 1, self%l
       w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), self%s)
+      where (self%fixed) w(:, j) = 0.0_dp
     end do
     z = w
     call lu_solve(self%mlu, self%ipiv, z, lerr)
     jm = -matmul(transpose(w), z)
   end subroutine newton_matrix
+
+  !> Variables held at a simple bound: their rows and columns of mat become
+  !> fix_scale times the identity and, with rhs, their prescribed step goes
+  !> to the right-hand side after its contribution has been moved out of
+  !> the free rows.  A solve then gives s_j = s_fix(j) on the fixed variables
+  !> and B10 restricted to the free ones (bounds as bounds, not as rows of
+  !> the multiplier system).
+  pure subroutine fix_rows(self, mat, rhs)
+    class(multiplier_system_t), intent(in) :: self
+    real(dp), intent(inout) :: mat(:, :)
+    real(dp), intent(inout), optional :: rhs(:)
+    integer :: j
+    if (.not. any(self%fixed)) return
+    if (present(rhs)) then
+      do j = 1, self%n
+        if (self%fixed(j)) rhs = rhs - mat(:, j)*self%s_fix(j)
+      end do
+    end if
+    do j = 1, self%n
+      if (.not. self%fixed(j)) cycle
+      mat(j, :) = 0.0_dp
+      mat(:, j) = 0.0_dp
+      mat(j, j) = self%fix_scale
+      if (present(rhs)) rhs(j) = self%fix_scale*self%s_fix(j)
+    end do
+  end subroutine fix_rows
+
+  !> r = M s + grad F + Sum lambda_j c_j at the current step (M = G + Sum
+  !> lambda_j A_j): zero on the free variables; on a fixed one the force its
+  !> bound carries, so the bound's multiplier is r_j (lower) or -r_j (upper).
+  function bound_multipliers(self, lambda) result(r)
+    class(multiplier_system_t), intent(in) :: self
+    real(dp), intent(in) :: lambda(:)
+    real(dp) :: r(self%n)
+    real(dp), allocatable :: mm(:, :)
+    integer :: j
+    allocate(mm(self%n, self%n))
+    mm = self%gmat
+    r = self%gradf
+    do j = 1, self%l
+      mm = mm + lambda(j)*self%a(:, :, j)
+      r = r + lambda(j)*self%c(:, j)
+    end do
+    r = r + matmul(mm, self%s)
+  end function bound_multipliers
+
+  !> B10 and B11 solved together by Newton's method in (s_free, lambda):
+  !> residuals r = M(lambda) s + grad F + Sum lambda_j c_j (free rows) and
+  !> m(lambda, s), Jacobian [M_FF W_F; W_F^T 0] with W_j = c_j + A_j s.  Its
+  !> roots are those of B10/B11 wherever M is nonsingular, but the Jacobian
+  !> needs M nonsingular only on the tangent space of the active
+  !> constraints (the second-order conditions), not on all of R^n.  At the
+  !> optimum of HS 18 and 31 (homogeneous quadratic objective, constraint
+  !> x1 x2 >= c) M(lambda*) is singular and s(lambda) of B10 is -x_k for
+  !> every other lambda, so B11 in lambda alone has no root.  Newton starts
+  !> at s = 0 (x_k); a root is accepted only if the Jacobian has the inertia
+  !> (n_free, l, 0) of a minimiser of the Lagrangian model on the active
+  !> constraints (not a saddle or a maximum).  On return self%s is the step.
+  subroutine kkt_newton(self, lam, tol, max_it, ok, reason, iterations, err)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(inout) :: lam(:)
+    real(dp), intent(in) :: tol
+    integer, intent(in) :: max_it
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: reason
+    integer, intent(out) :: iterations
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: mm(:, :), kk(:, :), w(:, :), r1(:), r2(:), d(:), s(:), dsc(:)
+    integer, allocatable :: free(:), piv(:)
+    integer :: nf, l, nk, it, j
+    real(dp) :: rc, scale
+    type(error_t) :: lerr
+    l = self%l
+    free = pack([(j, j=1, self%n)], .not. self%fixed)
+    nf = size(free)
+    nk = nf + l
+    allocate(mm(self%n, self%n), kk(nk, nk), w(self%n, l), r1(self%n), r2(l), d(nk), piv(nk), dsc(nk))
+    s = merge(self%s_fix, 0.0_dp, self%fixed)
+    ok = .false.
+    reason = ''
+    iterations = 0
+    do it = 0, max_it
+      iterations = it
+      self%s = s
+      call self%residual(r2, err)
+      if (err%failed()) return
+      if (.not. all(ieee_is_finite(r2)) .or. maxval(abs(r2)) > 1.0e100_dp) then
+        reason = 'constraint values overflow at iterate '//str(it)
+        return
+      end if
+      ! constraint gradients at x_k + s: the model's c + A s, or for Potter's
+      ! actual constraints their own gradient (the stationarity of the
+      ! quadratic F model under the actual constraint; with the model
+      ! gradient the multipliers pass a pole where c + A s vanishes, as for
+      ! exp(x) at s = -1 in HS 34, and Newton converges only linearly)
+      do j = 1, l
+        if (self%actual(j) .and. it > 0) then
+          call self%prob%general_constraint_gradient(self%idx(j), self%xk + s, r2(j), w(:, j), err)
+          self%prob%count%constraint_gradients = self%prob%count%constraint_gradients + 1
+          if (err%failed()) return
+        else
+          w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), s)
+        end if
+      end do
+      if (it == 0) call first_order_multipliers()
+      mm = self%gmat
+      r1 = self%gradf + matmul(self%gmat, s) + matmul(w, lam)
+      scale = maxval(abs(self%gradf)) + maxval(abs(matmul(self%gmat, s))) + sum(abs(lam)*maxval(abs(w), dim=1))
+      do j = 1, l
+        mm = mm + lam(j)*self%a(:, :, j)
+      end do
+      if (.not. all(ieee_is_finite(r1))) then
+        reason = 'stationarity residual overflows at iterate '//str(it)
+        return
+      end if
+      kk = 0.0_dp
+      kk(1:nf, 1:nf) = mm(free, free)
+      kk(1:nf, nf + 1:nk) = w(free, :)
+      kk(nf + 1:nk, 1:nf) = transpose(w(free, :))
+      if (maxval(abs(r2)) <= tol .and. maxval(abs(r1(free)), mask=nf > 0) <= 1.0e-9_dp*max(scale, tiny(1.0_dp))) then
+        ok = minimiser_inertia()
+        if (.not. ok) reason = 'root is no minimiser of the Lagrangian model (inertia of [M W; W^T 0])'
+        return
+      end if
+      if (it == max_it) then
+        reason = 'no convergence in '//str(max_it)//' iterations (max |g| = '//str(maxval(abs(r2)), 3)//')'
+        return
+      end if
+      d(1:nf) = -r1(free)
+      d(nf + 1:nk) = -r2
+      ! symmetric equilibration: the multipliers and the step live on
+      ! different scales, and rcond should judge singularity, not units
+      do j = 1, nk
+        dsc(j) = 1.0_dp/sqrt(max(maxval(abs(kk(j, :))), tiny(1.0_dp)))
+      end do
+      do j = 1, nk
+        kk(:, j) = dsc*kk(:, j)*dsc(j)
+      end do
+      d = dsc*d
+      call lu_factor(kk, piv, lerr, rc)
+      if (lerr%failed() .or. rc < 1.0e-14_dp) then
+        reason = 'singular KKT matrix at iterate '//str(it)
+        return
+      end if
+      call lu_solve(kk, piv, d, lerr)
+      d = dsc*d
+      s(free) = s(free) + d(1:nf)
+      lam = lam + d(nf + 1:nk)
+      if (maxval(abs(lam)) > 1.0e12_dp .or. .not. all(ieee_is_finite(s))) then
+        reason = 'iterates diverge'
+        return
+      end if
+    end do
+  contains
+    !> The start: least-squares multipliers of grad F + W lambda = 0 on the
+    !> free variables at x_k (the warm start may be a Powell compromise,
+    !> huge and meaningless).  Kept if W_F is rank-deficient.
+    subroutine first_order_multipliers()
+      real(dp), allocatable :: ww(:, :), rhs(:)
+      integer, allocatable :: p(:)
+      real(dp) :: rcw
+      type(error_t) :: werr
+      if (nf == 0) return
+      allocate(ww(l, l), rhs(l), p(l))
+      ww = matmul(transpose(w(free, :)), w(free, :))
+      rhs = -matmul(transpose(w(free, :)), self%gradf(free))
+      call lu_factor(ww, p, werr, rcw)
+      if (werr%failed() .or. rcw < 1.0e-12_dp) return
+      call lu_solve(ww, p, rhs, werr)
+      if (werr%failed()) return
+      lam = rhs
+    end subroutine first_order_multipliers
+
+    logical function minimiser_inertia() result(good)
+      real(dp), allocatable :: eye(:, :), ev(:)
+      real(dp) :: big
+      integer :: i
+      allocate(eye(nk, nk), ev(nk))
+      eye = 0.0_dp
+      do i = 1, nk
+        eye(i, i) = 1.0_dp
+      end do
+      call lerr%clear()
+      call sym_generalized_eig(kk, eye, ev, lerr)
+      good = .not. lerr%failed()
+      if (.not. good) return
+      big = 1.0e-12_dp*maxval(abs(ev))
+      good = count(ev > big) == nf .and. count(ev < -big) == l
+    end function minimiser_inertia
+  end subroutine kkt_newton
 
   !> Is G + Sum lambda_j A_j positive definite (Cholesky succeeds)?
   logical function model_positive_definite(self, lambda) result(pd)
@@ -182,6 +387,7 @@ contains
     do j = 1, self%l
       mm = mm + lambda(j)*self%a(:, :, j)
     end do
+    call self%fix_rows(mm)
     call cholesky_factor(mm, lerr)
     pd = .not. lerr%failed()
   end function model_positive_definite
@@ -238,7 +444,7 @@ contains
     real(dp) :: h_best
     type(powell_options_t) :: popts
     type(powell_result_t) :: pres
-    logical :: ok
+    logical :: ok, kkt_done
     character(len=:), allocatable :: why, why2
     integer :: its
 
@@ -258,10 +464,38 @@ contains
       res%newton_iterations = res%newton_iterations + its
       if (.not. ok) why = why//'; from lambda = 0: '//why2
     end if
+    kkt_done = .false.
     if (ok) then
       lambda = lam_newton
       res%how = 'newton'
-    else
+    else if (.true.) then
+      ! B10 and B11 together: where the elimination of s is degenerate (M or
+      ! the Newton matrix singular), the (s, lambda) system needs M
+      ! nonsingular only on the tangent space.  Not where Newton diverged
+      ! or stalled: there B11 has no root near and Powell's compromise is
+      ! the papers' remedy (with it HS 15 reaches x*; the (s, lambda) root,
+      ! a vertex with a negative multiplier, led to its other local minimum)
+      lam_newton = lambda
+      call self%kkt_newton(lam_newton, tol, max_newton, kkt_done, why2, its, err)
+      if (err%failed()) return
+      res%newton_iterations = res%newton_iterations + its
+      ! a negative multiplier of a violated inequality would make the drop
+      ! rule abandon its restoration on the strength of a root that Newton in
+      ! lambda (with its positive-definiteness safeguard) did not reach:
+      ! such a root is left to Powell's compromise (HS 15: the root is the
+      ! vertex (-1, -1) with lambda_2 = -201; dropping g2 there led to HS 15's
+      ! other local minimum)
+      if (kkt_done) kkt_done = .not. any(self%nonneg .and. self%gval > 100.0_dp*tol .and. lam_newton < 0.0_dp)
+      if (kkt_done) then
+        lambda = lam_newton
+        res%how = 'kkt'
+        res%newton_failure = why
+      else
+        if (len(why2) == 0) why2 = 'negative multiplier of a violated inequality'
+        why = why//'; (s, lambda) Newton: '//why2
+      end if
+    end if
+    if (.not. (ok .or. kkt_done)) then
       res%newton_failure = why
       ! Powell on H from the best point Newton saw (Boston et al. after B11)
       popts%ftol = 1.0e-15_dp
@@ -291,7 +525,8 @@ contains
         res%how = 'powell+newton'
       end if
     end if
-    call self%evaluate_step(lambda, ok)
+    ok = .true.
+    if (.not. kkt_done) call self%evaluate_step(lambda, ok)
     if (.not. ok) then
       call err%set('multiplier equations', 'G + Sum lambda_j A_j is singular at every multiplier tried (rcond = ' &
                    //str(self%m_rcond, 3)//'); the active set cannot define a step')

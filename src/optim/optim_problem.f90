@@ -64,6 +64,7 @@ module optim_problem
     real(dp), allocatable :: con_d(:)           !< (m+n_eq) d_i
     real(dp), allocatable :: xl(:), xu(:)       !< (n) simple bounds (-huge, huge: none), see set_bounds
     integer :: n_bounds = 0                     !< finite bounds, constraints m-n_bounds+1..m
+    integer, allocatable :: bound_var(:)        !< (n_bounds) variable of each bound: -j lower, +j upper
     real(dp) :: fd_rel_step = 1.4901161193847656e-8_dp   !< sqrt(eps): forward-difference step factor
     type(opt_counters_t) :: count
   contains
@@ -143,6 +144,7 @@ contains
     self%xl = [(-huge(1.0_dp), i=1, n)]
     self%xu = [(huge(1.0_dp), i=1, n)]
     self%n_bounds = 0
+    self%bound_var = [integer ::]
     call self%reset_counters()
   end subroutine init_problem
 
@@ -201,11 +203,12 @@ contains
   end subroutine set_linear_equalities
 
   !> Simple bounds lower <= x <= upper (|value| >= 1e30: none), once, after
-  !> the other constraints are set.  Each finite bound becomes a linear
-  !> inequality with a unit gradient, numbered after the inequalities given
-  !> to init_problem (m grows by their number, so equality j stays m + j);
-  !> the NS methods also keep every trial point inside the box (projection),
-  !> so F is never evaluated outside it.
+  !> the other constraints are set.  Each finite bound is numbered as a
+  !> linear inequality with a unit gradient after the inequalities given to
+  !> init_problem (m grows by their number, so equality j stays m + j), for
+  !> the output (value, multiplier, working set); the optimizer handles it as
+  !> a bound: an active bound holds its variable (bound_var) in the step,
+  !> and no trial point leaves the box, so F is never evaluated outside it.
   subroutine set_bounds(self, lower, upper)
     class(opt_problem_t), intent(inout) :: self
     real(dp), intent(in) :: lower(:), upper(:)
@@ -232,16 +235,20 @@ contains
     self%con_d(m0 + nb + 1:) = d(m0 + 1:)
     self%m = m0 + nb
     self%n_bounds = nb
+    if (allocated(self%bound_var)) deallocate(self%bound_var)
+    allocate(self%bound_var(nb))
     k = m0
     do j = 1, self%n
       self%xl(j) = merge(lower(j), -huge(1.0_dp), lower(j) > -none)
       self%xu(j) = merge(upper(j), huge(1.0_dp), upper(j) < none)
       if (lower(j) > -none) then                    ! lower - x <= 0
         k = k + 1
+        self%bound_var(k - m0) = -j
         call self%set_linear_constraint(k, unit(j, -1.0_dp), -lower(j))
       end if
       if (upper(j) < none) then                     ! x - upper <= 0
         k = k + 1
+        self%bound_var(k - m0) = j
         call self%set_linear_constraint(k, unit(j, 1.0_dp), upper(j))
       end if
     end do

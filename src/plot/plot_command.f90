@@ -21,7 +21,8 @@ module plot_command
   use plot_animation, only: write_animation
   use plot_compare, only: write_compare_script
   use kinds, only: dp
-  use process_runner, only: shell_quote, run_command
+  use strings, only: shell_quote
+  use process_runner, only: run_command
   implicit none
   private
   public :: run_plot_command

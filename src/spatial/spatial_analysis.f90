@@ -13,10 +13,12 @@ module spatial_analysis
   use deck_reader, only: deck_t, invalid_value
   use table_output, only: table_t
   use progress, only: progress_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_band_user, mf_bdf_band_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use kear_element, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
-  use spatial_beam, only: spatial_stress_t, spatial_to_local
+  use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
+  use spatial_correlation, only: sdofs
+  use restart_file, only: write_restart_file, read_restart_file
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
@@ -42,7 +44,7 @@ contains
     type(lsode_counters_t) :: c
     type(spatial_stress_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), peak_stress(:), peak_angle(:), atol_vector(:), ring(:, :)
-    real(dp) :: t_end, dt_out, t, cpu0, cpu1, revolutions_done, ke, se
+    real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, revolutions_done, ke, se
     integer :: k, n_out, e, jb, jc, ml, per_rev
     real(dp) :: defect, dscale
     character(len=32), allocatable :: names(:)
@@ -57,7 +59,8 @@ contains
     call echo_transient_settings(out)
     call build_spatial(deck, inp, kin, links, jb, jc, err)
     if (err%failed()) return
-    call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err)
+    call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err, &
+                    formulation=spatial_formulation_of(s))
     if (err%failed()) then
       if (err%code /= 2) err%code = 2
       call err%add_context('deck '''//deck%path//''', group &spatial_mechanism')
@@ -82,19 +85,23 @@ contains
     end block
 
     allocate(y(model%state_size()))
-    y = 0.0_dp
-    call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+    call initial_state(deck, out, s, model, t0, y, err)
+    if (err%failed()) return
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
-    t_end = s%revolutions*two_pi/inp%omega
-    n_out = max(1, nint(t_end/dt_out))
+    t_end = t0 + s%revolutions*two_pi/inp%omega
+    n_out = max(1, nint((t_end - t0)/dt_out))
     ml = min(2*model%kd + 1, size(y) - 1)
     allocate(atol_vector(size(y)))
     atol_vector(1::2) = s%atol
     atol_vector(2::2) = s%atol_rate
-    call ode%init(size(y), 0.0_dp, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
+    call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
     if (err%failed()) return
-    if (s%mf == mf_bdf_band_user .or. s%mf == mf_bdf_band_fd) &
-      call out%comment('banded BDF: Jacobian half-bandwidths ml = mu = '//str(ml))
+    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
+      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
+                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
+    else if (s%mf == mf_bdf_band_fd) then
+      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '//str(ml))
+    end if
 
     call write_columns(out, model, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
@@ -107,11 +114,11 @@ contains
     allocate(ring(24, 0:max(per_rev, 1) - 1))
     defect = 0.0_dp
     dscale = 0.0_dp
-    call bar%start('spatial', 0.0_dp, t_end)
+    call bar%start('spatial', t0, t_end)
     call cpu_time(cpu0)
-    call output_row(0.0_dp)
+    call output_row(t0)
     do k = 1, n_out
-      t = k*dt_out
+      t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
       call ode%integrate_to(model, y, t, err)
       if (err%failed()) exit
@@ -140,8 +147,12 @@ contains
                        ' (largest change of a deflection column in one revolution / its largest value)')
     call model%energies(ode%t, y(1::2), y(2::2), ke, se)
     call out%summary('final elastic strain energy', str(se, 8)//' lb in')
+    if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
+      call write_restart_file(s%restart_out, ode%t, y, err)
+      if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
+    end if
     c = ode%counters()
-    revolutions_done = max(0.0_dp, ode%t*inp%omega/two_pi)
+    revolutions_done = max(0.0_dp, (ode%t - t0)*inp%omega/two_pi)
     call out%cost('cpu_seconds_integration', str(cpu1 - cpu0, 4))
     if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str((cpu1 - cpu0)/revolutions_done, 4))
     call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
@@ -149,6 +160,8 @@ contains
     call out%cost('rhs_evaluations', str(c%rhs_evals))
     call out%cost('jacobian_evaluations', str(c%jac_evals))
     call out%cost('lu_factorizations', str(c%lu_factorizations))
+    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%newton%n_factorizations - &
+      model%newton%n_lu)//' Cholesky and '//str(model%newton%n_lu)//' LU factorizations')
     call out%cost('mass_factorizations', str(model%n_mass_factorizations))
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
@@ -159,7 +172,7 @@ contains
     subroutine output_row(tt)
       real(dp), intent(in) :: tt
       real(dp), allocatable :: row(:)
-      real(dp) :: q(model%n), p(16), crank_deg
+      real(dp) :: q(model%n), p(sdofs), crank_deg
       integer :: kk, i, ee
       call model%set_time(tt)
       if (model%err%failed()) then
@@ -184,7 +197,7 @@ contains
       do i = 1, 3
         ee = model%links(i)%first_element + model%links(i)%n_elements - 1
         p = spatial_to_local(model%rb(ee)%rot, model%table%gather(ee, q), model%el(ee)%local_rotation)
-        row(kk + 1:kk + 6) = p(9:14)
+        row(kk + 1:kk + 6) = p(11:16)
         kk = kk + 6
       end do
       do i = 1, 3
@@ -212,6 +225,65 @@ contains
     end subroutine output_row
   end subroutine run_spatial
 
+  !> The initial state and time: the rigid-body state at t = 0, a linear
+  !> mode at the start position scaled to a largest transverse displacement
+  !> (v, w in the element frames) of mode_amplitude at rest, or a restart file
+  !> (its time, so the crank angle continues).
+  subroutine initial_state(deck, out, s, model, t0, y, err)
+    type(deck_t), intent(in) :: deck
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(in) :: s
+    type(spatial_model_t), intent(inout) :: model
+    real(dp), intent(out) :: t0, y(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: om(:), shapes(:, :)
+    real(dp) :: p(sdofs), wmax
+    integer :: e
+    t0 = 0.0_dp
+    y = 0.0_dp
+    select case (trim(s%initial))
+    case ('mode')
+      if (s%mode_number > model%n) then
+        call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
+                           'the model has only '//str(model%n)//' modes', err)
+        return
+      end if
+      allocate(om(model%n), shapes(model%n, model%n))
+      call model%linear_modes(om, err, shapes)
+      if (err%failed()) return
+      call model%set_time(0.0_dp)
+      wmax = 0.0_dp
+      do e = 1, size(model%el)
+        p = spatial_to_local(model%rb(e)%rot, model%table%gather(e, shapes(:, s%mode_number)), &
+                             model%el(e)%local_rotation)
+        wmax = max(wmax, maxval(abs(p([2, 3, 12, 13]))))
+      end do
+      y(1::2) = s%mode_amplitude*shapes(:, s%mode_number)/wmax
+      call out%comment('initial state: mode '//str(s%mode_number)//' ('//str(om(s%mode_number), 6)// &
+                       ' rad/s) scaled to a largest transverse displacement of '//str(s%mode_amplitude)//', at rest')
+    case ('restart')
+      call read_restart_file(s%restart_in, t0, y, err)
+      if (err%failed()) then
+        err%code = 2
+        call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
+        return
+      end if
+      call out%comment('initial state: restart file '//trim(s%restart_in)//' at t = '//str(t0))
+    case default
+      call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+    end select
+  end subroutine initial_state
+
+  !> The element formulation a deck asks for: 'default' is the consistent
+  !> element with stretching on (where Kear's linear u locks), Kear's otherwise
+  !> (as the planar analysis' 'default').
+  integer function spatial_formulation_of(s) result(f)
+    type(transient_settings_t), intent(in) :: s
+    f = spatial_formulation_kear
+    if (s%formulation == 'consistent' .or. (s%formulation == 'default' .and. s%effects%stretching)) &
+      f = spatial_formulation_consistent
+  end function spatial_formulation_of
+
   !> What the spatial analysis does not (yet) take from the shared groups.
   subroutine check_supported(deck, s, inp, err)
     type(deck_t), intent(in) :: deck
@@ -221,16 +293,11 @@ contains
     if (.not. inp%omega > 0.0_dp) then
       call invalid_value(deck, 'spatial_mechanism', 'omega', str(inp%omega), &
                          'the spatial analysis follows a turning crank: give omega > 0', err)
-    else if (s%initial /= 'rigid') then
-      call invalid_value(deck, 'transient', 'initial', ''''//trim(s%initial)//'''', &
-                         'the spatial analysis starts from the rigid-body state only (''rigid'')', err)
-    else if (s%formulation /= 'exact' .and. s%formulation /= 'default') then
-      ! the spatial element has one formulation: Kear's 'exact' strains (doc/spatial.md)
+    else if (all(s%formulation /= [character(len=16) :: 'exact', 'consistent', 'default'])) then
+      ! the spatial element's two interpolations of u (doc/spatial.md)
       call invalid_value(deck, 'effects', 'formulation', ''''//trim(s%formulation)//'''', &
-                         'the spatial element has the exact formulation only (''exact'' or ''default'')', err)
-    else if (len_trim(s%restart_out) > 0) then
-      call invalid_value(deck, 'transient', 'restart_out', ''''//trim(s%restart_out)//'''', &
-                         'restart files are not written by the spatial analysis yet', err)
+                         'the spatial element has the formulations ''consistent'' (quintic u) and ''exact'' '// &
+                         '(Kear''s linear u); ''default'' is consistent with stretching on, else exact', err)
     end if
   end subroutine check_supported
 
@@ -247,6 +314,11 @@ contains
                      str(inp%link_n_elements(1))//', '//str(inp%link_n_elements(2))//', '//str(inp%link_n_elements(3)))
     call out%comment('effects on: '//effects_summary(s%effects)//' (torsional inertia always; twist linear, '// &
                      'St. Venant, warping neglected)')
+    if (model%formulation == spatial_formulation_consistent) then
+      call out%comment('element formulation: consistent (u quintic with nodal u_x, u_xx: no membrane locking)')
+    else
+      call out%comment('element formulation: exact (Kear''s interpolation, u linear)')
+    end if
     call out%comment('rigid-body motion: loop closure solved by Newton at every time the integrator asks for')
     call model%table%describe(lines)
     do i = 1, size(lines)

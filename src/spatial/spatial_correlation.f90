@@ -1,5 +1,5 @@
 !> The variable correlation table of the spatial analysis (the papers' idea,
-!> src/assembly/correlation_table.f90, for 16-DOF elements): every element
+!> src/assembly/correlation_table.f90, for 20-DOF elements): every element
 !> DOF equals a coefficient times one global unknown, or is held at zero.
 !> The spatial model fills it node by node from its joint rules
 !> (doc/spatial.md, "Joints"); this module owns the bookkeeping, the
@@ -11,14 +11,14 @@ module spatial_correlation
   private
   public :: spatial_table_t, sdofs
 
-  integer, parameter :: sdofs = 16
+  integer, parameter :: sdofs = 20
   character(len=4), parameter :: node_dof_names(8) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ']
 
   type :: spatial_table_t
     integer :: n_elements = 0
     integer :: n_global = 0
     integer :: half_bandwidth = 0
-    integer, allocatable :: map(:, :)              !< (16, n_elements), 0 = held at zero
+    integer, allocatable :: map(:, :)              !< (20, n_elements), 0 = held at zero
     real(dp), allocatable :: coef(:, :)
     character(len=24), allocatable :: label(:)
   contains
@@ -109,7 +109,7 @@ contains
     end do
     lines(2) = trim(l)//'   (global unknown; 0 = held at zero; RX..RZ global or, at a spherical end, local)'
     do e = 1, self%n_elements
-      write(l, '(2x,i7,a,16i5)') e, ' :', self%map(:, e)
+      write(l, '(2x,i7,a,20i5)') e, ' :', self%map(:, e)
       lines(2 + e) = l
     end do
     lines(3 + self%n_elements) = '  global unknowns:'

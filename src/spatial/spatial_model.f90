@@ -21,12 +21,14 @@ module spatial_model
   use strings, only: str
   use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, dense_to_lower_band
   use lsode_solver, only: ode_system_t
+  use second_order_newton, only: second_order_newton_t
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t
   use spatial_beam, only: spatial_beam_t, spatial_rigid_t, spatial_eval_info_t, spatial_stress_t, &
                           spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &
-                          spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local
+                          spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local, &
+                          spatial_formulation_consistent
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
@@ -50,22 +52,30 @@ module spatial_model
     type(spatial_fourbar_t) :: kin
     real(dp) :: omega = 0.0_dp, theta0 = 0.0_dp
     integer :: joint_b = spatial_joint_spherical, joint_c = spatial_joint_spherical
+    integer :: formulation = spatial_formulation_consistent   !< of every element (spatial_beam)
     type(spatial_link_t) :: links(3)
     type(spatial_beam_t), allocatable :: el(:)
     type(spatial_rigid_t), allocatable :: rb(:)
     integer, allocatable :: link_of(:), index_in_link(:)
+    logical, allocatable :: mass_as_previous(:)   !< element e's global mass equals e-1's (same link, M_p, flags)
     type(spatial_table_t) :: table
     integer :: n = 0, kd = 0
     integer :: b_dofs(3) = 0, c_dofs(3) = 0     !< global unknowns of the joint translations
     real(dp), allocatable :: mass_band(:, :), force(:)
     type(spatial_pose_t) :: pose
     real(dp) :: t_states = -huge(1.0_dp)
+    real(dp) :: t_mass = -huge(1.0_dp)           !< time of the factored mass_band (M depends on t only)
     logical :: stop_beyond_peak = .true.
     integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
+    type(second_order_newton_t) :: newton          !< DLSODE's Newton matrix, banded (shared with the planar model's scheme)
   contains
     procedure :: init => model_init
     procedure :: rhs => model_rhs
     procedure :: jacobian => model_jacobian
+    procedure :: has_newton_matrix => model_has_newton_matrix
+    procedure :: newton_factor => model_newton_factor
+    procedure :: newton_solve => model_newton_solve
+    procedure :: assemble_band
     procedure :: set_time
     procedure :: accelerations
     procedure :: assemble_dense
@@ -80,7 +90,7 @@ contains
 
   !> Elements, joint rules and the correlation table.  kin must be
   !> initialised; links(:) carry section, material and element counts.
-  subroutine model_init(self, kin, omega, theta0, joint_b, joint_c, links, effects, beta, err)
+  subroutine model_init(self, kin, omega, theta0, joint_b, joint_c, links, effects, beta, err, formulation)
     class(spatial_model_t), intent(inout) :: self
     type(spatial_fourbar_t), intent(in) :: kin
     real(dp), intent(in) :: omega, theta0, beta
@@ -88,8 +98,11 @@ contains
     type(spatial_link_t), intent(in) :: links(3)
     type(element_effects_t), intent(in) :: effects
     type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: formulation   !< spatial_formulation_* (default: consistent)
     integer :: k, i, e, ne
     logical :: loc(2)
+    self%formulation = spatial_formulation_consistent
+    if (present(formulation)) self%formulation = formulation
     self%kin = kin
     self%omega = omega
     self%theta0 = theta0
@@ -100,10 +113,10 @@ contains
     self%links(link_coupler)%length = kin%coupler_length
     self%links(link_rocker)%length = kin%rocker_length
     ne = sum(self%links%n_elements)
-    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link)
+    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous)
     if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
     call self%err%clear()
-    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne))
+    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne))
     e = 0
     do k = 1, 3
       self%links(k)%first_element = e + 1
@@ -120,7 +133,7 @@ contains
         if (i == 1 .and. k == link_coupler) loc(1) = joint_b == spatial_joint_spherical
         associate (lk => self%links(k))
           call spatial_beam_init(self%el(e), lk%length/lk%n_elements, lk%sec, lk%material, lk%shear_modulus, &
-                                 effects, err, damping_beta=beta, local_rotation=loc)
+                                 effects, err, damping_beta=beta, local_rotation=loc, formulation=self%formulation)
         end associate
         if (err%failed()) then
           call err%add_context(trim(link_names(k))//' element '//str(i))
@@ -128,7 +141,14 @@ contains
         end if
       end do
     end do
+    self%mass_as_previous = .false.
+    do e = 2, ne
+      self%mass_as_previous(e) = self%link_of(e) == self%link_of(e - 1) .and. &
+        all(self%el(e)%local_rotation .eqv. self%el(e - 1)%local_rotation) .and. &
+        maxval(abs(self%el(e)%mass0 - self%el(e - 1)%mass0)) <= 0.0_dp
+    end do
     self%t_states = -huge(1.0_dp)
+    self%t_mass = -huge(1.0_dp)
     call self%set_time(0.0_dp)
     if (self%err%failed()) then
       call err%set('spatial model', self%err%text())
@@ -151,7 +171,7 @@ contains
     integer :: b_rot(2), c_rot(2)
     real(dp) :: a(3)
     nmax = maxval(self%links%n_elements)
-    allocate(nm(8, 0:nmax, 3), nc(8, 0:nmax, 3))
+    allocate(nm(10, 0:nmax, 3), nc(10, 0:nmax, 3))
     nm = 0
     nc = 0.0_dp
     call self%table%init(size(self%el))
@@ -175,6 +195,7 @@ contains
       if (j == 0) then
         nm(7:8, j, 1) = [fresh(1, j, 7), fresh(1, j, 8)]
         nc(7:8, j, 1) = 1.0_dp
+        call axial_slopes(1, j)
       else if (j == self%links(link_crank)%n_elements) then
         call joint_end(1, j, self%joint_b, self%b_dofs, b_rot, 'B', .false.)
       else
@@ -209,6 +230,7 @@ contains
           end do
           nm(8, j, 3) = fresh(3, j, 8)
           nc(8, j, 3) = 1.0_dp
+          call axial_slopes(3, j)
         end block
       else
         call interior(3, j)
@@ -217,10 +239,10 @@ contains
     do k = 1, 3
       do j = 1, self%links(k)%n_elements
         associate (e => self%links(k)%first_element + j - 1)
-          self%table%map(1:8, e) = nm(:, j - 1, k)
-          self%table%coef(1:8, e) = nc(:, j - 1, k)
-          self%table%map(9:16, e) = nm(:, j, k)
-          self%table%coef(9:16, e) = nc(:, j, k)
+          self%table%map(1:10, e) = nm(:, j - 1, k)
+          self%table%coef(1:10, e) = nc(:, j - 1, k)
+          self%table%map(11:20, e) = nm(:, j, k)
+          self%table%coef(11:20, e) = nc(:, j, k)
         end associate
       end do
     end do
@@ -230,7 +252,8 @@ contains
 
     integer function fresh(link, node, slot)
       integer, intent(in) :: link, node, slot
-      character(len=4), parameter :: names(8) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ']
+      character(len=4), parameter :: names(10) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ', &
+                                                  'ux  ', 'uxx ']
       fresh = self%table%new_unknown(trim(link_names(link))//' N'//str(node)//' '//trim(names(slot)))
     end function fresh
 
@@ -240,8 +263,19 @@ contains
       do s = 1, 8
         nm(s, node, link) = fresh(link, node, s)
       end do
-      nc(:, node, link) = 1.0_dp
+      nc(1:8, node, link) = 1.0_dp
+      call axial_slopes(link, node)
     end subroutine interior
+
+    !> u's slope and curvature DOFs (consistent formulation): free at every
+    !> node, local to the link (axial strain and its rate are not transmitted
+    !> by a joint); held in Kear's formulation, whose u is linear.
+    subroutine axial_slopes(link, node)
+      integer, intent(in) :: link, node
+      if (self%formulation /= spatial_formulation_consistent) return
+      nm(9:10, node, link) = [fresh(link, node, 9), fresh(link, node, 10)]
+      nc(9:10, node, link) = 1.0_dp
+    end subroutine axial_slopes
 
     !> A link end at joint B or C; trans/rot: the joint's shared unknowns
     !> (created at the first visit).
@@ -258,6 +292,7 @@ contains
       end if
       nm(1:3, node, link) = trans
       nc(1:3, node, link) = 1.0_dp
+      call axial_slopes(link, node)
       if (kind == spatial_joint_spherical) then
         ! local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
         do s = 4, 6
@@ -317,7 +352,9 @@ contains
     self%t_states = t
   end subroutine set_time
 
-  !> q_dd from M q_dd = F (banded Cholesky).
+  !> q_dd from M q_dd = F (banded Cholesky).  M depends on the rigid state
+  !> only (the element's M_p is constant): its factor is reused while t is
+  !> unchanged (DLSODE's corrector iterations), which is exact.
   subroutine accelerations(self, t, q, qd, qdd)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
@@ -326,13 +363,17 @@ contains
     type(spatial_eval_info_t) :: info
     type(error_t) :: err
     integer :: e, i, j, gi, gj
+    logical :: new_mass
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
-    self%mass_band = 0.0_dp
+    new_mass = t < self%t_mass .or. t > self%t_mass
+    if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info)
+      ! consecutive elements of a link with equal M_p share one global mass (same rotation)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
+                             mass_wanted=new_mass .and. .not. self%mass_as_previous(e))
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
@@ -340,6 +381,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
+      if (.not. new_mass) cycle
       do j = 1, sdofs
         gj = self%table%map(j, e)
         if (gj == 0) cycle
@@ -351,11 +393,15 @@ contains
         end do
       end do
     end do
-    call band_cholesky_factor(self%mass_band, self%kd, err)
-    self%n_mass_factorizations = self%n_mass_factorizations + 1
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix: '//err%text())
-      return
+    if (new_mass) then
+      self%t_mass = huge(1.0_dp)                ! invalid until factored
+      call band_cholesky_factor(self%mass_band, self%kd, err)
+      self%n_mass_factorizations = self%n_mass_factorizations + 1
+      if (err%failed()) then
+        call self%fail(t, 'mass matrix: '//err%text())
+        return
+      end if
+      self%t_mass = t
     end if
     qdd = self%force
     call band_cholesky_solve(self%mass_band, self%kd, qdd, err)
@@ -392,6 +438,7 @@ contains
     call self%assemble_dense(q, mass, stiff)
     ! M is banded and positive definite: banded Cholesky, then M^-1 K column by column
     kd = self%kd
+    self%t_mass = -huge(1.0_dp)                  ! mass_band is reused here
     call dense_to_lower_band(mass, kd, self%mass_band)
     call band_cholesky_factor(self%mass_band, kd, err)
     if (err%failed()) then
@@ -425,6 +472,66 @@ contains
     end subroutine put
   end subroutine model_jacobian
 
+  ! ------------------------------------------------------------------ Newton matrix
+
+  logical function model_has_newton_matrix(self)
+    class(spatial_model_t), intent(in) :: self
+    model_has_newton_matrix = self%n > 0
+  end function model_has_newton_matrix
+
+  !> DLSODE's Newton matrix P = I - hl0 J for the Jacobian of model_jacobian,
+  !> without forming J: the banded S = M + (hl0 beta + hl0^2) K_t of
+  !> second_order_newton, O(N kd^2) (as the planar mechanism model).
+  subroutine model_newton_factor(self, t, y, hl0, ok)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    ok = .false.
+    call self%set_time(t)
+    if (self%err%failed()) return
+    call self%newton%size_for(self%n, self%kd)
+    call self%assemble_band(y(1::2), self%newton%mass, self%newton%stiff)
+    call self%newton%factor(hl0, self%el(1)%beta, ok)
+  end subroutine model_newton_factor
+
+  !> x := P^-1 x with the P of the last model_newton_factor.
+  subroutine model_newton_solve(self, x)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    type(error_t) :: err
+    call self%newton%solve(x, err)
+    if (err%failed()) call self%fail(0.0_dp, err%text())
+  end subroutine model_newton_solve
+
+  !> M (lower band storage, kd+1 rows) and K_t (general band storage,
+  !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at q (current rigid states): O(N).
+  subroutine assemble_band(self, q, mass_lower, stiff_band)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs), cij
+    type(spatial_eval_info_t) :: info
+    integer :: e, i, j, gi, gj, kd
+    kd = self%kd
+    mass_lower = 0.0_dp
+    stiff_band = 0.0_dp
+    do e = 1, size(self%el)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), [(0.0_dp, i=1, sdofs)], self%rb(e), me, fe, info, &
+                             tangent=ke)
+      do j = 1, sdofs
+        gj = self%table%map(j, e)
+        if (gj == 0) cycle
+        do i = 1, sdofs
+          gi = self%table%map(i, e)
+          if (gi == 0) cycle
+          cij = self%table%coef(i, e)*self%table%coef(j, e)
+          stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
+          if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
+        end do
+      end do
+    end do
+  end subroutine assemble_band
+
   !> Dense M and elastic tangent K at q (current rigid states).
   subroutine assemble_dense(self, q, mass, stiff)
     class(spatial_model_t), intent(inout) :: self
@@ -451,15 +558,21 @@ contains
     end do
   end subroutine assemble_dense
 
-  !> Natural frequencies (rad/s) of the linearised structure at the current position.
-  subroutine linear_modes(self, omega, err)
+  !> Natural frequencies (rad/s) of the linearised structure at the current
+  !> position and, if asked, the M-normalised mode shapes (columns).
+  subroutine linear_modes(self, omega, err, shapes)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(out) :: omega(:)
     type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: shapes(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q0(self%n)
     q0 = 0.0_dp
     call self%assemble_dense(q0, mass, stiff)
-    call sym_generalized_eig(stiff, mass, omega, err)
+    if (present(shapes)) then
+      call sym_generalized_eig(stiff, mass, omega, err, shapes)
+    else
+      call sym_generalized_eig(stiff, mass, omega, err)
+    end if
     if (err%failed()) return
     omega = sign(sqrt(abs(omega)), omega)
   end subroutine linear_modes

@@ -82,7 +82,7 @@ contains
     call validate(deck, s, err)
   end subroutine read_spatial_mechanism
 
-  !> Ranges (doc/decks.md): lengths positive and below 1e4 in (a linkage,
+  !> Ranges (doc/decks.md): lengths and section sizes in [1e-8, 1e4] (a linkage,
   !> not a bridge); speeds below 1e5 rad/s; material constants positive
   !> (E2 >= 0), 1 < m <= 9 (the section rule is exact to m = 5 and
   !> accurate beyond), Poisson's ratio in (-1, 0.5) (G > 0).
@@ -96,8 +96,8 @@ contains
     call check_reals(deck, g, 'crank_pin', s%crank_pin, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
     call check_reals(deck, g, 'rocker_pivot', s%rocker_pivot, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
     call check_reals(deck, g, 'rocker_axis', s%rocker_axis, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
-    call check_real(deck, g, 'rocker_length', s%rocker_length, err, above=0.0_dp, at_most=1.0e4_dp)
-    call check_real(deck, g, 'coupler_length', s%coupler_length, err, above=0.0_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'rocker_length', s%rocker_length, err, at_least=1.0e-8_dp, at_most=1.0e4_dp)
+    call check_real(deck, g, 'coupler_length', s%coupler_length, err, at_least=1.0e-8_dp, at_most=1.0e4_dp)
     call check_integer(deck, g, 'branch', s%branch, err, at_least=-1, at_most=1)
     if (.not. err%failed() .and. s%branch == 0) &
       call invalid_value(deck, g, 'branch', '0', 'must be +1 or -1 (the side of the coupler-rocker dyad)', err)
@@ -110,13 +110,14 @@ contains
       call check_choice(deck, g, 'link_section', s%link_section(k), [character(16) :: 'rectangular', 'circular'], &
                         err)
     end do
-    call check_reals(deck, g, 'link_depth', s%link_depth, err, above=0.0_dp, at_most=100.0_dp)
-    call check_reals(deck, g, 'link_width', s%link_width, err, above=0.0_dp, at_most=100.0_dp)
+    call check_reals(deck, g, 'link_depth', s%link_depth, err, at_least=1.0e-8_dp, at_most=100.0_dp)
+    call check_reals(deck, g, 'link_width', s%link_width, err, at_least=1.0e-8_dp, at_most=100.0_dp)
     call check_reals(deck, g, 'link_radius', s%link_radius, err, at_least=0.0_dp, at_most=100.0_dp)
     call check_reals(deck, g, 'link_e1', s%link_e1, err, above=0.0_dp, at_most=1.0e9_dp)
     call check_reals(deck, g, 'link_e2', s%link_e2, err, at_least=0.0_dp, at_most=1.0e15_dp)
     call check_reals(deck, g, 'link_m', s%link_m, err, above=1.0_dp, at_most=9.0_dp)
-    call check_reals(deck, g, 'link_rho', s%link_rho, err, above=0.0_dp, at_most=1.0_dp)
+    call check_reals(deck, g, 'link_rho', s%link_rho, err, at_least=1.0e-12_dp, at_most=1.0_dp, &
+                     why='a subnormal density overflows E1/rho')
     call check_reals(deck, g, 'link_poisson', s%link_poisson, err, above=-1.0_dp, below=0.5_dp)
     do k = 1, 3
       if (err%failed()) exit

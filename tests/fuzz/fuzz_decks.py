@@ -5,7 +5,8 @@ Every case takes one deck of inputs/ or tests/decks/, applies one to three
 mutations (numbers to 0, +-tiny, +-huge, subnormal, NaN, +-Inf, wrong types,
 deleted / duplicated lines, truncation, unknown groups and variables, long
 lines, tabs, binary garbage, line endings, ...), runs it with each binary under a time limit
-and classifies the run.  A case is a pure function of (seed, index), so
+and classifies the run.  The time limits count the case's CPU seconds, not wall time, so a
+loaded host (several builds at once) does not turn slow cases into hangs.  A case is a pure function of (seed, index), so
 
     python3 tests/fuzz/fuzz_decks.py --seed S --only I
 
@@ -36,6 +37,9 @@ Classes (FAIL = the fuzzer exits 1):
                          a missing group has none)
 """
 import argparse
+import functools
+import multiprocessing
+import threading
 import os
 import random
 import re
@@ -293,11 +297,24 @@ def output_size(out_path):
     return sum(os.path.getsize(p) for p in tmp_files(out_path) if os.path.exists(p))
 
 
+def cpu_seconds(pid):
+    """CPU time (user + system) of a running process, from /proc; None when gone."""
+    try:
+        with open('/proc/%d/stat' % pid) as f:
+            fields = f.read().rsplit(')', 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+    except (OSError, IndexError, ValueError):
+        return None
+
+
 def run_case(binary, deck_path, out_path, timeout, hang_factor):
-    """(status or None, stdout, stderr, seconds, progressing).  A run still
-    going at `timeout` gets hang_factor times as long in all; if it is still
-    going then, it is killed, and `progressing` says whether its temporary
-    output grew meanwhile (rows being written: slow, not hung)."""
+    """(status or None, stdout, stderr, seconds, progressing).  The limits are
+    CPU seconds of the case, not wall time, so that a loaded host does not turn
+    slow cases into hangs: a run past `timeout` CPU seconds gets hang_factor
+    times as long in all; if it is still going then, it is killed, and
+    `progressing` says whether its temporary output grew meanwhile (rows being
+    written: slow, not hung).  A run that uses no CPU for 20 times the whole
+    budget of wall time (blocked) is killed as well.  `seconds` is CPU time."""
     for p in [out_path] + tmp_files(out_path):
         if os.path.lexists(p):
             os.remove(p)
@@ -308,20 +325,25 @@ def run_case(binary, deck_path, out_path, timeout, hang_factor):
                                 cwd=os.path.dirname(out_path))
     except OSError as e:     # the binary vanished (rebuilt meanwhile?): not a finding
         sys.exit('fuzz: cannot run %s: %s' % (binary, e))
-    try:
-        out, err = proc.communicate(timeout=timeout)
-        return proc.returncode, out, err, time.time() - start, True
-    except subprocess.TimeoutExpired:
-        pass
-    size0 = output_size(out_path)
-    try:
-        out, err = proc.communicate(timeout=max(timeout * (hang_factor - 1), 0.01))
-        return proc.returncode, out, err, time.time() - start, True
-    except subprocess.TimeoutExpired:
-        progressing = output_size(out_path) > size0
-        os.killpg(proc.pid, signal.SIGKILL)
-        out, err = proc.communicate()
-        return None, out, err, time.time() - start, progressing
+    # the pipes are drained by a thread so that a talkative case cannot block
+    result = {}
+    reader = threading.Thread(target=lambda: result.update(zip(('out', 'err'), proc.communicate())))
+    reader.start()
+    size0 = None
+    cpu = 0.0
+    while True:
+        reader.join(0.05)
+        if not reader.is_alive():
+            return proc.returncode, result['out'], result['err'], max(cpu, 0.0), True
+        c = cpu_seconds(proc.pid)
+        cpu = c if c is not None else cpu
+        if size0 is None and cpu > timeout:
+            size0 = output_size(out_path)
+        if cpu > timeout * hang_factor or time.time() - start > 20 * timeout * hang_factor:
+            progressing = size0 is not None and output_size(out_path) > size0
+            os.killpg(proc.pid, signal.SIGKILL)
+            reader.join()
+            return None, result.get('out', b''), result.get('err', b''), cpu, progressing
 
 
 def tmp_files(out_path):
@@ -375,6 +397,55 @@ def classify(status, stderr, out_path, deck_path):
 FAILING = {'crash', 'warning', 'hang', 'nonfinite', 'bad_number', 'leftover', 'no_context'}
 
 
+def fuzz_case(i, a, decks, binaries):
+    """Run case i with every binary: (per-binary results, failures, slow lines).
+    Each worker process works in its own folder (case.nml, case.out)."""
+    rng = random.Random('%d/%d' % (a.seed, i))
+    deck, text, steps = make_case(rng, decks)
+    work = os.path.join(a.work, 'w%d' % os.getpid())
+    os.makedirs(work, exist_ok=True)
+    case = os.path.join(work, 'case.nml')
+    with open(case, 'wb') as f:
+        f.write(text)
+    results, failures, slow = [], [], []
+    for name, binary in binaries:
+        out = os.path.join(work, 'case.out')
+        status, _, stderr, dt, progressing = run_case(binary, case, out, a.timeout, a.hang_factor)
+        result = classify(status, stderr, out, case)
+        if status is not None and dt > a.timeout:
+            result = [('timeout', 'finished in %.1f CPU s' % dt)] + result[1:]
+        elif status is None and progressing:
+            result = [('timeout', 'still writing rows after %.1f CPU s' % dt)]
+        elif status is None:
+            result = [('hang', 'no result and no output growth in %.1f CPU s' % dt)]
+        results.append((name, result))
+        bad = [(c, d) for c, d in result if c in FAILING]
+        if result[0][0] == 'timeout':
+            slow.append('case %d (%s, from %s): %s [%s]' % (i, name, deck, result[0][1], '; '.join(steps)))
+        if a.verbose or a.only is not None:
+            print('case %d %s %s: %s  [%.1fs] %s' % (i, name, deck, result, dt, '; '.join(steps)))
+            if a.only is not None:
+                sys.stdout.write(stderr.decode('latin-1')[:2000])
+        if bad:
+            with open(os.path.join(a.work, 'failures', 'case_%d.nml' % i), 'wb') as f:
+                f.write(text)
+            failures.append((i, name, deck, steps, bad, stderr.decode('latin-1').strip()))
+            print('FAIL case %d (%s, from %s): %s  [%s]' % (i, name, deck,
+                  '; '.join('%s: %s' % cd for cd in bad), '; '.join(steps)), flush=True)
+    if a.keep:
+        shutil.copy(case, os.path.join(a.work, 'case_%d.nml' % i))
+    return results, failures, slow
+
+
+def collect(outcome, counts, failures, slow):
+    results, fails, slows = outcome
+    for name, result in results:
+        for cls, _ in result:
+            counts[(name, cls)] = counts.get((name, cls), 0) + 1
+    failures.extend(fails)
+    slow.extend(slows)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--runs', type=int, default=200)
@@ -389,6 +460,7 @@ def main():
     ap.add_argument('--work', default=os.path.join(ROOT, 'build/fuzz'))
     ap.add_argument('--keep', action='store_true', help='keep every case deck')
     ap.add_argument('--exclude', default='', help='skip decks whose path matches this regular expression')
+    ap.add_argument('-j', '--jobs', type=int, default=1, help='cases run at once (worker processes)')
     ap.add_argument('-v', '--verbose', action='store_true')
     a = ap.parse_args()
 
@@ -413,40 +485,14 @@ def main():
     failures = []
     slow = []
     t0 = time.time()
-    for i in indices:
-        rng = random.Random('%d/%d' % (a.seed, i))
-        deck, text, steps = make_case(rng, decks)
-        case = os.path.join(a.work, 'case.nml')
-        with open(case, 'wb') as f:
-            f.write(text)
-        for name, binary in binaries:
-            out = os.path.join(a.work, 'case.out')
-            status, _, stderr, dt, progressing = run_case(binary, case, out, a.timeout, a.hang_factor)
-            result = classify(status, stderr, out, case)
-            if status is not None and dt > a.timeout:
-                result = [('timeout', 'finished in %.1f s' % dt)] + result[1:]
-            elif status is None and progressing:
-                result = [('timeout', 'still writing rows after %.1f s' % dt)]
-            elif status is None:
-                result = [('hang', 'no result and no output growth in %.1f s' % dt)]
-            for cls, _ in result:
-                counts[(name, cls)] = counts.get((name, cls), 0) + 1
-            bad = [(c, d) for c, d in result if c in FAILING]
-            if result[0][0] == 'timeout':
-                slow.append('case %d (%s, from %s): %s [%s]' % (i, name, deck, result[0][1], '; '.join(steps)))
-            if a.verbose or a.only is not None:
-                print('case %d %s %s: %s  [%.1fs] %s' % (i, name, deck, result, dt, '; '.join(steps)))
-                if a.only is not None:
-                    sys.stdout.write(stderr.decode('latin-1')[:2000])
-            if bad:
-                keep = os.path.join(a.work, 'failures', 'case_%d.nml' % i)
-                with open(keep, 'wb') as f:
-                    f.write(text)
-                failures.append((i, name, deck, steps, bad, stderr.decode('latin-1').strip()))
-                print('FAIL case %d (%s, from %s): %s  [%s]' % (i, name, deck,
-                      '; '.join('%s: %s' % cd for cd in bad), '; '.join(steps)), flush=True)
-        if a.keep:
-            shutil.copy(case, os.path.join(a.work, 'case_%d.nml' % i))
+    job = functools.partial(fuzz_case, a=a, decks=decks, binaries=binaries)
+    if a.jobs > 1 and a.only is None:
+        with multiprocessing.Pool(a.jobs) as pool:
+            for outcome in pool.imap(job, indices, chunksize=4):
+                collect(outcome, counts, failures, slow)
+    else:
+        for i in indices:
+            collect(job(i), counts, failures, slow)
     with open(os.path.join(a.work, 'failures', 'README'), 'w') as f:
         for i, name, deck, steps, bad, err in failures:
             f.write('case %d (%s binary, from %s): %s\n  mutations: %s\n  replay: python3 '

@@ -17,7 +17,7 @@ module test_gauss_perturbed_suite
   public :: run_all
 
   real(dp), parameter :: noise = 1.0e-14_dp
-  integer, parameter :: n_seeds = 200, n_cases = 22
+  integer, parameter :: n_seeds = 200, n_cases = 24
 
   type :: case_t
     character(len=20) :: problem, method
@@ -45,7 +45,9 @@ contains
          case_t('hs35', 'gnlc'), case_t('hs28', 'gauss_constrained', regularization=1.0e-8_dp), &
          case_t('three_circles', 'gnlc_ns'), case_t('potter_cycling', 'gnlc'), &
          case_t('potter_cycling', 'gnlc_ns'), case_t('general_convex', 'gnlc_general'), &
-         case_t('general_convex', 'gnlc_general_ns'), case_t('hs15', 'gnlc_ns'), case_t('hs65', 'gnlc_ns')]
+         case_t('general_convex', 'gnlc_general_ns'), case_t('hs15', 'gnlc_ns'), case_t('hs65', 'gnlc_ns'), &
+         ! singular G = 2JJ^T regular on the equality's tangent space: (s, lambda) Newton, no shift
+         case_t('hs28', 'gauss_constrained'), case_t('hs28', 'gnlc_ns')]
   end subroutine get_cases
 
   !> Multiply every entry by (1 + noise u), u uniform in [-1, 1].

@@ -182,6 +182,18 @@ contains
     call expect(inp, 'link_m(1) = 1.0')
     inp = base; inp%link_rho(2) = -1.0_dp
     call expect(inp, 'link_rho(2) = -1.0')
+    ! a subnormal density: E1/rho overflows (the fuzzer's debug-build trap)
+    inp = base; inp%link_rho(2) = 1.0e-310_dp
+    call expect(inp, 'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]')
+    inp = base; inp%link_e1(1) = 1.0e-3_dp
+    call expect(inp, 'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]')
+    ! a length from joint coordinates 1e-12 apart (the fuzzer found 4.9e-324, a debug-build trap)
+    inp = base; inp%link_length(1) = 0.0_dp; inp%joint_x(2) = 1.0e-12_dp; inp%joint_y(2) = 0.0_dp
+    call expect(inp, 'taken from its joints is')
+    ! a general section whose I exceeds c^2 A (the fuzzer's I = 1.8e308 overflowed 12 I/A)
+    inp = base; inp%link_section(2) = 'general'; inp%link_area(2) = 0.25_dp; inp%link_c(2) = 0.5_dp
+    inp%link_inertia(2) = 1.0_dp
+    call expect(inp, 'no section has its radius of gyration beyond its outer fibre')
     inp = base; inp%link_n_elements(2) = 0
     call expect(inp, 'link_n_elements(2) = 0')
     inp = base; inp%link_length(2) = 0.0_dp

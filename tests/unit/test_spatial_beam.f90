@@ -24,11 +24,16 @@ module test_spatial_beam_suite
   !> soft material with a visible E2 term for derivative checks
   type(ramberg_osgood_t), parameter :: soft = ramberg_osgood_t(e1=1000.0_dp, e2=2.0e6_dp, m=3.0_dp, rho=2.0_dp)
   real(dp), parameter :: g_alu = 10.87e6_dp/(2.0_dp*1.33_dp)      ! nu = 0.33
-  !> a strongly deformed local state in all 16 DOFs
-  real(dp), parameter :: p_big(16) = [0.02_dp, -0.03_dp, 0.01_dp, 0.05_dp, -0.12_dp, 0.15_dp, 0.3_dp, -0.2_dp, &
-                                      -0.05_dp, 0.08_dp, -0.04_dp, -0.07_dp, 0.09_dp, -0.2_dp, 0.4_dp, 0.25_dp]
-  real(dp), parameter :: pd_big(16) = [0.5_dp, -0.7_dp, 1.1_dp, -2.0_dp, 0.3_dp, 0.9_dp, -1.3_dp, 2.2_dp, &
-                                       0.4_dp, 0.6_dp, -0.8_dp, 1.5_dp, -0.9_dp, 0.7_dp, 1.2_dp, -1.7_dp]
+  integer, parameter :: nn = 10, nd = 20        !< element DOFs per node, per element
+  !> a strongly deformed local state in all 20 DOFs (u_x, u_xx at 9, 10, 19, 20)
+  real(dp), parameter :: p_big(nd) = [0.02_dp, -0.03_dp, 0.01_dp, 0.05_dp, -0.12_dp, 0.15_dp, 0.3_dp, -0.2_dp, &
+                                      0.03_dp, 0.1_dp, &
+                                      -0.05_dp, 0.08_dp, -0.04_dp, -0.07_dp, 0.09_dp, -0.2_dp, 0.4_dp, 0.25_dp, &
+                                      -0.04_dp, -0.15_dp]
+  real(dp), parameter :: pd_big(nd) = [0.5_dp, -0.7_dp, 1.1_dp, -2.0_dp, 0.3_dp, 0.9_dp, -1.3_dp, 2.2_dp, &
+                                       0.6_dp, -0.5_dp, &
+                                       0.4_dp, 0.6_dp, -0.8_dp, 1.5_dp, -0.9_dp, 0.7_dp, 1.2_dp, -1.7_dp, &
+                                       -0.3_dp, 0.8_dp]
 
 contains
 
@@ -55,21 +60,21 @@ contains
   end function all_off
 
   !> N equal elements along global x; K (tangent at p = 0) and M assembled,
-  !> 8 DOFs per node, node k owns 8(k-1)+1 .. 8k.
+  !> 10 DOFs per node, node k owns 10(k-1)+1 .. 10k.
   subroutine chain(el, n, k, m)
     type(spatial_beam_t), intent(in) :: el
     integer, intent(in) :: n
     real(dp), allocatable, intent(out) :: k(:, :), m(:, :)
-    real(dp) :: ke(16, 16)
+    real(dp) :: ke(nd, nd)
     integer :: e, i0
-    allocate(k(8*(n + 1), 8*(n + 1)), m(8*(n + 1), 8*(n + 1)))
+    allocate(k(nn*(n + 1), nn*(n + 1)), m(nn*(n + 1), nn*(n + 1)))
     k = 0.0_dp
     m = 0.0_dp
-    call spatial_tangent_stiffness(el, [(0.0_dp, e=1, 16)], ke)
+    call spatial_tangent_stiffness(el, [(0.0_dp, e=1, nd)], ke)
     do e = 1, n
-      i0 = 8*(e - 1)
-      k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) = k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) + ke
-      m(i0 + 1:i0 + 16, i0 + 1:i0 + 16) = m(i0 + 1:i0 + 16, i0 + 1:i0 + 16) + el%mass0
+      i0 = nn*(e - 1)
+      k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + ke
+      m(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = m(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + el%mass0
     end do
   end subroutine chain
 
@@ -92,10 +97,10 @@ contains
     call sym_generalized_eig(kr, mr, w, err, x)
     call assert_true(.not. err%failed(), 'eigen: '//err%text())
     do i = 1, nk
-      ldof = mod(keep(i) - 1, 8) + 1
+      ldof = mod(keep(i) - 1, nn) + 1
       select case (grp)
       case (1)
-        in_grp(i) = ldof == 1
+        in_grp(i) = any(ldof == [1, 9, 10])
       case (2)
         in_grp(i) = any(ldof == [2, 6, 7])
       case (3)
@@ -115,10 +120,10 @@ contains
 
   subroutine keep_dofs(n_nodes, fixed, keep)
     integer, intent(in) :: n_nodes
-    logical, intent(in) :: fixed(:)          !< (8*n_nodes)
+    logical, intent(in) :: fixed(:)          !< (nn*n_nodes)
     integer, allocatable, intent(out) :: keep(:)
     integer :: i
-    keep = pack([(i, i=1, 8*n_nodes)], .not. fixed)
+    keep = pack([(i, i=1, nn*n_nodes)], .not. fixed)
   end subroutine keep_dofs
 
   ! ------------------------------------------------------------ tests
@@ -138,7 +143,7 @@ contains
     type(error_t) :: err
     real(dp), allocatable :: k(:, :), m(:, :), f(:)
     integer, allocatable :: keep(:)
-    logical :: fixed(8*(n + 1))
+    logical :: fixed(nn*(n + 1))
     integer :: i
     real(dp) :: ref
     call spatial_section_init(sec, section_rectangular, [1.0_dp, 0.5_dp], alu, err)
@@ -186,7 +191,7 @@ contains
     type(element_effects_t) :: fx
     real(dp), allocatable :: k(:, :), m(:, :), f(:)
     integer, allocatable :: keep(:)
-    logical :: fixed(8*(n + 1))
+    logical :: fixed(nn*(n + 1))
     integer :: i, last
     real(dp) :: ref, rg2
     call spatial_section_init(sec, section_circular, [0.2_dp], alu, err)
@@ -195,7 +200,7 @@ contains
     call spatial_beam_init(el, len/n, sec, alu, g_alu, fx, err)
     call assert_true(.not. err%failed(), 'init: '//err%text())
     call chain(el, n, k, m)
-    last = 8*n
+    last = nn*n
     fixed = .false.
     fixed([1, 2, 3, 4, 7, 8]) = .true.
     fixed(last + [2, 3, 4, 7, 8]) = .true.
@@ -235,8 +240,8 @@ contains
     type(error_t) :: err
     real(dp), allocatable :: k(:, :), m(:, :), kr(:, :), x(:), full(:), r(:)
     integer, allocatable :: keep(:)
-    logical :: fixed(8*(n + 1))
-    real(dp) :: tip(4), lin(16), kt(16, 16), fe(16), res0, res_prev
+    logical :: fixed(nn*(n + 1))
+    real(dp) :: tip(4), lin(nd), kt(nd, nd), fe(nd), res0, res_prev
     integer :: it, e, i0, tipdof
     call spatial_section_init(sec, section_rectangular, [1.0_dp, 0.5_dp], alu, err)
     call spatial_beam_init(el, len/n, sec, alu, g_alu, all_off(), err)
@@ -244,8 +249,8 @@ contains
     fixed = .false.
     fixed(1:6) = .true.
     call keep_dofs(n + 1, fixed, keep)
-    tipdof = 8*n
-    allocate(full(8*(n + 1)))
+    tipdof = nn*n
+    allocate(full(nn*(n + 1)))
     full = 0.0_dp
     full(tipdof + [2, 3, 4]) = [py, pz, tq]
     allocate(x(size(keep)), kr(size(keep), size(keep)))
@@ -268,16 +273,16 @@ contains
     call spatial_beam_init(el, len/n, sec, alu, g_alu, effects_all_on(), err)
     full = 0.0_dp
     res_prev = huge(1.0_dp)
-    allocate(r(8*(n + 1)))
+    allocate(r(nn*(n + 1)))
     do it = 1, 8
       r = 0.0_dp
       k = 0.0_dp
       do e = 1, n
-        i0 = 8*(e - 1)
-        call spatial_internal_force(el, full(i0 + 1:i0 + 16), fe)
-        call spatial_tangent_stiffness(el, full(i0 + 1:i0 + 16), kt)
-        r(i0 + 1:i0 + 16) = r(i0 + 1:i0 + 16) + fe
-        k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) = k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) + kt
+        i0 = nn*(e - 1)
+        call spatial_internal_force(el, full(i0 + 1:i0 + nd), fe)
+        call spatial_tangent_stiffness(el, full(i0 + 1:i0 + nd), kt)
+        r(i0 + 1:i0 + nd) = r(i0 + 1:i0 + nd) + fe
+        k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + kt
       end do
       r(tipdof + [2, 3, 4]) = r(tipdof + [2, 3, 4]) - [py, pz, tq]
       res0 = maxval(abs(r(keep)))
@@ -304,7 +309,7 @@ contains
     type(spatial_section_t) :: sec
     type(spatial_beam_t) :: el
     type(error_t) :: err
-    real(dp) :: f(16), fd(16), pp(16), pm(16), h
+    real(dp) :: f(nd), fd(nd), pp(nd), pm(nd), h
     integer :: i, shape
     h = 1.0e-6_dp
     do shape = 1, 2
@@ -315,7 +320,7 @@ contains
       end if
       call spatial_beam_init(el, 1.3_dp, sec, soft, 400.0_dp, effects_all_on(), err)
       call spatial_internal_force(el, p_big, f)
-      do i = 1, 16
+      do i = 1, nd
         pp = p_big
         pm = p_big
         pp(i) = pp(i) + h
@@ -331,7 +336,7 @@ contains
     type(spatial_beam_t) :: el
     type(error_t) :: err
     type(element_effects_t) :: fx
-    real(dp) :: k(16, 16), kd(16, 16), fp(16), fm(16), pp(16), pm(16), h
+    real(dp) :: k(nd, nd), kd(nd, nd), fp(nd), fm(nd), pp(nd), pm(nd), h
     integer :: i, variant
     h = 1.0e-6_dp
     call spatial_section_init(sec, section_rectangular, [0.3_dp, 0.2_dp], soft, err)
@@ -341,7 +346,7 @@ contains
       if (variant == 3) fx%stretching = .false.
       call spatial_beam_init(el, 1.3_dp, sec, soft, 400.0_dp, fx, err)
       call spatial_tangent_stiffness(el, p_big, k)
-      do i = 1, 16
+      do i = 1, nd
         pp = p_big
         pm = p_big
         pp(i) = pp(i) + h
@@ -369,8 +374,8 @@ contains
     type(spatial_section_t) :: sec
     type(spatial_beam_t) :: el
     type(error_t) :: err
-    real(dp) :: q0(16), qd0(16), qdd(16), lhs(16), rhs(16), mass(16, 16), force(16), fint(16)
-    real(dp) :: dp_t(16), dm_t(16), dq(16), kp, km, ht, hq
+    real(dp) :: q0(nd), qd0(nd), qdd(nd), lhs(nd), rhs(nd), mass(nd, nd), force(nd), fint(nd)
+    real(dp) :: dp_t(nd), dm_t(nd), dq(nd), kp, km, ht, hq
     type(spatial_rigid_t) :: rb
     type(spatial_eval_info_t) :: info
     integer :: i, variant
@@ -381,7 +386,7 @@ contains
                            local_rotation=[variant == 2, .false.])
     q0 = 0.1_dp*p_big
     qd0 = pd_big
-    qdd = [(0.3_dp*sin(real(3*i, dp)), i=1, 16)]
+    qdd = [(0.3_dp*sin(real(3*i, dp)), i=1, nd)]
     rb = motion(0.0_dp)
     call spatial_beam_eval(el, q0, qd0, rb, mass, force, info)
     call spatial_internal_force(el, spatial_to_local(rb%rot, q0, el%local_rotation), fint)
@@ -391,7 +396,7 @@ contains
     dp_t = dke_dqd(ht)
     dm_t = dke_dqd(-ht)
     lhs = (dp_t - dm_t)/(2.0_dp*ht)
-    do i = 1, 16
+    do i = 1, nd
       dq = 0.0_dp
       dq(i) = hq
       kp = spatial_kinetic_energy(el, q0 + dq, qd0, rb)
@@ -403,13 +408,13 @@ contains
   contains
     function dke_dqd(t) result(g)
       real(dp), intent(in) :: t
-      real(dp) :: g(16), q(16), qd(16), d(16)
+      real(dp) :: g(nd), q(nd), qd(nd), d(nd)
       type(spatial_rigid_t) :: r
       integer :: j
       r = motion(t)
       q = q0 + qd0*t + 0.5_dp*qdd*t*t
       qd = qd0 + qdd*t
-      do j = 1, 16
+      do j = 1, nd
         d = 0.0_dp
         d(j) = 1.0_dp
         g(j) = (spatial_kinetic_energy(el, q, qd + d, r) - spatial_kinetic_energy(el, q, qd - d, r))/2.0_dp
@@ -447,7 +452,7 @@ contains
   !> element the linear one (doc/spatial.md), so the cases are: all effects
   !> but rotary inertia; all but curvature; linear with rotary; coupling off.
   subroutine test_planar_limit()
-    integer, parameter :: map(8) = [1, 2, 6, 7, 9, 10, 14, 15]    ! Kear DOF -> spatial DOF
+    integer, parameter :: map(8) = [1, 2, 6, 7, 11, 12, 16, 17]    ! Kear DOF -> spatial DOF
     type(spatial_section_t) :: sec
     type(spatial_beam_t) :: sel
     type(kear_element_t) :: kel
@@ -457,9 +462,9 @@ contains
     type(spatial_rigid_t) :: srb
     type(kear_eval_info_t) :: kinfo
     type(spatial_eval_info_t) :: sinfo
-    real(dp) :: qk(8), qdk(8), mk(8, 8), fk(8), q(16), qd(16), ms(16, 16), fs(16), phi
+    real(dp) :: qk(8), qdk(8), mk(8, 8), fk(8), q(nd), qd(nd), ms(nd, nd), fs(nd), phi
     integer :: variant
-    integer, parameter :: out_of_plane(8) = [3, 4, 5, 8, 11, 12, 13, 16]
+    integer, parameter :: out_of_plane(8) = [3, 4, 5, 8, 13, 14, 15, 18]
     qk = [0.02_dp, -0.03_dp, 0.15_dp, 0.3_dp, -0.05_dp, 0.08_dp, -0.2_dp, 0.4_dp]
     qdk = [0.5_dp, -0.7_dp, 1.1_dp, -2.0_dp, 0.3_dp, 0.9_dp, -1.3_dp, 2.2_dp]
     phi = 0.7_dp
@@ -492,7 +497,8 @@ contains
         fx%rotary_inertia = .false.
       end select
       call kear_element_init(kel, 1.3_dp, 0.2_dp, 0.3_dp, soft, fx, err, damping_beta=1.0e-3_dp)
-      call spatial_beam_init(sel, 1.3_dp, sec, soft, 400.0_dp, fx, err, damping_beta=1.0e-3_dp)
+      call spatial_beam_init(sel, 1.3_dp, sec, soft, 400.0_dp, fx, err, damping_beta=1.0e-3_dp, &
+                             formulation=spatial_formulation_kear)
       call assert_true(.not. err%failed(), 'init: '//err%text())
       call kear_element_eval(kel, qk, qdk, krb, mk, fk, kinfo)
       call spatial_beam_eval(sel, q, qd, srb, ms, fs, sinfo)
@@ -524,78 +530,128 @@ contains
     call assert_true(other < 1.0e-12_dp*abs(exact), 'no transverse or twist response')
   end subroutine test_rotating_bar
 
-  !> Large deflection: cantilever L = 20 in, 1 x 0.5 in, tip dead load P
-  !> along local y with alpha = P L^2/(E I_z) = 0.1, 0.3, 1 (tip rotation 2.9,
-  !> 8.5, 26 degrees).  Inextensible elastica (shooting on theta'' = -alpha
-  !> cos theta, RK4, 4000 steps; alpha = 1 is Bisshopp & Drucker's 0.3017):
-  !> v/L = 0.0332953, 0.0989907, 0.301721.  Stretching and curvature on, load
-  !> in 10 increments, Newton with the analytic tangent (converges to 1e-9).
-  !> Kear's interpolation (linear u, quintic v) LOCKS at coarse meshes: the
-  !> printed table (doc/spatial.md, "Large deflection") shows 4 elements
-  !> 13 % stiff at alpha = 0.3 and 33 % at alpha = 1.  Asserted: the error
-  !> falls with the mesh at alpha = 0.1 and 0.3 and 16 elements are within
-  !> 0.2 % and 0.6 % (the nonlinear correction is 0.11 % and 1.0 %).
+  !> Large deflection: cantilever L = 20 in under a tip dead load P, alpha =
+  !> P L^2/(E I), in 20 increments, Newton with the analytic tangent (to 1e-9
+  !> of P).  Inextensible elastica (shooting on theta'' = -alpha cos theta,
+  !> RK4; alpha = 1 is Bisshopp & Drucker's 0.3017, alpha = 5 the planar deck
+  !> inputs/elastica_tip_force.nml's U = -0.38763 L, W = -0.71379 L):
+  !> deflection along the load / L = 0.0989907, 0.301721, 0.71379 and axial
+  !> u/L = -0.00589938, -0.056433, -0.38763 at alpha = 0.3, 1, 5.
+  !> 1. The consistent element (default): circular r = 0.2 in (extensibility
+  !>    P/EA = alpha/40000), load in the plane at 35 degrees from local y
+  !>    toward z (an arbitrary plane): 4 and 8 elements within 1e-3 of the
+  !>    elastica in both components at every alpha (tip rotation up to 70
+  !>    degrees), the deflection normal to the load plane and the twist at
+  !>    round-off (1e-9 of the deflection).
+  !> 2. Kear's interpolation (linear u, quintic v) LOCKS at coarse meshes:
+  !>    1 x 0.5 in rectangle, load along local y, the printed table
+  !>    (doc/spatial.md, "Large deflection") shows 4 elements 13 % stiff at
+  !>    alpha = 0.3 and 33 % at alpha = 1.  Asserted: the error falls with the
+  !>    mesh at alpha = 0.1 and 0.3 and 16 elements are within 0.2 % and 0.6 %.
   subroutine test_elastica()
-    real(dp), parameter :: len = 20.0_dp, alphas(3) = [0.1_dp, 0.3_dp, 1.0_dp]
-    real(dp), parameter :: v_ref(3) = [0.0332953_dp, 0.0989907_dp, 0.301721_dp]
-    real(dp), parameter :: u_ref(3) = [-0.000665400_dp, -0.00589938_dp, -0.056433_dp]
+    real(dp), parameter :: len = 20.0_dp, beta = 35.0_dp*pi/180.0_dp
+    real(dp), parameter :: alphas(3) = [0.3_dp, 1.0_dp, 5.0_dp]
+    real(dp), parameter :: v_ref(3) = [0.0989907_dp, 0.301721_dp, 0.71379_dp]
+    real(dp), parameter :: u_ref(3) = [-0.00589938_dp, -0.056433_dp, -0.38763_dp]
+    real(dp), parameter :: k_alphas(3) = [0.1_dp, 0.3_dp, 1.0_dp]
+    real(dp), parameter :: k_vref(3) = [0.0332953_dp, 0.0989907_dp, 0.301721_dp]
+    real(dp), parameter :: k_uref(3) = [-0.000665400_dp, -0.00589938_dp, -0.056433_dp]
     type(spatial_section_t) :: sec
+    type(error_t) :: err
+    real(dp) :: errs(3, 3), v, u, off
+    integer :: ia, n, mesh
+    call spatial_section_init(sec, section_circular, [0.2_dp], alu, err)
+    do mesh = 1, 2
+      n = 4*mesh
+      do ia = 1, 3
+        call cantilever_tip_load(spatial_formulation_consistent, sec, len, n, alphas(ia), beta, v, u, off)
+        print '(a,i3,a,f4.1,a,2f10.6,a,2f10.6,a,es9.2)', '    consistent, n =', n, ' alpha =', alphas(ia), &
+          ' v/L, u/L =', v/len, u/len, ' elastica', v_ref(ia), u_ref(ia), ' off-plane', off
+        call assert_rel_close(v/len, v_ref(ia), 1.0e-3_dp, 'consistent: deflection along the load = elastica')
+        call assert_rel_close(u/len, u_ref(ia), 1.0e-3_dp, 'consistent: axial tip displacement = elastica')
+        call assert_true(off <= 1.0e-9_dp*abs(v), 'consistent: no motion out of the load plane, no twist')
+      end do
+    end do
+    call spatial_section_init(sec, section_rectangular, [1.0_dp, 0.5_dp], alu, err)
+    do mesh = 1, 3
+      n = 2**(mesh + 1)
+      do ia = 1, 3
+        call cantilever_tip_load(spatial_formulation_kear, sec, len, n, k_alphas(ia), 0.0_dp, v, u, off)
+        print '(a,i3,a,f4.1,a,2f10.6,a,2f10.6)', '    Kear, n =', n, ' alpha =', k_alphas(ia), ' v/L, u/L =', &
+          v/len, u/len, ' elastica', k_vref(ia), k_uref(ia)
+        errs(mesh, ia) = v/len/k_vref(ia) - 1.0_dp
+      end do
+    end do
+    do ia = 1, 2
+      call assert_true(abs(errs(1, ia)) > abs(errs(2, ia)) .and. abs(errs(2, ia)) > abs(errs(3, ia)), &
+                       'Kear: error falls with the mesh')
+    end do
+    call assert_close(errs(3, 1), 0.0_dp, 2.0e-3_dp, 'Kear: 16 elements, alpha = 0.1')
+    call assert_close(errs(3, 2), 0.0_dp, 6.0e-3_dp, 'Kear: 16 elements, alpha = 0.3')
+  end subroutine test_elastica
+
+  !> Cantilever along local x, clamped at x = 0, n elements, tip dead load
+  !> alpha E I / L^2 along (0, cos beta, sin beta) (I about that direction's
+  !> normal: I_z for beta = 0), stretching and curvature on; returns the tip
+  !> deflection along the load v, the axial u, and the largest of the
+  !> deflection normal to the load plane and the twist at any node.  The
+  !> unused u_x, u_xx DOFs of Kear's formulation are held.
+  subroutine cantilever_tip_load(formulation, sec, len, n, alpha, beta, v, u, off)
+    integer, intent(in) :: formulation, n
+    type(spatial_section_t), intent(in) :: sec
+    real(dp), intent(in) :: len, alpha, beta
+    real(dp), intent(out) :: v, u, off
     type(spatial_beam_t) :: el
     type(error_t) :: err
     type(element_effects_t) :: fx
     real(dp), allocatable :: k(:, :), r(:), full(:), x(:), kr(:, :)
     integer, allocatable :: keep(:)
     logical, allocatable :: fixed(:)
-    real(dp) :: kt(16, 16), fe(16), p
-    integer :: ia, step, it, e, i0, n, mesh
-    real(dp) :: errs(3, 3)
+    real(dp) :: kt(nd, nd), fe(nd), p, dir(3)
+    integer :: step, it, e, i0, j
     fx = all_off()
     fx%stretching = .true.
     fx%curvature = .true.
-    call spatial_section_init(sec, section_rectangular, [1.0_dp, 0.5_dp], alu, err)
-    do mesh = 1, 3
-      n = 2**(mesh + 1)
-      call spatial_beam_init(el, len/n, sec, alu, g_alu, fx, err)
-      if (allocated(fixed)) deallocate(fixed, full, r, k)
-      allocate(fixed(8*(n + 1)), full(8*(n + 1)), r(8*(n + 1)), k(8*(n + 1), 8*(n + 1)))
-      fixed = .false.
-      fixed(1:6) = .true.
-      call keep_dofs(n + 1, fixed, keep)
-      do ia = 1, 3
-        full = 0.0_dp
-        do step = 1, 10
-          p = alphas(ia)*alu%e1*sec%iz/len**2*real(step, dp)/10.0_dp
-          do it = 1, 30
-            r = 0.0_dp
-            k = 0.0_dp
-            do e = 1, n
-              i0 = 8*(e - 1)
-              call spatial_internal_force(el, full(i0 + 1:i0 + 16), fe)
-              call spatial_tangent_stiffness(el, full(i0 + 1:i0 + 16), kt)
-              r(i0 + 1:i0 + 16) = r(i0 + 1:i0 + 16) + fe
-              k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) = k(i0 + 1:i0 + 16, i0 + 1:i0 + 16) + kt
-            end do
-            r(8*n + 2) = r(8*n + 2) - p
-            if (maxval(abs(r(keep))) < 1.0e-9_dp*p) exit
-            call assert_true(it < 30, 'Newton converges')
-            kr = k(keep, keep)
-            x = -r(keep)
-            call solve_linear(kr, x, err)
-            full(keep) = full(keep) + x
-          end do
+    call spatial_beam_init(el, len/n, sec, alu, g_alu, fx, err, formulation=formulation)
+    allocate(fixed(nn*(n + 1)), full(nn*(n + 1)), r(nn*(n + 1)), k(nn*(n + 1), nn*(n + 1)))
+    fixed = .false.
+    fixed(1:6) = .true.
+    if (formulation == spatial_formulation_kear) then
+      do j = 0, n
+        fixed(nn*j + [9, 10]) = .true.
+      end do
+    end if
+    call keep_dofs(n + 1, fixed, keep)
+    dir = [0.0_dp, cos(beta), sin(beta)]
+    full = 0.0_dp
+    do step = 1, 20
+      p = alpha*alu%e1*(sec%iz*cos(beta)**2 + sec%iy*sin(beta)**2)/len**2*real(step, dp)/20.0_dp
+      do it = 1, 30
+        r = 0.0_dp
+        k = 0.0_dp
+        do e = 1, n
+          i0 = nn*(e - 1)
+          call spatial_internal_force(el, full(i0 + 1:i0 + nd), fe)
+          call spatial_tangent_stiffness(el, full(i0 + 1:i0 + nd), kt)
+          r(i0 + 1:i0 + nd) = r(i0 + 1:i0 + nd) + fe
+          k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + kt
         end do
-        print '(a,i3,a,f4.1,a,2f10.6,a,2f10.6)', '    n =', n, ' alpha =', alphas(ia), ' v/L, u/L =', &
-          full(8*n + 2)/len, full(8*n + 1)/len, ' elastica', v_ref(ia), u_ref(ia)
-        errs(mesh, ia) = full(8*n + 2)/len/v_ref(ia) - 1.0_dp
+        r(nn*n + 2:nn*n + 3) = r(nn*n + 2:nn*n + 3) - p*dir(2:3)
+        if (maxval(abs(r(keep))) < 1.0e-9_dp*p) exit
+        call assert_true(it < 30, 'Newton converges')
+        kr = k(keep, keep)
+        x = -r(keep)
+        call solve_linear(kr, x, err)
+        full(keep) = full(keep) + x
       end do
     end do
-    do ia = 1, 2
-      call assert_true(abs(errs(1, ia)) > abs(errs(2, ia)) .and. abs(errs(2, ia)) > abs(errs(3, ia)), &
-                       'error falls with the mesh')
+    v = dot_product(full(nn*n + 2:nn*n + 3), dir(2:3))
+    u = full(nn*n + 1)
+    off = 0.0_dp
+    do j = 0, n
+      off = max(off, abs(dot_product(full(nn*j + 2:nn*j + 3), [-dir(3), dir(2)])), abs(full(nn*j + 4)))
     end do
-    call assert_close(errs(3, 1), 0.0_dp, 2.0e-3_dp, '16 elements, alpha = 0.1')
-    call assert_close(errs(3, 2), 0.0_dp, 6.0e-3_dp, '16 elements, alpha = 0.3')
-  end subroutine test_elastica
+  end subroutine cantilever_tip_load
 
   !> Spinning cantilever (paper E's beam: L = 20 in, circular r = 0.2 in),
   !> 16 elements, spinning about global Z through its clamped root at
@@ -624,7 +680,7 @@ contains
     type(spatial_eval_info_t) :: info
     real(dp), allocatable :: res(:), jac(:, :), x(:), full(:), zero(:), kmat(:, :), mmat(:, :)
     integer, allocatable :: keep(:)
-    logical :: fixed(8*(n + 1))
+    logical :: fixed(nn*(n + 1))
     real(dp) :: w0(2), wspin(2), k1(2)
     integer :: i, it, grp, spin
     call spatial_section_init(sec, section_circular, [0.2_dp], alu, err)
@@ -635,7 +691,7 @@ contains
     fixed = .false.
     fixed(1:6) = .true.
     call keep_dofs(n + 1, fixed, keep)
-    allocate(full(8*(n + 1)), zero(8*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
+    allocate(full(nn*(n + 1)), zero(nn*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
     zero = 0.0_dp
     do spin = 1, 2
       rb%omega = [0.0_dp, 0.0_dp, merge(0.0_dp, om, spin == 1)]
@@ -691,7 +747,7 @@ contains
       real(dp), allocatable :: a(:, :), b(:, :), wr(:), wi(:)
       integer :: j, ld
       do j = 1, size(keep)
-        ld = mod(keep(j) - 1, 8) + 1
+        ld = mod(keep(j) - 1, nn) + 1
         sel(j) = merge(any(ld == [2, 6, 7]), any(ld == [3, 5, 8]), grp == 2)
       end do
       ix = pack([(j, j=1, size(keep))], sel)
@@ -708,29 +764,29 @@ contains
     function residual(pall, pdall, pddall) result(rr)
       real(dp), intent(in) :: pall(:), pdall(:), pddall(:)
       real(dp), allocatable :: rr(:)
-      real(dp) :: rall(8*(n + 1)), m(16, 16), f(16), p(16), v(16)
+      real(dp) :: rall(nn*(n + 1)), m(nd, nd), f(nd), p(nd), v(nd)
       integer :: e, i0
       rall = 0.0_dp
       do e = 1, n
-        i0 = 8*(e - 1)
-        p = pall(i0 + 1:i0 + 16)
-        v = pdall(i0 + 1:i0 + 16) + wx(p)
+        i0 = nn*(e - 1)
+        p = pall(i0 + 1:i0 + nd)
+        v = pdall(i0 + 1:i0 + nd) + wx(p)
         rb%x1 = [real(e - 1, dp)*len/n, 0.0_dp, 0.0_dp]
         rb%x1_dd = cross3(rb%omega, cross3(rb%omega, rb%x1))
         call spatial_beam_eval(el, p, v, rb, m, f, info)
         f = f - matmul(m, 2.0_dp*wx(v) - wx(wx(p)))
-        rall(i0 + 1:i0 + 16) = rall(i0 + 1:i0 + 16) + matmul(m, pddall(i0 + 1:i0 + 16)) - f
+        rall(i0 + 1:i0 + nd) = rall(i0 + 1:i0 + nd) + matmul(m, pddall(i0 + 1:i0 + nd)) - f
       end do
       rr = rall(keep)
     end function residual
     function wx(q) result(w)
-      real(dp), intent(in) :: q(16)
-      real(dp) :: w(16)
+      real(dp), intent(in) :: q(nd)
+      real(dp) :: w(nd)
       w = 0.0_dp
       w(1:3) = cross3(rb%omega, q(1:3))
       w(4:6) = cross3(rb%omega, q(4:6))
-      w(9:11) = cross3(rb%omega, q(9:11))
-      w(12:14) = cross3(rb%omega, q(12:14))
+      w(11:13) = cross3(rb%omega, q(11:13))
+      w(14:16) = cross3(rb%omega, q(14:16))
     end function wx
   end subroutine test_southwell
 
@@ -776,7 +832,7 @@ contains
     type(spatial_eval_info_t) :: info
     real(dp), allocatable :: res(:), jac(:, :), x(:), full(:)
     integer, allocatable :: keep(:)
-    logical :: fixed(8*(n + 1))
+    logical :: fixed(nn*(n + 1))
     integer :: i
     call spatial_section_init(sec, section_circular, [r], mat, err)
     fx = all_off()
@@ -785,7 +841,7 @@ contains
     fixed = .false.
     fixed(1:6) = .true.
     call keep_dofs(n + 1, fixed, keep)
-    allocate(full(8*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
+    allocate(full(nn*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
     full = 0.0_dp
     ! the residual is affine in p (linear strain): one Newton step with a
     ! difference Jacobian (exact for an affine map up to round-off)
@@ -798,36 +854,37 @@ contains
     x = -res
     call solve_linear(jac, x, err)
     full(keep) = x
-    tip = full(8*n + 1)
-    other = maxval(abs(full(pack([(i, i=1, 8*(n + 1))], mod([(i, i=0, 8*n + 7)], 8) /= 0))))
+    tip = full(nn*n + 1)
+    ! every DOF but the axial ones (u, u_x, u_xx: local 1, 9, 10)
+    other = maxval(abs(full(pack([(i, i=1, nn*(n + 1))], [(all(mod(i - 1, nn) + 1 /= [1, 9, 10]), i=1, nn*(n + 1))]))))
   contains
     function residual(qall) result(rr)
       real(dp), intent(in) :: qall(:)
       real(dp), allocatable :: rr(:)
-      real(dp) :: rall(8*(n + 1)), m(16, 16), f(16), wq(16), q(16)
+      real(dp) :: rall(nn*(n + 1)), m(nd, nd), f(nd), wq(nd), q(nd)
       integer :: e, i0
       rb%omega = [0.0_dp, 0.0_dp, om]
       rall = 0.0_dp
       do e = 1, n
-        i0 = 8*(e - 1)
-        q = qall(i0 + 1:i0 + 16)
+        i0 = nn*(e - 1)
+        q = qall(i0 + 1:i0 + nd)
         wq = omega_x(q)
         rb%x1 = [real(e - 1, dp)*len/n, 0.0_dp, 0.0_dp]
         rb%x1_dd = -om**2*rb%x1
         call spatial_beam_eval(el, q, wq, rb, m, f, info)
         ! q_dd = W^2 q for p_dot = p_dd = 0 (frame at R = I)
-        rall(i0 + 1:i0 + 16) = rall(i0 + 1:i0 + 16) + matmul(m, omega_x(wq)) - f
+        rall(i0 + 1:i0 + nd) = rall(i0 + 1:i0 + nd) + matmul(m, omega_x(wq)) - f
       end do
       rr = rall(keep)
     end function residual
     function omega_x(q) result(w)
-      real(dp), intent(in) :: q(16)
-      real(dp) :: w(16)
+      real(dp), intent(in) :: q(nd)
+      real(dp) :: w(nd)
       w = 0.0_dp
       w(1:3) = cross3(rb%omega, q(1:3))
       w(4:6) = cross3(rb%omega, q(4:6))
-      w(9:11) = cross3(rb%omega, q(9:11))
-      w(12:14) = cross3(rb%omega, q(12:14))
+      w(11:13) = cross3(rb%omega, q(11:13))
+      w(14:16) = cross3(rb%omega, q(14:16))
     end function omega_x
   end subroutine rotating_cantilever
 

@@ -1,0 +1,81 @@
+!> Peaks of a run's output quantities (largest |value| and the crank angle
+!> where it occurred) over the whole run and per crank revolution, and the
+!> test of periodicity: the largest relative change of any quantity's peak
+!> from one complete revolution to the next.
+!>
+!>     call pk%init(n)
+!>     every output time: call pk%add(values, crank_deg)
+!>     at the end of a revolution: call pk%close_revolution()  (pk%change: the
+!>       largest relative change from the previous one, -1 for the first)
+!>     pk%whole, pk%whole_deg: whole run; pk%last, pk%last_deg: the last
+!>       complete revolution pk%n_complete (0: none yet)
+module revolution_peaks
+  use kinds, only: dp
+  implicit none
+  private
+  public :: revolution_peaks_t
+
+  type :: revolution_peaks_t
+    real(dp), allocatable :: whole(:), whole_deg(:)   !< whole run
+    real(dp), allocatable :: cur(:), cur_deg(:)       !< the open revolution
+    real(dp), allocatable :: last(:), last_deg(:)     !< the last complete revolution
+    integer :: n_complete = 0                         !< complete revolutions so far
+    real(dp) :: change = -1.0_dp                      !< largest relative change of a peak, last two revolutions
+  contains
+    procedure :: init
+    procedure :: add
+    procedure :: close_revolution
+  end type revolution_peaks_t
+
+contains
+
+  subroutine init(self, n)
+    class(revolution_peaks_t), intent(inout) :: self
+    integer, intent(in) :: n
+    allocate(self%whole(n), self%whole_deg(n), self%cur(n), self%cur_deg(n), self%last(n), self%last_deg(n))
+    self%whole = 0.0_dp
+    self%whole_deg = 0.0_dp
+    self%cur = 0.0_dp
+    self%cur_deg = 0.0_dp
+    self%last = 0.0_dp
+    self%last_deg = 0.0_dp
+  end subroutine init
+
+  !> One output time: values (signed) at crank angle deg.
+  subroutine add(self, values, deg)
+    class(revolution_peaks_t), intent(inout) :: self
+    real(dp), intent(in) :: values(:), deg
+    integer :: i
+    do i = 1, size(values)
+      if (abs(values(i)) > self%whole(i)) then
+        self%whole(i) = abs(values(i))
+        self%whole_deg(i) = deg
+      end if
+      if (abs(values(i)) > self%cur(i)) then
+        self%cur(i) = abs(values(i))
+        self%cur_deg(i) = deg
+      end if
+    end do
+  end subroutine add
+
+  !> The open revolution is complete: compare it with the previous complete
+  !> one (change = max over quantities of |p - p_prev| / max(p, p_prev);
+  !> quantities zero in both are equal) and open the next.
+  subroutine close_revolution(self)
+    class(revolution_peaks_t), intent(inout) :: self
+    integer :: i
+    real(dp) :: big
+    if (self%n_complete > 0) then
+      self%change = 0.0_dp
+      do i = 1, size(self%cur)
+        big = max(self%cur(i), self%last(i))
+        if (big > 0.0_dp) self%change = max(self%change, abs(self%cur(i) - self%last(i))/big)
+      end do
+    end if
+    self%last = self%cur
+    self%last_deg = self%cur_deg
+    self%n_complete = self%n_complete + 1
+    self%cur = 0.0_dp
+    self%cur_deg = 0.0_dp
+  end subroutine close_revolution
+end module revolution_peaks

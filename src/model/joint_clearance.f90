@@ -1,0 +1,201 @@
+!> Pin joints with radial clearance in the planar mechanism model
+!> (doc/clearance.md).  At such a joint the journal (the end of the joint's
+!> second link) no longer shares the translations of the bearing (the end of
+!> the first link, or the ground for a ground pin): its global X/Y elastic
+!> translations become two extra global unknowns, and the contact-force law
+!> (module contact_law) acts between the two pairs when the relative position
+!> e = q_journal - q_bearing leaves the clearance circle |e| <= c.
+!>
+!> The split is a post-processing of the built correlation table
+!> (split_journal): the two new unknowns are numbered right after the
+!> journal node's own slope unknown, so they sit beside the unknowns they
+!> couple with and the half-bandwidth grows by at most two.
+module joint_clearance
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use correlation_table, only: correlation_table_t
+  use contact_law, only: contact_law_t, normal_force, friction_force
+  implicit none
+  private
+  public :: clearance_joint_t, split_journal, contact_state, add_contact_forces, contact_blocks, add_pair_block
+
+  !> One clearance joint of the model.
+  type :: clearance_joint_t
+    integer :: joint = 0                 !< joint index in the mechanism
+    character(len=16) :: name = ''
+    real(dp) :: clearance = 0.0_dp       !< radial clearance c (in)
+    real(dp) :: journal_radius = 0.0_dp  !< for the sliding speed of friction (in)
+    type(contact_law_t) :: law
+    integer :: bearing(2) = 0            !< global unknowns of the bearing's X, Y translation (0: ground)
+    integer :: journal(2) = 0            !< the journal's own unknowns (the split)
+    integer :: element_bearing = 0       !< elements whose rigid rotation rates give the sliding speed
+    integer :: element_journal = 0       !< (0: ground)
+    integer :: journal_node = 0          !< node (1, 2) of element_journal at the joint
+    integer :: bearing_node = 0          !< node (1, 2) of element_bearing at the joint
+    real(dp) :: v_impact = 1.0_dp        !< approach speed of the current contact (set at its onset)
+  end type clearance_joint_t
+
+contains
+
+  !> Give the translations of node `node` (1, 2) of element e their own two
+  !> global unknowns, numbered after the node's slope unknown; every unknown
+  !> numbered after that moves up by two.  cj%bearing gets the unknowns the
+  !> node had (0 for a ground pin), cj%journal the new ones.
+  subroutine split_journal(table, e, node, cj, err)
+    type(correlation_table_t), intent(inout) :: table
+    integer, intent(in) :: e, node
+    type(clearance_joint_t), intent(inout) :: cj
+    type(error_t), intent(inout) :: err
+    integer :: first, p, k, i
+    character(len=24), allocatable :: label(:)
+    first = 1 + table%node_dofs*(node - 1)
+    cj%bearing = table%map(first:first + 1, e)
+    if (any(abs(table%coef(first:first + 1, e) - 1.0_dp) > 0.0_dp .and. cj%bearing > 0)) then
+      call err%set('clearance joint '//trim(cj%name), 'the journal''s translations are not plain unknowns')
+      return
+    end if
+    p = max(maxval(cj%bearing), table%map(first + 2, e))
+    if (p <= 0) then
+      call err%set('clearance joint '//trim(cj%name), 'the journal node has no free unknown to number after')
+      return
+    end if
+    do k = 1, table%n_elements
+      do i = 1, table%element_dofs
+        if (table%map(i, k) > p) table%map(i, k) = table%map(i, k) + 2
+      end do
+    end do
+    ! the bearing keeps the unknowns it had (numbered <= p, unchanged)
+    cj%journal = [p + 1, p + 2]
+    table%map(first:first + 1, e) = cj%journal
+    table%coef(first:first + 1, e) = 1.0_dp
+    allocate(label(table%n_global + 2))
+    label(1:p) = table%label(1:p)
+    label(p + 1) = 'J'//str(cj%joint)//' U journal'
+    label(p + 2) = 'J'//str(cj%joint)//' W journal'
+    label(p + 3:) = table%label(p + 1:table%n_global)
+    call move_alloc(label, table%label)
+    table%n_global = table%n_global + 2
+    table%half_bandwidth = max(band_of(table), pair_span(cj))
+  end subroutine split_journal
+
+  !> Half-bandwidth of the table's elements.
+  pure integer function band_of(table) result(kd)
+    type(correlation_table_t), intent(in) :: table
+    integer :: e
+    kd = 0
+    do e = 1, table%n_elements
+      if (any(table%map(:, e) > 0)) &
+        kd = max(kd, maxval(table%map(:, e)) - minval(table%map(:, e), mask=table%map(:, e) > 0))
+    end do
+  end function band_of
+
+  !> Distance between the farthest unknowns the contact couples.
+  pure integer function pair_span(cj) result(span)
+    type(clearance_joint_t), intent(in) :: cj
+    integer :: d(4)
+    d = [cj%bearing, cj%journal]
+    span = maxval(d) - minval(d, mask=d > 0)
+  end function pair_span
+
+  !> Relative position e and velocity of journal and bearing, penetration
+  !> |e| - c and its rate, contact normal.
+  pure subroutine contact_state(cj, q, qd, e, ed, delta, delta_d, n)
+    type(clearance_joint_t), intent(in) :: cj
+    real(dp), intent(in) :: q(:), qd(:)
+    real(dp), intent(out) :: e(2), ed(2), delta, delta_d, n(2)
+    real(dp) :: r
+    integer :: i
+    do i = 1, 2
+      e(i) = q(cj%journal(i))
+      ed(i) = qd(cj%journal(i))
+      if (cj%bearing(i) > 0) then
+        e(i) = e(i) - q(cj%bearing(i))
+        ed(i) = ed(i) - qd(cj%bearing(i))
+      end if
+    end do
+    r = sqrt(e(1)**2 + e(2)**2)
+    delta = r - cj%clearance
+    if (r > 0.0_dp) then
+      n = e/r
+    else
+      n = [1.0_dp, 0.0_dp]
+    end if
+    delta_d = n(1)*ed(1) + n(2)*ed(2)
+  end subroutine contact_state
+
+  !> Contact forces on the journal (f_e = -F_n n + F_t t) and the bearing
+  !> (-f_e) added to the global force; F_n and F_t returned.  spin = the rigid
+  !> rotation rate of the journal's link minus the bearing's (rad/s).
+  subroutine add_contact_forces(cj, q, qd, spin, force, fn, ft)
+    type(clearance_joint_t), intent(in) :: cj
+    real(dp), intent(in) :: q(:), qd(:), spin
+    real(dp), intent(inout) :: force(:)
+    real(dp), intent(out) :: fn
+    real(dp), intent(out), optional :: ft
+    real(dp) :: e(2), ed(2), delta, delta_d, n(2), t(2), d1, d2, f_t, dft, fe(2)
+    integer :: i
+    call contact_state(cj, q, qd, e, ed, delta, delta_d, n)
+    fn = 0.0_dp
+    if (present(ft)) ft = 0.0_dp
+    if (.not. delta > 0.0_dp) return
+    call normal_force(cj%law, delta, delta_d, cj%v_impact, fn, d1, d2)
+    t = [-n(2), n(1)]
+    call friction_force(cj%law, fn, t(1)*ed(1) + t(2)*ed(2) + cj%journal_radius*spin, f_t, dft)
+    if (present(ft)) ft = f_t
+    fe = -fn*n + f_t*t
+    do i = 1, 2
+      force(cj%journal(i)) = force(cj%journal(i)) + fe(i)
+      if (cj%bearing(i) > 0) force(cj%bearing(i)) = force(cj%bearing(i)) - fe(i)
+    end do
+  end subroutine add_contact_forces
+
+  !> Stiffness and damping of the contact in e (2 x 2, symmetric): the
+  !> Newton matrix's approximation
+  !>     K = dF_n/d delta n n^T + F_n/|e| (I - n n^T),   C = dF_n/d delta' n n^T - dF_t/dv_t t t^T
+  !> (the unsymmetric terms of the rotating normal acting on the rate are
+  !> left out, like the gyroscopic terms of the elements: the chord
+  !> iteration needs only an approximation).  Zero out of contact.
+  pure subroutine contact_blocks(cj, q, qd, spin, k, c)
+    type(clearance_joint_t), intent(in) :: cj
+    real(dp), intent(in) :: q(:), qd(:), spin
+    real(dp), intent(out) :: k(2, 2), c(2, 2)
+    real(dp) :: e(2), ed(2), delta, delta_d, n(2), t(2), fn, d1, d2, ft, dft, nn(2, 2), r
+    call contact_state(cj, q, qd, e, ed, delta, delta_d, n)
+    k = 0.0_dp
+    c = 0.0_dp
+    if (.not. delta > 0.0_dp) return
+    call normal_force(cj%law, delta, delta_d, cj%v_impact, fn, d1, d2)
+    t = [-n(2), n(1)]
+    call friction_force(cj%law, fn, t(1)*ed(1) + t(2)*ed(2) + cj%journal_radius*spin, ft, dft)
+    nn = spread(n, 2, 2)*spread(n, 1, 2)
+    r = cj%clearance + delta
+    k = d1*nn + fn/r*(reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2]) - nn)
+    c = d2*nn - dft*spread(t, 2, 2)*spread(t, 1, 2)
+  end subroutine contact_blocks
+
+  !> band += s * G for the 4 x 4 G = [[B, -B], [-B, B]] of a 2 x 2 block B in
+  !> e = q_journal - q_bearing, in band storage band(off + i - j, j); with
+  !> lower, only i >= j (LAPACK's lower symmetric band, off = 1).
+  pure subroutine add_pair_block(cj, blk, s, band, off, lower)
+    type(clearance_joint_t), intent(in) :: cj
+    real(dp), intent(in) :: blk(2, 2), s
+    real(dp), intent(inout) :: band(:, :)
+    integer, intent(in) :: off
+    logical, intent(in) :: lower
+    integer :: d(4), a, b, i, j
+    real(dp) :: sgn(4)
+    d = [cj%journal, cj%bearing]
+    sgn = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
+    do b = 1, 4
+      j = d(b)
+      if (j == 0) cycle
+      do a = 1, 4
+        i = d(a)
+        if (i == 0) cycle
+        if (lower .and. i < j) cycle
+        band(off + i - j, j) = band(off + i - j, j) + s*sgn(a)*sgn(b)*blk(mod(a - 1, 2) + 1, mod(b - 1, 2) + 1)
+      end do
+    end do
+  end subroutine add_pair_block
+end module joint_clearance

@@ -1,0 +1,159 @@
+!> What engineers compare a flexible-mechanism run with, computed from the
+!> model's state: the section resultants and stresses of every element, and
+!> the displacement of named points of a link with its deflection relative
+!> to the deformed chord.  (Joint forces: src/model/joint_reactions.f90.)
+!>
+!> Section quantities at a station x of an element, from the axial strain
+!> eps_n and curvature kappa the element uses (beam_section_strains) and
+!> its material law, outer fibres y = +-c (c the link's fibre distance):
+!>   N = axial force, M = bending moment (material integrated through the
+!>       depth, as in the element: material_law%section_response);
+!>   outer-fibre stresses s+- = sigma(eps_n -+ c kappa);
+!>   axial stress   = (s+ + s-)/2,   bending stress = (s- - s+)/2,
+!> so that axial + bending and axial - bending are the two outer-fibre
+!> stresses (the analysis' sigma_max column is the larger in magnitude); for
+!> a linear material axial = N/A and bending = M c/I.  An element's value of
+!> each is the signed value of largest magnitude over the stations of its
+!> stress recovery (both ends and the element's Gauss points).
+module transient_response
+  use kinds, only: dp
+  use material_law, only: ramberg_osgood_t, ro_stress, section_response, section_resultants_t
+  use beam_element, only: beam_element_t, beam_section_strains, beam_local_displacement, element_kind_consistent
+  use linkage, only: mechanism_t
+  use mechanism_model, only: mechanism_model_t
+  implicit none
+  private
+  public :: section_values_t, section_at, element_section_peaks
+  public :: link_point_t, link_point_response
+
+  !> Section quantities at one station, or an element's peaks (signed).
+  type :: section_values_t
+    real(dp) :: axial_force = 0.0_dp       !< N
+    real(dp) :: moment = 0.0_dp            !< M = EI kappa for a linear material
+    real(dp) :: axial_stress = 0.0_dp      !< (s+ + s-)/2
+    real(dp) :: bending_stress = 0.0_dp    !< (s- - s+)/2
+  end type section_values_t
+
+  !> A point of a link and its response.
+  type :: link_point_t
+    integer :: link = 0
+    real(dp) :: s = 0.5_dp                 !< position along the link, 0 (end 1) .. 1 (end 2)
+    real(dp) :: u = 0.0_dp, w = 0.0_dp     !< elastic axial, transverse displacement in the link's rigid axes
+    real(dp) :: chord = 0.0_dp             !< transverse distance from the deformed chord (end 1 to end 2), + to the left
+  end type link_point_t
+
+contains
+
+  !> Section quantities of element e at x = xi l for the global displacements q.
+  pure function section_at(model, e, q, xi) result(v)
+    type(mechanism_model_t), intent(in) :: model
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:), xi
+    type(section_values_t) :: v
+    v = station(model%el(e), model%table%gather(e, q), model%rb(e)%phi, xi)
+  end function section_at
+
+  pure function station(el, qe, phi, xi) result(v)
+    type(beam_element_t), intent(in) :: el
+    real(dp), intent(in) :: qe(:), phi, xi
+    type(section_values_t) :: v
+    type(ramberg_osgood_t) :: law
+    type(section_resultants_t) :: res
+    real(dp) :: eps_n, kap, area, fibre, s_plus, s_minus
+    logical :: nonlinear
+    call beam_section_strains(el, qe, phi, xi, eps_n, kap)
+    if (el%kind == element_kind_consistent) then
+      law = el%cons%material
+      area = el%cons%area
+      fibre = el%cons%fibre
+      nonlinear = el%cons%effects%material
+    else
+      law = el%kear%material
+      area = el%kear%area
+      fibre = el%kear%fibre
+      nonlinear = el%kear%effects%material
+    end if
+    if (.not. nonlinear) law%e2 = 0.0_dp           ! as the element: off = linear, no power evaluated
+    res = section_response(law, area, el%depth, eps_n, kap, nonlinear)
+    v%axial_force = res%axial_force
+    v%moment = res%moment
+    s_plus = ro_stress(law, eps_n - fibre*kap)
+    s_minus = ro_stress(law, eps_n + fibre*kap)
+    v%axial_stress = 0.5_dp*(s_plus + s_minus)
+    v%bending_stress = 0.5_dp*(s_minus - s_plus)
+  end function station
+
+  !> Each section quantity's signed value of largest magnitude over element
+  !> e's stations (ends and Gauss points, as its stress recovery).
+  pure function element_section_peaks(model, e, q) result(pk)
+    type(mechanism_model_t), intent(in) :: model
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:)
+    type(section_values_t) :: pk
+    real(dp) :: qe(model%table%element_dofs), xi
+    type(section_values_t) :: v
+    integer :: i, ng
+    associate (el => model%el(e))
+      if (el%kind == element_kind_consistent) then
+        ng = size(el%cons%xg)
+      else
+        ng = size(el%kear%xg)
+      end if
+      qe = model%table%gather(e, q)
+      do i = 0, ng + 1
+        if (i == 0) then
+          xi = 0.0_dp
+        else if (i == ng + 1) then
+          xi = 1.0_dp
+        else if (el%kind == element_kind_consistent) then
+          xi = el%cons%xg(i)/el%length
+        else
+          xi = el%kear%xg(i)/el%length
+        end if
+        v = station(el, qe, model%rb(e)%phi, xi)
+        if (abs(v%axial_force) > abs(pk%axial_force)) pk%axial_force = v%axial_force
+        if (abs(v%moment) > abs(pk%moment)) pk%moment = v%moment
+        if (abs(v%axial_stress) > abs(pk%axial_stress)) pk%axial_stress = v%axial_stress
+        if (abs(v%bending_stress) > abs(pk%bending_stress)) pk%bending_stress = v%bending_stress
+      end do
+    end associate
+  end function element_section_peaks
+
+  !> Elastic displacement (u, w) of point p (p%link, p%s) in the link's
+  !> rigid-body axes and its transverse distance from the deformed chord:
+  !> with the deformed ends r1 = (u1, w1), r2 = (L + u2, w2) and the point
+  !> r = (s L + u, w) in those axes, chord = (r2 - r1) x (r - r1) / |r2 - r1|.
+  !> The link's elements are collinear (one straight link), so their local
+  !> axes are the link's.
+  pure subroutine link_point_response(model, mech, q, p)
+    type(mechanism_model_t), intent(in) :: model
+    type(mechanism_t), intent(in) :: mech
+    real(dp), intent(in) :: q(:)
+    type(link_point_t), intent(inout) :: p
+    real(dp) :: uw1(2), uw2(2), r1(2), r2(2), r(2), d(2), length, xi
+    integer :: first, n, k
+    first = mech%links(p%link)%first_element
+    n = mech%links(p%link)%n_elements
+    length = sum(model%el(first:first + n - 1)%length)
+    uw1 = local_uw(first, 0.0_dp)
+    uw2 = local_uw(first + n - 1, 1.0_dp)
+    k = min(n - 1, int(p%s*n))                     ! element k+1 holds the point
+    xi = p%s*n - k
+    associate (uw => local_uw(first + k, xi))
+      p%u = uw(1)
+      p%w = uw(2)
+    end associate
+    r1 = uw1
+    r2 = [length + uw2(1), uw2(2)]
+    r = [p%s*length + p%u, p%w]
+    d = r2 - r1
+    p%chord = (d(1)*(r(2) - r1(2)) - d(2)*(r(1) - r1(1)))/norm2(d)
+  contains
+    pure function local_uw(e, x) result(uw)
+      integer, intent(in) :: e
+      real(dp), intent(in) :: x
+      real(dp) :: uw(2)
+      uw = beam_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, x)
+    end function local_uw
+  end subroutine link_point_response
+end module transient_response

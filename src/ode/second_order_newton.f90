@@ -1,0 +1,158 @@
+!> DLSODE's Newton matrix for a mechanism model M(q, t) q'' = F(q, q', t) in
+!> first-order form (state interleaved, y(2i-1) = q_i, y(2i) = q'_i), with the
+!> approximate Jacobian J = [[0, I], [-M^-1 K_t, -beta M^-1 K_t]], without
+!> forming J (doc/transient.md, "The Newton matrix of BDF"): eliminating the
+!> displacement corrections of P = I - hl0 J leaves the N x N band matrix
+!>     S = M + (hl0 beta + hl0^2) K_t,
+!> factored by banded Cholesky when K_t is symmetric and S positive definite,
+!> by banded LU otherwise; O(N kd^2) per factorization, O(N kd) per solve.
+!>
+!> The model fills `mass` (lower band storage m(1+i-j, j), kd+1 rows) and
+!> `stiff` (general band storage k(kd+1+i-j, j), 2kd+1 rows) at the state of
+!> the factorization and calls `factor`; `solve` then serves DLSODE's DSOLSY
+!> (module lsode_newton).  Any model with this structure (the planar and the
+!> spatial mechanism models) can own one.
+module second_order_newton
+  use kinds, only: dp
+  use error_status, only: error_t
+  use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve
+  implicit none
+  private
+  public :: second_order_newton_t, symmetric_band, band_combination
+
+  type :: second_order_newton_t
+    integer :: n = 0, kd = 0
+    real(dp), allocatable :: mass(:, :)     !< (kd+1, n) M, lower band storage (filled by the model)
+    real(dp), allocatable :: stiff(:, :)    !< (2kd+1, n) K_t, general band storage (filled by the model)
+    real(dp), allocatable :: chol(:, :)     !< (kd+1, n) Cholesky factor of S
+    real(dp), allocatable :: lu(:, :)       !< (3kd+1, n) banded LU of S
+    integer, allocatable :: ipiv(:)
+    real(dp) :: hl0 = 0.0_dp                !< h*el0 of the last factorization
+    logical :: cholesky = .true.            !< S was factored by Cholesky (else banded LU)
+    integer :: n_factorizations = 0
+    integer :: n_lu = 0                     !< of which by banded LU
+  contains
+    procedure :: size_for
+    procedure :: factor
+    procedure :: solve
+  end type second_order_newton_t
+
+contains
+
+  !> Work arrays for n unknowns and half-bandwidth kd (kept when the sizes agree).
+  subroutine size_for(self, n, kd)
+    class(second_order_newton_t), intent(inout) :: self
+    integer, intent(in) :: n, kd
+    if (allocated(self%mass) .and. self%n == n .and. self%kd == kd) return
+    if (allocated(self%mass)) deallocate(self%mass, self%stiff, self%chol, self%lu, self%ipiv)
+    self%n = n
+    self%kd = kd
+    allocate(self%mass(kd + 1, n), self%stiff(2*kd + 1, n), self%chol(kd + 1, n), self%lu(3*kd + 1, n), &
+             self%ipiv(n))
+  end subroutine size_for
+
+  !> Factor S = M + (hl0 beta + hl0^2) K_t from the filled mass and stiff;
+  !> ok = .false. when S is singular (DLSODE then cuts the step).
+  subroutine factor(self, hl0, beta, ok)
+    class(second_order_newton_t), intent(inout) :: self
+    real(dp), intent(in) :: hl0, beta
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    real(dp) :: c
+    integer :: kd, n, i, j
+    kd = self%kd
+    n = self%n
+    c = hl0*beta + hl0**2
+    self%hl0 = hl0
+    self%n_factorizations = self%n_factorizations + 1
+    self%cholesky = symmetric_band(self%stiff, kd)
+    if (self%cholesky) then
+      self%chol = self%mass + c*self%stiff(kd + 1:, :)
+      call band_cholesky_factor(self%chol, kd, err)
+      self%cholesky = .not. err%failed()
+      call err%clear()
+    end if
+    if (self%cholesky) then
+      ok = .true.
+      return
+    end if
+    ! banded LU: S in rows kd+1.. of the general band layout ab(2kd+1+i-j, j)
+    self%n_lu = self%n_lu + 1
+    self%lu = 0.0_dp
+    self%lu(kd + 1:, :) = c*self%stiff
+    do j = 1, n
+      do i = j, min(n, j + kd)
+        self%lu(2*kd + 1 + i - j, j) = self%lu(2*kd + 1 + i - j, j) + self%mass(1 + i - j, j)
+        if (i > j) self%lu(2*kd + 1 + j - i, i) = self%lu(2*kd + 1 + j - i, i) + self%mass(1 + i - j, j)
+      end do
+    end do
+    call band_lu_factor(self%lu, kd, kd, self%ipiv, err)
+    ok = .not. err%failed()
+  end subroutine factor
+
+  !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
+  !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:
+  !>     S dv = M r2 - hl0 K_t r1,   dq = r1 + hl0 dv.
+  subroutine solve(self, x, err)
+    class(second_order_newton_t), intent(in) :: self
+    real(dp), intent(inout) :: x(:)
+    type(error_t), intent(inout) :: err
+    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
+    r1 = x(1::2)
+    r2 = x(2::2)
+    call band_combination(self%mass, self%stiff, self%kd, r2, self%hl0, r1, dv)
+    if (self%cholesky) then
+      call band_cholesky_solve(self%chol, self%kd, dv, err)
+    else
+      call band_lu_solve(self%lu, self%kd, self%kd, self%ipiv, dv, err)
+    end if
+    if (err%failed()) call err%add_context('Newton matrix solve')
+    x(2::2) = dv
+    x(1::2) = r1 + self%hl0*dv
+  end subroutine solve
+
+  !> Whether a band matrix in general band storage (half-bandwidth kd) is
+  !> symmetric to round-off (1e-10 of its largest entry).
+  pure logical function symmetric_band(kb, kd) result(sym)
+    real(dp), intent(in) :: kb(:, :)
+    integer, intent(in) :: kd
+    integer :: i, j, n
+    real(dp) :: tol
+    n = size(kb, 2)
+    tol = 1.0e-10_dp*maxval(abs(kb))
+    sym = .true.
+    do j = 1, n
+      do i = j + 1, min(n, j + kd)
+        if (abs(kb(kd + 1 + i - j, j) - kb(kd + 1 + j - i, i)) > tol) then
+          sym = .false.
+          return
+        end if
+      end do
+    end do
+  end function symmetric_band
+
+  !> y = M a - c K b for M symmetric in lower band storage m(1+i-j, j) and K
+  !> in general band storage k(kd+1+i-j, j), both of half-bandwidth kd: O(N kd).
+  pure subroutine band_combination(m, k, kd, a, c, b, y)
+    real(dp), intent(in) :: m(:, :), k(:, :), a(:), c, b(:)
+    integer, intent(in) :: kd
+    real(dp), intent(out) :: y(:)
+    integer :: i, j, n
+    real(dp) :: aj, cbj, s
+    n = size(a)
+    y = 0.0_dp
+    do j = 1, n
+      aj = a(j)
+      cbj = c*b(j)
+      s = m(1, j)*aj
+      do i = max(1, j - kd), min(n, j + kd)
+        y(i) = y(i) - k(kd + 1 + i - j, j)*cbj
+      end do
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*aj
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
+    end do
+  end subroutine band_combination
+end module second_order_newton

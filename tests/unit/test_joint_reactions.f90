@@ -1,0 +1,437 @@
+!> Joint reactions (src/model/joint_reactions.f90) and the section and
+!> link-point responses (src/model/transient_response.f90) against closed
+!> forms computed here, independently of the element and the assembly:
+!>  - the rigid four-bar's pin forces and crank torque from the Newton-Euler
+!>    equations of its three links (a 9 x 9 linear system), against the
+!>    model's reactions with very stiff links in quasi-static equilibrium;
+!>  - a cantilever under a tip load: root force P, root moment P L, bending
+!>    moment M(x) = -P (L - x) (= EI w''), chord deflection at mid-span;
+!>  - a simply supported beam under a central load: mid-span deflection
+!>    relative to the chord P L^3/(48 EI);
+!>  - a spinning bar's axial force N(x) = rho A w^2 (L^2 - x^2)/2 (with the
+!>    centrifugal softening of the axial stretch, exactly);
+!>  - a flexible four-bar in motion: a pin's forces on its two links are
+!>    equal and opposite and a pin transmits no moment.
+module test_joint_reactions_suite
+  use kinds, only: dp, pi, two_pi
+  use error_status, only: error_t
+  use linalg, only: solve_linear
+  use kear_element, only: element_effects_t
+  use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
+  use mechanism_model, only: mechanism_model_t
+  use external_loads, only: point_load_t
+  use joint_reactions, only: joint_reactions_t
+  use transient_response, only: section_values_t, section_at, element_section_peaks, link_point_t, &
+                                link_point_response
+  use lsode_solver, only: lsode_t, mf_bdf_full_user
+  use transient_fixtures, only: fourbar_input, cantilever_input, beam_input, beam_length, e1, inertia, area, rho, rtoa
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+contains
+
+  subroutine run_all()
+    call run_test('rigid_fourbar_pin_forces_match_newton_euler_9x9', test_rigid_fourbar)
+    call run_test('cantilever_tip_load_root_force_moment_and_chord', test_cantilever)
+    call run_test('simply_supported_central_load_chord_deflection_pl3_48ei', test_simply_supported)
+    call run_test('spinning_bar_axial_force_rho_a_w2_l2_minus_x2_over_2', test_spinning_bar)
+    call run_test('moving_flexible_fourbar_pin_forces_equal_and_opposite', test_action_reaction)
+    call run_test('frictionless_slider_guide_pushes_only_normal_to_the_guide', test_slider_guide)
+  end subroutine run_all
+
+  subroutine build(inp, effects, formulation, mech, model, ok)
+    type(mechanism_input_t), intent(in) :: inp
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
+    type(mechanism_t), intent(out) :: mech
+    type(mechanism_model_t), intent(out) :: model
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    call build_mechanism(inp, mech, err)
+    if (.not. err%failed()) call model%init_mechanism(mech, effects, formulation, 0.0_dp, err)
+    ok = .not. err%failed()
+    call assert_true(ok, 'model: '//err%text())
+  end subroutine build
+
+  ! ------------------------------------------------------------------ rigid four-bar
+
+  !> Links 1e6 times stiffer than aluminium (E = 1.087e13 psi), linear
+  !> model, 150 rad/s, at crank angles 0, 50, ..., 300 deg: the elastic
+  !> state is the quasi-static equilibrium F(q, 0, t) = 0 (the rigid limit
+  !> of the steady motion; deflections ~1e-8 in), and the reactions at it
+  !> must be the rigid-body ones.  Tolerance 1e-6 of the largest force (the
+  !> geometric change of the loads with q is ~1e-8 relative; measured
+  !> agreement ~1e-9).
+  subroutine test_rigid_fourbar()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(mechanism_model_t) :: model
+    type(joint_reactions_t) :: jr
+    type(error_t) :: err
+    real(dp) :: expect(9), got(9), t, scale, omega, shaking(2), masses(3), acc_g(2, 3)
+    real(dp), allocatable :: qq(:), zero(:)
+    logical :: ok
+    integer :: k
+    omega = 150.0_dp
+    inp = fourbar_input(1, omega, 0.0_dp)
+    inp%link_e1(1:3) = 1.0e6_dp*e1
+    call build(inp, element_effects_t(), 'exact', mech, model, ok)
+    if (.not. ok) return
+    call jr%init(mech)
+    call assert_equal(size(jr%ends), 6, 'link ends at joints A, B, B, C, C, D')
+    allocate(qq(model%n), zero(model%n))
+    zero = 0.0_dp
+    do k = 0, 6
+      t = (50.0_dp*k*pi/180.0_dp)/omega
+      qq = 0.0_dp
+      call model%static_equilibrium(t, qq, 1, err)
+      call assert_true(.not. err%failed(), 'static equilibrium: '//err%text())
+      if (err%failed()) return
+      call jr%compute(model, t, qq, zero, err, qdd=zero)
+      call assert_true(.not. err%failed(), 'reactions: '//err%text())
+      ! model in the 9 unknowns: F_A, T_A (ground on crank), F_B (crank on
+      ! coupler), F_C (coupler on rocker), F_D (ground on rocker)
+      got = [jr%ends(1)%force, jr%ends(1)%moment, jr%ends(3)%force, jr%ends(5)%force, jr%ends(6)%force]
+      call rigid_fourbar_forces(model, omega*t, omega, expect, masses, acc_g)
+      scale = maxval(abs(expect))
+      call assert_all_close(got, expect, 0.0_dp, 1.0e-6_dp*scale, 'reactions vs Newton-Euler at crank angle '// &
+                            rtoa(50.0_dp*k)//' deg')
+      call assert_all_close(jr%ends(2)%force, -jr%ends(3)%force, 0.0_dp, 1.0e-9_dp*scale, 'pin B: equal and opposite')
+      call assert_all_close(jr%ends(4)%force, -jr%ends(5)%force, 0.0_dp, 1.0e-9_dp*scale, 'pin C: equal and opposite')
+      ! the ground carries the shaking force: sum of support forces = sum m a_G
+      shaking = matmul(acc_g, masses)
+      call assert_all_close(jr%support(1:2, 1) + jr%support(1:2, 4), shaking, 0.0_dp, 1.0e-6_dp*scale, &
+                            'ground forces = shaking force')
+      if (k == 0) write(*, '(4x,a,3es12.4,a,es10.2)') 'crank angle 0: F_A, T_A = ', expect(1:3), &
+        '; largest difference ', maxval(abs(got - expect))
+    end do
+  end subroutine test_rigid_fourbar
+
+  !> The rigid four-bar's Newton-Euler equations at crank angle th (crank
+  !> turning at w, no angular acceleration), from closed-form position,
+  !> velocity and acceleration loops; slender-rod inertias m L^2/12 (the
+  !> linear model has no rotary inertia).  Unknowns x = [F_A(2), T_A,
+  !> F_B(2), F_C(2), F_D(2)].
+  subroutine rigid_fourbar_forces(model, th, w, x, m, a_g)
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: th, w
+    real(dp), intent(out) :: x(9), m(3), a_g(2, 3)
+    real(dp), parameter :: r2 = 5.0_dp, r3 = 11.0_dp, r4 = 10.5_dp, d(2) = [10.0_dp, 0.0_dp]
+    real(dp) :: a(9, 9), b(2), c(2), e3(2), e4(2), n3(2), n4(2), e2(2), n2(2), w3, w4, al3, al4
+    real(dp) :: mat(2, 2), rhs(2), g2(2), g3(2), g4(2), ig(3), dist, h, base(2), perp(2), c_alt(2), a_b(2)
+    type(error_t) :: err
+    e2 = [cos(th), sin(th)]
+    n2 = [-e2(2), e2(1)]
+    b = r2*e2
+    ! C on both circles; the branch of the model's coupler
+    dist = norm2(d - b)
+    h = (r3**2 - r4**2 + dist**2)/(2.0_dp*dist)
+    base = b + h*(d - b)/dist
+    perp = [-(d(2) - b(2)), d(1) - b(1)]/dist*sqrt(r3**2 - h**2)
+    c = base + perp
+    c_alt = base - perp
+    if (abs(angle_diff(atan2(c_alt(2) - b(2), c_alt(1) - b(1)), model%rb(2)%phi)) < &
+        abs(angle_diff(atan2(c(2) - b(2), c(1) - b(1)), model%rb(2)%phi))) c = c_alt
+    e3 = (c - b)/r3
+    e4 = (c - d)/r4
+    n3 = [-e3(2), e3(1)]
+    n4 = [-e4(2), e4(1)]
+    ! velocities: r2 w n2 + r3 w3 n3 = r4 w4 n4
+    mat(:, 1) = r3*n3
+    mat(:, 2) = -r4*n4
+    rhs = -r2*w*n2
+    call solve_linear(mat, rhs, err)
+    w3 = rhs(1)
+    w4 = rhs(2)
+    ! accelerations: -r2 w^2 e2 + r3 (al3 n3 - w3^2 e3) = r4 (al4 n4 - w4^2 e4)
+    rhs = r2*w**2*e2 + r3*w3**2*e3 - r4*w4**2*e4
+    call solve_linear(mat, rhs, err)
+    al3 = rhs(1)
+    al4 = rhs(2)
+    a_b = -r2*w**2*e2
+    a_g(:, 1) = 0.5_dp*a_b
+    a_g(:, 2) = a_b + 0.5_dp*r3*(al3*n3 - w3**2*e3)
+    a_g(:, 3) = 0.5_dp*r4*(al4*n4 - w4**2*e4)
+    m = model%el(1)%kear%material%rho*model%el(1)%kear%area*[r2, r3, r4]
+    ig = m*[r2, r3, r4]**2/12.0_dp
+    g2 = 0.5_dp*b
+    g3 = 0.5_dp*(b + c)
+    g4 = 0.5_dp*(c + d)
+    a = 0.0_dp
+    ! crank: F_A - F_B = m2 a2; T_A + (A - G2) x F_A - (B - G2) x F_B = 0
+    a(1, 1) = 1.0_dp; a(1, 4) = -1.0_dp
+    a(2, 2) = 1.0_dp; a(2, 5) = -1.0_dp
+    a(3, 3) = 1.0_dp
+    a(3, 1:2) = cross_row(-g2)
+    a(3, 4:5) = -cross_row(b - g2)
+    ! coupler: F_B - F_C = m3 a3; (B - G3) x F_B - (C - G3) x F_C = I3 al3
+    a(4, 4) = 1.0_dp; a(4, 6) = -1.0_dp
+    a(5, 5) = 1.0_dp; a(5, 7) = -1.0_dp
+    a(6, 4:5) = cross_row(b - g3)
+    a(6, 6:7) = -cross_row(c - g3)
+    ! rocker: F_C + F_D = m4 a4; (C - G4) x F_C + (D - G4) x F_D = I4 al4
+    a(7, 6) = 1.0_dp; a(7, 8) = 1.0_dp
+    a(8, 7) = 1.0_dp; a(8, 9) = 1.0_dp
+    a(9, 6:7) = cross_row(c - g4)
+    a(9, 8:9) = cross_row(d - g4)
+    x = [m(1)*a_g(:, 1), 0.0_dp, m(2)*a_g(:, 2), ig(2)*al3, m(3)*a_g(:, 3), ig(3)*al4]
+    call solve_linear(a, x, err)
+    call assert_true(.not. err%failed(), 'Newton-Euler system: '//err%text())
+  end subroutine rigid_fourbar_forces
+
+  !> Coefficients of F in r x F = r(1) F(2) - r(2) F(1).
+  pure function cross_row(r) result(c)
+    real(dp), intent(in) :: r(2)
+    real(dp) :: c(2)
+    c = [-r(2), r(1)]
+  end function cross_row
+
+  pure real(dp) function angle_diff(a, b)
+    real(dp), intent(in) :: a, b
+    angle_diff = modulo(a - b + pi, two_pi) - pi
+  end function angle_diff
+
+  ! ------------------------------------------------------------------ cantilever
+
+  !> Cantilever (L = 20 in, 4 Kear elements, linear), tip load P = -1 lb
+  !> (Y): w is cubic, inside the element's quintic space, so the FE answer
+  !> is exact: the clamp pushes up with 1 lb and holds the moment P L =
+  !> 20 lb in (counter-clockwise); M(x) = -P (L - x);
+  !> bending stress M c/I; mid-span w relative to the chord from the
+  !> exact w: w(L/2) - w(L)/2 = P L^3/(16 EI) (small deflection: 1e-8 L
+  !> here; tolerance 1e-6 relative).
+  subroutine test_cantilever()
+    type(mechanism_t) :: mech
+    type(mechanism_model_t) :: model
+    type(joint_reactions_t) :: jr
+    type(error_t) :: err
+    type(section_values_t) :: v
+    type(link_point_t) :: p
+    real(dp), allocatable :: q(:), zero(:)
+    real(dp) :: pl, ei, x
+    logical :: ok
+    integer :: e
+    real(dp), parameter :: p_load = 1.0_dp
+    call build(cantilever_input(4, 0.0_dp), element_effects_t(), 'exact', mech, model, ok)
+    if (.not. ok) return
+    call model%set_loads([0.0_dp, 0.0_dp], [point_load_t(element=4, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
+    allocate(q(model%n), zero(model%n))
+    q = 0.0_dp
+    zero = 0.0_dp
+    call model%static_equilibrium(0.0_dp, q, 1, err)
+    call assert_true(.not. err%failed(), 'static solve: '//err%text())
+    call jr%init(mech)
+    call jr%compute(model, 0.0_dp, q, zero, err)
+    pl = p_load*beam_length
+    ei = e1*inertia
+    call assert_all_close(jr%ends(1)%force, [0.0_dp, p_load], 0.0_dp, 1.0e-9_dp*p_load, 'root force')
+    call assert_rel_close(jr%ends(1)%moment, pl, 1.0e-9_dp, 'root moment P L')
+    call assert_all_close(jr%ends(2)%force, [0.0_dp, 0.0_dp], 0.0_dp, 1.0e-9_dp*p_load, 'free end: no force')
+    call assert_all_close(jr%support(1:2, 1), [0.0_dp, p_load], 0.0_dp, 1.0e-9_dp*p_load, 'ground force at the clamp')
+    do e = 1, 4
+      x = (e - 1)*beam_length/4
+      v = section_at(model, e, q, 0.0_dp)
+      call assert_rel_close(v%moment, -p_load*(beam_length - x), 1.0e-9_dp, 'M(x) = -P (L - x) at x = '//rtoa(x))
+      call assert_rel_close(v%bending_stress, v%moment*0.5_dp/inertia, 1.0e-9_dp, 'bending stress M c/I')
+      call assert_close(v%axial_force, 0.0_dp, 1.0e-9_dp*p_load, 'no axial force')
+    end do
+    v = element_section_peaks(model, 1, q)
+    call assert_rel_close(v%moment, -pl, 1.0e-9_dp, 'element 1 peak moment: the root')
+    p%link = 1
+    p%s = 0.5_dp
+    call link_point_response(model, mech, q, p)
+    call assert_rel_close(p%w, -5.0_dp*p_load*beam_length**3/(48.0_dp*ei), 1.0e-9_dp, 'w(L/2)')
+    call assert_rel_close(p%chord, p_load*beam_length**3/(16.0_dp*ei), 1.0e-6_dp, 'mid-span w relative to the chord')
+  end subroutine test_cantilever
+
+  !> Beam pinned at both ends (L = 20 in, 2 consistent elements, linear),
+  !> load P at mid-span: deflection relative to the chord P L^3/(48 EI)
+  !> (exact in the element space); ground forces P/2 each.
+  subroutine test_simply_supported()
+    type(mechanism_t) :: mech
+    type(mechanism_model_t) :: model
+    type(joint_reactions_t) :: jr
+    type(error_t) :: err
+    type(link_point_t) :: p
+    real(dp), allocatable :: q(:), zero(:)
+    logical :: ok
+    real(dp), parameter :: p_load = 10.0_dp
+    call build(beam_input('ground_pin', 2), element_effects_t(), 'consistent', mech, model, ok)
+    if (.not. ok) return
+    call model%set_loads([0.0_dp, 0.0_dp], [point_load_t(element=1, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
+    allocate(q(model%n), zero(model%n))
+    q = 0.0_dp
+    zero = 0.0_dp
+    call model%static_equilibrium(0.0_dp, q, 1, err)
+    call assert_true(.not. err%failed(), 'static solve: '//err%text())
+    p%link = 1
+    p%s = 0.5_dp
+    call link_point_response(model, mech, q, p)
+    call assert_rel_close(p%chord, -p_load*beam_length**3/(48.0_dp*e1*inertia), 1.0e-9_dp, 'P L^3/(48 EI)')
+    call jr%init(mech)
+    call jr%compute(model, 0.0_dp, q, zero, err)
+    call assert_all_close(jr%support(1:2, 1), [0.0_dp, 0.5_dp*p_load], 0.0_dp, 1.0e-9_dp*p_load, 'left support P/2')
+    call assert_all_close(jr%support(1:2, 2), [0.0_dp, 0.5_dp*p_load], 0.0_dp, 1.0e-9_dp*p_load, 'right support P/2')
+    call assert_close(jr%ends(1)%moment, 0.0_dp, 1.0e-9_dp*p_load*beam_length, 'a pin carries no moment')
+  end subroutine test_simply_supported
+
+  !> Bar (L = 20 in, 4 consistent elements) clamped to a shaft turning at
+  !> 150 rad/s, in the state F(q, 0, t) = 0: E A u'' + rho A w^2 x = 0,
+  !> N = rho A w^2 (L^2 - x^2)/2 (a quadratic, inside the element's quintic
+  !> u).  That state holds the nodal translations still in the inertial
+  !> frame, so the centrifugal load on the stretch itself (rho A w^2 u of the
+  !> steady rotating state, 5/12 (kL)^2 = 9e-5 of N(0) with k^2 = rho w^2/E)
+  !> acts only on the interior field: measured 1.1e-6 of N(0) from the
+  !> formula; tolerance 1e-5 (a wrong factor or sign fails by 1e-2 or more).
+  !> Linear model, and the exact stretch with coupling (the same here: no
+  !> bending).
+  subroutine test_spinning_bar()
+    real(dp) :: n0
+    real(dp), parameter :: w = 150.0_dp
+    n0 = rho*area*w**2*beam_length**2/2.0_dp
+    call spinning_bar(element_effects_t(), 1.0e-5_dp, ' (linear)')
+    call spinning_bar(element_effects_t(stretching=.true., coupling=.true.), 1.0e-5_dp, ' (stretching, coupling)')
+  contains
+    subroutine spinning_bar(effects, tol, what)
+      type(element_effects_t), intent(in) :: effects
+      real(dp), intent(in) :: tol
+      character(len=*), intent(in) :: what
+      type(mechanism_t) :: mech
+      type(mechanism_model_t) :: model
+      type(joint_reactions_t) :: jr
+      type(error_t) :: err
+      type(section_values_t) :: v
+      real(dp), allocatable :: q(:), zero(:)
+      real(dp) :: x, n_expect
+      logical :: ok
+      integer :: i
+      call build(cantilever_input(4, w), effects, 'consistent', mech, model, ok)
+      if (.not. ok) return
+      allocate(q(model%n), zero(model%n))
+      q = 0.0_dp
+      zero = 0.0_dp
+      call model%static_equilibrium(0.0_dp, q, 1, err)
+      call assert_true(.not. err%failed(), 'static solve: '//err%text())
+      do i = 0, 8
+        x = i*beam_length/8
+        v = section_at(model, min(4, 1 + i/2), q, merge(1.0_dp, 0.5_dp*mod(i, 2), i == 8))
+        n_expect = rho*area*w**2*(beam_length**2 - x**2)/2.0_dp
+        call assert_close(v%axial_force, n_expect, tol*n0, 'N at x = '//rtoa(x)//what)
+        call assert_close(v%axial_stress, v%axial_force/area, 1.0e-9_dp*n0/area, 'axial stress N/A')
+      end do
+      call jr%init(mech)
+      call jr%compute(model, 0.0_dp, q, zero, err, qdd=zero)
+      ! the bar lies along X at t = 0: the clamp pulls it towards the axis
+      v = section_at(model, 1, q, 0.0_dp)
+      call assert_close(jr%ends(1)%force(1), -v%axial_force, tol*n0, 'the clamp pulls with N(0)')
+    end subroutine spinning_bar
+  end subroutine test_spinning_bar
+
+  ! ------------------------------------------------------------------ moving four-bar
+
+  !> The §8.1 four-bar, 2 consistent elements per link, all effects but the
+  !> material (its strain passes the law's peak at 150 rad/s), undamped, integrated by bdf over 60 deg from the rigid state:
+  !> every 10 deg a pin's forces on its two links cancel (the assembled
+  !> equations: 1e-8 of the largest force; round-off of the accelerations)
+  !> and the moment on a pinned end vanishes (1e-8 of force x coupler length).
+  subroutine test_action_reaction()
+    type(mechanism_t) :: mech
+    type(mechanism_model_t), target :: model
+    type(joint_reactions_t) :: jr
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    real(dp), allocatable :: y(:), atol(:)
+    real(dp) :: t, scale
+    logical :: ok
+    integer :: k
+    real(dp), parameter :: w = 150.0_dp
+    call build(fourbar_input(2, w, 0.0_dp), element_effects_t(.true., .true., .false., .true., .true.), 'consistent', &
+               mech, model, ok)
+    if (.not. ok) return
+    call jr%init(mech)
+    allocate(y(model%state_size()), atol(model%state_size()))
+    y = 0.0_dp
+    atol = 1.0e-9_dp
+    call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-6_dp, atol, err)
+    do k = 1, 6
+      t = (10.0_dp*k*pi/180.0_dp)/w
+      call ode%integrate_to(model, y, t, err)
+      call assert_true(.not. err%failed(), 'integration: '//err%text())
+      if (err%failed()) return
+      call jr%compute(model, t, y(1::2), y(2::2), err)
+      scale = maxval([(maxval(abs(jr%ends(k)%force)), k = 1, size(jr%ends))])
+      call assert_all_close(jr%ends(2)%force, -jr%ends(3)%force, 0.0_dp, 1.0e-8_dp*scale, 'pin B at '//rtoa(10.0_dp*k))
+      call assert_all_close(jr%ends(4)%force, -jr%ends(5)%force, 0.0_dp, 1.0e-8_dp*scale, 'pin C at '//rtoa(10.0_dp*k))
+      call assert_close(jr%ends(3)%moment, 0.0_dp, 1.0e-8_dp*scale*11.0_dp, 'coupler end at B: no moment')
+      call assert_close(jr%ends(6)%moment, 0.0_dp, 1.0e-8_dp*scale*11.0_dp, 'rocker end at D: no moment')
+      call assert_true(abs(jr%ends(1)%moment) > 1.0e-3_dp*scale, 'the clamp carries the driving torque')
+    end do
+  end subroutine test_action_reaction
+
+  !> Slider-crank (crank 5 clamped, coupler 11, block of 3.5e-4 lb s^2/in on
+  !> a guide at 30 deg through the crank axis), 2 Kear elements per link,
+  !> linear, 150 rad/s, damped, integrated by bdf: every 15 deg the guide's
+  !> force on the mechanism has no component along the guide (the block's
+  !> translation along it is a free unknown: 1e-9 of the force), while its
+  !> normal component is of the order of the crank's inertia loads.
+  subroutine test_slider_guide()
+    type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
+    type(mechanism_model_t), target :: model
+    type(joint_reactions_t) :: jr
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    real(dp), allocatable :: y(:), atol(:)
+    real(dp) :: t, guide(2), along, normal
+    integer :: k
+    real(dp), parameter :: w = 150.0_dp, guide_deg = 30.0_dp
+    inp%n_joints = 3
+    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
+    inp%joint_x(1) = 0.0_dp
+    inp%joint_y(1) = 0.0_dp
+    inp%joint_x(3) = 0.0_dp
+    inp%joint_y(3) = 0.0_dp
+    inp%joint_guide_deg(3) = guide_deg
+    inp%joint_mass(3) = 3.5e-4_dp
+    inp%n_links = 2
+    inp%link_joint1(1:2) = [1, 2]
+    inp%link_joint2(1:2) = [2, 3]
+    inp%link_length(1:2) = [5.0_dp, 11.0_dp]
+    inp%link_n_elements(1:2) = 2
+    inp%omega = w
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), 'mechanism: '//err%text())
+    if (err%failed()) return
+    call model%init_mechanism(mech, element_effects_t(), 'exact', 1.0e-5_dp, err)
+    call assert_true(.not. err%failed(), 'model: '//err%text())
+    if (err%failed()) return
+    call jr%init(mech)
+    guide = [cos(guide_deg*pi/180.0_dp), sin(guide_deg*pi/180.0_dp)]
+    allocate(y(model%state_size()), atol(model%state_size()))
+    y = 0.0_dp
+    atol = 1.0e-10_dp
+    call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-7_dp, atol, err)
+    do k = 1, 24
+      t = (15.0_dp*k*pi/180.0_dp)/w
+      call ode%integrate_to(model, y, t, err)
+      call assert_true(.not. err%failed(), 'integration: '//err%text())
+      if (err%failed()) return
+      call jr%compute(model, t, y(1::2), y(2::2), err)
+      along = dot_product(jr%support(1:2, 3), guide)
+      normal = abs(guide(1)*jr%support(2, 3) - guide(2)*jr%support(1, 3))
+      call assert_close(along, 0.0_dp, 1.0e-9_dp*maxval(abs(jr%ends(1)%force)), 'no force along the guide at '// &
+                        rtoa(15.0_dp*k)//' deg')
+      if (k == 6) call assert_true(normal > 1.0e-3_dp*maxval(abs(jr%ends(1)%force)), 'the guide carries a normal force')
+    end do
+  end subroutine test_slider_guide
+end module test_joint_reactions_suite
+
+program test_joint_reactions
+  use assertions, only: finish_suite
+  use test_joint_reactions_suite, only: run_all
+  implicit none
+  call run_all()
+  call finish_suite('test_joint_reactions')
+end program test_joint_reactions
