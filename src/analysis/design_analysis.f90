@@ -25,14 +25,18 @@ module design_analysis
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_analysis, only: run_steady
   use run_settings, only: read_run_settings, write_run_header
-  use design_problem, only: design_problem_t, design_variable_t, design_eval_t, parse_variable
+  use design_problem, only: design_problem_t, design_variable_t, design_eval_t, parse_variable, var_theta0, &
+                            var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y
+  use shaking_force, only: shaking_supported
   use design_sequence, only: design_sequence_t
   implicit none
   private
-  public :: run_design
+  public :: run_design, load_design
 
   integer, parameter :: max_vars = 20
+  integer, parameter :: max_points = 72
   real(dp), parameter :: unset = -huge(1.0_dp)
+  real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
 
   ! staging variables of the &design group
   character(len=32) :: variables(max_vars), objective
@@ -40,8 +44,12 @@ module design_analysis
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
   real(dp) :: xtol, feas_tol, move_limit
   integer :: max_iterations, samples
+  ! path objectives: the coupler point and its targets
+  integer :: path_link
+  real(dp) :: path_r, path_angle_deg, path_x(max_points), path_y(max_points), path_dgamma_deg(max_points)
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
-                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit
+                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, &
+                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg
 
 contains
 
@@ -59,6 +67,12 @@ contains
     xtol = 1.0e-3_dp
     feas_tol = 1.0e-3_dp
     move_limit = 0.3_dp
+    path_link = 0
+    path_r = 0.0_dp
+    path_angle_deg = 0.0_dp
+    path_x = unset
+    path_y = unset
+    path_dgamma_deg = unset
   end subroutine set_defaults
 
   subroutine read_design_group(unit, ios, iomsg)
@@ -73,35 +87,18 @@ contains
     type(table_t), intent(inout) :: out
     type(error_t), intent(inout) :: err
     type(mechanism_t) :: mech
-    type(steady_settings_t) :: s
     type(design_problem_t) :: prob
     type(design_sequence_t) :: opt
     type(error_t) :: run_err
     real(dp), allocatable :: x0(:)
     real(dp) :: cpu0, cpu1
 
-    call read_mechanism(deck, mech, err)
+    call load_design(deck, mech, prob, x0, opt, err)
     if (err%failed()) return
-    call read_steady_settings(deck, mech%n_links, s, err)
-    if (err%failed()) return
-    call read_design(deck, mech, prob, x0, err)
-    if (err%failed()) return
-    prob%element = s%element
-    prob%sections = s%sections
-    prob%harmonic = s%harmonic
-    prob%shooting = s%shooting
     call echo_all(out, mech)
-
-    call prob%setup('design of '//trim(deck%path), x0)
-    ! finite-difference steps above the analysis' noise (doc/design.md)
-    prob%fd_rel_step = merge(1.0e-4_dp, 1.0e-5_dp, evaluator == 'shooting')
-    call write_design_header(out, prob)
-
-    opt%max_iterations = max_iterations
-    opt%xtol = xtol
-    opt%feas_tol = feas_tol
-    opt%move_limit = move_limit
     call cpu_time(cpu0)
+    call prob%setup('design of '//trim(deck%path), x0)
+    call write_design_header(out, prob)
     call opt%solve(prob, x0, run_err)
     call cpu_time(cpu1)
 
@@ -112,6 +109,41 @@ contains
     if (allocated(opt%x)) call write_final_design(out, deck, prob, opt%x, err)
     if (run_err%failed()) err = run_err
   end subroutine run_design
+
+  !> Read a design deck: the mechanism, how each design is analysed, the
+  !> &design group (the problem, not yet set up: prob%setup analyses the
+  !> start of a path objective) and the design loop's settings.  Public for
+  !> the benchmark that runs the same problems through other optimizers.
+  subroutine load_design(deck, mech, prob, x0, opt, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(out) :: mech
+    type(design_problem_t), intent(out) :: prob
+    real(dp), allocatable, intent(out) :: x0(:)
+    type(design_sequence_t), intent(out) :: opt
+    type(error_t), intent(inout) :: err
+    type(steady_settings_t) :: s
+    call read_mechanism(deck, mech, err)
+    if (err%failed()) return
+    call read_steady_settings(deck, mech%n_links, s, err)
+    if (err%failed()) return
+    call read_design(deck, mech, prob, x0, err)
+    if (err%failed()) return
+    prob%element = s%element
+    prob%sections = s%sections
+    prob%harmonic = s%harmonic
+    prob%shooting = s%shooting
+    if (prob%objective_kind == 'shaking' .and. any(s%sections(1:mech%n_links)%n > 0)) then
+      call invalid_value(deck, 'design', 'objective', '''shaking''', 'the shaking force takes uniform links '// &
+                         '(no &sections)', err)
+      return
+    end if
+    ! finite-difference steps above the analysis' noise (doc/design.md)
+    prob%fd_rel_step = merge(1.0e-4_dp, 1.0e-5_dp, evaluator == 'shooting')
+    opt%max_iterations = max_iterations
+    opt%xtol = xtol
+    opt%feas_tol = feas_tol
+    opt%move_limit = move_limit
+  end subroutine load_design
 
   !> Read &design and make the problem's variables; x0 = initial values/scale.
   subroutine read_design(deck, mech, prob, x0, err)
@@ -133,7 +165,8 @@ contains
                          'one after another (e.g. ''link_h(1)'', ''link_b(2)'', ''joint_x(4)'')', err)
       return
     end if
-    call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass'], err)
+    call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass', 'path', 'path_rigid', &
+                      'shaking'], err)
     call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic'], err)
     call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=0.0_dp, at_most=1.0e12_dp, &
                     why='0 = no stress constraint')
@@ -149,7 +182,16 @@ contains
     call check_real(deck, g, 'move_limit', move_limit, err, above=0.0_dp, at_most=2.0_dp, &
                     why='initial largest change of ln(size) per design iteration')
     if (err%failed()) return
-    if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp)) then
+    if (objective == 'shaking') then
+      if (len(shaking_supported(mech)) > 0) then
+        call invalid_value(deck, g, 'objective', '''shaking''', 'the shaking force is not built when '// &
+                           shaking_supported(mech), err)
+        return
+      end if
+    else if (objective /= 'mass') then
+      call read_path(deck, mech, prob, err)
+      if (err%failed()) return
+    else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp)) then
       call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress or a '// &
                          'frequency constraint (else the minimum is the lower bounds)', err)
       return
@@ -171,8 +213,16 @@ contains
                            'link_b(i), link_h(i), link_length(i), joint_x(j) or joint_y(j)', err)
         return
       end if
+      if ((prob%var(i)%kind == var_path_r .or. prob%var(i)%kind == var_path_angle) .and. .not. &
+          (objective == 'path' .or. objective == 'path_rigid')) then
+        call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the coupler '// &
+                           'point is a variable of the path objectives only', err)
+        return
+      end if
       limit = merge(mech%n_joints, mech%n_links, prob%var(i)%kind >= 4)
-      if (prob%var(i)%index < 1 .or. prob%var(i)%index > limit) then
+      if (prob%var(i)%kind >= var_theta0) limit = 0
+      if (prob%var(i)%kind >= var_cw_mass) limit = mech%n_links
+      if ((prob%var(i)%index < 1 .and. limit > 0) .or. prob%var(i)%index > limit) then
         call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the index must '// &
                            'lie in 1..'//str(limit), err)
         return
@@ -206,11 +256,66 @@ contains
       x0(i) = prob%var(i)%to_x(value)
     end do
     prob%base = mech%input
+    prob%objective_kind = objective
     prob%evaluator = evaluator
     prob%samples = samples
     prob%stress_allowable = stress_allowable
     prob%frequency_factor = frequency_factor
   end subroutine read_design
+
+  !> The coupler point and its target points (path objectives).
+  subroutine read_path(deck, mech, prob, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(design_problem_t), intent(inout) :: prob
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    integer :: np, k
+    call check_integer(deck, g, 'path_link', path_link, err, at_least=1, at_most=mech%n_links, &
+                       why='the link that carries the coupler point')
+    call check_real(deck, g, 'path_r', path_r, err, at_least=0.0_dp, at_most=1.0e3_dp*mech%length_scale, &
+                    why='distance of the coupler point from the link''s end 1; within 1000 mean link lengths')
+    call check_real(deck, g, 'path_angle_deg', path_angle_deg, err, at_least=-360.0_dp, at_most=360.0_dp, &
+                    why='angle of the coupler point from the link''s line, degrees')
+    if (err%failed()) return
+    np = count(path_x > 0.5_dp*unset)
+    if (np == 0 .or. any(path_x(1:np) <= 0.5_dp*unset)) then
+      call invalid_value(deck, g, 'path_x', str(np)//' given', 'a path objective needs target points '// &
+                         'path_x(i), path_y(i), path_dgamma_deg(i), i = 1, 2, ... one after another', err)
+      return
+    end if
+    do k = 1, np
+      if (.not. path_y(k) > 0.5_dp*unset) then
+        call invalid_value(deck, g, 'path_y('//str(k)//')', 'not given', 'every target point needs path_x, '// &
+                           'path_y and path_dgamma_deg', err)
+        return
+      end if
+      if (.not. path_dgamma_deg(k) > 0.5_dp*unset) then
+        call invalid_value(deck, g, 'path_dgamma_deg('//str(k)//')', 'not given', 'every target point needs '// &
+                           'path_x, path_y and path_dgamma_deg', err)
+        return
+      end if
+      call check_real(deck, g, 'path_x('//str(k)//')', path_x(k), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
+                      why='target point coordinate')
+      call check_real(deck, g, 'path_y('//str(k)//')', path_y(k), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
+                      why='target point coordinate')
+      call check_real(deck, g, 'path_dgamma_deg('//str(k)//')', path_dgamma_deg(k), err, at_least=-360.0_dp, &
+                      at_most=360.0_dp, why='crank angle of target point k from theta0_deg, degrees')
+      if (err%failed()) return
+    end do
+    if (any(path_x(np + 1:) > 0.5_dp*unset) .or. any(path_y(np + 1:) > 0.5_dp*unset) .or. &
+        any(path_dgamma_deg(np + 1:) > 0.5_dp*unset)) then
+      call invalid_value(deck, g, 'path_y', 'more values than path_x', 'give x, y and the crank angle of '// &
+                         'every target point', err)
+      return
+    end if
+    prob%path_link = path_link
+    prob%path_r = path_r
+    prob%path_angle = path_angle_deg*deg
+    prob%path_x = path_x(1:np)
+    prob%path_y = path_y(1:np)
+    prob%path_dgamma = path_dgamma_deg(1:np)*deg
+  end subroutine read_path
 
   !> The deck value a variable starts from (a link length from the joints
   !> when the deck gives none).
@@ -218,6 +323,18 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(design_variable_t), intent(in) :: v
     select case (v%kind)
+    case (var_theta0)
+      value = mech%input%theta0_deg
+    case (var_path_r)
+      value = path_r
+    case (var_path_angle)
+      value = path_angle_deg
+    case (var_cw_mass)
+      value = mech%input%link_cw_mass(v%index)
+    case (var_cw_x)
+      value = mech%input%link_cw_x(v%index)
+    case (var_cw_y)
+      value = mech%input%link_cw_y(v%index)
     case (1)
       value = mech%input%link_b(v%index)
     case (2)
@@ -248,7 +365,25 @@ contains
     type(table_t), intent(inout) :: out
     type(design_problem_t), intent(in) :: prob
     integer :: i
-    call out%comment('design: minimum mass of the links (F = mass / initial mass '//str(prob%mass0, 8)//')')
+    select case (prob%objective_kind)
+    case ('path')
+      call out%comment('design: least path error of the coupler point with the elastic deformation at the '// &
+        'operating speed (F = sum of squared distances to the '//str(size(prob%path_x))// &
+        ' targets / its initial value '//str(prob%f0, 8)//'); the rigid-body path error beside it')
+    case ('path_rigid')
+      call out%comment('design: least rigid-body path error of the coupler point (F = sum of squared distances '// &
+        'to the '//str(size(prob%path_x))//' targets / its initial value '//str(prob%f0, 8)// &
+        '); the path error with the elastic deformation beside it')
+    case ('shaking')
+      call out%comment('design: least mean square shaking force over the steady revolution (rate of the '// &
+        'total linear momentum of every moving mass, elastic motion included, at '//str(prob%samples)// &
+        ' crank angles; F = mean |F_shake|^2 / its initial value '//str(prob%f0, 8)//')')
+    case default
+      call out%comment('design: minimum mass of the links (F = mass / initial mass '//str(prob%mass0, 8)//')')
+    end select
+    if (prob%is_path()) call out%comment('coupler point on a rigid arm clamped to link '//str(prob%path_link)// &
+      ' at its end 1, turned by the end''s elastic slope; initial distance '//str(prob%path_r, 6)// &
+      ', angle '//str(prob%path_angle/deg, 6)//' deg from the link''s line')
     do i = 1, size(prob%var)
       call out%comment('variable x'//str(i)//' = '//trim(merge('ln(', '   ', prob%var(i)%logarithmic))// &
                        trim(prob%var(i)%name)//' / '//str(prob%var(i)%scale, 6)//trim(merge(')', ' ', prob%var(i)%logarithmic))// &
@@ -281,18 +416,25 @@ contains
     type(design_problem_t), intent(in) :: prob
     character(len=32), allocatable :: names(:)
     real(dp), allocatable :: row(:)
-    integer :: r, i, n, nc
+    integer :: r, i, n, nc, np
     n = size(prob%var)
     nc = prob%n_analysis_constraints()
-    allocate(names(6 + n + nc), row(6 + n + nc))
+    np = merge(3, 0, prob%has_residuals())
+    allocate(names(6 + n + nc + np), row(6 + n + nc + np))
     names(1:6) = [character(len=32) :: 'k', 'analyses', 'cpu_s', 'mass', 'max_violation', 'move_limit']
     names(7:6 + n) = prob%var%name
     do i = 1, nc
       names(6 + n + i) = 'g'//str(i)
     end do
+    if (prob%is_path()) names(7 + n + nc:) = [character(len=32) :: 'objective', 'path_error', 'rigid_path_error']
+    if (prob%objective_kind == 'shaking') names(7 + n + nc:) = [character(len=32) :: 'objective', 'peak_shaking', &
+                                                                 'rms_shaking']
     call out%comment('columns: k = design iteration; analyses and cpu_s (analysis CPU) so far; mass of the links; '// &
                      'max_violation = largest g; move_limit = largest change of x in the next approximate problem; '// &
-                     'the design values; g<i> = analysis constraints (<= 0 feasible)')
+                     'the design values; g<i> = analysis constraints (<= 0 feasible); path objectives: '// &
+                     'objective = F / F0, path_error = sum of squared distances of the coupler point from the '// &
+                     'targets with the elastic deformation, rigid_path_error = the same for the rigid-body point; '// &
+                     'shaking: peak and rms shaking force over the revolution')
     call out%columns(names)
     do r = 1, opt%n_steps
       associate (st => opt%steps(r))
@@ -300,7 +442,9 @@ contains
         do i = 1, n
           row(6 + i) = prob%var(i)%value(st%x(i))
         end do
-        row(7 + n:) = st%g
+        row(7 + n:6 + n + nc) = st%g
+        if (prob%is_path()) row(7 + n + nc:) = [st%objective, st%path_error, st%rigid_path_error]
+        if (prob%objective_kind == 'shaking') row(7 + n + nc:) = [st%objective, st%peak_shaking, st%rms_shaking]
         call out%row(row)
         ! after the row: the column names stay the last '#' line before the first row
         if (len(st%events) > 0) call out%comment('k = '//str(st%k)//': '//st%events)
@@ -330,6 +474,24 @@ contains
         end do
         if (prob%i_frequency > 0) call out%summary('final lowest frozen frequency', str(ev%lowest_frequency, 8)// &
           ' rad/s = '//str(ev%lowest_frequency/prob%base%omega, 5)//' x crank speed')
+        if (prob%is_path()) then
+          call out%summary('final path error (elastic)', str(ev%path_error, 8)//' (largest miss '// &
+                           str(largest_miss(ev%residual), 5)//')')
+          call out%summary('final path error (rigid body)', str(ev%rigid_path_error, 8)//' (largest miss '// &
+                           str(largest_miss(ev%rigid_residual), 5)//')')
+          if (opt%n_steps > 0) then
+            call out%summary('initial path error (elastic)', str(opt%steps(1)%path_error, 8))
+            call out%summary('initial path error (rigid body)', str(opt%steps(1)%rigid_path_error, 8))
+          end if
+        end if
+        if (prob%objective_kind == 'shaking') then
+          call out%summary('final peak shaking force', str(ev%peak_shaking, 8))
+          call out%summary('final rms shaking force', str(ev%rms_shaking, 8))
+          if (opt%n_steps > 0) then
+            call out%summary('initial peak shaking force', str(opt%steps(1)%peak_shaking, 8))
+            call out%summary('initial rms shaking force', str(opt%steps(1)%rms_shaking, 8))
+          end if
+        end if
       else
         call out%summary('final design analysis', 'failed: '//ev%reason)
       end if
@@ -342,6 +504,16 @@ contains
     call out%cost('cpu_seconds_analyses', str(prob%cpu_analyses, 4))
     call out%cost('cpu_seconds_design', str(cpu, 4))
   end subroutine write_results
+
+  !> Largest distance of the coupler point from its target.
+  real(dp) pure function largest_miss(res) result(d)
+    real(dp), intent(in) :: res(:)
+    integer :: k
+    d = 0.0_dp
+    do k = 1, size(res)/2
+      d = max(d, hypot(res(2*k - 1), res(2*k)))
+    end do
+  end function largest_miss
 
   !> OUT.design.nml (ready to run: &run steady, the final &mechanism, the
   !> analysis groups), then the steady analyses of the initial and final

@@ -37,16 +37,24 @@ module design_problem
   use optim_problem, only: opt_problem_t
   use tennant_element, only: tennant_options_t, tennant_stress_t
   use steady_model, only: steady_model_t, link_sections_t
+  use shaking_force, only: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative
   use harmonic_solver, only: harmonic_settings_t, harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
                                shooting_diagnosis
   implicit none
   private
   public :: design_problem_t, design_variable_t, design_eval_t, parse_variable
-  public :: var_link_b, var_link_h, var_link_length, var_joint_x, var_joint_y
+  public :: var_link_b, var_link_h, var_link_length, var_joint_x, var_joint_y, var_theta0, var_path_r, &
+            var_path_angle, var_cw_mass, var_cw_x, var_cw_y, coupler_point_of
 
   integer, parameter :: cache_size = 256
   integer, parameter :: var_link_b = 1, var_link_h = 2, var_link_length = 3, var_joint_x = 4, var_joint_y = 5
+  !> scalars without an index: the crank angle at t = 0 (B's x8, degrees) and
+  !> the coupler point's distance and angle from its link's end 1 (B's x5, x7)
+  integer, parameter :: var_theta0 = 6, var_path_r = 7, var_path_angle = 8
+  !> counterweight of link i: mass, position along and across the link
+  integer, parameter :: var_cw_mass = 9, var_cw_x = 10, var_cw_y = 11
+  real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
 
   !> One design variable: a deck value of &mechanism.
   type :: design_variable_t
@@ -67,6 +75,12 @@ module design_problem
     real(dp) :: mass = 0.0_dp
     real(dp), allocatable :: link_stress(:)     !< peak |stress| over the revolution, per link
     real(dp) :: lowest_frequency = 0.0_dp       !< lowest frozen natural frequency over the revolution
+    real(dp), allocatable :: residual(:)        !< coupler point - target, (x, y) per target point, elastic included
+    real(dp), allocatable :: rigid_residual(:)  !< the same for the rigid-body coupler point
+    real(dp) :: path_error = 0.0_dp             !< sum of residual^2 (B's F, with the deformation)
+    real(dp) :: rigid_path_error = 0.0_dp       !< sum of rigid_residual^2 (B's F)
+    real(dp) :: peak_shaking = 0.0_dp           !< largest |shaking force| over the samples (objective 'shaking')
+    real(dp) :: rms_shaking = 0.0_dp            !< its root mean square over the revolution
     real(dp) :: cpu_seconds = 0.0_dp
   end type design_eval_t
 
@@ -82,6 +96,15 @@ module design_problem
     real(dp) :: stress_allowable = 0.0_dp         !< 0: no stress constraints
     real(dp) :: frequency_factor = 0.0_dp         !< 0: no frequency constraint
     real(dp) :: mass0 = 1.0_dp                    !< mass of the initial design
+    character(len=32) :: objective_kind = 'mass'  !< 'mass', 'path' (elastic path error), 'path_rigid' or 'shaking'
+    real(dp) :: f0 = 1.0_dp                       !< objective of the initial design (the objective's scale)
+    ! ---- the coupler point (path objectives): on a rigid arm clamped to
+    !      link path_link at its end 1, at distance path_r and angle
+    !      path_angle (rad) from the link's line; target points path_x/y at
+    !      crank angles theta0 + path_dgamma (rad)
+    integer :: path_link = 0
+    real(dp) :: path_r = 0.0_dp, path_angle = 0.0_dp
+    real(dp), allocatable :: path_x(:), path_y(:), path_dgamma(:)
     integer :: n_stress = 0, i_frequency = 0      !< constraint numbering (stress 1..n_stress, then frequency)
     ! ---- bookkeeping
     integer :: n_analyses = 0, n_failed = 0
@@ -95,6 +118,10 @@ module design_problem
     procedure :: setup
     procedure :: n_analysis_constraints
     procedure :: mechanism_at
+    procedure :: point_at
+    procedure :: is_path
+    procedure :: has_residuals
+    procedure :: n_residuals_design
     procedure :: evaluate
     procedure :: objective => design_objective
     procedure :: general_constraint => design_constraint
@@ -131,10 +158,25 @@ contains
     character(len=32) :: word
     ok = .false.
     word = lower(adjustl(text))
+    select case (word)
+    case ('theta0_deg', 'path_r', 'path_angle_deg')
+      v%kind = merge(var_theta0, merge(var_path_r, var_path_angle, word == 'path_r'), word == 'theta0_deg')
+      v%index = 0
+      v%name = word
+      v%logarithmic = v%kind == var_path_r
+      ok = .true.
+      return
+    end select
     open_at = index(word, '(')
     close_at = index(word, ')')
     if (open_at < 2 .or. close_at < open_at + 2) return
     select case (word(1:open_at - 1))
+    case ('link_cw_mass')
+      v%kind = var_cw_mass
+    case ('link_cw_x')
+      v%kind = var_cw_x
+    case ('link_cw_y')
+      v%kind = var_cw_y
     case ('link_b')
       v%kind = var_link_b
     case ('link_h')
@@ -162,6 +204,7 @@ contains
     character(len=*), intent(in) :: name
     real(dp), intent(in) :: x_start(:)
     integer :: n, i
+    type(design_eval_t) :: ev
     n = size(self%var)
     self%n_stress = 0
     if (self%stress_allowable > 0.0_dp) self%n_stress = self%base%n_links
@@ -181,7 +224,55 @@ contains
     ! mass of the initial design, the objective's scale
     self%mass0 = 1.0_dp
     self%mass0 = max(design_mass(self%mechanism_at(x_start, .false.)), tiny(1.0_dp))
+    self%f0 = 1.0_dp
+    if (self%has_residuals()) then
+      ! the initial objective scales it (its analysis is counted and
+      ! cached: the design loop's first analysis)
+      call self%evaluate(x_start, ev)
+      if (ev%ok) self%f0 = max(objective_value(self, ev), 1.0e-12_dp)
+    else
+      self%f0 = self%mass0
+    end if
   end subroutine setup
+
+  logical pure function is_path(self)
+    class(design_problem_t), intent(in) :: self
+    is_path = self%objective_kind == 'path' .or. self%objective_kind == 'path_rigid'
+  end function is_path
+
+  !> The objective is a sum of squares of analysis results (Gauss-Newton).
+  logical pure function has_residuals(self)
+    class(design_problem_t), intent(in) :: self
+    has_residuals = self%objective_kind /= 'mass'
+  end function has_residuals
+
+  !> Residuals of the objective: 2 per target point (path), 2 per sample
+  !> (shaking force components / sqrt(samples)); none for the mass.
+  integer pure function n_residuals_design(self)
+    class(design_problem_t), intent(in) :: self
+    n_residuals_design = 0
+    if (self%is_path()) n_residuals_design = 2*size(self%path_x)
+    if (self%objective_kind == 'shaking') n_residuals_design = 2*self%samples
+  end function n_residuals_design
+
+  !> The coupler point's (distance, angle in rad) at design x (clamped).
+  function point_at(self, x) result(ra)
+    class(design_problem_t), intent(in) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp) :: ra(2)
+    integer :: i
+    real(dp) :: value
+    ra = [self%path_r, self%path_angle]
+    do i = 1, size(self%var)
+      if (self%var(i)%kind /= var_path_r .and. self%var(i)%kind /= var_path_angle) cycle
+      value = min(max(self%var(i)%value(x(i)), self%var(i)%lower), self%var(i)%upper)
+      if (self%var(i)%kind == var_path_r) then
+        ra(1) = value
+      else
+        ra(2) = value*deg
+      end if
+    end do
+  end function point_at
 
   integer pure function n_analysis_constraints(self)
     class(design_problem_t), intent(in) :: self
@@ -213,6 +304,14 @@ contains
         inp%joint_x(self%var(i)%index) = value
       case (var_joint_y)
         inp%joint_y(self%var(i)%index) = value
+      case (var_theta0)
+        inp%theta0_deg = value
+      case (var_cw_mass)
+        inp%link_cw_mass(self%var(i)%index) = value
+      case (var_cw_x)
+        inp%link_cw_x(self%var(i)%index) = value
+      case (var_cw_y)
+        inp%link_cw_y(self%var(i)%index) = value
       end select
     end do
   end function mechanism_at
@@ -235,10 +334,27 @@ contains
     end do
   end function link_masses
 
+  !> The links' and the counterweights' mass.
   real(dp) function design_mass(inp) result(mass)
     type(mechanism_input_t), intent(in) :: inp
-    mass = sum(link_masses(inp))
+    mass = sum(link_masses(inp)) + sum(inp%link_cw_mass(1:inp%n_links))
   end function design_mass
+
+  !> The objective's unscaled value: sum of squares of the residuals.
+  real(dp) pure function objective_value(self, ev) result(f)
+    class(design_problem_t), intent(in) :: self
+    type(design_eval_t), intent(in) :: ev
+    select case (self%objective_kind)
+    case ('path_rigid')
+      f = ev%rigid_path_error
+    case ('shaking')
+      f = ev%rms_shaking**2
+    case ('path')
+      f = ev%path_error
+    case default
+      f = ev%mass
+    end select
+  end function objective_value
 
   !> Analyse design x (once: later calls at the same x read the cache).
   subroutine evaluate(self, x, ev)
@@ -254,7 +370,7 @@ contains
       end if
     end do
     call cpu_time(cpu0)
-    call analyse_design(self, self%mechanism_at(x, .true.), ev)
+    call analyse_design(self, self%mechanism_at(x, .true.), x, ev)
     call cpu_time(cpu1)
     ev%cpu_seconds = cpu1 - cpu0
     self%n_analyses = self%n_analyses + 1
@@ -271,9 +387,10 @@ contains
 
   !> One steady-state analysis: build, periodic response, stresses and frozen
   !> frequencies at `samples` crank angles.
-  subroutine analyse_design(self, inp, ev)
+  subroutine analyse_design(self, inp, x_design, ev)
     class(design_problem_t), intent(inout) :: self
     type(mechanism_input_t), intent(in) :: inp
+    real(dp), intent(in) :: x_design(:)
     type(design_eval_t), intent(out) :: ev
     type(mechanism_t) :: mech
     type(steady_model_t), target :: model
@@ -282,7 +399,11 @@ contains
     type(shooting_report_t) :: srep
     real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:), wn(:)
     type(tennant_stress_t), allocatable :: st(:)
-    integer :: k, i, e
+    integer :: k, i, e, np, nt
+    integer, allocatable :: at_sample(:), at_point(:)
+    real(dp) :: ra(2), rigid(2), flexible(2)
+    real(dp), allocatable :: shake(:, :), moment(:, :)
+    logical :: shaking
     ev%ok = .false.
     ev%mass = design_mass(inp)
     allocate(ev%link_stress(inp%n_links))
@@ -293,15 +414,16 @@ contains
       ev%reason = 'the design is not a valid mechanism: '//err%text()
       return
     end if
-    allocate(times(self%samples), q(model%n, self%samples), wn(model%n), st(size(model%el)))
-    do k = 1, self%samples
-      times(k) = real(k - 1, dp)*model%period()/self%samples
-    end do
+    np = 0
+    if (self%is_path()) np = size(self%path_x)
+    nt = self%samples + np
+    allocate(q(model%n, nt), wn(model%n), st(size(model%el)))
+    call merged_times(model%period(), times, at_sample, at_point)
     if (self%evaluator == 'harmonic') then
       call harmonic_solve(model, self%harmonic, times, q, hrep, err)
       if (.not. err%failed()) call harmonic_diagnosis(self%harmonic, hrep, model%omega, .false., .false., err)
     else
-      allocate(qd(model%n, self%samples), y0(2*model%n))
+      allocate(qd(model%n, nt), y0(2*model%n))
       y0 = 0.0_dp
       if (allocated(self%y_warm)) then
         if (size(self%y_warm) == size(y0)) y0 = self%y_warm
@@ -316,25 +438,118 @@ contains
       return
     end if
     ev%lowest_frequency = huge(1.0_dp)
+    if (np > 0) then
+      ! the coupler point at the target crank angles, rigid and elastic
+      allocate(ev%residual(2*np), ev%rigid_residual(2*np))
+      ra = self%point_at(x_design)
+      do k = 1, np
+        call model%set_time(times(at_point(k)), err)
+        if (err%failed()) then
+          ev%reason = err%text()
+          return
+        end if
+        call coupler_point_of(model, mech%links(self%path_link)%first_element, q(:, at_point(k)), ra(1), ra(2), &
+                              rigid, flexible)
+        ev%residual(2*k - 1:2*k) = flexible - [self%path_x(k), self%path_y(k)]
+        ev%rigid_residual(2*k - 1:2*k) = rigid - [self%path_x(k), self%path_y(k)]
+      end do
+      ev%path_error = sum(ev%residual**2)
+      ev%rigid_path_error = sum(ev%rigid_residual**2)
+    end if
+    shaking = self%objective_kind == 'shaking'
+    if (shaking) allocate(shake(2, self%samples), moment(2, self%samples))
     do k = 1, self%samples
-      call model%set_time(times(k), err)
+      call model%set_time(times(at_sample(k)), err)
       if (.not. err%failed() .and. self%frequency_factor > 0.0_dp) call model%frozen_frequencies(wn, err)
       if (err%failed()) then
         ev%reason = err%text()
         return
       end if
       if (self%frequency_factor > 0.0_dp) ev%lowest_frequency = min(ev%lowest_frequency, wn(1))
-      call model%stresses(q(:, k), st)
+      if (shaking) then
+        shake(:, k) = rigid_momentum_rate(model, mech)
+        moment(:, k) = elastic_first_moment(model, mech, q(:, at_sample(k)))
+      end if
+      call model%stresses(q(:, at_sample(k)), st)
       do i = 1, mech%n_links
         do e = mech%links(i)%first_element, mech%links(i)%first_element + mech%links(i)%n_elements - 1
           ev%link_stress(i) = max(ev%link_stress(i), st(e)%max_abs_stress)
         end do
       end do
     end do
+    if (shaking) then
+      ! the deformation's share by trigonometric interpolation of its first
+      ! moment over the revolution (module shaking_force)
+      shake = shake + periodic_second_derivative(moment, model%period())
+      ev%residual = reshape(shake, [2*self%samples])/sqrt(real(self%samples, dp))
+      ev%rms_shaking = sqrt(sum(ev%residual**2))
+      ev%peak_shaking = maxval(hypot(shake(1, :), shake(2, :)))
+    end if
     ev%ok = ieee_is_finite(ev%mass) .and. all(ieee_is_finite(ev%link_stress)) .and. &
-            ieee_is_finite(ev%lowest_frequency)
+            ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
+            ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking)
     if (.not. ev%ok) ev%reason = 'the analysis gave a value that is not finite'
+  contains
+    !> The stress samples (k - 1) T / samples and the target points' times
+    !> dgamma / omega (mod T), in one ascending list (the periodic orbit is
+    !> integrated once through it).
+    subroutine merged_times(period, t, where_sample, where_point)
+      real(dp), intent(in) :: period
+      real(dp), allocatable, intent(out) :: t(:)
+      integer, allocatable, intent(out) :: where_sample(:), where_point(:)
+      real(dp) :: raw(nt), tk
+      integer :: order(nt), j, m, ok_
+      do j = 1, self%samples
+        raw(j) = real(j - 1, dp)*period/self%samples
+      end do
+      do j = 1, np
+        raw(self%samples + j) = modulo(self%path_dgamma(j)/model%omega, period)
+      end do
+      ! insertion sort of the indices (nt is a few hundred at most)
+      do j = 1, nt
+        order(j) = j
+      end do
+      do j = 2, nt
+        ok_ = order(j)
+        tk = raw(ok_)
+        m = j - 1
+        do while (m >= 1)
+          if (raw(order(m)) <= tk) exit
+          order(m + 1) = order(m)
+          m = m - 1
+        end do
+        order(m + 1) = ok_
+      end do
+      allocate(t(nt), where_sample(self%samples), where_point(np))
+      do j = 1, nt
+        t(j) = raw(order(j))
+        if (order(j) <= self%samples) then
+          where_sample(order(j)) = j
+        else
+          where_point(order(j) - self%samples) = j
+        end if
+      end do
+    end subroutine merged_times
   end subroutine analyse_design
+
+  !> The coupler point of a design: on a rigid, massless arm clamped to the
+  !> link whose first element is e, at its end 1, at distance r and angle a
+  !> from the element's line.  Rigid: from the rigid-body frame of the
+  !> element at the current time; elastic: the end's translation (U, W,
+  !> global) added and the arm turned by the end's slope w_x (T23).
+  subroutine coupler_point_of(model, e, q, r, a, rigid, flexible)
+    type(steady_model_t), intent(in) :: model
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:), r, a
+    real(dp), intent(out) :: rigid(2), flexible(2)
+    real(dp) :: qe(model%el(e)%nd), angle
+    associate (fs => model%fs(e))
+      angle = fs%phi + a
+      rigid = [fs%x1 + r*cos(angle), fs%y1 + r*sin(angle)]
+      qe = model%element_q(e, q)
+      flexible = [fs%x1 + qe(1) + r*cos(angle + qe(3)), fs%y1 + qe(2) + r*sin(angle + qe(3))]
+    end associate
+  end subroutine coupler_point_of
 
   !> The same design, bit for bit (the cache key).
   logical pure function same_bits(a, b)
@@ -342,15 +557,27 @@ contains
     same_bits = all(transfer(a, 1_int64, size(a)) == transfer(b, 1_int64, size(b)))
   end function same_bits
 
-  !> F = mass / initial mass (no analysis needed); NaN for a design that is
-  !> not a mechanism (a failed trial for the optimizer).
+  !> F = mass / initial mass (no analysis needed), or the path error (sum of
+  !> squared distances of the coupler point from the targets, elastic or
+  !> rigid) / the initial one; NaN for a design that cannot be analysed (a
+  !> failed trial for the optimizer).
   subroutine design_objective(self, x, f, err)
     class(design_problem_t), intent(inout) :: self
     real(dp), intent(in) :: x(:)
     real(dp), intent(out) :: f
     type(error_t), intent(inout) :: err
+    type(design_eval_t) :: ev
     if (err%failed()) return
-    f = design_mass(self%mechanism_at(x, .false.))/self%mass0
+    if (.not. self%has_residuals()) then
+      f = design_mass(self%mechanism_at(x, .false.))/self%mass0
+      return
+    end if
+    call self%evaluate(x, ev)
+    if (.not. ev%ok) then
+      f = ieee_value(f, ieee_quiet_nan)
+    else
+      f = objective_value(self, ev)/self%f0
+    end if
   end subroutine design_objective
 
   !> Stress constraints, then the frequency constraint (NaN when the analysis failed).

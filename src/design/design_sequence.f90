@@ -43,12 +43,26 @@ module design_sequence
     procedure :: objective => approximate_objective
   end type approximate_problem_t
 
+  !> The approximate problem of a path objective: Gauss-Newton residuals
+  !> (r_k + J_k^T (x - x_k))/sqrt(F0) and the proximal residuals
+  !> sqrt(rho/2) (x - x_k), all linear (the Gauss matrix is exact).
+  type, extends(opt_problem_t) :: approximate_path_t
+    real(dp), allocatable :: center(:), r(:), jac(:, :)   !< x_k, r_k, J_k (n x p)
+    real(dp) :: rho = 1.0_dp, f0 = 1.0_dp
+  contains
+    procedure :: residuals => approximate_residuals
+    procedure :: jacobian => approximate_jacobian
+  end type approximate_path_t
+
   !> One accepted design (a row of the history).
   type :: design_step_t
     integer :: k = 0
     integer :: analyses = 0                 !< analyses so far
     real(dp) :: cpu = 0.0_dp                !< analysis CPU so far
     real(dp) :: mass = 0.0_dp
+    real(dp) :: objective = 0.0_dp          !< scaled objective (mass / initial, or path error / initial)
+    real(dp) :: path_error = 0.0_dp, rigid_path_error = 0.0_dp
+    real(dp) :: peak_shaking = 0.0_dp, rms_shaking = 0.0_dp
     real(dp) :: max_violation = 0.0_dp
     real(dp) :: move_limit = 0.0_dp         !< 1/rho of the next approximate problem
     real(dp), allocatable :: x(:), g(:)
@@ -82,15 +96,43 @@ contains
     f = f + 0.5_dp*self%rho*sum((x - self%center)**2)
   end subroutine approximate_objective
 
+  subroutine approximate_residuals(self, x, phi, err)
+    class(approximate_path_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: phi(:)
+    type(error_t), intent(inout) :: err
+    integer :: p
+    if (err%failed()) return
+    p = size(self%r)
+    phi(1:p) = (self%r + matmul(x - self%center, self%jac))/sqrt(self%f0)
+    phi(p + 1:) = sqrt(0.5_dp*self%rho)*(x - self%center)
+  end subroutine approximate_residuals
+
+  subroutine approximate_jacobian(self, x, phi, jac, err)
+    class(approximate_path_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), phi(:)
+    real(dp), intent(out) :: jac(:, :)
+    type(error_t), intent(inout) :: err
+    integer :: p, j
+    if (err%failed()) return
+    if (.false.) jac(1, 1) = x(1) + phi(1)
+    p = size(self%r)
+    jac = 0.0_dp
+    jac(:, 1:p) = self%jac/sqrt(self%f0)
+    do j = 1, size(x)
+      jac(j, p + j) = sqrt(0.5_dp*self%rho)
+    end do
+  end subroutine approximate_jacobian
+
   subroutine sequence_solve(self, prob, x0, err)
     class(design_sequence_t), intent(inout) :: self
     type(design_problem_t), target, intent(inout) :: prob
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
     integer :: n, nc, k
-    real(dp), allocatable :: g(:), dg(:, :), x_try(:), g_try(:)
+    real(dp), allocatable :: g(:), dg(:, :), x_try(:), g_try(:), r(:), dr(:, :), r_try(:)
     real(dp) :: delta, viol, viol_try, mass, mass_try
-    logical :: ok, accepted
+    logical :: ok, accepted, small_step
     integer :: stalls
     type(progress_t) :: bar
     character(len=:), allocatable :: events
@@ -103,10 +145,11 @@ contains
     allocate(self%steps(0))
     delta = 1.0_dp/self%move_limit           ! rho of the proximal term
     stalls = 0
+    events = ''
     ok = .false.
     viol_try = huge(1.0_dp)
     mass_try = huge(1.0_dp)
-    call constraints_at(prob, self%x, g, ok)
+    call constraints_at(prob, self%x, g, r, ok)
     if (.not. ok) then
       call err%set('design', 'the initial design cannot be analysed: '//prob%last_failure)
       return
@@ -119,7 +162,7 @@ contains
       self%iterations = k
       call bar%update(real(k - 1, dp), str(prob%n_analyses)//' analyses, mass '//str(mass, 5)// &
                       ', violation '//str(viol, 3))
-      call gradients(prob, self%x, g, dg, ok)
+      call gradients(prob, self%x, g, r, dg, dr, ok)
       if (.not. ok) then
         call err%set('design', 'iteration '//str(k)//': a finite-difference neighbour of the design cannot be '// &
                      'analysed: '//prob%last_failure)
@@ -128,15 +171,24 @@ contains
       events = ''
       accepted = .false.
       do while (delta <= 1.0e6_dp)
-        call approximate_step(prob, self%x, g, dg, delta, 0.5_dp*self%feas_tol, x_try, events)
-        ! rho |step| is the size of the gradient of the Lagrangian of the
-        ! linearised problem at x_k (the proximal term has no gradient there):
-        ! small, and x_k feasible, is the KKT test; no analysis is spent on it
-        if (delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol .and. viol <= self%feas_tol) then
+        call approximate_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+        ! mass: rho |step| is the size of the gradient of the Lagrangian of
+        ! the linearised problem at x_k (the proximal term has no gradient
+        ! there): small, and x_k feasible, is the KKT test; no analysis is
+        ! spent on it.  Path objectives: the Gauss matrix 2 J^T J / F0
+        ! outweighs rho near the answer, so rho |step| underestimates the
+        ! gradient; the test is the step itself (Gauss-Newton steps shrink
+        ! with the distance to a zero-residual answer)
+        if (prob%has_residuals()) then
+          small_step = maxval(abs(x_try - self%x)) <= self%xtol
+        else
+          small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
+        end if
+        if (small_step .and. viol <= self%feas_tol) then
           self%converged = .true.
           exit
         end if
-        call constraints_at(prob, x_try, g_try, ok)
+        call constraints_at(prob, x_try, g_try, r_try, ok)
         if (ok) then
           viol_try = max(0.0_dp, maxval([0.0_dp, g_try]))
           mass_try = scaled_mass(prob, x_try)
@@ -146,14 +198,18 @@ contains
         if (accepted) exit
         self%rejections = self%rejections + 1
         if (ok) then
-          events = events//'rejected (violation '//str(viol_try, 3)//', mass '//str(mass_try, 6)//'); '
+          events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)//'); '
         else
           events = events//'rejected: '//prob%last_failure//'; '
         end if
         delta = 4.0_dp*delta
       end do
       if (self%converged) then
-        self%message = 'feasible, and the approximate problem''s KKT residual below xtol'
+        if (prob%has_residuals()) then
+          self%message = 'feasible, and the step of the approximate problem below xtol'
+        else
+          self%message = 'feasible, and the approximate problem''s KKT residual below xtol'
+        end if
         exit
       end if
       if (.not. accepted) then
@@ -171,12 +227,13 @@ contains
       end if
       self%x = x_try
       g = g_try
+      r = r_try
       viol = viol_try
       mass = mass_try
       call record(k, events)
       if (stalls >= 2) then
         self%converged = .true.
-        self%message = 'feasible, and the mass changed by less than xtol/10 twice in a row'
+        self%message = 'feasible, and the objective changed by less than xtol/10 twice in a row'
         exit
       end if
     end do
@@ -190,7 +247,8 @@ contains
       st%k = kk
       st%analyses = prob%n_analyses
       st%cpu = prob%cpu_analyses
-      st%mass = mass*prob%mass0
+      call describe(prob, self%x, st)
+      st%objective = mass
       st%max_violation = viol
       st%move_limit = 1.0_dp/delta
       st%x = self%x
@@ -201,40 +259,67 @@ contains
     end subroutine record
   end subroutine sequence_solve
 
-  !> The analysis constraints at x (ok = .false. when the analysis fails).
-  subroutine constraints_at(prob, x, g, ok)
+  !> Mass and path errors of design x (from the cache: no new analysis).
+  subroutine describe(prob, x, st)
     type(design_problem_t), intent(inout) :: prob
     real(dp), intent(in) :: x(:)
-    real(dp), allocatable, intent(out) :: g(:)
+    type(design_step_t), intent(inout) :: st
+    type(design_eval_t) :: ev
+    call prob%evaluate(x, ev)
+    st%mass = ev%mass
+    st%path_error = ev%path_error
+    st%rigid_path_error = ev%rigid_path_error
+    st%peak_shaking = ev%peak_shaking
+    st%rms_shaking = ev%rms_shaking
+  end subroutine describe
+
+  !> The analysis constraints at x and the objective's residuals (path
+  !> objectives; ok = .false. when the analysis fails).
+  subroutine constraints_at(prob, x, g, r, ok)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:)
+    real(dp), allocatable, intent(out) :: g(:), r(:)
     logical, intent(out) :: ok
     type(error_t) :: err
+    type(design_eval_t) :: ev
     integer :: i
-    allocate(g(prob%n_analysis_constraints()))
+    allocate(g(prob%n_analysis_constraints()), r(prob%n_residuals_design()))
     do i = 1, size(g)
       call prob%general_constraint(i, x, g(i), err)
     end do
     ok = all(ieee_is_finite(g)) .and. .not. err%failed()
+    if (size(r) == 0) return
+    call prob%evaluate(x, ev)
+    ok = ok .and. ev%ok
+    if (.not. ev%ok) return
+    if (prob%objective_kind == 'path_rigid') then
+      r = ev%rigid_residual
+    else
+      r = ev%residual
+    end if
   end subroutine constraints_at
 
-  !> Forward differences of the analysis constraints: n analyses.
-  subroutine gradients(prob, x, g, dg, ok)
+  !> Forward differences of the analysis constraints and of the objective's
+  !> residuals: n analyses.
+  subroutine gradients(prob, x, g, r, dg, dr, ok)
     type(design_problem_t), intent(inout) :: prob
-    real(dp), intent(in) :: x(:), g(:)
-    real(dp), allocatable, intent(out) :: dg(:, :)
+    real(dp), intent(in) :: x(:), g(:), r(:)
+    real(dp), allocatable, intent(out) :: dg(:, :), dr(:, :)
     logical, intent(out) :: ok
     real(dp) :: xp(size(x))
-    real(dp), allocatable :: gp(:)
+    real(dp), allocatable :: gp(:), rp(:)
     real(dp) :: h
     integer :: j
-    allocate(dg(size(x), size(g)))
+    allocate(dg(size(x), size(g)), dr(size(x), size(r)))
     ok = .true.
     do j = 1, size(x)
       xp = x
       h = prob%fd_rel_step*max(abs(x(j)), 1.0_dp)
       xp(j) = x(j) + h
-      call constraints_at(prob, xp, gp, ok)
+      call constraints_at(prob, xp, gp, rp, ok)
       if (.not. ok) return
       dg(j, :) = (gp - g)/(xp(j) - x(j))
+      dr(j, :) = (rp - r)/(xp(j) - x(j))
     end do
   end subroutine gradients
 
@@ -247,21 +332,35 @@ contains
 
   !> Solve the approximate problem within the move limit (GNLC.NS, no
   !> analysis); the proposal is its solution, or its last iterate.
-  subroutine approximate_step(prob, x, g, dg, delta, margin, x_try, events)
+  subroutine approximate_step(prob, x, g, dg, r, dr, delta, margin, x_try, events)
     type(design_problem_t), target, intent(inout) :: prob
     real(dp), intent(in) :: x(:), g(:), dg(:, :), delta     !< delta: rho of the proximal term
+    real(dp), intent(in) :: r(:), dr(:, :)                  !< residuals and their Jacobian (path objectives)
     real(dp), intent(in) :: margin
     real(dp), allocatable, intent(out) :: x_try(:)
     character(len=:), allocatable, intent(inout) :: events
-    type(approximate_problem_t) :: ap
+    type(approximate_problem_t), target :: ap_mass
+    type(approximate_path_t), target :: ap_path
+    class(opt_problem_t), pointer :: ap
     type(gauss_optimizer_t) :: opt
     type(error_t) :: err
     real(dp) :: lower(size(x)), upper(size(x))
     integer :: i
-    ap%design => prob
-    ap%center = x
-    ap%rho = delta
-    call ap%init_problem('approximate design problem', size(x), 0, size(g) + 2*size(x))
+    if (prob%has_residuals()) then
+      ap_path%center = x
+      ap_path%rho = delta
+      ap_path%r = r
+      ap_path%jac = dr
+      ap_path%f0 = prob%f0
+      ap => ap_path
+      call ap%init_problem('approximate design problem', size(x), size(r) + size(x), size(g) + 2*size(x))
+    else
+      ap_mass%design => prob
+      ap_mass%center = x
+      ap_mass%rho = delta
+      ap => ap_mass
+      call ap%init_problem('approximate design problem', size(x), 0, size(g) + 2*size(x))
+    end if
     do i = 1, size(g)
       ! aim inside by half the tolerance: the linearisation error at the
       ! boundary then does not push every proposal just outside it

@@ -77,6 +77,11 @@ module linkage
     real(dp) :: link_m(max_links) = tennant_aluminium_m
     real(dp) :: link_rho(max_links) = tennant_aluminium_rho
     integer :: link_n_elements(max_links) = 1
+    ! counterweight: a rigid point mass on an arm clamped to the link at its
+    ! end 1 (a ground pivot), at (cw_x, cw_y) in the link's frame
+    real(dp) :: link_cw_mass(max_links) = 0.0_dp
+    real(dp) :: link_cw_x(max_links) = 0.0_dp
+    real(dp) :: link_cw_y(max_links) = 0.0_dp
     integer :: driver_link = 1
     real(dp) :: omega = 0.0_dp
     real(dp) :: theta0_deg = 0.0_dp
@@ -108,6 +113,8 @@ module linkage
     real(dp) :: e1 = 0.0_dp, e2 = 0.0_dp, m = 0.0_dp, rho = 0.0_dp
     integer :: n_elements = 0
     integer :: first_element = 0      !< global number of its first element
+    real(dp) :: cw_mass = 0.0_dp      !< counterweight mass (0: none)
+    real(dp) :: cw_x = 0.0_dp, cw_y = 0.0_dp   !< its position from end 1, along and across the link
   end type link_t
 
   !> A joint: a point of the mechanism where link ends meet.
@@ -160,11 +167,13 @@ module linkage
   character(len=12) :: link_section(max_links)
   real(dp) :: link_c(max_links), link_wall(max_links)
   real(dp) :: omega, theta0_deg, spinup_time, toggle_rcond
+  real(dp) :: link_cw_mass(max_links), link_cw_x(max_links), link_cw_y(max_links)
   namelist /mechanism/ n_joints, joint_name, joint_type, joint_x, joint_y, joint_guide_deg, &
     joint_sliding_link, joint_branch, joint_mass, &
     n_links, link_name, link_joint1, link_joint2, link_length, link_b, link_h, &
     link_area, link_inertia, link_section, link_c, link_wall, link_e1, link_e2, link_m, link_rho, link_n_elements, &
-    driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond
+    driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond, &
+    link_cw_mass, link_cw_x, link_cw_y
 
 contains
 
@@ -354,6 +363,18 @@ contains
                    'must be between 1 and '//str(max_elements_per_link)); return
         end if
         lk%n_elements = inp%link_n_elements(i)
+        if (.not. inp%link_cw_mass(i) >= 0.0_dp) then
+          call bad(idx('link_cw_mass', i), str(inp%link_cw_mass(i)), 'a counterweight mass must be >= 0'); return
+        end if
+        if (inp%link_cw_mass(i) > 0.0_dp .and. all(mech%joints(lk%joint(1))%kind /= [joint_clamp, joint_ground_pin])) &
+          then
+          call bad(idx('link_cw_mass', i), str(inp%link_cw_mass(i)), 'a counterweight sits at end 1 of its link, '// &
+                   'which must be a ground pivot (clamp or ground_pin): joint '//trim(mech%joints(lk%joint(1))%name)// &
+                   ' is '//joint_type_name(mech%joints(lk%joint(1))%kind)); return
+        end if
+        lk%cw_mass = inp%link_cw_mass(i)
+        lk%cw_x = inp%link_cw_x(i)
+        lk%cw_y = inp%link_cw_y(i)
         if (.not. (inp%link_length(i) >= 0.0_dp .and. finite(inp%link_length(i)))) then
           call bad(idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
           return
@@ -590,6 +611,9 @@ contains
         if (.not. finite_at('link_e2', q, inp%link_e2(q))) return
         if (.not. finite_at('link_m', q, inp%link_m(q))) return
         if (.not. finite_at('link_rho', q, inp%link_rho(q))) return
+        if (.not. finite_at('link_cw_mass', q, inp%link_cw_mass(q))) return
+        if (.not. finite_at('link_cw_x', q, inp%link_cw_x(q))) return
+        if (.not. finite_at('link_cw_y', q, inp%link_cw_y(q))) return
       end do
       if (.not. finite_at('omega', 0, inp%omega)) return
       if (.not. finite_at('theta0_deg', 0, inp%theta0_deg)) return
@@ -998,6 +1022,9 @@ contains
     link_m = inp%link_m
     link_rho = inp%link_rho
     link_n_elements = inp%link_n_elements
+    link_cw_mass = inp%link_cw_mass
+    link_cw_x = inp%link_cw_x
+    link_cw_y = inp%link_cw_y
     driver_link = inp%driver_link
     omega = inp%omega
     theta0_deg = inp%theta0_deg
@@ -1035,6 +1062,9 @@ contains
     inp%link_m = link_m
     inp%link_rho = link_rho
     inp%link_n_elements = link_n_elements
+    inp%link_cw_mass = link_cw_mass
+    inp%link_cw_x = link_cw_x
+    inp%link_cw_y = link_cw_y
     inp%driver_link = driver_link
     inp%omega = omega
     inp%theta0_deg = theta0_deg

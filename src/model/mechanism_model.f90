@@ -142,6 +142,13 @@ contains
     real(dp) :: guide_angle
     type(motion_t) :: m
 
+    do k = 1, mech%n_links
+      if (.not. mech%links(k)%cw_mass > 0.0_dp) cycle
+      ! counterweights (link_cw_mass) are modelled by the steady-state model only
+      call err%set('counterweight', 'link_cw_mass > 0: counterweights are part of the steady-state and design '// &
+                   'analyses, not of the transient model (doc/design.md)', 2)
+      return
+    end do
     self%moving = .true.
     allocate(ends(2, mech%n_links))
     do k = 1, mech%n_links

@@ -59,6 +59,10 @@ module steady_model
     real(dp) :: cache_t(n_cache) = 0.0_dp
     type(frame_state_t), allocatable :: cache_fs(:, :)
     real(dp) :: t_kin = 0.0_dp                           !< time of the last kinematics solution
+    ! counterweights (module linkage): element carrying each, and J = m |c|^2
+    ! about its ground pivot
+    integer, allocatable :: cw_element(:)
+    real(dp), allocatable :: cw_inertia(:)
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -131,6 +135,20 @@ contains
       end associate
     end do
     call finish_init(self)
+    ! a counterweight on an arm clamped to the link at its ground pivot
+    ! turns with the end's angle phi + w_x: kinetic energy J (phi_d + w_x_d)^2 / 2
+    allocate(self%cw_element(0), self%cw_inertia(0))
+    do k = 1, mech%n_links
+      associate (lk => mech%links(k))
+        if (.not. lk%cw_mass > 0.0_dp) cycle
+        if (lk%sliding) then
+          call err%set('counterweight', 'a counterweight on a link sliding through a sleeve is not modelled')
+          return
+        end if
+        self%cw_element = [self%cw_element, lk%first_element]
+        self%cw_inertia = [self%cw_inertia, lk%cw_mass*(lk%cw_x**2 + lk%cw_y**2)]
+      end associate
+    end do
     self%t_kin = 0.0_dp
     call self%set_time(0.0_dp, err)
   end subroutine init_mechanism
@@ -354,7 +372,27 @@ contains
         call scatter_vector(self, e, nd, fe, force)
       end if
     end do
+    if (allocated(self%cw_element)) call add_counterweights(self, mass, force)
   end subroutine model_linear_terms
+
+  !> Lagrange's equation of the end slope w_x of a counterweight's link gets
+  !> J w_x_dd on the left and -J phi_dd (the rigid rotation's inertia) on the
+  !> right; the counterweight's translation reaches the ground pivot directly.
+  subroutine add_counterweights(self, mass, force)
+    type(steady_model_t), intent(in) :: self
+    real(dp), intent(inout) :: mass(:, :), force(:)
+    real(dp) :: me(tennant_max_dof, tennant_max_dof), fe(tennant_max_dof)
+    integer :: k, e
+    do k = 1, size(self%cw_element)
+      e = self%cw_element(k)
+      me = 0.0_dp
+      fe = 0.0_dp
+      me(3, 3) = self%cw_inertia(k)
+      fe(3) = -self%cw_inertia(k)*self%fs(e)%phi_dd
+      call scatter_matrix(self, e, self%el(e)%nd, me, mass)
+      call scatter_vector(self, e, self%el(e)%nd, fe, force)
+    end do
+  end subroutine add_counterweights
 
   subroutine scatter_matrix(self, e, nd, ae, ag)
     type(steady_model_t), intent(in) :: self

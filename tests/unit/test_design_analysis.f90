@@ -24,6 +24,7 @@ contains
     scratch = scratch_path('test_design_analysis')
     call run_test('minimum_mass_bar_reaches_the_closed_form_section', test_closed_form)
     call run_test('bad_design_values_are_input_errors', test_bad_values)
+    call run_test('counterweights_reach_berkof_lowen_balance_at_low_speed', test_counterweights)
   end subroutine run_all
 
   subroutine run_text(text, err, lines)
@@ -55,6 +56,42 @@ contains
     call remove_side_files()
   end subroutine test_closed_form
 
+  !> Example 3 in the rigid limit: Tennant's four-bar at 1 rad/s with
+  !> counterweights of 0.001 on crank and rocker, their positions designed
+  !> for the least mean square shaking force.  Berkof-Lowen full force
+  !> balance puts them on the link lines at -(m2 + m3) a2 / (2 m_cw) =
+  !> -2.536 in and -(m4 + m3) a4 / (2 m_cw) = -7.156275 in, where the rigid
+  !> shaking force vanishes.  The elastic motion shifts the optimum by an
+  !> amount growing as omega^2 (2.6e-5 in at 1 rad/s, 6.4e-4 in at 5 rad/s):
+  !> tolerance 1e-4 in.  The shaking force falls by more than 1e-5.
+  subroutine test_counterweights()
+    type(error_t) :: err
+    character(len=line_length), allocatable :: lines(:)
+    real(dp), parameter :: rho_b = 2.536e-4_dp*0.25_dp, m_cw = 0.001_dp
+    real(dp) :: m2, m3, m4
+    m2 = rho_b*5.0_dp
+    m3 = rho_b*11.0_dp
+    m4 = rho_b*10.5_dp
+    call run_text('&run analysis = ''design'' /|&mechanism n_joints = 4, joint_type = ''clamp'', ''pin'', '// &
+      '''pin'', ''ground_pin'', joint_x(1) = 0, joint_y(1) = 0, joint_x(4) = 10, joint_y(4) = 0, n_links = 3, '// &
+      'link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, '// &
+      'link_h = 3*1.0, link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, driver_link = 1, omega = 1.0 /|'// &
+      '&steady damping_beta = 1.0e-5 /|&tennant d_k = 0, d_b = 0, d_g = 0 /|&design variables = '// &
+      '''link_cw_x(1)'', ''link_cw_y(1)'', ''link_cw_x(3)'', ''link_cw_y(3)'', lower = -6, -3, -10, -3, '// &
+      'upper = 3, 3, 3, 3, scale = 4*1.0, objective = ''shaking'', evaluator = ''harmonic'', samples = 36, '// &
+      'move_limit = 1.0, xtol = 1e-7 /', err, lines)
+    call assert_true(.not. err%failed(), 'converges: '//err%text())
+    call assert_close(summary_value(lines, '# summary: final link_cw_x(1) ='), -(m2 + m3)*5.0_dp/(2.0_dp*m_cw), &
+                      1.0e-4_dp, 'crank counterweight on the Berkof-Lowen position')
+    call assert_close(summary_value(lines, '# summary: final link_cw_x(3) ='), -(m4 + m3)*10.5_dp/(2.0_dp*m_cw), &
+                      1.0e-4_dp, 'rocker counterweight on the Berkof-Lowen position')
+    call assert_close(summary_value(lines, '# summary: final link_cw_y(1) ='), 0.0_dp, 1.0e-4_dp, 'on the crank line')
+    call assert_close(summary_value(lines, '# summary: final link_cw_y(3) ='), 0.0_dp, 1.0e-4_dp, 'on the rocker line')
+    call assert_true(summary_value(lines, '# summary: final rms shaking force =') < &
+                     1.0e-5_dp*summary_value(lines, '# summary: initial rms shaking force ='), 'shaking force cancelled')
+    call remove_side_files()
+  end subroutine test_counterweights
+
   !> The design writes its final deck and two analyses beside its output.
   subroutine remove_side_files()
     character(len=16), parameter :: suffix(4) = [character(len=16) :: '.design.nml', '.initial.nml', &
@@ -79,12 +116,34 @@ contains
     call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, frequency_factor = 10, '// &
              'evaluator = ''transient'' /', 'evaluator')
     call bad('&steady /', 'group &design')
+    call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, objective = ''path'', path_link = 1, '// &
+             'path_r = 1, path_x = 1, 2, path_y = 1, path_dgamma_deg = 0, 90 /', 'path_y(2)')
+    call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, objective = ''path'', path_link = 2, '// &
+             'path_r = 1, path_x = 1, path_y = 1, path_dgamma_deg = 0 /', 'path_link')
+    call bad('&design variables = ''path_r'', lower = 0.1, upper = 2, frequency_factor = 10 /', 'path objectives')
+    call bad('&design variables = ''link_cw_x(1)'', lower = -1, upper = 2, scale = 1, objective = ''shaking'' /', &
+             'uniform links', 'n_sections(1) = 1, section_end(1, 1) = 1.0, section_b(1, 1) = 0.25, '// &
+             'section_h(1, 1) = 1.0, ')
+    call bad('&design variables = ''link_cw_x(1)'', lower = -1, upper = 2, scale = 1, objective = ''shaking'' /', &
+             'link_cw_mass(1)', 'link_cw_mass(1) = -1.0, ')
   contains
-    subroutine bad(design_group, fragment)
+    subroutine bad(design_group, fragment, tennant_extra)
       character(len=*), intent(in) :: design_group, fragment
+      character(len=*), intent(in), optional :: tennant_extra   !< put into &tennant, or into &mechanism for link_*
       type(error_t) :: err
       character(len=line_length), allocatable :: lines(:)
-      call run_text(bar//design_group, err, lines)
+      character(len=:), allocatable :: text
+      integer :: at
+      text = bar
+      if (present(tennant_extra)) then
+        if (tennant_extra(1:5) == 'link_') then
+          at = index(text, 'omega = 1.0')
+        else
+          at = index(text, 'd_k = 0')
+        end if
+        text = text(1:at - 1)//tennant_extra//text(at:)
+      end if
+      call run_text(text//design_group, err, lines)
       call assert_true(err%failed() .and. err%code == 2, fragment//': an input error')
       call assert_true(index(err%text(), fragment) > 0, 'message names '//fragment//': '//err%text())
       call assert_true(size(lines) == 0, fragment//': no output')

@@ -1,0 +1,324 @@
+!> Optimal design with the analysis in the loop: the design decks' problems
+!> through the design loop (sequential approximate problems solved by GNLC,
+!> module design_sequence) and through NLopt's SLSQP (gradient-based SQP,
+!> forward-difference gradients of the analysis) and COBYLA (derivative-free),
+!> from the same start, with the same analyses, bounds and constraints.
+!>
+!> Printed per run: NF (mechanism analyses of distinct designs, derivatives
+!> included: the design problem's cache counts each design once whoever
+!> asks), failed analyses, CPU of the analyses, the final objective (F / F at
+!> the start), the largest constraint violation (ln ratio) and the final
+!> design.  A benchmark: figures, not pass/fail.  Decks: the arguments, or
+!> the design examples of doc/design.md.
+module design_nlopt_glue
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp, i8
+  use error_status, only: error_t
+  use design_problem, only: design_problem_t
+  implicit none
+  private
+  public :: nlopt_design, alg_slsqp, alg_cobyla
+
+  integer, parameter :: alg_cobyla = 25   ! NLOPT_LN_COBYLA (nlopt.f)
+  integer, parameter :: alg_slsqp = 40    ! NLOPT_LD_SLSQP
+  !> what a failed analysis returns to NLopt: a violation of e^10 and an
+  !> objective ten times the start's (NLopt has no notion of a failed trial)
+  real(dp), parameter :: failed_constraint = 10.0_dp, failed_objective = 10.0_dp
+
+  abstract interface
+    subroutine nlopt_callback(val, n, x, grad, need_gradient, f_data)
+      import :: dp
+      real(dp), intent(out) :: val
+      integer, intent(in) :: n
+      real(dp), intent(in) :: x(n)
+      real(dp), intent(inout) :: grad(n)
+      integer, intent(in) :: need_gradient
+      integer, intent(in) :: f_data
+    end subroutine nlopt_callback
+  end interface
+
+  ! NLopt's F77 API (libnlopt, nlopt.f): explicit interfaces
+  interface
+    subroutine nlo_create(opt, alg, n)
+      import :: i8
+      integer(i8), intent(out) :: opt
+      integer, intent(in) :: alg, n
+    end subroutine nlo_create
+    subroutine nlo_destroy(opt)
+      import :: i8
+      integer(i8), intent(in) :: opt
+    end subroutine nlo_destroy
+    subroutine nlo_set_min_objective(ires, opt, f, f_data)
+      import :: i8, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: f
+      integer, intent(in) :: f_data
+    end subroutine nlo_set_min_objective
+    subroutine nlo_add_inequality_constraint(ires, opt, fc, fc_data, tol)
+      import :: i8, dp, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: fc
+      integer, intent(in) :: fc_data
+      real(dp), intent(in) :: tol
+    end subroutine nlo_add_inequality_constraint
+    subroutine nlo_set_lower_bounds(ires, opt, lb)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: lb(*)
+    end subroutine nlo_set_lower_bounds
+    subroutine nlo_set_upper_bounds(ires, opt, ub)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: ub(*)
+    end subroutine nlo_set_upper_bounds
+    subroutine nlo_set_xtol_abs1(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_xtol_abs1
+    subroutine nlo_set_ftol_rel(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_ftol_rel
+    subroutine nlo_set_maxeval(ires, opt, n)
+      import :: i8
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      integer, intent(in) :: n
+    end subroutine nlo_set_maxeval
+    subroutine nlo_optimize(ires, opt, x, f)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(inout) :: x(*)
+      real(dp), intent(out) :: f
+    end subroutine nlo_optimize
+  end interface
+
+  ! NLopt's callbacks carry only an integer: the problem is module state for
+  ! the duration of one nlopt_design
+  type(design_problem_t), pointer :: current => null()
+  integer, target, save :: ids(0:100) = 0
+
+contains
+
+  !> Minimise the design problem from x with NLopt's `alg`: bounds of the
+  !> variables as NLopt bounds, each analysis constraint as an inequality;
+  !> stops at |dx| < xtol (the design loop's step test) or a relative change
+  !> of F below ftol (its stall test).
+  subroutine nlopt_design(prob, alg, x, xtol, ftol, f, ires)
+    type(design_problem_t), intent(inout), target :: prob
+    integer, intent(in) :: alg
+    real(dp), intent(inout) :: x(:)
+    real(dp), intent(in) :: xtol, ftol
+    real(dp), intent(out) :: f
+    integer, intent(out) :: ires
+    integer(i8) :: opt
+    integer :: i, r
+    real(dp) :: lb(size(x)), ub(size(x))
+    current => prob
+    do i = 0, size(ids) - 1
+      ids(i) = i
+    end do
+    do i = 1, size(x)
+      lb(i) = prob%var(i)%to_x(prob%var(i)%lower)
+      ub(i) = prob%var(i)%to_x(prob%var(i)%upper)
+    end do
+    call nlo_create(opt, alg, size(x))
+    call nlo_set_min_objective(r, opt, objective_cb, ids(0))
+    call nlo_set_lower_bounds(r, opt, lb)
+    call nlo_set_upper_bounds(r, opt, ub)
+    do i = 1, prob%n_analysis_constraints()
+      call nlo_add_inequality_constraint(r, opt, constraint_cb, ids(i), 0.0_dp)
+    end do
+    call nlo_set_xtol_abs1(r, opt, xtol)
+    call nlo_set_ftol_rel(r, opt, ftol)
+    call nlo_set_maxeval(r, opt, 3000)
+    call nlo_optimize(ires, opt, x, f)
+    call nlo_destroy(opt)
+    current => null()
+  end subroutine nlopt_design
+
+  real(dp) function objective_at(x) result(f)
+    real(dp), intent(in) :: x(:)
+    type(error_t) :: err
+    call current%objective(x, f, err)
+    if (.not. ieee_is_finite(f)) f = failed_objective
+  end function objective_at
+
+  real(dp) function constraint_at(i, x) result(g)
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x(:)
+    type(error_t) :: err
+    call current%general_constraint(i, x, g, err)
+    if (.not. ieee_is_finite(g)) g = failed_constraint
+  end function constraint_at
+
+  !> Forward differences with the design loop's step (each neighbour one
+  !> analysis, shared by the objective and every constraint via the cache).
+  subroutine objective_cb(val, n, x, grad, need_gradient, f_data)
+    real(dp), intent(out) :: val
+    integer, intent(in) :: n
+    real(dp), intent(in) :: x(n)
+    real(dp), intent(inout) :: grad(n)
+    integer, intent(in) :: need_gradient
+    integer, intent(in) :: f_data
+    real(dp) :: xp(n)
+    integer :: j
+    val = objective_at(x)
+    if (need_gradient == 0 .or. f_data /= 0) return
+    do j = 1, n
+      xp = x
+      xp(j) = x(j) + current%fd_rel_step*max(abs(x(j)), 1.0_dp)
+      grad(j) = (objective_at(xp) - val)/(xp(j) - x(j))
+    end do
+  end subroutine objective_cb
+
+  subroutine constraint_cb(val, n, x, grad, need_gradient, f_data)
+    real(dp), intent(out) :: val
+    integer, intent(in) :: n
+    real(dp), intent(in) :: x(n)
+    real(dp), intent(inout) :: grad(n)
+    integer, intent(in) :: need_gradient
+    integer, intent(in) :: f_data
+    real(dp) :: xp(n)
+    integer :: j
+    val = constraint_at(f_data, x)
+    if (need_gradient == 0) return
+    do j = 1, n
+      xp = x
+      xp(j) = x(j) + current%fd_rel_step*max(abs(x(j)), 1.0_dp)
+      grad(j) = (constraint_at(f_data, xp) - val)/(xp(j) - x(j))
+    end do
+  end subroutine constraint_cb
+end module design_nlopt_glue
+
+program bench_design
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use kinds, only: dp
+  use error_status, only: error_t
+  use strings, only: str
+  use deck_reader, only: deck_t
+  use linkage, only: mechanism_t
+  use design_problem, only: design_problem_t, design_eval_t
+  use design_sequence, only: design_sequence_t
+  use design_analysis, only: load_design
+  use design_nlopt_glue, only: nlopt_design, alg_slsqp, alg_cobyla
+  implicit none
+  character(len=256), allocatable :: decks(:)
+  character(len=256) :: arg
+  integer :: i
+
+  if (command_argument_count() > 0) then
+    allocate(decks(command_argument_count()))
+    do i = 1, size(decks)
+      call get_command_argument(i, arg)
+      decks(i) = arg
+    end do
+  else
+    decks = [character(len=256) :: 'inputs/design_bar_frequency.nml', 'inputs/design_fourbar_path_60.nml', &
+             'inputs/design_fourbar_mass_150.nml']
+  end if
+  write(output_unit, '(a)') '# Design with the analysis in the loop: the design loop (GNLC on sequential '// &
+    'approximate problems) beside NLopt SLSQP and COBYLA, same deck, start, analyses and constraints.'
+  write(output_unit, '(a)') '# NF = mechanism analyses of distinct designs (derivatives included); F = objective '// &
+    '/ its start value; viol = largest ln(value/limit) (<= 0 feasible); cpu = analysis CPU seconds.'
+  write(output_unit, '(a)') '# NLopt: forward-difference gradients with the design loop''s step, stops at '// &
+    '|dx| < xtol or relative change of F < xtol/10 (the design loop''s tests), at most 3000 evaluations.'
+  write(output_unit, '(a)') '# deck | method | NF | failed | cpu | cpu/analysis | F | viol | status | design'
+  do i = 1, size(decks)
+    call run_deck(trim(decks(i)))
+  end do
+
+contains
+
+  subroutine run_deck(path)
+    character(len=*), intent(in) :: path
+    integer :: method, nf_gauss, nf_best
+    real(dp) :: f_gauss
+    nf_gauss = 0
+    nf_best = huge(1)
+    f_gauss = huge(1.0_dp)
+    do method = 1, 3
+      call run_method(path, method, nf_gauss, nf_best, f_gauss)
+    end do
+    if (nf_gauss > 0 .and. nf_best < huge(1)) then
+      write(output_unit, '(a)') '# '//path//': NF_gnlc / min(NF_slsqp, NF_cobyla) = '// &
+        str(real(nf_gauss, dp)/nf_best, 3)//' (NLopt runs that end feasible within 1 % of the design loop''s F)'
+    else if (nf_gauss > 0) then
+      write(output_unit, '(a)') '# '//path//': no NLopt run ends feasible within 1 % of the design loop''s F'
+    end if
+  end subroutine run_deck
+
+  subroutine run_method(path, method, nf_gauss, nf_best, f_gauss)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: method
+    integer, intent(inout) :: nf_gauss, nf_best
+    real(dp), intent(inout) :: f_gauss      !< the design loop's final F (equal objective: within 1 %)
+    type(deck_t) :: deck
+    type(mechanism_t) :: mech
+    type(design_problem_t), target :: prob
+    type(design_sequence_t) :: seq
+    type(design_eval_t) :: ev
+    type(error_t) :: err
+    real(dp), allocatable :: x0(:), x(:)
+    real(dp) :: f, viol
+    integer :: ires, k
+    character(len=:), allocatable :: name, status, design
+    call deck%open(path, err)
+    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
+    call deck%close()
+    if (err%failed()) then
+      write(output_unit, '(a)') '# '//path//': '//err%text()
+      return
+    end if
+    call prob%setup('design of '//path, x0)
+    x = x0
+    select case (method)
+    case (1)
+      name = 'gnlc_sequence'
+      call seq%solve(prob, x0, err)
+      if (allocated(seq%x)) x = seq%x
+      status = trim(merge('converged    ', 'not converged', seq%converged .and. .not. err%failed()))
+    case (2)
+      name = 'nlopt_slsqp'
+      call nlopt_design(prob, alg_slsqp, x, seq%xtol, 0.1_dp*seq%xtol, f, ires)
+      status = 'ires='//str(ires)
+    case default
+      name = 'nlopt_cobyla'
+      call nlopt_design(prob, alg_cobyla, x, seq%xtol, 0.1_dp*seq%xtol, f, ires)
+      status = 'ires='//str(ires)
+    end select
+    call prob%objective(x, f, err)
+    call prob%evaluate(x, ev)
+    viol = 0.0_dp
+    do k = 1, prob%n_analysis_constraints()
+      block
+        real(dp) :: g
+        call prob%general_constraint(k, x, g, err)
+        viol = max(viol, g)
+      end block
+    end do
+    design = ''
+    do k = 1, size(x)
+      design = design//' '//trim(prob%var(k)%name)//'='//str(prob%var(k)%value(x(k)), 6)
+    end do
+    write(output_unit, '(a)') path//' | '//name//' | '//str(prob%n_analyses)//' | '//str(prob%n_failed)//' | '// &
+      str(prob%cpu_analyses, 4)//' | '//str(prob%cpu_analyses/max(1, prob%n_analyses), 3)//' | '//str(f, 6)// &
+      ' | '//str(viol, 3)//' | '//status//' |'//design
+    flush(output_unit)
+    if (method == 1) then
+      if (seq%converged) nf_gauss = prob%n_analyses
+      f_gauss = f
+    else if (viol <= seq%feas_tol .and. ires > 0 .and. f <= 1.01_dp*f_gauss) then
+      nf_best = min(nf_best, prob%n_analyses)
+    end if
+  end subroutine run_method
+end program bench_design
