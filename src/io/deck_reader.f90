@@ -417,6 +417,20 @@ contains
         else if (scan(l(k:k), 'abcdefghijklmnopqrstuvwxyz_') == 1) then
           call assignment_target(l, k, j, target, sub, longest)
           k = j
+        else if (scan(l(k:k), '0123456789.+-') == 1) then
+          ! a number; before '*' it must be a repeat count: gfortran reads
+          ! '2.5*'text'' into a character variable as the undelimited string
+          ! "2.5*'text'", cut to the variable's length (fuzz seed 8)
+          j = k + scan(l(k:), ' ,/*!=') - 1
+          if (j < k) j = len(l) + 1
+          if (j <= len(l)) then
+            if (l(j:j) == '*' .and. verify(l(k:j - 1), '0123456789') > 0) then
+              call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": the repeat '// &
+                           'count '''//l(k:j - 1)//''' is not a positive integer', input_error_code)
+              return
+            end if
+          end if
+          k = max(j, k + 1)
         else
           k = k + 1
         end if
