@@ -25,6 +25,7 @@ module transient_analysis
   use revolution_peaks, only: revolution_peaks_t
   use linkage, only: joint_clamp
   use clearance_run, only: clearance_monitor_t
+  use restart_file, only: write_restart_file, read_restart_file
   implicit none
   private
   public :: run_transient
@@ -157,7 +158,7 @@ contains
       call out%comment('initial state: mode '//str(s%mode_number)//' scaled to a largest transverse '// &
                        'displacement of '//str(s%mode_amplitude)//', at rest')
     case ('restart')
-      call read_restart(s%restart_in, t0, y, err)
+      call read_restart_file(s%restart_in, t0, y, err)
       if (err%failed()) then
         err%code = 2
         call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
@@ -309,7 +310,7 @@ contains
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
     if (clearance%active) call clearance%report(out, revolutions_done, model, y, s%mf == mf_adams)
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
-      call write_restart(s%restart_out, ode%t, y, err)
+      call write_restart_file(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
     end if
 
@@ -689,46 +690,4 @@ contains
     if (wmax <= 0.0_dp) wmax = 1.0_dp
   end function max_transverse
 
-  subroutine write_restart(path, t, y, err)
-    character(len=*), intent(in) :: path
-    real(dp), intent(in) :: t, y(:)
-    type(error_t), intent(inout) :: err
-    integer :: u, ios
-    open(newunit=u, file=trim(path), status='replace', action='write', iostat=ios)
-    if (ios /= 0) then
-      call err%set('restart file '''//trim(path)//'''', 'cannot be written')
-      return
-    end if
-    write(u, '(a)') '# flexmech transient restart: t, number of states, then the state (q, q_dot interleaved)'
-    write(u, '(es25.17e3)') t
-    write(u, '(i0)') size(y)
-    write(u, '(es25.17e3)') y
-    close(u)
-  end subroutine write_restart
-
-  subroutine read_restart(path, t, y, err)
-    character(len=*), intent(in) :: path
-    real(dp), intent(out) :: t
-    real(dp), intent(inout) :: y(:)
-    type(error_t), intent(inout) :: err
-    integer :: u, ios, n
-    character(len=256) :: line
-    open(newunit=u, file=trim(path), status='old', action='read', iostat=ios)
-    if (ios /= 0) then
-      call err%set('restart file '''//trim(path)//'''', 'not found or not readable')
-      return
-    end if
-    read(u, '(a)', iostat=ios) line
-    read(u, *, iostat=ios) t
-    if (ios == 0) read(u, *, iostat=ios) n
-    if (ios /= 0) then
-      call err%set('restart file '''//trim(path)//'''', 'is not a flexmech restart file')
-    else if (n /= size(y)) then
-      call err%set('restart file '''//trim(path)//'''', 'holds '//str(n)//' states; this model has '//str(size(y)))
-    else
-      read(u, *, iostat=ios) y
-      if (ios /= 0) call err%set('restart file '''//trim(path)//'''', 'is truncated')
-    end if
-    close(u)
-  end subroutine read_restart
 end module transient_analysis

@@ -30,6 +30,7 @@ module mechanism_model
   use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
                     sym_generalized_eig, solve_linear
   use lsode_solver, only: ode_system_t
+  use second_order_newton, only: symmetric_band, band_combination   ! (the spatial model shares them)
   use correlation_table, only: correlation_table_t, link_end_t
   use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
   use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, &
@@ -693,51 +694,6 @@ contains
     x(2::2) = dv
     x(1::2) = r1 + self%newton_hl0*dv
   end subroutine model_newton_solve
-
-  !> Whether a band matrix in general band storage (half-bandwidth kd) is
-  !> symmetric to round-off (1e-10 of its largest entry).
-  pure logical function symmetric_band(kb, kd) result(sym)
-    real(dp), intent(in) :: kb(:, :)
-    integer, intent(in) :: kd
-    integer :: i, j, n
-    real(dp) :: tol
-    n = size(kb, 2)
-    tol = 1.0e-10_dp*maxval(abs(kb))
-    sym = .true.
-    do j = 1, n
-      do i = j + 1, min(n, j + kd)
-        if (abs(kb(kd + 1 + i - j, j) - kb(kd + 1 + j - i, i)) > tol) then
-          sym = .false.
-          return
-        end if
-      end do
-    end do
-  end function symmetric_band
-
-  !> y = M a - c K b for M symmetric in lower band storage m(1+i-j, j) and K
-  !> in general band storage k(kd+1+i-j, j), both of half-bandwidth kd: O(N kd).
-  pure subroutine band_combination(m, k, kd, a, c, b, y)
-    real(dp), intent(in) :: m(:, :), k(:, :), a(:), c, b(:)
-    integer, intent(in) :: kd
-    real(dp), intent(out) :: y(:)
-    integer :: i, j, n
-    real(dp) :: aj, cbj, s
-    n = size(a)
-    y = 0.0_dp
-    do j = 1, n
-      aj = a(j)
-      cbj = c*b(j)
-      s = m(1, j)*aj
-      do i = max(1, j - kd), min(n, j + kd)
-        y(i) = y(i) - k(kd + 1 + i - j, j)*cbj
-      end do
-      do i = j + 1, min(n, j + kd)
-        y(i) = y(i) + m(1 + i - j, j)*aj
-        s = s + m(1 + i - j, j)*a(i)
-      end do
-      y(j) = y(j) + s
-    end do
-  end subroutine band_combination
 
   ! ------------------------------------------------------------------ clearance joints
 
