@@ -10,87 +10,14 @@
 !> figures, not pass/fail.
 module nlopt_glue
   use kinds, only: dp, i8
+  use nlopt_api
   use error_status, only: error_t
   use optim_problem, only: opt_problem_t
   implicit none
   private
   public :: nlopt_run, alg_slsqp, alg_cobyla
 
-  integer, parameter :: alg_cobyla = 25   ! NLOPT_LN_COBYLA (nlopt.f)
-  integer, parameter :: alg_slsqp = 40    ! NLOPT_LD_SLSQP
 
-  abstract interface
-    subroutine nlopt_callback(val, n, x, grad, need_gradient, f_data)
-      import :: dp
-      real(dp), intent(out) :: val
-      integer, intent(in) :: n
-      real(dp), intent(in) :: x(n)
-      real(dp), intent(inout) :: grad(n)
-      integer, intent(in) :: need_gradient
-      integer, intent(in) :: f_data
-    end subroutine nlopt_callback
-  end interface
-
-  ! NLopt's F77 API (libnlopt, nlopt.f): explicit interfaces
-  interface
-    subroutine nlo_create(opt, alg, n)
-      import :: i8
-      integer(i8), intent(out) :: opt
-      integer, intent(in) :: alg, n
-    end subroutine nlo_create
-    subroutine nlo_destroy(opt)
-      import :: i8
-      integer(i8), intent(in) :: opt
-    end subroutine nlo_destroy
-    subroutine nlo_set_min_objective(ires, opt, f, f_data)
-      import :: i8, nlopt_callback
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      procedure(nlopt_callback) :: f
-      integer, intent(in) :: f_data
-    end subroutine nlo_set_min_objective
-    subroutine nlo_add_inequality_constraint(ires, opt, fc, fc_data, tol)
-      import :: i8, dp, nlopt_callback
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      procedure(nlopt_callback) :: fc
-      integer, intent(in) :: fc_data
-      real(dp), intent(in) :: tol
-    end subroutine nlo_add_inequality_constraint
-    subroutine nlo_add_equality_constraint(ires, opt, fc, fc_data, tol)
-      import :: i8, dp, nlopt_callback
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      procedure(nlopt_callback) :: fc
-      integer, intent(in) :: fc_data
-      real(dp), intent(in) :: tol
-    end subroutine nlo_add_equality_constraint
-    subroutine nlo_set_xtol_rel(ires, opt, tol)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: tol
-    end subroutine nlo_set_xtol_rel
-    subroutine nlo_set_ftol_rel(ires, opt, tol)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: tol
-    end subroutine nlo_set_ftol_rel
-    subroutine nlo_set_maxeval(ires, opt, n)
-      import :: i8
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      integer, intent(in) :: n
-    end subroutine nlo_set_maxeval
-    subroutine nlo_optimize(ires, opt, x, f)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(inout) :: x(*)
-      real(dp), intent(out) :: f
-    end subroutine nlo_optimize
-  end interface
 
   ! NLopt's callbacks carry only an address: the problem being solved is
   ! module state for the duration of one nlopt_run (a legacy callback forces it)

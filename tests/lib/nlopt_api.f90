@@ -1,0 +1,106 @@
+!> NLopt's F77 API (Debian's libnlopt, nlopt.f) behind one explicit interface, for
+!> the benchmarks that compare the Gauss optimizers with NLopt (bench_optimizers,
+!> bench_design). Only the benchmarks link libnlopt; nothing here calls it.
+module nlopt_api
+  use kinds, only: dp, i8
+  implicit none
+  private
+  public :: nlopt_callback, alg_cobyla, alg_slsqp
+  public :: nlo_create, nlo_destroy, nlo_set_min_objective, nlo_add_inequality_constraint
+  public :: nlo_add_equality_constraint, nlo_set_lower_bounds, nlo_set_upper_bounds, nlo_set_xtol_abs1
+  public :: nlo_set_xtol_rel, nlo_set_ftol_rel, nlo_set_maxeval, nlo_optimize
+
+  integer, parameter :: alg_cobyla = 25   ! NLOPT_LN_COBYLA (nlopt.f)
+  integer, parameter :: alg_slsqp = 40    ! NLOPT_LD_SLSQP
+
+  abstract interface
+    subroutine nlopt_callback(val, n, x, grad, need_gradient, f_data)
+      import :: dp
+      real(dp), intent(out) :: val
+      integer, intent(in) :: n
+      real(dp), intent(in) :: x(n)
+      real(dp), intent(inout) :: grad(n)
+      integer, intent(in) :: need_gradient
+      integer, intent(in) :: f_data
+    end subroutine nlopt_callback
+  end interface
+
+  ! NLopt's F77 API (libnlopt, nlopt.f): explicit interfaces
+  interface
+    subroutine nlo_create(opt, alg, n)
+      import :: i8
+      integer(i8), intent(out) :: opt
+      integer, intent(in) :: alg, n
+    end subroutine nlo_create
+    subroutine nlo_destroy(opt)
+      import :: i8
+      integer(i8), intent(in) :: opt
+    end subroutine nlo_destroy
+    subroutine nlo_set_min_objective(ires, opt, f, f_data)
+      import :: i8, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: f
+      integer, intent(in) :: f_data
+    end subroutine nlo_set_min_objective
+    subroutine nlo_add_inequality_constraint(ires, opt, fc, fc_data, tol)
+      import :: i8, dp, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: fc
+      integer, intent(in) :: fc_data
+      real(dp), intent(in) :: tol
+    end subroutine nlo_add_inequality_constraint
+    subroutine nlo_add_equality_constraint(ires, opt, fc, fc_data, tol)
+      import :: i8, dp, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: fc
+      integer, intent(in) :: fc_data
+      real(dp), intent(in) :: tol
+    end subroutine nlo_add_equality_constraint
+    subroutine nlo_set_xtol_rel(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_xtol_rel
+    subroutine nlo_set_ftol_rel(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_ftol_rel
+    subroutine nlo_set_maxeval(ires, opt, n)
+      import :: i8
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      integer, intent(in) :: n
+    end subroutine nlo_set_maxeval
+    subroutine nlo_optimize(ires, opt, x, f)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(inout) :: x(*)
+      real(dp), intent(out) :: f
+    end subroutine nlo_optimize
+    subroutine nlo_set_lower_bounds(ires, opt, lb)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: lb(*)
+    end subroutine nlo_set_lower_bounds
+    subroutine nlo_set_upper_bounds(ires, opt, ub)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: ub(*)
+    end subroutine nlo_set_upper_bounds
+    subroutine nlo_set_xtol_abs1(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlo_set_xtol_abs1
+  end interface
+end module nlopt_api
