@@ -28,7 +28,7 @@ module beam_element
   public :: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, beam_internal_force
   public :: beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_local_displacement
   public :: beam_point_load, beam_section_strains, resolve_formulation, formulation_names
-  public :: element_kind_kear, element_kind_consistent
+  public :: element_kind_kear, element_kind_consistent, beam_mass_constant_in_q
 
   integer, parameter :: element_kind_kear = 1, element_kind_consistent = 2
   character(len=*), parameter :: formulation_names = "'default', 'consistent', 'exact' or 'kear1987'"
@@ -99,19 +99,34 @@ contains
     el%depth = depth
   end subroutine beam_element_init
 
-  pure subroutine beam_element_eval(el, q, qd, rb, mass, force, info, tangent)
+  !> mass_wanted = .false.: mass is not computed (left undefined).
+  pure subroutine beam_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
     type(beam_element_t), intent(in) :: el
     real(dp), intent(in) :: q(:), qd(:)
     type(rigid_state_t), intent(in) :: rb
     real(dp), intent(out) :: mass(:, :), force(:)
     type(kear_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(:, :)
+    logical, intent(in), optional :: mass_wanted
     if (el%kind == element_kind_consistent) then
-      call consistent_element_eval(el%cons, q, qd, rb, mass, force, info, tangent)
+      call consistent_element_eval(el%cons, q, qd, rb, mass, force, info, tangent, mass_wanted)
     else
-      call kear_element_eval(el%kear, q, qd, rb, mass, force, info, tangent)
+      call kear_element_eval(el%kear, q, qd, rb, mass, force, info, tangent, mass_wanted)
     end if
   end subroutine beam_element_eval
+
+  !> Whether the element's mass matrix is independent of q (it depends on
+  !> q only through the nonlinear section angle of the rotary inertia).
+  pure logical function beam_mass_constant_in_q(el) result(constant)
+    type(beam_element_t), intent(in) :: el
+    type(element_effects_t) :: fx
+    if (el%kind == element_kind_consistent) then
+      fx = el%cons%effects
+    else
+      fx = el%kear%effects
+    end if
+    constant = .not. (fx%rotary_inertia .and. fx%curvature)
+  end function beam_mass_constant_in_q
 
   pure subroutine beam_tangent_stiffness(el, q, phi, kt)
     type(beam_element_t), intent(in) :: el

@@ -132,13 +132,14 @@ contains
   ! ---------------------------------------------------------- main routine
 
   !> Mass matrix, force vector and optionally the tangent stiffness d^2SE/dq^2.
-  pure subroutine consistent_element_eval(el, q, qd, rb, mass, force, info, tangent)
+  pure subroutine consistent_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: q(nd), qd(nd)
     type(rigid_state_t), intent(in) :: rb
     real(dp), intent(out) :: mass(nd, nd), force(nd)
     type(kear_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(nd, nd)
+    logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
     real(dp) :: c, s, p(nd), v(nd), jp(nd), jv(nd), j2p(nd), pdd_nm(nd), prel(nd)
     real(dp) :: mp(nd, nd), fp(nd), kp(nd, nd), fint(nd), fdamp(nd), acc0(2), rhoa, rhoi
     logical :: want_k
@@ -190,9 +191,12 @@ contains
       end if
     end if
 
-    mass = to_global_matrix(c, s, mp)
     force = to_global(c, s, fp)
     if (want_k) tangent = to_global_matrix(c, s, kp)
+    if (present(mass_wanted)) then
+      if (.not. mass_wanted) return
+    end if
+    mass = to_global_matrix(c, s, mp)
   end subroutine consistent_element_eval
 
   !> Internal force dSE/dq.

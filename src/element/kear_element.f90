@@ -227,13 +227,14 @@ contains
   !> Mass matrix and force vector of Lagrange's equations (K1, K2, K11, K17).
   !> Optionally the tangent stiffness K_t = d^2 SE / dq^2 (kear1987: the
   !> Jacobian of its internal force, not symmetric).
-  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent)
+  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), qd(8)
     type(rigid_state_t), intent(in) :: rb
     real(dp), intent(out) :: mass(8, 8), force(8)
     type(kear_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(8, 8)
+    logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
     real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
     real(dp) :: mp(8, 8), fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
     logical :: linear_strain, want_k
@@ -289,9 +290,12 @@ contains
       end if
     end if
 
-    mass = to_global_matrix(c, s, mp)
     force = to_global(c, s, fp)
     if (want_k) tangent = to_global_matrix(c, s, kp)
+    if (present(mass_wanted)) then
+      if (.not. mass_wanted) return
+    end if
+    mass = to_global_matrix(c, s, mp)
   end subroutine kear_element_eval
 
   !> Internal force dSE/dq (kear1987: the printed (K17) with (K20), (K24)).

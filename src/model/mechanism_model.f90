@@ -27,7 +27,8 @@ module mechanism_model
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
+  use linalg, only: band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
                     sym_generalized_eig, solve_linear
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: symmetric_band, band_combination   ! (the spatial model shares them)
@@ -35,7 +36,7 @@ module mechanism_model
   use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
   use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, &
                           beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_point_load, &
-                          resolve_formulation, element_kind_consistent
+                          resolve_formulation, element_kind_consistent, beam_mass_constant_in_q
   use external_loads, only: point_load_t, load_factor_at
   use material_law, only: ramberg_osgood_t
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
@@ -67,6 +68,9 @@ module mechanism_model
     ! cost and diagnostics
     integer :: n_rhs = 0                          !< RHS evaluations done by this model
     integer :: n_mass_factorizations = 0
+    logical :: mass_constant_in_q = .false.       !< M depends on t only (see accelerations)
+    logical :: mass_factored = .false.            !< mass_band holds the factor of M at t_mass
+    real(dp) :: t_mass = 0.0_dp
     integer :: n_nonlinear_points = 0             !< nonlinear integrand evaluations (cost proxy)
     logical :: stop_beyond_peak = .true.          !< stop when a strain passes the R-O peak
     real(dp) :: t_states = -huge(1.0_dp)          !< time of the rigid states held in rb
@@ -289,9 +293,12 @@ contains
 
   subroutine allocate_work(self)
     type(mechanism_model_t), intent(inout) :: self
+    integer :: e
     self%n = self%table%n_global
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    self%mass_constant_in_q = all([(beam_mass_constant_in_q(self%el(e)), e = 1, size(self%el))])
+    self%mass_factored = .false.
   end subroutine allocate_work
 
   integer function state_size(self)
@@ -365,6 +372,7 @@ contains
     end do
     self%tabulated = .true.
     self%t_states = -huge(1.0_dp)
+    self%mass_factored = .false.            ! the table's rigid states differ from the solved ones by round-off
   end subroutine build_motion_table
 
   !> Rigid states at time t from the table: quintic Hermite interpolation in
@@ -404,25 +412,32 @@ contains
   ! ------------------------------------------------------------------ equations of motion
 
   !> q_dd from M(q,t) q_dd = F(q, q_d, t).  Fails (self%err) when M is not
-  !> positive definite or a strain passes the material's peak.
+  !> positive definite or a strain passes the material's peak.  Unless the
+  !> section angle of the rotary inertia is nonlinear (rotary inertia with
+  !> exact curvature), M depends on the rigid state only: its factor is then
+  !> kept while t is unchanged (DLSODE's corrector iterations), which is
+  !> exact -- the same M, factored once.
   subroutine accelerations(self, t, q, qd, qdd)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
     real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
+    real(dp) :: qe(self%table%element_dofs), qde(self%table%element_dofs)
     type(kear_eval_info_t) :: info
-    type(error_t) :: err
-    integer :: e, i, j, gi, gj, kd, nd
+    integer :: e, i, j, gi, gj, kd, nd, info_chol
+    logical :: new_mass
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     kd = self%kd
     nd = self%table%element_dofs
-    self%mass_band = 0.0_dp
+    new_mass = .not. self%mass_factored .or. t < self%t_mass .or. t > self%t_mass .or. .not. self%mass_constant_in_q
+    if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call beam_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), loaded_state(self, e), &
-                             me, fe, info)
+      call gather_element(self, e, q, qe)
+      call gather_element(self, e, qd, qde)
+      call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, mass_wanted=new_mass)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)//' (x/l = '// &
@@ -430,7 +445,11 @@ contains
           str(self%el(e)%eps_star, 6)//': the material law has no stable meaning beyond it')
         return
       end if
-      call self%table%scatter_add(e, fe, self%force)
+      do i = 1, nd
+        gi = self%table%map(i, e)
+        if (gi > 0) self%force(gi) = self%force(gi) + self%table%coef(i, e)*fe(i)
+      end do
+      if (.not. new_mass) cycle
       do j = 1, nd
         gj = self%table%map(j, e)
         if (gj == 0) cycle
@@ -442,23 +461,47 @@ contains
         end do
       end do
     end do
-    call add_point_masses(self)
+    call add_point_masses(self, new_mass)
     call add_point_loads(self, t, q, self%force)
     if (self%has_clearance) call add_clearance_forces(self, q, qd)
-    call band_cholesky_factor(self%mass_band, kd, err)
-    self%n_mass_factorizations = self%n_mass_factorizations + 1
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix: '//err%text())
-      return
+    if (new_mass) then
+      self%mass_factored = .false.
+      call band_cholesky_inplace(self%mass_band, kd, info_chol)
+      self%n_mass_factorizations = self%n_mass_factorizations + 1
+      if (info_chol /= 0) then
+        call self%fail(t, 'mass matrix: not positive definite (leading minor of order '//str(info_chol)// &
+                       ' is not positive)')
+        return
+      end if
+      self%mass_factored = .true.
+      self%t_mass = t
     end if
     qdd = self%force
-    call band_cholesky_solve(self%mass_band, kd, qdd, err)
+    call band_cholesky_substitute(self%mass_band, kd, qdd)
   end subroutine accelerations
+
+  !> qe = T_e q (correlation_table%gather without its function result).
+  pure subroutine gather_element(self, e, q, qe)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: qe(:)
+    integer :: i, g
+    do i = 1, size(qe)
+      g = self%table%map(i, e)
+      if (g > 0) then
+        qe(i) = self%table%coef(i, e)*q(g)
+      else
+        qe(i) = 0.0_dp
+      end if
+    end do
+  end subroutine gather_element
 
   !> Point masses: m on the diagonal of each translation they ride on, and
   !> the rigid-body inertia load -m a_rigid.
-  subroutine add_point_masses(self)
+  subroutine add_point_masses(self, new_mass)
     type(mechanism_model_t), intent(inout) :: self
+    logical, intent(in) :: new_mass
     integer :: k, i, g(2), e
     real(dp) :: c(2), a(2), m
     do k = 1, size(self%point_mass)
@@ -468,7 +511,7 @@ contains
       a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k)) - self%gravity
       do i = 1, 2
         if (g(i) == 0) cycle
-        self%mass_band(1, g(i)) = self%mass_band(1, g(i)) + m*c(i)**2
+        if (new_mass) self%mass_band(1, g(i)) = self%mass_band(1, g(i)) + m*c(i)**2
         self%force(g(i)) = self%force(g(i)) - m*c(i)*a(i)
       end do
     end do
@@ -628,7 +671,7 @@ contains
     logical, intent(out) :: ok
     type(error_t) :: err
     real(dp) :: c, beta
-    integer :: kd, n, j, i
+    integer :: kd, n, j, i, info
     ok = .false.
     call self%set_time(t)
     if (self%err%failed()) return
@@ -648,9 +691,8 @@ contains
     if (self%newton_cholesky) then
       self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
       if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_chol, 1, .true.)
-      call band_cholesky_factor(self%newton_chol, kd, err)
-      self%newton_cholesky = .not. err%failed()
-      call err%clear()
+      call band_cholesky_inplace(self%newton_chol, kd, info)
+      self%newton_cholesky = info == 0
     end if
     if (self%newton_cholesky) then
       ok = .true.
@@ -686,7 +728,7 @@ contains
     r2 = x(2::2)
     call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
     if (self%newton_cholesky) then
-      call band_cholesky_solve(self%newton_chol, kd, dv, err)
+      call band_cholesky_substitute(self%newton_chol, kd, dv)
     else
       call band_lu_solve(self%newton_lu, kd, kd, self%newton_ipiv, dv, err)
     end if

@@ -15,7 +15,8 @@
 module second_order_newton
   use kinds, only: dp
   use error_status, only: error_t
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, band_lu_factor, band_lu_solve
+  use linalg, only: band_lu_factor, band_lu_solve
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
   implicit none
   private
   public :: second_order_newton_t, symmetric_band, band_combination
@@ -59,7 +60,7 @@ contains
     logical, intent(out) :: ok
     type(error_t) :: err
     real(dp) :: c
-    integer :: kd, n, i, j
+    integer :: kd, n, i, j, info
     kd = self%kd
     n = self%n
     c = hl0*beta + hl0**2
@@ -68,9 +69,8 @@ contains
     self%cholesky = symmetric_band(self%stiff, kd)
     if (self%cholesky) then
       self%chol = self%mass + c*self%stiff(kd + 1:, :)
-      call band_cholesky_factor(self%chol, kd, err)
-      self%cholesky = .not. err%failed()
-      call err%clear()
+      call band_cholesky_inplace(self%chol, kd, info)
+      self%cholesky = info == 0
     end if
     if (self%cholesky) then
       ok = .true.
@@ -102,7 +102,7 @@ contains
     r2 = x(2::2)
     call band_combination(self%mass, self%stiff, self%kd, r2, self%hl0, r1, dv)
     if (self%cholesky) then
-      call band_cholesky_solve(self%chol, self%kd, dv, err)
+      call band_cholesky_substitute(self%chol, self%kd, dv)
     else
       call band_lu_solve(self%lu, self%kd, self%kd, self%ipiv, dv, err)
     end if

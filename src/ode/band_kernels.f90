@@ -1,0 +1,73 @@
+!> Banded Cholesky factor and solve for the narrow bands of the mechanism
+!> models (half-bandwidth kd of 5-12, N up to a few thousand), in lower band
+!> storage ab(1+i-j, j) = A(i, j).  LAPACK's DPBTRF/DPBTRS do the same
+!> arithmetic in the same order (DPBTF2: scale the column by 1/a_jj, then the
+!> rank-1 update DSYR; DTBSV forward, then transposed) but with a BLAS call
+!> per column: at kd = 6 the calls cost more than the flops (doc/benchmarks.md,
+!> "Right-hand side").  The results are the same to the last bit when the
+!> compiler does not contract a*b + c into FMAs (the release flags); with FMAs
+!> they differ by round-off.
+module band_kernels
+  use kinds, only: dp
+  implicit none
+  private
+  public :: band_cholesky_inplace, band_cholesky_substitute
+
+contains
+
+  !> A = L L^T in place (L in lower band storage).  info = 0, or the order
+  !> of the first leading minor that is not positive.
+  pure subroutine band_cholesky_inplace(ab, kd, info)
+    real(dp), intent(inout) :: ab(:, :)
+    integer, intent(in) :: kd
+    integer, intent(out) :: info
+    integer :: n, j, kn, i, jj
+    real(dp) :: ajj, r, xjj
+    n = size(ab, 2)
+    info = 0
+    do j = 1, n
+      ajj = ab(1, j)
+      if (.not. ajj > 0.0_dp) then
+        info = j
+        return
+      end if
+      ajj = sqrt(ajj)
+      ab(1, j) = ajj
+      kn = min(kd, n - j)
+      if (kn == 0) cycle
+      r = 1.0_dp/ajj
+      ab(2:kn + 1, j) = r*ab(2:kn + 1, j)
+      ! trailing kn x kn block -= x x^T, x = ab(2:kn+1, j)
+      do jj = 1, kn
+        xjj = -ab(1 + jj, j)
+        do i = jj, kn
+          ab(1 + i - jj, j + jj) = ab(1 + i - jj, j + jj) + ab(1 + i, j)*xjj
+        end do
+      end do
+    end do
+  end subroutine band_cholesky_inplace
+
+  !> b := A^-1 b with A = L L^T from band_cholesky_inplace.
+  pure subroutine band_cholesky_substitute(ab, kd, b)
+    real(dp), intent(in) :: ab(:, :)
+    integer, intent(in) :: kd
+    real(dp), intent(inout) :: b(:)
+    integer :: n, j, i
+    real(dp) :: temp
+    n = size(ab, 2)
+    do j = 1, n                       ! L y = b
+      b(j) = b(j)/ab(1, j)
+      temp = b(j)
+      do i = j + 1, min(n, j + kd)
+        b(i) = b(i) - temp*ab(1 + i - j, j)
+      end do
+    end do
+    do j = n, 1, -1                   ! L^T x = y
+      temp = b(j)
+      do i = min(n, j + kd), j + 1, -1
+        temp = temp - ab(1 + i - j, j)*b(i)
+      end do
+      b(j) = temp/ab(1, j)
+    end do
+  end subroutine band_cholesky_substitute
+end module band_kernels
