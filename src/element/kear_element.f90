@@ -237,7 +237,7 @@ contains
     logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
     real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
     real(dp) :: mp(8, 8), fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
-    logical :: linear_strain, want_k
+    logical :: linear_strain, want_k, want_m
 
     c = cos(rb%phi)
     s = sin(rb%phi)
@@ -254,7 +254,9 @@ contains
     ! local rigid acceleration of end 1 (A^T R1_dd)
     acc0(1) = c*rb%x1_dd + s*rb%y1_dd
     acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
-    mp = rhoa*el%mass_trans
+    want_m = .true.
+    if (present(mass_wanted)) want_m = mass_wanted
+    if (want_m) mp = rhoa*el%mass_trans
     fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
                 + rb%phi_d**2*matmul(el%centrifugal, p))
     if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
@@ -283,19 +285,17 @@ contains
       if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
       if (.not. el%effects%curvature) then
         ! theta = phi + w_x: linear angle, constant integrals
-        mp = mp + rhoi*el%rot_linear
+        if (want_m) mp = mp + rhoi*el%rot_linear
         fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
       else
+        if (.not. want_m) mp = 0.0_dp          ! (a caller's choice: this M depends on q)
         call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
       end if
     end if
 
     force = to_global(c, s, fp)
     if (want_k) tangent = to_global_matrix(c, s, kp)
-    if (present(mass_wanted)) then
-      if (.not. mass_wanted) return
-    end if
-    mass = to_global_matrix(c, s, mp)
+    if (want_m) mass = to_global_matrix(c, s, mp)
   end subroutine kear_element_eval
 
   !> Internal force dSE/dq (kear1987: the printed (K17) with (K20), (K24)).

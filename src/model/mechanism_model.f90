@@ -34,7 +34,7 @@ module mechanism_model
   use second_order_newton, only: symmetric_band, band_combination   ! (the spatial model shares them)
   use correlation_table, only: correlation_table_t, link_end_t
   use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
-  use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, &
+  use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, &
                           beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_point_load, &
                           resolve_formulation, element_kind_consistent, beam_mass_constant_in_q
   use external_loads, only: point_load_t, load_factor_at
@@ -112,6 +112,7 @@ module mechanism_model
     procedure :: has_newton_matrix => model_has_newton_matrix
     procedure :: newton_factor => model_newton_factor
     procedure :: newton_solve => model_newton_solve
+    procedure :: jacobian_steps => model_jacobian_steps
     procedure :: assemble_band
     procedure :: set_time
     procedure :: build_motion_table
@@ -612,9 +613,8 @@ contains
     real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
     type(kear_eval_info_t) :: info
     zero = 0.0_dp
-    qe = self%table%gather(e, q)
-    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info)
-    call beam_tangent_stiffness(self%el(e), qe, self%rb(e)%phi, ke)
+    call gather_element(self, e, q, qe)
+    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info, tangent=ke)   ! = beam_tangent_stiffness
   end subroutine element_mass_stiffness
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
@@ -713,6 +713,21 @@ contains
     call band_lu_factor(self%newton_lu, kd, kd, self%newton_ipiv, err)
     ok = .not. err%failed()
   end subroutine model_newton_factor
+
+  !> A moving mechanism's M and K_t turn with the links (150 rad/s: 5 degrees
+  !> in 20 steps of 30 us), and a Jacobian 20 steps old made the corrector
+  !> fail to converge, cut the step and re-form it anyway: at 32 elements per
+  !> link most Jacobians were such retries.  With at most 5 steps per
+  !> Jacobian the damped four-bar takes 13 % fewer steps and 25 % fewer
+  !> right-hand sides there (doc/benchmarks.md).  A structure that does not
+  !> turn (fixed, or a driver speed of zero) keeps DLSODE's 20.
+  integer function model_jacobian_steps(self) result(steps)
+    class(mechanism_model_t), intent(in) :: self
+    steps = 0
+    if (self%moving) then
+      if (abs(self%kin%mech%driver%omega) > 0.0_dp) steps = 5
+    end if
+  end function model_jacobian_steps
 
   !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
   !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:

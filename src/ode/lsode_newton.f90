@@ -5,6 +5,9 @@
 !> files are not compiled (Makefile ODEPACK_FILES); DSTODE, DLSODE and the rest
 !> are unchanged.
 !>
+!> The system may shorten DLSODE's Jacobian age limit MSBP (steps between
+!> Jacobians, DLSODE's 20: `jacobian_steps`); this routine sets it.
+!>
 !> Routes, by what lsode_solver set up:
 !> - the model's own Newton matrix (lsode_solver's `active_newton_is_model`):
 !>   the system factors and solves P in its own structure (for the mechanism
@@ -23,7 +26,7 @@ module lsode_newton
   use error_status, only: error_t
   use linalg, only: lu_factor, lu_solve, band_lu_factor, band_lu_solve
   use lsode_solver, only: active, active_newton_is_model
-  use dlsode_state, only: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur
+  use dlsode_state, only: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur, msbp
   implicit none
   private
   public :: prepare_newton_matrix, solve_newton_matrix, rhs_f77, jac_f77
@@ -56,9 +59,12 @@ contains
     procedure(rhs_f77) :: f
     procedure(jac_f77) :: jac
     logical :: ok
+    integer :: steps
     nje = nje + 1
     ierpj = 0
     jcur = 1
+    steps = active%jacobian_steps()          ! DLSODE resets MSBP to 20 for every new problem
+    if (steps > 0) msbp = steps
     if (active_newton_is_model) then
       call active%newton_factor(tn, y(1:n), h*el0, ok)
     else

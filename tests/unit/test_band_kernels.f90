@@ -1,0 +1,111 @@
+!> Tests of the banded Cholesky kernels (module band_kernels): the solve
+!> against a dense solve of the same matrix, the factor against LAPACK's
+!> DPBTRF (same arithmetic: equal to round-off), the first non-positive
+!> leading minor reported by its order, and bands wider than the matrix.
+module test_band_kernels_suite
+  use kinds, only: dp
+  use error_status, only: error_t
+  use linalg, only: solve_linear, band_cholesky_factor
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+contains
+
+  subroutine run_all()
+    call run_test('solve_equals_dense_solve', test_solve)
+    call run_test('factor_equals_lapack', test_lapack)
+    call run_test('indefinite_reports_minor', test_indefinite)
+    call run_test('band_wider_than_matrix', test_wide)
+  end subroutine run_all
+
+  !> SPD band matrix (n, kd): diagonally dominant, entries of mixed sign.
+  subroutine spd_band(n, kd, a, ab)
+    integer, intent(in) :: n, kd
+    real(dp), intent(out) :: a(n, n), ab(kd + 1, n)
+    integer :: i, j
+    a = 0.0_dp
+    ab = 0.0_dp
+    do j = 1, n
+      do i = j, min(n, j + kd)
+        a(i, j) = cos(real(3*i + 7*j, dp))
+        if (i == j) a(i, j) = 2.0_dp*real(kd, dp) + 1.0_dp + sin(real(j, dp))
+        a(j, i) = a(i, j)
+        ab(1 + i - j, j) = a(i, j)
+      end do
+    end do
+  end subroutine spd_band
+
+  !> x = A^-1 b against Gaussian elimination of the dense A; A's condition
+  !> is below 10, so 1e-12 of |x| is far above round-off and far below any
+  !> indexing error (which changes x at order 1).
+  subroutine test_solve()
+    integer, parameter :: n = 40, kd = 6
+    real(dp) :: a(n, n), ab(kd + 1, n), b(n), x(n)
+    type(error_t) :: err
+    integer :: i, info
+    call spd_band(n, kd, a, ab)
+    b = [(sin(real(5*i, dp)), i = 1, n)]
+    x = b
+    call solve_linear(a, b, err)
+    call assert_true(.not. err%failed(), 'dense solve')
+    call band_cholesky_inplace(ab, kd, info)
+    call assert_equal(info, 0, 'positive definite')
+    call band_cholesky_substitute(ab, kd, x)
+    call assert_all_close(x, b, 0.0_dp, 1.0e-12_dp*maxval(abs(b)), 'A^-1 b')
+  end subroutine test_solve
+
+  !> The same factor as DPBTRF to round-off (1e-14 of the largest entry:
+  !> bit-equal without FMA contraction, a few ulps with it).
+  subroutine test_lapack()
+    integer, parameter :: n = 25, kd = 7
+    real(dp) :: a(n, n), ab(kd + 1, n), ref(kd + 1, n)
+    type(error_t) :: err
+    integer :: info
+    call spd_band(n, kd, a, ab)
+    ref = ab
+    call band_cholesky_factor(ref, kd, err)
+    call assert_true(.not. err%failed(), 'DPBTRF')
+    call band_cholesky_inplace(ab, kd, info)
+    call assert_equal(info, 0, 'factored')
+    call assert_all_close(reshape(ab, [size(ab)]), reshape(ref, [size(ref)]), 0.0_dp, 1.0e-14_dp*maxval(abs(ref)), &
+                          'L = DPBTRF''s L')
+  end subroutine test_lapack
+
+  !> A(5, 5) made so small that the fifth pivot is negative: info = 5.
+  subroutine test_indefinite()
+    integer, parameter :: n = 10, kd = 3
+    real(dp) :: a(n, n), ab(kd + 1, n)
+    integer :: info
+    call spd_band(n, kd, a, ab)
+    ab(1, 5) = -1.0_dp
+    call band_cholesky_inplace(ab, kd, info)
+    call assert_equal(info, 5, 'first non-positive leading minor')
+  end subroutine test_indefinite
+
+  !> kd >= n: a dense SPD matrix in band storage.
+  subroutine test_wide()
+    integer, parameter :: n = 3, kd = 6
+    real(dp) :: a(n, n), ab(kd + 1, n), b(n), x(n)
+    type(error_t) :: err
+    integer :: info
+    call spd_band(n, kd, a, ab)
+    b = [1.0_dp, -2.0_dp, 0.5_dp]
+    x = b
+    call solve_linear(a, b, err)
+    call band_cholesky_inplace(ab, kd, info)
+    call assert_equal(info, 0, 'factored')
+    call band_cholesky_substitute(ab, kd, x)
+    call assert_all_close(x, b, 0.0_dp, 1.0e-13_dp*maxval(abs(b)), 'A^-1 b')
+  end subroutine test_wide
+end module test_band_kernels_suite
+
+program test_band_kernels
+  use assertions, only: finish_suite
+  use test_band_kernels_suite, only: run_all
+  implicit none
+  call run_all()
+  call finish_suite('test_band_kernels')
+end program test_band_kernels
