@@ -465,7 +465,7 @@ contains
   !> makes DLSODE follow the velocities of lightly damped high modes).  Each
   !> run three times on the shared machine: best and worst CPU per turn.
   subroutine cheapest_settings()
-    real(dp), parameter :: converged = 17965.0_dp, rtols(3) = [1.0e-4_dp, 3.0e-4_dp, 1.0e-3_dp]
+    real(dp), parameter :: converged = 17965.0_dp, rtols(4) = [1.0e-4_dp, 3.0e-4_dp, 5.0e-4_dp, 1.0e-3_dp]
     real(dp), parameter :: scales(2) = [1.0_dp, scaled_rate_scale]
     integer, parameter :: meshes(2) = [2, 8]
     type(case_result_t) :: rr

@@ -718,8 +718,8 @@ contains
   !> in 20 steps of 30 us), and a Jacobian 20 steps old made the corrector
   !> fail to converge, cut the step and re-form it anyway: at 32 elements per
   !> link most Jacobians were such retries.  With at most 5 steps per
-  !> Jacobian the damped four-bar takes 13 % fewer steps and 25 % fewer
-  !> right-hand sides there (doc/benchmarks.md).  A structure that does not
+  !> Jacobian the damped four-bar takes 42 % fewer steps and 47 % fewer
+  !> right-hand sides there (rtol 1e-4; doc/benchmarks.md).  A structure that does not
   !> turn (fixed, or a driver speed of zero) keeps DLSODE's 20.
   integer function model_jacobian_steps(self) result(steps)
     class(mechanism_model_t), intent(in) :: self
