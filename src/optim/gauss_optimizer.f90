@@ -130,6 +130,7 @@ module gauss_optimizer
     procedure, private :: trial_point
     procedure, private :: step_for_set
     procedure, private :: limit_violated
+    procedure, private :: flip_released
     procedure, private :: note_b11
     procedure, private :: step_back
     procedure, private :: analyse_trial
@@ -899,15 +900,17 @@ contains
     real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: lam_prev(:), xt(:)
-    logical, allocatable :: new_bound(:), hit(:)
+    logical, allocatable :: new_bound(:), hit(:), released(:), dropped(:)
     real(dp) :: crit, worst, thresh
     integer :: i, j, m0, mt, jdrop, round
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
-    allocate(new_bound(mt), hit(mt), xt(prob%n), lam_prev(mt))
+    allocate(new_bound(mt), hit(mt), released(mt), dropped(mt), xt(prob%n), lam_prev(mt))
     lam_prev = self%lambda
     thresh = self%opts%mult_tol*norm2(self%gradf)
     new_bound = .false.
+    released = .false.
+    dropped = .false.
     do round = 1, 2*(mt + prob%n) + 2
       call self%limit_violated(prob)
       call self%step_for_set(prob, lam_prev, s, solved, residual, err)
@@ -925,6 +928,8 @@ contains
       end do
       if (jdrop /= 0) then
         self%active(jdrop) = .false.
+        released(jdrop) = jdrop > m0 .and. .not. any(dropped)
+        dropped(jdrop) = .true.
         self%drops = self%drops + 1
         call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
         cycle
@@ -939,12 +944,46 @@ contains
         if (prob%bound_var(i - m0) > 0) hit(i) = xt(j) > prob%xu(j)
       end do
       if (.not. any(hit)) return
+      ! only a lone release: with other drops the curvature argument fails
+      if (count(dropped) == 1) call self%flip_released(prob, m0, released, hit, new_bound)
+      if (.not. any(hit)) cycle
       call self%note('bound(s) '//set_text(hit)//' reached by the step: variables held there, step recomputed')
       self%additions = self%additions + count(hit)
       self%active = self%active .or. hit
       new_bound = new_bound .or. hit
     end do
   end subroutine compute_step
+
+  !> A bound released for its multiplier's sign (the model decreases into the
+  !> box) whose variable the recomputed step takes back across that same
+  !> bound: with r the multiplier and c the curvature of the model along the
+  !> variable (the other free variables re-minimised), the free step is
+  !> -r/c, so it points out of the box only when c < 0.  The model then
+  !> decreases all the way across the box, and its minimiser along the
+  !> variable is the opposite bound: the variable is held there (if finite)
+  !> instead of at the bound it left.  HS 20: x1 released from -0.5 with
+  !> lambda = -3, c = -149; Newton's step went to the model's maximum at
+  !> x1 = -0.51 and the run ended on the mirror minimum (-0.5, 0.866).
+  subroutine flip_released(self, prob, m0, released, hit, new_bound)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: m0
+    logical, intent(inout) :: released(:), hit(:), new_bound(:)
+    integer :: i, i2
+    do i = m0 + 1, prob%m
+      if (.not. (hit(i) .and. released(i))) cycle
+      do i2 = m0 + 1, prob%m
+        if (prob%bound_var(i2 - m0) /= -prob%bound_var(i - m0)) cycle
+        hit(i) = .false.
+        released(i) = .false.
+        self%active(i2) = .true.
+        new_bound(i2) = .true.
+        self%additions = self%additions + 1
+        call self%note('bound '//str(i)//' released (negative multiplier) and crossed again by the step: ' &
+          //'negative curvature along x'//str(abs(prob%bound_var(i - m0)))//', held at the opposite bound '//str(i2))
+      end do
+    end do
+  end subroutine flip_released
 
   !> GNLC.NS makes every violated constraint active; with more active
   !> general constraints than free variables B11 has no solution (HS 18 from

@@ -21,10 +21,8 @@ module test_hs_collection_suite
   !> library problems that are HS problems: name and HS number
   character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
                                                   'rosen_suzuki', 'hs65']
-  !> not solved with defaults (doc/optimization.md §8); HS 77 only under
-  !> -O3 -march=native (at iteration 6 the Newton matrix's condition falls
-  !> below 1e-14 there and not at -O0/-O2: a round-off-sensitive path)
-  integer, parameter :: known_failures(3) = [2, 20, 23]
+  !> not solved with defaults (doc/optimization.md §8)
+  integer, parameter :: known_failures(2) = [2, 23]
 
 contains
 
