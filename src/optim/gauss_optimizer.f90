@@ -117,6 +117,8 @@ module gauss_optimizer
     character(len=:), allocatable, private :: ev
     logical, private :: last_solved = .true.    !< B11 of the previous step solved (multipliers meaningful)
     logical, private :: first_order_start = .false.  !< next B11 starts from least-squares multipliers
+    logical, private :: restored_now = .false.  !< x_new is a restored point (no cycling test: it may be an iterate)
+    logical, private :: off_chord = .false.     !< x_new is no fraction of s (restoration, Levenberg arc)
   contains
     procedure :: solve
     procedure :: method_label
@@ -445,6 +447,8 @@ contains
     t = 1.0_dp
     self%active(1:m) = abs(g_new(1:m)) <= self%opts%feas_tol
     where (.not. self%active) self%lambda = 0.0_dp
+    self%restored_now = .true.
+    self%off_chord = .true.
     call self%note('infeasible and stuck (max violation '//str(maxviol, 3)//', '//trim(merge('no progress ', &
       'out of reach', stuck))//'): feasibility restored from x_'// &
       str(self%log(j)%k)//' by '//str(steps)//' Gauss steps on the violation (no analysis); continuing with ' &
@@ -517,6 +521,7 @@ contains
     t = 1.0_dp
     self%step_backs = self%step_backs + 1
     self%first_order_start = .true.      ! the arc's multipliers belong to G + mu d I, not to G
+    self%off_chord = .true.
     call self%note('step-back along the Levenberg arc (mu = '//str(d*10.0_dp**hi, 3)//'): the chord leaves the ' &
       //'feasible side of active '//set_text(active0)//'; now active '//set_text(self%active))
   contains
@@ -833,6 +838,8 @@ contains
     self%ev = ''
     self%last_solved = .true.
     self%first_order_start = .false.
+    self%restored_now = .false.
+    self%off_chord = .false.
     self%opts = opts
   end subroutine reset
 
@@ -1489,6 +1496,7 @@ contains
     integer :: j, hit, m
     real(dp) :: tol
     m = prob%m
+    if (self%restored_now) return       ! a restored point may be an earlier (feasible) iterate
     tol = self%opts%xtol*(1.0_dp + xnorm)
     hit = 0
     do j = self%n_log, max(1, self%n_log - 3), -1
@@ -1563,14 +1571,15 @@ contains
       row%max_violation = viol
       row%step = step
       ! a restoration or an arc step is no fraction of s: the distance moved
-      if (self%n_log > 1 .and. index(self%ev, 'restored') + index(self%ev, 'Levenberg arc') > 0) &
-        row%step = maxval(abs(self%x - self%log(self%n_log - 1)%x))
+      if (self%n_log > 1 .and. self%off_chord) row%step = maxval(abs(self%x - self%log(self%n_log - 1)%x))
       row%x = self%x
       row%lambda = self%lambda
       row%active = self%active
       row%events = self%ev
     end associate
     self%ev = ''
+    self%off_chord = .false.
+    self%restored_now = .false.
     if (viol <= self%opts%feas_tol .and. (.not. self%have_best .or. self%f < self%f_best)) then
       self%have_best = .true.
       self%x_best = self%x
