@@ -399,12 +399,13 @@ contains
     end if
   end subroutine finish
 
-  !> Feasibility restoration (ours; the papers have none).  GNLC.NS stopped
-  !> at an infeasible x_k that it cannot leave (a zero-length step with the
-  !> same active set: HS 23 at the origin, where grad F = 0 and the violated
-  !> circles have zero gradients).  The constraint violation is minimised by
-  !> Gauss steps from x_k (module feasibility_restoration: constraint
-  !> evaluations only, no analysis); from the feasible point found the run
+  !> Feasibility restoration (ours; the papers have none).  GNLC.NS is
+  !> infeasible at x_k and stuck (stuck: a zero-length step with the same
+  !> active set, or a stall), or a violated constraint is out of Newton's
+  !> reach (HS 23 at the origin, where grad F = 0 and the violated circles
+  !> have zero gradients).  The constraint violation is minimised by Gauss
+  !> steps from the least violated iterate (module feasibility_restoration:
+  !> constraint evaluations only, no analysis); from the feasible point the run
   !> continues with the step-back variant (GNLC, Potter's GNLC with general
   !> constraints), which keeps every iterate feasible and so cannot fall
   !> back onto the point it left.  Once per run.  .true.: x_new, g_new hold
