@@ -14,7 +14,8 @@ module steady_analysis
   use table_output, only: table_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
-  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, profile_constant
+  use linkage, only: mechanism_t, profile_constant
+  use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use tennant_element, only: tennant_stress_t
   use steady_model, only: steady_model_t
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings

@@ -14,7 +14,8 @@ module transient_analysis
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
-  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, driver_angle
+  use linkage, only: mechanism_t, driver_angle
+  use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use kear_element, only: stress_report_t, effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
