@@ -15,10 +15,10 @@ module spatial_analysis
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use kear_element, only: effects_summary
-  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, check_mode_number
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
   use spatial_correlation, only: sdofs
-  use restart_file, only: write_restart_file, read_restart_file
+  use restart_file, only: write_restart_file, start_from_restart
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
@@ -243,11 +243,8 @@ contains
     y = 0.0_dp
     select case (trim(s%initial))
     case ('mode')
-      if (s%mode_number > model%n) then
-        call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
-                           'the model has only '//str(model%n)//' modes', err)
-        return
-      end if
+      call check_mode_number(deck, s, model%n, err)
+      if (err%failed()) return
       allocate(om(model%n), shapes(model%n, model%n))
       call model%linear_modes(om, err, shapes)
       if (err%failed()) return
@@ -262,13 +259,7 @@ contains
       call out%comment('initial state: mode '//str(s%mode_number)//' ('//str(om(s%mode_number), 6)// &
                        ' rad/s) scaled to a largest transverse displacement of '//str(s%mode_amplitude)//', at rest')
     case ('restart')
-      call read_restart_file(s%restart_in, t0, y, err)
-      if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
-        return
-      end if
-      call out%comment('initial state: restart file '//trim(s%restart_in)//' at t = '//str(t0))
+      call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
     case default
       call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
     end select
