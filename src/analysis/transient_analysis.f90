@@ -15,18 +15,20 @@ module transient_analysis
                           mf_bdf_full_fd
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
-  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, driver_angle
+  use linkage, only: mechanism_t, driver_angle
+  use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use kear_element, only: stress_report_t, effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
-  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, &
+    check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
   use joint_reactions, only: joint_reactions_t
   use revolution_peaks, only: revolution_peaks_t
   use linkage, only: joint_clamp
   use clearance_run, only: clearance_monitor_t
-  use restart_file, only: write_restart_file, read_restart_file
+  use restart_file, only: write_restart_file, start_from_restart
   implicit none
   private
   public :: run_transient
@@ -150,22 +152,14 @@ contains
     y = 0.0_dp
     select case (trim(s%initial))
     case ('mode')
-      if (s%mode_number > model%n) then
-        call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
-                           'the model has only '//str(model%n)//' modes', err)
-        return
-      end if
+      call check_mode_number(deck, s, model%n, err)
+      if (err%failed()) return
       y(1::2) = s%mode_amplitude*shapes(:, s%mode_number)/max_transverse(model, shapes(:, s%mode_number))
       call out%comment('initial state: mode '//str(s%mode_number)//' scaled to a largest transverse '// &
                        'displacement of '//str(s%mode_amplitude)//', at rest')
     case ('restart')
-      call read_restart_file(s%restart_in, t0, y, err)
-      if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
-        return
-      end if
-      call out%comment('initial state: restart file '//trim(s%restart_in)//' at t = '//str(t0))
+      call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
+      if (err%failed()) return
     case default
       call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
     end select

@@ -24,6 +24,8 @@
 !> A structure that does not move (beam tests) is modelled with fixed element
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
+  use companion_jacobian, only: fill_companion_jacobian
+  use band_assembly, only: add_to_lower_band
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -412,12 +414,11 @@ contains
     real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
     type(kear_eval_info_t) :: info
     type(error_t) :: err
-    integer :: e, i, j, gi, gj, kd, nd
+    integer :: e, kd
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     kd = self%kd
-    nd = self%table%element_dofs
     self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
@@ -431,16 +432,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      do j = 1, nd
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, nd
-          gi = self%table%map(i, e)
-          if (gi < gj) cycle
-          self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
-            self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
-        end do
-      end do
+      call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
     call add_point_masses(self)
     call add_point_loads(self, t, q, self%force)
@@ -497,9 +489,8 @@ contains
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n)
-    integer :: ipiv(self%n), i, j, r, c, nst
+    integer :: ipiv(self%n)
     type(error_t) :: err
-    logical :: banded
     call self%set_time(t)
     q = y(1::2)
     call self%assemble_dense(q, mass, stiff)
@@ -511,29 +502,7 @@ contains
     call lu_solve(mass, ipiv, stiff, err)      ! stiff := M^-1 K_t
     beta = 0.0_dp
     if (size(self%el) > 0) beta = self%el(1)%beta
-    nst = 2*self%n
-    banded = .not. (ml == 0 .and. mu == 0 .and. size(pd, 1) == nst)
-    do j = 1, self%n
-      call put(2*j - 1, 2*j, 1.0_dp)
-      do i = 1, self%n
-        call put(2*i, 2*j - 1, -stiff(i, j))
-        if (beta > 0.0_dp) call put(2*i, 2*j, -beta*stiff(i, j))
-      end do
-    end do
-  contains
-    subroutine put(row, col, value)
-      integer, intent(in) :: row, col
-      real(dp), intent(in) :: value
-      if (banded) then
-        if (row - col > ml .or. col - row > mu) return
-        r = row - col + mu + 1
-        c = col
-      else
-        r = row
-        c = col
-      end if
-      pd(r, c) = value
-    end subroutine put
+    call fill_companion_jacobian(stiff, beta, ml, mu, pd)
   end subroutine model_jacobian
 
   !> Dense global mass matrix at (q, current time) and elastic tangent stiffness.
