@@ -347,7 +347,7 @@ contains
       end do
       do i = 1, mech%n_links
         ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
+        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%element_q(ee, q), model%rb(ee)%phi, &
                                                      1.0_dp)
         kk = kk + 2
       end do
@@ -683,7 +683,7 @@ contains
     wmax = 0.0_dp
     do e = 1, size(model%el)
       do i = 0, 10
-        uw = beam_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
+        uw = beam_local_displacement(model%el(e), model%element_q(e, q), model%rb(e)%phi, i/10.0_dp)
         wmax = max(wmax, abs(uw(2)))
       end do
     end do
