@@ -21,6 +21,11 @@
 !> the kinematic Newton solves out of the right-hand side.  A toggle or a
 !> failure to assemble is then found while tabulating, naming the crank angle.
 !>
+!> A link sliding through a sleeve (slider_link) is Tennant's element with
+!> the moving integration limit and the sleeve's angle-dependent map (module
+!> sliding_link); its Kear element in el(e) is kept for the element count
+!> and the end displacements but left out of the equations.
+!>
 !> A structure that does not move (beam tests) is modelled with fixed element
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
