@@ -794,6 +794,12 @@ contains
     type(error_t), intent(inout) :: err
     integer :: k, m, p
     if (size(joints) == 0) return
+    if (size(self%slide) > 0) then
+      ! (split_journal renumbers the map, not a sleeve element's own globals)
+      call err%set('clearance', 'joint clearances are not modelled in a mechanism with a link sliding '// &
+                   'through a sleeve (slider_link)', 2)
+      return
+    end if
     self%clearance = joints
     do k = 1, size(joints)
       call split_journal(self%table, self%clearance(k)%element_journal, self%clearance(k)%journal_node, &
