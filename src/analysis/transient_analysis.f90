@@ -123,6 +123,8 @@ contains
     end block
     call setup_responses(deck, mech, s, resp, err)
     if (err%failed()) return
+    if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
+    if (err%failed()) return
     if (s%stop_when_periodic > 0.0_dp .and. .not. mech%driver%omega > 0.0_dp) then
       call invalid_value(deck, 'transient', 'stop_when_periodic', str(s%stop_when_periodic), &
                          'needs a turning crank (omega > 0): periodicity is judged per revolution', err)
@@ -349,7 +351,7 @@ contains
       end do
       do i = 1, mech%n_links
         ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
+        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%element_q(ee, q), model%rb(ee)%phi, &
                                                      1.0_dp)
         kk = kk + 2
       end do
@@ -523,6 +525,31 @@ contains
     end do
   end subroutine setup_responses
 
+  !> The outputs and loads that read an element as Kear's of fixed length
+  !> are not built for a link sliding through a sleeve (doc/transient.md).
+  subroutine refuse_on_sliding_links(deck, model, resp, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_model_t), intent(in) :: model
+    type(responses_t), intent(in) :: resp
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: why = 'is not built for a link sliding through a sleeve (slider_link; doc/transient.md)'
+    integer :: k
+    if (resp%sections) then
+      call invalid_value(deck, 'transient', 'stress_columns', '''all''', why, err)
+    else if (resp%reactions) then
+      call invalid_value(deck, 'transient', 'reactions', 'T', why, err)
+    else if (size(resp%points) > 0) then
+      call invalid_value(deck, 'transient', 'link_points', 'T', why, err)
+    end if
+    if (err%failed()) return
+    do k = 1, size(model%loads)
+      if (model%table%is_sleeve_element(model%loads(k)%element)) then
+        call invalid_value(deck, 'loads', 'load_link', 'a sliding link', 'a point load '//why, err)
+        return
+      end if
+    end do
+  end subroutine refuse_on_sliding_links
+
   !> '<link>_s<position>', the position with at most 4 decimals, no trailing zeros.
   function point_label(mech, p) result(label)
     type(mechanism_t), intent(in) :: mech
@@ -685,7 +712,7 @@ contains
     wmax = 0.0_dp
     do e = 1, size(model%el)
       do i = 0, 10
-        uw = beam_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
+        uw = beam_local_displacement(model%el(e), model%element_q(e, q), model%rb(e)%phi, i/10.0_dp)
         wmax = max(wmax, abs(uw(2)))
       end do
     end do
