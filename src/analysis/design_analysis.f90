@@ -21,7 +21,8 @@ module design_analysis
   use deck_reader, only: deck_t, invalid_value
   use deck_checks, only: check_real, check_integer, check_choice
   use table_output, only: table_t
-  use linkage, only: mechanism_t, read_mechanism, build_mechanism, echo_mechanism, profile_constant
+  use linkage, only: mechanism_t, build_mechanism, profile_constant
+  use linkage_deck, only: read_mechanism, echo_mechanism
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_analysis, only: run_steady
   use run_settings, only: read_run_settings, write_run_header
