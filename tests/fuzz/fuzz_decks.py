@@ -446,6 +446,13 @@ def collect(outcome, counts, failures, slow):
     slow.extend(slows)
 
 
+def report_progress(done, total, failures, t0):
+    """A line every 1,000 cases, so a long run shows how far it is."""
+    if done % 1000 == 0 and done < total:
+        print('fuzz: %d of %d cases, %d failing runs so far, %.0f s' % (done, total, len(failures),
+              time.time() - t0), flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--runs', type=int, default=200)
@@ -488,11 +495,13 @@ def main():
     job = functools.partial(fuzz_case, a=a, decks=decks, binaries=binaries)
     if a.jobs > 1 and a.only is None:
         with multiprocessing.Pool(a.jobs) as pool:
-            for outcome in pool.imap(job, indices, chunksize=4):
+            for done, outcome in enumerate(pool.imap(job, indices, chunksize=4), 1):
                 collect(outcome, counts, failures, slow)
+                report_progress(done, len(indices), failures, t0)
     else:
-        for i in indices:
+        for done, i in enumerate(indices, 1):
             collect(job(i), counts, failures, slow)
+            report_progress(done, len(indices), failures, t0)
     with open(os.path.join(a.work, 'failures', 'README'), 'w') as f:
         for i, name, deck, steps, bad, err in failures:
             f.write('case %d (%s binary, from %s): %s\n  mutations: %s\n  replay: python3 '
