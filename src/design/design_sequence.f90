@@ -21,6 +21,10 @@
 !> It stops when the design is feasible and rho |x_try - x_k| (the Lagrangian
 !> gradient of the linearised problem at x_k) is below xtol/move_limit.  Every analysis is counted
 !> (design_problem).
+!> Residual objectives (path, mean-square shaking) pose Gauss-Newton
+!> approximate problems, with hessian = 'structured' a secant estimate of the
+!> residuals' second-order term added; the minimax objective (peak shaking)
+!> poses min tau subject to the linearised samples <= tau (doc/design.md).
 module design_sequence
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
