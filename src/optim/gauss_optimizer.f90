@@ -484,6 +484,9 @@ contains
     if (.not. step_back_method .or. prob%m + prob%n_eq == 0) return
     m = prob%m
     tol = self%opts%feas_tol
+    ! explicit shapes: gfortran's -Wmaybe-uninitialized misreads an
+    ! allocate-on-assignment array that a contained procedure uses
+    allocate(gm0(size(self%gm, 1), size(self%gm, 2)), lam0(size(self%lambda)))
     gm0 = self%gm
     lam0 = self%lambda
     ev0 = self%ev
