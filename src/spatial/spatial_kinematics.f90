@@ -154,12 +154,10 @@ contains
     real(dp) :: p, q, s, r, b(3), bt(3), btt(3), c(3), cp(3), cpp(3), g, gp, dpsi, psi, side
     real(dp) :: g_t, g_p, g_tt, g_tp, g_pp
     integer :: it, status
-    character(len=:), allocatable :: where
-    where = 'crank angle '//str(theta*180.0_dp/pi, 8)//' deg'
     call closure_coefficients(m, theta, p, q, s, b, bt, btt)
     r = hypot(p, q)
     if (abs(s) > r) then
-      call err%set('spatial kinematics', 'the linkage does not assemble at '//where// &
+      call err%set('spatial kinematics', 'the linkage does not assemble at '//where(theta)// &
                    ' (the coupler cannot reach the rocker circle: |S|/R = '//str(abs(s)/r, 8)//')')
       return
     end if
@@ -181,12 +179,12 @@ contains
     m%n_solves = m%n_solves + 1
     side = sin(psi - atan2(q, p))
     if (abs(side) < m%toggle_tol) then
-      call err%set('spatial kinematics', 'toggle position at '//where//' (the coupler is tangent to the '// &
+      call err%set('spatial kinematics', 'toggle position at '//where(theta)//' (the coupler is tangent to the '// &
                    'rocker circle: the rocker velocity is undefined)')
       return
     end if
     if (nint(sign(1.0_dp, side)) /= m%branch .or. abs(p*cos(psi) + q*sin(psi) - s) > 1.0e-9_dp*r) then
-      call err%set('spatial kinematics', 'Newton left assembly branch '//str(m%branch)//' at '//where// &
+      call err%set('spatial kinematics', 'Newton left assembly branch '//str(m%branch)//' at '//where(theta)// &
                    ' (a toggle was passed between two solutions: take smaller steps)')
       return
     end if
@@ -216,6 +214,14 @@ contains
     pose%c_dd = cpp*pose%psi_d**2 + cp*pose%psi_dd
     call link_frames(m, pose)
   end subroutine spatial_fourbar_solve
+
+  !> The crank angle for messages (formatted only when one is written: an
+  !> internal write per solve would cost more than the solve).
+  function where(theta) result(w)
+    real(dp), intent(in) :: theta
+    character(len=:), allocatable :: w
+    w = 'crank angle '//str(theta*180.0_dp/pi, 8)//' deg'
+  end function where
 
   !> Frames, angular velocities and accelerations, and end-1 motion of the links.
   pure subroutine link_frames(m, pose)

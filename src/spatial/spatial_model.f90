@@ -19,7 +19,8 @@ module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, dense_to_lower_band
+  use linalg, only: sym_generalized_eig, dense_to_lower_band
+  use band_cholesky, only: band_llt_factor, band_llt_solve
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
   use material_law, only: ramberg_osgood_t
@@ -361,9 +362,8 @@ contains
     real(dp), intent(out), contiguous :: qdd(:)
     real(dp) :: me(sdofs, sdofs), fe(sdofs)
     type(spatial_eval_info_t) :: info
-    type(error_t) :: err
     integer :: e, i, j, gi, gj
-    logical :: new_mass
+    logical :: new_mass, ok
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
@@ -395,16 +395,16 @@ contains
     end do
     if (new_mass) then
       self%t_mass = huge(1.0_dp)                ! invalid until factored
-      call band_cholesky_factor(self%mass_band, self%kd, err)
+      call band_llt_factor(self%mass_band, self%kd, ok)
       self%n_mass_factorizations = self%n_mass_factorizations + 1
-      if (err%failed()) then
-        call self%fail(t, 'mass matrix: '//err%text())
+      if (.not. ok) then
+        call self%fail(t, 'mass matrix is not positive definite')
         return
       end if
       self%t_mass = t
     end if
     qdd = self%force
-    call band_cholesky_solve(self%mass_band, self%kd, qdd, err)
+    call band_llt_solve(self%mass_band, self%kd, qdd)
   end subroutine accelerations
 
   subroutine model_rhs(self, t, y, ydot)
@@ -431,8 +431,7 @@ contains
     real(dp), intent(inout) :: pd(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n), col(self%n)
     integer :: i, j, kd
-    type(error_t) :: err
-    logical :: banded
+    logical :: banded, ok
     call self%set_time(t)
     q = y(1::2)
     call self%assemble_dense(q, mass, stiff)
@@ -440,14 +439,14 @@ contains
     kd = self%kd
     self%t_mass = -huge(1.0_dp)                  ! mass_band is reused here
     call dense_to_lower_band(mass, kd, self%mass_band)
-    call band_cholesky_factor(self%mass_band, kd, err)
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix in the Jacobian: '//err%text())
+    call band_llt_factor(self%mass_band, kd, ok)
+    if (.not. ok) then
+      call self%fail(t, 'mass matrix in the Jacobian is not positive definite')
       return
     end if
     do j = 1, self%n
       col = stiff(:, j)
-      call band_cholesky_solve(self%mass_band, kd, col, err)
+      call band_llt_solve(self%mass_band, kd, col)
       stiff(:, j) = col                          ! stiff := M^-1 K_t
     end do
     beta = self%el(1)%beta
