@@ -14,7 +14,11 @@
 !>     coupler's twist is held at B (its spin about BC is idle);
 !>  B, C revolute (planar linkage, axis a along a global axis): translations
 !>     and the two rotations normal to a shared, rotation about a and w_xx
-!>     per link, v_xx zero.
+!>     per link, v_xx zero;
+!>  B or C universal (RUSR, RSUR; the kinematics fix the coupler's spin): as
+!>     spherical, but the coupler's twist is held at the universal joint (the
+!>     torque about the coupler goes into the rigid motion; doc/spatial.md).
+!>     One universal joint at most, not with a revolute one.
 module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
@@ -35,9 +39,9 @@ module spatial_model
   use spatial_correlation, only: spatial_table_t, sdofs
   implicit none
   private
-  public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute
+  public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
 
-  integer, parameter :: spatial_joint_spherical = 1, spatial_joint_revolute = 2
+  integer, parameter :: spatial_joint_spherical = 1, spatial_joint_revolute = 2, spatial_joint_universal = 3
   character(len=7), parameter :: link_names(3) = ['crank  ', 'coupler', 'rocker ']
 
   type :: spatial_link_t
@@ -101,7 +105,21 @@ contains
     type(error_t), intent(inout) :: err
     integer, intent(in), optional :: formulation   !< spatial_formulation_* (default: consistent)
     integer :: k, i, e, ne
-    logical :: loc(2)
+    logical :: loc(2), ball_b, ball_c
+    if (joint_b == spatial_joint_universal .or. joint_c == spatial_joint_universal) then
+      if (joint_b == spatial_joint_revolute .or. joint_c == spatial_joint_revolute .or. joint_b == joint_c) then
+        call err%set('spatial model', 'one universal joint, at B or C, with a spherical joint at the other')
+        err%code = 2
+        return
+      end if
+      if (kin%universal_link /= merge(link_crank, link_rocker, joint_b == spatial_joint_universal)) then
+        call err%set('spatial model', 'the kinematics have no universal joint at '// &
+                     merge('B', 'C', joint_b == spatial_joint_universal))
+        return
+      end if
+    end if
+    ball_b = joint_b == spatial_joint_spherical .or. joint_b == spatial_joint_universal
+    ball_c = joint_c == spatial_joint_spherical .or. joint_c == spatial_joint_universal
     self%formulation = spatial_formulation_consistent
     if (present(formulation)) self%formulation = formulation
     self%kin = kin
@@ -128,10 +146,9 @@ contains
         loc = .false.
         ! unshared rotations at spherical ends are local (the coupler's twist is held there)
         if (i == self%links(k)%n_elements) then
-          loc(2) = (k == link_crank .and. joint_b == spatial_joint_spherical) .or. &
-                   (k /= link_crank .and. joint_c == spatial_joint_spherical)
+          loc(2) = (k == link_crank .and. ball_b) .or. (k /= link_crank .and. ball_c)
         end if
-        if (i == 1 .and. k == link_coupler) loc(1) = joint_b == spatial_joint_spherical
+        if (i == 1 .and. k == link_coupler) loc(1) = ball_b
         associate (lk => self%links(k))
           call spatial_beam_init(self%el(e), lk%length/lk%n_elements, lk%sec, lk%material, lk%shear_modulus, &
                                  effects, err, damping_beta=beta, local_rotation=loc, formulation=self%formulation)
@@ -203,12 +220,12 @@ contains
         call interior(1, j)
       end if
     end do
-    ! coupler: B, interior, C
+    ! coupler: B, interior, C; its twist is held at B, or at the universal joint
     do j = 0, self%links(link_coupler)%n_elements
       if (j == 0) then
-        call joint_end(2, j, self%joint_b, self%b_dofs, b_rot, 'B', .true.)
+        call joint_end(2, j, self%joint_b, self%b_dofs, b_rot, 'B', self%joint_c /= spatial_joint_universal)
       else if (j == self%links(link_coupler)%n_elements) then
-        call joint_end(2, j, self%joint_c, self%c_dofs, c_rot, 'C', .false.)
+        call joint_end(2, j, self%joint_c, self%c_dofs, c_rot, 'C', self%joint_c == spatial_joint_universal)
       else
         call interior(2, j)
       end if
@@ -294,8 +311,8 @@ contains
       nm(1:3, node, link) = trans
       nc(1:3, node, link) = 1.0_dp
       call axial_slopes(link, node)
-      if (kind == spatial_joint_spherical) then
-        ! local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
+      if (kind /= spatial_joint_revolute) then
+        ! spherical or universal: local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
         do s = 4, 6
           if (s == 4 .and. hold_twist) cycle
           nm(s, node, link) = fresh(link, node, s)
