@@ -37,6 +37,7 @@ module spatial_model
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
+  use spatial_mass, only: spatial_mass_t
   implicit none
   private
   public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
@@ -73,6 +74,7 @@ module spatial_model
     logical :: stop_beyond_peak = .true.
     integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
     type(second_order_newton_t) :: newton          !< DLSODE's Newton matrix, banded (shared with the planar model's scheme)
+    type(spatial_mass_t) :: cmass                  !< M(t) solves through a constant factor (spatial_mass)
   contains
     procedure :: init => model_init
     procedure :: rhs => model_rhs
@@ -177,6 +179,7 @@ contains
     self%n = self%table%n_global
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    call self%cmass%init(self%table, self%el, self%link_of, self%n, self%kd)
   end subroutine model_init
 
   !> Node rules in chain order A -> B -> C -> D (narrow band).
@@ -385,6 +388,10 @@ contains
     qdd = 0.0_dp
     if (self%err%failed()) return
     new_mass = t < self%t_mass .or. t > self%t_mass
+    if (self%cmass%active) then
+      call constant_factor_accelerations(self, t, q, qd, new_mass, qdd)
+      return
+    end if
     if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
@@ -423,6 +430,44 @@ contains
     qdd = self%force
     call band_llt_solve(self%mass_band, self%kd, qdd)
   end subroutine accelerations
+
+  !> accelerations through spatial_mass: the elements' forces only, M(t)^-1
+  !> by the constant factor and the joint unknowns' Schur complement (updated
+  !> at a new time).
+  subroutine constant_factor_accelerations(self, t, q, qd, new_mass, qdd)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    logical, intent(in) :: new_mass
+    real(dp), intent(out), contiguous :: qdd(:)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs)
+    type(spatial_eval_info_t) :: info
+    integer :: e
+    logical :: ok
+    self%force = 0.0_dp
+    do e = 1, size(self%el)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
+                             mass_wanted=.false.)
+      self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
+      if (info%beyond_peak .and. self%stop_beyond_peak) then
+        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
+                       ' is past the peak of the Ramberg-Osgood curve, eps* = '//str(self%el(e)%eps_star, 6))
+        return
+      end if
+      call self%table%scatter_add(e, fe, self%force)
+    end do
+    if (new_mass) then
+      self%t_mass = huge(1.0_dp)                ! invalid until factored
+      call self%cmass%update(self%rb, ok)
+      self%n_mass_factorizations = self%n_mass_factorizations + 1
+      if (.not. ok) then
+        call self%fail(t, 'mass matrix is not positive definite')
+        return
+      end if
+      self%t_mass = t
+    end if
+    qdd = self%force
+    call self%cmass%solve(self%rb, qdd)
+  end subroutine constant_factor_accelerations
 
   subroutine model_rhs(self, t, y, ydot)
     class(spatial_model_t), intent(inout) :: self
