@@ -91,9 +91,10 @@ contains
                            'a clearance joint needs a contact stiffness > 0', err)
         return
       end if
-      if (s%law == 'flores' .and. .not. s%restitution(j) > 0.0_dp) then
+      ! e = 1e-300 gave a factor of 1.6e300 and contact forces that overflow
+      if (s%law == 'flores' .and. s%restitution(j) < 0.01_dp) then
         call invalid_value(deck, g, 'joint_restitution('//str(j)//')', str(s%restitution(j)), &
-                           'the flores law needs e > 0 (its factor is 8(1-e)/(5e))', err)
+                           'the flores law needs e >= 0.01 (its factor 8(1-e)/(5e) grows like 1/e)', err)
         return
       end if
       if (s%law == 'calibrated' .and. s%restitution(j) < 0.01_dp) then

@@ -10,7 +10,8 @@ module lsode_check_analysis
   use deck_reader, only: deck_t, invalid_value
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
-  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_from_method, method_names, mf_adams
+  use lsode_solver, only: max_steps_ceiling, max_steps_reason, ode_system_t, lsode_t, lsode_counters_t, &
+                          mf_from_method, method_names, mf_adams
   implicit none
   private
   public :: run_lsode_check
@@ -92,7 +93,8 @@ contains
                     why='output times grow by this factor (kinetics)')
     call check_integer(deck, g, 'n_outputs', n_outputs, err, at_least=1, at_most=100000)
     call check_real(deck, g, 'omega', omega, err, above=0.0_dp, at_most=1.0e6_dp, why='rad per unit time')
-    call check_integer(deck, g, 'max_steps', max_steps, err, at_least=1)
+    call check_integer(deck, g, 'max_steps', max_steps, err, at_least=1, at_most=max_steps_ceiling, &
+                       why=max_steps_reason)
     if (err%failed()) return
     if (problem == 'kinetics' .and. log10(t_first) + n_outputs*log10(factor) > 300.0_dp) &
       call invalid_value(deck, g, 'n_outputs', str(n_outputs), 'the last output time t_first*factor**n_outputs '// &

@@ -13,6 +13,7 @@ module steady_settings
   use tennant_element, only: tennant_options_t, tennant_max_sections
   use steady_model, only: link_sections_t
   use harmonic_solver, only: harmonic_settings_t, max_outer_limit
+  use lsode_solver, only: max_steps_ceiling, max_steps_reason
   use periodic_shooting, only: shooting_settings_t, max_newton_limit
   implicit none
   private
@@ -149,7 +150,8 @@ contains
                     why='below 1e-30 DLSODE''s error weights overflow')
     call check_real(deck, g, 'newton_tol', s%shooting%newton_tol, err, at_least=1.0e-15_dp, below=1.0_dp)
     call check_integer(deck, g, 'max_newton', s%shooting%max_newton, err, at_least=1, at_most=max_newton_limit)
-    call check_integer(deck, g, 'max_steps', s%shooting%max_steps, err, at_least=1)
+    call check_integer(deck, g, 'max_steps', s%shooting%max_steps, err, at_least=1, at_most=max_steps_ceiling, &
+                       why=max_steps_reason)
     call check_real(deck, g, 'unit_circle_tol', s%shooting%unit_circle_tol, err, at_least=0.0_dp, at_most=1.0_dp, &
                     why='distance of a Floquet multiplier modulus from 1')
     call check_real(deck, g, 'singular_rcond', s%shooting%singular_rcond, err, at_least=0.0_dp, below=1.0_dp)

@@ -8,7 +8,7 @@ module transient_settings
   use deck_reader, only: deck_t, invalid_value
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
-  use lsode_solver, only: mf_from_method, method_names
+  use lsode_solver, only: max_steps_ceiling, max_steps_reason, mf_from_method, method_names
   use kear_element, only: element_effects_t
   use fast_format, only: min_digits, max_digits
   implicit none
@@ -191,7 +191,8 @@ contains
       call invalid_value(deck, g, 'restart_in', '''''', 'initial = ''restart'' needs a restart file', err)
     call check_choice(deck, g, 'kinematics', s%kinematics, [character(len=16) :: 'table', 'direct'], err)
     call check_integer(deck, g, 'table_points', s%table_points, err, at_least=36, at_most=1000000)
-    call check_integer(deck, g, 'max_steps', s%max_steps, err, at_least=1)
+    call check_integer(deck, g, 'max_steps', s%max_steps, err, at_least=1, at_most=max_steps_ceiling, &
+                       why=max_steps_reason)
     call check_choice(deck, g, 'output_rows', s%output_rows, [character(len=16) :: 'all', 'last_revolution', 'none'], err)
     call check_choice(deck, g, 'stress_columns', s%stress_columns, [character(len=16) :: 'outer', 'all'], err)
     call check_reals(deck, g, 'point_at', s%point_at, err, at_least=0.0_dp, at_most=1.0_dp, &

@@ -11,6 +11,7 @@ module table_output
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc, c_null_funptr, &
                                          c_intptr_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: iso_fortran_env, only: int64
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -36,6 +37,9 @@ module table_output
     !> Significant digits of the rows: 0 = 16 (ES23.15E3, correctly rounded);
     !> 3..12 = the fast formatter (src/io/fast_format.f90), narrower columns.
     integer :: digits = 0
+    !> Clock of the last flush: rows reach the temporary file at least once a
+    !> second, so `tail -f` (and the fuzzer) see a slow run progress.
+    integer(int64) :: flushed_at = 0
   contains
     procedure :: open => table_open
     procedure :: comment
@@ -194,7 +198,20 @@ contains
       write(self%unit, row_format) values
     end if
     self%n_rows = self%n_rows + 1
+    call flush_now_and_then(self)
   end subroutine row
+
+  !> Flush when a second has passed since the last flush (a clock read per
+  !> row costs nanoseconds; a flush per row would cost a system call).
+  subroutine flush_now_and_then(self)
+    class(table_t), intent(inout) :: self
+    integer(int64) :: now, rate
+    call system_clock(now, rate)
+    if (self%flushed_at == 0) self%flushed_at = now
+    if (now - self%flushed_at < rate) return
+    flush(self%unit)
+    self%flushed_at = now
+  end subroutine flush_now_and_then
 
   !> A row through the fast formatter: one blank and es_width characters per value.
   subroutine write_fast(self, values)

@@ -678,10 +678,12 @@ contains
         ! solid in any consistent units (m/s: 1e4..4e8, mm/s: 1e10..4e14);
         ! outside it the model's frequencies over- or underflow (written as
         ! products: E1/rho itself overflows for a subnormal rho)
-        if (inp%link_rho(q) > 0.0_dp .and. inp%link_e1(q) > 0.0_dp .and. &
-            (inp%link_e1(q) > 1.0e18_dp*inp%link_rho(q) .or. inp%link_e1(q) < 1.0e2_dp*inp%link_rho(q))) then
-          call bad(idx('link_e1', q)//', '//idx('link_rho', q), str(inp%link_e1(q))//', '//str(inp%link_rho(q)), &
-                   'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]'); return
+        ! (nested: .and. does not short-circuit, and 1e18*rho overflows for rho = -1e300)
+        if (inp%link_rho(q) > 0.0_dp .and. inp%link_e1(q) > 0.0_dp) then
+          if (inp%link_e1(q) > 1.0e18_dp*inp%link_rho(q) .or. inp%link_e1(q) < 1.0e2_dp*inp%link_rho(q)) then
+            call bad(idx('link_e1', q)//', '//idx('link_rho', q), str(inp%link_e1(q))//', '//str(inp%link_rho(q)), &
+                     'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]'); return
+          end if
         end if
       end do
       ok = .true.

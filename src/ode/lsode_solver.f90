@@ -31,6 +31,7 @@ module lsode_solver
   public :: mf_adams, mf_bdf_full_user, mf_bdf_full_fd, mf_bdf_band_user, mf_bdf_band_fd
   public :: istate_sentence, mf_from_method, method_names
   public :: active, active_newton_is_model
+  public :: max_steps_ceiling, max_steps_reason
 
   !> Method names accepted in decks, and the DLSODE method flag each means.
   character(len=*), parameter :: method_names = 'adams (MF=10), bdf (21), bdf_fd (22), bdf_band (24), bdf_band_fd (25)'
@@ -40,6 +41,13 @@ module lsode_solver
   integer, parameter :: mf_bdf_full_fd = 22    !< stiff, BDF, finite-difference full Jacobian
   integer, parameter :: mf_bdf_band_user = 24  !< stiff, BDF, user banded Jacobian
   integer, parameter :: mf_bdf_band_fd = 25    !< stiff, BDF, finite-difference banded Jacobian
+
+  !> The largest step limit per output interval (MXSTEP) a deck may ask for:
+  !> 1e7 steps are minutes of CPU for the smallest model (3 us per step), and
+  !> a run that needs more is stiff for its method or needs shorter intervals.
+  integer, parameter :: max_steps_ceiling = 10000000
+  character(len=*), parameter :: max_steps_reason = 'DLSODE steps per output interval; beyond 1e7 a '// &
+    'run is stiff for its method (use bdf) or needs a shorter output interval'
 
   !> A first-order system y' = f(t, y).  Extend it to carry the model.
   type, abstract :: ode_system_t
