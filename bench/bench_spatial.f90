@@ -10,7 +10,7 @@
 !>     left out: the curvature DOFs make four elements per link stiff);
 !>  3. the banded route against the mesh (1 to 16 elements per link).
 !> `bench_spatial turns` skips part 1, `bench_spatial rhs` runs part 1 at 4 elements per
-!> link only (new time and reused mass); `bench_spatial probe N [geometric]`
+!> link only (new time and reused mass); `bench_spatial probe N [geometric|linear [RTOL]]`
 !> runs one turn (tolerances B) at N elements per link, e.g. under perf.  Figures, not pass/fail.
 program bench_spatial
   use, intrinsic :: iso_fortran_env, only: output_unit
@@ -35,7 +35,7 @@ program bench_spatial
   type(error_t) :: err
   type(element_effects_t) :: fx
 
-  character(len=16) :: arg
+  character(len=16) :: arg, arg2
   real(dp) :: rtol_b = 1.0e-4_dp
 
   call get_command_argument(1, arg)
@@ -45,8 +45,8 @@ program bench_spatial
     call get_command_argument(3, arg)
     fx = element_effects_t(.false., .false., .false., .false., .false.)
     if (trim(arg) == 'geometric') fx = element_effects_t(.true., .true., .false., .true., .true.)
-    call get_command_argument(4, arg)        ! rtol of tolerances B (default 1e-4)
-    if (len_trim(arg) > 0) read(arg, *) rtol_b
+    call get_command_argument(4, arg2)       ! rtol of tolerances B (default 1e-4)
+    if (len_trim(arg2) > 0) read(arg2, *) rtol_b
     call turn(i, fx, 2, .true., merge('geometric ', 'linear    ', trim(arg) == 'geometric'), 'bdf      ')
     stop
   end if
