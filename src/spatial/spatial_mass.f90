@@ -61,12 +61,78 @@ contains
     type(spatial_table_t), intent(in) :: table
     type(spatial_beam_t), intent(in) :: el(:)
     integer, intent(in) :: link_of(:), n, kd
-    integer :: e, b, c, i, j, gi, gj, k, kind(n), owner(n), np
-    logical :: rot(4), ok, changed
-    integer, allocatable :: pe(:), pb(:)
+    integer :: e, b, i, j, gi, gj, kind(n), owner(n)
+    logical :: rot(4), ok
     self%active = .false.
     self%n = n
     self%kd = kd
+    call classify(table, el, link_of, kind, ok)
+    if (.not. ok) return
+    self%nj = count(kind == 3)
+    allocate(self%jpos(n))
+    self%jpos = 0
+    self%jlist = pack([(i, i=1, n)], kind == 3)
+    do j = 1, self%nj
+      self%jpos(self%jlist(j)) = j
+    end do
+    ! owned triples (one entry per triple: its first element)
+    allocate(self%tri(3, n), self%tri_el(n))
+    self%ntri = 0
+    owner = 0                                      ! reused: unknown already in a listed triple
+    do e = 1, size(el)
+      rot = rotating(el(e))
+      do b = 1, 4
+        if (.not. rot(b)) cycle
+        associate (m => table%map(first(b):first(b) + 2, e))
+          if (all(m > 0)) then
+            if (all(kind(m) == 2) .and. owner(m(1)) == 0) then
+              self%ntri = self%ntri + 1
+              self%tri(:, self%ntri) = m
+              self%tri_el(self%ntri) = e
+              owner(m) = 1
+            end if
+          end if
+        end associate
+      end do
+    end do
+    if (any(kind == 2 .and. owner == 0)) return       ! an owned unknown outside a whole triple
+    ! A: M~ without J, identity on J
+    allocate(self%afac(kd + 1, n))
+    self%afac = 0.0_dp
+    do e = 1, size(el)
+      do j = 1, sdofs
+        gj = table%map(j, e)
+        if (gj == 0) cycle
+        if (self%jpos(gj) > 0) cycle
+        do i = 1, sdofs
+          gi = table%map(i, e)
+          if (gi < gj) cycle
+          if (self%jpos(gi) > 0) cycle
+          self%afac(1 + gi - gj, gj) = self%afac(1 + gi - gj, gj) + table%coef(i, e)*el(e)%mass0(i, j)*table%coef(j, e)
+        end do
+      end do
+    end do
+    do j = 1, self%nj
+      self%afac(1, self%jlist(j)) = 1.0_dp
+    end do
+    call band_llt_factor(self%afac, kd, ok)
+    if (.not. ok) return
+    call precompute_pairs(self, table, el)
+    self%active = .true.
+  end subroutine init
+
+  !> kind of each unknown: 0 unseen, 1 reached through non-rotating DOFs
+  !> only, 2 in a vector triple of one link (owned), 3 joint (J); ok =
+  !> .false. if an owned or joint unknown is also reached unrotated.
+  subroutine classify(table, el, link_of, kind, ok)
+    type(spatial_table_t), intent(in) :: table
+    type(spatial_beam_t), intent(in) :: el(:)
+    integer, intent(in) :: link_of(:)
+    integer, intent(out) :: kind(:)
+    logical, intent(out) :: ok
+    integer :: e, b, c, i, gi, owner(size(kind))
+    logical :: rot(4), changed
+    ok = .false.
     ! kind: 0 unseen, 1 only in non-rotating DOFs, 2 in a candidate owned triple, 3 joint (J)
     kind = 0
     owner = 0
@@ -132,55 +198,20 @@ contains
         end if
       end do
     end do
-    self%nj = count(kind == 3)
-    allocate(self%jpos(n))
-    self%jpos = 0
-    self%jlist = pack([(i, i=1, n)], kind == 3)
-    do j = 1, self%nj
-      self%jpos(self%jlist(j)) = j
-    end do
-    ! owned triples (one entry per triple: its first element)
-    allocate(self%tri(3, n), self%tri_el(n))
-    self%ntri = 0
-    owner = 0                                      ! reused: unknown already in a listed triple
-    do e = 1, size(el)
-      rot = rotating(el(e))
-      do b = 1, 4
-        if (.not. rot(b)) cycle
-        associate (m => table%map(first(b):first(b) + 2, e))
-          if (all(m > 0)) then
-            if (all(kind(m) == 2) .and. owner(m(1)) == 0) then
-              self%ntri = self%ntri + 1
-              self%tri(:, self%ntri) = m
-              self%tri_el(self%ntri) = e
-              owner(m) = 1
-            end if
-          end if
-        end associate
-      end do
-    end do
-    if (any(kind == 2 .and. owner == 0)) return       ! an owned unknown outside a whole triple
-    ! A: M~ without J, identity on J
-    allocate(self%afac(kd + 1, n))
-    self%afac = 0.0_dp
-    do e = 1, size(el)
-      do j = 1, sdofs
-        gj = table%map(j, e)
-        if (gj == 0) cycle
-        if (self%jpos(gj) > 0) cycle
-        do i = 1, sdofs
-          gi = table%map(i, e)
-          if (gi < gj) cycle
-          if (self%jpos(gi) > 0) cycle
-          self%afac(1 + gi - gj, gj) = self%afac(1 + gi - gj, gj) + table%coef(i, e)*el(e)%mass0(i, j)*table%coef(j, e)
-        end do
-      end do
-    end do
-    do j = 1, self%nj
-      self%afac(1, self%jlist(j)) = 1.0_dp
-    end do
-    call band_llt_factor(self%afac, kd, ok)
-    if (.not. ok) return
+    ok = .true.
+  end subroutine classify
+
+  !> The element triples touching J ("pairs"), their components' J unknowns
+  !> ("slots"), P_p, A^-1 P_p and H = [same element] M_p blocks - P^T A^-1 P.
+  subroutine precompute_pairs(self, table, el)
+    class(spatial_mass_t), intent(inout) :: self
+    type(spatial_table_t), intent(in) :: table
+    type(spatial_beam_t), intent(in) :: el(:)
+    integer :: e, b, c, i, j, gi, k, np, n, kd
+    logical :: rot(4)
+    integer, allocatable :: pe(:), pb(:)
+    n = self%n
+    kd = self%kd
     ! element triples touching J ("pairs") and their components' J unknowns ("slots")
     allocate(pe(4*size(el)), pb(4*size(el)))
     np = 0
@@ -247,8 +278,8 @@ contains
                                       first(self%pair_b(j)):first(self%pair_b(j)) + 2)
       end do
     end do
-    self%active = .true.
-  end subroutine init
+  end subroutine precompute_pairs
+
 
   !> S at the rigid state rb(:) (element frames), factored; ok = .false. if
   !> S is not positive definite.  S = E^T H E: H (constant) on the pairs'
