@@ -137,17 +137,24 @@ program bench_design
   implicit none
   character(len=256), allocatable :: decks(:)
   character(len=256) :: arg
+  character(len=64) :: methods
   integer :: i
 
-  if (command_argument_count() > 0) then
-    allocate(decks(command_argument_count()))
-    do i = 1, size(decks)
-      call get_command_argument(i, arg)
-      decks(i) = arg
-    end do
-  else
+  ! --methods=gnlc,slsqp,cobyla (default all three) selects the optimizers
+  ! (an NLopt run of example 3 costs minutes: the bench can run one of them)
+  methods = 'gnlc,slsqp,cobyla'
+  allocate(decks(0))
+  do i = 1, command_argument_count()
+    call get_command_argument(i, arg)
+    if (index(arg, '--methods=') == 1) then
+      methods = arg(11:)
+    else
+      decks = [character(len=256) :: decks, arg]
+    end if
+  end do
+  if (size(decks) == 0) then
     decks = [character(len=256) :: 'inputs/design_bar_frequency.nml', 'inputs/design_fourbar_path_60.nml', &
-             'inputs/design_fourbar_mass_150.nml']
+             'inputs/design_fourbar_mass_150.nml', 'inputs/design_fourbar_counterweights.nml']
   end if
   write(output_unit, '(a)') '# Design with the analysis in the loop: the design loop (GNLC on sequential '// &
     'approximate problems) beside NLopt SLSQP and COBYLA, same deck, start, analyses and constraints.'
@@ -170,6 +177,7 @@ contains
     nf_best = huge(1)
     f_gauss = huge(1.0_dp)
     do method = 1, 3
+      if (index(methods, trim(method_key(method))) == 0) cycle
       call run_method(path, method, nf_gauss, nf_best, f_gauss)
     end do
     if (nf_gauss > 0 .and. nf_best < huge(1)) then
@@ -179,6 +187,12 @@ contains
       write(output_unit, '(a)') '# '//path//': no NLopt run ends feasible within 1 % of the design loop''s F'
     end if
   end subroutine run_deck
+
+  pure function method_key(method) result(key)
+    integer, intent(in) :: method
+    character(len=8) :: key
+    key = merge('gnlc    ', merge('slsqp   ', 'cobyla  ', method == 2), method == 1)
+  end function method_key
 
   subroutine run_method(path, method, nf_gauss, nf_best, f_gauss)
     character(len=*), intent(in) :: path

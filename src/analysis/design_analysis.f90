@@ -19,9 +19,10 @@ module design_analysis
   use strings, only: str
   use version, only: program_name, program_version
   use deck_reader, only: deck_t, invalid_value
-  use deck_checks, only: check_real, check_integer, check_choice
+  use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
-  use linkage, only: mechanism_t, read_mechanism, build_mechanism, echo_mechanism, profile_constant
+  use linkage, only: mechanism_t, build_mechanism, profile_constant
+  use linkage_deck, only: read_mechanism, echo_mechanism
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_analysis, only: run_steady
   use run_settings, only: read_run_settings, write_run_header
@@ -35,20 +36,25 @@ module design_analysis
 
   integer, parameter :: max_vars = 20
   integer, parameter :: max_points = 72
+  integer, parameter :: max_speeds = 8
   real(dp), parameter :: unset = -huge(1.0_dp)
   real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
 
   ! staging variables of the &design group
   character(len=32) :: variables(max_vars), objective
-  character(len=16) :: evaluator
+  character(len=16) :: evaluator, hessian
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
   real(dp) :: xtol, feas_tol, move_limit
   integer :: max_iterations, samples
+  ! operating speeds: every constraint at each, the objective summed or at one
+  real(dp) :: speeds(max_speeds)
+  integer :: objective_speed
   ! path objectives: the coupler point and its targets
   integer :: path_link
   real(dp) :: path_r, path_angle_deg, path_x(max_points), path_y(max_points), path_dgamma_deg(max_points)
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
-                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, &
+                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, &
+                    speeds, objective_speed, &
                     path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg
 
 contains
@@ -60,6 +66,9 @@ contains
     scale = 0.0_dp
     objective = 'mass'
     evaluator = 'shooting'
+    hessian = 'gauss'
+    speeds = unset
+    objective_speed = 0
     stress_allowable = 0.0_dp
     frequency_factor = 0.0_dp
     max_iterations = 30
@@ -99,6 +108,13 @@ contains
     call cpu_time(cpu0)
     call prob%setup('design of '//trim(deck%path), x0)
     call write_design_header(out, prob)
+    if (prob%has_residuals() .and. opt%hessian == 'structured') then
+      call out%comment('approximate problems: Gauss-Newton matrix 2 J J^T / F0 plus a Dennis-Gay-Welsch secant '// &
+        'estimate of the second-order term; move limit from the ratio of actual to predicted decrease')
+    else if (prob%has_residuals()) then
+      call out%comment('approximate problems: Gauss-Newton matrix 2 J J^T / F0; move limit halved after each '// &
+        'accepted step, quadrupled after a rejection')
+    end if
     call opt%solve(prob, x0, run_err)
     call cpu_time(cpu1)
 
@@ -132,9 +148,9 @@ contains
     prob%sections = s%sections
     prob%harmonic = s%harmonic
     prob%shooting = s%shooting
-    if (prob%objective_kind == 'shaking' .and. any(s%sections(1:mech%n_links)%n > 0)) then
-      call invalid_value(deck, 'design', 'objective', '''shaking''', 'the shaking force takes uniform links '// &
-                         '(no &sections)', err)
+    if (prob%is_shaking() .and. any(s%sections(1:mech%n_links)%n > 0)) then
+      call invalid_value(deck, 'design', 'objective', ''''//trim(prob%objective_kind)//'''', &
+                         'the shaking force takes uniform links (no &sections)', err)
       return
     end if
     ! finite-difference steps above the analysis' noise (doc/design.md)
@@ -143,6 +159,7 @@ contains
     opt%xtol = xtol
     opt%feas_tol = feas_tol
     opt%move_limit = move_limit
+    opt%hessian = hessian
   end subroutine load_design
 
   !> Read &design and make the problem's variables; x0 = initial values/scale.
@@ -166,8 +183,9 @@ contains
       return
     end if
     call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass', 'path', 'path_rigid', &
-                      'shaking'], err)
+                      'shaking', 'shaking_peak'], err)
     call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic'], err)
+    call check_choice(deck, g, 'hessian', hessian, [character(len=16) :: 'gauss', 'structured'], err)
     call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=0.0_dp, at_most=1.0e12_dp, &
                     why='0 = no stress constraint')
     call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=0.0_dp, at_most=1.0e3_dp, &
@@ -182,9 +200,9 @@ contains
     call check_real(deck, g, 'move_limit', move_limit, err, above=0.0_dp, at_most=2.0_dp, &
                     why='initial largest change of ln(size) per design iteration')
     if (err%failed()) return
-    if (objective == 'shaking') then
+    if (objective == 'shaking' .or. objective == 'shaking_peak') then
       if (len(shaking_supported(mech)) > 0) then
-        call invalid_value(deck, g, 'objective', '''shaking''', 'the shaking force is not built when '// &
+        call invalid_value(deck, g, 'objective', ''''//trim(objective)//'''', 'the shaking force is not built when '// &
                            shaking_supported(mech), err)
         return
       end if
@@ -196,6 +214,8 @@ contains
                          'frequency constraint (else the minimum is the lower bounds)', err)
       return
     end if
+    call read_speeds(deck, prob, err)
+    if (err%failed()) return
     if (frequency_factor > 0.0_dp .and. .not. abs(mech%driver%omega) > 0.0_dp) then
       call invalid_value(deck, g, 'frequency_factor', str(frequency_factor), 'needs a turning crank (omega > 0)', err)
       return
@@ -262,6 +282,37 @@ contains
     prob%stress_allowable = stress_allowable
     prob%frequency_factor = frequency_factor
   end subroutine read_design
+
+  !> The operating speeds (none: the deck's omega) and the objective's speed.
+  subroutine read_speeds(deck, prob, err)
+    type(deck_t), intent(inout) :: deck
+    type(design_problem_t), intent(inout) :: prob
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    integer :: ns, i
+    logical :: given(max_speeds)
+    ! given: not the sentinel (a NaN counts as given, and check_reals names it)
+    do i = 1, max_speeds
+      given(i) = .not. ieee_is_finite(speeds(i))
+      if (.not. given(i)) given(i) = speeds(i) > 0.5_dp*unset
+    end do
+    ns = count(given)
+    if (ns > 0) then
+      if (.not. all(given(1:ns))) then
+        call invalid_value(deck, g, 'speeds', str(ns)//' given, then a gap', 'give the operating speeds one after '// &
+                           'another, speeds(1), speeds(2), ...', err)
+        return
+      end if
+    end if
+    call check_reals(deck, g, 'speeds', speeds(1:ns), err, above=0.0_dp, at_most=1.0e5_dp, &
+                     why='crank speeds (rad/s) the design must satisfy; > 0: a steady state needs a turning crank')
+    call check_integer(deck, g, 'objective_speed', objective_speed, err, at_least=0, at_most=ns, &
+                       why='0 = the objective summed over the speeds; i = at speeds(i) only')
+    if (err%failed()) return
+    allocate(prob%speeds(0))
+    if (ns > 0) prob%speeds = speeds(1:ns)
+    prob%objective_speed = objective_speed
+  end subroutine read_speeds
 
   !> The coupler point and its target points (path objectives).
   subroutine read_path(deck, mech, prob, err)
@@ -378,6 +429,10 @@ contains
       call out%comment('design: least mean square shaking force over the steady revolution (rate of the '// &
         'total linear momentum of every moving mass, elastic motion included, at '//str(prob%samples)// &
         ' crank angles; F = mean |F_shake|^2 / its initial value '//str(prob%f0, 8)//')')
+    case ('shaking_peak')
+      call out%comment('design: least peak shaking force over the steady revolution (minimax: min t subject to '// &
+        '|F_shake(theta_k)| <= t at '//str(prob%samples)//' crank angles, elastic motion included; F = peak / '// &
+        'its initial value '//str(prob%f0, 8)//')')
     case default
       call out%comment('design: minimum mass of the links (F = mass / initial mass '//str(prob%mass0, 8)//')')
     end select
@@ -389,14 +444,37 @@ contains
                        trim(prob%var(i)%name)//' / '//str(prob%var(i)%scale, 6)//trim(merge(')', ' ', prob%var(i)%logarithmic))// &
                        ', bounds ['//str(prob%var(i)%lower, 6)//', '//str(prob%var(i)%upper, 6)//']')
     end do
+    call write_speeds(out, prob)
     if (prob%n_stress > 0) call out%comment('constraints g1-g'//str(prob%n_stress)//': peak |stress| of each link '// &
-      'over the steady revolution: ln(stress / '//str(prob%stress_allowable, 6)//') <= 0')
-    if (prob%i_frequency > 0) call out%comment('constraint g'//str(prob%i_frequency)//': ln('// &
-      str(prob%frequency_factor, 4)//' x crank speed / lowest frozen natural frequency over the revolution) <= 0')
+      'over the steady revolution: ln(stress / '//str(prob%stress_allowable, 6)//') <= 0; link l at speed s: '// &
+      'g(l + (s - 1) n_links)')
+    if (prob%i_frequency > 0) call out%comment('constraints g'//str(prob%i_frequency)//'-g'// &
+      str(prob%n_analysis_constraints())//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
+      'natural frequency over the revolution) <= 0, one per speed')
     call out%comment('bounds as linear constraints after them; each analysis: '//trim(evaluator_text(prob%evaluator))// &
       ' with stresses and frequencies at '//str(prob%samples)// &
       ' crank angles; forward-difference derivatives, relative step '//str(prob%fd_rel_step, 3))
   end subroutine write_design_header
+
+  !> The operating speeds, when the design has several.
+  subroutine write_speeds(out, prob)
+    type(table_t), intent(inout) :: out
+    type(design_problem_t), intent(in) :: prob
+    character(len=:), allocatable :: text
+    integer :: s
+    if (size(prob%speeds) < 2) return
+    text = ''
+    do s = 1, size(prob%speeds)
+      text = text//' '//str(prob%speeds(s), 6)
+    end do
+    if (prob%objective_speed == 0) then
+      call out%comment('operating speeds (rad/s):'//text//'; every constraint at each; the objective summed over '// &
+                       'them (a mean square averaged)')
+    else
+      call out%comment('operating speeds (rad/s):'//text//'; every constraint at each; the objective at speed '// &
+                       str(prob%objective_speed)//' only')
+    end if
+  end subroutine write_speeds
 
   function evaluator_text(name) result(text)
     character(len=*), intent(in) :: name
@@ -427,7 +505,7 @@ contains
       names(6 + n + i) = 'g'//str(i)
     end do
     if (prob%is_path()) names(7 + n + nc:) = [character(len=32) :: 'objective', 'path_error', 'rigid_path_error']
-    if (prob%objective_kind == 'shaking') names(7 + n + nc:) = [character(len=32) :: 'objective', 'peak_shaking', &
+    if (prob%is_shaking()) names(7 + n + nc:) = [character(len=32) :: 'objective', 'peak_shaking', &
                                                                  'rms_shaking']
     call out%comment('columns: k = design iteration; analyses and cpu_s (analysis CPU) so far; mass of the links; '// &
                      'max_violation = largest g; move_limit = largest change of x in the next approximate problem; '// &
@@ -444,7 +522,7 @@ contains
         end do
         row(7 + n:6 + n + nc) = st%g
         if (prob%is_path()) row(7 + n + nc:) = [st%objective, st%path_error, st%rigid_path_error]
-        if (prob%objective_kind == 'shaking') row(7 + n + nc:) = [st%objective, st%peak_shaking, st%rms_shaking]
+        if (prob%is_shaking()) row(7 + n + nc:) = [st%objective, st%peak_shaking, st%rms_shaking]
         call out%row(row)
         ! after the row: the column names stay the last '#' line before the first row
         if (len(st%events) > 0) call out%comment('k = '//str(st%k)//': '//st%events)
@@ -458,7 +536,7 @@ contains
     type(design_problem_t), intent(inout) :: prob
     real(dp), intent(in) :: cpu
     type(design_eval_t) :: ev
-    integer :: i
+    integer :: i, s
     call out%summary('status', trim(merge('converged    ', 'not converged', opt%converged))//' ('//opt%message//')')
     call out%summary('design iterations NI', str(opt%iterations))
     call out%summary('rejected proposals (move limit halved)', str(opt%rejections))
@@ -472,8 +550,21 @@ contains
         do i = 1, size(ev%link_stress)
           call out%summary('final peak |stress| link '//str(i), str(ev%link_stress(i), 8))
         end do
-        if (prob%i_frequency > 0) call out%summary('final lowest frozen frequency', str(ev%lowest_frequency, 8)// &
-          ' rad/s = '//str(ev%lowest_frequency/prob%base%omega, 5)//' x crank speed')
+        if (size(prob%speeds) > 1) then
+          do s = 1, size(prob%speeds)
+            do i = 1, size(ev%link_stress)
+              call out%summary('final peak |stress| link '//str(i)//' at '//str(prob%speeds(s), 6)//' rad/s', &
+                               str(ev%stress_at(i, s), 8))
+            end do
+          end do
+        end if
+        if (prob%i_frequency > 0 .and. size(prob%speeds) == 1) call out%summary('final lowest frozen frequency', &
+          str(ev%frequency_at(1), 8)//' rad/s = '//str(ev%frequency_at(1)/prob%speeds(1), 5)//' x crank speed')
+        do s = 1, size(prob%speeds)
+          if (prob%i_frequency > 0 .and. size(prob%speeds) > 1) call out%summary('final lowest frozen frequency at '// &
+            str(prob%speeds(s), 6)//' rad/s', str(ev%frequency_at(s), 8)//' rad/s = '// &
+            str(ev%frequency_at(s)/prob%speeds(s), 5)//' x crank speed')
+        end do
         if (prob%is_path()) then
           call out%summary('final path error (elastic)', str(ev%path_error, 8)//' (largest miss '// &
                            str(largest_miss(ev%residual), 5)//')')
@@ -484,7 +575,7 @@ contains
             call out%summary('initial path error (rigid body)', str(opt%steps(1)%rigid_path_error, 8))
           end if
         end if
-        if (prob%objective_kind == 'shaking') then
+        if (prob%is_shaking()) then
           call out%summary('final peak shaking force', str(ev%peak_shaking, 8))
           call out%summary('final rms shaking force', str(ev%rms_shaking, 8))
           if (opt%n_steps > 0) then
@@ -498,7 +589,7 @@ contains
     end if
     if (allocated(prob%last_failure)) call out%comment('last failed analysis: '//prob%last_failure)
     call out%cost('mechanism analyses NF (every distinct design, derivatives included)', str(prob%n_analyses))
-    call out%cost('analyses for derivatives (forward differences)', str(opt%iterations*size(prob%var)))
+    call out%cost('analyses for derivatives (forward differences)', str(opt%fd_analyses))
     call out%cost('failed analyses', str(prob%n_failed))
     call out%cost('cpu_seconds_per_analysis', str(prob%cpu_analyses/max(1, prob%n_analyses), 4))
     call out%cost('cpu_seconds_analyses', str(prob%cpu_analyses, 4))

@@ -5,7 +5,8 @@
 module mechanism_report
   use strings, only: str
   use table_output, only: table_t
-  use linkage, only: mechanism_t, mechanism_summary, joint_pin, joint_slider_fixed, joint_free, joint_slider_link
+  use linkage, only: mechanism_t, joint_pin, joint_slider_fixed, joint_free, joint_slider_link
+  use linkage_report, only: mechanism_summary
   implicit none
   private
   public :: write_mechanism_header, joint_moves, joint_carrier, response_column_names, response_columns_text

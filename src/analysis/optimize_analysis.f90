@@ -78,10 +78,9 @@ contains
     type(gauss_optimizer_t) :: opt
     type(error_t) :: run_err
     logical :: found
-    integer :: n, n_given, u
+    integer :: n, n_given
     real(dp), allocatable :: start(:)
     real(dp) :: cpu0, cpu1
-    character(len=:), allocatable :: names
 
     call set_defaults()
     call deck%read_group('optimize', read_optimize, .true., found, err)
@@ -92,8 +91,55 @@ contains
     potter_fix = lower(potter_fix)
     step_back = lower(step_back)
     singular_g = lower(singular_g)
-    ! a problem posed by coefficients in the deck; the user's problems (make
-    ! PROBLEM=...); then the library
+    call select_problem(deck, prob, info, err)
+    if (err%failed()) return
+    n = prob%n
+    call check_settings(deck, n, n_given, err)
+    if (err%failed()) return
+    if (n_given == 0) then
+      start = info%x0
+      x0(1:n) = start
+    else
+      start = x0(1:n)
+    end if
+    call echo_optimize(out, start)
+
+    call out%comment('problem: '//trim(problem)//': '//info%title)
+    call out%comment('source: '//info%source)
+    call out%comment('variables: '//str(n)//'; objective: '//objective_text(prob)//'; constraints: ' &
+                     //constraint_text(prob))
+    call set_options(opt)
+    call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
+                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|)')
+
+    call cpu_time(cpu0)
+    call opt%solve(prob, start, run_err)
+    call cpu_time(cpu1)
+    if (run_err%failed() .and. run_err%code == input_error_code) then
+      err = run_err
+      call err%add_context('deck '''//deck%path//''', group &optimize, x0')
+      return
+    end if
+
+    call write_table(out, opt, prob)
+    call write_summary(out, opt, prob, info)
+    call write_cost(out, opt, prob, cpu1 - cpu0)
+    if (allocated(opt%final_events)) then
+      if (len(opt%final_events) > 0) call out%comment('final test: '//opt%final_events)
+    end if
+    if (run_err%failed()) err = run_err
+  end subroutine run_optimize
+
+  !> The problem named in the deck: one posed by coefficients in the deck; the
+  !> user's problems (make PROBLEM=...); the Hock-Schittkowski collection; then
+  !> the library.  An unknown name is an input error listing the choices.
+  subroutine select_problem(deck, prob, info, err)
+    type(deck_t), intent(inout) :: deck
+    class(opt_problem_t), allocatable, intent(out) :: prob
+    type(problem_info_t), intent(out) :: info
+    type(error_t), intent(inout) :: err
+    logical :: found
+    character(len=:), allocatable :: names
     found = .false.
     if (problem == 'deck') then
       call read_deck_problem(deck, prob, info, err)
@@ -111,9 +157,16 @@ contains
               ', ''hsN'' for the Hock-Schittkowski collection (N = '//collection_text()//')'
       call invalid_value(deck, 'optimize', 'problem', ''''//trim(problem)//'''', 'must be one of '//names// &
                          ' (or a problem of your own: make PROBLEM=file.f90, doc/optimization.md)', err)
-      return
     end if
-    n = prob%n
+  end subroutine select_problem
+
+  !> Check the method, its options and x0 (all of x0(1:n) given, or none).
+  subroutine check_settings(deck, n, n_given, err)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: n
+    integer, intent(out) :: n_given
+    type(error_t), intent(inout) :: err
+    n_given = 0
     if (method == 'gnlc.ns') method = 'gnlc_ns'
     call check_choice(deck, 'optimize', 'method', method, method_list, err)
     call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
@@ -144,15 +197,13 @@ contains
                     why='a reciprocal condition number')
     call check_real(deck, 'optimize', 'regularization', regularization, err, at_least=0.0_dp, at_most=1.0_dp, &
                     why='mu = regularization max G_ii; above 1 mu I would swamp G and the step become a gradient step')
-    if (err%failed()) return
-    if (n_given == 0) then
-      start = info%x0
-      x0(1:n) = start
-    else
-      start = x0(1:n)
-    end if
+  end subroutine check_settings
 
-    ! echo the effective input (x0 only as far as the problem uses it)
+  !> Echo the effective input (x0 only as far as the problem uses it).
+  subroutine echo_optimize(out, start)
+    type(table_t), intent(inout) :: out
+    real(dp), intent(in) :: start(:)
+    integer :: u
     u = out%echo_unit()
     write(u, '(a)') '&optimize'
     write(u, '(a)') ' problem = '''//trim(problem)//''', method = '''//trim(method)//''', hessian = ''' &
@@ -165,11 +216,10 @@ contains
                     //str(regularization)//', singular_g = '''//trim(singular_g)//''''
     write(u, '(a)') '/'
     call out%end_echo()
+  end subroutine echo_optimize
 
-    call out%comment('problem: '//trim(problem)//': '//info%title)
-    call out%comment('source: '//info%source)
-    call out%comment('variables: '//str(n)//'; objective: '//objective_text(prob)//'; constraints: ' &
-                     //constraint_text(prob))
+  subroutine set_options(opt)
+    type(gauss_optimizer_t), intent(inout) :: opt
     opt%opts%method = method_from_name(method)
     opt%opts%hessian = hessian_from_name(hessian)
     opt%opts%max_iter = max_iter
@@ -183,21 +233,14 @@ contains
     opt%opts%newton_max_iter = newton_max_iter
     opt%opts%potter_repeat = potter_fix == 'repeat'
     opt%opts%step_back_refine = step_back == 'farthest'
-    call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
-                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|)')
+  end subroutine set_options
 
-    call cpu_time(cpu0)
-    call opt%solve(prob, start, run_err)
-    call cpu_time(cpu1)
-    if (run_err%failed() .and. run_err%code == input_error_code) then
-      err = run_err
-      call err%add_context('deck '''//deck%path//''', group &optimize, x0')
-      return
-    end if
-
-    call write_table(out, opt, prob)
-
-    ! ---- summary
+  !> Status, the optimum found (or the best feasible iterate) and the known optimum.
+  subroutine write_summary(out, opt, prob, info)
+    type(table_t), intent(inout) :: out
+    type(gauss_optimizer_t), intent(in) :: opt
+    class(opt_problem_t), intent(in) :: prob
+    type(problem_info_t), intent(in) :: info
     if (opt%status == status_converged) then
       call out%summary('status', 'converged')
     else if (opt%status == status_max_iter) then
@@ -236,8 +279,14 @@ contains
       call out%summary('|x - x*|_inf', str(maxval(abs(opt%x - info%x_star)), 4))
       call out%summary('|F - F*|', str(abs(opt%f - info%f_star), 4))
     end if
+  end subroutine write_summary
 
-    ! ---- cost
+  !> The cost footer: iterations, analyses and every kind of evaluation.
+  subroutine write_cost(out, opt, prob, cpu_seconds)
+    type(table_t), intent(inout) :: out
+    type(gauss_optimizer_t), intent(in) :: opt
+    class(opt_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: cpu_seconds
     call out%cost('iterations NI', str(opt%iterations))
     call out%cost('analyses NF (objective evaluations)', str(prob%count%analyses))
     call out%cost('gradient evaluations', str(prob%count%gradients))
@@ -255,12 +304,8 @@ contains
     call out%cost('drops / additions / releases', str(opt%drops)//' / '//str(opt%additions)//' / '//str(opt%releases))
     call out%cost('step-backs / Potter repeats', str(opt%step_backs)//' / '//str(opt%potter_repeats))
     call out%cost('regularizations of G', str(opt%regularizations))
-    call out%cost('optimizer_cpu_seconds', str(cpu1 - cpu0, 4))
-    if (allocated(opt%final_events)) then
-      if (len(opt%final_events) > 0) call out%comment('final test: '//opt%final_events)
-    end if
-    if (run_err%failed()) err = run_err
-  end subroutine run_optimize
+    call out%cost('optimizer_cpu_seconds', str(cpu_seconds, 4))
+  end subroutine write_cost
 
   !> 'hsN' for a problem of the Hock-Schittkowski collection (not those the
   !> library poses itself): standard start and published optimum.

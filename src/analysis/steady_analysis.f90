@@ -14,7 +14,8 @@ module steady_analysis
   use table_output, only: table_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
-  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, profile_constant
+  use linkage, only: mechanism_t, profile_constant
+  use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use tennant_element, only: tennant_stress_t
   use steady_model, only: steady_model_t
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings
@@ -46,26 +47,9 @@ contains
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_steady_settings(deck, mech%n_links, s, err)
-    call check_section_rules(deck, mech, s%element%d_k > 0.0_dp, s%element%shear, err)
+    call check_steady_input(deck, mech, s, err)
     if (err%failed()) return
-    do k = 1, mech%n_links
-      if (s%sections(k)%n > 0 .and. mech%links(k)%section /= 'rectangle') then
-        call invalid_value(deck, 'tennant', 'n_sections('//str(k)//')', str(s%sections(k)%n), 'tapered sections '// &
-                           'are rectangles b x h; link '//str(k)//' has a '//trim(mech%links(k)%section)//' section', err)
-        return
-      end if
-    end do
     omega = mech%driver%omega
-    if (.not. omega > 0.0_dp) then
-      call invalid_value(deck, 'mechanism', 'omega', str(omega), &
-                         'a steady-state analysis needs a crank turning at constant speed > 0', err)
-      return
-    end if
-    if (mech%driver%profile /= profile_constant) then
-      call invalid_value(deck, 'mechanism', 'profile', '''spinup''', &
-                         'a steady-state analysis needs the constant crank speed profile', err)
-      return
-    end if
     block
       integer :: u
       u = out%echo_unit()
@@ -196,6 +180,33 @@ contains
       end do
     end subroutine fill
   end subroutine run_steady
+
+  !> What the steady-state analysis needs of the mechanism and of &tennant:
+  !> rectangular links where the material, shear or tapered sections need
+  !> them, and a crank turning at a constant speed > 0.
+  subroutine check_steady_input(deck, mech, s, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(steady_settings_t), intent(in) :: s
+    type(error_t), intent(inout) :: err
+    integer :: k
+    call check_section_rules(deck, mech, s%element%d_k > 0.0_dp, s%element%shear, err)
+    if (err%failed()) return
+    do k = 1, mech%n_links
+      if (s%sections(k)%n > 0 .and. mech%links(k)%section /= 'rectangle') then
+        call invalid_value(deck, 'tennant', 'n_sections('//str(k)//')', str(s%sections(k)%n), 'tapered sections '// &
+                           'are rectangles b x h; link '//str(k)//' has a '//trim(mech%links(k)%section)//' section', err)
+        return
+      end if
+    end do
+    if (.not. mech%driver%omega > 0.0_dp) then
+      call invalid_value(deck, 'mechanism', 'omega', str(mech%driver%omega), &
+                         'a steady-state analysis needs a crank turning at constant speed > 0', err)
+    else if (mech%driver%profile /= profile_constant) then
+      call invalid_value(deck, 'mechanism', 'profile', '''spinup''', &
+                         'a steady-state analysis needs the constant crank speed profile', err)
+    end if
+  end subroutine check_steady_input
 
   ! ------------------------------------------------------------------ header
 

@@ -15,18 +15,20 @@ module transient_analysis
                           mf_bdf_full_fd
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
-  use linkage, only: mechanism_t, read_mechanism, check_section_rules, echo_mechanism, driver_angle
+  use linkage, only: mechanism_t, driver_angle
+  use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use kear_element, only: stress_report_t, effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
-  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, &
+    check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
   use joint_reactions, only: joint_reactions_t
   use revolution_peaks, only: revolution_peaks_t
   use linkage, only: joint_clamp
   use clearance_run, only: clearance_monitor_t
-  use restart_file, only: write_restart_file, read_restart_file
+  use restart_file, only: write_restart_file, start_from_restart
   implicit none
   private
   public :: run_transient
@@ -121,6 +123,8 @@ contains
     end block
     call setup_responses(deck, mech, s, resp, err)
     if (err%failed()) return
+    if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
+    if (err%failed()) return
     if (s%stop_when_periodic > 0.0_dp .and. .not. mech%driver%omega > 0.0_dp) then
       call invalid_value(deck, 'transient', 'stop_when_periodic', str(s%stop_when_periodic), &
                          'needs a turning crank (omega > 0): periodicity is judged per revolution', err)
@@ -150,22 +154,14 @@ contains
     y = 0.0_dp
     select case (trim(s%initial))
     case ('mode')
-      if (s%mode_number > model%n) then
-        call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
-                           'the model has only '//str(model%n)//' modes', err)
-        return
-      end if
+      call check_mode_number(deck, s, model%n, err)
+      if (err%failed()) return
       y(1::2) = s%mode_amplitude*shapes(:, s%mode_number)/max_transverse(model, shapes(:, s%mode_number))
       call out%comment('initial state: mode '//str(s%mode_number)//' scaled to a largest transverse '// &
                        'displacement of '//str(s%mode_amplitude)//', at rest')
     case ('restart')
-      call read_restart_file(s%restart_in, t0, y, err)
-      if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
-        return
-      end if
-      call out%comment('initial state: restart file '//trim(s%restart_in)//' at t = '//str(t0))
+      call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
+      if (err%failed()) return
     case default
       call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
     end select
@@ -355,7 +351,7 @@ contains
       end do
       do i = 1, mech%n_links
         ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%table%gather(ee, q), model%rb(ee)%phi, &
+        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%element_q(ee, q), model%rb(ee)%phi, &
                                                      1.0_dp)
         kk = kk + 2
       end do
@@ -529,6 +525,31 @@ contains
     end do
   end subroutine setup_responses
 
+  !> The outputs and loads that read an element as Kear's of fixed length
+  !> are not built for a link sliding through a sleeve (doc/transient.md).
+  subroutine refuse_on_sliding_links(deck, model, resp, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_model_t), intent(in) :: model
+    type(responses_t), intent(in) :: resp
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: why = 'is not built for a link sliding through a sleeve (slider_link; doc/transient.md)'
+    integer :: k
+    if (resp%sections) then
+      call invalid_value(deck, 'transient', 'stress_columns', '''all''', why, err)
+    else if (resp%reactions) then
+      call invalid_value(deck, 'transient', 'reactions', 'T', why, err)
+    else if (size(resp%points) > 0) then
+      call invalid_value(deck, 'transient', 'link_points', 'T', why, err)
+    end if
+    if (err%failed()) return
+    do k = 1, size(model%loads)
+      if (model%table%is_sleeve_element(model%loads(k)%element)) then
+        call invalid_value(deck, 'loads', 'load_link', 'a sliding link', 'a point load '//why, err)
+        return
+      end if
+    end do
+  end subroutine refuse_on_sliding_links
+
   !> '<link>_s<position>', the position with at most 4 decimals, no trailing zeros.
   function point_label(mech, p) result(label)
     type(mechanism_t), intent(in) :: mech
@@ -691,7 +712,7 @@ contains
     wmax = 0.0_dp
     do e = 1, size(model%el)
       do i = 0, 10
-        uw = beam_local_displacement(model%el(e), model%table%gather(e, q), model%rb(e)%phi, i/10.0_dp)
+        uw = beam_local_displacement(model%el(e), model%element_q(e, q), model%rb(e)%phi, i/10.0_dp)
         wmax = max(wmax, abs(uw(2)))
       end do
     end do

@@ -13,7 +13,7 @@ module transient_settings
   use fast_format, only: min_digits, max_digits
   implicit none
   private
-  public :: transient_settings_t, read_transient_settings, echo_transient_settings, max_points
+  public :: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, check_mode_number
 
   integer, parameter :: max_points = 20          !< link points a deck can name
 
@@ -231,4 +231,15 @@ contains
     character(len=*), intent(inout) :: iomsg
     read(unit, nml=effects, iostat=ios, iomsg=iomsg)
   end subroutine read_effects_group
+
+  !> initial = 'mode': mode_number must be a mode of the model (known only once
+  !> the model is built; the range check of the deck is in the settings above).
+  subroutine check_mode_number(deck, s, n_modes, err)
+    type(deck_t), intent(in) :: deck
+    type(transient_settings_t), intent(in) :: s
+    integer, intent(in) :: n_modes
+    type(error_t), intent(inout) :: err
+    if (s%mode_number > n_modes) call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
+                                                    'the model has only '//str(n_modes)//' modes', err)
+  end subroutine check_mode_number
 end module transient_settings

@@ -6,7 +6,7 @@ module deck_batch
   use, intrinsic :: iso_fortran_env, only: output_unit
   use version, only: program_name
   use command_line, only: default_output
-  use strings, only: shell_quote
+  use strings, only: shell_quote, str
   use process_runner, only: flexmech_command
   use job_pool, only: pool_start, pool_stop, pool_is_root, pool_run
   use sweep_run, only: status_meaning
@@ -33,15 +33,15 @@ contains
     call pool_run(commands, statuses, 'batch decks')
     exit_status = 0
     if (pool_is_root()) then
-      write(output_unit, '(a)') program_name//': batch of '//itoa(size(decks))//' decks:'
+      write(output_unit, '(a)') program_name//': batch of '//str(size(decks))//' decks:'
       write(output_unit, '(a)') '   exit  meaning                deck -> output'
       do k = 1, size(decks)
         meaning = status_meaning(statuses(k))
         write(output_unit, '(i7,2x,a22,1x,a)') statuses(k), meaning, &
           trim(decks(k))//' -> '//default_output(trim(decks(k)))
       end do
-      write(output_unit, '(a)') program_name//': '//itoa(count(statuses == 0))//' succeeded, '// &
-        itoa(count(statuses /= 0))//' failed'
+      write(output_unit, '(a)') program_name//': '//str(count(statuses == 0))//' succeeded, '// &
+        str(count(statuses /= 0))//' failed'
       if (any(statuses /= 0)) exit_status = 3
     end if
     call pool_stop()
@@ -61,12 +61,4 @@ contains
     if (pool_is_root()) exit_status = max(0, statuses(1))
     call pool_stop()
   end subroutine run_single_deck
-
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module deck_batch

@@ -7,6 +7,7 @@ module point_deck
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
+  use strings, only: str
   implicit none
   private
   public :: write_point_deck, value_text, assignment_text
@@ -63,7 +64,7 @@ contains
     if (ios /= 0) return
     read(variable(c + 1:len_trim(variable) - 1), *, iostat=ios) b
     if (ios /= 0 .or. b < a) return
-    s = trim(variable)//' = '//int_text(b - a + 1)//'*'//value_text(value)
+    s = trim(variable)//' = '//str(b - a + 1)//'*'//value_text(value)
   end function assignment_text
 
   !> An integral value as an integer (readable by integer and real variables),
@@ -76,25 +77,17 @@ contains
     real(dp) :: back
     integer :: digits, ios
     if (abs(value) < 1.0e9_dp .and. abs(aint(value) - value) <= 0.0_dp) then
-      s = int_text(nint(value))
+      s = str(nint(value))
       return
     end if
     do digits = merge(17, 15, abs(value) > 1.0e307_dp), 17
       ! (near huge() a shorter text rounds up past it: reading it back overflows)
-      write(buf, '(es32.'//int_text(digits - 1)//'e3)') value
+      write(buf, '(es32.'//str(digits - 1)//'e3)') value
       read(buf, *, iostat=ios) back
       if (ios == 0 .and. abs(back - value) <= 0.0_dp) exit
     end do
     s = trim(adjustl(buf))
   end function value_text
-
-  pure function int_text(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function int_text
 
   !> Column of the '/' ending a group on this line (outside quotes and
   !> comments); on the group's first line the '&name' is skipped.

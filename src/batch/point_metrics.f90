@@ -7,7 +7,7 @@
 module point_metrics
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: lower, starts_with
+  use strings, only: lower, starts_with, str
   use run_output, only: run_output_t, read_run_output
   implicit none
   private
@@ -61,7 +61,7 @@ contains
       call append_metric(metrics, name, x(1))
     else
       do k = 1, n
-        call append_metric(metrics, name//'_'//int_text(k), x(k))
+        call append_metric(metrics, name//'_'//str(k), x(k))
       end do
     end if
   end subroutine add_values
@@ -137,12 +137,4 @@ contains
       end if
     end do
   end function metric_name
-
-  pure function int_text(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function int_text
 end module point_metrics

@@ -73,8 +73,10 @@ module design_problem
     logical :: ok = .false.
     character(len=:), allocatable :: reason     !< why the analysis failed
     real(dp) :: mass = 0.0_dp
-    real(dp), allocatable :: link_stress(:)     !< peak |stress| over the revolution, per link
-    real(dp) :: lowest_frequency = 0.0_dp       !< lowest frozen natural frequency over the revolution
+    real(dp), allocatable :: link_stress(:)     !< peak |stress| over the revolution, per link (largest over the speeds)
+    real(dp) :: lowest_frequency = 0.0_dp       !< lowest frozen natural frequency over the revolution (and the speeds)
+    real(dp), allocatable :: stress_at(:, :)    !< (link, speed) peak |stress| at each operating speed
+    real(dp), allocatable :: frequency_at(:)    !< (speed) lowest frozen natural frequency at each speed
     real(dp), allocatable :: residual(:)        !< coupler point - target, (x, y) per target point, elastic included
     real(dp), allocatable :: rigid_residual(:)  !< the same for the rigid-body coupler point
     real(dp) :: path_error = 0.0_dp             !< sum of residual^2 (B's F, with the deformation)
@@ -96,7 +98,9 @@ module design_problem
     real(dp) :: stress_allowable = 0.0_dp         !< 0: no stress constraints
     real(dp) :: frequency_factor = 0.0_dp         !< 0: no frequency constraint
     real(dp) :: mass0 = 1.0_dp                    !< mass of the initial design
-    character(len=32) :: objective_kind = 'mass'  !< 'mass', 'path' (elastic path error), 'path_rigid' or 'shaking'
+    !> 'mass', 'path' (elastic path error), 'path_rigid', 'shaking' (mean
+    !> square shaking force) or 'shaking_peak' (its peak: minimax)
+    character(len=32) :: objective_kind = 'mass'
     real(dp) :: f0 = 1.0_dp                       !< objective of the initial design (the objective's scale)
     ! ---- the coupler point (path objectives): on a rigid arm clamped to
     !      link path_link at its end 1, at distance path_r and angle
@@ -105,14 +109,21 @@ module design_problem
     integer :: path_link = 0
     real(dp) :: path_r = 0.0_dp, path_angle = 0.0_dp
     real(dp), allocatable :: path_x(:), path_y(:), path_dgamma(:)
-    integer :: n_stress = 0, i_frequency = 0      !< constraint numbering (stress 1..n_stress, then frequency)
+    !> operating speeds (rad/s): every constraint holds at each; the
+    !> objective's analysis results are summed over them (objective_speed =
+    !> 0) or taken at speeds(objective_speed).  Default: the deck's omega.
+    real(dp), allocatable :: speeds(:)
+    integer :: objective_speed = 0
+    !> constraint numbering: stress of link l at speed s is l + (s - 1)
+    !> n_links (1..n_stress), then the frequency at each speed from i_frequency
+    integer :: n_stress = 0, i_frequency = 0
     ! ---- bookkeeping
     integer :: n_analyses = 0, n_failed = 0
     real(dp) :: cpu_analyses = 0.0_dp
     real(dp), allocatable :: cache_x(:, :)        !< designs analysed lately (ring of cache_size)
     type(design_eval_t), allocatable :: cache(:)
     integer :: cache_used = 0, cache_next = 1
-    real(dp), allocatable :: y_warm(:)            !< last periodic state (shooting start)
+    real(dp), allocatable :: y_warm(:, :)         !< last periodic state at each speed (shooting start)
     character(len=:), allocatable :: last_failure
   contains
     procedure :: setup
@@ -120,6 +131,8 @@ module design_problem
     procedure :: mechanism_at
     procedure :: point_at
     procedure :: is_path
+    procedure :: is_shaking
+    procedure :: is_minimax
     procedure :: has_residuals
     procedure :: n_residuals_design
     procedure :: evaluate
@@ -206,8 +219,10 @@ contains
     integer :: n, i
     type(design_eval_t) :: ev
     n = size(self%var)
+    if (.not. allocated(self%speeds)) self%speeds = [self%base%omega]
+    if (size(self%speeds) == 0) self%speeds = [self%base%omega]
     self%n_stress = 0
-    if (self%stress_allowable > 0.0_dp) self%n_stress = self%base%n_links
+    if (self%stress_allowable > 0.0_dp) self%n_stress = self%base%n_links*size(self%speeds)
     self%i_frequency = 0
     if (self%frequency_factor > 0.0_dp) self%i_frequency = self%n_stress + 1
     call self%init_problem(name, n, 0, self%n_analysis_constraints())
@@ -240,19 +255,35 @@ contains
     is_path = self%objective_kind == 'path' .or. self%objective_kind == 'path_rigid'
   end function is_path
 
-  !> The objective is a sum of squares of analysis results (Gauss-Newton).
+  !> The objective is the shaking force, its mean square or its peak.
+  logical pure function is_shaking(self)
+    class(design_problem_t), intent(in) :: self
+    is_shaking = self%objective_kind == 'shaking' .or. self%objective_kind == 'shaking_peak'
+  end function is_shaking
+
+  !> The objective is the largest of the analysis results the residuals
+  !> hold (|shaking force| at each sample): min t subject to r_k <= t.
+  logical pure function is_minimax(self)
+    class(design_problem_t), intent(in) :: self
+    is_minimax = self%objective_kind == 'shaking_peak'
+  end function is_minimax
+
+  !> The objective is made of analysis results r (the residuals): their sum
+  !> of squares (Gauss-Newton) or, minimax, their largest.
   logical pure function has_residuals(self)
     class(design_problem_t), intent(in) :: self
     has_residuals = self%objective_kind /= 'mass'
   end function has_residuals
 
   !> Residuals of the objective: 2 per target point (path), 2 per sample
-  !> (shaking force components / sqrt(samples)); none for the mass.
+  !> (shaking force components / sqrt(samples)), 1 per sample (minimax:
+  !> |shaking force|); none for the mass.
   integer pure function n_residuals_design(self)
     class(design_problem_t), intent(in) :: self
     n_residuals_design = 0
     if (self%is_path()) n_residuals_design = 2*size(self%path_x)
     if (self%objective_kind == 'shaking') n_residuals_design = 2*self%samples
+    if (self%objective_kind == 'shaking_peak') n_residuals_design = self%samples
   end function n_residuals_design
 
   !> The coupler point's (distance, angle in rad) at design x (clamped).
@@ -276,7 +307,7 @@ contains
 
   integer pure function n_analysis_constraints(self)
     class(design_problem_t), intent(in) :: self
-    n_analysis_constraints = self%n_stress + merge(1, 0, self%i_frequency > 0)
+    n_analysis_constraints = self%n_stress + merge(size(self%speeds), 0, self%i_frequency > 0)
   end function n_analysis_constraints
 
   !> The mechanism input with the design x put in; clamped: each value
@@ -349,6 +380,8 @@ contains
       f = ev%rigid_path_error
     case ('shaking')
       f = ev%rms_shaking**2
+    case ('shaking_peak')
+      f = ev%peak_shaking
     case ('path')
       f = ev%path_error
     case default
@@ -373,7 +406,8 @@ contains
     call analyse_design(self, self%mechanism_at(x, .true.), x, ev)
     call cpu_time(cpu1)
     ev%cpu_seconds = cpu1 - cpu0
-    self%n_analyses = self%n_analyses + 1
+    ! one mechanism analysis per operating speed
+    self%n_analyses = self%n_analyses + size(self%speeds)
     self%cpu_analyses = self%cpu_analyses + ev%cpu_seconds
     if (.not. ev%ok) then
       self%n_failed = self%n_failed + 1
@@ -385,12 +419,59 @@ contains
     self%cache_next = modulo(self%cache_next, cache_size) + 1
   end subroutine evaluate
 
-  !> One steady-state analysis: build, periodic response, stresses and frozen
-  !> frequencies at `samples` crank angles.
+  !> The analyses of one design at every operating speed: the stresses and
+  !> frequencies at each kept apart (each speed has its constraints), the
+  !> objective's results joined over the objective's speeds (residuals one
+  !> after another: sums of squares add; a mean square is averaged over the
+  !> speeds; a peak is the largest).
   subroutine analyse_design(self, inp, x_design, ev)
     class(design_problem_t), intent(inout) :: self
     type(mechanism_input_t), intent(in) :: inp
     real(dp), intent(in) :: x_design(:)
+    type(design_eval_t), intent(out) :: ev
+    type(design_eval_t) :: one
+    type(mechanism_input_t) :: at_speed
+    integer :: s, ns, n_objective
+    real(dp) :: mean_square
+    ns = size(self%speeds)
+    allocate(ev%stress_at(inp%n_links, ns), ev%frequency_at(ns), ev%residual(0), ev%rigid_residual(0))
+    n_objective = 0
+    mean_square = 0.0_dp
+    do s = 1, ns
+      at_speed = inp
+      at_speed%omega = self%speeds(s)
+      call analyse_speed(self, at_speed, x_design, s, one)
+      if (.not. one%ok) then
+        ev = one
+        if (ns > 1) ev%reason = 'at '//str(self%speeds(s), 6)//' rad/s: '//one%reason
+        return
+      end if
+      ev%stress_at(:, s) = one%link_stress
+      ev%frequency_at(s) = one%lowest_frequency
+      if (self%objective_speed /= 0 .and. self%objective_speed /= s) cycle
+      n_objective = n_objective + 1
+      if (allocated(one%residual)) ev%residual = [ev%residual, one%residual]
+      if (allocated(one%rigid_residual)) ev%rigid_residual = [ev%rigid_residual, one%rigid_residual]
+      ev%path_error = ev%path_error + one%path_error
+      ev%rigid_path_error = ev%rigid_path_error + one%rigid_path_error
+      ev%peak_shaking = max(ev%peak_shaking, one%peak_shaking)
+      mean_square = mean_square + one%rms_shaking**2
+    end do
+    ev%ok = .true.
+    ev%mass = one%mass
+    ev%link_stress = maxval(ev%stress_at, dim=2)
+    ev%lowest_frequency = minval(ev%frequency_at)
+    ev%rms_shaking = sqrt(mean_square/max(n_objective, 1))
+    if (self%objective_kind == 'shaking') ev%residual = ev%residual/sqrt(real(max(n_objective, 1), dp))
+  end subroutine analyse_design
+
+  !> One steady-state analysis at one speed (s of self%speeds): build,
+  !> periodic response, stresses and frozen frequencies at `samples` crank angles.
+  subroutine analyse_speed(self, inp, x_design, s, ev)
+    class(design_problem_t), intent(inout) :: self
+    type(mechanism_input_t), intent(in) :: inp
+    real(dp), intent(in) :: x_design(:)
+    integer, intent(in) :: s
     type(design_eval_t), intent(out) :: ev
     type(mechanism_t) :: mech
     type(steady_model_t), target :: model
@@ -426,12 +507,17 @@ contains
       allocate(qd(model%n, nt), y0(2*model%n))
       y0 = 0.0_dp
       if (allocated(self%y_warm)) then
-        if (size(self%y_warm) == size(y0)) y0 = self%y_warm
+        if (size(self%y_warm, 1) /= size(y0)) deallocate(self%y_warm)
       end if
+      if (.not. allocated(self%y_warm)) then
+        allocate(self%y_warm(size(y0), size(self%speeds)))
+        self%y_warm = 0.0_dp
+      end if
+      y0 = self%y_warm(:, s)
       call shooting_solve(model, self%shooting, y0, srep, err)
       if (.not. err%failed()) call shooting_diagnosis(self%shooting, srep, model%omega, .false., err)
       if (.not. err%failed()) call periodic_orbit(model, self%shooting, y0, times, q, qd, srep, err)
-      if (.not. err%failed()) self%y_warm = y0
+      if (.not. err%failed()) self%y_warm(:, s) = y0
     end if
     if (err%failed()) then
       ev%reason = err%text()
@@ -456,7 +542,7 @@ contains
       ev%path_error = sum(ev%residual**2)
       ev%rigid_path_error = sum(ev%rigid_residual**2)
     end if
-    shaking = self%objective_kind == 'shaking'
+    shaking = self%is_shaking()
     if (shaking) allocate(shake(2, self%samples), moment(2, self%samples))
     do k = 1, self%samples
       call model%set_time(times(at_sample(k)), err)
@@ -481,9 +567,13 @@ contains
       ! the deformation's share by trigonometric interpolation of its first
       ! moment over the revolution (module shaking_force)
       shake = shake + periodic_second_derivative(moment, model%period())
-      ev%residual = reshape(shake, [2*self%samples])/sqrt(real(self%samples, dp))
-      ev%rms_shaking = sqrt(sum(ev%residual**2))
+      ev%rms_shaking = sqrt(sum(shake**2)/self%samples)
       ev%peak_shaking = maxval(hypot(shake(1, :), shake(2, :)))
+      if (self%is_minimax()) then
+        ev%residual = hypot(shake(1, :), shake(2, :))
+      else
+        ev%residual = reshape(shake, [2*self%samples])/sqrt(real(self%samples, dp))
+      end if
     end if
     ev%ok = ieee_is_finite(ev%mass) .and. all(ieee_is_finite(ev%link_stress)) .and. &
             ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
@@ -530,7 +620,7 @@ contains
         end if
       end do
     end subroutine merged_times
-  end subroutine analyse_design
+  end subroutine analyse_speed
 
   !> The coupler point of a design: on a rigid, massless arm clamped to the
   !> link whose first element is e, at its end 1, at distance r and angle a
@@ -593,9 +683,10 @@ contains
     if (.not. ev%ok) then
       g = ieee_value(g, ieee_quiet_nan)
     else if (i <= self%n_stress) then
-      g = log(max(ev%link_stress(i), tiny(1.0_dp))/self%stress_allowable)
+      g = log(max(ev%stress_at(modulo(i - 1, self%base%n_links) + 1, (i - 1)/self%base%n_links + 1), &
+                  tiny(1.0_dp))/self%stress_allowable)
     else
-      g = log(self%frequency_factor*abs(self%base%omega)/ev%lowest_frequency)
+      g = log(self%frequency_factor*abs(self%speeds(i - self%n_stress))/ev%frequency_at(i - self%n_stress))
     end if
   end subroutine design_constraint
 end module design_problem

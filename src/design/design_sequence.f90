@@ -21,6 +21,10 @@
 !> It stops when the design is feasible and rho |x_try - x_k| (the Lagrangian
 !> gradient of the linearised problem at x_k) is below xtol/move_limit.  Every analysis is counted
 !> (design_problem).
+!> Residual objectives (path, mean-square shaking) pose Gauss-Newton
+!> approximate problems, with hessian = 'structured' a secant estimate of the
+!> residuals' second-order term added; the minimax objective (peak shaking)
+!> poses min tau subject to the linearised samples <= tau (doc/design.md).
 module design_sequence
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
@@ -29,6 +33,7 @@ module design_sequence
   use optim_problem, only: opt_problem_t
   use gauss_optimizer, only: gauss_optimizer_t, method_gnlc_ns
   use design_problem, only: design_problem_t, design_eval_t
+  use linalg, only: sym_generalized_eig
   use progress, only: progress_t
   implicit none
   private
@@ -46,13 +51,32 @@ module design_sequence
   !> The approximate problem of a path objective: Gauss-Newton residuals
   !> (r_k + J_k^T (x - x_k))/sqrt(F0) and the proximal residuals
   !> sqrt(rho/2) (x - x_k), all linear (the Gauss matrix is exact).
+  !> With hessian = 'structured' the model is the quadratic
+  !> F_k + grad^T s + s^T B s / 2, B = V diag(lambda) V^T, as n linear residuals
+  !> (sqrt(lambda) V^T s + V^T grad / sqrt(lambda)) / sqrt(2) (lmat = V
+  !> diag(sqrt(lambda)), w = V^T grad / sqrt(lambda)): the same least-squares
+  !> form, its Gauss matrix exact.
   type, extends(opt_problem_t) :: approximate_path_t
     real(dp), allocatable :: center(:), r(:), jac(:, :)   !< x_k, r_k, J_k (n x p)
+    real(dp), allocatable :: lmat(:, :), w(:)             !< the quadratic model (structured)
     real(dp) :: rho = 1.0_dp, f0 = 1.0_dp
   contains
     procedure :: residuals => approximate_residuals
     procedure :: jacobian => approximate_jacobian
   end type approximate_path_t
+
+  !> The approximate problem of a minimax objective (the peak shaking
+  !> force) in y = (x, tau): every linearised r_k(x)/F0 at most tau, tau >= 0;
+  !> the objective tau + rho/2 |y - y_k|^2 written, up to a constant, as the
+  !> linear residuals sqrt(rho/2) (x - x_k) and sqrt(rho/2) (tau - tau_k +
+  !> 1/rho) (the Gauss matrix exact).
+  type, extends(opt_problem_t) :: approximate_minimax_t
+    real(dp), allocatable :: center(:)      !< (x_k, tau_k)
+    real(dp) :: rho = 1.0_dp
+  contains
+    procedure :: residuals => minimax_residuals
+    procedure :: jacobian => minimax_jacobian
+  end type approximate_minimax_t
 
   !> One accepted design (a row of the history).
   type :: design_step_t
@@ -74,6 +98,12 @@ module design_sequence
     real(dp) :: xtol = 1.0e-3_dp            !< step test on x (log sizes: relative)
     real(dp) :: feas_tol = 1.0e-3_dp        !< constraint test (log ratios: relative)
     real(dp) :: move_limit = 0.3_dp         !< initial rho = 1/move_limit
+    !> residual objectives: 'gauss' (the Gauss-Newton matrix 2 J J^T / F0) or
+    !> 'structured' (plus a secant estimate S of the residuals' second-order
+    !> term, Dennis-Gay-Welsch, and the move limit set by the ratio of the
+    !> actual to the predicted decrease)
+    character(len=16) :: hessian = 'gauss'
+    integer :: fd_analyses = 0              !< analyses spent on finite differences
     logical :: converged = .false.
     character(len=:), allocatable :: message
     integer :: iterations = 0
@@ -103,8 +133,13 @@ contains
     type(error_t), intent(inout) :: err
     integer :: p
     if (err%failed()) return
-    p = size(self%r)
-    phi(1:p) = (self%r + matmul(x - self%center, self%jac))/sqrt(self%f0)
+    if (allocated(self%lmat)) then
+      p = size(self%w)
+      phi(1:p) = (matmul(x - self%center, self%lmat) + self%w)/sqrt(2.0_dp)
+    else
+      p = size(self%r)
+      phi(1:p) = (self%r + matmul(x - self%center, self%jac))/sqrt(self%f0)
+    end if
     phi(p + 1:) = sqrt(0.5_dp*self%rho)*(x - self%center)
   end subroutine approximate_residuals
 
@@ -116,13 +151,44 @@ contains
     integer :: p, j
     if (err%failed()) return
     if (.false.) jac(1, 1) = x(1) + phi(1)
-    p = size(self%r)
     jac = 0.0_dp
-    jac(:, 1:p) = self%jac/sqrt(self%f0)
+    if (allocated(self%lmat)) then
+      p = size(self%w)
+      jac(:, 1:p) = self%lmat/sqrt(2.0_dp)
+    else
+      p = size(self%r)
+      jac(:, 1:p) = self%jac/sqrt(self%f0)
+    end if
     do j = 1, size(x)
       jac(j, p + j) = sqrt(0.5_dp*self%rho)
     end do
   end subroutine approximate_jacobian
+
+  subroutine minimax_residuals(self, x, phi, err)
+    class(approximate_minimax_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: phi(:)
+    type(error_t), intent(inout) :: err
+    integer :: n
+    if (err%failed()) return
+    n = size(x)
+    phi = sqrt(0.5_dp*self%rho)*(x - self%center)
+    phi(n) = phi(n) + sqrt(0.5_dp/self%rho)
+  end subroutine minimax_residuals
+
+  subroutine minimax_jacobian(self, x, phi, jac, err)
+    class(approximate_minimax_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), phi(:)
+    real(dp), intent(out) :: jac(:, :)
+    type(error_t), intent(inout) :: err
+    integer :: j
+    if (err%failed()) return
+    if (.false.) jac(1, 1) = x(1) + phi(1)
+    jac = 0.0_dp
+    do j = 1, size(x)
+      jac(j, j) = sqrt(0.5_dp*self%rho)
+    end do
+  end subroutine minimax_jacobian
 
   subroutine sequence_solve(self, prob, x0, err)
     class(design_sequence_t), intent(inout) :: self
@@ -133,7 +199,10 @@ contains
     real(dp), allocatable :: g(:), dg(:, :), x_try(:), g_try(:), r(:), dr(:, :), r_try(:)
     real(dp) :: delta, viol, viol_try, mass, mass_try
     logical :: ok, accepted, small_step
-    integer :: stalls
+    integer :: stalls, nf_before
+    logical :: structured, have_old
+    real(dp), allocatable :: smat(:, :), bmat(:, :), lmat(:, :), w(:), grad(:), x_old(:), dr_old(:, :)
+    real(dp) :: ratio
     type(progress_t) :: bar
     character(len=:), allocatable :: events
     n = size(x0)
@@ -146,6 +215,13 @@ contains
     delta = 1.0_dp/self%move_limit           ! rho of the proximal term
     stalls = 0
     events = ''
+    self%fd_analyses = 0
+    structured = self%hessian == 'structured' .and. prob%has_residuals() .and. .not. prob%is_minimax()
+    have_old = .false.
+    allocate(smat(n, n), x_old(n), dr_old(n, 0), grad(n))
+    grad = 0.0_dp
+    smat = 0.0_dp
+    x_old = x0
     ok = .false.
     viol_try = huge(1.0_dp)
     mass_try = huge(1.0_dp)
@@ -162,7 +238,15 @@ contains
       self%iterations = k
       call bar%update(real(k - 1, dp), str(prob%n_analyses)//' analyses, mass '//str(mass, 5)// &
                       ', violation '//str(viol, 3))
+      nf_before = prob%n_analyses
       call gradients(prob, self%x, g, r, dg, dr, ok)
+      self%fd_analyses = self%fd_analyses + prob%n_analyses - nf_before
+      if (ok .and. structured) then
+        if (have_old) call secant_update(smat, self%x - x_old, dr_old, dr, r, prob%f0)
+        grad = 2.0_dp*matmul(dr, r)/prob%f0
+        bmat = 2.0_dp*matmul(dr, transpose(dr))/prob%f0 + smat
+        call quadratic_model(bmat, grad, lmat, w)
+      end if
       if (.not. ok) then
         call err%set('design', 'iteration '//str(k)//': a finite-difference neighbour of the design cannot be '// &
                      'analysed: '//prob%last_failure)
@@ -171,7 +255,13 @@ contains
       events = ''
       accepted = .false.
       do while (delta <= 1.0e6_dp)
-        call approximate_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+        if (prob%is_minimax()) then
+          call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+        else if (structured) then
+          call approximate_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
+        else
+          call approximate_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+        end if
         ! mass: rho |step| is the size of the gradient of the Lagrangian of
         ! the linearised problem at x_k (the proximal term has no gradient
         ! there): small, and x_k feasible, is the KKT test; no analysis is
@@ -184,6 +274,10 @@ contains
         else
           small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
         end if
+        ! structured: the model (exact curvature estimate, fresh derivatives)
+        ! promises less than xtol/10 of F, the move limit not binding
+        if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
+          small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
         if (small_step .and. viol <= self%feas_tol) then
           self%converged = .true.
           exit
@@ -205,7 +299,10 @@ contains
         delta = 4.0_dp*delta
       end do
       if (self%converged) then
-        if (prob%has_residuals()) then
+        if (structured) then
+          self%message = 'feasible, and the step of the approximate problem below xtol or its predicted '// &
+                         'decrease below xtol/10 of F'
+        else if (prob%has_residuals()) then
           self%message = 'feasible, and the step of the approximate problem below xtol'
         else
           self%message = 'feasible, and the approximate problem''s KKT residual below xtol'
@@ -216,7 +313,27 @@ contains
         self%message = 'no step is accepted however short (rho > 1e6)'
         exit
       end if
-      delta = max(0.5_dp*delta, 1.0e-3_dp)
+      if (structured .or. prob%is_minimax()) then
+        ! Levenberg-Marquardt control: the ratio of the actual to the
+        ! model's decrease (the model with the floored B it minimised; for
+        ! the minimax, the largest linearised r_k)
+        if (structured) then
+          ratio = (mass - mass_try)/max(model_decrease(grad, lmat, x_try - self%x), tiny(1.0_dp))
+        else
+          ratio = (mass - mass_try)/max(mass - max(0.0_dp, maxval(r + matmul(x_try - self%x, dr)))/prob%f0, &
+                  tiny(1.0_dp))
+        end if
+        if (ratio >= 0.75_dp) then
+          delta = max(0.125_dp*delta, 1.0e-6_dp)
+        else if (ratio >= 0.25_dp) then
+          delta = max(0.5_dp*delta, 1.0e-6_dp)
+        end if
+        x_old = self%x
+        dr_old = dr
+        have_old = .true.
+      else
+        delta = max(0.5_dp*delta, 1.0e-3_dp)
+      end if
       ! a stall: two accepted designs in a row that lower the mass by less
       ! than xtol/10 (the peak stress over sampled crank angles has kinks
       ! where the KKT test cannot be met to xtol)
@@ -330,13 +447,136 @@ contains
     call prob%objective(x, f, err)
   end function scaled_mass
 
+  !> Decrease of F the quadratic model grad^T s + |lmat^T s|^2 / 2 predicts.
+  pure real(dp) function model_decrease(grad, lmat, s) result(d)
+    real(dp), intent(in) :: grad(:), lmat(:, :), s(:)
+    integer :: j
+    d = -dot_product(grad, s)
+    do j = 1, size(lmat, 2)
+      d = d - 0.5_dp*dot_product(s, lmat(:, j))**2
+    end do
+  end function model_decrease
+
+  !> Symmetric rank-one secant update of S, the estimate of the residuals'
+  !> second-order term sum r_i Hess r_i (scaled, 2/F0) that the Gauss-Newton
+  !> matrix leaves out (structured quasi-Newton, as in NL2SOL: J.E. Dennis,
+  !> D.M. Gay and R.E. Welsch, ACM TOMS 7 (1981) 348-368, which uses a
+  !> positive-curvature update instead): S s = y#, y# = 2 (J+ - J) r+ / F0
+  !> (the change of the full gradient minus that of the Gauss-Newton part).
+  !> Rank one may make S indefinite, as the term is where the residuals are
+  !> large; skipped when the denominator is below 1e-8 |v| |s|.
+  subroutine secant_update(smat, s, dr_old, dr, r, f0)
+    real(dp), intent(inout) :: smat(:, :)
+    real(dp), intent(in) :: s(:), dr_old(:, :), dr(:, :), r(:), f0
+    real(dp) :: v(size(s)), den
+    integer :: j
+    v = -matmul(smat, s)
+    do j = 1, size(r)
+      v = v + 2.0_dp*(dr(:, j) - dr_old(:, j))*r(j)/f0
+    end do
+    den = dot_product(v, s)
+    if (.not. abs(den) > 1.0e-8_dp*norm2(v)*norm2(s)) return
+    do j = 1, size(s)
+      smat(:, j) = smat(:, j) + v*v(j)/den
+    end do
+  end subroutine secant_update
+
+  !> The quadratic model grad^T s + s^T B s / 2 as linear residuals: B =
+  !> V diag(lambda) V^T with each eigenvalue replaced by its magnitude,
+  !> floored at 1e-6 of the largest (a direction of negative curvature is
+  !> then followed downhill by a Newton-sized step, not left to the move
+  !> limit alone), lmat = V diag(sqrt(lambda)), w = V^T grad / sqrt(lambda).
+  subroutine quadratic_model(bmat, grad, lmat, w)
+    real(dp), intent(in) :: bmat(:, :), grad(:)
+    real(dp), allocatable, intent(out) :: lmat(:, :), w(:)
+    real(dp) :: lam(size(grad)), v(size(grad), size(grad)), eye(size(grad), size(grad)), floor
+    type(error_t) :: err
+    integer :: j, n
+    n = size(grad)
+    eye = 0.0_dp
+    do j = 1, n
+      eye(j, j) = 1.0_dp
+    end do
+    call sym_generalized_eig(0.5_dp*(bmat + transpose(bmat)), eye, lam, err, v)
+    if (err%failed()) then
+      ! no decomposition: the identity scaled by the trace
+      v = eye
+      lam = max(sum([(abs(bmat(j, j)), j = 1, n)])/n, tiny(1.0_dp))
+    end if
+    floor = max(1.0e-6_dp*maxval(abs(lam)), tiny(1.0_dp))
+    lam = max(abs(lam), floor)
+    allocate(lmat(n, n), w(n))
+    do j = 1, n
+      lmat(:, j) = v(:, j)*sqrt(lam(j))
+      w(j) = dot_product(v(:, j), grad)/sqrt(lam(j))
+    end do
+  end subroutine quadratic_model
+
+  !> The minimax approximate problem (approximate_minimax_t) solved by GNLC.NS:
+  !> r and dr are the samples' |shaking force| and their gradients.
+  subroutine minimax_step(prob, x, g, dg, r, dr, delta, margin, x_try, events)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:), g(:), dg(:, :), r(:), dr(:, :), delta, margin
+    real(dp), allocatable, intent(out) :: x_try(:)
+    character(len=:), allocatable, intent(inout) :: events
+    type(approximate_minimax_t) :: ap
+    type(gauss_optimizer_t) :: opt
+    type(error_t) :: err
+    real(dp) :: b(size(x) + 1), lower(size(x)), upper(size(x))
+    integer :: i, n, nr, nc
+    n = size(x)
+    nr = size(r)
+    nc = size(g)
+    allocate(ap%center(n + 1))
+    ap%center(1:n) = x
+    ap%center(n + 1) = maxval(r)/prob%f0
+    ap%rho = delta
+    call ap%init_problem('approximate minimax design problem', n + 1, n + 1, nr + 1 + nc + 2*n)
+    do i = 1, nr
+      b = [dr(:, i)/prob%f0, -1.0_dp]
+      call ap%set_linear_constraint(i, b, dot_product(dr(:, i), x)/prob%f0 - r(i)/prob%f0)
+    end do
+    b = 0.0_dp
+    b(n + 1) = -1.0_dp
+    call ap%set_linear_constraint(nr + 1, b, 0.0_dp)
+    do i = 1, nc
+      call ap%set_linear_constraint(nr + 1 + i, [dg(:, i), 0.0_dp], dot_product(dg(:, i), x) - g(i) - margin)
+    end do
+    do i = 1, n
+      lower(i) = prob%var(i)%to_x(prob%var(i)%lower)
+      upper(i) = prob%var(i)%to_x(prob%var(i)%upper)
+      b = 0.0_dp
+      b(i) = -1.0_dp
+      call ap%set_linear_constraint(nr + nc + 2*i, b, -lower(i))
+      b(i) = 1.0_dp
+      call ap%set_linear_constraint(nr + nc + 2*i + 1, b, upper(i))
+    end do
+    opt%opts%method = method_gnlc_ns
+    opt%opts%max_iter = 100
+    opt%opts%xtol = 1.0e-7_dp
+    opt%opts%feas_tol = 1.0e-7_dp
+    opt%opts%ftol = 1.0e-10_dp
+    call opt%solve(ap, [min(max(x, lower), upper), ap%center(n + 1)], err)
+    ! its solution, or where GNLC stopped (the linearised peak constraints
+    ! are degenerate where tau reaches 0; the analysis of the proposal judges it)
+    if (allocated(opt%x)) then
+      x_try = min(max(opt%x(1:n), lower), upper)
+    else if (opt%have_best) then
+      x_try = min(max(opt%x_best(1:n), lower), upper)
+    else
+      x_try = min(max(x, lower), upper)
+    end if
+    if (err%failed()) events = events//'approximate problem: '//err%text()//'; '
+  end subroutine minimax_step
+
   !> Solve the approximate problem within the move limit (GNLC.NS, no
   !> analysis); the proposal is its solution, or its last iterate.
-  subroutine approximate_step(prob, x, g, dg, r, dr, delta, margin, x_try, events)
+  subroutine approximate_step(prob, x, g, dg, r, dr, delta, margin, x_try, events, lmat, w)
     type(design_problem_t), target, intent(inout) :: prob
     real(dp), intent(in) :: x(:), g(:), dg(:, :), delta     !< delta: rho of the proximal term
     real(dp), intent(in) :: r(:), dr(:, :)                  !< residuals and their Jacobian (path objectives)
     real(dp), intent(in) :: margin
+    real(dp), intent(in), optional :: lmat(:, :), w(:)      !< the structured quadratic model (approximate_path_t)
     real(dp), allocatable, intent(out) :: x_try(:)
     character(len=:), allocatable, intent(inout) :: events
     type(approximate_problem_t), target :: ap_mass
@@ -353,7 +593,13 @@ contains
       ap_path%jac = dr
       ap_path%f0 = prob%f0
       ap => ap_path
-      call ap%init_problem('approximate design problem', size(x), size(r) + size(x), size(g) + 2*size(x))
+      if (present(lmat)) then
+        ap_path%lmat = lmat
+        ap_path%w = w
+        call ap%init_problem('approximate design problem', size(x), 2*size(x), size(g) + 2*size(x))
+      else
+        call ap%init_problem('approximate design problem', size(x), size(r) + size(x), size(g) + 2*size(x))
+      end if
     else
       ap_mass%design => prob
       ap_mass%center = x

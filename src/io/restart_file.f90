@@ -1,14 +1,15 @@
 !> Restart files of the transient analyses: the time and the state (q, q_dot
 !> interleaved), one number a line, in the format the planar transient
 !> analysis writes (so the spatial analysis reads and writes the same files;
-!> the planar analysis' own copy in transient_analysis can call these).
+!> and start_from_restart is the 'restart' initial state both take).
 module restart_file
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
+  use table_output, only: table_t
   implicit none
   private
-  public :: write_restart_file, read_restart_file
+  public :: write_restart_file, read_restart_file, start_from_restart
 
 contains
 
@@ -56,4 +57,22 @@ contains
     end if
     close(u)
   end subroutine read_restart_file
+
+  !> The initial state initial = 'restart' of a transient deck: t0 and y from
+  !> the file named by restart_in.  A missing or mismatched file is an input
+  !> error of the deck (code 2); the output header says where the run starts.
+  subroutine start_from_restart(deck_path, path, out, t0, y, err)
+    character(len=*), intent(in) :: deck_path, path
+    type(table_t), intent(inout) :: out
+    real(dp), intent(out) :: t0
+    real(dp), intent(inout) :: y(:)
+    type(error_t), intent(inout) :: err
+    call read_restart_file(path, t0, y, err)
+    if (err%failed()) then
+      err%code = 2
+      call err%add_context('deck '''//deck_path//''', group &transient, restart_in')
+      return
+    end if
+    call out%comment('initial state: restart file '//trim(path)//' at t = '//str(t0))
+  end subroutine start_from_restart
 end module restart_file

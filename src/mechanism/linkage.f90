@@ -8,21 +8,23 @@
 !> mechanism_input_t, whose default initialisation *is* the documented default
 !> (doc/mechanism_deck.md).  build_mechanism validates every value, naming the
 !> variable and the value, and returns the checked, indexed mechanism_t.
+!> Reading and echoing &mechanism: module linkage_deck; the summary text of the
+!> output header: module linkage_report; the default material:
+!> module reference_materials.
 module linkage
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, pi
   use error_status, only: error_t
-  use strings, only: str, lower, compact
-  use deck_reader, only: deck_t, invalid_value
+  use strings, only: str, lower
+  use reference_materials, only: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, &
+    tennant_aluminium_rho
   implicit none
   private
   public :: max_links, max_joints, max_elements_per_link, coordinate_unset
   public :: joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_slider_link, joint_free
   public :: profile_constant, profile_spinup, branch_open, branch_crossed
   public :: mechanism_input_t, input_issue_t, mechanism_t, link_t, joint_t, driver_t
-  public :: check_section_rules
-  public :: build_mechanism, read_mechanism, echo_mechanism, driver_angle, joint_type_name, mechanism_summary, classify_mechanism
-  public :: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, tennant_aluminium_rho
+  public :: build_mechanism, driver_angle, joint_type_name
 
   integer, parameter :: max_links = 40              !< size of the &mechanism link arrays
   integer, parameter :: max_joints = 60             !< size of the &mechanism joint arrays
@@ -42,12 +44,6 @@ module linkage
 
   integer, parameter :: profile_constant = 1, profile_spinup = 2
   integer, parameter :: branch_open = 1, branch_crossed = -1
-
-  ! Tennant's "approximating aluminum", section 8.1 (T6, T7): sigma = A eps - B eps^m.
-  real(dp), parameter :: tennant_aluminium_e1 = 10.87e6_dp      !< A, lb/in^2
-  real(dp), parameter :: tennant_aluminium_e2 = 0.8387e11_dp    !< B, lb/in^2
-  real(dp), parameter :: tennant_aluminium_m = 3.0_dp           !< m
-  real(dp), parameter :: tennant_aluminium_rho = 2.536e-4_dp    !< lb s^2/in^4
 
   !> The flat contents of &mechanism, with the documented defaults.
   type :: mechanism_input_t
@@ -154,27 +150,6 @@ module linkage
     type(mechanism_input_t) :: input   !< as given, for the echo and for redesign
   end type mechanism_t
 
-
-  ! Staging variables of the deck group &mechanism (module variables because
-  ! the deck reader's callback receives only the unit; see read_mechanism).
-  integer :: n_joints, n_links, driver_link
-  character(len=16) :: joint_name(max_joints), joint_type(max_joints), link_name(max_links), profile
-  real(dp) :: joint_x(max_joints), joint_y(max_joints), joint_guide_deg(max_joints), joint_mass(max_joints)
-  integer :: joint_sliding_link(max_joints), link_joint1(max_links), link_joint2(max_links), link_n_elements(max_links)
-  character(len=8) :: joint_branch(max_joints), branch
-  real(dp) :: link_length(max_links), link_b(max_links), link_h(max_links), link_area(max_links), &
-              link_inertia(max_links), link_e1(max_links), link_e2(max_links), link_m(max_links), link_rho(max_links)
-  character(len=12) :: link_section(max_links)
-  real(dp) :: link_c(max_links), link_wall(max_links)
-  real(dp) :: omega, theta0_deg, spinup_time, toggle_rcond
-  real(dp) :: link_cw_mass(max_links), link_cw_x(max_links), link_cw_y(max_links)
-  namelist /mechanism/ n_joints, joint_name, joint_type, joint_x, joint_y, joint_guide_deg, &
-    joint_sliding_link, joint_branch, joint_mass, &
-    n_links, link_name, link_joint1, link_joint2, link_length, link_b, link_h, &
-    link_area, link_inertia, link_section, link_c, link_wall, link_e1, link_e2, link_m, link_rho, link_n_elements, &
-    driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond, &
-    link_cw_mass, link_cw_x, link_cw_y
-
 contains
 
   pure function joint_type_name(kind) result(name)
@@ -210,90 +185,212 @@ contains
     finite = ieee_is_finite(x)
   end function finite
 
-  !> The one rule for sections that are not rectangles, shared by every
-  !> analysis: the Ramberg-Osgood law is integrated through a rectangular
-  !> depth (Kear K16-K17, Tennant T6) and Tennant's shear angle assumes a
-  !> rectangle, so a circle, tube or general section is a linear-elastic beam
-  !> given by A, I and c.  A link that breaks the rule is an input error.
-  subroutine check_section_rules(deck, mech, material, shear, err)
-    type(deck_t), intent(in) :: deck
-    type(mechanism_t), intent(in) :: mech
-    logical, intent(in) :: material, shear
-    type(error_t), intent(inout) :: err
-    integer :: i
-    if (err%failed() .or. .not. (material .or. shear)) return
-    do i = 1, mech%n_links
-      if (mech%links(i)%section == 'rectangle') cycle
-      if (material) then
-        call invalid_value(deck, 'mechanism', idx('link_section', i), quoted(mech%links(i)%section), &
-          'the material effect integrates the Ramberg-Osgood law through a rectangular depth: a '// &
-          trim(mech%links(i)%section)//' section needs it off (a linear-elastic beam of A, I and c)', err)
-      else
-        call invalid_value(deck, 'mechanism', idx('link_section', i), quoted(mech%links(i)%section), &
-          'the shear angle of Tennant''s element assumes a rectangle: a '//trim(mech%links(i)%section)// &
-          ' section needs shear off', err)
-      end if
-      return
-    end do
-  end subroutine check_section_rules
-
   !> Validate the flat input and build the indexed mechanism.  Any failure is
-  !> an input error (err%code = 2) naming the variable and its value.
+  !> an input error (err%code = 2) naming the variable and its value; the
+  !> checks run in the order of the phases below and stop at the first failure.
   subroutine build_mechanism(inp, mech, err, issue)
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(out) :: mech
     type(error_t), intent(inout) :: err
     type(input_issue_t), intent(out), optional :: issue   !< the failure's parts, for the deck reader
-    integer :: nj, nl, j, i, k, e, n_clamp, n_carriers, dof, n_unknowns, n_equations
-    character(len=16) :: word
-    real(dp) :: total, dx, dy
-    integer :: n_fixed
-
+    type(input_issue_t) :: found
+    integer :: i, k
     mech%input = inp
-    nj = inp%n_joints
-    nl = inp%n_links
-    if (nj < 2 .or. nj > max_joints) then
-      call bad('n_joints', str(nj), 'must be between 2 and '//str(max_joints)); return
+    call check_counts(inp, found)
+    if (.not. failed(found)) then
+      mech%n_joints = inp%n_joints
+      mech%n_links = inp%n_links
+      allocate(mech%joints(inp%n_joints), mech%links(inp%n_links))
+      call check_all_finite(inp, found)
     end if
-    if (nl < 1 .or. nl > max_links) then
-      call bad('n_links', str(nl), 'must be between 1 and '//str(max_links)); return
+    if (.not. failed(found)) call check_ranges(inp, found)
+    if (.not. failed(found)) call build_joints(inp, mech, found)
+    if (.not. failed(found)) call build_links(inp, mech, found)
+    if (.not. failed(found)) then
+      call link_incidence(inp, mech)
+      call build_driver(inp, mech, found)
     end if
-    mech%n_joints = nj
-    mech%n_links = nl
-    allocate(mech%joints(nj), mech%links(nl))
-    if (.not. all_inputs_finite()) return
-    if (.not. inputs_in_range()) return
+    if (.not. failed(found)) call apply_joint_rules(inp, mech, found)
+    if (.not. failed(found)) call set_lengths(inp, mech, found)
+    if (.not. failed(found)) call check_driver_pivot(inp, mech, found)
+    if (.not. failed(found)) call check_mobility(mech, found)
+    if (failed(found)) then
+      call err%set('&mechanism', found%variable//' = '//found%value//': '//found%rule, code=2)
+      if (present(issue)) issue = found
+      return
+    end if
+    ! global element numbering, link by link
+    k = 0
+    do i = 1, mech%n_links
+      mech%links(i)%first_element = k + 1
+      k = k + mech%links(i)%n_elements
+    end do
+    mech%n_elements = k
+  end subroutine build_mechanism
 
-    ! ---- joints: kind, name, ground coordinates, options
-    do j = 1, nj
+  !> Record an input error naming the variable, its value and the rule.
+  pure subroutine bad(found, variable, value, rule)
+    type(input_issue_t), intent(inout) :: found
+    character(len=*), intent(in) :: variable, value, rule
+    found%variable = trim(variable)
+    found%value = trim(value)
+    found%rule = trim(rule)
+  end subroutine bad
+
+  logical pure function failed(found)
+    type(input_issue_t), intent(in) :: found
+    failed = allocated(found%variable)
+  end function failed
+
+  pure subroutine check_counts(inp, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(input_issue_t), intent(inout) :: found
+    if (inp%n_joints < 2 .or. inp%n_joints > max_joints) then
+      call bad(found, 'n_joints', str(inp%n_joints), 'must be between 2 and '//str(max_joints)); return
+    end if
+    if (inp%n_links < 1 .or. inp%n_links > max_links) then
+      call bad(found, 'n_links', str(inp%n_links), 'must be between 1 and '//str(max_links)); return
+    end if
+  end subroutine check_counts
+
+  !> Every real input of the joints and links in use, and the driver's,
+  !> is finite (before any comparison: NaN comparisons trap in debug builds).
+  subroutine check_all_finite(inp, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(input_issue_t), intent(inout) :: found
+    integer :: q
+    do q = 1, inp%n_joints
+      if (.not. finite_at(found, 'joint_x', q, inp%joint_x(q))) return
+      if (.not. finite_at(found, 'joint_y', q, inp%joint_y(q))) return
+      if (.not. finite_at(found, 'joint_guide_deg', q, inp%joint_guide_deg(q))) return
+      if (.not. finite_at(found, 'joint_mass', q, inp%joint_mass(q))) return
+    end do
+    do q = 1, inp%n_links
+      if (.not. finite_at(found, 'link_length', q, inp%link_length(q))) return
+      if (.not. finite_at(found, 'link_b', q, inp%link_b(q))) return
+      if (.not. finite_at(found, 'link_h', q, inp%link_h(q))) return
+      if (.not. finite_at(found, 'link_area', q, inp%link_area(q))) return
+      if (.not. finite_at(found, 'link_inertia', q, inp%link_inertia(q))) return
+      if (.not. finite_at(found, 'link_c', q, inp%link_c(q))) return
+      if (.not. finite_at(found, 'link_wall', q, inp%link_wall(q))) return
+      if (.not. finite_at(found, 'link_e1', q, inp%link_e1(q))) return
+      if (.not. finite_at(found, 'link_e2', q, inp%link_e2(q))) return
+      if (.not. finite_at(found, 'link_m', q, inp%link_m(q))) return
+      if (.not. finite_at(found, 'link_rho', q, inp%link_rho(q))) return
+      if (.not. finite_at(found, 'link_cw_mass', q, inp%link_cw_mass(q))) return
+      if (.not. finite_at(found, 'link_cw_x', q, inp%link_cw_x(q))) return
+      if (.not. finite_at(found, 'link_cw_y', q, inp%link_cw_y(q))) return
+    end do
+    if (.not. finite_at(found, 'omega', 0, inp%omega)) return
+    if (.not. finite_at(found, 'theta0_deg', 0, inp%theta0_deg)) return
+    if (.not. finite_at(found, 'spinup_time', 0, inp%spinup_time)) return
+    if (.not. finite_at(found, 'toggle_rcond', 0, inp%toggle_rcond)) return
+  end subroutine check_all_finite
+
+  logical function finite_at(found, name, q, x) result(ok)
+    type(input_issue_t), intent(inout) :: found
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: q
+    real(dp), intent(in) :: x
+    ok = finite(x)
+    if (ok) return
+    if (q > 0) then
+      call bad(found, idx(name, q), str(x), 'must be a finite number')
+    else
+      call bad(found, name, str(x), 'must be a finite number')
+    end if
+  end function finite_at
+
+  !> Physical ranges of the driver and of sizes (doc/mechanism_deck.md):
+  !> a crank angle beyond ten turns or a speed beyond 1e5 rad/s is a typing
+  !> error, and a speed below 1e-6 rad/s (one turn in 70 days) cannot be
+  !> tabulated per revolution.
+  subroutine check_ranges(inp, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(input_issue_t), intent(inout) :: found
+    integer :: q
+    if (abs(inp%omega) > 1.0e5_dp .or. (abs(inp%omega) > 0.0_dp .and. abs(inp%omega) < 1.0e-6_dp)) then
+      call bad(found, 'omega', str(inp%omega), 'must be 0 or have a magnitude in [1e-6, 1e5] rad/s'); return
+    end if
+    if (abs(inp%theta0_deg) > 3600.0_dp) then
+      call bad(found, 'theta0_deg', str(inp%theta0_deg), 'must lie in [-3600, 3600] degrees'); return
+    end if
+    if (abs(inp%spinup_time) > 1.0e6_dp) then
+      call bad(found, 'spinup_time', str(inp%spinup_time), 'must be at most 1e6 s'); return
+    end if
+    do q = 1, inp%n_joints
+      if (abs(inp%joint_guide_deg(q)) > 3600.0_dp) then
+        call bad(found, idx('joint_guide_deg', q), str(inp%joint_guide_deg(q)), 'must lie in [-3600, 3600] degrees'); return
+      end if
+      if (is_set(inp%joint_x(q)) .and. (abs(inp%joint_x(q)) > 1.0e8_dp .or. abs(inp%joint_y(q)) > 1.0e8_dp)) then
+        call bad(found, idx('joint_x', q), str(inp%joint_x(q))//', '//str(inp%joint_y(q)), &
+                 'coordinates must lie in [-1e8, 1e8]'); return
+      end if
+    end do
+    do q = 1, inp%n_links
+      if (inp%link_length(q) > 1.0e8_dp .or. (inp%link_length(q) > 0.0_dp .and. inp%link_length(q) < 1.0e-8_dp)) then
+        call bad(found, idx('link_length', q), str(inp%link_length(q)), 'must be 0 (from the joints) or in [1e-8, 1e8]'); return
+      end if
+      if (inp%link_b(q) > 1.0e8_dp .or. inp%link_h(q) > 1.0e8_dp .or. &
+          (inp%link_b(q) > 0.0_dp .and. inp%link_b(q) < 1.0e-8_dp) .or. &
+          (inp%link_h(q) > 0.0_dp .and. inp%link_h(q) < 1.0e-8_dp)) then
+        call bad(found, idx('link_h', q)//', '//idx('link_b', q), str(inp%link_h(q))//', '//str(inp%link_b(q)), &
+                 'section sizes must lie in [1e-8, 1e8]'); return
+      end if
+      if (inp%link_rho(q) > 1.0e10_dp .or. inp%link_e1(q) > 1.0e20_dp .or. inp%link_e2(q) > 1.0e30_dp) then
+        call bad(found, idx('link_e1', q), str(inp%link_e1(q)), 'material constants beyond any material '// &
+                 '(rho <= 1e10, E1 <= 1e20, E2 <= 1e30)'); return
+      end if
+      ! E1/rho is the square of the bar wave speed: 1e2..1e18 holds every
+      ! solid in any consistent units (m/s: 1e4..4e8, mm/s: 1e10..4e14);
+      ! outside it the model's frequencies over- or underflow (written as
+      ! products: E1/rho itself overflows for a subnormal rho)
+      ! (nested: .and. does not short-circuit, and 1e18*rho overflows for rho = -1e300)
+      if (inp%link_rho(q) > 0.0_dp .and. inp%link_e1(q) > 0.0_dp) then
+        if (inp%link_e1(q) > 1.0e18_dp*inp%link_rho(q) .or. inp%link_e1(q) < 1.0e2_dp*inp%link_rho(q)) then
+          call bad(found, idx('link_e1', q)//', '//idx('link_rho', q), str(inp%link_e1(q))//', '// &
+                   str(inp%link_rho(q)), 'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]'); return
+        end if
+      end if
+    end do
+  end subroutine check_ranges
+
+  !> Joints: kind, name, ground coordinates, options.
+  subroutine build_joints(inp, mech, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(inout) :: mech
+    type(input_issue_t), intent(inout) :: found
+    integer :: j, k
+    character(len=16) :: word
+    do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
         word = lower(adjustl(inp%joint_type(j)))
         jt%kind = findloc(joint_type_names, word, dim=1) - 1 + lbound(joint_type_names, 1)
         if (jt%kind < lbound(joint_type_names, 1)) then
-          call bad(idx('joint_type', j), quoted(inp%joint_type(j)), &
+          call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), &
                    'must be one of pin, ground_pin, clamp, slider_fixed, slider_link, free'); return
         end if
         jt%name = adjustl(inp%joint_name(j))
         if (len_trim(jt%name) == 0) jt%name = 'J'//str(j)
         do k = 1, j - 1
           if (mech%joints(k)%name == jt%name) then
-            call bad(idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
+            call bad(found, idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
           end if
         end do
         if (is_set(inp%joint_x(j)) .neqv. is_set(inp%joint_y(j))) then
-          call bad(idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
+          call bad(found, idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
                    'give both coordinates of joint '//trim(jt%name)//' or neither'); return
         end if
         jt%has_position = is_set(inp%joint_x(j))
         if (jt%has_position) then
           if (.not. (finite(inp%joint_x(j)) .and. finite(inp%joint_y(j)))) then
-            call bad(idx('joint_x', j), str(inp%joint_x(j)), 'coordinates must be finite'); return
+            call bad(found, idx('joint_x', j), str(inp%joint_x(j)), 'coordinates must be finite'); return
           end if
           jt%x = inp%joint_x(j)
           jt%y = inp%joint_y(j)
         end if
         if (.not. finite(inp%joint_guide_deg(j))) then
-          call bad(idx('joint_guide_deg', j), str(inp%joint_guide_deg(j)), 'must be finite'); return
+          call bad(found, idx('joint_guide_deg', j), str(inp%joint_guide_deg(j)), 'must be finite'); return
         end if
         jt%guide = [cos(inp%joint_guide_deg(j)*pi/180.0_dp), sin(inp%joint_guide_deg(j)*pi/180.0_dp)]
         select case (lower(adjustl(inp%joint_branch(j))))
@@ -304,71 +401,79 @@ contains
         case ('crossed')
           jt%branch = branch_crossed
         case default
-          call bad(idx('joint_branch', j), quoted(inp%joint_branch(j)), &
+          call bad(found, idx('joint_branch', j), quoted(inp%joint_branch(j)), &
                    "must be 'open', 'crossed' or empty (use branch)"); return
         end select
         if (.not. (inp%joint_mass(j) >= 0.0_dp .and. finite(inp%joint_mass(j)))) then
-          call bad(idx('joint_mass', j), str(inp%joint_mass(j)), 'must be >= 0'); return
+          call bad(found, idx('joint_mass', j), str(inp%joint_mass(j)), 'must be >= 0'); return
         end if
         jt%mass = inp%joint_mass(j)
         if (inp%joint_sliding_link(j) /= 0 .and. jt%kind /= joint_slider_link) then
-          call bad(idx('joint_sliding_link', j), str(inp%joint_sliding_link(j)), &
+          call bad(found, idx('joint_sliding_link', j), str(inp%joint_sliding_link(j)), &
                    'only a slider_link joint has a sliding link (joint '//trim(jt%name)//' is '// &
                    joint_type_name(jt%kind)//')'); return
         end if
         jt%sliding_link = inp%joint_sliding_link(j)
       end associate
     end do
+  end subroutine build_joints
 
-    ! ---- links: topology, section, material, mesh
-    do i = 1, nl
+  !> Links: topology, section, material, mesh.
+  subroutine build_links(inp, mech, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(inout) :: mech
+    type(input_issue_t), intent(inout) :: found
+    integer :: i, k
+    do i = 1, mech%n_links
       associate (lk => mech%links(i))
         lk%name = adjustl(inp%link_name(i))
         if (len_trim(lk%name) == 0) lk%name = 'link'//str(i)
         do k = 1, i - 1
           if (mech%links(k)%name == lk%name) then
-            call bad(idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
+            call bad(found, idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
           end if
         end do
-        if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > nj) then
-          call bad(idx('link_joint1', i), str(inp%link_joint1(i)), 'must be a joint number 1..'//str(nj)); return
+        if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > mech%n_joints) then
+          call bad(found, idx('link_joint1', i), str(inp%link_joint1(i)), &
+                   'must be a joint number 1..'//str(mech%n_joints)); return
         end if
-        if (inp%link_joint2(i) < 1 .or. inp%link_joint2(i) > nj) then
-          call bad(idx('link_joint2', i), str(inp%link_joint2(i)), 'must be a joint number 1..'//str(nj)); return
+        if (inp%link_joint2(i) < 1 .or. inp%link_joint2(i) > mech%n_joints) then
+          call bad(found, idx('link_joint2', i), str(inp%link_joint2(i)), &
+                   'must be a joint number 1..'//str(mech%n_joints)); return
         end if
         if (inp%link_joint1(i) == inp%link_joint2(i)) then
-          call bad(idx('link_joint2', i), str(inp%link_joint2(i)), 'a link must join two different joints'); return
+          call bad(found, idx('link_joint2', i), str(inp%link_joint2(i)), 'a link must join two different joints'); return
         end if
         lk%joint = [inp%link_joint1(i), inp%link_joint2(i)]
-        call set_section(i, lk)
-        if (err%failed()) return
+        call set_section(inp, i, lk, found)
+        if (failed(found)) return
         if (.not. (inp%link_e1(i) > 0.0_dp .and. finite(inp%link_e1(i)))) then
-          call bad(idx('link_e1', i), str(inp%link_e1(i)), 'the modulus A must be > 0'); return
+          call bad(found, idx('link_e1', i), str(inp%link_e1(i)), 'the modulus A must be > 0'); return
         end if
         if (.not. (inp%link_e2(i) >= 0.0_dp .and. finite(inp%link_e2(i)))) then
-          call bad(idx('link_e2', i), str(inp%link_e2(i)), 'the nonlinear coefficient B must be >= 0'); return
+          call bad(found, idx('link_e2', i), str(inp%link_e2(i)), 'the nonlinear coefficient B must be >= 0'); return
         end if
         if (.not. (inp%link_m(i) > 1.0_dp .and. inp%link_m(i) <= 20.0_dp)) then
-          call bad(idx('link_m', i), str(inp%link_m(i)), 'the exponent m must be in (1, 20]'); return
+          call bad(found, idx('link_m', i), str(inp%link_m(i)), 'the exponent m must be in (1, 20]'); return
         end if
         if (.not. (inp%link_rho(i) > 0.0_dp .and. finite(inp%link_rho(i)))) then
-          call bad(idx('link_rho', i), str(inp%link_rho(i)), 'the mass density must be > 0'); return
+          call bad(found, idx('link_rho', i), str(inp%link_rho(i)), 'the mass density must be > 0'); return
         end if
         lk%e1 = inp%link_e1(i)
         lk%e2 = inp%link_e2(i)
         lk%m = inp%link_m(i)
         lk%rho = inp%link_rho(i)
         if (inp%link_n_elements(i) < 1 .or. inp%link_n_elements(i) > max_elements_per_link) then
-          call bad(idx('link_n_elements', i), str(inp%link_n_elements(i)), &
+          call bad(found, idx('link_n_elements', i), str(inp%link_n_elements(i)), &
                    'must be between 1 and '//str(max_elements_per_link)); return
         end if
         lk%n_elements = inp%link_n_elements(i)
         if (.not. inp%link_cw_mass(i) >= 0.0_dp) then
-          call bad(idx('link_cw_mass', i), str(inp%link_cw_mass(i)), 'a counterweight mass must be >= 0'); return
+          call bad(found, idx('link_cw_mass', i), str(inp%link_cw_mass(i)), 'a counterweight mass must be >= 0'); return
         end if
         if (inp%link_cw_mass(i) > 0.0_dp .and. all(mech%joints(lk%joint(1))%kind /= [joint_clamp, joint_ground_pin])) &
           then
-          call bad(idx('link_cw_mass', i), str(inp%link_cw_mass(i)), 'a counterweight sits at end 1 of its link, '// &
+          call bad(found, idx('link_cw_mass', i), str(inp%link_cw_mass(i)), 'a counterweight sits at end 1 of its link, '// &
                    'which must be a ground pivot (clamp or ground_pin): joint '//trim(mech%joints(lk%joint(1))%name)// &
                    ' is '//joint_type_name(mech%joints(lk%joint(1))%kind)); return
         end if
@@ -376,19 +481,104 @@ contains
         lk%cw_x = inp%link_cw_x(i)
         lk%cw_y = inp%link_cw_y(i)
         if (.not. (inp%link_length(i) >= 0.0_dp .and. finite(inp%link_length(i)))) then
-          call bad(idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
+          call bad(found, idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
           return
         end if
       end associate
     end do
+  end subroutine build_links
 
-    ! ---- incidence: which link ends meet at each joint
-    do j = 1, nj
-      mech%joints(j)%n_links = count(inp%link_joint1(1:nl) == j) + count(inp%link_joint2(1:nl) == j)
+  !> The section of link q: A, I, the outer-fibre distance c and the
+  !> equivalent rectangle b x h (the same A and I).
+  subroutine set_section(inp, q, lk, found)
+    type(mechanism_input_t), intent(in) :: inp
+    integer, intent(in) :: q
+    type(link_t), intent(inout) :: lk
+    type(input_issue_t), intent(inout) :: found
+    real(dp) :: d, di
+    lk%section = lower(adjustl(inp%link_section(q)))
+    select case (lk%section)
+    case ('rectangle')
+      if (inp%link_area(q) > 0.0_dp .or. inp%link_inertia(q) > 0.0_dp .or. inp%link_c(q) > 0.0_dp) then
+        call bad(found, idx('link_area', q)//', '//idx('link_inertia', q)//', '//idx('link_c', q), 'given', &
+                 'a rectangle is given by link_b and link_h; for a section given by A, I and c set '// &
+                 idx('link_section', q)//' = ''general'''); return
+      end if
+      if (.not. (inp%link_b(q) > 0.0_dp)) then
+        call bad(found, idx('link_b', q), str(inp%link_b(q)), 'the section width must be > 0'); return
+      end if
+      if (.not. (inp%link_h(q) > 0.0_dp)) then
+        call bad(found, idx('link_h', q), str(inp%link_h(q)), 'the section height must be > 0'); return
+      end if
+      lk%b = inp%link_b(q)
+      lk%h = inp%link_h(q)
+      lk%area = lk%b*lk%h
+      lk%inertia = lk%b*lk%h**3/12.0_dp
+      lk%fibre = 0.5_dp*lk%h
+      return
+    case ('circle', 'tube')
+      d = inp%link_h(q)
+      if (.not. (d > 0.0_dp)) then
+        call bad(found, idx('link_h', q), str(d), 'the outer diameter of a '//trim(lk%section)//' must be > 0'); return
+      end if
+      di = 0.0_dp
+      if (lk%section == 'tube') then
+        if (.not. (inp%link_wall(q) > 0.0_dp .and. inp%link_wall(q) < 0.5_dp*d)) then
+          call bad(found, idx('link_wall', q), str(inp%link_wall(q)), 'the wall of a tube must be > 0 and < half '// &
+                   'its outer diameter link_h'); return
+        end if
+        di = d - 2.0_dp*inp%link_wall(q)
+      end if
+      lk%area = 0.25_dp*pi*(d**2 - di**2)
+      lk%inertia = pi*(d**4 - di**4)/64.0_dp
+      lk%fibre = 0.5_dp*d
+    case ('general')
+      if (.not. (inp%link_area(q) > 0.0_dp)) then
+        call bad(found, idx('link_area', q), str(inp%link_area(q)), 'a general section needs its area A > 0'); return
+      end if
+      if (.not. (inp%link_inertia(q) > 0.0_dp)) then
+        call bad(found, idx('link_inertia', q), str(inp%link_inertia(q)), 'a general section needs I > 0'); return
+      end if
+      if (.not. (inp%link_c(q) > 0.0_dp)) then
+        call bad(found, idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
+                 'c > 0 (for stresses)'); return
+      end if
+      ! the size ranges of b and h, squared and to the fourth power, and
+      ! I <= c^2 A (no section has its radius of gyration beyond its
+      ! outer fibre); without them 12 I/A overflowed for I = 1.8e308
+      if (inp%link_area(q) < 1.0e-16_dp .or. inp%link_area(q) > 1.0e16_dp) then
+        call bad(found, idx('link_area', q), str(inp%link_area(q)), 'must lie in [1e-16, 1e16]'); return
+      end if
+      if (inp%link_c(q) < 1.0e-8_dp .or. inp%link_c(q) > 1.0e8_dp) then
+        call bad(found, idx('link_c', q), str(inp%link_c(q)), 'must lie in [1e-8, 1e8]'); return
+      end if
+      if (inp%link_inertia(q) > inp%link_c(q)**2*inp%link_area(q) .or. inp%link_inertia(q) < 1.0e-32_dp) then
+        call bad(found, idx('link_inertia', q), str(inp%link_inertia(q)), 'must lie in [1e-32, c^2 A = '// &
+                 str(inp%link_c(q)**2*inp%link_area(q))//']: no section has its radius of gyration beyond its '// &
+                 'outer fibre c'); return
+      end if
+      lk%area = inp%link_area(q)
+      lk%inertia = inp%link_inertia(q)
+      lk%fibre = inp%link_c(q)
+    case default
+      call bad(found, idx('link_section', q), quoted(inp%link_section(q)), &
+               "must be 'rectangle', 'circle', 'tube' or 'general'"); return
+    end select
+    lk%h = sqrt(12.0_dp*lk%inertia/lk%area)
+    lk%b = lk%area/lk%h
+  end subroutine set_section
+
+  !> Incidence: which link ends meet at each joint.
+  pure subroutine link_incidence(inp, mech)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(inout) :: mech
+    integer :: i, j, e
+    do j = 1, mech%n_joints
+      mech%joints(j)%n_links = count(inp%link_joint1(1:mech%n_links) == j) + count(inp%link_joint2(1:mech%n_links) == j)
       allocate(mech%joints(j)%link(mech%joints(j)%n_links), mech%joints(j)%link_end(mech%joints(j)%n_links))
       mech%joints(j)%n_links = 0
     end do
-    do i = 1, nl
+    do i = 1, mech%n_links
       do e = 1, 2
         j = mech%links(i)%joint(e)
         associate (jt => mech%joints(j))
@@ -398,23 +588,28 @@ contains
         end associate
       end do
     end do
+  end subroutine link_incidence
 
-    ! ---- driver
-    if (inp%driver_link < 0 .or. inp%driver_link > nl) then
-      call bad('driver_link', str(inp%driver_link), 'must be a link number 1..'//str(nl)// &
+  !> The driver (crank), its profile, the assembly branch.
+  subroutine build_driver(inp, mech, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(inout) :: mech
+    type(input_issue_t), intent(inout) :: found
+    if (inp%driver_link < 0 .or. inp%driver_link > mech%n_links) then
+      call bad(found, 'driver_link', str(inp%driver_link), 'must be a link number 1..'//str(mech%n_links)// &
                ', or 0 for a structure without a driver'); return
     end if
     mech%driver%link = inp%driver_link
     if (.not. finite(inp%omega)) then
-      call bad('omega', str(inp%omega), 'must be finite'); return
+      call bad(found, 'omega', str(inp%omega), 'must be finite'); return
     end if
     ! driver_link = 0: a structure at rest (beams with immovable ends)
     if (inp%driver_link == 0 .and. abs(inp%omega) > 0.0_dp) then
-      call bad('omega', str(inp%omega), 'a structure without a driver (driver_link = 0) does not move: '// &
+      call bad(found, 'omega', str(inp%omega), 'a structure without a driver (driver_link = 0) does not move: '// &
                'omega must be 0'); return
     end if
     if (.not. finite(inp%theta0_deg)) then
-      call bad('theta0_deg', str(inp%theta0_deg), 'must be finite'); return
+      call bad(found, 'theta0_deg', str(inp%theta0_deg), 'must be finite'); return
     end if
     mech%driver%omega = inp%omega
     mech%driver%theta0 = inp%theta0_deg*pi/180.0_dp
@@ -424,10 +619,10 @@ contains
     case ('spinup')
       mech%driver%profile = profile_spinup
       if (.not. (inp%spinup_time > 0.0_dp .and. finite(inp%spinup_time))) then
-        call bad('spinup_time', str(inp%spinup_time), "must be > 0 with profile = 'spinup'"); return
+        call bad(found, 'spinup_time', str(inp%spinup_time), "must be > 0 with profile = 'spinup'"); return
       end if
     case default
-      call bad('profile', quoted(inp%profile), "must be 'constant' or 'spinup'"); return
+      call bad(found, 'profile', quoted(inp%profile), "must be 'constant' or 'spinup'"); return
     end select
     mech%driver%spinup_time = inp%spinup_time
 
@@ -437,33 +632,39 @@ contains
     case ('crossed')
       mech%branch = branch_crossed
     case default
-      call bad('branch', quoted(inp%branch), "must be 'open' or 'crossed'"); return
+      call bad(found, 'branch', quoted(inp%branch), "must be 'open' or 'crossed'"); return
     end select
     if (.not. (inp%toggle_rcond > 0.0_dp .and. inp%toggle_rcond < 1.0_dp)) then
-      call bad('toggle_rcond', str(inp%toggle_rcond), 'must be in (0, 1)'); return
+      call bad(found, 'toggle_rcond', str(inp%toggle_rcond), 'must be in (0, 1)'); return
     end if
     mech%toggle_rcond = inp%toggle_rcond
+  end subroutine build_driver
 
-    ! ---- rules per joint type
+  !> Rules per joint type (what each joins, which are on the ground).
+  subroutine apply_joint_rules(inp, mech, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(inout) :: mech
+    type(input_issue_t), intent(inout) :: found
+    integer :: i, j, n_clamp, n_carriers
     n_clamp = 0
-    do j = 1, nj
+    do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
         select case (jt%kind)
         case (joint_pin)
           if (jt%n_links < 2) then
-            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'pin '//trim(jt%name)//' joins '// &
+            call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), 'pin '//trim(jt%name)//' joins '// &
                      str(jt%n_links)//' link end(s); a pin joins two or more (a lone link end is '//quoted('free')//')')
             return
           end if
         case (joint_free)
           if (jt%n_links /= 1) then
-            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'free end '//trim(jt%name)//' must belong to '// &
+            call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), 'free end '//trim(jt%name)//' must belong to '// &
                      'exactly one link, not '//str(jt%n_links)); return
           end if
         case (joint_ground_pin, joint_slider_fixed)
           jt%grounded = jt%kind == joint_ground_pin
           if (jt%n_links < 1) then
-            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link'); return
+            call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link'); return
           end if
         case (joint_clamp)
           jt%grounded = .true.
@@ -471,28 +672,28 @@ contains
           if (inp%driver_link == 0) then
             ! without a driver a clamp is a built-in end (one or more link ends)
             if (jt%n_links < 1) then
-              call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link')
+              call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), 'joint '//trim(jt%name)//' joins no link')
               return
             end if
           else if (n_clamp > 1) then
-            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'only one clamp (the driving shaft) is allowed')
+            call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), 'only one clamp (the driving shaft) is allowed')
             return
           else if (jt%n_links /= 1 .or. inp%link_joint1(inp%driver_link) /= j) then
-            call bad(idx('joint_type', j), quoted(inp%joint_type(j)), 'the clamp '//trim(jt%name)// &
+            call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), 'the clamp '//trim(jt%name)// &
                      ' must hold exactly one link end, end 1 of the driver link (link_joint1(driver_link))'); return
           end if
         case (joint_slider_link)
           i = jt%sliding_link
-          if (i < 1 .or. i > nl) then
-            call bad(idx('joint_sliding_link', j), str(i), 'slider_link '//trim(jt%name)// &
-                     ' needs the number of the link sliding through it (1..'//str(nl)//')'); return
+          if (i < 1 .or. i > mech%n_links) then
+            call bad(found, idx('joint_sliding_link', j), str(i), 'slider_link '//trim(jt%name)// &
+                     ' needs the number of the link sliding through it (1..'//str(mech%n_links)//')'); return
           end if
           if (all(mech%links(i)%joint /= j)) then
-            call bad(idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
+            call bad(found, idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
                      ' must have joint '//trim(jt%name)//' as link_joint1 or link_joint2'); return
           end if
           if (mech%links(i)%sliding) then
-            call bad(idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
+            call bad(found, idx('joint_sliding_link', j), str(i), 'link '//trim(mech%links(i)%name)// &
                      ' already slides through another sleeve'); return
           end if
           mech%links(i)%sliding = .true.
@@ -502,17 +703,25 @@ contains
           jt%grounded = n_carriers == 0
         end select
         if ((jt%grounded .or. jt%kind == joint_slider_fixed) .and. .not. jt%has_position) then
-          call bad(idx('joint_x', j)//', '//idx('joint_y', j), 'not given', &
+          call bad(found, idx('joint_x', j)//', '//idx('joint_y', j), 'not given', &
                    'joint '//trim(jt%name)//' ('//joint_type_name(jt%kind)//') is on the ground: give its coordinates')
           return
         end if
       end associate
     end do
+  end subroutine apply_joint_rules
 
-    ! ---- lengths (a sliding link's length is its physical length, optional)
+  !> Lengths (a sliding link's length is its physical length, optional) and
+  !> the length scale of the tolerances.
+  subroutine set_lengths(inp, mech, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(inout) :: mech
+    type(input_issue_t), intent(inout) :: found
+    integer :: i, n_fixed
+    real(dp) :: total, dx, dy
     total = 0.0_dp
     n_fixed = 0
-    do i = 1, nl
+    do i = 1, mech%n_links
       associate (lk => mech%links(i))
         lk%length = inp%link_length(i)
         if (.not. lk%sliding .and. .not. lk%length > 0.0_dp) then
@@ -522,12 +731,12 @@ contains
             lk%length = hypot(dx, dy)
           end if
           if (.not. lk%length > 0.0_dp) then
-            call bad(idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
+            call bad(found, idx('link_length', i), str(inp%link_length(i)), 'link '//trim(lk%name)// &
                      ' needs a length > 0, or the coordinates of both its joints'); return
           end if
           ! the range of a given link_length holds for one taken from the joints
           if (lk%length < 1.0e-8_dp .or. lk%length > 1.0e8_dp) then
-            call bad(idx('joint_x', lk%joint(2))//', '//idx('joint_y', lk%joint(2)), &
+            call bad(found, idx('joint_x', lk%joint(2))//', '//idx('joint_y', lk%joint(2)), &
                      str(mech%joints(lk%joint(2))%x)//', '//str(mech%joints(lk%joint(2))%y), 'link '// &
                      trim(lk%name)//' taken from its joints is '//str(lk%length)//' long: it must lie in [1e-8, 1e8]')
             return
@@ -540,244 +749,57 @@ contains
       end associate
     end do
     if (n_fixed > 0) mech%length_scale = total/n_fixed
+  end subroutine set_lengths
 
-    ! ---- the driver turns about a ground point
+  !> The driver turns about a ground point.
+  subroutine check_driver_pivot(inp, mech, found)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(in) :: mech
+    type(input_issue_t), intent(inout) :: found
+    integer :: k
     if (mech%driver%link > 0) then
       associate (dl => mech%links(mech%driver%link))
         if (dl%sliding) then
-          call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+          call bad(found, 'driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
                    ' cannot be a link that slides through a sleeve'); return
         end if
         k = mech%joints(dl%joint(1))%kind
         if (k /= joint_clamp .and. k /= joint_ground_pin) then
-          call bad('driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
+          call bad(found, 'driver_link', str(inp%driver_link), 'end 1 of the driver '//trim(dl%name)//' (joint '// &
                    trim(mech%joints(dl%joint(1))%name)//') must be a clamp or ground_pin: the crank turns about it'); return
         end if
         if (mech%joints(dl%joint(2))%grounded) then
-          call bad('driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
+          call bad(found, 'driver_link', str(inp%driver_link), 'the driver '//trim(dl%name)// &
                    ' joins two ground points and cannot turn'); return
         end if
       end associate
     end if
+  end subroutine check_driver_pivot
 
-    ! ---- mobility: unknowns (2 per joint, 1 angle per link, 1 active length per
-    ! sliding link, 1 slide per guided joint) minus equations (2 per link, 2 per
-    ! ground point, 2 per guided joint) must leave the one the crank takes.
-    n_unknowns = 2*nj + nl + count(mech%links%sliding) + count(mech%joints%kind == joint_slider_fixed)
-    n_equations = 2*nl + 2*count(mech%joints%grounded) + 2*count(mech%joints%kind == joint_slider_fixed)
+  !> Mobility: unknowns (2 per joint, 1 angle per link, 1 active length per
+  !> sliding link, 1 slide per guided joint) minus equations (2 per link, 2 per
+  !> ground point, 2 per guided joint) must leave the one the crank takes.
+  subroutine check_mobility(mech, found)
+    type(mechanism_t), intent(in) :: mech
+    type(input_issue_t), intent(inout) :: found
+    integer :: dof, n_unknowns, n_equations
+    n_unknowns = 2*mech%n_joints + mech%n_links + count(mech%links%sliding) + count(mech%joints%kind == joint_slider_fixed)
+    n_equations = 2*mech%n_links + 2*count(mech%joints%grounded) + 2*count(mech%joints%kind == joint_slider_fixed)
     dof = n_unknowns - n_equations
     if (mech%driver%link == 0) then
       ! A structure: no motion left (0), or statically indeterminate (< 0,
       ! e.g. a beam between two ground points); the lengths must then fit.
       if (dof > 0) then
-        call bad('driver_link', '0', 'a structure without a driver must not move, but the linkage has '// &
+        call bad(found, 'driver_link', '0', 'a structure without a driver must not move, but the linkage has '// &
                  str(dof)//' degree(s) of freedom (Gruebler count: '//str(n_unknowns)//' coordinates, '// &
                  str(n_equations)//' constraints)'); return
       end if
     else if (dof /= 1) then
-      call bad('n_links, n_joints, joint_type', 'the linkage', 'has '//str(dof)//' degrees of freedom '// &
+      call bad(found, 'n_links, n_joints, joint_type', 'the linkage', 'has '//str(dof)//' degrees of freedom '// &
                '(Gruebler count: '//str(n_unknowns)//' coordinates, '//str(n_equations)// &
                ' constraints); flexmech needs exactly one, taken by the crank'); return
     end if
-
-    ! ---- global element numbering, link by link
-    k = 0
-    do i = 1, nl
-      mech%links(i)%first_element = k + 1
-      k = k + mech%links(i)%n_elements
-    end do
-    mech%n_elements = k
-  contains
-    !> Every real input of the joints and links in use, and the driver's,
-    !> is finite (before any comparison: NaN comparisons trap in debug builds).
-    logical function all_inputs_finite() result(ok)
-      integer :: q
-      ok = .false.
-      do q = 1, nj
-        if (.not. finite_at('joint_x', q, inp%joint_x(q))) return
-        if (.not. finite_at('joint_y', q, inp%joint_y(q))) return
-        if (.not. finite_at('joint_guide_deg', q, inp%joint_guide_deg(q))) return
-        if (.not. finite_at('joint_mass', q, inp%joint_mass(q))) return
-      end do
-      do q = 1, nl
-        if (.not. finite_at('link_length', q, inp%link_length(q))) return
-        if (.not. finite_at('link_b', q, inp%link_b(q))) return
-        if (.not. finite_at('link_h', q, inp%link_h(q))) return
-        if (.not. finite_at('link_area', q, inp%link_area(q))) return
-        if (.not. finite_at('link_inertia', q, inp%link_inertia(q))) return
-        if (.not. finite_at('link_c', q, inp%link_c(q))) return
-        if (.not. finite_at('link_wall', q, inp%link_wall(q))) return
-        if (.not. finite_at('link_e1', q, inp%link_e1(q))) return
-        if (.not. finite_at('link_e2', q, inp%link_e2(q))) return
-        if (.not. finite_at('link_m', q, inp%link_m(q))) return
-        if (.not. finite_at('link_rho', q, inp%link_rho(q))) return
-        if (.not. finite_at('link_cw_mass', q, inp%link_cw_mass(q))) return
-        if (.not. finite_at('link_cw_x', q, inp%link_cw_x(q))) return
-        if (.not. finite_at('link_cw_y', q, inp%link_cw_y(q))) return
-      end do
-      if (.not. finite_at('omega', 0, inp%omega)) return
-      if (.not. finite_at('theta0_deg', 0, inp%theta0_deg)) return
-      if (.not. finite_at('spinup_time', 0, inp%spinup_time)) return
-      if (.not. finite_at('toggle_rcond', 0, inp%toggle_rcond)) return
-      ok = .true.
-    end function all_inputs_finite
-
-    logical function finite_at(name, q, x) result(ok)
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: q
-      real(dp), intent(in) :: x
-      ok = finite(x)
-      if (ok) return
-      if (q > 0) then
-        call bad(idx(name, q), str(x), 'must be a finite number')
-      else
-        call bad(name, str(x), 'must be a finite number')
-      end if
-    end function finite_at
-
-    !> Physical ranges of the driver and of sizes (doc/mechanism_deck.md):
-    !> a crank angle beyond ten turns or a speed beyond 1e5 rad/s is a typing
-    !> error, and a speed below 1e-6 rad/s (one turn in 70 days) cannot be
-    !> tabulated per revolution.
-    logical function inputs_in_range() result(ok)
-      integer :: q
-      ok = .false.
-      if (abs(inp%omega) > 1.0e5_dp .or. (abs(inp%omega) > 0.0_dp .and. abs(inp%omega) < 1.0e-6_dp)) then
-        call bad('omega', str(inp%omega), 'must be 0 or have a magnitude in [1e-6, 1e5] rad/s'); return
-      end if
-      if (abs(inp%theta0_deg) > 3600.0_dp) then
-        call bad('theta0_deg', str(inp%theta0_deg), 'must lie in [-3600, 3600] degrees'); return
-      end if
-      if (abs(inp%spinup_time) > 1.0e6_dp) then
-        call bad('spinup_time', str(inp%spinup_time), 'must be at most 1e6 s'); return
-      end if
-      do q = 1, nj
-        if (abs(inp%joint_guide_deg(q)) > 3600.0_dp) then
-          call bad(idx('joint_guide_deg', q), str(inp%joint_guide_deg(q)), 'must lie in [-3600, 3600] degrees'); return
-        end if
-        if (is_set(inp%joint_x(q)) .and. (abs(inp%joint_x(q)) > 1.0e8_dp .or. abs(inp%joint_y(q)) > 1.0e8_dp)) then
-          call bad(idx('joint_x', q), str(inp%joint_x(q))//', '//str(inp%joint_y(q)), &
-                   'coordinates must lie in [-1e8, 1e8]'); return
-        end if
-      end do
-      do q = 1, nl
-        if (inp%link_length(q) > 1.0e8_dp .or. (inp%link_length(q) > 0.0_dp .and. inp%link_length(q) < 1.0e-8_dp)) then
-          call bad(idx('link_length', q), str(inp%link_length(q)), 'must be 0 (from the joints) or in [1e-8, 1e8]'); return
-        end if
-        if (inp%link_b(q) > 1.0e8_dp .or. inp%link_h(q) > 1.0e8_dp .or. &
-            (inp%link_b(q) > 0.0_dp .and. inp%link_b(q) < 1.0e-8_dp) .or. &
-            (inp%link_h(q) > 0.0_dp .and. inp%link_h(q) < 1.0e-8_dp)) then
-          call bad(idx('link_h', q)//', '//idx('link_b', q), str(inp%link_h(q))//', '//str(inp%link_b(q)), &
-                   'section sizes must lie in [1e-8, 1e8]'); return
-        end if
-        if (inp%link_rho(q) > 1.0e10_dp .or. inp%link_e1(q) > 1.0e20_dp .or. inp%link_e2(q) > 1.0e30_dp) then
-          call bad(idx('link_e1', q), str(inp%link_e1(q)), 'material constants beyond any material '// &
-                   '(rho <= 1e10, E1 <= 1e20, E2 <= 1e30)'); return
-        end if
-        ! E1/rho is the square of the bar wave speed: 1e2..1e18 holds every
-        ! solid in any consistent units (m/s: 1e4..4e8, mm/s: 1e10..4e14);
-        ! outside it the model's frequencies over- or underflow (written as
-        ! products: E1/rho itself overflows for a subnormal rho)
-        ! (nested: .and. does not short-circuit, and 1e18*rho overflows for rho = -1e300)
-        if (inp%link_rho(q) > 0.0_dp .and. inp%link_e1(q) > 0.0_dp) then
-          if (inp%link_e1(q) > 1.0e18_dp*inp%link_rho(q) .or. inp%link_e1(q) < 1.0e2_dp*inp%link_rho(q)) then
-            call bad(idx('link_e1', q)//', '//idx('link_rho', q), str(inp%link_e1(q))//', '//str(inp%link_rho(q)), &
-                     'E1/rho (the squared bar wave speed) must lie in [1e2, 1e18]'); return
-          end if
-        end if
-      end do
-      ok = .true.
-    end function inputs_in_range
-
-    !> The section of link q: A, I, the outer-fibre distance c and the
-    !> equivalent rectangle b x h (the same A and I).
-    subroutine set_section(q, lk)
-      integer, intent(in) :: q
-      type(link_t), intent(inout) :: lk
-      real(dp) :: d, di
-      lk%section = lower(adjustl(inp%link_section(q)))
-      select case (lk%section)
-      case ('rectangle')
-        if (inp%link_area(q) > 0.0_dp .or. inp%link_inertia(q) > 0.0_dp .or. inp%link_c(q) > 0.0_dp) then
-          call bad(idx('link_area', q)//', '//idx('link_inertia', q)//', '//idx('link_c', q), 'given', &
-                   'a rectangle is given by link_b and link_h; for a section given by A, I and c set '// &
-                   idx('link_section', q)//' = ''general'''); return
-        end if
-        if (.not. (inp%link_b(q) > 0.0_dp)) then
-          call bad(idx('link_b', q), str(inp%link_b(q)), 'the section width must be > 0'); return
-        end if
-        if (.not. (inp%link_h(q) > 0.0_dp)) then
-          call bad(idx('link_h', q), str(inp%link_h(q)), 'the section height must be > 0'); return
-        end if
-        lk%b = inp%link_b(q)
-        lk%h = inp%link_h(q)
-        lk%area = lk%b*lk%h
-        lk%inertia = lk%b*lk%h**3/12.0_dp
-        lk%fibre = 0.5_dp*lk%h
-        return
-      case ('circle', 'tube')
-        d = inp%link_h(q)
-        if (.not. (d > 0.0_dp)) then
-          call bad(idx('link_h', q), str(d), 'the outer diameter of a '//trim(lk%section)//' must be > 0'); return
-        end if
-        di = 0.0_dp
-        if (lk%section == 'tube') then
-          if (.not. (inp%link_wall(q) > 0.0_dp .and. inp%link_wall(q) < 0.5_dp*d)) then
-            call bad(idx('link_wall', q), str(inp%link_wall(q)), 'the wall of a tube must be > 0 and < half '// &
-                     'its outer diameter link_h'); return
-          end if
-          di = d - 2.0_dp*inp%link_wall(q)
-        end if
-        lk%area = 0.25_dp*pi*(d**2 - di**2)
-        lk%inertia = pi*(d**4 - di**4)/64.0_dp
-        lk%fibre = 0.5_dp*d
-      case ('general')
-        if (.not. (inp%link_area(q) > 0.0_dp)) then
-          call bad(idx('link_area', q), str(inp%link_area(q)), 'a general section needs its area A > 0'); return
-        end if
-        if (.not. (inp%link_inertia(q) > 0.0_dp)) then
-          call bad(idx('link_inertia', q), str(inp%link_inertia(q)), 'a general section needs I > 0'); return
-        end if
-        if (.not. (inp%link_c(q) > 0.0_dp)) then
-          call bad(idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
-                   'c > 0 (for stresses)'); return
-        end if
-        ! the size ranges of b and h, squared and to the fourth power, and
-        ! I <= c^2 A (no section has its radius of gyration beyond its
-        ! outer fibre); without them 12 I/A overflowed for I = 1.8e308
-        if (inp%link_area(q) < 1.0e-16_dp .or. inp%link_area(q) > 1.0e16_dp) then
-          call bad(idx('link_area', q), str(inp%link_area(q)), 'must lie in [1e-16, 1e16]'); return
-        end if
-        if (inp%link_c(q) < 1.0e-8_dp .or. inp%link_c(q) > 1.0e8_dp) then
-          call bad(idx('link_c', q), str(inp%link_c(q)), 'must lie in [1e-8, 1e8]'); return
-        end if
-        if (inp%link_inertia(q) > inp%link_c(q)**2*inp%link_area(q) .or. inp%link_inertia(q) < 1.0e-32_dp) then
-          call bad(idx('link_inertia', q), str(inp%link_inertia(q)), 'must lie in [1e-32, c^2 A = '// &
-                   str(inp%link_c(q)**2*inp%link_area(q))//']: no section has its radius of gyration beyond its '// &
-                   'outer fibre c'); return
-        end if
-        lk%area = inp%link_area(q)
-        lk%inertia = inp%link_inertia(q)
-        lk%fibre = inp%link_c(q)
-      case default
-        call bad(idx('link_section', q), quoted(inp%link_section(q)), &
-                 "must be 'rectangle', 'circle', 'tube' or 'general'"); return
-      end select
-      lk%h = sqrt(12.0_dp*lk%inertia/lk%area)
-      lk%b = lk%area/lk%h
-    end subroutine set_section
-
-    !> Record an input error (code 2) naming the variable, its value and the rule.
-    subroutine bad(variable, value, rule)
-      character(len=*), intent(in) :: variable, value, rule
-      call err%set('&mechanism', trim(variable)//' = '//trim(value)//': '//trim(rule), code=2)
-      if (present(issue)) then
-        issue%variable = trim(variable)
-        issue%value = trim(value)
-        issue%rule = trim(rule)
-      end if
-    end subroutine bad
-  end subroutine build_mechanism
+  end subroutine check_mobility
 
   !> Crank angle and its first two time derivatives at time t.
   !> 'constant':  theta = theta0 + omega t.
@@ -812,267 +834,4 @@ contains
       theta_dd = 0.0_dp
     end select
   end subroutine driver_angle
-
-  !> Recognise four-bars and slider-cranks and say whether the crank can turn
-  !> fully (Grashof's rule; crank radius plus offset against the rod length).
-  !> Empty for other linkages.
-  pure function classify_mechanism(mech) result(text)
-    type(mechanism_t), intent(in) :: mech
-    character(len=:), allocatable :: text
-    integer :: j, g(2), ng, np, nsf, crank, i
-    real(dp) :: bars(4), s, l, pq, r, rod, offset, sgn
-    integer :: shortest
-    character(len=:), allocatable :: who
-    text = ''
-    crank = mech%driver%link
-    if (crank == 0) return
-    ng = 0; np = 0; nsf = 0; i = 0; g = 0
-    do j = 1, mech%n_joints
-      select case (mech%joints(j)%kind)
-      case (joint_clamp, joint_ground_pin)
-        ng = ng + 1
-        if (ng <= 2) g(ng) = j
-      case (joint_pin)
-        if (mech%joints(j)%n_links == 2) np = np + 1
-      case (joint_slider_fixed)
-        nsf = nsf + 1
-        if (nsf == 1) i = j
-      end select
-    end do
-    if (mech%n_links == 3 .and. mech%n_joints == 4 .and. ng == 2 .and. np == 2 .and. &
-        .not. any(mech%links%sliding)) then
-      bars(1:3) = mech%links%length
-      bars(4) = hypot(mech%joints(g(2))%x - mech%joints(g(1))%x, mech%joints(g(2))%y - mech%joints(g(1))%y)
-      s = minval(bars)
-      l = maxval(bars)
-      pq = sum(bars) - s - l
-      shortest = minloc(bars, dim=1)
-      if (s + l < pq) then
-        if (shortest == crank) then
-          who = 'crank-rocker: the crank turns fully'
-        else if (shortest == 4) then
-          who = 'double-crank (drag link): the crank turns fully'
-        else if (any(mech%links(shortest)%joint == g(1)) .or. any(mech%links(shortest)%joint == g(2))) then
-          who = 'rocker-crank: the output link turns fully, the crank cannot'
-        else
-          who = 'Grashof double-rocker: the crank cannot turn fully'
-        end if
-        text = 'four-bar, Grashof (s + l = '//compact(s + l)//' < p + q = '//compact(pq)//'), '//who
-      else if (s + l > pq) then
-        text = 'four-bar, non-Grashof triple-rocker (s + l = '//compact(s + l)//' > p + q = '//compact(pq)// &
-               '): the crank cannot turn fully'
-      else
-        text = 'four-bar, change point (s + l = p + q = '//compact(pq)//'): toggle positions where the branches meet'
-      end if
-    else if (mech%n_links == 2 .and. mech%n_joints == 3 .and. ng == 1 .and. nsf == 1 .and. np == 1) then
-      r = mech%links(crank)%length
-      rod = mech%links(3 - crank)%length
-      ! offset of the guide line from the crank pivot
-      sgn = (mech%joints(g(1))%x - mech%joints(i)%x)*mech%joints(i)%guide(2) - &
-            (mech%joints(g(1))%y - mech%joints(i)%y)*mech%joints(i)%guide(1)
-      offset = abs(sgn)
-      if (rod > r + offset) then
-        text = 'slider-crank (crank '//compact(r)//', rod '//compact(rod)//', offset '//compact(offset)// &
-               '): the crank turns fully'
-      else
-        text = 'slider-crank (crank '//compact(r)//', rod '//compact(rod)//', offset '//compact(offset)// &
-               '): rod <= crank + offset, the crank cannot turn fully'
-      end if
-    end if
-  end function classify_mechanism
-
-
-  !> Lines for the output header: joints, links, driver, branch, classification.
-  function mechanism_summary(mech) result(lines)
-    type(mechanism_t), intent(in) :: mech
-    character(len=200), allocatable :: lines(:)
-    character(len=:), allocatable :: s, cls
-    integer :: j, i, k, n
-    n = 0
-    allocate(lines(mech%n_joints + mech%n_links + 4))
-    if (mech%driver%link == 0) then
-      call add('structure: '//str(mech%n_joints)//' joints, '//str(mech%n_links)//' links, '// &
-               str(mech%n_elements)//' elements, no driver: it does not move (rigid-body state at rest)')
-    else
-      call add('mechanism: '//str(mech%n_joints)//' joints, '//str(mech%n_links)//' links, '// &
-               str(mech%n_elements)//' elements, one degree of freedom (the crank)')
-    end if
-    do j = 1, mech%n_joints
-      associate (jt => mech%joints(j))
-        s = 'joint '//trim(jt%name)//': '//joint_type_name(jt%kind)
-        if (jt%grounded .or. jt%kind == joint_slider_fixed) s = s//' at ('//compact(jt%x)//', '//compact(jt%y)//')'
-        if (jt%kind == joint_slider_fixed) s = s//', guide '//compact(mech%input%joint_guide_deg(j))//' deg'
-        if (jt%kind == joint_slider_link) then
-          s = s//', sleeve for '//trim(mech%links(jt%sliding_link)%name)
-          if (jt%grounded) s = s//' pivoting on the ground'
-        end if
-        if (jt%mass > 0.0_dp) s = s//', mass '//compact(jt%mass)
-        s = s//'; link ends:'
-        do k = 1, jt%n_links
-          s = s//' '//trim(mech%links(jt%link(k))%name)//'.'//str(jt%link_end(k))
-        end do
-        call add(s)
-      end associate
-    end do
-    do i = 1, mech%n_links
-      associate (lk => mech%links(i))
-        s = 'link '//trim(lk%name)//': '//trim(mech%joints(lk%joint(1))%name)//'-'// &
-            trim(mech%joints(lk%joint(2))%name)
-        if (lk%sliding) then
-          s = s//', slides (active length varies'
-          if (lk%length > 0.0_dp) s = s//', physical length '//compact(lk%length)
-          s = s//')'
-        else
-          s = s//', length '//compact(lk%length)
-        end if
-        s = s//', '//str(lk%n_elements)//' element(s); b '//compact(lk%b)//', h '//compact(lk%h)//', A '// &
-            compact(lk%area)//', I '//compact(lk%inertia)//'; E1 '//compact(lk%e1)//', E2 '//compact(lk%e2)// &
-            ', m '//compact(lk%m)//', rho '//compact(lk%rho)
-        call add(s)
-      end associate
-    end do
-    associate (d => mech%driver)
-      if (d%link == 0) then
-        s = 'driver: none (driver_link = 0)'
-      else
-        s = 'driver: link '//trim(mech%links(d%link)%name)//', omega '//compact(d%omega)//' rad/s, theta0 '// &
-            compact(mech%input%theta0_deg)//' deg, profile '
-        if (d%profile == profile_spinup) then
-          s = s//'spinup over '//compact(d%spinup_time)//' s (cycloidal)'
-        else
-          s = s//'constant'
-        end if
-      end if
-    end associate
-    call add(s)
-    if (mech%branch == branch_open) then
-      call add('assembly branch: open')
-    else
-      call add('assembly branch: crossed')
-    end if
-    cls = classify_mechanism(mech)
-    if (len(cls) > 0) call add(cls)
-    lines = lines(1:n)
-  contains
-    subroutine add(text)
-      character(len=*), intent(in) :: text
-      n = n + 1
-      lines(n) = text
-    end subroutine add
-  end function mechanism_summary
-
-  !> Read &mechanism from the deck (required), validate it and build the
-  !> mechanism.  Invalid values are reported with their deck line.
-  subroutine read_mechanism(deck, mech, err)
-    type(deck_t), intent(inout) :: deck
-    type(mechanism_t), intent(out) :: mech
-    type(error_t), intent(inout) :: err
-    type(mechanism_input_t) :: inp
-    type(input_issue_t) :: issue
-    logical :: found
-    call stage_from(inp)
-    call deck%read_group('mechanism', read_mechanism_group, required=.true., found=found, err=err)
-    if (err%failed()) return
-    call stage_to(inp)
-    call build_mechanism(inp, mech, err, issue)
-    if (err%failed() .and. allocated(issue%variable)) then
-      call err%clear()
-      call invalid_value(deck, 'mechanism', issue%variable, issue%value, issue%rule, err)
-    end if
-  end subroutine read_mechanism
-
-  subroutine read_mechanism_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=mechanism, iostat=ios, iomsg=iomsg)
-  end subroutine read_mechanism_group
-
-  !> Write the mechanism's effective input as the namelist group &mechanism.
-  subroutine echo_mechanism(mech, unit)
-    type(mechanism_t), intent(in) :: mech
-    integer, intent(in) :: unit
-    call stage_from(mech%input)
-    write(unit, nml=mechanism, delim='apostrophe')
-  end subroutine echo_mechanism
-
-  subroutine stage_from(inp)
-    type(mechanism_input_t), intent(in) :: inp
-    n_joints = inp%n_joints
-    joint_name = inp%joint_name
-    joint_type = inp%joint_type
-    joint_x = inp%joint_x
-    joint_y = inp%joint_y
-    joint_guide_deg = inp%joint_guide_deg
-    joint_sliding_link = inp%joint_sliding_link
-    joint_branch = inp%joint_branch
-    joint_mass = inp%joint_mass
-    n_links = inp%n_links
-    link_name = inp%link_name
-    link_joint1 = inp%link_joint1
-    link_joint2 = inp%link_joint2
-    link_length = inp%link_length
-    link_b = inp%link_b
-    link_h = inp%link_h
-    link_area = inp%link_area
-    link_inertia = inp%link_inertia
-    link_section = inp%link_section
-    link_c = inp%link_c
-    link_wall = inp%link_wall
-    link_e1 = inp%link_e1
-    link_e2 = inp%link_e2
-    link_m = inp%link_m
-    link_rho = inp%link_rho
-    link_n_elements = inp%link_n_elements
-    link_cw_mass = inp%link_cw_mass
-    link_cw_x = inp%link_cw_x
-    link_cw_y = inp%link_cw_y
-    driver_link = inp%driver_link
-    omega = inp%omega
-    theta0_deg = inp%theta0_deg
-    profile = inp%profile
-    spinup_time = inp%spinup_time
-    branch = inp%branch
-    toggle_rcond = inp%toggle_rcond
-  end subroutine stage_from
-
-  subroutine stage_to(inp)
-    type(mechanism_input_t), intent(inout) :: inp
-    inp%n_joints = n_joints
-    inp%joint_name = joint_name
-    inp%joint_type = joint_type
-    inp%joint_x = joint_x
-    inp%joint_y = joint_y
-    inp%joint_guide_deg = joint_guide_deg
-    inp%joint_sliding_link = joint_sliding_link
-    inp%joint_branch = joint_branch
-    inp%joint_mass = joint_mass
-    inp%n_links = n_links
-    inp%link_name = link_name
-    inp%link_joint1 = link_joint1
-    inp%link_joint2 = link_joint2
-    inp%link_length = link_length
-    inp%link_b = link_b
-    inp%link_h = link_h
-    inp%link_area = link_area
-    inp%link_inertia = link_inertia
-    inp%link_section = link_section
-    inp%link_c = link_c
-    inp%link_wall = link_wall
-    inp%link_e1 = link_e1
-    inp%link_e2 = link_e2
-    inp%link_m = link_m
-    inp%link_rho = link_rho
-    inp%link_n_elements = link_n_elements
-    inp%link_cw_mass = link_cw_mass
-    inp%link_cw_x = link_cw_x
-    inp%link_cw_y = link_cw_y
-    inp%driver_link = driver_link
-    inp%omega = omega
-    inp%theta0_deg = theta0_deg
-    inp%profile = profile
-    inp%spinup_time = spinup_time
-    inp%branch = branch
-    inp%toggle_rcond = toggle_rcond
-  end subroutine stage_to
 end module linkage

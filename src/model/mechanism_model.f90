@@ -21,9 +21,16 @@
 !> the kinematic Newton solves out of the right-hand side.  A toggle or a
 !> failure to assemble is then found while tabulating, naming the crank angle.
 !>
+!> A link sliding through a sleeve (slider_link) is Tennant's element with
+!> the moving integration limit and the sleeve's angle-dependent map (module
+!> sliding_link); its Kear element in el(e) is kept for the element count
+!> and the end displacements but left out of the equations.
+!>
 !> A structure that does not move (beam tests) is modelled with fixed element
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
+  use companion_jacobian, only: fill_companion_jacobian
+  use band_assembly, only: add_to_lower_band
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -43,6 +50,10 @@ module mechanism_model
   use kinds, only: two_pi
   use joint_clearance, only: clearance_joint_t, split_journal, add_contact_forces, contact_blocks, add_pair_block
   use shape_functions, only: quintic_hermite
+  use sliding_link, only: sliding_link_t, mechanism_link_ends, sliding_link_init, sliding_link_set_state, &
+                          sliding_link_add, sliding_link_matrices, sliding_link_element_q, sliding_link_stress, &
+                          sliding_link_energies
+  use tennant_element, only: tennant_info_t
   implicit none
   private
   public :: mechanism_model_t, element_spec_t
@@ -100,6 +111,8 @@ module mechanism_model
     logical :: has_clearance = .false.
     type(clearance_joint_t), allocatable :: clearance(:)
     real(dp), allocatable :: contact_k(:, :, :), contact_c(:, :, :)   !< (2, 2, joint) at the last Newton matrix
+    ! links sliding through a sleeve (module sliding_link): their element replaces el(e) in the equations
+    type(sliding_link_t), allocatable :: slide(:)
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -122,6 +135,7 @@ module mechanism_model
     procedure :: element_joint_force
     procedure :: add_clearance
     procedure :: clearance_spin
+    procedure :: element_q
   end type mechanism_model_t
 
 contains
@@ -137,10 +151,9 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
-    type(link_end_t), allocatable :: ends(:, :)
-    integer :: k, side, j, e, code, kind, n_elements(mech%n_links)
+    type(link_end_t) :: ends(2, mech%n_links)
+    integer :: k, e, code, kind, n_elements(mech%n_links)
     character(len=:), allocatable :: resolved
-    real(dp) :: guide_angle
     type(motion_t) :: m
 
     do k = 1, mech%n_links
@@ -151,25 +164,7 @@ contains
       return
     end do
     self%moving = .true.
-    allocate(ends(2, mech%n_links))
-    do k = 1, mech%n_links
-      if (mech%links(k)%sliding) then
-        call err%set('flexible model', 'link '''//trim(mech%links(k)%name)//''' slides through a sleeve '// &
-          '(slider_link): its varying length is supported by the kinematics but not yet by the flexible '// &
-          'transient element (moving integration limit, T24); model that link as rigid or use a fixed guide')
-        return
-      end if
-      do side = 1, 2
-        j = mech%links(k)%joint(side)
-        guide_angle = atan2(mech%joints(j)%guide(2), mech%joints(j)%guide(1))
-        ends(side, k) = link_end_t(mech%joints(j)%kind, j, guide_angle)
-        if (mech%joints(j)%kind == joint_slider_link) then
-          call err%set('flexible model', 'joint '''//trim(mech%joints(j)%name)//''' (slider_link) is not '// &
-                       'supported by the flexible transient analysis yet')
-          return
-        end if
-      end do
-    end do
+    call mechanism_link_ends(mech, ends)
     n_elements = mech%links(:)%n_elements
     call resolve_formulation(formulation, effects, kind, code, resolved, err)
     if (err%failed()) return
@@ -197,6 +192,18 @@ contains
         end do
       end associate
     end do
+    allocate(self%slide(0))
+    do k = 1, mech%n_links
+      if (.not. mech%links(k)%sliding) cycle
+      m = self%kin%element_motion_global(mech%links(k)%first_element)
+      block
+        type(sliding_link_t) :: sl
+        call sliding_link_init(sl, mech, k, m%length, effects, beta, self%table%node_dofs, err)
+        if (err%failed()) return
+        if (sl%carrier_element > 0) sl%carrier_length = self%el(sl%carrier_element)%length
+        self%slide = [self%slide, sl]
+      end block
+    end do
     call allocate_work(self)
     allocate(self%loads(0))
     call register_point_masses(self, mech)
@@ -209,12 +216,16 @@ contains
   subroutine register_point_masses(self, mech)
     type(mechanism_model_t), intent(inout) :: self
     type(mechanism_t), intent(in) :: mech
-    integer :: j, link, n
+    integer :: j, link, n, i
     allocate(self%point_mass(0), self%point_element(0), self%point_node(0))
     do j = 1, mech%n_joints
       if (.not. mech%joints(j)%mass > 0.0_dp) cycle
-      link = mech%joints(j)%link(1)
-      if (mech%joints(j)%link_end(1) == 1) then
+      ! a sleeve's mass rides on a link carrying it (a ground sleeve does not move)
+      i = 1
+      if (mech%joints(j)%kind == joint_slider_link .and. mech%joints(j)%link(1) == mech%joints(j)%sliding_link) i = 2
+      if (i > mech%joints(j)%n_links) cycle
+      link = mech%joints(j)%link(i)
+      if (mech%joints(j)%link_end(i) == 1) then
         self%point_element = [self%point_element, mech%links(link)%first_element]
         n = 1
       else
@@ -267,7 +278,7 @@ contains
     integer :: e, code, kind
     character(len=:), allocatable :: resolved
     self%moving = .false.
-    allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0))
+    allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0), self%slide(0))
     call resolve_formulation(formulation, effects, kind, code, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
@@ -313,6 +324,7 @@ contains
     if (self%tabulated) then
       call tabulated_states(self, t)
       self%t_states = t
+      call sliding_states(self)
       return
     end if
     call self%kin%solve(t, err)
@@ -326,7 +338,33 @@ contains
       self%rb(e) = rigid_state_t(m%x1, m%y1, m%phi, m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd)
     end do
     self%t_states = t
+    call sliding_states(self)
   end subroutine set_time
+
+  !> Frame states and sleeve maps of the sliding links at the current rigid states.
+  subroutine sliding_states(self)
+    type(mechanism_model_t), intent(inout) :: self
+    integer :: k
+    do k = 1, size(self%slide)
+      call sliding_link_set_state(self%slide(k), self%table, self%rb, self%slide(k)%carrier_length)
+    end do
+  end subroutine sliding_states
+
+  !> Element e's DOFs from the global vector q at the current time (a sleeve
+  !> element's map depends on its link's angle).
+  function element_q(self, e, q) result(qe)
+    class(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:)
+    real(dp) :: qe(self%table%element_dofs)
+    integer :: k
+    do k = 1, size(self%slide)
+      if (self%slide(k)%element /= e) cycle
+      qe = sliding_link_element_q(self%slide(k), q)
+      return
+    end do
+    qe = self%table%gather(e, q)
+  end function element_q
 
   !> Tabulate the rigid-body motion of every element over one crank
   !> revolution at n_points equally spaced crank angles.  Fails (err) where the
@@ -412,15 +450,15 @@ contains
     real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
     type(kear_eval_info_t) :: info
     type(error_t) :: err
-    integer :: e, i, j, gi, gj, kd, nd
+    integer :: e, kd
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     kd = self%kd
-    nd = self%table%element_dofs
     self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
+      if (self%table%is_sleeve_element(e)) cycle        ! (add_sliding_links)
       call beam_element_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), loaded_state(self, e), &
                              me, fe, info)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
@@ -431,18 +469,11 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      do j = 1, nd
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, nd
-          gi = self%table%map(i, e)
-          if (gi < gj) cycle
-          self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
-            self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
-        end do
-      end do
+      call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
     call add_point_masses(self)
+    if (size(self%slide) > 0) call add_sliding_links(self, t, q, qd)
+    if (self%err%failed()) return
     call add_point_loads(self, t, q, self%force)
     if (self%has_clearance) call add_clearance_forces(self, q, qd)
     call band_cholesky_factor(self%mass_band, kd, err)
@@ -454,6 +485,50 @@ contains
     qdd = self%force
     call band_cholesky_solve(self%mass_band, kd, qdd, err)
   end subroutine accelerations
+
+  !> The sliding links' mass and generalized forces (module sliding_link).
+  subroutine add_sliding_links(self, t, q, qd)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    type(tennant_info_t) :: info
+    integer :: k
+    do k = 1, size(self%slide)
+      call sliding_link_add(self%slide(k), q, qd, self%gravity, self%kd, self%mass_band, self%force, &
+                            self%n_nonlinear_points, info)
+      if (info%beyond_peak .and. self%stop_beyond_peak) then
+        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in sliding element '//str(self%slide(k)%element)// &
+          ' is past the peak of the Ramberg-Osgood curve, eps* = '//str(self%slide(k)%el%eps_star, 6))
+        return
+      end if
+    end do
+  end subroutine add_sliding_links
+
+  !> Dense (or, with kd >= 0, band) blocks of the sliding links: mass and
+  !> elastic tangent stiffness at q.
+  subroutine add_sliding_matrices(self, q, mass, stiff, kd)
+    type(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(inout) :: mass(:, :), stiff(:, :)
+    integer, intent(in) :: kd
+    real(dp) :: mg(10, 10), kg(10, 10)   ! (8 element DOFs + the sleeve's U_s, W_s)
+    integer :: k, i, j, gi, gj
+    do k = 1, size(self%slide)
+      call sliding_link_matrices(self%slide(k), q, mg, kg)
+      do j = 1, self%slide(k)%ng
+        gj = self%slide(k)%glob(j)
+        do i = 1, self%slide(k)%ng
+          gi = self%slide(k)%glob(i)
+          if (kd < 0) then
+            mass(gi, gj) = mass(gi, gj) + mg(i, j)
+            stiff(gi, gj) = stiff(gi, gj) + kg(i, j)
+          else
+            stiff(kd + 1 + gi - gj, gj) = stiff(kd + 1 + gi - gj, gj) + kg(i, j)
+            if (gi >= gj) mass(1 + gi - gj, gj) = mass(1 + gi - gj, gj) + mg(i, j)
+          end if
+        end do
+      end do
+    end do
+  end subroutine add_sliding_matrices
 
   !> Point masses: m on the diagonal of each translation they ride on, and
   !> the rigid-body inertia load -m a_rigid.
@@ -497,9 +572,8 @@ contains
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n)
-    integer :: ipiv(self%n), i, j, r, c, nst
+    integer :: ipiv(self%n)
     type(error_t) :: err
-    logical :: banded
     call self%set_time(t)
     q = y(1::2)
     call self%assemble_dense(q, mass, stiff)
@@ -511,29 +585,7 @@ contains
     call lu_solve(mass, ipiv, stiff, err)      ! stiff := M^-1 K_t
     beta = 0.0_dp
     if (size(self%el) > 0) beta = self%el(1)%beta
-    nst = 2*self%n
-    banded = .not. (ml == 0 .and. mu == 0 .and. size(pd, 1) == nst)
-    do j = 1, self%n
-      call put(2*j - 1, 2*j, 1.0_dp)
-      do i = 1, self%n
-        call put(2*i, 2*j - 1, -stiff(i, j))
-        if (beta > 0.0_dp) call put(2*i, 2*j, -beta*stiff(i, j))
-      end do
-    end do
-  contains
-    subroutine put(row, col, value)
-      integer, intent(in) :: row, col
-      real(dp), intent(in) :: value
-      if (banded) then
-        if (row - col > ml .or. col - row > mu) return
-        r = row - col + mu + 1
-        c = col
-      else
-        r = row
-        c = col
-      end if
-      pd(r, c) = value
-    end subroutine put
+    call fill_companion_jacobian(stiff, beta, ml, mu, pd)
   end subroutine model_jacobian
 
   !> Dense global mass matrix at (q, current time) and elastic tangent stiffness.
@@ -547,10 +599,12 @@ contains
     mass = 0.0_dp
     stiff = 0.0_dp
     do e = 1, size(self%el)
+      if (self%table%is_sleeve_element(e)) cycle
       call element_mass_stiffness(self, e, q, me, ke)
       call self%table%scatter_add_matrix(e, me, mass)
       call self%table%scatter_add_matrix(e, ke, stiff)
     end do
+    call add_sliding_matrices(self, q, mass, stiff, -1)
     do e = 1, size(self%point_mass)
       call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
       do i = 1, 2
@@ -587,6 +641,7 @@ contains
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
     do e = 1, size(self%el)
+      if (self%table%is_sleeve_element(e)) cycle
       call element_mass_stiffness(self, e, q, me, ke)
       do j = 1, self%table%element_dofs
         gj = self%table%map(j, e)
@@ -600,6 +655,7 @@ contains
         end do
       end do
     end do
+    call add_sliding_matrices(self, q, mass_lower, stiff_band, kd)
     do e = 1, size(self%point_mass)
       call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
       do i = 1, 2
@@ -707,6 +763,12 @@ contains
     type(error_t), intent(inout) :: err
     integer :: k, m, p
     if (size(joints) == 0) return
+    if (size(self%slide) > 0) then
+      ! (split_journal renumbers the map, not a sleeve element's own globals)
+      call err%set('clearance', 'joint clearances are not modelled in a mechanism with a link sliding '// &
+                   'through a sleeve (slider_link)', 2)
+      return
+    end if
     self%clearance = joints
     do k = 1, size(joints)
       call split_journal(self%table, self%clearance(k)%element_journal, self%clearance(k)%journal_node, &
@@ -818,11 +880,17 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out) :: kinetic, strain
     integer :: e
-    real(dp) :: qe(self%table%element_dofs)
+    real(dp) :: qe(self%table%element_dofs), ke_s, se_s
     call self%set_time(t)
     kinetic = 0.0_dp
     strain = 0.0_dp
+    do e = 1, size(self%slide)
+      call sliding_link_energies(self%slide(e), q, qd, ke_s, se_s)
+      kinetic = kinetic + ke_s
+      strain = strain + se_s
+    end do
     do e = 1, size(self%el)
+      if (self%table%is_sleeve_element(e)) cycle
       qe = self%table%gather(e, q)
       kinetic = kinetic + beam_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
       strain = strain + beam_strain_energy(self%el(e), qe, self%rb(e)%phi)
@@ -856,7 +924,11 @@ contains
     type(stress_report_t), intent(out) :: reports(:)
     integer :: e
     do e = 1, size(self%el)
+      if (self%table%is_sleeve_element(e)) cycle
       reports(e) = beam_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%phi)
+    end do
+    do e = 1, size(self%slide)
+      reports(self%slide(e)%element) = sliding_link_stress(self%slide(e), q)
     end do
   end subroutine element_stresses
 

@@ -33,6 +33,7 @@ module gauss_optimizer
   use linalg, only: lu_factor, lu_solve, sym_generalized_eig, cholesky_factor
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
   use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
+  use feasibility_restoration, only: restore_feasibility
   implicit none
   private
   public :: gauss_optimizer_t, gauss_options_t, gauss_iterate_t
@@ -106,6 +107,7 @@ module gauss_optimizer
     ! ---- event counts
     integer :: newton_solves = 0, powell_fallbacks = 0, drops = 0, additions = 0
     integer :: step_backs = 0, regularizations = 0, potter_repeats = 0, releases = 0
+    integer :: restorations = 0                !< feasibility restorations (Gauss steps on the violation)
     ! ---- iteration log
     integer :: n_log = 0
     type(gauss_iterate_t), allocatable :: log(:)
@@ -114,6 +116,9 @@ module gauss_optimizer
     logical, allocatable, private :: have_hess(:)
     character(len=:), allocatable, private :: ev
     logical, private :: last_solved = .true.    !< B11 of the previous step solved (multipliers meaningful)
+    logical, private :: first_order_start = .false.  !< next B11 starts from least-squares multipliers
+    logical, private :: restored_now = .false.  !< x_new is a restored point (no cycling test: it may be an iterate)
+    logical, private :: off_chord = .false.     !< x_new is no fraction of s (restoration, Levenberg arc)
   contains
     procedure :: solve
     procedure :: method_label
@@ -130,6 +135,10 @@ module gauss_optimizer
     procedure, private :: trial_point
     procedure, private :: step_for_set
     procedure, private :: limit_violated
+    procedure, private :: flip_released
+    procedure, private :: restoration
+    procedure, private :: arc_step
+    procedure, private :: first_order_multipliers
     procedure, private :: note_b11
     procedure, private :: step_back
     procedure, private :: analyse_trial
@@ -253,7 +262,7 @@ contains
     real(dp) :: xnorm, snorm, pred, t, maxviol
     logical :: solved, step_back_method, converged, same_point, auto, again
     real(dp) :: b11_res
-    logical, allocatable :: active_before(:)
+    logical, allocatable :: active_before(:), active_iter(:)
     character(len=:), allocatable :: stage
 
     call err%clear()
@@ -285,7 +294,12 @@ contains
       xnorm = maxval(abs(self%x))
 
       repeats = 0
+      active_iter = self%active
       inner: do
+        if (k > 0 .and. repeats == 0) then     ! a violation no Newton step can reach
+          if (self%restoration(prob, .false., step_back_method, x_new, g_new, t, err)) exit inner
+          if (err%failed()) exit outer
+        end if
         active_before = self%active
         call self%compute_step(prob, s, solved, b11_res, err)
         if (err%failed()) exit outer
@@ -317,6 +331,10 @@ contains
           cycle inner
         end if
         if (same_point) then
+          if (self%arc_step(prob, step_back_method, active_iter, x_new, g_new, t, err)) exit inner
+          if (err%failed()) exit outer
+          if (self%restoration(prob, .true., step_back_method, x_new, g_new, t, err)) exit inner
+          if (err%failed()) exit outer
           call err%set(self%method_label(), 'zero-length step at iteration '//str(k + 1)//' with the active set ' &
             //set_text(self%active)//' unchanged: the next iteration would repeat this one (max violation ' &
             //str(maxviol, 3)//', B11 residual '//str(b11_res, 3)//'); stopped without another analysis')
@@ -332,6 +350,10 @@ contains
       ! diagnosis instead of spending analyses on the same designs
       call self%check_cycling(prob, x_new, g_new, t, xnorm, stalls, escapes, err)
       if (err%failed()) exit outer
+      if (stalls > 0) then           ! no progress while infeasible: restoration
+        if (self%restoration(prob, .true., step_back_method, x_new, g_new, t, err)) stalls = 0
+        if (err%failed()) exit outer
+      end if
 
       ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
       ! never a value: step back to the midpoint and analyse again
@@ -376,6 +398,184 @@ contains
       call err%set(self%method_label(), self%message)
     end if
   end subroutine finish
+
+  !> Feasibility restoration (ours; the papers have none).  GNLC.NS is
+  !> infeasible at x_k and stuck (stuck: a zero-length step with the same
+  !> active set, or a stall), or a violated constraint is out of Newton's
+  !> reach (HS 23 at the origin, where grad F = 0 and the violated circles
+  !> have zero gradients).  The constraint violation is minimised by Gauss
+  !> steps from the least violated iterate (module feasibility_restoration:
+  !> constraint evaluations only, no analysis); from the feasible point the run
+  !> continues with the step-back variant (GNLC, Potter's GNLC with general
+  !> constraints), which keeps every iterate feasible and so cannot fall
+  !> back onto the point it left.  Once per run.  .true.: x_new, g_new hold
+  !> the restored point, to be analysed as x_{k+1}.
+  logical function restoration(self, prob, stuck, step_back_method, x_new, g_new, t, err) result(done)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    logical, intent(in) :: stuck
+    logical, intent(inout) :: step_back_method
+    real(dp), intent(out) :: x_new(:), g_new(:), t
+    type(error_t), intent(inout) :: err
+    integer :: i, j, m, steps
+    logical :: ok
+    real(dp) :: maxviol, reach
+    done = .false.
+    m = prob%m
+    maxviol = max_violation(self%g, m)
+    if (step_back_method .or. maxviol <= self%opts%feas_tol .or. self%restorations > 0) return
+    if (.not. stuck) then
+      ! not stuck (yet): only a violated constraint whose linearised distance
+      ! g / |grad g| exceeds 1e6 (1 + |x|) (a zero gradient: HS 23's circles at
+      ! the origin), which no Newton-type step can reach; where the run then
+      ! stops hangs on the last bits of x_k
+      reach = 1.0e6_dp*(1.0_dp + maxval(abs(self%x)))
+      if (.not. any([(self%g(i) > self%opts%feas_tol .and. self%g(i) > reach*norm2(self%dg(:, i)), i=1, m)])) return
+    end if
+    ! from the least violated iterate (the first on ties), not from the stuck
+    ! point: where GNLC.NS stops can hang on the last bits (HS 23: the
+    ! origin, or (-0.8, 1.8) after a round-off-sized x1 < 0 there)
+    j = 1
+    do i = 2, self%n_log
+      if (self%log(i)%max_violation < self%log(j)%max_violation) j = i
+    end do
+    x_new = self%log(j)%x
+    call restore_feasibility(prob, x_new, g_new, self%opts%feas_tol, 50, ok, steps, err)
+    if (err%failed() .or. .not. ok) return
+    self%restorations = self%restorations + 1
+    self%opts%method = merge(method_gnlc_general, method_gnlc, self%opts%method == method_gnlc_general_ns)
+    step_back_method = .true.
+    t = 1.0_dp
+    self%active(1:m) = abs(g_new(1:m)) <= self%opts%feas_tol
+    where (.not. self%active) self%lambda = 0.0_dp
+    self%restored_now = .true.
+    self%off_chord = .true.
+    call self%note('infeasible and stuck (max violation '//str(maxviol, 3)//', '//trim(merge('no progress ', &
+      'out of reach', stuck))//'): feasibility restored from x_'// &
+      str(self%log(j)%k)//' by '//str(steps)//' Gauss steps on the violation (no analysis); continuing with ' &
+      //self%method_label()//' (step-back) from there, active '//set_text(self%active))
+    done = .true.
+  end function restoration
+
+  !> Step-back along the Levenberg arc (ours).  The step-back methods cut the
+  !> chord x_k -> x_k + s; with a non-convex active constraint the chord
+  !> leaves its feasible side and the step-back ends at x_k (Potter §9.5
+  !> item 3; fix (a) did not help).  The arc x_k + s(mu), s(mu) from B10/B11
+  !> with G + mu d I (d = max(1, max G_ii)) and the active set of x_k, keeps
+  !> the active constraints satisfied at every point (B11 holds at each end
+  !> point) and shrinks to x_k as mu grows.  The largest feasible step on it
+  !> is found by bisection in log mu (constraint evaluations only, no
+  !> analysis); the constraints it reaches join the set.  HS 23 after the
+  !> restoration: on x1 = x2^2 with S = {5} the step goes to the origin, the
+  !> chord is infeasible at once, the arc follows the parabola down to (1, 1)
+  !> where x2 = x1^2 joins.  .true.: x_new, g_new hold the point.
+  logical function arc_step(self, prob, step_back_method, active0, x_new, g_new, t, err) result(done)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    logical, intent(in) :: step_back_method, active0(:)
+    real(dp), intent(out) :: x_new(:), g_new(:), t
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: gm0(:, :), lam0(:), s(:), x_t(:), g_t(:)
+    character(len=:), allocatable :: ev0
+    real(dp) :: d, lo, hi, mid, tol
+    integer :: i, m, it
+    logical :: feasible
+    done = .false.
+    if (.not. step_back_method .or. prob%m + prob%n_eq == 0) return
+    m = prob%m
+    tol = self%opts%feas_tol
+    gm0 = self%gm
+    lam0 = self%lambda
+    ev0 = self%ev
+    allocate(s(prob%n), x_t(prob%n), g_t(size(g_new)))
+    d = max(1.0_dp, maxval([(abs(gm0(i, i)), i=1, prob%n)]))
+    hi = 0.0_dp                           ! log10 mu: find a feasible end point
+    do it = 1, 13
+      call end_point(hi)
+      if (err%failed() .or. feasible) exit
+      hi = hi + 1.0_dp
+    end do
+    if (.not. err%failed() .and. feasible) then
+      x_new = x_t
+      g_new = g_t
+      lo = hi - 16.0_dp
+      do it = 1, 60
+        mid = 0.5_dp*(lo + hi)
+        call end_point(mid)
+        if (err%failed()) exit
+        if (feasible) then
+          hi = mid
+          x_new = x_t
+          g_new = g_t
+          if (any(.not. active0(1:m) .and. g_t(1:m) >= -tol)) exit      ! on a new boundary
+        else
+          lo = mid
+        end if
+      end do
+      done = .not. err%failed() .and. maxval(abs(x_new - self%x)) > self%opts%xtol*(1.0_dp + maxval(abs(self%x)))
+    end if
+    self%gm = gm0
+    self%ev = ev0
+    self%active = active0
+    if (.not. done) return
+    self%active(1:m) = active0(1:m) .or. abs(g_new(1:m)) <= tol
+    t = 1.0_dp
+    self%step_backs = self%step_backs + 1
+    self%first_order_start = .true.      ! the arc's multipliers belong to G + mu d I, not to G
+    self%off_chord = .true.
+    call self%note('step-back along the Levenberg arc (mu = '//str(d*10.0_dp**hi, 3)//'): the chord leaves the ' &
+      //'feasible side of active '//set_text(active0)//'; now active '//set_text(self%active))
+  contains
+    subroutine end_point(log_mu)
+      real(dp), intent(in) :: log_mu
+      logical :: solved
+      real(dp) :: res
+      self%gm = gm0
+      do i = 1, prob%n
+        self%gm(i, i) = self%gm(i, i) + d*10.0_dp**log_mu
+      end do
+      self%active = active0
+      call self%step_for_set(prob, lam0, s, solved, res, err)
+      feasible = .false.
+      if (err%failed()) return
+      x_t = self%x + s
+      if (prob%n_bounds > 0) x_t = prob%project_to_bounds(x_t)
+      call prob%constraint_values(x_t, g_t, err)
+      if (err%failed()) return
+      if (.not. all(ieee_is_finite(g_t))) return
+      feasible = all(g_t(1:m) <= tol)
+      if (size(g_t) > m) feasible = feasible .and. maxval(abs(g_t(m + 1:))) <= tol
+    end subroutine end_point
+  end function arc_step
+
+  !> Warm start of B11 after a Levenberg-arc step: the least-squares
+  !> multipliers of grad F + C lambda = 0 at x_k for the active general
+  !> constraints and equalities (kept if C is rank-deficient).  HS 23 at
+  !> (1, 1), a vertex of x2 <= x1^2, x1 <= x2^2: they are (2, 2) exactly and
+  !> B11 is solved by s = 0; from the arc's multipliers (about 0) Newton went
+  !> to the other root, the origin (lambda = 0, grad F(0) = 0).
+  subroutine first_order_multipliers(self, prob, m0, lam)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: m0
+    real(dp), intent(inout) :: lam(:)
+    real(dp), allocatable :: cc(:, :), rhs(:)
+    integer, allocatable :: idx(:), p(:)
+    real(dp) :: rc
+    type(error_t) :: lerr
+    integer :: i
+    self%first_order_start = .false.
+    idx = pack([(i, i=1, size(lam))], self%active .and. ([(i, i=1, size(lam))] <= m0 .or. &
+                                                         [(i, i=1, size(lam))] > prob%m))
+    if (size(idx) == 0) return
+    cc = matmul(transpose(self%dg(:, idx)), self%dg(:, idx))
+    rhs = -matmul(transpose(self%dg(:, idx)), self%gradf)
+    allocate(p(size(idx)))
+    call lu_factor(cc, p, lerr, rc)
+    if (lerr%failed() .or. rc < 1.0e-12_dp) return
+    call lu_solve(cc, p, rhs, lerr)
+    if (.not. lerr%failed()) lam(idx) = rhs
+  end subroutine first_order_multipliers
 
   !> grad F (and J), the constraint gradients and G at x_k; a non-finite
   !> derivative stops the run with the diagnosis.
@@ -468,6 +668,15 @@ contains
             self%additions = self%additions + count(violated .and. .not. self%active(1:m))
             self%active(1:m) = self%active(1:m) .or. violated
             again = .true.
+            return
+          end if
+          if (self%opts%potter_repeat) then
+            ! fix (a) did not help: a zero-length step, for which solve tries
+            ! the Levenberg arc (arc_step) before it stops
+            call self%note('step-back cycling (Potter 9.5 item 3) not escaped by fix (a)')
+            x_new = self%x
+            g_new = self%g
+            t = 0.0_dp
             return
           end if
           call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
@@ -625,9 +834,13 @@ contains
     self%step_backs = 0
     self%regularizations = 0
     self%potter_repeats = 0
+    self%restorations = 0
     self%n_log = 0
     self%ev = ''
     self%last_solved = .true.
+    self%first_order_start = .false.
+    self%restored_now = .false.
+    self%off_chord = .false.
     self%opts = opts
   end subroutine reset
 
@@ -899,15 +1112,18 @@ contains
     real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: lam_prev(:), xt(:)
-    logical, allocatable :: new_bound(:), hit(:)
+    logical, allocatable :: new_bound(:), hit(:), released(:), dropped(:)
     real(dp) :: crit, worst, thresh
     integer :: i, j, m0, mt, jdrop, round
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
-    allocate(new_bound(mt), hit(mt), xt(prob%n), lam_prev(mt))
+    allocate(new_bound(mt), hit(mt), released(mt), dropped(mt), xt(prob%n), lam_prev(mt))
     lam_prev = self%lambda
+    if (self%first_order_start) call self%first_order_multipliers(prob, m0, lam_prev)
     thresh = self%opts%mult_tol*norm2(self%gradf)
     new_bound = .false.
+    released = .false.
+    dropped = .false.
     do round = 1, 2*(mt + prob%n) + 2
       call self%limit_violated(prob)
       call self%step_for_set(prob, lam_prev, s, solved, residual, err)
@@ -925,6 +1141,8 @@ contains
       end do
       if (jdrop /= 0) then
         self%active(jdrop) = .false.
+        released(jdrop) = jdrop > m0 .and. .not. any(dropped)
+        dropped(jdrop) = .true.
         self%drops = self%drops + 1
         call self%note('dropped '//str(jdrop)//' (lambda = '//str(self%lambda(jdrop), 4)//')')
         cycle
@@ -939,12 +1157,46 @@ contains
         if (prob%bound_var(i - m0) > 0) hit(i) = xt(j) > prob%xu(j)
       end do
       if (.not. any(hit)) return
+      ! only a lone release: with other drops the curvature argument fails
+      if (count(dropped) == 1) call self%flip_released(prob, m0, released, hit, new_bound)
+      if (.not. any(hit)) cycle
       call self%note('bound(s) '//set_text(hit)//' reached by the step: variables held there, step recomputed')
       self%additions = self%additions + count(hit)
       self%active = self%active .or. hit
       new_bound = new_bound .or. hit
     end do
   end subroutine compute_step
+
+  !> A bound released for its multiplier's sign (the model decreases into the
+  !> box) whose variable the recomputed step takes back across that same
+  !> bound: with r the multiplier and c the curvature of the model along the
+  !> variable (the other free variables re-minimised), the free step is
+  !> -r/c, so it points out of the box only when c < 0.  The model then
+  !> decreases all the way across the box, and its minimiser along the
+  !> variable is the opposite bound: the variable is held there (if finite)
+  !> instead of at the bound it left.  HS 20: x1 released from -0.5 with
+  !> lambda = -3, c = -149; Newton's step went to the model's maximum at
+  !> x1 = -0.51 and the run ended on the mirror minimum (-0.5, 0.866).
+  subroutine flip_released(self, prob, m0, released, hit, new_bound)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: m0
+    logical, intent(inout) :: released(:), hit(:), new_bound(:)
+    integer :: i, i2
+    do i = m0 + 1, prob%m
+      if (.not. (hit(i) .and. released(i))) cycle
+      do i2 = m0 + 1, prob%m
+        if (prob%bound_var(i2 - m0) /= -prob%bound_var(i - m0)) cycle
+        hit(i) = .false.
+        released(i) = .false.
+        self%active(i2) = .true.
+        new_bound(i2) = .true.
+        self%additions = self%additions + 1
+        call self%note('bound '//str(i)//' released (negative multiplier) and crossed again by the step: ' &
+          //'negative curvature along x'//str(abs(prob%bound_var(i - m0)))//', held at the opposite bound '//str(i2))
+      end do
+    end do
+  end subroutine flip_released
 
   !> GNLC.NS makes every violated constraint active; with more active
   !> general constraints than free variables B11 has no solution (HS 18 from
@@ -1245,6 +1497,7 @@ contains
     integer :: j, hit, m
     real(dp) :: tol
     m = prob%m
+    if (self%restored_now) return       ! a restored point may be an earlier (feasible) iterate
     tol = self%opts%xtol*(1.0_dp + xnorm)
     hit = 0
     do j = self%n_log, max(1, self%n_log - 3), -1
@@ -1318,12 +1571,16 @@ contains
       row%f = self%f
       row%max_violation = viol
       row%step = step
+      ! a restoration or an arc step is no fraction of s: the distance moved
+      if (self%n_log > 1 .and. self%off_chord) row%step = maxval(abs(self%x - self%log(self%n_log - 1)%x))
       row%x = self%x
       row%lambda = self%lambda
       row%active = self%active
       row%events = self%ev
     end associate
     self%ev = ''
+    self%off_chord = .false.
+    self%restored_now = .false.
     if (viol <= self%opts%feas_tol .and. (.not. self%have_best .or. self%f < self%f_best)) then
       self%have_best = .true.
       self%x_best = self%x

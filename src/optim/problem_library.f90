@@ -73,17 +73,34 @@ contains
     class(opt_problem_t), allocatable, intent(out) :: prob
     type(problem_info_t), intent(out) :: info
     type(error_t), intent(inout) :: err
-    type(quadratic_problem_t), allocatable :: qp
-    type(test_lsq_t), allocatable :: lp
-    type(fourbar_path_t), allocatable :: fp
-    real(dp) :: a(4, 4), e(2, 2), s3
-    integer :: i
-
     info%name = lower(trim(adjustl(name)))
     select case (info%name)
+    case ('rosen_suzuki', 'hs21', 'hs35')
+      call create_quadratic(info, prob)
+    case ('fourbar_path', 'fourbar_path_13', 'fourbar_path_offset', 'fourbar_path_13_offset')
+      call create_fourbar(info, prob)
+    case ('rosenbrock', 'helical_valley', 'powell_singular', 'bard')
+      call create_mgh(info, prob)
+    case ('hs15', 'hs28', 'hs65')
+      call create_hs_lsq(info, prob)
+    case ('general_convex', 'three_circles', 'potter_cycling')
+      call create_constructed(info, prob)
+    case default
+      call err%set('problem_library', 'unknown problem '''//trim(name)//'''; expected one of '//problem_names, &
+                   code=2)
+    end select
+  end subroutine create_problem
 
+  !> Quadratic objectives with linear or quadratic constraints (Rosen-Suzuki, HS 21, HS 35).
+  subroutine create_quadratic(info, prob)
+    type(problem_info_t), intent(inout) :: info
+    class(opt_problem_t), allocatable, intent(inout) :: prob
+    type(quadratic_problem_t), allocatable :: qp
+    real(dp) :: a(4, 4)
+    integer :: i
+    allocate(qp)
+    select case (info%name)
     case ('rosen_suzuki')
-      allocate(qp)
       call qp%init_problem('rosen_suzuki', 4, 0, 3)
       qp%q = diag([2.0_dp, 2.0_dp, 4.0_dp, 2.0_dp])
       qp%lin = [-5.0_dp, -5.0_dp, -21.0_dp, 7.0_dp]
@@ -96,86 +113,7 @@ contains
       call set_info(info, 'Rosen-Suzuki: quadratic F, 3 quadratic constraints (P, Table I)', &
                     'Rosen & Suzuki, CACM 8 (1965) 113; HS 43', 'gnlc', [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], &
                     [0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp], -44.0_dp, [1.0_dp, 0.0_dp, 2.0_dp])
-      call move_alloc(qp, prob)
-
-    case ('fourbar_path', 'fourbar_path_13')
-      allocate(fp)
-      if (info%name == 'fourbar_path') then
-        call fp%setup(2)
-        call set_info(info, 'four-bar path generation, 10 variables, 14 constraints (B, Table 3)', &
-                      'Boston et al. (B); target path from the Table 3 design', 'gnlc', paper_start, &
-                      table3_design, 0.0_dp, [(0.0_dp, i=1, 14)])
-      else
-        call fp%setup(1)
-        call set_info(info, 'four-bar path generation, 13 constraints: one crank-pivot circle (paper A)', &
-                      'paper A (ASCE 1984); target path from the Table 3 design', 'gnlc', paper_start, &
-                      table3_design, 0.0_dp, [(0.0_dp, i=1, 13)])
-      end if
-      call move_alloc(fp, prob)
-
-    case ('fourbar_path_offset', 'fourbar_path_13_offset')
-      ! target just outside the feasible set: F* > 0, no closed-form optimum
-      allocate(fp)
-      if (info%name == 'fourbar_path_offset') then
-        call fp%setup(2, target=offset_target)
-        fp%name = 'fourbar_path_offset'
-        call set_info(info, 'four-bar path generation, 14 constraints, unreachable target path', &
-                      'Boston et al. (B); target path from a four-bar outside the feasible set', 'gnlc', paper_start)
-      else
-        call fp%setup(1, target=offset_target)
-        fp%name = 'fourbar_path_13_offset'
-        call set_info(info, 'four-bar path generation, 13 constraints, unreachable target path', &
-                      'paper A; target path from a four-bar outside the feasible set', 'gnlc', paper_start)
-      end if
-      call move_alloc(fp, prob)
-
-    case ('rosenbrock')
-      allocate(lp)
-      lp%which = p_rosenbrock
-      call lp%init_problem('rosenbrock', 2, 2, 0)
-      call set_info(info, 'Rosenbrock as least squares, unconstrained', 'MGH problem 1', 'gauss', &
-                    [-1.2_dp, 1.0_dp], [1.0_dp, 1.0_dp], 0.0_dp)
-      call move_alloc(lp, prob)
-
-    case ('helical_valley')
-      allocate(lp)
-      lp%which = p_helical
-      call lp%init_problem('helical_valley', 3, 3, 0)
-      call set_info(info, 'helical valley, unconstrained', 'MGH problem 7', 'gauss', &
-                    [-1.0_dp, 0.0_dp, 0.0_dp], [1.0_dp, 0.0_dp, 0.0_dp], 0.0_dp)
-      call move_alloc(lp, prob)
-
-    case ('powell_singular')
-      allocate(lp)
-      lp%which = p_powell
-      call lp%init_problem('powell_singular', 4, 4, 0)
-      call set_info(info, 'Powell singular function: J J^T singular at x* (rank 2)', 'MGH problem 13', 'gauss', &
-                    [3.0_dp, -1.0_dp, 0.0_dp, 1.0_dp], [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], 0.0_dp)
-      call move_alloc(lp, prob)
-
-    case ('bard')
-      allocate(lp)
-      lp%which = p_bard
-      call lp%init_problem('bard', 3, 15, 0)
-      call set_info(info, 'Bard data fit, 15 residuals, non-zero residual at x*', 'MGH problem 8', 'gauss', &
-                    [1.0_dp, 1.0_dp, 1.0_dp], [0.08241056_dp, 1.133036_dp, 2.343695_dp], 8.21487e-3_dp)
-      call move_alloc(lp, prob)
-
-    case ('hs15')
-      allocate(lp)
-      lp%which = p_hs15
-      call lp%init_problem('hs15', 2, 2, 3)
-      call lp%set_quadratic_constraint(1, reshape([0.0_dp, -1.0_dp, -1.0_dp, 0.0_dp], [2, 2]), &
-                                       [0.0_dp, 0.0_dp], -1.0_dp)                 ! 1 - x1 x2 <= 0
-      call lp%set_quadratic_constraint(2, reshape([0.0_dp, 0.0_dp, 0.0_dp, -2.0_dp], [2, 2]), &
-                                       [-1.0_dp, 0.0_dp], 0.0_dp)                 ! -x1 - x2^2 <= 0
-      call lp%set_linear_constraint(3, [1.0_dp, 0.0_dp], 0.5_dp)                   ! x1 <= 1/2
-      call set_info(info, 'Rosenbrock with non-convex quadratic constraints; infeasible start', 'HS 15', &
-                    'gnlc_ns', [-2.0_dp, 1.0_dp], [0.5_dp, 2.0_dp], 306.5_dp, [700.0_dp, 0.0_dp, 1751.0_dp])
-      call move_alloc(lp, prob)
-
     case ('hs21')
-      allocate(qp)
       call qp%init_problem('hs21', 2, 0, 5)
       qp%q = diag([0.02_dp, 2.0_dp])
       qp%lin = [0.0_dp, 0.0_dp]
@@ -188,20 +126,7 @@ contains
       ! HS's start (-1, -1) is infeasible; a feasible one for the step-back methods
       call set_info(info, 'quadratic F, linear constraints (bounds)', 'HS 21', 'gauss_constrained', &
                     [10.0_dp, 10.0_dp], [2.0_dp, 0.0_dp], -99.96_dp, [0.0_dp, 0.04_dp, 0.0_dp, 0.0_dp, 0.0_dp])
-      call move_alloc(qp, prob)
-
-    case ('hs28')
-      allocate(lp)
-      lp%which = p_hs28
-      call lp%init_problem('hs28', 3, 2, 0, n_eq=1)
-      call lp%set_linear_equalities(reshape([1.0_dp, 2.0_dp, 3.0_dp], [3, 1]), [1.0_dp])
-      call set_info(info, 'two residuals, three variables: J J^T singular everywhere; one linear equality', &
-                    'HS 28', 'gauss_constrained', [-4.0_dp, 1.0_dp, 1.0_dp], [0.5_dp, -0.5_dp, 0.5_dp], 0.0_dp, &
-                    [0.0_dp])
-      call move_alloc(lp, prob)
-
     case ('hs35')
-      allocate(qp)
       call qp%init_problem('hs35', 3, 0, 4)
       qp%q = reshape([4.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 4.0_dp, 0.0_dp, 2.0_dp, 0.0_dp, 2.0_dp], [3, 3])
       qp%lin = [-8.0_dp, -6.0_dp, -4.0_dp]
@@ -213,10 +138,104 @@ contains
       call set_info(info, 'Beale: quadratic F, one linear constraint and x >= 0', 'HS 35', 'gauss_constrained', &
                     [0.5_dp, 0.5_dp, 0.5_dp], [4.0_dp/3.0_dp, 7.0_dp/9.0_dp, 4.0_dp/9.0_dp], 1.0_dp/9.0_dp, &
                     [2.0_dp/9.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
-      call move_alloc(qp, prob)
+    end select
+    call move_alloc(qp, prob)
+  end subroutine create_quadratic
 
+  !> B's four-bar path generation, with the paper's target or one outside the feasible set.
+  subroutine create_fourbar(info, prob)
+    type(problem_info_t), intent(inout) :: info
+    class(opt_problem_t), allocatable, intent(inout) :: prob
+    type(fourbar_path_t), allocatable :: fp
+    integer :: i
+    allocate(fp)
+    select case (info%name)
+    case ('fourbar_path', 'fourbar_path_13')
+      if (info%name == 'fourbar_path') then
+        call fp%setup(2)
+        call set_info(info, 'four-bar path generation, 10 variables, 14 constraints (B, Table 3)', &
+                      'Boston et al. (B); target path from the Table 3 design', 'gnlc', paper_start, &
+                      table3_design, 0.0_dp, [(0.0_dp, i=1, 14)])
+      else
+        call fp%setup(1)
+        call set_info(info, 'four-bar path generation, 13 constraints: one crank-pivot circle (paper A)', &
+                      'paper A (ASCE 1984); target path from the Table 3 design', 'gnlc', paper_start, &
+                      table3_design, 0.0_dp, [(0.0_dp, i=1, 13)])
+      end if
+    case ('fourbar_path_offset', 'fourbar_path_13_offset')
+      ! target just outside the feasible set: F* > 0, no closed-form optimum
+      if (info%name == 'fourbar_path_offset') then
+        call fp%setup(2, target=offset_target)
+        fp%name = 'fourbar_path_offset'
+        call set_info(info, 'four-bar path generation, 14 constraints, unreachable target path', &
+                      'Boston et al. (B); target path from a four-bar outside the feasible set', 'gnlc', paper_start)
+      else
+        call fp%setup(1, target=offset_target)
+        fp%name = 'fourbar_path_13_offset'
+        call set_info(info, 'four-bar path generation, 13 constraints, unreachable target path', &
+                      'paper A; target path from a four-bar outside the feasible set', 'gnlc', paper_start)
+      end if
+    end select
+    call move_alloc(fp, prob)
+  end subroutine create_fourbar
+
+  !> Unconstrained least-squares problems of More, Garbow & Hillstrom.
+  subroutine create_mgh(info, prob)
+    type(problem_info_t), intent(inout) :: info
+    class(opt_problem_t), allocatable, intent(inout) :: prob
+    type(test_lsq_t), allocatable :: lp
+    allocate(lp)
+    select case (info%name)
+    case ('rosenbrock')
+      lp%which = p_rosenbrock
+      call lp%init_problem('rosenbrock', 2, 2, 0)
+      call set_info(info, 'Rosenbrock as least squares, unconstrained', 'MGH problem 1', 'gauss', &
+                    [-1.2_dp, 1.0_dp], [1.0_dp, 1.0_dp], 0.0_dp)
+    case ('helical_valley')
+      lp%which = p_helical
+      call lp%init_problem('helical_valley', 3, 3, 0)
+      call set_info(info, 'helical valley, unconstrained', 'MGH problem 7', 'gauss', &
+                    [-1.0_dp, 0.0_dp, 0.0_dp], [1.0_dp, 0.0_dp, 0.0_dp], 0.0_dp)
+    case ('powell_singular')
+      lp%which = p_powell
+      call lp%init_problem('powell_singular', 4, 4, 0)
+      call set_info(info, 'Powell singular function: J J^T singular at x* (rank 2)', 'MGH problem 13', 'gauss', &
+                    [3.0_dp, -1.0_dp, 0.0_dp, 1.0_dp], [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], 0.0_dp)
+    case ('bard')
+      lp%which = p_bard
+      call lp%init_problem('bard', 3, 15, 0)
+      call set_info(info, 'Bard data fit, 15 residuals, non-zero residual at x*', 'MGH problem 8', 'gauss', &
+                    [1.0_dp, 1.0_dp, 1.0_dp], [0.08241056_dp, 1.133036_dp, 2.343695_dp], 8.21487e-3_dp)
+    end select
+    call move_alloc(lp, prob)
+  end subroutine create_mgh
+
+  !> Hock-Schittkowski problems written as least squares with constraints.
+  subroutine create_hs_lsq(info, prob)
+    type(problem_info_t), intent(inout) :: info
+    class(opt_problem_t), allocatable, intent(inout) :: prob
+    type(test_lsq_t), allocatable :: lp
+    integer :: i
+    allocate(lp)
+    select case (info%name)
+    case ('hs15')
+      lp%which = p_hs15
+      call lp%init_problem('hs15', 2, 2, 3)
+      call lp%set_quadratic_constraint(1, reshape([0.0_dp, -1.0_dp, -1.0_dp, 0.0_dp], [2, 2]), &
+                                       [0.0_dp, 0.0_dp], -1.0_dp)                 ! 1 - x1 x2 <= 0
+      call lp%set_quadratic_constraint(2, reshape([0.0_dp, 0.0_dp, 0.0_dp, -2.0_dp], [2, 2]), &
+                                       [-1.0_dp, 0.0_dp], 0.0_dp)                 ! -x1 - x2^2 <= 0
+      call lp%set_linear_constraint(3, [1.0_dp, 0.0_dp], 0.5_dp)                   ! x1 <= 1/2
+      call set_info(info, 'Rosenbrock with non-convex quadratic constraints; infeasible start', 'HS 15', &
+                    'gnlc_ns', [-2.0_dp, 1.0_dp], [0.5_dp, 2.0_dp], 306.5_dp, [700.0_dp, 0.0_dp, 1751.0_dp])
+    case ('hs28')
+      lp%which = p_hs28
+      call lp%init_problem('hs28', 3, 2, 0, n_eq=1)
+      call lp%set_linear_equalities(reshape([1.0_dp, 2.0_dp, 3.0_dp], [3, 1]), [1.0_dp])
+      call set_info(info, 'two residuals, three variables: J J^T singular everywhere; one linear equality', &
+                    'HS 28', 'gauss_constrained', [-4.0_dp, 1.0_dp, 1.0_dp], [0.5_dp, -0.5_dp, 0.5_dp], 0.0_dp, &
+                    [0.0_dp])
     case ('hs65')
-      allocate(lp)
       lp%which = p_hs65
       call lp%init_problem('hs65', 3, 3, 7)
       call lp%set_quadratic_constraint(1, diag([2.0_dp, 2.0_dp, 2.0_dp]), [0.0_dp, 0.0_dp, 0.0_dp], 48.0_dp)
@@ -229,10 +248,19 @@ contains
       call set_info(info, 'sum of squares in a ball and a box; infeasible start', 'HS 65', 'gnlc_ns', &
                     [-5.0_dp, 5.0_dp, 0.0_dp], [3.65046172521_dp, 3.65046172521_dp, 4.62041755532_dp], &
                     0.9535288567_dp, [0.0821532773_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
-      call move_alloc(lp, prob)
+    end select
+    call move_alloc(lp, prob)
+  end subroutine create_hs_lsq
 
+  !> The constructed problems with exactly known optima (Rosen & Suzuki's recipe).
+  subroutine create_constructed(info, prob)
+    type(problem_info_t), intent(inout) :: info
+    class(opt_problem_t), allocatable, intent(inout) :: prob
+    type(test_lsq_t), allocatable :: lp
+    real(dp) :: e(2, 2), s3
+    allocate(lp)
+    select case (info%name)
     case ('general_convex')
-      allocate(lp)
       lp%which = p_general_convex
       lp%target = [2.0_dp, 2.5_dp]
       call lp%init_problem('general_convex', 2, 2, 2)
@@ -241,10 +269,7 @@ contains
       call set_info(info, 'distance to (2, 2.5) with convex exp and quartic constraints (constructed)', &
                     'constructed by the Rosen-Suzuki recipe: x* = (1, 1), lambda* = (1, 1/2)', 'gnlc_general', &
                     [0.0_dp, 0.0_dp], [1.0_dp, 1.0_dp], 3.25_dp, [1.0_dp, 0.5_dp])
-      call move_alloc(lp, prob)
-
     case ('three_circles')
-      allocate(lp)
       lp%which = p_three_circles
       lp%target = [1.0_dp, 5.0_dp]
       call lp%init_problem('three_circles', 2, 2, 3)
@@ -257,10 +282,7 @@ contains
                     'constructed: x* = (1, sqrt 3), lambda1 = lambda2 = (5 - sqrt 3)/(2 sqrt 3)', 'gnlc_ns', &
                     [1.0_dp, 5.0_dp], [1.0_dp, s3], (5.0_dp - s3)**2, &
                     [(5.0_dp - s3)/(2.0_dp*s3), (5.0_dp - s3)/(2.0_dp*s3), 0.0_dp])
-      call move_alloc(lp, prob)
-
     case ('potter_cycling')
-      allocate(lp)
       lp%which = p_potter
       lp%target = [0.1_dp, -0.5_dp]
       call lp%init_problem('potter_cycling', 2, 2, 2)
@@ -271,13 +293,9 @@ contains
                     'constructed to trigger the step-back cycling of Potter (P, 9.5 item 3)', 'gnlc', &
                     [0.0_dp, 1.0_dp], [0.5_dp*s3, -0.5_dp], (0.5_dp*s3 - 0.1_dp)**2, &
                     [1.0_dp - 0.2_dp/s3, 1.0_dp - 0.2_dp/s3])
-      call move_alloc(lp, prob)
-
-    case default
-      call err%set('problem_library', 'unknown problem '''//trim(name)//'''; expected one of '//problem_names, &
-                   code=2)
     end select
-  end subroutine create_problem
+    call move_alloc(lp, prob)
+  end subroutine create_constructed
 
   subroutine set_info(info, title, source, method, x0, x_star, f_star, lambda_star)
     type(problem_info_t), intent(inout) :: info

@@ -15,7 +15,8 @@ module plot_animation
   use error_status, only: error_t
   use strings, only: str, lower, starts_with
   use deck_reader, only: deck_t
-  use linkage, only: mechanism_t, read_mechanism
+  use linkage, only: mechanism_t
+  use linkage_deck, only: read_mechanism
   use kinematics, only: kinematics_t
   use run_output, only: run_output_t, column_index
   implicit none

@@ -7,15 +7,11 @@ module plot_compare
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use run_output, only: run_output_t, column_index
+  use run_output, only: run_output_t, column_index, name_t, append_text
   use plot_script, only: begin_figure, end_figure, colour, esc, selected
   implicit none
   private
   public :: write_compare_script
-
-  type :: text_t
-    character(len=:), allocatable :: s
-  end type text_t
 
 contains
 
@@ -69,7 +65,7 @@ contains
     type(run_output_t), intent(in) :: outs(:)
     character(len=*), intent(in) :: labels(:), only, name, what, ylabel, prefix, suffixes
     character(len=64), allocatable, intent(inout) :: figures(:)
-    type(text_t), allocatable :: lines(:)
+    type(name_t), allocatable :: lines(:)
     integer :: i, j, k, ix
     character(len=:), allocatable :: nm
     allocate(lines(0))
@@ -81,7 +77,7 @@ contains
       do i = 1, size(outs)
         if (column_index(outs(i), nm) == 0) cycle
         ix = x_column(outs(i))
-        call add_line(lines, 'data'//str(i)//' u '//str(ix)//':'//str(column_index(outs(i), nm))// &
+        call append_text(lines, 'data'//str(i)//' u '//str(ix)//':'//str(column_index(outs(i), nm))// &
           ' w l lw 2 dt '//str(mod(i - 1, 5) + 1)//' '//colour(k, '00')//' t "'//esc(nm//', '//trim(labels(i)))//'"')
       end do
     end do
@@ -127,17 +123,4 @@ contains
     wanted = len_trim(only) == 0
     if (.not. wanted) wanted = index(','//only//',', ','//name//',') > 0
   end function wanted
-
-  subroutine add_line(lines, text)
-    type(text_t), allocatable, intent(inout) :: lines(:)
-    character(len=*), intent(in) :: text
-    type(text_t), allocatable :: longer(:)
-    integer :: i
-    allocate(longer(size(lines) + 1))
-    do i = 1, size(lines)
-      call move_alloc(lines(i)%s, longer(i)%s)
-    end do
-    longer(size(longer))%s = text
-    call move_alloc(longer, lines)
-  end subroutine add_line
 end module plot_compare

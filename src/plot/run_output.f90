@@ -11,8 +11,10 @@ module run_output
   use strings, only: str, lower, starts_with
   implicit none
   private
-  public :: run_output_t, read_run_output, read_text_line, split_words, column_index
+  public :: run_output_t, read_run_output, read_text_line, split_words, column_index, name_t, append_text
 
+  !> One text of any length, in growing lists (column names, header and
+  !> footer lines, a figure script's data lines).
   type :: name_t
     character(len=:), allocatable :: s
   end type name_t
@@ -174,6 +176,7 @@ contains
     end do
   end subroutine find_column_line
 
+  !> list := [list, text] (the texts move, nothing is copied).
   subroutine append_text(list, text)
     type(name_t), allocatable, intent(inout) :: list(:)
     character(len=*), intent(in) :: text

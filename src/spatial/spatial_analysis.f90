@@ -15,10 +15,10 @@ module spatial_analysis
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
   use kear_element, only: effects_summary
-  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
+  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, check_mode_number
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
   use spatial_correlation, only: sdofs
-  use restart_file, only: write_restart_file, read_restart_file
+  use restart_file, only: write_restart_file, start_from_restart
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
@@ -41,11 +41,10 @@ contains
     type(spatial_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
-    type(lsode_counters_t) :: c
     type(spatial_stress_t), allocatable :: stress(:)
-    real(dp), allocatable :: y(:), omega_n(:), peak_stress(:), peak_angle(:), atol_vector(:), ring(:, :)
-    real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, revolutions_done, ke, se
-    integer :: k, n_out, e, jb, jc, ml, per_rev
+    real(dp), allocatable :: y(:), omega_n(:), peak_stress(:), peak_angle(:), ring(:, :)
+    real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, ke, se
+    integer :: k, n_out, e, jb, jc, per_rev
     real(dp) :: defect, dscale
     character(len=32), allocatable :: names(:)
 
@@ -71,18 +70,7 @@ contains
     allocate(omega_n(model%n))
     call model%linear_modes(omega_n, err)
     if (err%failed()) return
-    block
-      character(len=:), allocatable :: line
-      line = 'natural frequencies of the linearised structure at the start position (rad/s):'
-      do k = 1, min(5, model%n)
-        line = line//' '//str(omega_n(k), 6)
-      end do
-      call out%comment(line)
-      if (inp%omega > 0.0_dp) call out%comment('crank speed '//str(inp%omega, 6)//' rad/s = '// &
-                                               str(inp%omega/omega_n(1), 6)//' of the first natural frequency')
-      if (s%damping_beta > 0.0_dp) call out%comment('stiffness-proportional damping beta = '// &
-        str(s%damping_beta)//' s: zeta_1 = '//str(0.5_dp*s%damping_beta*omega_n(1), 6))
-    end block
+    call write_frequencies(out, inp, s, omega_n)
 
     allocate(y(model%state_size()))
     call initial_state(deck, out, s, model, t0, y, err)
@@ -90,18 +78,8 @@ contains
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
     t_end = t0 + s%revolutions*two_pi/inp%omega
     n_out = max(1, nint((t_end - t0)/dt_out))
-    ml = min(2*model%kd + 1, size(y) - 1)
-    allocate(atol_vector(size(y)))
-    atol_vector(1::2) = s%atol
-    atol_vector(2::2) = s%atol_rate
-    call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
+    call start_integrator(out, s, model, t0, size(y), ode, err)
     if (err%failed()) return
-    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
-      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
-                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
-    else if (s%mf == mf_bdf_band_fd) then
-      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '//str(ml))
-    end if
 
     call write_columns(out, model, names)
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
@@ -151,21 +129,7 @@ contains
       call write_restart_file(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
     end if
-    c = ode%counters()
-    revolutions_done = max(0.0_dp, (ode%t - t0)*inp%omega/two_pi)
-    call out%cost('cpu_seconds_integration', str(cpu1 - cpu0, 4))
-    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str((cpu1 - cpu0)/revolutions_done, 4))
-    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
-    call out%cost('steps', str(c%steps))
-    call out%cost('rhs_evaluations', str(c%rhs_evals))
-    call out%cost('jacobian_evaluations', str(c%jac_evals))
-    call out%cost('lu_factorizations', str(c%lu_factorizations))
-    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%newton%n_factorizations - &
-      model%newton%n_lu)//' Cholesky and '//str(model%newton%n_lu)//' LU factorizations')
-    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
-    call out%cost('kinematics_solutions', str(model%n_kinematics))
-    call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
-    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    call write_cost(out, s, ode, model, cpu1 - cpu0, max(0.0_dp, (ode%t - t0)*inp%omega/two_pi))
 
   contains
 
@@ -225,6 +189,76 @@ contains
     end subroutine output_row
   end subroutine run_spatial
 
+  !> The lowest natural frequencies at the start position, the crank speed
+  !> against the first and the damping ratio beta gives it.
+  subroutine write_frequencies(out, inp, s, omega_n)
+    type(table_t), intent(inout) :: out
+    type(spatial_input_t), intent(in) :: inp
+    type(transient_settings_t), intent(in) :: s
+    real(dp), intent(in) :: omega_n(:)
+    character(len=:), allocatable :: line
+    integer :: k
+    line = 'natural frequencies of the linearised structure at the start position (rad/s):'
+    do k = 1, min(5, size(omega_n))
+      line = line//' '//str(omega_n(k), 6)
+    end do
+    call out%comment(line)
+    if (inp%omega > 0.0_dp) call out%comment('crank speed '//str(inp%omega, 6)//' rad/s = '// &
+                                             str(inp%omega/omega_n(1), 6)//' of the first natural frequency')
+    if (s%damping_beta > 0.0_dp) call out%comment('stiffness-proportional damping beta = '// &
+      str(s%damping_beta)//' s: zeta_1 = '//str(0.5_dp*s%damping_beta*omega_n(1), 6))
+  end subroutine write_frequencies
+
+  !> DLSODE at t0 for n states (displacements and rates with their own
+  !> absolute tolerances, band half-widths of the model), and the header line
+  !> saying which Newton matrix it uses.
+  subroutine start_integrator(out, s, model, t0, n, ode, err)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(in) :: s
+    type(spatial_model_t), intent(in) :: model
+    real(dp), intent(in) :: t0
+    integer, intent(in) :: n
+    type(lsode_t), intent(inout) :: ode
+    type(error_t), intent(inout) :: err
+    real(dp) :: atol_vector(n)
+    integer :: ml
+    ml = min(2*model%kd + 1, n - 1)
+    atol_vector(1::2) = s%atol
+    atol_vector(2::2) = s%atol_rate
+    call ode%init(n, t0, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
+    if (err%failed()) return
+    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
+      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
+                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
+    else if (s%mf == mf_bdf_band_fd) then
+      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '//str(ml))
+    end if
+  end subroutine start_integrator
+
+  !> The cost footer: CPU time, DLSODE's counters and the model's own work.
+  subroutine write_cost(out, s, ode, model, cpu_seconds, revolutions_done)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(in) :: s
+    type(lsode_t), intent(in) :: ode
+    type(spatial_model_t), intent(in) :: model
+    real(dp), intent(in) :: cpu_seconds, revolutions_done
+    type(lsode_counters_t) :: c
+    c = ode%counters()
+    call out%cost('cpu_seconds_integration', str(cpu_seconds, 4))
+    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str(cpu_seconds/revolutions_done, 4))
+    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
+    call out%cost('steps', str(c%steps))
+    call out%cost('rhs_evaluations', str(c%rhs_evals))
+    call out%cost('jacobian_evaluations', str(c%jac_evals))
+    call out%cost('lu_factorizations', str(c%lu_factorizations))
+    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%newton%n_factorizations - &
+      model%newton%n_lu)//' Cholesky and '//str(model%newton%n_lu)//' LU factorizations')
+    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
+    call out%cost('kinematics_solutions', str(model%n_kinematics))
+    call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
+    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+  end subroutine write_cost
+
   !> The initial state and time: the rigid-body state at t = 0, a linear
   !> mode at the start position scaled to a largest transverse displacement
   !> (v, w in the element frames) of mode_amplitude at rest, or a restart file
@@ -243,11 +277,8 @@ contains
     y = 0.0_dp
     select case (trim(s%initial))
     case ('mode')
-      if (s%mode_number > model%n) then
-        call invalid_value(deck, 'transient', 'mode_number', str(s%mode_number), &
-                           'the model has only '//str(model%n)//' modes', err)
-        return
-      end if
+      call check_mode_number(deck, s, model%n, err)
+      if (err%failed()) return
       allocate(om(model%n), shapes(model%n, model%n))
       call model%linear_modes(om, err, shapes)
       if (err%failed()) return
@@ -262,13 +293,7 @@ contains
       call out%comment('initial state: mode '//str(s%mode_number)//' ('//str(om(s%mode_number), 6)// &
                        ' rad/s) scaled to a largest transverse displacement of '//str(s%mode_amplitude)//', at rest')
     case ('restart')
-      call read_restart_file(s%restart_in, t0, y, err)
-      if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &transient, restart_in')
-        return
-      end if
-      call out%comment('initial state: restart file '//trim(s%restart_in)//' at t = '//str(t0))
+      call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
     case default
       call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
     end select

@@ -27,6 +27,8 @@ module spatial_model
   use band_cholesky, only: band_llt_factor, band_llt_solve
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
+  use companion_jacobian, only: fill_companion_jacobian
+  use band_assembly, only: add_to_lower_band
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t
@@ -382,7 +384,7 @@ contains
     real(dp), intent(out), contiguous :: qdd(:)
     real(dp) :: me(sdofs, sdofs), fe(sdofs)
     type(spatial_eval_info_t) :: info
-    integer :: e, i, j, gi, gj
+    integer :: e
     logical :: new_mass, ok
     call self%set_time(t)
     qdd = 0.0_dp
@@ -406,16 +408,7 @@ contains
       end if
       call self%table%scatter_add(e, fe, self%force)
       if (.not. new_mass) cycle
-      do j = 1, sdofs
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, sdofs
-          gi = self%table%map(i, e)
-          if (gi < gj) cycle
-          self%mass_band(1 + gi - gj, gj) = self%mass_band(1 + gi - gj, gj) + &
-            self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
-        end do
-      end do
+      call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
     if (new_mass) then
       self%t_mass = huge(1.0_dp)                ! invalid until factored
@@ -491,9 +484,9 @@ contains
     real(dp), intent(in) :: t, y(:)
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
-    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n), col(self%n)
-    integer :: i, j, kd
-    logical :: banded, ok
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q(self%n), col(self%n)
+    integer :: j, kd
+    logical :: ok
     call self%set_time(t)
     q = y(1::2)
     call self%assemble_dense(q, mass, stiff)
@@ -511,26 +504,7 @@ contains
       call band_llt_solve(self%mass_band, kd, col)
       stiff(:, j) = col                          ! stiff := M^-1 K_t
     end do
-    beta = self%el(1)%beta
-    banded = .not. (ml == 0 .and. mu == 0 .and. size(pd, 1) == 2*self%n)
-    do j = 1, self%n
-      call put(2*j - 1, 2*j, 1.0_dp)
-      do i = 1, self%n
-        call put(2*i, 2*j - 1, -stiff(i, j))
-        if (beta > 0.0_dp) call put(2*i, 2*j, -beta*stiff(i, j))
-      end do
-    end do
-  contains
-    subroutine put(row, col, value)
-      integer, intent(in) :: row, col
-      real(dp), intent(in) :: value
-      if (banded) then
-        if (row - col > ml .or. col - row > mu) return
-        pd(row - col + mu + 1, col) = value
-      else
-        pd(row, col) = value
-      end if
-    end subroutine put
+    call fill_companion_jacobian(stiff, self%el(1)%beta, ml, mu, pd)
   end subroutine model_jacobian
 
   ! ------------------------------------------------------------------ Newton matrix

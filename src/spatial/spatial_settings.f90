@@ -11,6 +11,8 @@ module spatial_settings
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use material_law, only: ramberg_osgood_t
+  use reference_materials, only: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, &
+    tennant_aluminium_rho
   use spatial_section, only: spatial_section_init, section_rectangular, section_circular
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init, spatial_fourbar_set_universal
   use spatial_model, only: spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
@@ -29,8 +31,8 @@ module spatial_settings
     integer :: link_n_elements(3) = 1
     character(len=16) :: link_section(3) = 'rectangular'
     real(dp) :: link_depth(3) = 1.0_dp, link_width(3) = 0.25_dp, link_radius(3) = 0.0_dp
-    real(dp) :: link_e1(3) = 10.87e6_dp, link_e2(3) = 0.8387e11_dp, link_m(3) = 3.0_dp
-    real(dp) :: link_rho(3) = 2.536e-4_dp, link_poisson(3) = 0.33_dp
+    real(dp) :: link_e1(3) = tennant_aluminium_e1, link_e2(3) = tennant_aluminium_e2, link_m(3) = tennant_aluminium_m
+    real(dp) :: link_rho(3) = tennant_aluminium_rho, link_poisson(3) = 0.33_dp
   end type spatial_input_t
 
   ! staging variables of the namelist group

@@ -53,7 +53,35 @@ contains
     call run_test('non_finite_trial_is_a_failed_trial', test_non_finite_trial)
     call run_test('hs6_regularized_declares_convergence', test_hs6_regularized)
     call run_test('nonlinear_equality_hs6_with_defaults', test_hs6_equality)
+    call run_test('released_bound_with_negative_curvature_goes_to_the_opposite_bound', test_bound_flip)
   end subroutine run_all
+
+  !> F = -(x1 + 2)^2 + (x2 - x1)^2 on -1 <= x1 <= 1 (x2 free), from (-1, 0)
+  !> with defaults.  With x2 re-minimised (x2 = x1) F = -(x1 + 2)^2: concave,
+  !> decreasing across the whole box, so the minimum is the vertex x1 = 1,
+  !> x2 = 1, F = -9.  At the start the lower bound carries lambda = -2 (the
+  !> model decreases into the box) and is released; Newton's free step goes
+  !> to the model's maximum x1 = -2, back across that bound.  Held there again
+  !> the run stalled at (-1, -1); the released variable goes to its opposite
+  !> bound instead (negative curvature), and x* is reached in one iteration.
+  subroutine test_bound_flip()
+    type(quadratic_problem_t) :: p
+    type(gauss_optimizer_t) :: opt
+    type(error_t) :: err
+    call p%init_problem('concave_box', 2, 0, 0)
+    p%q = reshape([0.0_dp, -2.0_dp, -2.0_dp, 2.0_dp], [2, 2])
+    p%lin = [-4.0_dp, 0.0_dp]
+    p%const = -4.0_dp
+    call p%set_bounds([-1.0_dp, -1.0e30_dp], [1.0_dp, 1.0e30_dp])
+    call opt%solve(p, [-1.0_dp, 0.0_dp], err)
+    call assert_true(opt%status == status_converged, 'concave box: converged '//err%text())
+    ! a quadratic model is exact: x* to round-off (1e-12 relative)
+    call assert_all_close(opt%x, [1.0_dp, 1.0_dp], 0.0_dp, 1.0e-12_dp, 'concave box: x* = (1, 1)')
+    call assert_close(opt%f, -9.0_dp, 1.0e-12_dp, 'concave box: F* = -9')
+    call assert_true(index(opt%log(2)%events, 'opposite bound') > 0 .or. index(opt%log(1)%events, &
+                     'opposite bound') > 0, 'the flip is logged')
+    call assert_true(p%count%analyses <= 3, 'concave box: at most 3 analyses, got '//str(p%count%analyses))
+  end subroutine test_bound_flip
 
   !> HS 6 with its constraint as one quadratic equality (gnlc_ns) and as a
   !> general equality (gnlc_general_ns, Potter's re-approximation): first-class

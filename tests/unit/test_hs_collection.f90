@@ -10,7 +10,7 @@ module test_hs_collection_suite
   use error_status, only: error_t
   use strings, only: str
   use optim_problem, only: opt_problem_t
-  use problem_library, only: problem_info_t, create_problem
+  use problem_library, only: problem_info_t, create_problem, quadratic_problem_t
   use hs_collection, only: hs_problem_t, hs_numbers, create_hs
   use gauss_optimizer
   use assertions
@@ -21,10 +21,8 @@ module test_hs_collection_suite
   !> library problems that are HS problems: name and HS number
   character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
                                                   'rosen_suzuki', 'hs65']
-  !> not solved with defaults (doc/optimization.md §8); HS 77 only under
-  !> -O3 -march=native (at iteration 6 the Newton matrix's condition falls
-  !> below 1e-14 there and not at -O0/-O2: a round-off-sensitive path)
-  integer, parameter :: known_failures(3) = [2, 20, 23]
+  !> not solved with defaults (doc/optimization.md §8)
+  integer, parameter :: known_failures(1) = [2]
 
 contains
 
@@ -37,28 +35,47 @@ contains
 
   !> Issue 11: a run whose iterates stop moving without converging stops
   !> with the diagnosis after three steps below xtol instead of re-analysing
-  !> the same design to max_iter.  HS 18 was the case (M singular at x*);
-  !> it is solved now.  HS 20 with its bounds as general constraints
-  !> (hold_bounds = .false.) stalls: from the projected start x1 = -0.5 the
-  !> drop of the bound lets the step leave the box, three constraints become
-  !> active in two variables and Powell's compromise keeps returning to the
-  !> same design (8 analyses at -O2).
+  !> the same design to max_iter.  Since the feasibility restoration an
+  !> infeasible stall is first restored; the diagnosis remains for a problem
+  !> with no feasible point: F = (x - 2)^2 with x^2 + 1 <= 0.  B11 has no
+  !> root, Powell's compromise keeps x at 0, where the violation V = (x^2 +
+  !> 1)^2 is stationary, so the restoration cannot start either.
+  !> HS 20 with its bounds as general constraints (hold_bounds = .false.)
+  !> stalled at the infeasible (-0.5, 1) (three constraints active in two
+  !> variables, Powell's compromise returning to the same design); now the
+  !> restoration returns to the feasible start and GNLC (step-back) ends on
+  !> the KKT point (-0.5, 0.866), f = 40.199 (the mirror of x* in x1: with
+  !> bounds as constraints the bound flip of §2 does not apply).
   subroutine test_stall()
     type(hs_problem_t) :: p
+    type(quadratic_problem_t) :: q
     type(gauss_optimizer_t) :: opt
     real(dp), allocatable :: x0(:), xs(:)
     real(dp) :: fs
     type(error_t) :: err
     logical :: found
-    call create_hs(20, p, x0, xs, fs, found)
-    opt%opts%hold_bounds = .false.
-    call opt%solve(p, x0, err)
-    call assert_true(opt%status /= status_converged, 'HS 20, bounds as constraints: not converged')
-    ! which diagnosis ends the run depends on the last bits (a stall at -O2,
-    ! a zero-length step under -O3 -march=native): both say the iterates
-    ! stopped moving, without further analyses
+    call q%init_problem('infeasible', 1, 0, 1)
+    q%q = reshape([2.0_dp], [1, 1])
+    q%lin = [-4.0_dp]
+    q%const = 4.0_dp
+    call q%set_quadratic_constraint(1, reshape([2.0_dp], [1, 1]), [0.0_dp], -1.0_dp)
+    call opt%solve(q, [1.0_dp], err)
+    call assert_true(opt%status /= status_converged, 'no feasible point: not converged')
+    ! which diagnosis ends the run may depend on the last bits: each says the
+    ! iterates stopped moving, without further analyses
     call assert_true(index(err%text(), 'stalled') > 0 .or. index(err%text(), 'cycling') > 0 .or. &
                      index(err%text(), 'zero-length') > 0, 'diagnosed: '//err%text())
+    call assert_true(q%count%analyses < 51, 'fewer analyses than the iteration limit: '//str(q%count%analyses))
+    call assert_equal(opt%restorations, 0, 'no restoration from a stationary point of the violation')
+    call err%clear()
+    call create_hs(20, p, x0, xs, fs, found)
+    opt%opts = gauss_options_t()
+    opt%opts%hold_bounds = .false.
+    call opt%solve(p, x0, err)
+    call assert_true(opt%status == status_converged, 'HS 20, bounds as constraints: converged '//err%text())
+    call assert_equal(opt%restorations, 1, 'HS 20, bounds as constraints: one restoration')
+    ! at (-1/2, sqrt(3)/2) f = f* + 2 exactly: (1 - x1)^2 is 2.25 there, 0.25 at x*
+    call assert_close(opt%f, fs + 2.0_dp, 1.0e-6_dp*(1.0_dp + abs(fs)), 'HS 20, bounds as constraints: mirror minimum')
     call assert_true(p%count%analyses < 51, 'fewer analyses than the iteration limit: '//str(p%count%analyses))
   end subroutine test_stall
 

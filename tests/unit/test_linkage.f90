@@ -6,6 +6,9 @@ module test_linkage_suite
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use linkage
+  use linkage_deck, only: read_mechanism, echo_mechanism
+  use linkage_report, only: mechanism_summary, classify_mechanism
+  use reference_materials, only: tennant_aluminium_e1
   use assertions
   use transient_fixtures, only: fourbar_abcd
   implicit none

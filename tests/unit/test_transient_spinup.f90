@@ -20,7 +20,7 @@ module test_transient_spinup_suite
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_bdf_full_user
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
-  use transient_fixtures, only: state_atol
+  use transient_fixtures, only: state_atol, cantilever_input
   use assertions
   implicit none
   private
@@ -37,13 +37,7 @@ contains
     integer, intent(in) :: n
     real(dp), intent(in) :: ws
     type(mechanism_input_t) :: inp
-    inp%n_joints = 2
-    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'free']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%n_links = 1
-    inp%link_joint1(1) = 1
-    inp%link_joint2(1) = 2
+    inp = cantilever_input(n, ws)
     inp%link_length(1) = 8.0_dp
     inp%link_section(1) = 'general'
     inp%link_area(1) = 7.2968e-5_dp
@@ -52,8 +46,6 @@ contains
     inp%link_e1(1) = 6.9e10_dp
     inp%link_e2(1) = 0.0_dp
     inp%link_rho(1) = 2766.67_dp
-    inp%link_n_elements(1) = n
-    inp%omega = ws
     inp%profile = 'spinup'
     inp%spinup_time = 15.0_dp
   end function spinup_input

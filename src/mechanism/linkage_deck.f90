@@ -1,0 +1,181 @@
+!> The deck side of the linkage description: the flat namelist group
+!> &mechanism (gfortran cannot read derived types with allocatable components
+!> from a namelist, so its variables are staged through mechanism_input_t, whose
+!> default initialisation *is* the documented default, doc/mechanism_deck.md),
+!> its echo, and the one section rule every analysis applies to the deck.
+module linkage_deck
+  use strings, only: str
+  use error_status, only: error_t
+  use deck_reader, only: deck_t, invalid_value
+  use linkage, only: mechanism_input_t, input_issue_t, mechanism_t, build_mechanism, max_links, max_joints
+  use kinds, only: dp
+  implicit none
+  private
+  public :: read_mechanism, echo_mechanism, check_section_rules
+
+  ! Staging variables of the deck group &mechanism (module variables because
+  ! the deck reader's callback receives only the unit; see read_mechanism).
+  integer :: n_joints, n_links, driver_link
+  character(len=16) :: joint_name(max_joints), joint_type(max_joints), link_name(max_links), profile
+  real(dp) :: joint_x(max_joints), joint_y(max_joints), joint_guide_deg(max_joints), joint_mass(max_joints)
+  integer :: joint_sliding_link(max_joints), link_joint1(max_links), link_joint2(max_links), link_n_elements(max_links)
+  character(len=8) :: joint_branch(max_joints), branch
+  real(dp) :: link_length(max_links), link_b(max_links), link_h(max_links), link_area(max_links), &
+              link_inertia(max_links), link_e1(max_links), link_e2(max_links), link_m(max_links), link_rho(max_links)
+  character(len=12) :: link_section(max_links)
+  real(dp) :: link_c(max_links), link_wall(max_links)
+  real(dp) :: omega, theta0_deg, spinup_time, toggle_rcond
+  real(dp) :: link_cw_mass(max_links), link_cw_x(max_links), link_cw_y(max_links)
+  namelist /mechanism/ n_joints, joint_name, joint_type, joint_x, joint_y, joint_guide_deg, &
+    joint_sliding_link, joint_branch, joint_mass, &
+    n_links, link_name, link_joint1, link_joint2, link_length, link_b, link_h, &
+    link_area, link_inertia, link_section, link_c, link_wall, link_e1, link_e2, link_m, link_rho, link_n_elements, &
+    driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond, &
+    link_cw_mass, link_cw_x, link_cw_y
+
+contains
+
+
+  !> The one rule for sections that are not rectangles, shared by every
+  !> analysis: the Ramberg-Osgood law is integrated through a rectangular
+  !> depth (Kear K16-K17, Tennant T6) and Tennant's shear angle assumes a
+  !> rectangle, so a circle, tube or general section is a linear-elastic beam
+  !> given by A, I and c.  A link that breaks the rule is an input error.
+  subroutine check_section_rules(deck, mech, material, shear, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_t), intent(in) :: mech
+    logical, intent(in) :: material, shear
+    type(error_t), intent(inout) :: err
+    integer :: i
+    if (err%failed() .or. .not. (material .or. shear)) return
+    do i = 1, mech%n_links
+      if (mech%links(i)%section == 'rectangle') cycle
+      if (material) then
+        call invalid_value(deck, 'mechanism', 'link_section('//str(i)//')', "'"//trim(mech%links(i)%section)//"'", &
+          'the material effect integrates the Ramberg-Osgood law through a rectangular depth: a '// &
+          trim(mech%links(i)%section)//' section needs it off (a linear-elastic beam of A, I and c)', err)
+      else
+        call invalid_value(deck, 'mechanism', 'link_section('//str(i)//')', "'"//trim(mech%links(i)%section)//"'", &
+          'the shear angle of Tennant''s element assumes a rectangle: a '//trim(mech%links(i)%section)// &
+          ' section needs shear off', err)
+      end if
+      return
+    end do
+  end subroutine check_section_rules
+
+  !> Validate the flat input and build the indexed mechanism.  Any failure is
+
+  !> mechanism.  Invalid values are reported with their deck line.
+  subroutine read_mechanism(deck, mech, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(out) :: mech
+    type(error_t), intent(inout) :: err
+    type(mechanism_input_t) :: inp
+    type(input_issue_t) :: issue
+    logical :: found
+    call stage_from(inp)
+    call deck%read_group('mechanism', read_mechanism_group, required=.true., found=found, err=err)
+    if (err%failed()) return
+    call stage_to(inp)
+    call build_mechanism(inp, mech, err, issue)
+    if (err%failed() .and. allocated(issue%variable)) then
+      call err%clear()
+      call invalid_value(deck, 'mechanism', issue%variable, issue%value, issue%rule, err)
+    end if
+  end subroutine read_mechanism
+
+  subroutine read_mechanism_group(unit, ios, iomsg)
+    integer, intent(in) :: unit
+    integer, intent(out) :: ios
+    character(len=*), intent(inout) :: iomsg
+    read(unit, nml=mechanism, iostat=ios, iomsg=iomsg)
+  end subroutine read_mechanism_group
+
+  !> Write the mechanism's effective input as the namelist group &mechanism.
+  subroutine echo_mechanism(mech, unit)
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: unit
+    call stage_from(mech%input)
+    write(unit, nml=mechanism, delim='apostrophe')
+  end subroutine echo_mechanism
+
+  subroutine stage_from(inp)
+    type(mechanism_input_t), intent(in) :: inp
+    n_joints = inp%n_joints
+    joint_name = inp%joint_name
+    joint_type = inp%joint_type
+    joint_x = inp%joint_x
+    joint_y = inp%joint_y
+    joint_guide_deg = inp%joint_guide_deg
+    joint_sliding_link = inp%joint_sliding_link
+    joint_branch = inp%joint_branch
+    joint_mass = inp%joint_mass
+    n_links = inp%n_links
+    link_name = inp%link_name
+    link_joint1 = inp%link_joint1
+    link_joint2 = inp%link_joint2
+    link_length = inp%link_length
+    link_b = inp%link_b
+    link_h = inp%link_h
+    link_area = inp%link_area
+    link_inertia = inp%link_inertia
+    link_section = inp%link_section
+    link_c = inp%link_c
+    link_wall = inp%link_wall
+    link_e1 = inp%link_e1
+    link_e2 = inp%link_e2
+    link_m = inp%link_m
+    link_rho = inp%link_rho
+    link_n_elements = inp%link_n_elements
+    link_cw_mass = inp%link_cw_mass
+    link_cw_x = inp%link_cw_x
+    link_cw_y = inp%link_cw_y
+    driver_link = inp%driver_link
+    omega = inp%omega
+    theta0_deg = inp%theta0_deg
+    profile = inp%profile
+    spinup_time = inp%spinup_time
+    branch = inp%branch
+    toggle_rcond = inp%toggle_rcond
+  end subroutine stage_from
+
+  subroutine stage_to(inp)
+    type(mechanism_input_t), intent(inout) :: inp
+    inp%n_joints = n_joints
+    inp%joint_name = joint_name
+    inp%joint_type = joint_type
+    inp%joint_x = joint_x
+    inp%joint_y = joint_y
+    inp%joint_guide_deg = joint_guide_deg
+    inp%joint_sliding_link = joint_sliding_link
+    inp%joint_branch = joint_branch
+    inp%joint_mass = joint_mass
+    inp%n_links = n_links
+    inp%link_name = link_name
+    inp%link_joint1 = link_joint1
+    inp%link_joint2 = link_joint2
+    inp%link_length = link_length
+    inp%link_b = link_b
+    inp%link_h = link_h
+    inp%link_area = link_area
+    inp%link_inertia = link_inertia
+    inp%link_section = link_section
+    inp%link_c = link_c
+    inp%link_wall = link_wall
+    inp%link_e1 = link_e1
+    inp%link_e2 = link_e2
+    inp%link_m = link_m
+    inp%link_rho = link_rho
+    inp%link_n_elements = link_n_elements
+    inp%link_cw_mass = link_cw_mass
+    inp%link_cw_x = link_cw_x
+    inp%link_cw_y = link_cw_y
+    inp%driver_link = driver_link
+    inp%omega = omega
+    inp%theta0_deg = theta0_deg
+    inp%profile = profile
+    inp%spinup_time = spinup_time
+    inp%branch = branch
+    inp%toggle_rcond = toggle_rcond
+  end subroutine stage_to
+end module linkage_deck
