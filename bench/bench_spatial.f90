@@ -9,7 +9,8 @@
 !>     steps, RHS and Jacobian evaluations, coupler peak stress (Adams is
 !>     left out: the curvature DOFs make four elements per link stiff);
 !>  3. the banded route against the mesh (1 to 16 elements per link).
-!> `bench_spatial turns` skips part 1; `bench_spatial probe N [geometric]`
+!> `bench_spatial turns` skips part 1, `bench_spatial rhs` runs part 1 at 4 elements per
+!> link only (new time and reused mass); `bench_spatial probe N [geometric|linear [RTOL]]`
 !> runs one turn (tolerances B) at N elements per link, e.g. under perf.  Figures, not pass/fail.
 program bench_spatial
   use, intrinsic :: iso_fortran_env, only: output_unit
@@ -34,7 +35,8 @@ program bench_spatial
   type(error_t) :: err
   type(element_effects_t) :: fx
 
-  character(len=16) :: arg
+  character(len=16) :: arg, arg2
+  real(dp) :: rtol_b = 1.0e-4_dp
 
   call get_command_argument(1, arg)
   if (trim(arg) == 'probe') then           ! one turn, tolerances B, e.g. under perf: probe N [geometric]
@@ -43,10 +45,16 @@ program bench_spatial
     call get_command_argument(3, arg)
     fx = element_effects_t(.false., .false., .false., .false., .false.)
     if (trim(arg) == 'geometric') fx = element_effects_t(.true., .true., .false., .true., .true.)
+    call get_command_argument(4, arg2)       ! rtol of tolerances B (default 1e-4)
+    if (len_trim(arg2) > 0) read(arg2, *) rtol_b
     call turn(i, fx, 2, .true., merge('geometric ', 'linear    ', trim(arg) == 'geometric'), 'bdf      ')
     stop
   end if
-  if (trim(arg) /= 'turns') call rhs_cost()
+  if (trim(arg) == 'rhs') then             ! the right-hand side at 4 elements per link only
+    call rhs_cost(3)
+    stop
+  end if
+  if (trim(arg) /= 'turns') call rhs_cost(size(meshes))
 
   write(*, '(/,a)') 'target case: 4 elements per link, 150 rad/s, beta = 1e-5 s, one turn from the rigid state'
   write(*, '(a)') '  bdf = DLSODE MF 21 through the model''s banded N x N Newton matrix; bdf dense = the same with'
@@ -81,8 +89,9 @@ program bench_spatial
 contains
 
   !> Part 1: CPU of one right-hand side against the mesh.
-  subroutine rhs_cost()
-    integer :: ncall
+  subroutine rhs_cost(upto)
+    integer, intent(in) :: upto           !< meshes(1:upto), or meshes(3) alone if upto = 3
+    integer :: ncall, i0
     real(dp) :: c0
     real(dp), allocatable :: q(:), qd(:), qdd(:)
     write(*, '(a)') 'spatial four-bar (Tennant geometry, revolute joints), one right-hand side:'
@@ -93,12 +102,14 @@ contains
       else
         fx = element_effects_t(.true., .true., .true., .true., .true.)
       end if
-      do i = 1, size(meshes)
+      i0 = merge(3, 1, upto == 3)
+      do i = i0, upto
         call build(meshes(i), fx, 1.0e-5_dp, sm)
         allocate(q(sm%n), qd(sm%n), qdd(sm%n))
         q = 1.0e-6_dp                             ! small elastic state: no strain near the material peak
         qd = 1.0e-4_dp
         ncall = max(20, 4000/meshes(i))
+        if (upto == 3) ncall = 20000
         call cpu_time(c0)
         do j = 1, ncall
           sm%t_states = -1.0_dp                   ! force the kinematics and the mass (a new time)
@@ -106,6 +117,22 @@ contains
           call sm%accelerations(1.0e-3_dp, q, qd, qdd)
         end do
         call cpu_time(c1)
+        if (upto == 3) then                       ! and at an unchanged time (mass factor reused)
+          write(*, '(a,f8.2)') '  new time, us per RHS:', 1.0e6_dp*(c1 - c0)/ncall
+          call cpu_time(c0)
+          do j = 1, ncall
+            call sm%accelerations(1.0e-3_dp, q, qd, qdd)
+          end do
+          call cpu_time(c1)
+          write(*, '(a,f8.2)') '  same time, us per RHS:', 1.0e6_dp*(c1 - c0)/ncall
+          call cpu_time(c0)
+          do j = 1, ncall
+            sm%t_states = -1.0_dp
+            call sm%set_time(1.0e-3_dp)
+          end do
+          call cpu_time(c1)
+          write(*, '(a,f8.2)') '  kinematics and element frames, us:', 1.0e6_dp*(c1 - c0)/ncall
+        end if
         if (sm%err%failed()) write(*, '(a)') '  (model stopped: '//sm%err%text()//')'
         write(*, '(2x,a8,i8,i10,i11,f10.1,f14.2)') merge('linear  ', 'all on  ', k == 1), meshes(i), sm%n, sm%kd, &
           1.0e6_dp*(c1 - c0)/ncall, 1.0e6_dp*(c1 - c0)/ncall/(3*meshes(i))
@@ -135,7 +162,7 @@ contains
     else
       atol(1::2) = 1.0e-7_dp
       atol(2::2) = 1.0e-4_dp
-      call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-4_dp, atol, err, max_steps=2000000, structured=structured)
+      call ode%init(size(y), 0.0_dp, mf_bdf_full_user, rtol_b, atol, err, max_steps=2000000, structured=structured)
     end if
     ! 360 output points (the stress peak); CPU of the DLSODE calls only
     nsteps = 360

@@ -289,10 +289,13 @@ contains
     end do
     ! section rotary and torsional inertia: -int G_phi^T J alpha
     fp = fp - matmul(el%rot_load, al)
-    ! transformation terms of p_dd = T^T q_dd - 2 W v + (W^2 - Wdot) p
-    fp = fp - matmul(el%mass0, skew_apply(wl, wp, el%local_rotation))
-    if (el%effects%coupling) fp = fp + matmul(el%mass0, 2.0_dp*skew_apply(wl, v, el%local_rotation) &
-                                                        + skew_apply(al, p, el%local_rotation))
+    ! transformation terms of p_dd = T^T q_dd - 2 W v + (W^2 - Wdot) p (one product with M_p)
+    if (el%effects%coupling) then
+      fp = fp + matmul(el%mass0, 2.0_dp*skew_apply(wl, v, el%local_rotation) + skew_apply(al, p, el%local_rotation) &
+                                 - skew_apply(wl, wp, el%local_rotation))
+    else
+      fp = fp - matmul(el%mass0, skew_apply(wl, wp, el%local_rotation))
+    end if
 
     ! strain energy, internal force, damping on the local strain rates
     call strain_terms(el, p, pd, present(tangent), el%beta > 0.0_dp, info, fint, fdamp, kp)
@@ -380,19 +383,19 @@ contains
     real(dp), intent(out) :: fint(nd), fdamp(nd), kp(nd, nd)
     real(dp) :: z(nz), fz(nz), hz(nz, nz), en, gh(nd, nz), emax, yf, zf, s(3)
     integer :: i
-    fint = 0.0_dp
-    fdamp = 0.0_dp
-    kp = 0.0_dp
     info%strain_energy = 0.0_dp
     info%max_abs_strain = 0.0_dp
-    if (.not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)) then
+    if (linear_strain(el)) then
       fint = matmul(el%k_lin, p)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
-      if (want_k) kp = el%k_lin
+      if (want_k) kp = el%k_lin          ! kp, fdamp are left undefined when not asked for
       if (want_damp) fdamp = matmul(el%k_lin, prel)
       ! material off here: no Ramberg-Osgood peak to watch, max_abs_strain is not computed
       return
     end if
+    fint = 0.0_dp
+    fdamp = 0.0_dp
+    kp = 0.0_dp
     do i = 1, el%n_gauss
       z = matmul(p, el%gz(:, :, i))
       call station_energy(el, z, want_k .or. want_damp, en, fz, hz, s)
@@ -409,6 +412,12 @@ contains
     info%n_nonlinear_points = el%n_gauss
     info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star
   end subroutine strain_terms
+
+  !> No nonlinear strain effect: the element's strain energy is p^T K p / 2.
+  pure logical function linear_strain(el)
+    type(spatial_beam_t), intent(in) :: el
+    linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
+  end function linear_strain
 
   !> Energy per unit length at a station, its gradient and (if want_h) its
   !> Hessian with respect to z = (u_x, v_x, w_x, v_xx, w_xx, theta_x);
@@ -632,21 +641,26 @@ contains
   pure function matrix_to_global(rot, a, local) result(g)
     real(dp), intent(in) :: rot(3, 3), a(nd, nd)
     logical, intent(in) :: local(2)
-    real(dp) :: g(nd, nd), t(nd, nd), rt(3, 3)
+    real(dp) :: g(nd, nd), c(nd, 3)
     integer, parameter :: first(4) = [1, 4, 11, 14]
     logical :: rotates(4)
-    integer :: b, r
+    integer :: b, r, j
     rotates = [.true., .not. local(1), .true., .not. local(2)]
-    rt = transpose(rot)
-    t = a
-    do b = 1, 4
+    g = a
+    do b = 1, 4                                                        ! T A, rows by blocks
+      if (.not. rotates(b)) cycle
       r = first(b)
-      if (rotates(b)) t(r:r + 2, :) = matmul(rot, a(r:r + 2, :))       ! T A
+      do j = 1, nd
+        g(r:r + 2, j) = rot(:, 1)*a(r, j) + rot(:, 2)*a(r + 1, j) + rot(:, 3)*a(r + 2, j)
+      end do
     end do
-    g = t
-    do b = 1, 4
+    do b = 1, 4                                                        ! (T A) T^T, columns by blocks
+      if (.not. rotates(b)) cycle
       r = first(b)
-      if (rotates(b)) g(:, r:r + 2) = matmul(t(:, r:r + 2), rt)        ! (T A) T^T
+      c = g(:, r:r + 2)
+      do j = 1, 3
+        g(:, r + j - 1) = c(:, 1)*rot(j, 1) + c(:, 2)*rot(j, 2) + c(:, 3)*rot(j, 3)
+      end do
     end do
   end function matrix_to_global
 

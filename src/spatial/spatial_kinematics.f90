@@ -19,6 +19,12 @@
 !> x = (C - D)/rho, z = d; coupler x = (C - B)/L, z = the part of a normal to
 !> x (the coupler's spin about its own axis is idle in the RSSR: this fixes
 !> it, and gives the planar frame in the planar case).
+!>
+!> Universal joint at B or C (spatial_fourbar_set_universal: RUSR, RSUR): the
+!> cross's first axis u is fixed in the crank (at B) or the rocker (at C), its
+!> second axis is fixed in the coupler and normal to BC and to u; the joint
+!> fixes the coupler's spin: coupler z = (x cross u)/|x cross u|.  It locks
+!> when BC runs along u (an error naming the crank angle).
 module spatial_kinematics
   use kinds, only: dp, pi
   use error_status, only: error_t
@@ -26,6 +32,7 @@ module spatial_kinematics
   implicit none
   private
   public :: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_init, spatial_fourbar_solve
+  public :: spatial_fourbar_set_universal
   public :: rocker_angle_closed_form, cross, rotate_about
   public :: link_crank, link_coupler, link_rocker
 
@@ -38,6 +45,10 @@ module spatial_kinematics
     real(dp) :: crank_radius = 0.0_dp, rocker_length = 0.0_dp, coupler_length = 0.0_dp
     integer :: branch = 1                         !< sign of sin(psi - atan2(Q, P))
     real(dp) :: toggle_tol = 1.0e-6_dp            !< |sin(psi - atan2(Q,P))| below this: toggle
+    !> universal joint: 0 none, link_crank (at B) or link_rocker (at C): the link carrying the cross's axis u
+    integer :: universal_link = 0
+    real(dp) :: u_local(3) = [0.0_dp, 0.0_dp, 1.0_dp]   !< u in that link's frame (unit)
+    real(dp) :: lock_tol = 1.0e-6_dp              !< |x cross u| below this: the universal joint locks
     ! state of the Newton iteration
     logical :: have_guess = .false.
     real(dp) :: psi_guess = 0.0_dp
@@ -56,6 +67,7 @@ module spatial_kinematics
     real(dp) :: origin(3, 3) = 0.0_dp             !< (:, link) end 1 of each link: A, B, D
     real(dp) :: origin_d(3, 3) = 0.0_dp, origin_dd(3, 3) = 0.0_dp
     integer :: iterations = 0
+    logical :: locked = .false.                   !< universal joint locked (coupler along the cross's axis)
   end type spatial_pose_t
 
 contains
@@ -102,6 +114,21 @@ contains
     m%e1 = x/norm2(x)
     m%e2 = cross(m%d_axis, m%e1)
   end subroutine spatial_fourbar_init
+
+  !> A universal joint at B (at_c false) or C: the cross's axis fixed in the
+  !> crank or the rocker, axis_local in that link's frame (x along the link
+  !> from its pivot, z along the pivot axis); any nonzero vector.
+  pure subroutine spatial_fourbar_set_universal(m, at_c, axis_local, err)
+    type(spatial_fourbar_t), intent(inout) :: m
+    logical, intent(in) :: at_c
+    real(dp), intent(in) :: axis_local(3)
+    type(error_t), intent(inout) :: err
+    if (.not. (norm2(axis_local) > 0.0_dp)) then
+      call err%set('spatial four-bar', 'the universal joint''s axis must be a nonzero vector'); return
+    end if
+    m%universal_link = merge(link_rocker, link_crank, at_c)
+    m%u_local = axis_local/norm2(axis_local)
+  end subroutine spatial_fourbar_set_universal
 
   !> Crank pin B, its derivatives with respect to theta (rotation about a).
   pure subroutine crank_pin(m, theta, b, b_t, b_tt)
@@ -154,12 +181,10 @@ contains
     real(dp) :: p, q, s, r, b(3), bt(3), btt(3), c(3), cp(3), cpp(3), g, gp, dpsi, psi, side
     real(dp) :: g_t, g_p, g_tt, g_tp, g_pp
     integer :: it, status
-    character(len=:), allocatable :: where
-    where = 'crank angle '//str(theta*180.0_dp/pi, 8)//' deg'
     call closure_coefficients(m, theta, p, q, s, b, bt, btt)
     r = hypot(p, q)
     if (abs(s) > r) then
-      call err%set('spatial kinematics', 'the linkage does not assemble at '//where// &
+      call err%set('spatial kinematics', 'the linkage does not assemble at '//where(theta)// &
                    ' (the coupler cannot reach the rocker circle: |S|/R = '//str(abs(s)/r, 8)//')')
       return
     end if
@@ -181,12 +206,12 @@ contains
     m%n_solves = m%n_solves + 1
     side = sin(psi - atan2(q, p))
     if (abs(side) < m%toggle_tol) then
-      call err%set('spatial kinematics', 'toggle position at '//where//' (the coupler is tangent to the '// &
+      call err%set('spatial kinematics', 'toggle position at '//where(theta)//' (the coupler is tangent to the '// &
                    'rocker circle: the rocker velocity is undefined)')
       return
     end if
     if (nint(sign(1.0_dp, side)) /= m%branch .or. abs(p*cos(psi) + q*sin(psi) - s) > 1.0e-9_dp*r) then
-      call err%set('spatial kinematics', 'Newton left assembly branch '//str(m%branch)//' at '//where// &
+      call err%set('spatial kinematics', 'Newton left assembly branch '//str(m%branch)//' at '//where(theta)// &
                    ' (a toggle was passed between two solutions: take smaller steps)')
       return
     end if
@@ -215,14 +240,26 @@ contains
     pose%c_d = cp*pose%psi_d
     pose%c_dd = cpp*pose%psi_d**2 + cp*pose%psi_dd
     call link_frames(m, pose)
+    if (pose%locked) call err%set('spatial kinematics', 'the universal joint at '// &
+      merge('C', 'B', m%universal_link == link_rocker)//' locks at '//where(theta)// &
+      ' (the coupler runs along the cross''s axis)')
   end subroutine spatial_fourbar_solve
+
+  !> The crank angle for messages (formatted only when one is written: an
+  !> internal write per solve would cost more than the solve).
+  function where(theta) result(w)
+    real(dp), intent(in) :: theta
+    character(len=:), allocatable :: w
+    w = 'crank angle '//str(theta*180.0_dp/pi, 8)//' deg'
+  end function where
 
   !> Frames, angular velocities and accelerations, and end-1 motion of the links.
   pure subroutine link_frames(m, pose)
     type(spatial_fourbar_t), intent(in) :: m
     type(spatial_pose_t), intent(inout) :: pose
     real(dp) :: x(3), xd(3), xdd(3), n(3), nd(3), ndd(3), z(3), zd(3), zdd(3), y(3), yd(3), ydd(3)
-    real(dp) :: sn, snd, sndd, ll
+    real(dp) :: sn, snd, sndd, ll, u(3), ud(3), udd(3)
+    integer :: k
     ! crank: rotation about a
     pose%rot(:, :, link_crank) = frame(pose%b - m%a_pivot, m%a_axis)
     pose%omega(:, link_crank) = pose%theta_d*m%a_axis
@@ -238,9 +275,22 @@ contains
     x = (pose%c - pose%b)/ll
     xd = (pose%c_d - pose%b_d)/ll
     xdd = (pose%c_dd - pose%b_dd)/ll
-    n = m%a_axis - dot_product(m%a_axis, x)*x
-    nd = -dot_product(m%a_axis, xd)*x - dot_product(m%a_axis, x)*xd
-    ndd = -dot_product(m%a_axis, xdd)*x - 2.0_dp*dot_product(m%a_axis, xd)*xd - dot_product(m%a_axis, x)*xdd
+    if (m%universal_link == 0) then
+      n = m%a_axis - dot_product(m%a_axis, x)*x
+      nd = -dot_product(m%a_axis, xd)*x - dot_product(m%a_axis, x)*xd
+      ndd = -dot_product(m%a_axis, xdd)*x - 2.0_dp*dot_product(m%a_axis, xd)*xd - dot_product(m%a_axis, x)*xdd
+    else
+      ! universal joint: the coupler's cross axis z is normal to x and to the link-fixed axis u
+      k = m%universal_link
+      u = matmul(pose%rot(:, :, k), m%u_local)
+      ud = cross(pose%omega(:, k), u)
+      udd = cross(pose%alpha(:, k), u) + cross(pose%omega(:, k), ud)
+      n = cross(x, u)
+      nd = cross(xd, u) + cross(x, ud)
+      ndd = cross(xdd, u) + 2.0_dp*cross(xd, ud) + cross(x, udd)
+      pose%locked = norm2(n) < m%lock_tol       ! |x cross u|: the coupler's spin is undefined
+      if (pose%locked) return
+    end if
     sn = norm2(n)
     z = n/sn
     snd = dot_product(z, nd)

@@ -14,12 +14,17 @@
 !>     coupler's twist is held at B (its spin about BC is idle);
 !>  B, C revolute (planar linkage, axis a along a global axis): translations
 !>     and the two rotations normal to a shared, rotation about a and w_xx
-!>     per link, v_xx zero.
+!>     per link, v_xx zero;
+!>  B or C universal (RUSR, RSUR; the kinematics fix the coupler's spin): as
+!>     spherical, but the coupler's twist is held at the universal joint (the
+!>     torque about the coupler goes into the rigid motion; doc/spatial.md).
+!>     One universal joint at most, not with a revolute one.
 module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: band_cholesky_factor, band_cholesky_solve, sym_generalized_eig, dense_to_lower_band
+  use linalg, only: sym_generalized_eig, dense_to_lower_band
+  use band_cholesky, only: band_llt_factor, band_llt_solve
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
   use companion_jacobian, only: fill_companion_jacobian
@@ -34,11 +39,12 @@ module spatial_model
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
+  use spatial_mass, only: spatial_mass_t
   implicit none
   private
-  public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute
+  public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
 
-  integer, parameter :: spatial_joint_spherical = 1, spatial_joint_revolute = 2
+  integer, parameter :: spatial_joint_spherical = 1, spatial_joint_revolute = 2, spatial_joint_universal = 3
   character(len=7), parameter :: link_names(3) = ['crank  ', 'coupler', 'rocker ']
 
   type :: spatial_link_t
@@ -70,6 +76,7 @@ module spatial_model
     logical :: stop_beyond_peak = .true.
     integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
     type(second_order_newton_t) :: newton          !< DLSODE's Newton matrix, banded (shared with the planar model's scheme)
+    type(spatial_mass_t) :: cmass                  !< M(t) solves through a constant factor (spatial_mass)
   contains
     procedure :: init => model_init
     procedure :: rhs => model_rhs
@@ -102,7 +109,21 @@ contains
     type(error_t), intent(inout) :: err
     integer, intent(in), optional :: formulation   !< spatial_formulation_* (default: consistent)
     integer :: k, i, e, ne
-    logical :: loc(2)
+    logical :: loc(2), ball_b, ball_c
+    if (joint_b == spatial_joint_universal .or. joint_c == spatial_joint_universal) then
+      if (joint_b == spatial_joint_revolute .or. joint_c == spatial_joint_revolute .or. joint_b == joint_c) then
+        call err%set('spatial model', 'one universal joint, at B or C, with a spherical joint at the other')
+        err%code = 2
+        return
+      end if
+      if (kin%universal_link /= merge(link_crank, link_rocker, joint_b == spatial_joint_universal)) then
+        call err%set('spatial model', 'the kinematics have no universal joint at '// &
+                     merge('B', 'C', joint_b == spatial_joint_universal))
+        return
+      end if
+    end if
+    ball_b = joint_b == spatial_joint_spherical .or. joint_b == spatial_joint_universal
+    ball_c = joint_c == spatial_joint_spherical .or. joint_c == spatial_joint_universal
     self%formulation = spatial_formulation_consistent
     if (present(formulation)) self%formulation = formulation
     self%kin = kin
@@ -129,10 +150,9 @@ contains
         loc = .false.
         ! unshared rotations at spherical ends are local (the coupler's twist is held there)
         if (i == self%links(k)%n_elements) then
-          loc(2) = (k == link_crank .and. joint_b == spatial_joint_spherical) .or. &
-                   (k /= link_crank .and. joint_c == spatial_joint_spherical)
+          loc(2) = (k == link_crank .and. ball_b) .or. (k /= link_crank .and. ball_c)
         end if
-        if (i == 1 .and. k == link_coupler) loc(1) = joint_b == spatial_joint_spherical
+        if (i == 1 .and. k == link_coupler) loc(1) = ball_b
         associate (lk => self%links(k))
           call spatial_beam_init(self%el(e), lk%length/lk%n_elements, lk%sec, lk%material, lk%shear_modulus, &
                                  effects, err, damping_beta=beta, local_rotation=loc, formulation=self%formulation)
@@ -161,6 +181,7 @@ contains
     self%n = self%table%n_global
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    call self%cmass%init(self%table, self%el, self%link_of, self%n, self%kd)
   end subroutine model_init
 
   !> Node rules in chain order A -> B -> C -> D (narrow band).
@@ -204,12 +225,12 @@ contains
         call interior(1, j)
       end if
     end do
-    ! coupler: B, interior, C
+    ! coupler: B, interior, C; its twist is held at B, or at the universal joint
     do j = 0, self%links(link_coupler)%n_elements
       if (j == 0) then
-        call joint_end(2, j, self%joint_b, self%b_dofs, b_rot, 'B', .true.)
+        call joint_end(2, j, self%joint_b, self%b_dofs, b_rot, 'B', self%joint_c /= spatial_joint_universal)
       else if (j == self%links(link_coupler)%n_elements) then
-        call joint_end(2, j, self%joint_c, self%c_dofs, c_rot, 'C', .false.)
+        call joint_end(2, j, self%joint_c, self%c_dofs, c_rot, 'C', self%joint_c == spatial_joint_universal)
       else
         call interior(2, j)
       end if
@@ -295,8 +316,8 @@ contains
       nm(1:3, node, link) = trans
       nc(1:3, node, link) = 1.0_dp
       call axial_slopes(link, node)
-      if (kind == spatial_joint_spherical) then
-        ! local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
+      if (kind /= spatial_joint_revolute) then
+        ! spherical or universal: local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
         do s = 4, 6
           if (s == 4 .and. hold_twist) cycle
           nm(s, node, link) = fresh(link, node, s)
@@ -363,13 +384,16 @@ contains
     real(dp), intent(out), contiguous :: qdd(:)
     real(dp) :: me(sdofs, sdofs), fe(sdofs)
     type(spatial_eval_info_t) :: info
-    type(error_t) :: err
     integer :: e
-    logical :: new_mass
+    logical :: new_mass, ok
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     new_mass = t < self%t_mass .or. t > self%t_mass
+    if (self%cmass%active) then
+      call constant_factor_accelerations(self, t, q, qd, new_mass, qdd)
+      return
+    end if
     if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
@@ -388,17 +412,55 @@ contains
     end do
     if (new_mass) then
       self%t_mass = huge(1.0_dp)                ! invalid until factored
-      call band_cholesky_factor(self%mass_band, self%kd, err)
+      call band_llt_factor(self%mass_band, self%kd, ok)
       self%n_mass_factorizations = self%n_mass_factorizations + 1
-      if (err%failed()) then
-        call self%fail(t, 'mass matrix: '//err%text())
+      if (.not. ok) then
+        call self%fail(t, 'mass matrix is not positive definite')
         return
       end if
       self%t_mass = t
     end if
     qdd = self%force
-    call band_cholesky_solve(self%mass_band, self%kd, qdd, err)
+    call band_llt_solve(self%mass_band, self%kd, qdd)
   end subroutine accelerations
+
+  !> accelerations through spatial_mass: the elements' forces only, M(t)^-1
+  !> by the constant factor and the joint unknowns' Schur complement (updated
+  !> at a new time).
+  subroutine constant_factor_accelerations(self, t, q, qd, new_mass, qdd)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    logical, intent(in) :: new_mass
+    real(dp), intent(out), contiguous :: qdd(:)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs)
+    type(spatial_eval_info_t) :: info
+    integer :: e
+    logical :: ok
+    self%force = 0.0_dp
+    do e = 1, size(self%el)
+      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
+                             mass_wanted=.false.)
+      self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
+      if (info%beyond_peak .and. self%stop_beyond_peak) then
+        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
+                       ' is past the peak of the Ramberg-Osgood curve, eps* = '//str(self%el(e)%eps_star, 6))
+        return
+      end if
+      call self%table%scatter_add(e, fe, self%force)
+    end do
+    if (new_mass) then
+      self%t_mass = huge(1.0_dp)                ! invalid until factored
+      call self%cmass%update(self%rb, ok)
+      self%n_mass_factorizations = self%n_mass_factorizations + 1
+      if (.not. ok) then
+        call self%fail(t, 'mass matrix is not positive definite')
+        return
+      end if
+      self%t_mass = t
+    end if
+    qdd = self%force
+    call self%cmass%solve(self%rb, qdd)
+  end subroutine constant_factor_accelerations
 
   subroutine model_rhs(self, t, y, ydot)
     class(spatial_model_t), intent(inout) :: self
@@ -424,7 +486,7 @@ contains
     real(dp), intent(inout) :: pd(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q(self%n), col(self%n)
     integer :: j, kd
-    type(error_t) :: err
+    logical :: ok
     call self%set_time(t)
     q = y(1::2)
     call self%assemble_dense(q, mass, stiff)
@@ -432,14 +494,14 @@ contains
     kd = self%kd
     self%t_mass = -huge(1.0_dp)                  ! mass_band is reused here
     call dense_to_lower_band(mass, kd, self%mass_band)
-    call band_cholesky_factor(self%mass_band, kd, err)
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix in the Jacobian: '//err%text())
+    call band_llt_factor(self%mass_band, kd, ok)
+    if (.not. ok) then
+      call self%fail(t, 'mass matrix in the Jacobian is not positive definite')
       return
     end if
     do j = 1, self%n
       col = stiff(:, j)
-      call band_cholesky_solve(self%mass_band, kd, col, err)
+      call band_llt_solve(self%mass_band, kd, col)
       stiff(:, j) = col                          ! stiff := M^-1 K_t
     end do
     call fill_companion_jacobian(stiff, self%el(1)%beta, ml, mu, pd)

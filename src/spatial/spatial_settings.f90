@@ -1,6 +1,6 @@
 !> The &spatial_mechanism group of a spatial deck (doc/spatial.md, "Deck"):
-!> the single-loop spatial four-bar (RSSR, or the planar four-bar with
-!> revolute joints), its driver and its three links.  Every value is checked
+!> the single-loop spatial four-bar (RSSR, RSUR/RUSR with one universal
+!> joint, or the planar four-bar with revolute joints), its driver and its three links.  Every value is checked
 !> here (code 2 on bad input); the geometry is then checked by
 !> spatial_fourbar_init.
 module spatial_settings
@@ -14,8 +14,8 @@ module spatial_settings
   use reference_materials, only: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, &
     tennant_aluminium_rho
   use spatial_section, only: spatial_section_init, section_rectangular, section_circular
-  use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
-  use spatial_model, only: spatial_link_t, spatial_joint_spherical, spatial_joint_revolute
+  use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init, spatial_fourbar_set_universal
+  use spatial_model, only: spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
   implicit none
   private
   public :: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
@@ -26,6 +26,7 @@ module spatial_settings
     real(dp) :: rocker_length = 0.0_dp, coupler_length = 0.0_dp
     integer :: branch = 1
     character(len=16) :: joint_b = 'spherical', joint_c = 'spherical'
+    real(dp) :: universal_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp]   !< in the crank's (B) or rocker's (C) frame
     real(dp) :: omega = 0.0_dp, theta0_deg = 0.0_dp
     integer :: link_n_elements(3) = 1
     character(len=16) :: link_section(3) = 'rectangular'
@@ -39,11 +40,12 @@ module spatial_settings
   real(dp) :: rocker_length, coupler_length, omega, theta0_deg
   integer :: branch, link_n_elements(3)
   character(len=16) :: joint_b, joint_c, link_section(3)
+  real(dp) :: universal_axis(3)
   real(dp) :: link_depth(3), link_width(3), link_radius(3), link_e1(3), link_e2(3), link_m(3), link_rho(3), &
               link_poisson(3)
   namelist /spatial_mechanism/ crank_pivot, crank_axis, crank_pin, rocker_pivot, rocker_axis, rocker_length, &
-    coupler_length, branch, joint_b, joint_c, omega, theta0_deg, link_n_elements, link_section, link_depth, &
-    link_width, link_radius, link_e1, link_e2, link_m, link_rho, link_poisson
+    coupler_length, branch, joint_b, joint_c, universal_axis, omega, theta0_deg, link_n_elements, link_section, &
+    link_depth, link_width, link_radius, link_e1, link_e2, link_m, link_rho, link_poisson
 
   character(len=*), parameter :: g = 'spatial_mechanism'
 
@@ -64,6 +66,7 @@ contains
     branch = s%branch
     joint_b = s%joint_b
     joint_c = s%joint_c
+    universal_axis = s%universal_axis
     omega = s%omega
     theta0_deg = s%theta0_deg
     link_n_elements = s%link_n_elements
@@ -79,8 +82,9 @@ contains
     call deck%read_group(g, read_group, .true., found, err)
     if (err%failed()) return
     s = spatial_input_t(crank_pivot, crank_axis, crank_pin, rocker_pivot, rocker_axis, rocker_length, &
-                        coupler_length, branch, joint_b, joint_c, omega, theta0_deg, link_n_elements, link_section, &
-                        link_depth, link_width, link_radius, link_e1, link_e2, link_m, link_rho, link_poisson)
+                        coupler_length, branch, joint_b, joint_c, universal_axis, omega, theta0_deg, &
+                        link_n_elements, link_section, link_depth, link_width, link_radius, link_e1, link_e2, link_m, &
+                        link_rho, link_poisson)
     call validate(deck, s, err)
   end subroutine read_spatial_mechanism
 
@@ -103,8 +107,18 @@ contains
     call check_integer(deck, g, 'branch', s%branch, err, at_least=-1, at_most=1)
     if (.not. err%failed() .and. s%branch == 0) &
       call invalid_value(deck, g, 'branch', '0', 'must be +1 or -1 (the side of the coupler-rocker dyad)', err)
-    call check_choice(deck, g, 'joint_b', s%joint_b, [character(16) :: 'spherical', 'revolute'], err)
-    call check_choice(deck, g, 'joint_c', s%joint_c, [character(16) :: 'spherical', 'revolute'], err)
+    call check_choice(deck, g, 'joint_b', s%joint_b, [character(16) :: 'spherical', 'revolute', 'universal'], err)
+    call check_choice(deck, g, 'joint_c', s%joint_c, [character(16) :: 'spherical', 'revolute', 'universal'], err)
+    if (.not. err%failed() .and. s%joint_b == 'universal' .and. s%joint_c /= 'spherical') &
+      call invalid_value(deck, g, 'joint_c', trim(s%joint_c), 'with a universal joint at B, C must be spherical '// &
+                         '(RUSR; two universal joints over-constrain the coupler''s spin)', err)
+    if (.not. err%failed() .and. s%joint_c == 'universal' .and. s%joint_b /= 'spherical') &
+      call invalid_value(deck, g, 'joint_b', trim(s%joint_b), 'with a universal joint at C, B must be spherical '// &
+                         '(RSUR; two universal joints over-constrain the coupler''s spin)', err)
+    call check_reals(deck, g, 'universal_axis', s%universal_axis, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
+    if (.not. err%failed() .and. .not. norm2(s%universal_axis) > 1.0e-8_dp) &
+      call invalid_value(deck, g, 'universal_axis', str(norm2(s%universal_axis)), 'must be a nonzero direction '// &
+                         '(length > 1e-8)', err)
     call check_real(deck, g, 'omega', s%omega, err, at_least=0.0_dp, at_most=1.0e5_dp, why='constant crank speed')
     call check_real(deck, g, 'theta0_deg', s%theta0_deg, err, at_least=-3600.0_dp, at_most=3600.0_dp)
     do k = 1, 3
@@ -153,13 +167,27 @@ contains
         call spatial_section_init(links(k)%sec, section_rectangular, [s%link_depth(k), s%link_width(k)], mat, err)
       end if
     end do
-    joint_b = merge(spatial_joint_revolute, spatial_joint_spherical, s%joint_b == 'revolute')
-    joint_c = merge(spatial_joint_revolute, spatial_joint_spherical, s%joint_c == 'revolute')
+    joint_b = joint_kind(s%joint_b)
+    joint_c = joint_kind(s%joint_c)
+    if (.not. err%failed() .and. (joint_b == spatial_joint_universal .or. joint_c == spatial_joint_universal)) &
+      call spatial_fourbar_set_universal(kin, joint_c == spatial_joint_universal, s%universal_axis, err)
     if (err%failed()) then
       err%code = 2
       call err%add_context('deck '''//deck%path//''', group &'//g)
     end if
   end subroutine build_spatial
+
+  pure integer function joint_kind(name)
+    character(len=*), intent(in) :: name
+    select case (name)
+    case ('revolute')
+      joint_kind = spatial_joint_revolute
+    case ('universal')
+      joint_kind = spatial_joint_universal
+    case default
+      joint_kind = spatial_joint_spherical
+    end select
+  end function joint_kind
 
   subroutine echo_spatial_mechanism(out)
     type(table_t), intent(inout) :: out

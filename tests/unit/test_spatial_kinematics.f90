@@ -2,7 +2,9 @@
 !> the RSSR linkage with perpendicular crank and rocker axes against the
 !> closed form, loop closure, rates against differences of positions, link
 !> frames against differences of the rotation matrices, branch, toggle and
-!> non-assembly messages.
+!> non-assembly messages; the universal joint (RSUR, RUSR): the coupler frame
+!> from the cross's axes, the relative angular velocity in the plane of the
+!> two axes, rates by differences, the locked joint named by crank angle.
 module test_spatial_kinematics_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
@@ -19,6 +21,8 @@ contains
     call run_test('rssr_rates_are_derivatives_of_positions', test_rates)
     call run_test('link_frames_and_angular_rates', test_frames)
     call run_test('branch_toggle_and_non_assembly_named_by_crank_angle', test_failures)
+    call run_test('universal_joint_coupler_frame_and_rates', test_universal)
+    call run_test('universal_joint_lock_named_by_crank_angle', test_universal_lock)
   end subroutine run_all
 
   !> RSSR: crank axis Z through the origin, crank 1.5; rocker axis X through
@@ -152,6 +156,88 @@ contains
                               [0.0_dp, 5.0_dp, 3.0_dp], [1.0_dp, 0.0_dp, 0.0_dp], 3.0_dp, 6.0_dp, 1, err)
     call assert_true(err%failed() .and. index(err%text(), 'plane') > 0, 'pin off the crank plane: '//err%text())
   end subroutine test_failures
+  !> RSUR (cross axis fixed in the rocker, at C) and RUSR (in the crank, at B)
+  !> on the RSSR above, skew axes in the link frames.  Over two turns in 5
+  !> degree steps: the loop closure is the RSSR's (psi equal), the coupler
+  !> frame orthonormal with x = BC/L (1e-13), its z (the cross's second axis,
+  !> fixed in the coupler) normal to the link-fixed axis u (1e-12).  The
+  !> property the construction does not use: a universal joint lets the
+  !> coupler turn relative to the link about u and z only, so the relative
+  !> angular velocity has no component along u x z (1e-10 of its size).
+  !> Rates: omega from R_dot R^T and alpha = omega_dot by central differences
+  !> (1e-6 relative, as test_frames).
+  subroutine test_universal()
+    type(spatial_fourbar_t) :: m, ref
+    type(spatial_pose_t) :: p0, pp, pm, pr
+    type(error_t) :: err
+    real(dp), parameter :: w = 40.0_dp, acc = -700.0_dp, h = 1.0e-5_dp
+    real(dp) :: u(3), z(3), wrel(3), r(3, 3), rd(3, 3), om(3, 3), theta, th0
+    integer :: side, k, lk
+    do side = 1, 2
+      call rssr(m, 1)
+      call rssr(ref, 1)
+      if (side == 1) then
+        call spatial_fourbar_set_universal(m, .true., [0.0_dp, 1.0_dp, 1.0_dp], err)
+        lk = link_rocker
+      else
+        call spatial_fourbar_set_universal(m, .false., [0.3_dp, 0.5_dp, 1.0_dp], err)
+        lk = link_crank
+      end if
+      call assert_true(.not. err%failed(), 'set universal')
+      do k = 0, 144
+        theta = real(k, dp)*5.0_dp*pi/180.0_dp
+        call spatial_fourbar_solve(m, theta, w, acc, p0, err)
+        call spatial_fourbar_solve(ref, theta, w, acc, pr, err)
+        call assert_true(.not. err%failed(), 'solve: '//err%text())
+        call assert_close(p0%psi, pr%psi, 1.0e-12_dp, 'loop closure as the RSSR')
+        r = p0%rot(:, :, link_coupler)
+        call assert_all_close(reshape(matmul(transpose(r), r), [9]), [1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
+                              0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], 0.0_dp, 1.0e-13_dp, 'coupler frame orthonormal')
+        call assert_all_close(r(:, 1), (p0%c - p0%b)/6.0_dp, 0.0_dp, 1.0e-13_dp, 'coupler x = BC/L')
+        u = matmul(p0%rot(:, :, lk), m%u_local)
+        z = r(:, 3)
+        call assert_close(dot_product(z, u), 0.0_dp, 1.0e-12_dp, 'cross axes normal')
+        wrel = p0%omega(:, link_coupler) - p0%omega(:, lk)
+        call assert_close(dot_product(wrel, cross(u, z)), 0.0_dp, 1.0e-10_dp*norm2(wrel), &
+                          'relative rotation about the cross axes only')
+      end do
+      th0 = 2.3_dp
+      call spatial_fourbar_solve(m, th0, w, acc, p0, err)
+      call spatial_fourbar_solve(m, th0 + w*h + 0.5_dp*acc*h*h, w + acc*h, acc, pp, err)
+      call spatial_fourbar_solve(m, th0 - w*h + 0.5_dp*acc*h*h, w - acc*h, acc, pm, err)
+      r = p0%rot(:, :, link_coupler)
+      rd = (pp%rot(:, :, link_coupler) - pm%rot(:, :, link_coupler))/(2.0_dp*h)
+      om = matmul(rd, transpose(r))
+      call assert_all_close([om(3, 2), om(1, 3), om(2, 1)], p0%omega(:, link_coupler), 0.0_dp, &
+                            1.0e-6_dp*norm2(p0%omega(:, link_coupler)), 'coupler omega from R_dot R^T')
+      call assert_all_close((pp%omega(:, link_coupler) - pm%omega(:, link_coupler))/(2.0_dp*h), &
+                            p0%alpha(:, link_coupler), 0.0_dp, 1.0e-6_dp*norm2(p0%alpha(:, link_coupler)), &
+                            'coupler alpha = omega_dot')
+      ! the universal joint changes the coupler's spin, not its axis: the RSSR's frame differs
+      call spatial_fourbar_solve(ref, th0, w, acc, pr, err)
+      call assert_true(abs(dot_product(pr%rot(:, 3, link_coupler), u)) > 1.0e-3_dp, 'the RSSR frame is another spin')
+    end do
+  end subroutine test_universal
+
+  !> The cross's axis in the rocker chosen along BC at theta = 0: the joint
+  !> locks there, named by crank angle; a zero axis is refused.
+  subroutine test_universal_lock()
+    type(spatial_fourbar_t) :: m
+    type(spatial_pose_t) :: pose
+    type(error_t) :: err
+    real(dp) :: ul(3)
+    call rssr(m, 1)
+    call spatial_fourbar_solve(m, 0.0_dp, 1.0_dp, 0.0_dp, pose, err)
+    ul = matmul(transpose(pose%rot(:, :, link_rocker)), pose%rot(:, 1, link_coupler))
+    call rssr(m, 1)
+    call spatial_fourbar_set_universal(m, .true., ul, err)
+    call spatial_fourbar_solve(m, 0.0_dp, 1.0_dp, 0.0_dp, pose, err)
+    call assert_true(err%failed() .and. index(err%text(), 'universal joint at C locks') > 0 .and. &
+                     index(err%text(), 'crank angle 0') > 0, 'lock named: '//err%text())
+    call err%clear()
+    call spatial_fourbar_set_universal(m, .false., [0.0_dp, 0.0_dp, 0.0_dp], err)
+    call assert_true(err%failed() .and. index(err%text(), 'nonzero') > 0, 'zero axis: '//err%text())
+  end subroutine test_universal_lock
 end module test_spatial_kinematics_suite
 
 program test_spatial_kinematics

@@ -2,7 +2,8 @@
 !> planar limit against the planar mechanism_model (Kear's element, same
 !> physics and mesh), right-hand side and a quarter revolution of DLSODE;
 !> the RSSR model (spherical joints, non-parallel axes): table, modes,
-!> energy conservation of the free nonlinear structure.
+!> energy conservation of the free nonlinear structure; the RSUR (universal
+!> joint at C): table and the energy balance of the driven run.
 module test_spatial_model_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
@@ -15,7 +16,7 @@ module test_spatial_model_suite
   use spatial_section, only: spatial_section_init, section_rectangular, section_circular
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_local_displacement, spatial_formulation_kear
   use spatial_kinematics, only: cross
-  use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
+  use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init, spatial_fourbar_set_universal, link_rocker
   use spatial_model
   use assertions
   implicit none
@@ -36,8 +37,11 @@ contains
     call run_test('rssr_model_table_modes_and_mass', test_rssr_model)
     call run_test('free_nonlinear_structure_conserves_energy', test_energy)
     call run_test('driven_rssr_jacobi_energy_balance', test_jacobi_balance)
+    call run_test('rsur_table_holds_twist_at_the_universal_joint', test_rsur_model)
+    call run_test('driven_rsur_jacobi_energy_balance', test_jacobi_balance_rsur)
     call run_test('support_forces_are_momentum_rate', test_support_forces)
     call run_test('banded_newton_matrix_equals_dense_p', test_banded_newton)
+    call run_test('constant_factor_mass_solve_equals_dense_mass', test_constant_mass)
   end subroutine run_all
 
   function effects(variant) result(fx)
@@ -205,9 +209,10 @@ contains
     call assert_true(index(lines(1), 'half-bandwidth') > 0 .and. size(lines) > 6, 'table header')
   end subroutine test_rssr_model
 
-  subroutine rssr_model(n, omega, fx, beta, sm, scale, radius, formulation)
+  subroutine rssr_model(n, omega, fx, beta, sm, scale, radius, formulation, universal_c)
     integer, intent(in) :: n
     integer, intent(in), optional :: formulation   !< default: the consistent element
+    logical, intent(in), optional :: universal_c   !< RSUR: universal joint at C, cross axis (0, 1, 1) in the rocker
     real(dp), intent(in) :: omega, beta
     real(dp), intent(in), optional :: scale, radius   !< geometry factor (1), link radius (0.1 in)
     type(element_effects_t), intent(in) :: fx
@@ -215,22 +220,28 @@ contains
     type(spatial_fourbar_t) :: kin
     type(spatial_link_t) :: links(3)
     type(error_t) :: err
-    integer :: k
+    integer :: k, jc
     real(dp) :: f, r
+    jc = spatial_joint_spherical
     f = 1.0_dp
     r = 0.1_dp
     if (present(scale)) f = scale
     if (present(radius)) r = radius
     call spatial_fourbar_init(kin, [0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 1.0_dp], f*[1.5_dp, 0.0_dp, 0.0_dp], &
                               f*[0.0_dp, 5.0_dp, 3.0_dp], [1.0_dp, 0.0_dp, 0.0_dp], f*3.0_dp, f*6.0_dp, 1, err)
+    if (present(universal_c)) then
+      if (universal_c) then
+        call spatial_fourbar_set_universal(kin, .true., [0.0_dp, 1.0_dp, 1.0_dp], err)
+        jc = spatial_joint_universal
+      end if
+    end if
     do k = 1, 3
       links(k)%n_elements = n
       links(k)%material = alu
       links(k)%shear_modulus = g_alu
       call spatial_section_init(links(k)%sec, section_circular, [r], alu, err)
     end do
-    call sm%init(kin, omega, 0.0_dp, spatial_joint_spherical, spatial_joint_spherical, links, fx, beta, err, &
-                 formulation=formulation)
+    call sm%init(kin, omega, 0.0_dp, spatial_joint_spherical, jc, links, fx, beta, err, formulation=formulation)
     call assert_true(.not. err%failed(), 'rssr model: '//err%text())
   end subroutine rssr_model
 
@@ -281,6 +292,49 @@ contains
   !> 3 % of it, a wrong inertia term, a rate of the kinematics inconsistent
   !> with its positions or a wrong joint rule O(1).
   subroutine test_jacobi_balance()
+    call jacobi_balance(.false.)
+  end subroutine test_jacobi_balance
+
+  !> The same balance for the RSUR (universal joint at C, cross axis (0, 1, 1)
+  !> in the rocker frame): the coupler's spin now follows the joint, its
+  !> twist is held at C; same bound.  This checks the universal joint's
+  !> coupler rates (omega, alpha) against its positions through the whole
+  !> model, and that the joint rule is a consistent (workless) constraint.
+  subroutine test_jacobi_balance_rsur()
+    call jacobi_balance(.true.)
+  end subroutine test_jacobi_balance_rsur
+
+  !> RSUR, 2 elements per link: the coupler's twist is held at C (the
+  !> universal joint) and free at B; both ends' rotations local, no moment
+  !> (curvatures held) at B and C; the structure has no free mode; a
+  !> universal joint with a revolute one is bad input (code 2).
+  subroutine test_rsur_model()
+    type(spatial_model_t) :: sm
+    type(error_t) :: err
+    real(dp), allocatable :: om(:)
+    type(spatial_fourbar_t) :: kin
+    type(spatial_link_t) :: links(3)
+    integer :: ec
+    call rssr_model(2, 50.0_dp, effects(2), 0.0_dp, sm, universal_c=.true.)
+    ec = sm%links(2)%first_element + 1
+    call assert_true(sm%table%map(4, sm%links(2)%first_element) > 0, 'coupler twist free at B')
+    call assert_equal(sm%table%map(14, ec), 0, 'coupler twist held at C')
+    call assert_true(all(sm%table%map([17, 18], ec) == 0), 'no moment at universal C')
+    call assert_true(sm%el(ec)%local_rotation(2), 'coupler rotations at C local')
+    allocate(om(sm%n))
+    call sm%linear_modes(om, err)
+    call assert_true(.not. err%failed(), 'modes: '//err%text())
+    call assert_true(om(1) > 1.0_dp, 'no free mechanism mode in the elastic structure')
+    kin = sm%kin
+    links = sm%links
+    call sm%init(kin, 50.0_dp, 0.0_dp, spatial_joint_revolute, spatial_joint_universal, links, effects(2), &
+                 0.0_dp, err)
+    call assert_true(err%failed() .and. err%code == 2 .and. index(err%text(), 'universal') > 0, &
+                     'universal with revolute refused: '//err%text())
+  end subroutine test_rsur_model
+
+  subroutine jacobi_balance(universal_c)
+    logical, intent(in) :: universal_c
     type(spatial_model_t), target :: sm
     type(lsode_t) :: ode
     type(error_t) :: err
@@ -291,7 +345,7 @@ contains
     real(dp), parameter :: omega = 100.0_dp, delta = 1.0e-8_dp
     integer :: k
     fx = element_effects_t(.true., .true., .true., .true., .true.)
-    call rssr_model(1, omega, fx, 0.0_dp, sm, scale=4.0_dp, radius=0.25_dp)
+    call rssr_model(1, omega, fx, 0.0_dp, sm, scale=4.0_dp, radius=0.25_dp, universal_c=universal_c)
     allocate(y(2*sm%n), zero(sm%n))
     y = 0.0_dp
     zero = 0.0_dp
@@ -321,7 +375,7 @@ contains
     call assert_close(ke, 0.0_dp, 1.0e-6_dp*se_max, 'h(t1) - h(t0) + int dL/dt dt = 0')
     print '(a,es10.3,a,es10.3,a,es10.3)', '    Jacobi balance residual ', ke, ' lb in; max strain energy ', se_max, &
       ' ; int |dL/dt| ~ ', dt*sum(abs(dkdt))
-  end subroutine test_jacobi_balance
+  end subroutine jacobi_balance
   !> Support forces of the driven RSSR (100 rad/s, every effect on, two
   !> elements per link) at an elastic state (q, q'), against Newton's law
   !> computed independently from the material points: f_A + f_D =
@@ -418,6 +472,46 @@ contains
     call assert_all_close(y(1::2, 1), y(1::2, 2), 0.0_dp, 1.0e-6_dp*maxval(abs(y(1::2, 2))), 'same deflections')
     call assert_true(maxval(abs(y(1::2, 2))) > 0.0_dp, 'the structure deflected')
   end subroutine test_banded_newton
+  !> spatial_mass (the constant link-frame factor with the joint unknowns'
+  !> Schur complement) against the dense M(t) assembled element by element
+  !> (assemble_dense): the planar four-bar (revolute B, C: shared global
+  !> rotations), the RSSR (consistent element) and the RSUR, at five crank
+  !> angles each: the path is active, and M(t) x = f to 1e-10 of |f| (the
+  !> residual of a backward-stable solve is ~eps |M| |x|; measured up to
+  !> 1.5e-12).
+  !> A wrong rotation, Schur term or owned-triple rule leaves O(1) residuals.
+  subroutine test_constant_mass()
+    type(spatial_model_t) :: sm
+    real(dp), allocatable :: mass(:, :), stiff(:, :), f(:), x(:), q(:)
+    integer :: c, k, i
+    logical :: ok
+    real(dp) :: t
+    do c = 1, 3
+      select case (c)
+      case (1)
+        call planar_spatial(2, 100.0_dp, effects(1), 0.0_dp, sm)
+      case (2)
+        call rssr_model(2, 100.0_dp, effects(2), 0.0_dp, sm)
+      case default
+        call rssr_model(2, 100.0_dp, effects(2), 0.0_dp, sm, universal_c=.true.)
+      end select
+      call assert_true(sm%cmass%active, 'constant-factor path active')
+      allocate(mass(sm%n, sm%n), stiff(sm%n, sm%n), f(sm%n), x(sm%n), q(sm%n))
+      q = 0.0_dp
+      do k = 1, 5
+        t = real(k, dp)*0.013_dp
+        call sm%set_time(t)
+        call sm%assemble_dense(q, mass, stiff)
+        call sm%cmass%update(sm%rb, ok)
+        call assert_true(ok, 'Schur complement positive definite')
+        f = [(cos(real(3*i + k, dp)), i = 1, sm%n)]
+        x = f
+        call sm%cmass%solve(sm%rb, x)
+        call assert_all_close(matmul(mass, x), f, 0.0_dp, 1.0e-10_dp*maxval(abs(f)), 'M(t) x = f')
+      end do
+      deallocate(mass, stiff, f, x, q)
+    end do
+  end subroutine test_constant_mass
 end module test_spatial_model_suite
 
 program test_spatial_model
