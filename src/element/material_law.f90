@@ -94,10 +94,20 @@ contains
   end function ro_energy_density
 
   !> eps* = (E1/(m E2))^(1/(m-1)), where d sigma/d eps = 0; huge() if E2 = 0.
+  !> In logarithms where E1/(m E2) would overflow (fuzz seed 9: a tracing
+  !> constant d_k = 4.9e-324 made E2 subnormal and trapped).
   pure real(dp) function peak_strain(mat)
     type(ramberg_osgood_t), intent(in) :: mat
-    if (mat%e2 > 0.0_dp) then
+    real(dp) :: log_ratio
+    if (.not. mat%e2 > 0.0_dp) then
+      peak_strain = huge(1.0_dp)
+      return
+    end if
+    log_ratio = log(mat%e1) - log(mat%m) - log(mat%e2)
+    if (log_ratio < log(huge(1.0_dp)) - 1.0_dp) then
       peak_strain = (mat%e1/(mat%m*mat%e2))**(1.0_dp/(mat%m - 1.0_dp))
+    else if (log_ratio/(mat%m - 1.0_dp) < log(huge(1.0_dp)) - 1.0_dp) then
+      peak_strain = exp(log_ratio/(mat%m - 1.0_dp))
     else
       peak_strain = huge(1.0_dp)
     end if

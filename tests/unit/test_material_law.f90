@@ -44,6 +44,14 @@ contains
     call assert_true(ro_stress(alu, 1.01_dp*es) < peak_stress(alu), 'stress below the peak past eps*')
     call assert_true(peak_strain(ramberg_osgood_t(e1=1.0_dp, e2=0.0_dp, m=3.0_dp)) > 1.0e300_dp, &
                      'no peak when E2 = 0')
+    ! E1/(m E2) overflows for a subnormal E2 (fuzz seed 9): logarithms then;
+    ! m = 3: eps* = sqrt(1e7/(3 E2)) = 5.8e157 for E2 = 1e-300, huge() for 4.9e-324
+    call assert_rel_close(peak_strain(ramberg_osgood_t(e1=1.0e7_dp, e2=1.0e-300_dp, m=3.0_dp)), &
+                          sqrt(1.0e7_dp/3.0_dp)*1.0e150_dp, 1.0e-13_dp, 'eps* for E2 = 1e-300 (ratio 3e306)')
+    call assert_rel_close(peak_strain(ramberg_osgood_t(e1=1.0e7_dp, e2=1.0e-310_dp, m=3.0_dp)), &
+                          sqrt(1.0e7_dp/3.0_dp)*1.0e155_dp, 1.0e-12_dp, 'eps* for E2 = 1e-310 (ratio overflows)')
+    call assert_true(peak_strain(ramberg_osgood_t(e1=1.0e7_dp, e2=1.0e-310_dp, m=1.5_dp)) >= huge(1.0_dp), &
+                     'no peak within reach when eps* itself overflows')
   end subroutine test_peak
 
   !> Section 3.2 [derived]: sigma/(A eps) = 0.9923 at 1e-3 and 0.807 at 5e-3.
