@@ -18,7 +18,7 @@
 !> arithmetic as the banded Cholesky of M(t), exact to round-off.
 module spatial_mass
   use kinds, only: dp
-  use band_cholesky, only: band_llt_factor, band_llt_solve
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
   use spatial_beam, only: spatial_beam_t, spatial_rigid_t
   use spatial_correlation, only: spatial_table_t, sdofs
   implicit none
@@ -61,7 +61,7 @@ contains
     type(spatial_table_t), intent(in) :: table
     type(spatial_beam_t), intent(in) :: el(:)
     integer, intent(in) :: link_of(:), n, kd
-    integer :: e, b, i, j, gi, gj, kind(n), owner(n)
+    integer :: e, b, i, j, gi, gj, kind(n), owner(n), info
     logical :: rot(4), ok
     self%active = .false.
     self%n = n
@@ -115,7 +115,8 @@ contains
     do j = 1, self%nj
       self%afac(1, self%jlist(j)) = 1.0_dp
     end do
-    call band_llt_factor(self%afac, kd, ok)
+    call band_cholesky_inplace(self%afac, kd, info)
+    ok = info == 0
     if (.not. ok) return
     call precompute_pairs(self, table, el)
     self%active = .true.
@@ -262,7 +263,7 @@ contains
         self%w(gi, :, k) = self%w(gi, :, k) + self%p_val(self%p_n(k), :, k)
       end do
       do c = 1, 3
-        call band_llt_solve(self%afac, kd, self%w(:, c, k))
+        call band_cholesky_substitute(self%afac, kd, self%w(:, c, k))
       end do
     end do
     do k = 1, np
@@ -349,7 +350,7 @@ contains
     end do
     fj = x(self%jlist)
     x(self%jlist) = 0.0_dp
-    call band_llt_solve(self%afac, self%kd, x)           ! y = A^-1 f~ (zero on J)
+    call band_cholesky_substitute(self%afac, self%kd, x)           ! y = A^-1 f~ (zero on J)
     do k = 1, self%npair                                 ! f_J - B^T y
       z = 0.0_dp
       do i = 1, self%p_n(k)

@@ -24,7 +24,7 @@ module spatial_model
   use error_status, only: error_t
   use strings, only: str
   use linalg, only: sym_generalized_eig, dense_to_lower_band
-  use band_cholesky, only: band_llt_factor, band_llt_solve
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
   use companion_jacobian, only: fill_companion_jacobian
@@ -384,7 +384,7 @@ contains
     real(dp), intent(out), contiguous :: qdd(:)
     real(dp) :: me(sdofs, sdofs), fe(sdofs)
     type(spatial_eval_info_t) :: info
-    integer :: e
+    integer :: e, minor
     logical :: new_mass, ok
     call self%set_time(t)
     qdd = 0.0_dp
@@ -412,7 +412,8 @@ contains
     end do
     if (new_mass) then
       self%t_mass = huge(1.0_dp)                ! invalid until factored
-      call band_llt_factor(self%mass_band, self%kd, ok)
+      call band_cholesky_inplace(self%mass_band, self%kd, minor)
+      ok = minor == 0
       self%n_mass_factorizations = self%n_mass_factorizations + 1
       if (.not. ok) then
         call self%fail(t, 'mass matrix is not positive definite')
@@ -421,7 +422,7 @@ contains
       self%t_mass = t
     end if
     qdd = self%force
-    call band_llt_solve(self%mass_band, self%kd, qdd)
+    call band_cholesky_substitute(self%mass_band, self%kd, qdd)
   end subroutine accelerations
 
   !> accelerations through spatial_mass: the elements' forces only, M(t)^-1
@@ -485,7 +486,7 @@ contains
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
     real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q(self%n), col(self%n)
-    integer :: j, kd
+    integer :: j, kd, info
     logical :: ok
     call self%set_time(t)
     q = y(1::2)
@@ -494,14 +495,15 @@ contains
     kd = self%kd
     self%t_mass = -huge(1.0_dp)                  ! mass_band is reused here
     call dense_to_lower_band(mass, kd, self%mass_band)
-    call band_llt_factor(self%mass_band, kd, ok)
+    call band_cholesky_inplace(self%mass_band, kd, info)
+    ok = info == 0
     if (.not. ok) then
       call self%fail(t, 'mass matrix in the Jacobian is not positive definite')
       return
     end if
     do j = 1, self%n
       col = stiff(:, j)
-      call band_llt_solve(self%mass_band, kd, col)
+      call band_cholesky_substitute(self%mass_band, kd, col)
       stiff(:, j) = col                          ! stiff := M^-1 K_t
     end do
     call fill_companion_jacobian(stiff, self%el(1)%beta, ml, mu, pd)
