@@ -9,7 +9,7 @@ module clearance_settings
   use deck_reader, only: deck_t, invalid_value
   use deck_checks, only: check_real, check_reals, check_choice
   use table_output, only: table_t
-  use linkage, only: mechanism_t, max_joints, joint_pin, joint_ground_pin, joint_type_name
+  use linkage, only: mechanism_t, max_joints, joint_pin, joint_ground_pin, joint_slider_link, joint_type_name
   use contact_law, only: law_names
   implicit none
   private
@@ -75,6 +75,12 @@ contains
       if (j > nj) then
         call invalid_value(deck, g, 'joint_clearance('//str(j)//')', str(s%clearance(j)), &
                            'the mechanism has only '//str(nj)//' joints', err)
+        return
+      end if
+      ! (the model's split_journal renumbers the table's map, not a sleeve element's own unknowns)
+      if (any(mech%joints(1:nj)%kind == joint_slider_link)) then
+        call invalid_value(deck, g, 'joint_clearance('//str(j)//')', str(s%clearance(j)), 'joint clearances are '// &
+                           'not modelled in a mechanism with a link sliding through a sleeve (slider_link)', err)
         return
       end if
       associate (jt => mech%joints(j))
