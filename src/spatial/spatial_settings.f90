@@ -116,9 +116,11 @@ contains
       call invalid_value(deck, g, 'joint_b', trim(s%joint_b), 'with a universal joint at C, B must be spherical '// &
                          '(RSUR; two universal joints over-constrain the coupler''s spin)', err)
     call check_reals(deck, g, 'universal_axis', s%universal_axis, err, at_least=-1.0e4_dp, at_most=1.0e4_dp)
-    if (.not. err%failed() .and. .not. norm2(s%universal_axis) > 1.0e-8_dp) &
-      call invalid_value(deck, g, 'universal_axis', str(norm2(s%universal_axis)), 'must be a nonzero direction '// &
-                         '(length > 1e-8)', err)
+    if (.not. err%failed()) then   ! nested: .and. does not short-circuit, and norm2 of a NaN traps
+      if (.not. norm2(s%universal_axis) > 1.0e-8_dp) &
+        call invalid_value(deck, g, 'universal_axis', str(norm2(s%universal_axis)), 'must be a nonzero direction '// &
+                           '(length > 1e-8)', err)
+    end if
     call check_real(deck, g, 'omega', s%omega, err, at_least=0.0_dp, at_most=1.0e5_dp, why='constant crank speed')
     call check_real(deck, g, 'theta0_deg', s%theta0_deg, err, at_least=-3600.0_dp, at_most=3600.0_dp)
     do k = 1, 3
