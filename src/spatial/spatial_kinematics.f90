@@ -184,8 +184,14 @@ contains
     call closure_coefficients(m, theta, p, q, s, b, bt, btt)
     r = hypot(p, q)
     if (abs(s) > r) then
-      call err%set('spatial kinematics', 'the linkage does not assemble at '//where(theta)// &
-                   ' (the coupler cannot reach the rocker circle: |S|/R = '//str(abs(s)/r, 8)//')')
+      ! R = 0 (the rocker circle seen edge-on from B, fuzz seed 11): no ratio to print
+      if (r > 0.0_dp) then
+        call err%set('spatial kinematics', 'the linkage does not assemble at '//where(theta)// &
+                     ' (the coupler cannot reach the rocker circle: |S|/R = '//str(abs(s)/r, 8)//')')
+      else
+        call err%set('spatial kinematics', 'the linkage does not assemble at '//where(theta)// &
+                     ' (the rocker circle degenerates as seen from B: R = 0, |S| = '//str(abs(s), 8)//')')
+      end if
       return
     end if
     if (m%have_guess) then
