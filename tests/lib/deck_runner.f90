@@ -1,7 +1,8 @@
 !> Running an analysis on a deck written by a test: the deck text ('|'
 !> separates lines) goes to a scratch file under $TMPDIR, the analysis runs
 !> through its driver, and the output comes back as lines.  One home for what
-!> the analysis suites used to copy.
+!> the analysis suites used to copy: a suite names itself and its analysis
+!> once (start_suite), then runs deck texts with run_text.
 module deck_runner
   use, intrinsic :: iso_c_binding, only: c_int
   use kinds, only: dp
@@ -12,6 +13,7 @@ module deck_runner
   private
   public :: scratch_path, write_deck, run_deck, analysis_runner, read_deck_text, group_reader
   public :: has_line, summary_value, count_rows, line_length
+  public :: start_suite, suite_stem, run_text, read_text_groups
 
   integer, parameter :: line_length = 2048
 
@@ -39,7 +41,42 @@ module deck_runner
     end subroutine group_reader
   end interface
 
+  !> The running suite's scratch stem and analysis (one suite per executable).
+  character(len=:), allocatable, save :: stem
+  procedure(analysis_runner), pointer, save :: suite_analysis => null()
+
 contains
+
+  !> Name the suite's scratch files after `name` and, for run_text, its analysis.
+  subroutine start_suite(name, analysis)
+    character(len=*), intent(in) :: name
+    procedure(analysis_runner), optional :: analysis
+    stem = scratch_path(name)
+    if (present(analysis)) suite_analysis => analysis
+  end subroutine start_suite
+
+  !> The scratch stem start_suite set (stem.nml, stem.out and side files).
+  function suite_stem() result(path)
+    character(len=:), allocatable :: path
+    path = stem
+  end function suite_stem
+
+  !> The deck `text` ('|' separates lines) through the suite's analysis;
+  !> output lines back (run_deck on the suite's stem).
+  subroutine run_text(text, err, lines)
+    character(len=*), intent(in) :: text
+    type(error_t), intent(inout) :: err
+    character(len=line_length), allocatable, intent(out) :: lines(:)
+    call run_deck(suite_analysis, stem, text, err, lines)
+  end subroutine run_text
+
+  !> read_deck_text on the suite's stem.
+  subroutine read_text_groups(reader, text, err)
+    procedure(group_reader) :: reader
+    character(len=*), intent(in) :: text
+    type(error_t), intent(inout) :: err
+    call read_deck_text(reader, stem, text, err)
+  end subroutine read_text_groups
 
   !> $TMPDIR/flexmech_<name>_<pid> (or /tmp/...): the process id keeps two
   !> test runs at once (two checkouts, two optimisation levels) apart.

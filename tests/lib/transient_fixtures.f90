@@ -12,6 +12,8 @@ module transient_fixtures
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_bdf_full_fd
   use assertions, only: assert_true
+  use test_text, only: itoa, rtoa   ! re-exported: the transient suites take them from here
+  use mechanism_fixtures, only: fourbar_abcd   ! re-exported likewise
   implicit none
   private
   public :: e1, rho, width, depth, area, inertia, radius_gyration, beam_length, bl_clamped, bl_cantilever
@@ -77,26 +79,6 @@ contains
     inp%link_n_elements(1) = n
     inp%omega = omega
   end function cantilever_input
-
-  !> Four-bar A-B-C-D: crank AB = a clamped at A = (0, 0), coupler BC = b,
-  !> rocker DC = c pinned at D = (d, 0). The rocker runs from D to C, so its
-  !> angle is Norton's theta4.
-  function fourbar_abcd(a, b, c, d) result(inp)
-    real(dp), intent(in) :: a, b, c, d
-    type(mechanism_input_t) :: inp
-    inp%n_joints = 4
-    inp%joint_name(1:4) = [character(len=16) :: 'A', 'B', 'C', 'D']
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = d
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_name(1:3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [a, b, c]
-  end function fourbar_abcd
 
   !> The four-bar of FORMULATION.md §8.1 (crank 5, coupler 11, rocker 10.5,
   !> D = (10, 0)) with n elements per link.
@@ -235,21 +217,6 @@ contains
     a(2::2) = atol_qd
   end function state_atol
 
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=12) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
-
-  pure function rtoa(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(es11.4)') x
-    s = trim(adjustl(buf))
-  end function rtoa
 
 
   !> Integrate a damped system from the rigid state at t = 0 to t_end (BDF

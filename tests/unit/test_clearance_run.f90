@@ -13,6 +13,7 @@ module test_clearance_run_suite
   use transient_analysis, only: run_transient
   use deck_runner, only: scratch_path, run_deck, has_line, summary_value, count_rows, line_length
   use assertions
+  use test_text, only: rtoa
   implicit none
   private
   public :: run_all
@@ -137,8 +138,8 @@ contains
     call assert_true(.not. err%failed(), err%text())
     call peaks(b, p)
     f = summary_value(b, '# cost: clearance_peak_contact_force =')
-    call assert_true(f > 1.2_dp*953.0_dp .and. f < 1.0e4_dp, 'peak contact force grows: '//trim(adjustl(str_r(f))))
-    call assert_true(p(3) > 1.05_dp*25531.6_dp, 'rocker stress grows: '//trim(adjustl(str_r(p(3)))))
+    call assert_true(f > 1.2_dp*953.0_dp .and. f < 1.0e4_dp, 'peak contact force grows: '//trim(adjustl(rtoa(f))))
+    call assert_true(p(3) > 1.05_dp*25531.6_dp, 'rocker stress grows: '//trim(adjustl(rtoa(p(3)))))
     call assert_true(summary_value(b, '# cost: clearance_impacts =') >= 5.0_dp, 'impacts counted')
   end subroutine test_clearance_growth
 
@@ -188,12 +189,6 @@ contains
     call assert_true(nb >= 0.0_dp .and. nb < na, 'nearly plastic: fewer separations')
     call assert_true(summary_value(b, '# cost: clearance_peak_contact_force =') < 1.0e5_dp, 'finite force')
   end subroutine test_low_restitution
-
-  function str_r(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=24) :: s
-    write(s, '(es14.6)') x
-  end function str_r
 end module test_clearance_run_suite
 
 program test_clearance_run

@@ -10,13 +10,14 @@ module test_consistent_element_suite
   use beam_element, only: beam_element_t, beam_element_init, beam_point_load, beam_local_displacement, &
                           element_kind_kear, element_kind_consistent, resolve_formulation
   use assertions
+  use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
+  use fd_checks, only: fd_gradient4, fd_jacobian4
+  use test_text, only: rtoa
   use lagrange_check, only: fd_lagrange
   implicit none
   private
   public :: run_all
 
-  type(ramberg_osgood_t), parameter :: soft = ramberg_osgood_t(e1=1000.0_dp, e2=2.0e6_dp, m=3.0_dp, rho=2.0_dp)
-  real(dp), parameter :: l_u = 1.3_dp, b_u = 0.2_dp, t_u = 0.3_dp
   !> a strongly deformed state and rates, DOFs [U W th m ux uxx] per node
   real(dp), parameter :: q_big(12) = [0.02_dp, -0.03_dp, 0.15_dp, 0.3_dp, -0.04_dp, 0.1_dp, &
                                       -0.05_dp, 0.08_dp, -0.2_dp, 0.4_dp, 0.03_dp, -0.12_dp]
@@ -46,28 +47,14 @@ contains
     if (err%failed()) call assert_true(.false., 'unit element: '//err%text())
   end function unit_element
 
-  pure function rigid_at(t) result(rb)
-    real(dp), intent(in) :: t
-    type(rigid_state_t) :: rb
-    rb%phi = 0.3_dp + 2.0_dp*t + 0.7_dp*t**2 + 0.2_dp*sin(3.0_dp*t)
-    rb%phi_d = 2.0_dp + 1.4_dp*t + 0.6_dp*cos(3.0_dp*t)
-    rb%phi_dd = 1.4_dp - 1.8_dp*sin(3.0_dp*t)
-    rb%x1 = 0.5_dp + 0.3_dp*t + 0.4_dp*t**2 + 0.1_dp*cos(2.0_dp*t)
-    rb%x1_d = 0.3_dp + 0.8_dp*t - 0.2_dp*sin(2.0_dp*t)
-    rb%x1_dd = 0.8_dp - 0.4_dp*cos(2.0_dp*t)
-    rb%y1 = -0.2_dp + 0.6_dp*t - 0.3_dp*t**2 + 0.05_dp*sin(5.0_dp*t)
-    rb%y1_d = 0.6_dp - 0.6_dp*t + 0.25_dp*cos(5.0_dp*t)
-    rb%y1_dd = -0.6_dp - 1.25_dp*sin(5.0_dp*t)
-  end function rigid_at
-
   !> dSE/dq by 4th-order differences (h = 1e-4: truncation ~h^4) against the
   !> analytic internal force, each nonlinear effect alone and all on: 1e-8
   !> of the largest component.
   subroutine test_force_is_gradient()
     type(consistent_element_t) :: el
     type(element_effects_t) :: fx(4)
-    real(dp) :: f(12), g(12), e(12), h, phi
-    integer :: k, j
+    real(dp) :: f(12), g(12), h, phi
+    integer :: k
     fx(1) = element_effects_t(stretching=.true.)
     fx(2) = element_effects_t(curvature=.true.)
     fx(3) = element_effects_t(material=.true.)
@@ -77,15 +64,14 @@ contains
     do k = 1, 4
       el = unit_element(fx(k))
       call consistent_internal_force(el, q_big, phi, f)
-      do j = 1, 12
-        e = 0.0_dp
-        e(j) = h
-        g(j) = (consistent_strain_energy(el, q_big - 2*e, phi) - 8*consistent_strain_energy(el, q_big - e, phi) &
-                + 8*consistent_strain_energy(el, q_big + e, phi) - consistent_strain_energy(el, q_big + 2*e, phi)) &
-               /(12*h)
-      end do
+      g = fd_gradient4(energy, q_big, h)
       call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
     end do
+  contains
+    real(dp) function energy(q)
+      real(dp), intent(in) :: q(:)
+      energy = consistent_strain_energy(el, q, phi)
+    end function energy
   end subroutine test_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against K_t:
@@ -93,24 +79,15 @@ contains
   !> returned by the evaluation equals the stand-alone one.
   subroutine test_tangent_is_jacobian()
     type(consistent_element_t) :: el
-    real(dp) :: kt(12, 12), k2(12, 12), kfd(12, 12), fp(12), fm(12), fp2(12), fm2(12), e(12), h, phi
+    real(dp) :: kt(12, 12), k2(12, 12), kfd(12, 12), h, phi
     real(dp) :: m(12, 12), f(12)
     type(kear_eval_info_t) :: info
     type(rigid_state_t) :: rb
-    integer :: j
     phi = -0.4_dp
     h = 1.0e-4_dp
     el = unit_element(effects_all_on())
     call consistent_tangent_stiffness(el, q_big, phi, kt)
-    do j = 1, 12
-      e = 0.0_dp
-      e(j) = h
-      call consistent_internal_force(el, q_big + e, phi, fp)
-      call consistent_internal_force(el, q_big - e, phi, fm)
-      call consistent_internal_force(el, q_big + 2*e, phi, fp2)
-      call consistent_internal_force(el, q_big - 2*e, phi, fm2)
-      kfd(:, j) = (fm2 - 8*fm + 8*fp - fp2)/(12*h)
-    end do
+    call fd_jacobian4(internal_force, q_big, h, kfd)
     call assert_all_close(reshape(kt, [144]), reshape(kfd, [144]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
                           'K_t vs FD Jacobian')
     call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), 'K_t symmetric')
@@ -119,6 +96,12 @@ contains
     call consistent_tangent_stiffness(el, q_big, rb%phi, kt)
     call assert_all_close(reshape(k2, [144]), reshape(kt, [144]), 0.0_dp, 1.0e-13_dp*maxval(abs(kt)), &
                           'tangent of eval = consistent_tangent_stiffness')
+  contains
+    subroutine internal_force(q, fq)
+      real(dp), intent(in) :: q(:)
+      real(dp), intent(out) :: fq(:)
+      call consistent_internal_force(el, q, phi, fq)
+    end subroutine internal_force
   end subroutine test_tangent_is_jacobian
 
   !> M qdd - F - dSE/dq of the element against d/dt dT/dqdot - dT/dq by finite
@@ -168,7 +151,7 @@ contains
     p(9) = sin(alpha)
     p(11) = cos(alpha) - 1.0_dp
     se = consistent_strain_energy(el, p, 0.0_dp)      ! phi = 0: q = p
-    call assert_true(abs(se) <= 1.0e-20_dp*soft%e1*b_u*t_u*l_u, 'rigid rotation energy '//trim(rstr(se)))
+    call assert_true(abs(se) <= 1.0e-20_dp*soft%e1*b_u*t_u*l_u, 'rigid rotation energy '//trim(rtoa(se)))
   end subroutine test_rigid_rotation
 
   !> An element bent into a circular arc of angle beta = pi/4 (one eighth of
@@ -199,8 +182,8 @@ contains
       worst_eps = max(worst_eps, abs(eps))
       worst_kap = max(worst_kap, abs(kap*r - 1.0_dp))
     end do
-    call assert_true(worst_eps <= 2.0e-5_dp, 'consistent: arc strain '//trim(rstr(worst_eps)))
-    call assert_true(worst_kap <= 1.0e-3_dp, 'consistent: arc curvature error '//trim(rstr(worst_kap)))
+    call assert_true(worst_eps <= 2.0e-5_dp, 'consistent: arc strain '//trim(rtoa(worst_eps)))
+    call assert_true(worst_kap <= 1.0e-3_dp, 'consistent: arc curvature error '//trim(rtoa(worst_kap)))
     call kear_element_init(kel, l_u, b_u, t_u, soft, element_effects_t(stretching=.true., curvature=.true.), err)
     pk = [p(1), p(2), p(3), p(4), p(7), p(8), p(9), p(10)]
     kear_eps = 0.0_dp
@@ -208,7 +191,7 @@ contains
       call kear_section_strains(kel, pk, i/20.0_dp, eps, kap)
       kear_eps = max(kear_eps, abs(eps))
     end do
-    call assert_true(kear_eps > 0.02_dp, 'Kear element: arc strain '//trim(rstr(kear_eps))//' (locks)')
+    call assert_true(kear_eps > 0.02_dp, 'Kear element: arc strain '//trim(rtoa(kear_eps))//' (locks)')
   end subroutine test_arc_no_locking
 
   !> With all effects off the w-w block of the linear stiffness is Kear's
@@ -295,12 +278,6 @@ contains
     call resolve_formulation('corotational', element_effects_t(), kind, code, resolved, err)
     call assert_true(err%failed() .and. index(err%text(), 'corotational') > 0, 'unknown: '//err%text())
   end subroutine test_default_formulation
-
-  function rstr(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=24) :: s
-    write(s, '(es12.4)') x
-  end function rstr
 end module test_consistent_element_suite
 
 program test_consistent_element

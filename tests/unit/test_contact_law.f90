@@ -9,6 +9,7 @@ module test_contact_law_suite
   use contact_law
   use lsode_solver, only: ode_system_t, lsode_t, mf_adams
   use assertions
+  use test_text, only: rtoa
   implicit none
   private
   public :: run_all
@@ -83,7 +84,7 @@ contains
     do i = 1, 4
       delta = 10.0_dp**(-i - 2)
       call normal_force(law, delta, 0.0_dp, 10.0_dp, f, d1, d2)
-      call assert_rel_close(f, 2.8e7_dp*delta*sqrt(delta), 1.0e-14_dp, 'Hertz K delta^1.5 at delta = '//str_e(delta))
+      call assert_rel_close(f, 2.8e7_dp*delta*sqrt(delta), 1.0e-14_dp, 'Hertz K delta^1.5 at delta = '//rtoa(delta))
     end do
     call normal_force(law, -1.0e-4_dp, -3.0_dp, 10.0_dp, f, d1, d2)
     call assert_true(abs(f) + abs(d1) + abs(d2) <= 0.0_dp, 'free flight: no force')
@@ -151,10 +152,10 @@ contains
       e = 1.0_dp - 0.01_dp*i
       call contact_law_init(law, 'lankarani_nikravesh', 2.8e7_dp, 1.5_dp, e, 0.0_dp, 1.0_dp, err)
       v1 = exit_speed(law, 1.0e-3_dp, 20.0_dp)
-      call assert_close(v1/20.0_dp, e, 1.0e-3_dp, 'LN effective e vs e = '//str_e(e))
+      call assert_close(v1/20.0_dp, e, 1.0e-3_dp, 'LN effective e vs e = '//rtoa(e))
       call contact_law_init(law, 'lankarani_nikravesh', 3.0e5_dp, 1.5_dp, e, 0.0_dp, 1.0_dp, err)
       call assert_close(exit_speed(law, 2.0_dp, 0.5_dp)/0.5_dp, v1/20.0_dp, 1.0e-7_dp, &
-                        'LN effective e independent of m, K, v0 at e = '//str_e(e))
+                        'LN effective e independent of m, K, v0 at e = '//rtoa(e))
     end do
     ! e = 0.95 is outside: the error exceeds 1e-3 (a check that the test can fail)
     call contact_law_init(law, 'lankarani_nikravesh', 2.8e7_dp, 1.5_dp, 0.95_dp, 0.0_dp, 1.0_dp, err)
@@ -193,8 +194,8 @@ contains
       v1 = exit_speed(law, m, v0)
       lost = 0.5_dp*m*(v0**2 - v1**2)
       want = 0.5_dp*m*v0**2*(1.0_dp - es(i)**2)
-      call assert_rel_close(lost, want, 1.0e-3_dp, 'energy lost per impact, e = '//str_e(es(i)))
-      call assert_close(v1/v0, es(i), 1.0e-6_dp, 'effective restitution, e = '//str_e(es(i)))
+      call assert_rel_close(lost, want, 1.0e-3_dp, 'energy lost per impact, e = '//rtoa(es(i)))
+      call assert_close(v1/v0, es(i), 1.0e-6_dp, 'effective restitution, e = '//rtoa(es(i)))
     end do
     ! chi grows like 1/e as e -> 0 (the rebound speed is bounded by v0/chi)
     call assert_true(law%chi > 0.9_dp/0.05_dp .and. law%chi < 1.1_dp/0.05_dp, 'chi ~ 1/e at e = 0.05')
@@ -222,14 +223,6 @@ contains
     call contact_law_init(law, 'calibrated', 1.0_dp, 1.5_dp, 0.001_dp, 0.0_dp, 1.0_dp, err)
     call assert_true(err%failed(), 'calibrated with e < 0.01 rejected')
   end subroutine test_invalid
-
-  function str_e(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(es10.3)') x
-    s = trim(adjustl(buf))
-  end function str_e
 end module test_contact_law_suite
 
 program test_contact_law

@@ -5,13 +5,12 @@ module test_design_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
   use design_analysis, only: run_design
-  use deck_runner, only: scratch_path, run_deck, has_line, summary_value, line_length
+  use deck_runner, only: start_suite, suite_stem, run_text, has_line, summary_value, line_length
   use assertions
   implicit none
   private
   public :: run_all
 
-  character(len=:), allocatable :: scratch
   !> A crank of 10 in, 0.25 x 1 in, free at its end, 1 rad/s (inputs/design_bar_frequency.nml).
   character(len=*), parameter :: bar = '&run analysis = ''design'' /|&mechanism n_joints = 2, '// &
     'joint_type = ''clamp'', ''free'', joint_x(1) = 0, joint_y(1) = 0, n_links = 1, link_joint1 = 1, '// &
@@ -21,7 +20,7 @@ module test_design_analysis_suite
 contains
 
   subroutine run_all()
-    scratch = scratch_path('test_design_analysis')
+    call start_suite('test_design_analysis', run_design)
     call run_test('minimum_mass_bar_reaches_the_closed_form_section', test_closed_form)
     call run_test('bad_design_values_are_input_errors', test_bad_values)
     call run_test('counterweights_reach_berkof_lowen_balance_at_low_speed', test_counterweights)
@@ -31,12 +30,35 @@ contains
     call run_test('several_speeds_summed_shaking_reaches_berkof_lowen', test_speeds_shaking)
   end subroutine run_all
 
-  subroutine run_text(text, err, lines)
-    character(len=*), intent(in) :: text
-    type(error_t), intent(inout) :: err
-    character(len=line_length), allocatable, intent(out) :: lines(:)
-    call run_deck(run_design, scratch, text, err, lines)
-  end subroutine run_text
+  !> Tennant's four-bar at `omega` rad/s with counterweights of 0.001 on
+  !> crank and rocker, `tennant_extra` added to &tennant, and the start of a
+  !> &design group over the four counterweight positions (to be completed).
+  function fourbar_cw(omega, tennant_extra) result(text)
+    character(len=*), intent(in) :: omega, tennant_extra
+    character(len=:), allocatable :: text
+    text = '&run analysis = ''design'' /|&mechanism n_joints = 4, joint_type = ''clamp'', ''pin'', '// &
+      '''pin'', ''ground_pin'', joint_x(1) = 0, joint_y(1) = 0, joint_x(4) = 10, joint_y(4) = 0, n_links = 3, '// &
+      'link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, '// &
+      'link_h = 3*1.0, link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, driver_link = 1, omega = '//omega//' /|'// &
+      '&steady damping_beta = 1.0e-5 /|&tennant d_k = 0, d_b = 0, d_g = 0'//tennant_extra//' /|&design variables = '// &
+      '''link_cw_x(1)'', ''link_cw_y(1)'', ''link_cw_x(3)'', ''link_cw_y(3)'', lower = -6, -3, -10, -3, '// &
+      'upper = 3, 3, 3, 3, scale = 4*1.0, '
+  end function fourbar_cw
+
+  !> Berkof-Lowen full force balance of that four-bar: the counterweights on
+  !> the link lines at -(m2 + m3) a2 / (2 m_cw) and -(m4 + m3) a4 / (2 m_cw),
+  !> within 1e-4 in (see the tests for the elastic shift).
+  subroutine assert_berkof_lowen(lines)
+    character(len=*), intent(in) :: lines(:)
+    real(dp), parameter :: rho_b = 2.536e-4_dp*0.25_dp, m_cw = 0.001_dp
+    real(dp), parameter :: m2 = rho_b*5.0_dp, m3 = rho_b*11.0_dp, m4 = rho_b*10.5_dp
+    call assert_close(summary_value(lines, '# summary: final link_cw_x(1) ='), -(m2 + m3)*5.0_dp/(2.0_dp*m_cw), &
+                      1.0e-4_dp, 'crank counterweight on the Berkof-Lowen position')
+    call assert_close(summary_value(lines, '# summary: final link_cw_x(3) ='), -(m4 + m3)*10.5_dp/(2.0_dp*m_cw), &
+                      1.0e-4_dp, 'rocker counterweight on the Berkof-Lowen position')
+    call assert_close(summary_value(lines, '# summary: final link_cw_y(1) ='), 0.0_dp, 1.0e-4_dp, 'on the crank line')
+    call assert_close(summary_value(lines, '# summary: final link_cw_y(3) ='), 0.0_dp, 1.0e-4_dp, 'on the rocker line')
+  end subroutine assert_berkof_lowen
 
   !> Lowest frozen frequency (1.8751/L)^2 h sqrt(E/(12 rho)) >= 100 rad/s:
   !> h* = 0.0475882 in.  The design aims feas_tol/2 = 5e-4 inside the
@@ -71,26 +93,10 @@ contains
   subroutine test_counterweights()
     type(error_t) :: err
     character(len=line_length), allocatable :: lines(:)
-    real(dp), parameter :: rho_b = 2.536e-4_dp*0.25_dp, m_cw = 0.001_dp
-    real(dp) :: m2, m3, m4
-    m2 = rho_b*5.0_dp
-    m3 = rho_b*11.0_dp
-    m4 = rho_b*10.5_dp
-    call run_text('&run analysis = ''design'' /|&mechanism n_joints = 4, joint_type = ''clamp'', ''pin'', '// &
-      '''pin'', ''ground_pin'', joint_x(1) = 0, joint_y(1) = 0, joint_x(4) = 10, joint_y(4) = 0, n_links = 3, '// &
-      'link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, '// &
-      'link_h = 3*1.0, link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, driver_link = 1, omega = 1.0 /|'// &
-      '&steady damping_beta = 1.0e-5 /|&tennant d_k = 0, d_b = 0, d_g = 0 /|&design variables = '// &
-      '''link_cw_x(1)'', ''link_cw_y(1)'', ''link_cw_x(3)'', ''link_cw_y(3)'', lower = -6, -3, -10, -3, '// &
-      'upper = 3, 3, 3, 3, scale = 4*1.0, objective = ''shaking'', evaluator = ''harmonic'', samples = 36, '// &
+    call run_text(fourbar_cw('1.0', '')//'objective = ''shaking'', evaluator = ''harmonic'', samples = 36, '// &
       'move_limit = 1.0, xtol = 1e-7 /', err, lines)
     call assert_true(.not. err%failed(), 'converges: '//err%text())
-    call assert_close(summary_value(lines, '# summary: final link_cw_x(1) ='), -(m2 + m3)*5.0_dp/(2.0_dp*m_cw), &
-                      1.0e-4_dp, 'crank counterweight on the Berkof-Lowen position')
-    call assert_close(summary_value(lines, '# summary: final link_cw_x(3) ='), -(m4 + m3)*10.5_dp/(2.0_dp*m_cw), &
-                      1.0e-4_dp, 'rocker counterweight on the Berkof-Lowen position')
-    call assert_close(summary_value(lines, '# summary: final link_cw_y(1) ='), 0.0_dp, 1.0e-4_dp, 'on the crank line')
-    call assert_close(summary_value(lines, '# summary: final link_cw_y(3) ='), 0.0_dp, 1.0e-4_dp, 'on the rocker line')
+    call assert_berkof_lowen(lines)
     call assert_true(summary_value(lines, '# summary: final rms shaking force =') < &
                      1.0e-5_dp*summary_value(lines, '# summary: initial rms shaking force ='), 'shaking force cancelled')
     call remove_side_files()
@@ -107,27 +113,11 @@ contains
   subroutine test_counterweights_minimax()
     type(error_t) :: err
     character(len=line_length), allocatable :: lines(:)
-    real(dp), parameter :: rho_b = 2.536e-4_dp*0.25_dp, m_cw = 0.001_dp
-    real(dp) :: m2, m3, m4
-    m2 = rho_b*5.0_dp
-    m3 = rho_b*11.0_dp
-    m4 = rho_b*10.5_dp
-    call run_text('&run analysis = ''design'' /|&mechanism n_joints = 4, joint_type = ''clamp'', ''pin'', '// &
-      '''pin'', ''ground_pin'', joint_x(1) = 0, joint_y(1) = 0, joint_x(4) = 10, joint_y(4) = 0, n_links = 3, '// &
-      'link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, '// &
-      'link_h = 3*1.0, link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, driver_link = 1, omega = 1.0 /|'// &
-      '&steady damping_beta = 1.0e-5 /|&tennant d_k = 0, d_b = 0, d_g = 0 /|&design variables = '// &
-      '''link_cw_x(1)'', ''link_cw_y(1)'', ''link_cw_x(3)'', ''link_cw_y(3)'', lower = -6, -3, -10, -3, '// &
-      'upper = 3, 3, 3, 3, scale = 4*1.0, objective = ''shaking_peak'', evaluator = ''harmonic'', samples = 36, '// &
+    call run_text(fourbar_cw('1.0', '')//'objective = ''shaking_peak'', evaluator = ''harmonic'', samples = 36, '// &
       'move_limit = 1.0, xtol = 1e-5, hessian = ''structured'' /', err, lines)
     call assert_true(.not. err%failed(), 'converges: '//err%text())
     call assert_true(has_line(lines, '# design: least peak shaking force'), 'the minimax objective is named')
-    call assert_close(summary_value(lines, '# summary: final link_cw_x(1) ='), -(m2 + m3)*5.0_dp/(2.0_dp*m_cw), &
-                      1.0e-4_dp, 'crank counterweight on the Berkof-Lowen position')
-    call assert_close(summary_value(lines, '# summary: final link_cw_x(3) ='), -(m4 + m3)*10.5_dp/(2.0_dp*m_cw), &
-                      1.0e-4_dp, 'rocker counterweight on the Berkof-Lowen position')
-    call assert_close(summary_value(lines, '# summary: final link_cw_y(1) ='), 0.0_dp, 1.0e-4_dp, 'on the crank line')
-    call assert_close(summary_value(lines, '# summary: final link_cw_y(3) ='), 0.0_dp, 1.0e-4_dp, 'on the rocker line')
+    call assert_berkof_lowen(lines)
     call assert_true(summary_value(lines, '# summary: final peak shaking force =') < &
                      1.0e-4_dp*summary_value(lines, '# summary: initial peak shaking force ='), 'peak cancelled')
     call remove_side_files()
@@ -164,19 +154,9 @@ contains
   !> 6.5e-6 and 2.6e-5 in at these speeds: tolerance 1e-4 in).  The same
   !> answer at objective_speed = 2.
   subroutine test_speeds_shaking()
-    character(len=*), parameter :: deck = '&run analysis = ''design'' /|&mechanism n_joints = 4, joint_type = '// &
-      '''clamp'', ''pin'', ''pin'', ''ground_pin'', joint_x(1) = 0, joint_y(1) = 0, joint_x(4) = 10, '// &
-      'joint_y(4) = 0, n_links = 3, link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, '// &
-      '10.5, link_b = 3*0.25, link_h = 3*1.0, link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, driver_link = 1, '// &
-      'omega = 1.0 /|&steady damping_beta = 1.0e-5 /|&tennant d_k = 0, d_b = 0, d_g = 0 /|&design variables = '// &
-      '''link_cw_x(1)'', ''link_cw_y(1)'', ''link_cw_x(3)'', ''link_cw_y(3)'', lower = -6, -3, -10, -3, '// &
-      'upper = 3, 3, 3, 3, scale = 4*1.0, objective = ''shaking'', evaluator = ''harmonic'', samples = 36, '// &
+    character(len=:), allocatable :: deck
+    deck = fourbar_cw('1.0', '')//'objective = ''shaking'', evaluator = ''harmonic'', samples = 36, '// &
       'move_limit = 1.0, xtol = 1e-6, hessian = ''structured'', speeds = 0.5, 1.0'
-    real(dp), parameter :: rho_b = 2.536e-4_dp*0.25_dp, m_cw = 0.001_dp
-    real(dp) :: m2, m3, m4
-    m2 = rho_b*5.0_dp
-    m3 = rho_b*11.0_dp
-    m4 = rho_b*10.5_dp
     call check(deck//' /')
     call check(deck//', objective_speed = 2 /')
   contains
@@ -187,12 +167,7 @@ contains
       call run_text(text, err, lines)
       call assert_true(.not. err%failed(), 'converges: '//err%text())
       call assert_true(has_line(lines, '# operating speeds (rad/s): 0.500000 1.00000'), 'the speeds are reported')
-      call assert_close(summary_value(lines, '# summary: final link_cw_x(1) ='), -(m2 + m3)*5.0_dp/(2.0_dp*m_cw), &
-                        1.0e-4_dp, 'crank counterweight on the Berkof-Lowen position')
-      call assert_close(summary_value(lines, '# summary: final link_cw_x(3) ='), -(m4 + m3)*10.5_dp/(2.0_dp*m_cw), &
-                        1.0e-4_dp, 'rocker counterweight on the Berkof-Lowen position')
-      call assert_close(summary_value(lines, '# summary: final link_cw_y(1) ='), 0.0_dp, 1.0e-4_dp, 'crank line')
-      call assert_close(summary_value(lines, '# summary: final link_cw_y(3) ='), 0.0_dp, 1.0e-4_dp, 'rocker line')
+      call assert_berkof_lowen(lines)
       call assert_true(summary_value(lines, '# summary: final rms shaking force =') < &
                        1.0e-4_dp*summary_value(lines, '# summary: initial rms shaking force ='), 'shaking cancelled')
       call remove_side_files()
@@ -208,20 +183,15 @@ contains
   !> 5e-5 (half of that) and the positions to 2e-3 in (the objective is flat
   !> along the rocker counterweight's radius).
   subroutine test_structured_same_answer()
-    character(len=*), parameter :: deck = '&run analysis = ''design'' /|&mechanism n_joints = 4, joint_type = '// &
-      '''clamp'', ''pin'', ''pin'', ''ground_pin'', joint_x(1) = 0, joint_y(1) = 0, joint_x(4) = 10, '// &
-      'joint_y(4) = 0, n_links = 3, link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, '// &
-      '10.5, link_b = 3*0.25, link_h = 3*1.0, link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, driver_link = 1, '// &
-      'omega = 75.0 /|&steady damping_beta = 1.0e-5 /|&tennant d_k = 0, d_b = 0, d_g = 0, shear = F /|'// &
-      '&design variables = ''link_cw_x(1)'', ''link_cw_y(1)'', ''link_cw_x(3)'', ''link_cw_y(3)'', '// &
-      'lower = -6, -3, -10, -3, upper = 3, 3, 3, 3, scale = 4*1.0, objective = ''shaking'', '// &
-      'evaluator = ''harmonic'', samples = 72, stress_allowable = 20000.0, move_limit = 1.0, hessian = '
+    character(len=:), allocatable :: deck
     character(len=16), parameter :: names(4) = [character(len=16) :: 'link_cw_x(1) =', 'link_cw_y(1) =', &
                                                 'link_cw_x(3) =', 'link_cw_y(3) =']
     type(error_t) :: err
     character(len=line_length), allocatable :: lines(:)
     real(dp) :: x(4, 2), rms(2)
     integer :: run, i
+    deck = fourbar_cw('75.0', ', shear = F')//'objective = ''shaking'', evaluator = ''harmonic'', samples = 72, '// &
+      'stress_allowable = 20000.0, move_limit = 1.0, hessian = '
     do run = 1, 2
       call run_text(deck//trim(merge('''gauss''     ', '''structured''', run == 1))//' /', err, lines)
       call assert_true(.not. err%failed(), 'converges: '//err%text())
@@ -245,7 +215,7 @@ contains
                                                  '.initial.out', '.final.out']
     integer :: i, u, ios
     do i = 1, 4
-      open(newunit=u, file=scratch//trim(suffix(i)), status='old', iostat=ios)
+      open(newunit=u, file=suite_stem()//trim(suffix(i)), status='old', iostat=ios)
       if (ios == 0) close(u, status='delete')
       call assert_true(ios == 0, 'side file '//trim(suffix(i))//' was written')
     end do

@@ -25,6 +25,7 @@ module test_joint_reactions_suite
                                 link_point_response
   use lsode_solver, only: lsode_t, mf_bdf_full_user
   use transient_fixtures, only: fourbar_input, cantilever_input, beam_input, beam_length, e1, inertia, area, rho, rtoa
+  use mechanism_fixtures, only: slider_crank_input
   use assertions
   implicit none
   private
@@ -387,18 +388,9 @@ contains
     real(dp) :: t, guide(2), along, normal
     integer :: k
     real(dp), parameter :: w = 150.0_dp, guide_deg = 30.0_dp
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 0.0_dp
-    inp%joint_y(3) = 0.0_dp
+    inp = slider_crank_input(5.0_dp, 11.0_dp, 0.0_dp)
     inp%joint_guide_deg(3) = guide_deg
     inp%joint_mass(3) = 3.5e-4_dp
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [5.0_dp, 11.0_dp]
     inp%link_n_elements(1:2) = 2
     inp%omega = w
     call build_mechanism(inp, mech, err)

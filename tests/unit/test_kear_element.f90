@@ -12,15 +12,14 @@ module test_kear_element_suite
   use linalg, only: cholesky_factor
   use kear_element
   use assertions
+  use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
+  use fd_checks, only: fd_gradient4, fd_jacobian4
   use lagrange_check, only: fd_lagrange
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
   private
   public :: run_all
 
-  ! "unit" element for derivative checks: large deflections, visible material term
-  type(ramberg_osgood_t), parameter :: soft = ramberg_osgood_t(e1=1000.0_dp, e2=2.0e6_dp, m=3.0_dp, rho=2.0_dp)
-  real(dp), parameter :: l_u = 1.3_dp, b_u = 0.2_dp, t_u = 0.3_dp
   ! section 8.1 example: coupler 11 in, 0.25 x 1 in, "aluminum"
   type(ramberg_osgood_t), parameter :: alu = ramberg_osgood_t(e1=10.87e6_dp, e2=0.8387e11_dp, m=3.0_dp, &
                                                               rho=0.0002536_dp)
@@ -130,21 +129,6 @@ contains
     r(6) = p(5)
   end function jb
 
-  !> A prescribed, non-trivial rigid-body motion of the reference line.
-  pure function rigid_at(t) result(rb)
-    real(dp), intent(in) :: t
-    type(rigid_state_t) :: rb
-    rb%phi = 0.3_dp + 2.0_dp*t + 0.7_dp*t**2 + 0.2_dp*sin(3.0_dp*t)
-    rb%phi_d = 2.0_dp + 1.4_dp*t + 0.6_dp*cos(3.0_dp*t)
-    rb%phi_dd = 1.4_dp - 1.8_dp*sin(3.0_dp*t)
-    rb%x1 = 0.5_dp + 0.3_dp*t + 0.4_dp*t**2 + 0.1_dp*cos(2.0_dp*t)
-    rb%x1_d = 0.3_dp + 0.8_dp*t - 0.2_dp*sin(2.0_dp*t)
-    rb%x1_dd = 0.8_dp - 0.4_dp*cos(2.0_dp*t)
-    rb%y1 = -0.2_dp + 0.6_dp*t - 0.3_dp*t**2 + 0.05_dp*sin(5.0_dp*t)
-    rb%y1_d = 0.6_dp - 0.6_dp*t + 0.25_dp*cos(5.0_dp*t)
-    rb%y1_dd = -0.6_dp - 1.25_dp*sin(5.0_dp*t)
-  end function rigid_at
-
   !> Element inertial operator M qdd - F - dSE/dq (beta = 0).
   function element_operator(el, q, qd, qdd, rb) result(op)
     type(kear_element_t), intent(in) :: el
@@ -156,20 +140,6 @@ contains
     call kear_internal_force(el, q, rb%phi, fint)
     op = matmul(m, qdd) - f - fint
   end function element_operator
-
-  !> 4th-order central difference of the internal-force/energy pair.
-  function fd_gradient(el, q, phi, h) result(g)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), phi, h
-    real(dp) :: g(8), e(8)
-    integer :: j
-    do j = 1, 8
-      e = 0.0_dp
-      e(j) = h
-      g(j) = (kear_strain_energy(el, q - 2*e, phi) - 8*kear_strain_energy(el, q - e, phi) &
-              + 8*kear_strain_energy(el, q + e, phi) - kear_strain_energy(el, q + 2*e, phi))/(12*h)
-    end do
-  end function fd_gradient
 
   ! -------------------------------------------------------------- tests
 
@@ -252,9 +222,14 @@ contains
     do k = 1, 4
       el = unit_element(fx(k))
       call kear_internal_force(el, q_big, phi, f)
-      g = fd_gradient(el, q_big, phi, 1.0e-4_dp)
+      g = fd_gradient4(energy, q_big, 1.0e-4_dp)
       call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
     end do
+  contains
+    real(dp) function energy(q)
+      real(dp), intent(in) :: q(:)
+      energy = kear_strain_energy(el, q, phi)
+    end function energy
   end subroutine test_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against the
@@ -263,8 +238,8 @@ contains
   !> is symmetric (a Hessian) to round-off.
   subroutine test_tangent_is_jacobian()
     type(kear_element_t) :: el
-    real(dp) :: kt(8, 8), kfd(8, 8), fp(8), fm(8), fp2(8), fm2(8), e(8), phi, h
-    integer :: k, j
+    real(dp) :: kt(8, 8), kfd(8, 8), phi, h
+    integer :: k
     character(len=40) :: label
     phi = -0.4_dp
     h = 1.0e-4_dp
@@ -281,20 +256,18 @@ contains
         label = 'exact, geometric only'
       end select
       call kear_tangent_stiffness(el, q_big, phi, kt)
-      do j = 1, 8
-        e = 0.0_dp
-        e(j) = h
-        call kear_internal_force(el, q_big + e, phi, fp)
-        call kear_internal_force(el, q_big - e, phi, fm)
-        call kear_internal_force(el, q_big + 2*e, phi, fp2)
-        call kear_internal_force(el, q_big - 2*e, phi, fm2)
-        kfd(:, j) = (fm2 - 8*fm + 8*fp - fp2)/(12*h)
-      end do
+      call fd_jacobian4(internal_force, q_big, h, kfd)
       call assert_all_close(reshape(kt, [64]), reshape(kfd, [64]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
                             'K_t vs FD Jacobian: '//trim(label))
       if (k /= 2) call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), &
                                    'K_t symmetric: '//trim(label))
     end do
+  contains
+    subroutine internal_force(q, f)
+      real(dp), intent(in) :: q(:)
+      real(dp), intent(out) :: f(:)
+      call kear_internal_force(el, q, phi, f)
+    end subroutine internal_force
   end subroutine test_tangent_is_jacobian
 
   !> eps_n and kappa from kear_section_strains against formulas (K19), exact

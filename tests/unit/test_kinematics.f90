@@ -9,7 +9,8 @@ module test_kinematics_suite
   use linkage
   use kinematics
   use assertions
-  use transient_fixtures, only: fourbar_abcd
+  use test_text, only: itoa
+  use mechanism_fixtures, only: fourbar_abcd, slider_crank_input, whitworth_input, ground_sleeve_input
   implicit none
   private
   public :: run_all
@@ -225,18 +226,8 @@ contains
     real(dp), parameter :: r = 2.0_dp, rl = 7.0_dp, e = 0.5_dp, w = 12.0_dp, al = -40.0_dp
     real(dp) :: t, s, sd, sdd, dd, x, xd, xdd, ph, phd, phdd, sl(3)
     integer :: k
-    inp%n_joints = 3
+    inp = slider_crank_input(r, rl, e)
     inp%joint_name(1:3) = [character(len=16) :: 'A', 'B', 'C']
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
-    inp%joint_x(1:3) = [0.0_dp, 0.0_dp, 0.0_dp]
-    inp%joint_y(1:3) = [0.0_dp, 0.0_dp, e]
-    inp%joint_x(2) = coordinate_unset
-    inp%joint_y(2) = coordinate_unset
-    inp%joint_guide_deg(3) = 0.0_dp
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [r, rl]
     call make(inp, kin)
     do k = 0, 36
       t = k*10.0_dp*deg
@@ -284,19 +275,9 @@ contains
   !> at C = (8, 0).  Its active length is |BC|.
   function inverted_ground_input() result(inp)
     type(mechanism_input_t) :: inp
-    inp%n_joints = 3
+    inp = ground_sleeve_input(3.0_dp, 14.0_dp, 8.0_dp)
     inp%joint_name(1:3) = [character(len=16) :: 'A', 'B', 'C']
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_link']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 8.0_dp
-    inp%joint_y(3) = 0.0_dp
-    inp%joint_sliding_link(3) = 2
-    inp%n_links = 2
     inp%link_name(1:2) = [character(len=16) :: 'crank', 'rod']
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [3.0_dp, 14.0_dp]
     inp%link_n_elements(2) = 4
   end function inverted_ground_input
 
@@ -340,19 +321,9 @@ contains
     real(dp), parameter :: r = 3.0_dp, w = 5.0_dp, al = 0.0_dp
     real(dp) :: t, bp(2), bd(2), bdd(2), l, ld, ldd, ph, phd, phdd
     integer :: k
-    inp%n_joints = 3
+    inp = whitworth_input(r, 6.0_dp)
     inp%joint_name(1:3) = [character(len=16) :: 'A', 'B', 'D']
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'slider_link', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 0.0_dp
-    inp%joint_y(3) = -6.0_dp
-    inp%joint_sliding_link(2) = 2
-    inp%n_links = 2
     inp%link_name(1:2) = [character(len=16) :: 'crank', 'lever']
-    inp%link_joint1(1:2) = [1, 3]
-    inp%link_joint2(1:2) = [2, 2]
-    inp%link_length(1:2) = [r, 0.0_dp]
     call make(inp, kin)
     do k = 0, 36
       t = k*10.0_dp*deg
@@ -716,14 +687,7 @@ contains
     call assert_true(index(err%text(), 'crank angle 180') > 0, 'message names the crank angle: '//err%text())
     ! a slider-crank whose rod is too short for the guide
     call err%clear()
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
-    inp%joint_x(1:3) = [0.0_dp, coordinate_unset, 0.0_dp]
-    inp%joint_y(1:3) = [0.0_dp, coordinate_unset, 5.0_dp]
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [2.0_dp, 4.0_dp]
+    inp = slider_crank_input(2.0_dp, 4.0_dp, 5.0_dp)
     call make(inp, kin)
     call kin%solve(0.0_dp, err)
     call assert_true(index(err%text(), 'J3 cannot be placed') > 0, 'slider message: '//err%text())
@@ -830,12 +794,6 @@ contains
     call assert_true(index(err%text(), 'does not fit together: link beam is 20.5') > 0 .and. &
                      index(err%text(), 'A and B are 20.0') > 0, err%text())
   end subroutine test_structure_misfit
-
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=12) :: s
-    write(s, '(i0)') i
-  end function itoa
 end module test_kinematics_suite
 
 program test_kinematics

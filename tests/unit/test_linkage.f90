@@ -10,7 +10,7 @@ module test_linkage_suite
   use linkage_report, only: mechanism_summary, classify_mechanism
   use reference_materials, only: tennant_aluminium_e1
   use assertions
-  use transient_fixtures, only: fourbar_abcd
+  use mechanism_fixtures, only: fourbar_abcd, slider_crank_input
   implicit none
   private
   public :: run_all
@@ -39,19 +39,6 @@ contains
     inp = fourbar_abcd(a, b, c, d)
     inp%omega = 150.0_dp
   end function fourbar_input
-
-  function slider_crank_input(r, l, e) result(inp)
-    real(dp), intent(in) :: r, l, e
-    type(mechanism_input_t) :: inp
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
-    inp%joint_x(1:3) = [0.0_dp, coordinate_unset, 0.0_dp]
-    inp%joint_y(1:3) = [0.0_dp, coordinate_unset, e]
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [r, l]
-  end function slider_crank_input
 
   subroutine test_defaults()
     type(mechanism_t) :: mech

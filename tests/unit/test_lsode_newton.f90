@@ -13,6 +13,7 @@ module test_lsode_newton_suite
   use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
   use transient_fixtures, only: fourbar_input, make_model, all_effects, state_atol
   use assertions
+  use test_text, only: itoa, rtoa
   implicit none
   private
   public :: run_all
@@ -148,12 +149,6 @@ contains
                        merge('yes', 'no ', expect_cholesky))
     end do
   end subroutine check_solve
-
-  function rtoa(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=16) :: s
-    write(s, '(es9.2)') x
-  end function rtoa
 
   subroutine test_solve_linear_model()
     type(mechanism_model_t) :: model
@@ -300,12 +295,6 @@ contains
     c = free%counters()
     call assert_true(c%order_last > 2, 'without the limit the order exceeds 2: '//trim(itoa(c%order_last)))
   end subroutine test_max_order_kept
-
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=16) :: s
-    write(s, '(i0)') i
-  end function itoa
 end module test_lsode_newton_suite
 
 program test_lsode_newton

@@ -5,6 +5,7 @@ module test_optim_problem_suite
   use error_status, only: error_t
   use optim_problem, only: opt_problem_t, con_linear, con_quadratic, con_general
   use assertions
+  use test_text, only: itoa
   implicit none
   private
   public :: run_all
@@ -64,14 +65,8 @@ contains
     real(dp), intent(out) :: g
     type(error_t), intent(inout) :: err
     g = x(1)*x(2)*x(3) - 1.0_dp
-    if (.false.) call err%set(self%name, str_i(i))
+    if (.false.) call err%set(self%name, itoa(i))
   end subroutine oo_constraint
-
-  pure function str_i(i) result(s)
-    integer, intent(in) :: i
-    character(len=8) :: s
-    write(s, '(i0)') i
-  end function str_i
 
   subroutine test_fd_jacobian()
     type(residual_only_t) :: p

@@ -4,33 +4,24 @@
 module test_optimize_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_runner, only: scratch_path, run_deck, has_line, summary_value, line_length
+  use deck_runner, only: start_suite, run_text, has_line, summary_value, line_length
   use optimize_analysis, only: run_optimize
   use assertions
   implicit none
   private
   public :: run_all
 
-  character(len=:), allocatable :: scratch
 
 contains
 
   subroutine run_all()
-    scratch = scratch_path('test_optimize_analysis')
+    call start_suite('test_optimize_analysis', run_optimize)
     call run_test('rosen_suzuki_deck_gives_table_and_summary', test_good_deck)
     call run_test('bad_values_are_input_errors', test_bad_values)
     call run_test('gnlc_infeasible_start_is_an_input_error', test_infeasible)
     call run_test('iteration_limit_keeps_table_and_best_point', test_iteration_limit)
     call run_test('deck_posed_quadratic_problem_with_equality', test_deck_problem)
   end subroutine run_all
-
-  !> The deck `text` ('|' separates lines) through the analysis; output lines back.
-  subroutine run_text(text, err, lines)
-    character(len=*), intent(in) :: text
-    type(error_t), intent(inout) :: err
-    character(len=line_length), allocatable, intent(out) :: lines(:)
-    call run_deck(run_optimize, scratch, text, err, lines)
-  end subroutine run_text
 
   !> HS 6 posed by coefficients (issue 11): F = (1 - x1)^2 = 1/2 x^T diag(2, 0) x
   !> - 2 x1 + 1, h = 1/2 x^T diag(-20, 0) x + 10 x2 = 0 (a quadratic equality),

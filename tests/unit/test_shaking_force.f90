@@ -9,6 +9,8 @@ module test_shaking_force_suite
   use steady_model, only: steady_model_t, link_sections_t
   use shaking_force, only: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative
   use assertions
+  use mechanism_fixtures, only: fourbar_abcd
+  use test_text, only: rtoa
   implicit none
   private
   public :: run_all
@@ -35,16 +37,7 @@ contains
     type(error_t) :: err
     type(tennant_options_t) :: opt
     type(link_sections_t) :: sections(3)
-    inp%n_joints = 4
-    inp%joint_type(1:4) = [character(len=16) :: 'clamp', 'pin', 'pin', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(4) = a1
-    inp%joint_y(4) = 0.0_dp
-    inp%n_links = 3
-    inp%link_joint1(1:3) = [1, 2, 4]
-    inp%link_joint2(1:3) = [2, 3, 3]
-    inp%link_length(1:3) = [a2, a3, a4]
+    inp = fourbar_abcd(a2, a3, a4, a1)
     inp%link_b(1:3) = 0.25_dp
     inp%link_h(1:3) = 1.0_dp
     inp%link_n_elements(1:3) = 2
@@ -80,9 +73,9 @@ contains
       peak = max(peak, hypot(fc(1), fc(2)))
       worst = max(worst, hypot(f(1) - fc(1), f(2) - fc(2)))
     end do
-    call assert_true(peak > 1.0_dp, 'the unbalanced four-bar shakes (peak '//real_text(peak)//' lb)')
+    call assert_true(peak > 1.0_dp, 'the unbalanced four-bar shakes (peak '//rtoa(peak)//' lb)')
     call assert_true(worst <= 1.0e-6_dp*peak, 'rigid shaking force vs closed form: worst difference '// &
-                     real_text(worst)//' lb of peak '//real_text(peak))
+                     rtoa(worst)//' lb of peak '//rtoa(peak))
   end subroutine test_closed_form
 
   !> m a_G summed over crank, coupler and rocker; theta3_model picks the
@@ -151,8 +144,8 @@ contains
       f = rigid_momentum_rate(model, mech)
       worst = max(worst, hypot(f(1), f(2)))
     end do
-    call assert_true(worst <= 1.0e-9_dp*peak0, 'balanced shaking force '//real_text(worst)//' lb, unbalanced '// &
-                     real_text(peak0))
+    call assert_true(worst <= 1.0e-9_dp*peak0, 'balanced shaking force '//rtoa(worst)//' lb, unbalanced '// &
+                     rtoa(peak0))
   end subroutine test_balance
 
   !> s = (cos 3wt + 2 sin wt, sin 5wt) at 16 samples: s'' exact to round-off.
@@ -170,12 +163,6 @@ contains
     got = periodic_second_derivative(s, period)
     call assert_true(maxval(abs(got - expect)) <= 1.0e-10_dp*25.0_dp*w**2, 'trig polynomial second derivative')
   end subroutine test_derivative
-
-  function real_text(v) result(s)
-    real(dp), intent(in) :: v
-    character(len=16) :: s
-    write(s, '(es12.4)') v
-  end function real_text
 end module test_shaking_force_suite
 
 program test_shaking_force

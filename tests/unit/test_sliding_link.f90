@@ -20,6 +20,7 @@ module test_sliding_link_suite
   use kear_element, only: element_effects_t
   use linalg, only: solve_linear
   use assertions
+  use mechanism_fixtures, only: whitworth_input, ground_sleeve_input
   implicit none
   private
   public :: run_all
@@ -43,18 +44,8 @@ contains
   function whitworth(omega) result(inp)
     real(dp), intent(in) :: omega
     type(mechanism_input_t) :: inp
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'slider_link', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 0.0_dp
-    inp%joint_y(3) = -6.0_dp
-    inp%joint_sliding_link(2) = 2
+    inp = whitworth_input(3.0_dp, 6.0_dp)
     inp%joint_mass(2) = 0.002_dp
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 3]
-    inp%link_joint2(1:2) = [2, 2]
-    inp%link_length(1:2) = [3.0_dp, 0.0_dp]
     inp%omega = omega
   end function whitworth
 
@@ -63,18 +54,8 @@ contains
   function ground_sleeve(omega) result(inp)
     real(dp), intent(in) :: omega
     type(mechanism_input_t) :: inp
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_link']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 8.0_dp
-    inp%joint_y(3) = 0.0_dp
-    inp%joint_sliding_link(3) = 2
+    inp = ground_sleeve_input(3.0_dp, 14.0_dp, 8.0_dp)
     inp%joint_mass(2) = 0.001_dp
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [3.0_dp, 14.0_dp]
     inp%link_n_elements(1:2) = [2, 1]
     inp%omega = omega
   end function ground_sleeve

@@ -15,6 +15,7 @@ module test_spatial_beam_suite
   use spatial_section
   use spatial_beam
   use assertions
+  use spatial_fixtures, only: cross3, spin_cross
   implicit none
   private
   public :: run_all
@@ -770,24 +771,15 @@ contains
       do e = 1, n
         i0 = nn*(e - 1)
         p = pall(i0 + 1:i0 + nd)
-        v = pdall(i0 + 1:i0 + nd) + wx(p)
+        v = pdall(i0 + 1:i0 + nd) + spin_cross(rb%omega, p)
         rb%x1 = [real(e - 1, dp)*len/n, 0.0_dp, 0.0_dp]
         rb%x1_dd = cross3(rb%omega, cross3(rb%omega, rb%x1))
         call spatial_beam_eval(el, p, v, rb, m, f, info)
-        f = f - matmul(m, 2.0_dp*wx(v) - wx(wx(p)))
+        f = f - matmul(m, 2.0_dp*spin_cross(rb%omega, v) - spin_cross(rb%omega, spin_cross(rb%omega, p)))
         rall(i0 + 1:i0 + nd) = rall(i0 + 1:i0 + nd) + matmul(m, pddall(i0 + 1:i0 + nd)) - f
       end do
       rr = rall(keep)
     end function residual
-    function wx(q) result(w)
-      real(dp), intent(in) :: q(nd)
-      real(dp) :: w(nd)
-      w = 0.0_dp
-      w(1:3) = cross3(rb%omega, q(1:3))
-      w(4:6) = cross3(rb%omega, q(4:6))
-      w(11:13) = cross3(rb%omega, q(11:13))
-      w(14:16) = cross3(rb%omega, q(14:16))
-    end function wx
   end subroutine test_southwell
 
   !> Paper E, section 8.3 (FORMULATION.md): L = 20 in, r = 0.2 in,
@@ -868,31 +860,16 @@ contains
       do e = 1, n
         i0 = nn*(e - 1)
         q = qall(i0 + 1:i0 + nd)
-        wq = omega_x(q)
+        wq = spin_cross(rb%omega, q)
         rb%x1 = [real(e - 1, dp)*len/n, 0.0_dp, 0.0_dp]
         rb%x1_dd = -om**2*rb%x1
         call spatial_beam_eval(el, q, wq, rb, m, f, info)
         ! q_dd = W^2 q for p_dot = p_dd = 0 (frame at R = I)
-        rall(i0 + 1:i0 + nd) = rall(i0 + 1:i0 + nd) + matmul(m, omega_x(wq)) - f
+        rall(i0 + 1:i0 + nd) = rall(i0 + 1:i0 + nd) + matmul(m, spin_cross(rb%omega, wq)) - f
       end do
       rr = rall(keep)
     end function residual
-    function omega_x(q) result(w)
-      real(dp), intent(in) :: q(nd)
-      real(dp) :: w(nd)
-      w = 0.0_dp
-      w(1:3) = cross3(rb%omega, q(1:3))
-      w(4:6) = cross3(rb%omega, q(4:6))
-      w(11:13) = cross3(rb%omega, q(11:13))
-      w(14:16) = cross3(rb%omega, q(14:16))
-    end function omega_x
   end subroutine rotating_cantilever
-
-  pure function cross3(a, b) result(c)
-    real(dp), intent(in) :: a(3), b(3)
-    real(dp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross3
 
   !> Section constants vs closed forms; the E2 rule against a fine
   !> independent rule (exact for m = 3: 1e-13), the circle's extreme fibre.

@@ -27,6 +27,7 @@ module test_spatial_spinup_suite
   use spatial_section, only: spatial_section_t, spatial_section_init, section_rectangular
   use spatial_beam
   use assertions
+  use spatial_fixtures, only: cross3
   implicit none
   private
   public :: run_all
@@ -90,7 +91,7 @@ contains
     call assert_true(.not. err%failed(), 'element: '//err%text())
     x0 = [2.0_dp, -1.0_dp, 0.0_dp]/sqrt(5.0_dp)             ! normal to the axis
     sb%r0(:, 1) = x0
-    sb%r0(:, 2) = cross(axis, x0)
+    sb%r0(:, 2) = cross3(axis, x0)
     sb%r0(:, 3) = axis
     allocate(y(2*sb%nq), atol(2*sb%nq))
     y = 0.0_dp
@@ -180,8 +181,8 @@ contains
       end where
       r = real(e - 1, dp)*sb%el(e)%length*sb%rb%rot(:, 1)
       sb%rb%x1 = r
-      sb%rb%x1_d = cross(sb%rb%omega, r)
-      sb%rb%x1_dd = cross(sb%rb%alpha, r) + cross(sb%rb%omega, cross(sb%rb%omega, r))
+      sb%rb%x1_d = cross3(sb%rb%omega, r)
+      sb%rb%x1_dd = cross3(sb%rb%alpha, r) + cross3(sb%rb%omega, cross3(sb%rb%omega, r))
       if (present(k)) then
         call spatial_beam_eval(sb%el(e), qe, qde, sb%rb, me, fe, info, tangent=ke)
       else
@@ -234,12 +235,6 @@ contains
       end do
     end do
   end subroutine spin_jacobian
-
-  pure function cross(a, b) result(c)
-    real(dp), intent(in) :: a(3), b(3)
-    real(dp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 end module test_spatial_spinup_suite
 
 program test_spatial_spinup

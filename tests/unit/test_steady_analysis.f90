@@ -5,14 +5,13 @@
 module test_steady_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_runner, only: scratch_path, run_deck, has_line, count_rows, line_length
+  use deck_runner, only: start_suite, run_text, has_line, count_rows, line_length
   use steady_analysis, only: run_steady
   use assertions
   implicit none
   private
   public :: run_all
 
-  character(len=:), allocatable :: scratch
   character(len=*), parameter :: four_bar = '&mechanism|n_joints = 4|joint_name = ''A'', ''B'', ''C'', ''D''|'// &
     'joint_type = ''clamp'', ''pin'', ''pin'', ''ground_pin''|joint_x(1) = 0.0, joint_y(1) = 0.0|'// &
     'joint_x(4) = 10.0, joint_y(4) = 0.0|n_links = 3|link_name = ''crank'', ''coupler'', ''rocker''|'// &
@@ -21,7 +20,7 @@ module test_steady_analysis_suite
 contains
 
   subroutine run_all()
-    scratch = scratch_path('test_steady_analysis')
+    call start_suite('test_steady_analysis', run_steady)
     call run_test('linear_harmonic_deck_gives_a_revolution_of_rows', test_linear_deck)
     call run_test('nonlinear_deck_reports_outer_iterations', test_nonlinear_deck)
     call run_test('both_methods_side_by_side_at_low_speed', test_both)
@@ -30,14 +29,6 @@ contains
     call run_test('parametric_resonance_of_the_undamped_four_bar_stops', test_parametric)
     call run_test('bad_input_is_an_input_error', test_bad_input)
   end subroutine run_all
-
-  !> The deck `text` ('|' separates lines) through the analysis; output lines back.
-  subroutine run_text(text, err, lines)
-    character(len=*), intent(in) :: text
-    type(error_t), intent(inout) :: err
-    character(len=line_length), allocatable, intent(out) :: lines(:)
-    call run_deck(run_steady, scratch, text, err, lines)
-  end subroutine run_text
 
   !> Column line (last '#' line before the rows) split into names.
   integer function n_columns(lines) result(n)

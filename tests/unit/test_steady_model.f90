@@ -15,6 +15,7 @@ module test_steady_model_suite
   use kear_element, only: element_effects_t
   use assertions
   use transient_fixtures, only: fourbar_input
+  use mechanism_fixtures, only: slider_crank_input, whitworth_input, ground_sleeve_input
   implicit none
   private
   public :: run_all
@@ -143,18 +144,9 @@ contains
   subroutine test_lagrange_slider_crank()
     type(mechanism_input_t) :: inp
     type(steady_model_t) :: model
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 0.0_dp
-    inp%joint_y(3) = 0.5_dp
+    inp = slider_crank_input(2.0_dp, 7.0_dp, 0.5_dp)
     inp%joint_guide_deg(3) = 10.0_dp
     inp%joint_mass(3) = 0.003_dp
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [2.0_dp, 7.0_dp]
     inp%link_n_elements(1:2) = [1, 2]
     inp%omega = 100.0_dp
     call build(inp, tennant_options_t(), model)
@@ -166,18 +158,8 @@ contains
   subroutine test_lagrange_sleeve_carried()
     type(mechanism_input_t) :: inp
     type(steady_model_t) :: model
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'slider_link', 'ground_pin']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 0.0_dp
-    inp%joint_y(3) = -6.0_dp
-    inp%joint_sliding_link(2) = 2
+    inp = whitworth_input(3.0_dp, 6.0_dp)
     inp%joint_mass(2) = 0.002_dp
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 3]
-    inp%link_joint2(1:2) = [2, 2]
-    inp%link_length(1:2) = [3.0_dp, 0.0_dp]
     inp%omega = 100.0_dp
     call build(inp, tennant_options_t(), model)
     call assert_true(model%table%is_sleeve_element(2), 'the lever ends in the sleeve')
@@ -191,17 +173,7 @@ contains
   subroutine test_lagrange_sleeve_ground()
     type(mechanism_input_t) :: inp
     type(steady_model_t) :: model
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_link']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
-    inp%joint_x(3) = 8.0_dp
-    inp%joint_y(3) = 0.0_dp
-    inp%joint_sliding_link(3) = 2
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [3.0_dp, 14.0_dp]
+    inp = ground_sleeve_input(3.0_dp, 14.0_dp, 8.0_dp)
     inp%omega = 100.0_dp
     call build(inp, tennant_options_t(), model)
     call check_lagrange(model, 0.011_dp, 'ground sleeve')

@@ -5,19 +5,17 @@ module test_steady_settings_suite
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
-  use deck_runner, only: scratch_path, read_deck_text
+  use deck_runner, only: start_suite, read_text_groups
   use steady_settings, only: steady_settings_t, read_steady_settings
   use assertions
   implicit none
   private
   public :: run_all
 
-  character(len=:), allocatable :: scratch
-
 contains
 
   subroutine run_all()
-    scratch = scratch_path('test_steady_settings')
+    call start_suite('test_steady_settings')
     call run_test('defaults_without_the_groups', test_defaults)
     call run_test('values_reach_the_solvers_and_the_element', test_values)
     call run_test('rule_violations_are_input_errors', test_violations)
@@ -27,7 +25,7 @@ contains
     character(len=*), intent(in) :: text
     type(steady_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
-    call read_deck_text(read_groups, scratch, text, err)
+    call read_text_groups(read_groups, text, err)
   contains
     subroutine read_groups(deck, rerr)
       type(deck_t), intent(inout) :: deck

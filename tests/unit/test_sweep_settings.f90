@@ -6,17 +6,15 @@ module test_sweep_settings_suite
   use deck_reader, only: deck_t
   use sweep_settings, only: sweep_settings_t, read_sweep_settings
   use assertions
-  use deck_runner, only: scratch_path, read_deck_text
+  use deck_runner, only: start_suite, read_text_groups
   implicit none
   private
   public :: run_all
 
-  character(len=:), allocatable :: scratch
-
 contains
 
   subroutine run_all()
-    scratch = scratch_path('test_sweep_settings')
+    call start_suite('test_sweep_settings')
     call run_test('list_of_values', test_list)
     call run_test('linear_range', test_linear)
     call run_test('log_range', test_log)
@@ -27,7 +25,7 @@ contains
     character(len=*), intent(in) :: text
     type(sweep_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
-    call read_deck_text(read_groups, scratch, '&run analysis = ''steady'' /|'//text, err)
+    call read_text_groups(read_groups, '&run analysis = ''steady'' /|'//text, err)
   contains
     subroutine read_groups(deck, rerr)
       type(deck_t), intent(inout) :: deck

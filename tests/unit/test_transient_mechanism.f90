@@ -9,8 +9,9 @@ module test_transient_mechanism_suite
   use kear_element, only: element_effects_t, stress_report_t
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_adams, mf_bdf_full_user
-  use linkage, only: mechanism_input_t, coordinate_unset
+  use linkage, only: mechanism_input_t
   use transient_fixtures
+  use mechanism_fixtures, only: slider_crank_input
   use assertions
   implicit none
   private
@@ -176,14 +177,7 @@ contains
     real(dp) :: t, theta, fe(2, n_angles), st(2, n_angles)
     integer :: k
     logical :: ok
-    inp%n_joints = 3
-    inp%joint_type(1:3) = [character(len=16) :: 'clamp', 'pin', 'slider_fixed']
-    inp%joint_x(1:3) = [0.0_dp, coordinate_unset, 0.0_dp]
-    inp%joint_y(1:3) = [0.0_dp, coordinate_unset, 0.0_dp]
-    inp%n_links = 2
-    inp%link_joint1(1:2) = [1, 2]
-    inp%link_joint2(1:2) = [2, 3]
-    inp%link_length(1:2) = [r, l]
+    inp = slider_crank_input(r, l, 0.0_dp)
     inp%link_n_elements(1:2) = n
     inp%joint_mass(3) = m_block
     inp%omega = omega

@@ -8,6 +8,7 @@ module test_transient_outputs_suite
   use transient_analysis, only: run_transient
   use deck_runner, only: scratch_path, run_deck, has_line, count_rows, line_length
   use assertions
+  use test_text, only: itoa
   implicit none
   private
   public :: run_all
@@ -172,14 +173,6 @@ contains
     end do
     c = 0
   end function column
-
-  pure function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 end module test_transient_outputs_suite
 
 program test_transient_outputs
