@@ -9,13 +9,14 @@
 !> prints expected, actual, the difference and the tolerance.
 module assertions
   use kinds, only: dp
+  use error_status, only: error_t
   use, intrinsic :: iso_fortran_env, only: output_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   implicit none
   private
   public :: run_test, finish_suite
   public :: assert_true, assert_close, assert_equal, assert_rel_close, assert_all_close
-  public :: test_procedure
+  public :: test_procedure, assert_error
 
   abstract interface
     subroutine test_procedure()
@@ -114,6 +115,20 @@ contains
       call record_failure(trim(message)//trim(detail))
     end if
   end subroutine assert_all_close
+
+  !> err failed with `code` and its text contains `fragment` (every given
+  !> fragment); the message of a failure shows the error's text.
+  subroutine assert_error(err, code, fragment, message, fragment2)
+    type(error_t), intent(in) :: err
+    integer, intent(in) :: code
+    character(len=*), intent(in) :: fragment, message
+    character(len=*), intent(in), optional :: fragment2
+    logical :: named
+    named = index(err%text(), fragment) > 0
+    if (present(fragment2)) named = named .and. index(err%text(), fragment2) > 0
+    if (.not. (err%failed() .and. err%code == code .and. named)) &
+      call record_failure(trim(message)//': got "'//err%text()//'"')
+  end subroutine assert_error
 
   subroutine assert_equal_int(actual, expected, message)
     integer, intent(in) :: actual, expected

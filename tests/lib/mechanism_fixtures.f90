@@ -1,13 +1,15 @@
 !> The planar mechanisms the suites build, as a deck would describe them
 !> (mechanism_input_t): one four-bar, one slider-crank and the two inverted
 !> slider-cranks (a sleeve on the crank pin, a sleeve on the ground).  Only
-!> the geometry: each suite adds its masses, meshes, speeds and names.
+!> the geometry: each suite adds its masses, meshes, speeds and names.  And
+!> the four-bar's link ends as the correlation table takes them.
 module mechanism_fixtures
   use kinds, only: dp
   use linkage, only: mechanism_input_t, coordinate_unset
+  use correlation_table, only: link_end_t, joint_clamp, joint_pin, joint_ground_pin
   implicit none
   private
-  public :: fourbar_abcd, slider_crank_input, whitworth_input, ground_sleeve_input
+  public :: fourbar_abcd, slider_crank_input, whitworth_input, ground_sleeve_input, fourbar_ends
 
 contains
 
@@ -30,6 +32,21 @@ contains
     inp%link_joint2(1:3) = [2, 3, 3]
     inp%link_length(1:3) = [a, b, c]
   end function fourbar_abcd
+
+  !> The four-bar's link ends for correlation_table%build: crank (clamp A,
+  !> pin B), coupler (pin B, pin C), rocker (pin C, ground pin D), or with
+  !> `rocker_from_d` the rocker drawn from D to C as the decks draw it.
+  function fourbar_ends(rocker_from_d) result(ends)
+    logical, intent(in) :: rocker_from_d
+    type(link_end_t) :: ends(2, 3)
+    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
+    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
+    ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
+    ends(1, 3) = link_end_t(joint_pin, 2, 0.0_dp)
+    ends(2, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    if (rocker_from_d) ends(:, 3) = ends(2:1:-1, 3)
+  end function fourbar_ends
 
   !> Slider-crank: crank r clamped at A = (0, 0), rod l to the block on a
   !> fixed guide through (0, e) (guide angle 0 unless the suite sets one).

@@ -7,20 +7,13 @@ module test_contact_law_suite
   use kinds, only: dp
   use error_status, only: error_t
   use contact_law
-  use lsode_solver, only: ode_system_t, lsode_t, mf_adams
+  use lsode_solver, only: lsode_t, mf_adams
   use assertions
+  use ode_problems, only: impact_t
   use test_text, only: rtoa
   implicit none
   private
   public :: run_all
-
-  !> A mass m hitting the contact at speed v0: state (delta, delta_dot).
-  type, extends(ode_system_t) :: impact_t
-    type(contact_law_t) :: law
-    real(dp) :: mass = 1.0_dp, v0 = 1.0_dp
-  contains
-    procedure :: rhs => impact_rhs
-  end type impact_t
 
 contains
 
@@ -34,17 +27,6 @@ contains
     call run_test('flores_law_restitution_near_one', test_flores)
     call run_test('invalid_law_parameters_are_rejected', test_invalid)
   end subroutine run_all
-
-  subroutine impact_rhs(self, t, y, ydot)
-    class(impact_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    real(dp) :: f, d1, d2
-    call normal_force(self%law, y(1), y(2), self%v0, f, d1, d2)
-    ydot(1) = y(2)
-    ydot(2) = -f/self%mass
-    if (.false.) ydot(1) = t   ! t unused: the contact is autonomous
-  end subroutine impact_rhs
 
   !> Exit speed of a mass m hitting the contact at v0 (DLSODE Adams, rtol
   !> 1e-11): integrated to 40 contact time scales, where the mass has long

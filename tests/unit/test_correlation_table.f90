@@ -4,6 +4,7 @@ module test_correlation_table_suite
   use error_status, only: error_t
   use correlation_table
   use assertions
+  use mechanism_fixtures, only: fourbar_ends
   implicit none
   private
   public :: run_all
@@ -34,12 +35,7 @@ contains
     type(error_t), intent(inout) :: err
     logical, intent(in), optional :: axial
     type(link_end_t) :: ends(2, 3)
-    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
-    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
-    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
-    ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
-    ends(1, 3) = link_end_t(joint_pin, 2, 0.0_dp)
-    ends(2, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    ends = fourbar_ends(.false.)
     call table%build([n_each, n_each, n_each], ends, err, axial_dofs=axial)
   end subroutine fourbar
 
@@ -138,12 +134,7 @@ contains
     type(error_t) :: err
     type(link_end_t) :: ends(2, 3)
     integer :: n_each, seen(200), e, k
-    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
-    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
-    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
-    ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
-    ends(1, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
-    ends(2, 3) = link_end_t(joint_pin, 2, 0.0_dp)
+    ends = fourbar_ends(.true.)
     do n_each = 1, 16, 5
       call t%build([n_each, n_each, n_each], ends, err, reduce_band=.true.)
       call assert_true(.not. err%failed(), err%text())

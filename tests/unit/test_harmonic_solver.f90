@@ -138,6 +138,25 @@ contains
     call assert_true(.not. err%failed(), 'four-bar: '//err%text())
   end subroutine four_bar
 
+  !> The linear four-bar at w with default settings over n equally spaced
+  !> times of a revolution (Q(t) back if asked).
+  subroutine solve_four_bar(w, n, model, rep, err, q_out)
+    real(dp), intent(in) :: w
+    integer, intent(in) :: n
+    type(steady_model_t), intent(out) :: model
+    type(harmonic_report_t), intent(out) :: rep
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable, intent(out), optional :: q_out(:, :)
+    type(harmonic_settings_t) :: s
+    real(dp) :: t(n)
+    real(dp), allocatable :: q(:, :)
+    call four_bar(w, tennant_options_t(), model)
+    allocate(q(model%n, n))
+    t = revolution_times(w, n)
+    call harmonic_solve(model, s, t, q, rep, err)
+    if (present(q_out)) q_out = q
+  end subroutine solve_four_bar
+
   function revolution_times(w, n) result(t)
     real(dp), intent(in) :: w
     integer, intent(in) :: n
@@ -265,13 +284,10 @@ contains
   !> All tracing constants zero: no outer iteration, no nonlinear assembly.
   subroutine test_linear_pass()
     type(steady_model_t) :: model
-    type(harmonic_settings_t) :: s
     type(harmonic_report_t) :: rep
     type(error_t) :: err
-    real(dp) :: t(12), q(10, 12)
-    call four_bar(150.0_dp, tennant_options_t(), model)
-    t = revolution_times(150.0_dp, 12)
-    call harmonic_solve(model, s, t, q, rep, err)
+    real(dp), allocatable :: q(:, :)
+    call solve_four_bar(150.0_dp, 12, model, rep, err, q)
     call assert_true(.not. err%failed(), 'solve')
     call assert_equal(rep%outer_iterations, 0, 'no outer iteration')
     call assert_equal(model%n_nonlinear_evaluations, 0, 'no nonlinear assembly')
@@ -406,17 +422,11 @@ contains
   !> on a 2-degree grid the ratio drops below 5e-3 and the solve is flagged.
   subroutine test_resonance()
     type(steady_model_t) :: model
-    type(harmonic_settings_t) :: s
     type(harmonic_report_t) :: rep
     type(error_t) :: err
-    real(dp) :: t(180), q(10, 180)
-    call four_bar(150.0_dp, tennant_options_t(), model)
-    t = revolution_times(150.0_dp, 180)
-    call harmonic_solve(model, s, t, q, rep, err)
+    call solve_four_bar(150.0_dp, 180, model, rep, err)
     call assert_true(rep%worst_ratio > 0.2_dp .and. .not. rep%near_resonance, '150 rad/s is clear')
-    call four_bar(176.0_dp, tennant_options_t(), model)
-    t = revolution_times(176.0_dp, 180)
-    call harmonic_solve(model, s, t, q, rep, err)
+    call solve_four_bar(176.0_dp, 180, model, rep, err)
     call assert_true(rep%near_resonance, '176 rad/s is flagged')
     call assert_true(rep%worst_ratio < 5.0e-3_dp, 'ratio below 5e-3')
     call assert_equal(rep%worst_harmonic, 8, 'at the eighth harmonic')

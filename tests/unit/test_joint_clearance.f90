@@ -15,6 +15,7 @@ module test_joint_clearance_suite
   use mechanism_model, only: mechanism_model_t
   use transient_fixtures, only: fourbar_input, make_model
   use assertions
+  use mechanism_fixtures, only: fourbar_ends
   implicit none
   private
   public :: run_all
@@ -49,12 +50,7 @@ contains
     type(clearance_joint_t) :: cj
     integer :: kd0, old(2), e
     real(dp) :: qg(12), fe(8), lhs, rhs
-    ends(1, 1) = link_end_t(joint_clamp, 0, 0.0_dp)
-    ends(2, 1) = link_end_t(joint_pin, 1, 0.0_dp)
-    ends(1, 2) = link_end_t(joint_pin, 1, 0.0_dp)
-    ends(2, 2) = link_end_t(joint_pin, 2, 0.0_dp)
-    ends(1, 3) = link_end_t(joint_pin, 2, 0.0_dp)
-    ends(2, 3) = link_end_t(joint_ground_pin, 0, 0.0_dp)
+    ends = fourbar_ends(.false.)
     call t%build([1, 1, 1], ends, err)
     kd0 = t%half_bandwidth
     old = t%map(5:6, 2)
@@ -140,8 +136,7 @@ contains
   subroutine test_blocks()
     type(clearance_joint_t) :: cj
     type(error_t) :: err
-    real(dp) :: q(4), qd(4), k(2, 2), c(2, 2), fp(4), fm(4), fn, h, kd(2, 2), cd(2, 2)
-    integer :: j
+    real(dp) :: q(4), qd(4), k(2, 2), c(2, 2), kd(2, 2), cd(2, 2)
     cj%bearing = [1, 2]
     cj%journal = [3, 4]
     cj%clearance = 0.005_dp
@@ -150,26 +145,7 @@ contains
     q = [0.0_dp, 0.0_dp, 0.0054_dp*cos(0.3_dp), 0.0054_dp*sin(0.3_dp)]
     qd = [0.0_dp, 0.0_dp, -0.02_dp*sin(0.3_dp), 0.02_dp*cos(0.3_dp)]   ! sliding at 0.02 in/s, no normal rate
     call contact_blocks(cj, q, qd, 0.0_dp, k, c)
-    do j = 1, 2
-      h = 1.0e-9_dp
-      fp = 0.0_dp
-      fm = 0.0_dp
-      q(2 + j) = q(2 + j) + h
-      call add_contact_forces(cj, q, qd, 0.0_dp, fp, fn)
-      q(2 + j) = q(2 + j) - 2*h
-      call add_contact_forces(cj, q, qd, 0.0_dp, fm, fn)
-      q(2 + j) = q(2 + j) + h
-      kd(:, j) = -(fp(3:4) - fm(3:4))/(2*h)
-      h = 1.0e-6_dp
-      fp = 0.0_dp
-      fm = 0.0_dp
-      qd(2 + j) = qd(2 + j) + h
-      call add_contact_forces(cj, q, qd, 0.0_dp, fp, fn)
-      qd(2 + j) = qd(2 + j) - 2*h
-      call add_contact_forces(cj, q, qd, 0.0_dp, fm, fn)
-      qd(2 + j) = qd(2 + j) + h
-      cd(:, j) = -(fp(3:4) - fm(3:4))/(2*h)
-    end do
+    cd = journal_fd(.true., 1.0e-6_dp)
     ! the friction force also follows F_n's rate term, mu tanh(v_t/v_s) dF_n/d delta' t n^T,
     ! unsymmetric and left out: relative to the friction slope mu F_n/v_s it is
     ! chi v_s/v_impact = 1.35e-3 here; 2e-3 of the largest entry covers it
@@ -177,22 +153,34 @@ contains
                           'C: normal damping and friction slope')
     cj%law%friction = 0.0_dp
     call contact_blocks(cj, q, qd, 0.0_dp, k, c)
-    do j = 1, 2
-      h = 1.0e-9_dp
-      fp = 0.0_dp
-      fm = 0.0_dp
-      q(2 + j) = q(2 + j) + h
-      call add_contact_forces(cj, q, qd, 0.0_dp, fp, fn)
-      q(2 + j) = q(2 + j) - 2*h
-      call add_contact_forces(cj, q, qd, 0.0_dp, fm, fn)
-      q(2 + j) = q(2 + j) + h
-      kd(:, j) = -(fp(3:4) - fm(3:4))/(2*h)
-    end do
+    kd = journal_fd(.false., 1.0e-9_dp)
     ! the sliding rate turns the normal rate with the normal: a term of
     ! order F_n chi/v_impact * 0.02/c left out; 1e-3 of K covers it
     call assert_all_close(reshape(k, [4]), reshape(kd, [4]), 1.0e-3_dp, 1.0e-3_dp*maxval(abs(kd)), &
                           'K: Hertz slope along n, F_n/|e| across')
     call assert_close(k(1, 2), k(2, 1), 0.0_dp, 'K symmetric')
+  contains
+    !> -d f_journal/d e (or d e' with `rate`) by central differences of step h.
+    function journal_fd(rate, h) result(d)
+      logical, intent(in) :: rate
+      real(dp), intent(in) :: h
+      real(dp) :: d(2, 2), e(4), fp(4), fm(4), fn
+      integer :: j
+      do j = 1, 2
+        e = 0.0_dp
+        e(2 + j) = h
+        fp = 0.0_dp
+        fm = 0.0_dp
+        if (rate) then
+          call add_contact_forces(cj, q, qd + e, 0.0_dp, fp, fn)
+          call add_contact_forces(cj, q, qd - e, 0.0_dp, fm, fn)
+        else
+          call add_contact_forces(cj, q + e, qd, 0.0_dp, fp, fn)
+          call add_contact_forces(cj, q - e, qd, 0.0_dp, fm, fn)
+        end if
+        d(:, j) = -(fp(3:4) - fm(3:4))/(2*h)
+      end do
+    end function journal_fd
   end subroutine test_blocks
 
   subroutine journal_rhs(self, t, y, ydot)

@@ -42,19 +42,53 @@ contains
     call run_test('frictionless_slider_guide_pushes_only_normal_to_the_guide', test_slider_guide)
   end subroutine run_all
 
-  subroutine build(inp, effects, formulation, mech, model, ok)
+  subroutine build(inp, effects, formulation, mech, model, ok, beta)
     type(mechanism_input_t), intent(in) :: inp
     type(element_effects_t), intent(in) :: effects
     character(len=*), intent(in) :: formulation
     type(mechanism_t), intent(out) :: mech
     type(mechanism_model_t), intent(out) :: model
     logical, intent(out) :: ok
+    real(dp), intent(in), optional :: beta   !< stiffness-proportional damping (default none)
     type(error_t) :: err
+    real(dp) :: b
+    b = 0.0_dp
+    if (present(beta)) b = beta
     call build_mechanism(inp, mech, err)
-    if (.not. err%failed()) call model%init_mechanism(mech, effects, formulation, 0.0_dp, err)
+    if (.not. err%failed()) call model%init_mechanism(mech, effects, formulation, b, err)
     ok = .not. err%failed()
     call assert_true(ok, 'model: '//err%text())
   end subroutine build
+
+  !> The model at rest in its rigid state at t = 0, and BDF (MF 21) on it.
+  subroutine start_at_rest(model, rtol, atol_value, ode, y)
+    type(mechanism_model_t), intent(inout) :: model
+    real(dp), intent(in) :: rtol, atol_value
+    type(lsode_t), intent(out) :: ode
+    real(dp), allocatable, intent(out) :: y(:)
+    real(dp), allocatable :: atol(:)
+    type(error_t) :: err
+    allocate(y(model%state_size()), atol(model%state_size()))
+    y = 0.0_dp
+    atol = atol_value
+    call ode%init(size(y), 0.0_dp, mf_bdf_full_user, rtol, atol, err)
+    call assert_true(.not. err%failed(), 'integrator: '//err%text())
+  end subroutine start_at_rest
+
+  !> Integrate on to t and compute the joint reactions there (false if either fails).
+  logical function reactions_at(ode, model, y, jr, t) result(ok)
+    type(lsode_t), intent(inout) :: ode
+    type(mechanism_model_t), intent(inout), target :: model
+    real(dp), intent(inout), contiguous :: y(:)
+    type(joint_reactions_t), intent(inout) :: jr
+    real(dp), intent(in) :: t
+    type(error_t) :: err
+    call ode%integrate_to(model, y, t, err)
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    if (.not. err%failed()) call jr%compute(model, t, y(1::2), y(2::2), err)
+    call assert_true(.not. err%failed(), 'reactions: '//err%text())
+    ok = .not. err%failed()
+  end function reactions_at
 
   ! ------------------------------------------------------------------ rigid four-bar
 
@@ -342,8 +376,7 @@ contains
     type(mechanism_model_t), target :: model
     type(joint_reactions_t) :: jr
     type(lsode_t) :: ode
-    type(error_t) :: err
-    real(dp), allocatable :: y(:), atol(:)
+    real(dp), allocatable :: y(:)
     real(dp) :: t, scale
     logical :: ok
     integer :: k
@@ -352,16 +385,10 @@ contains
                mech, model, ok)
     if (.not. ok) return
     call jr%init(mech)
-    allocate(y(model%state_size()), atol(model%state_size()))
-    y = 0.0_dp
-    atol = 1.0e-9_dp
-    call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-6_dp, atol, err)
+    call start_at_rest(model, 1.0e-6_dp, 1.0e-9_dp, ode, y)
     do k = 1, 6
       t = (10.0_dp*k*pi/180.0_dp)/w
-      call ode%integrate_to(model, y, t, err)
-      call assert_true(.not. err%failed(), 'integration: '//err%text())
-      if (err%failed()) return
-      call jr%compute(model, t, y(1::2), y(2::2), err)
+      if (.not. reactions_at(ode, model, y, jr, t)) return
       scale = maxval([(maxval(abs(jr%ends(k)%force)), k = 1, size(jr%ends))])
       call assert_all_close(jr%ends(2)%force, -jr%ends(3)%force, 0.0_dp, 1.0e-8_dp*scale, 'pin B at '//rtoa(10.0_dp*k))
       call assert_all_close(jr%ends(4)%force, -jr%ends(5)%force, 0.0_dp, 1.0e-8_dp*scale, 'pin C at '//rtoa(10.0_dp*k))
@@ -383,34 +410,24 @@ contains
     type(mechanism_model_t), target :: model
     type(joint_reactions_t) :: jr
     type(lsode_t) :: ode
-    type(error_t) :: err
-    real(dp), allocatable :: y(:), atol(:)
+    real(dp), allocatable :: y(:)
     real(dp) :: t, guide(2), along, normal
     integer :: k
+    logical :: ok
     real(dp), parameter :: w = 150.0_dp, guide_deg = 30.0_dp
     inp = slider_crank_input(5.0_dp, 11.0_dp, 0.0_dp)
     inp%joint_guide_deg(3) = guide_deg
     inp%joint_mass(3) = 3.5e-4_dp
     inp%link_n_elements(1:2) = 2
     inp%omega = w
-    call build_mechanism(inp, mech, err)
-    call assert_true(.not. err%failed(), 'mechanism: '//err%text())
-    if (err%failed()) return
-    call model%init_mechanism(mech, element_effects_t(), 'exact', 1.0e-5_dp, err)
-    call assert_true(.not. err%failed(), 'model: '//err%text())
-    if (err%failed()) return
+    call build(inp, element_effects_t(), 'exact', mech, model, ok, beta=1.0e-5_dp)
+    if (.not. ok) return
     call jr%init(mech)
     guide = [cos(guide_deg*pi/180.0_dp), sin(guide_deg*pi/180.0_dp)]
-    allocate(y(model%state_size()), atol(model%state_size()))
-    y = 0.0_dp
-    atol = 1.0e-10_dp
-    call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-7_dp, atol, err)
+    call start_at_rest(model, 1.0e-7_dp, 1.0e-10_dp, ode, y)
     do k = 1, 24
       t = (15.0_dp*k*pi/180.0_dp)/w
-      call ode%integrate_to(model, y, t, err)
-      call assert_true(.not. err%failed(), 'integration: '//err%text())
-      if (err%failed()) return
-      call jr%compute(model, t, y(1::2), y(2::2), err)
+      if (.not. reactions_at(ode, model, y, jr, t)) return
       along = dot_product(jr%support(1:2, 3), guide)
       normal = abs(guide(1)*jr%support(2, 3) - guide(2)*jr%support(1, 3))
       call assert_close(along, 0.0_dp, 1.0e-9_dp*maxval(abs(jr%ends(1)%force)), 'no force along the guide at '// &

@@ -270,6 +270,41 @@ contains
     ldd = (dot_product(wd, wd) + dot_product(w, wdd))/l - ld**2/l
   end subroutine line_through
 
+  !> Link 2 of an inverted slider-crank (crank r about the origin, angle t,
+  !> rates w, al) runs along sign*(B - pivot): its active length, angle and
+  !> their rates every 10 deg against line_through (1e-10, scaled by w and
+  !> w^2); with n_el elements the element length is the active length / n_el.
+  subroutine check_sleeve_link(kin, r, w, al, pivot, sign, name, n_el)
+    type(kinematics_t), intent(inout) :: kin
+    real(dp), intent(in) :: r, w, al, pivot(2), sign
+    character(len=*), intent(in) :: name
+    integer, intent(in), optional :: n_el
+    type(error_t) :: err
+    type(motion_t) :: m
+    real(dp) :: t, bp(2), bd(2), bdd(2), l, ld, ldd, ph, phd, phdd
+    integer :: k
+    do k = 0, 36
+      t = k*10.0_dp*deg
+      call kin%solve_angle(t, w, al, err)
+      call assert_true(.not. err%failed(), err%text())
+      bp = r*[cos(t), sin(t)]
+      bd = r*w*[-sin(t), cos(t)]
+      bdd = r*al*[-sin(t), cos(t)] - r*w**2*[cos(t), sin(t)]
+      call line_through(sign*(bp - pivot), sign*bd, sign*bdd, l, ld, ldd, ph, phd, phdd)
+      m = kin%link_motion(2)
+      call assert_close(m%length, l, 1.0e-10_dp, name//' active length')
+      call assert_close(m%length_d, ld, 1.0e-10_dp*w, name//' active length rate')
+      call assert_close(m%length_dd, ldd, 1.0e-10_dp*w**2, name//' active length second rate')
+      call assert_close(angle_diff(m%phi, ph), 0.0_dp, 1.0e-10_dp, name//' angle')
+      call assert_close(m%phi_d, phd, 1.0e-10_dp*w, name//' angular velocity')
+      call assert_close(m%phi_dd, phdd, 1.0e-10_dp*w**2, name//' angular acceleration')
+      if (.not. present(n_el)) cycle
+      m = kin%element_motion(2, n_el)
+      call assert_close(m%length, l/n_el, 1.0e-10_dp, 'element length = active length / n')
+      call assert_close(m%length_dd, ldd/n_el, 1.0e-10_dp*w**2, 'element length second rate')
+    end do
+  end subroutine check_sleeve_link
+
   !> Inverted slider-crank (oscillating cylinder): crank AB = 3 about A = (0,0);
   !> link 2 is pinned at B and slides through a sleeve pivoting on the ground
   !> at C = (8, 0).  Its active length is |BC|.
@@ -283,31 +318,8 @@ contains
 
   subroutine test_inverted_ground_sleeve()
     type(kinematics_t) :: kin
-    type(error_t) :: err
-    type(motion_t) :: m
-    real(dp), parameter :: r = 3.0_dp, w = 9.0_dp, al = 25.0_dp
-    real(dp) :: t, bp(2), bd(2), bdd(2), l, ld, ldd, ph, phd, phdd
-    integer :: k
     call make(inverted_ground_input(), kin)
-    do k = 0, 36
-      t = k*10.0_dp*deg
-      call kin%solve_angle(t, w, al, err)
-      call assert_true(.not. err%failed(), err%text())
-      bp = r*[cos(t), sin(t)]
-      bd = r*w*[-sin(t), cos(t)]
-      bdd = r*al*[-sin(t), cos(t)] - r*w**2*[cos(t), sin(t)]
-      call line_through([8.0_dp, 0.0_dp] - bp, -bd, -bdd, l, ld, ldd, ph, phd, phdd)
-      m = kin%link_motion(2)
-      call assert_close(m%length, l, 1.0e-10_dp, 'active length')
-      call assert_close(m%length_d, ld, 1.0e-10_dp*w, 'active length rate')
-      call assert_close(m%length_dd, ldd, 1.0e-10_dp*w**2, 'active length second rate')
-      call assert_close(angle_diff(m%phi, ph), 0.0_dp, 1.0e-10_dp, 'rod angle')
-      call assert_close(m%phi_d, phd, 1.0e-10_dp*w, 'rod angular velocity')
-      call assert_close(m%phi_dd, phdd, 1.0e-10_dp*w**2, 'rod angular acceleration')
-      m = kin%element_motion(2, 4)
-      call assert_close(m%length, l/4.0_dp, 1.0e-10_dp, 'element length = active length / 4')
-      call assert_close(m%length_dd, ldd/4.0_dp, 1.0e-10_dp*w**2, 'element length second rate')
-    end do
+    call check_sleeve_link(kin, 3.0_dp, 9.0_dp, 25.0_dp, [8.0_dp, 0.0_dp], -1.0_dp, 'rod', 4)
   end subroutine test_inverted_ground_sleeve
 
   !> Crank AB = 3 about A = (0,0) carries a pivoting sleeve at B; the lever
@@ -316,31 +328,11 @@ contains
   subroutine test_inverted_moving_sleeve()
     type(mechanism_input_t) :: inp
     type(kinematics_t) :: kin
-    type(error_t) :: err
-    type(motion_t) :: m
-    real(dp), parameter :: r = 3.0_dp, w = 5.0_dp, al = 0.0_dp
-    real(dp) :: t, bp(2), bd(2), bdd(2), l, ld, ldd, ph, phd, phdd
-    integer :: k
-    inp = whitworth_input(r, 6.0_dp)
+    inp = whitworth_input(3.0_dp, 6.0_dp)
     inp%joint_name(1:3) = [character(len=16) :: 'A', 'B', 'D']
     inp%link_name(1:2) = [character(len=16) :: 'crank', 'lever']
     call make(inp, kin)
-    do k = 0, 36
-      t = k*10.0_dp*deg
-      call kin%solve_angle(t, w, al, err)
-      call assert_true(.not. err%failed(), err%text())
-      bp = r*[cos(t), sin(t)]
-      bd = r*w*[-sin(t), cos(t)]
-      bdd = r*al*[-sin(t), cos(t)] - r*w**2*[cos(t), sin(t)]
-      call line_through(bp - [0.0_dp, -6.0_dp], bd, bdd, l, ld, ldd, ph, phd, phdd)
-      m = kin%link_motion(2)
-      call assert_close(m%length, l, 1.0e-10_dp, 'lever active length')
-      call assert_close(m%length_d, ld, 1.0e-10_dp*w, 'lever active length rate')
-      call assert_close(m%length_dd, ldd, 1.0e-10_dp*w**2, 'lever active length second rate')
-      call assert_close(angle_diff(m%phi, ph), 0.0_dp, 1.0e-10_dp, 'lever angle')
-      call assert_close(m%phi_d, phd, 1.0e-10_dp*w, 'lever angular velocity')
-      call assert_close(m%phi_dd, phdd, 1.0e-10_dp*w**2, 'lever angular acceleration')
-    end do
+    call check_sleeve_link(kin, 3.0_dp, 5.0_dp, 0.0_dp, [0.0_dp, -6.0_dp], 1.0_dp, 'lever')
   end subroutine test_inverted_moving_sleeve
 
   !> Time-driven (spin-up) inverted slider-crank: element end-1 positions of

@@ -5,16 +5,12 @@
 module test_lsode_events_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_fd
   use assertions
+  use ode_problems, only: decay_t
   implicit none
   private
   public :: run_all
-
-  type, extends(ode_system_t) :: decay_t
-  contains
-    procedure :: rhs => decay_rhs
-  end type decay_t
 
 contains
 
@@ -23,14 +19,6 @@ contains
     call run_test('dense_output_inside_the_last_step_is_the_solution', test_dense_output)
     call run_test('counters_add_up_over_restarts', test_restart_counters)
   end subroutine run_all
-
-  subroutine decay_rhs(self, t, y, ydot)
-    class(decay_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    ydot = -y
-    if (.false.) ydot(1) = t + merge(1.0_dp, 0.0_dp, self%err%failed())
-  end subroutine decay_rhs
 
   !> Every call advances (one step), never past tout, and the last lands on
   !> it exactly; the state there is exp(-1) to the tolerance (rtol 1e-9:

@@ -10,63 +10,16 @@ module test_lsode_newton_suite
   use linkage, only: mechanism_t, build_mechanism
   use kear_element, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
-  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
   use transient_fixtures, only: fourbar_input, make_model, all_effects, state_atol
   use assertions
+  use ode_problems, only: decay_t => newton_decay_t
   use test_text, only: itoa, rtoa
   implicit none
   private
   public :: run_all
 
-  !> y' = -k y (k = 1 ... n) with its own Newton matrix P = I + hl0 diag(k);
-  !> the right-hand side fails (model error) for t > t_fail.
-  type, extends(ode_system_t) :: decay_t
-    real(dp) :: t_fail = huge(1.0_dp)
-    real(dp) :: hl0 = 0.0_dp
-    integer :: n_factor = 0
-  contains
-    procedure :: rhs => decay_rhs
-    procedure :: has_newton_matrix => decay_has_newton
-    procedure :: newton_factor => decay_factor
-    procedure :: newton_solve => decay_solve
-  end type decay_t
-
 contains
-
-  subroutine decay_rhs(self, t, y, ydot)
-    class(decay_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    integer :: k
-    if (t > self%t_fail) call self%fail(t, 'decay model stops past t_fail')
-    do k = 1, size(y)
-      ydot(k) = -k*y(k)
-    end do
-  end subroutine decay_rhs
-
-  logical function decay_has_newton(self)
-    class(decay_t), intent(in) :: self
-    decay_has_newton = .true.
-    if (.false.) decay_has_newton = self%err%failed()   ! argument intentionally unused
-  end function decay_has_newton
-
-  subroutine decay_factor(self, t, y, hl0, ok)
-    class(decay_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:), hl0
-    logical, intent(out) :: ok
-    ok = .not. self%err%failed() .and. t >= 0.0_dp .and. size(y) > 0
-    self%hl0 = hl0
-    self%n_factor = self%n_factor + 1
-  end subroutine decay_factor
-
-  subroutine decay_solve(self, x)
-    class(decay_t), intent(inout) :: self
-    real(dp), intent(inout) :: x(:)
-    integer :: k
-    do k = 1, size(x)
-      x(k) = x(k)/(1.0_dp + self%hl0*k)
-    end do
-  end subroutine decay_solve
 
   subroutine run_all()
     call run_test('banded_newton_solve_equals_dense_solve_linear_model', test_solve_linear_model)
@@ -112,14 +65,18 @@ contains
   !> backward stable, so they agree to ~cond * eps = 1e-9 of |x|: 1e-8 allows
   !> a factor 10.  A wrong term (beta, a sign, hl0 for hl0^2) changes x by
   !> 1e-3 or more.  Also the residual |P x_band - b| <= 1e-12 |P| |x_band|.
-  subroutine check_solve(model, expect_cholesky)
-    type(mechanism_model_t), intent(inout) :: model
+  subroutine check_solve(effects, formulation, expect_cholesky)
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
     logical, intent(in) :: expect_cholesky
+    type(mechanism_model_t) :: model
     real(dp), allocatable :: y(:), pd(:, :), p(:, :), b(:), x_dense(:), x_band(:)
     real(dp), parameter :: hl0s(3) = [1.0e-6_dp, 3.0e-5_dp, 1.0e-3_dp], t = 2.0e-3_dp
     type(error_t) :: err
     logical :: ok
     integer :: n2, k, i
+    call fourbar_model(effects, formulation, model, ok)
+    if (.not. ok) return
     n2 = model%state_size()
     allocate(y(n2), pd(n2, n2), p(n2, n2), b(n2), x_dense(n2), x_band(n2))
     call deformed_state(n2, y)
@@ -151,26 +108,17 @@ contains
   end subroutine check_solve
 
   subroutine test_solve_linear_model()
-    type(mechanism_model_t) :: model
-    logical :: ok
-    call fourbar_model(element_effects_t(), 'exact', model, ok)
-    if (ok) call check_solve(model, .true.)
+    call check_solve(element_effects_t(), 'exact', .true.)
   end subroutine test_solve_linear_model
 
   !> All effects on: K_t and M depend on q (exact strains, R-O material, rotary inertia).
   subroutine test_solve_all_effects()
-    type(mechanism_model_t) :: model
-    logical :: ok
-    call fourbar_model(all_effects(), 'exact', model, ok)
-    if (ok) call check_solve(model, .true.)
+    call check_solve(all_effects(), 'exact', .true.)
   end subroutine test_solve_all_effects
 
   !> Kear's printed simplifications: K_t is not symmetric, S goes through banded LU.
   subroutine test_solve_kear1987()
-    type(mechanism_model_t) :: model
-    logical :: ok
-    call fourbar_model(all_effects(), 'kear1987', model, ok)
-    if (ok) call check_solve(model, .false.)
+    call check_solve(all_effects(), 'kear1987', .false.)
   end subroutine test_solve_kear1987
 
   !> One run of the damped four-bar (1 element per link) over a quarter turn.

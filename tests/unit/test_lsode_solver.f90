@@ -2,32 +2,13 @@
 module test_lsode_solver_suite
   use kinds, only: dp
   use error_status, only: error_t
-  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, &
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, &
                           mf_bdf_full_fd, mf_bdf_band_fd
   use assertions
+  use ode_problems, only: kinetics_t, oscillator_t, failing_t
   implicit none
   private
   public :: run_all
-
-  !> Robertson's chemical kinetics, the stiff example of DLSODE's prologue.
-  type, extends(ode_system_t) :: kinetics_t
-  contains
-    procedure :: rhs => kinetics_rhs
-    procedure :: jacobian => kinetics_jac
-  end type kinetics_t
-
-  !> Undamped oscillator y'' = -w^2 y, closed form y = cos(w t).
-  type, extends(ode_system_t) :: oscillator_t
-    real(dp) :: omega = 3.0_dp
-  contains
-    procedure :: rhs => oscillator_rhs
-  end type oscillator_t
-
-  !> A model that fails once t passes 0.5.
-  type, extends(ode_system_t) :: failing_t
-  contains
-    procedure :: rhs => failing_rhs
-  end type failing_t
 
 contains
 
@@ -41,48 +22,6 @@ contains
     call run_test('model_failure_is_reported_with_time', test_model_failure)
     call run_test('bad_settings_are_rejected', test_bad_settings)
   end subroutine run_all
-
-  subroutine kinetics_rhs(self, t, y, ydot)
-    class(kinetics_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    ydot(1) = -0.04_dp*y(1) + 1.0e4_dp*y(2)*y(3)
-    ydot(3) = 3.0e7_dp*y(2)*y(2)
-    ydot(2) = -ydot(1) - ydot(3)
-    if (.false.) call self%fail(t, '')
-  end subroutine kinetics_rhs
-
-  subroutine kinetics_jac(self, t, y, ml, mu, pd)
-    class(kinetics_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    integer, intent(in) :: ml, mu
-    real(dp), intent(inout) :: pd(:, :)
-    if (.false.) call self%fail(t + ml + mu, '')
-    pd(1, 1) = -0.04_dp
-    pd(1, 2) = 1.0e4_dp*y(3)
-    pd(1, 3) = 1.0e4_dp*y(2)
-    pd(2, 1) = 0.04_dp
-    pd(2, 3) = -pd(1, 3)
-    pd(3, 2) = 6.0e7_dp*y(2)
-    pd(2, 2) = -pd(1, 2) - pd(3, 2)
-  end subroutine kinetics_jac
-
-  subroutine oscillator_rhs(self, t, y, ydot)
-    class(oscillator_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    if (.false.) call self%fail(t, '')
-    ydot(1) = y(2)
-    ydot(2) = -self%omega**2*y(1)
-  end subroutine oscillator_rhs
-
-  subroutine failing_rhs(self, t, y, ydot)
-    class(failing_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    ydot = -y
-    if (t > 0.5_dp) call self%fail(t, 'mass matrix is not positive definite')
-  end subroutine failing_rhs
 
   !> DLSODE's prologue: MF = 21, rtol = 1e-4, atol = (1e-6, 1e-10, 1e-6),
   !> output at t = 0.4 * 10^k.  The documented output (Cray-1, 64-bit

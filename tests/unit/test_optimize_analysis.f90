@@ -73,26 +73,22 @@ contains
   end subroutine test_good_deck
 
   subroutine test_bad_values()
-    type(error_t) :: err
     character(len=line_length), allocatable :: lines(:)
-    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc_xx' /", err, lines)
-    call assert_true(err%code == 2 .and. index(err%text(), 'method') > 0, 'unknown method named')
-    call err%clear()
-    call run_text("&run analysis='optimize' /|&optimize problem='nope' /", err, lines)
-    call assert_true(err%code == 2 .and. index(err%text(), 'rosen_suzuki') > 0, 'unknown problem: valid names listed')
-    call err%clear()
-    call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', x0 = 1, 2 /", err, lines)
-    call assert_true(err%code == 2 .and. index(err%text(), '4 variables') > 0, 'x0 of the wrong length')
-    call err%clear()
-    call run_text("&run analysis='optimize' /|&optimize xtol = -1 /", err, lines)
-    call assert_true(err%code == 2 .and. index(err%text(), 'xtol') > 0, 'negative xtol')
-    call err%clear()
-    call run_text("&run analysis='optimize' /|&optimize potter_fix = 'b' /", err, lines)
-    call assert_true(err%code == 2 .and. index(err%text(), 'potter_fix') > 0, 'unknown potter_fix')
-    call err%clear()
-    call run_text("&run analysis='optimize' /|&optimize step_back = 'half' /", err, lines)
-    call assert_true(err%code == 2 .and. index(err%text(), 'step_back') > 0, 'unknown step_back')
+    call bad("problem='rosen_suzuki', method='gnlc_xx'", 'method', 'unknown method named')
+    call bad("problem='nope'", 'rosen_suzuki', 'unknown problem: valid names listed')
+    call bad("problem='rosen_suzuki', x0 = 1, 2", '4 variables', 'x0 of the wrong length')
+    call bad('xtol = -1', 'xtol', 'negative xtol')
+    call bad("potter_fix = 'b'", 'potter_fix', 'unknown potter_fix')
+    call bad("step_back = 'half'", 'step_back', 'unknown step_back')
     call assert_equal(size(lines), 0, 'no output kept for input errors')
+  contains
+    !> &optimize `group` is an input error naming `fragment`.
+    subroutine bad(group, fragment, message)
+      character(len=*), intent(in) :: group, fragment, message
+      type(error_t) :: err
+      call run_text("&run analysis='optimize' /|&optimize "//group//' /', err, lines)
+      call assert_error(err, 2, fragment, message)
+    end subroutine bad
   end subroutine test_bad_values
 
   subroutine test_infeasible()
@@ -100,9 +96,7 @@ contains
     character(len=line_length), allocatable :: lines(:)
     call run_text("&run analysis='optimize' /|&optimize problem='rosen_suzuki', method='gnlc', x0 = 2, 2, 2, 2 /", &
                   err, lines)
-    call assert_true(err%code == 2, 'input error')
-    call assert_true(index(err%text(), 'infeasible') > 0 .and. index(err%text(), 'gnlc_ns') > 0, &
-                     'says infeasible, suggests gnlc_ns: '//err%text())
+    call assert_error(err, 2, 'infeasible', 'input error: says infeasible, suggests gnlc_ns', 'gnlc_ns')
   end subroutine test_infeasible
 
   subroutine test_iteration_limit()

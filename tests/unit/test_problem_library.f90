@@ -117,8 +117,7 @@ contains
     type(problem_info_t) :: info
     type(error_t) :: err
     call create_problem('rosen_suzki', prob, info, err)
-    call assert_true(err%failed() .and. err%code == 2, 'input error')
-    call assert_true(index(err%text(), 'rosen_suzuki') > 0, 'lists the valid names')
+    call assert_error(err, 2, 'rosen_suzuki', 'input error listing the valid names')
   end subroutine test_unknown
 end module test_problem_library_suite
 
