@@ -60,6 +60,22 @@ contains
     p(3) = summary_value(lines, '# summary: element 3 peak |stress| =')
   end subroutine peaks
 
+  !> One revolution (bdf, rtol 1e-7) pinned and with the &clearance group
+  !> `group`: the clearance run's output and both runs' peak stresses.
+  subroutine pinned_and_clear(stem, group, b, p0, p1)
+    character(len=*), intent(in) :: stem, group
+    character(len=line_length), allocatable, intent(out) :: b(:)
+    real(dp), intent(out) :: p0(3), p1(3)
+    character(len=line_length), allocatable :: a(:)
+    type(error_t) :: err
+    call run_deck(run_transient, scratch_path(stem//'_a'), deck('1', 'bdf', '1.0e-7', ''), err, a)
+    call assert_true(.not. err%failed(), 'pinned run: '//err%text())
+    call run_deck(run_transient, scratch_path(stem//'_b'), deck('1', 'bdf', '1.0e-7', group), err, b)
+    call assert_true(.not. err%failed(), 'clearance run: '//err%text())
+    call peaks(a, p0)
+    call peaks(b, p1)
+  end subroutine pinned_and_clear
+
   !> &clearance given with every clearance zero: the model is today's (same
   !> unknowns, same arithmetic), so the rows are identical as text.
   subroutine test_zero_is_pinned()
@@ -93,15 +109,9 @@ contains
   !> 0.16 %; with K = 1e9 the rocker is 0.45 % off: the contact's compliance,
   !> not only c, must vanish).
   subroutine test_small_clearance()
-    character(len=line_length), allocatable :: a(:), b(:)
-    type(error_t) :: err
+    character(len=line_length), allocatable :: b(:)
     real(dp) :: p0(3), p1(3)
-    call run_deck(run_transient, scratch_path('cl_small_a'), deck('1', 'bdf', '1.0e-7', ''), err, a)
-    call run_deck(run_transient, scratch_path('cl_small_b'), deck('1', 'bdf', '1.0e-7', &
-                  clearance('1.0e-5', '1.0e10', '0.9')), err, b)
-    call assert_true(.not. err%failed(), err%text())
-    call peaks(a, p0)
-    call peaks(b, p1)
+    call pinned_and_clear('cl_small', clearance('1.0e-5', '1.0e10', '0.9'), b, p0, p1)
     call assert_all_close(p1, p0, 5.0e-3_dp, 0.0_dp, 'peak stresses, c = 1e-5 in vs pinned')
     call assert_true(summary_value(b, '# cost: clearance_separations =') < huge(1.0_dp), 'counts in the footer')
   end subroutine test_small_clearance
@@ -111,16 +121,11 @@ contains
   !> would move the peaks by far more than the 1 % allowed (measured 0.47 %:
   !> three compliant joints in series add up).
   subroutine test_three_joints()
-    character(len=line_length), allocatable :: a(:), b(:)
-    type(error_t) :: err
+    character(len=line_length), allocatable :: b(:)
     real(dp) :: p0(3), p1(3)
-    call run_deck(run_transient, scratch_path('cl_three_a'), deck('1', 'bdf', '1.0e-7', ''), err, a)
-    call run_deck(run_transient, scratch_path('cl_three_b'), deck('1', 'bdf', '1.0e-7', &
-                  '&clearance|joint_clearance = 0, 1e-5, 1e-5, 1e-5|joint_stiffness = 0, 1e10, 1e10, 1e10|/'), err, b)
-    call assert_true(.not. err%failed(), err%text())
+    call pinned_and_clear('cl_three', &
+      '&clearance|joint_clearance = 0, 1e-5, 1e-5, 1e-5|joint_stiffness = 0, 1e10, 1e10, 1e10|/', b, p0, p1)
     call assert_true(has_line(b, 'with clearance: 16 global unknowns'), 'three journals: 10 + 6 unknowns')
-    call peaks(a, p0)
-    call peaks(b, p1)
     call assert_all_close(p1, p0, 1.0e-2_dp, 0.0_dp, 'peak stresses, three joints at c = 1e-5 in vs pinned')
   end subroutine test_three_joints
 

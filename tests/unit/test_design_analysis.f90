@@ -60,6 +60,23 @@ contains
     call assert_close(summary_value(lines, '# summary: final link_cw_y(3) ='), 0.0_dp, 1.0e-4_dp, 'on the rocker line')
   end subroutine assert_berkof_lowen
 
+  !> A converged counterweight design (the line `reported` in its output if
+  !> given) on the Berkof-Lowen balance, its `measure` ('rms' or 'peak')
+  !> shaking force below `factor` times the initial one; side files removed.
+  subroutine check_balanced(err, lines, measure, factor, reported)
+    type(error_t), intent(in) :: err
+    character(len=*), intent(in) :: lines(:), measure
+    real(dp), intent(in) :: factor
+    character(len=*), intent(in), optional :: reported
+    call assert_true(.not. err%failed(), 'converges: '//err%text())
+    if (present(reported)) call assert_true(has_line(lines, reported), 'reported: '//reported)
+    call assert_berkof_lowen(lines)
+    call assert_true(summary_value(lines, '# summary: final '//measure//' shaking force =') < &
+                     factor*summary_value(lines, '# summary: initial '//measure//' shaking force ='), &
+                     measure//' shaking force cancelled')
+    call remove_side_files()
+  end subroutine check_balanced
+
   !> Lowest frozen frequency (1.8751/L)^2 h sqrt(E/(12 rho)) >= 100 rad/s:
   !> h* = 0.0475882 in.  The design aims feas_tol/2 = 5e-4 inside the
   !> constraint; with the 4-element mesh (1e-5) and the centrifugal
@@ -95,11 +112,7 @@ contains
     character(len=line_length), allocatable :: lines(:)
     call run_text(fourbar_cw('1.0', '')//'objective = ''shaking'', evaluator = ''harmonic'', samples = 36, '// &
       'move_limit = 1.0, xtol = 1e-7 /', err, lines)
-    call assert_true(.not. err%failed(), 'converges: '//err%text())
-    call assert_berkof_lowen(lines)
-    call assert_true(summary_value(lines, '# summary: final rms shaking force =') < &
-                     1.0e-5_dp*summary_value(lines, '# summary: initial rms shaking force ='), 'shaking force cancelled')
-    call remove_side_files()
+    call check_balanced(err, lines, 'rms', 1.0e-5_dp)
   end subroutine test_counterweights
 
   !> The same four-bar and variables with the minimax objective (the peak
@@ -115,12 +128,7 @@ contains
     character(len=line_length), allocatable :: lines(:)
     call run_text(fourbar_cw('1.0', '')//'objective = ''shaking_peak'', evaluator = ''harmonic'', samples = 36, '// &
       'move_limit = 1.0, xtol = 1e-5, hessian = ''structured'' /', err, lines)
-    call assert_true(.not. err%failed(), 'converges: '//err%text())
-    call assert_true(has_line(lines, '# design: least peak shaking force'), 'the minimax objective is named')
-    call assert_berkof_lowen(lines)
-    call assert_true(summary_value(lines, '# summary: final peak shaking force =') < &
-                     1.0e-4_dp*summary_value(lines, '# summary: initial peak shaking force ='), 'peak cancelled')
-    call remove_side_files()
+    call check_balanced(err, lines, 'peak', 1.0e-4_dp, '# design: least peak shaking force')
   end subroutine test_counterweights_minimax
 
   !> Several operating speeds: the rotating bar's frequency constraint
@@ -165,12 +173,7 @@ contains
       type(error_t) :: err
       character(len=line_length), allocatable :: lines(:)
       call run_text(text, err, lines)
-      call assert_true(.not. err%failed(), 'converges: '//err%text())
-      call assert_true(has_line(lines, '# operating speeds (rad/s): 0.500000 1.00000'), 'the speeds are reported')
-      call assert_berkof_lowen(lines)
-      call assert_true(summary_value(lines, '# summary: final rms shaking force =') < &
-                       1.0e-4_dp*summary_value(lines, '# summary: initial rms shaking force ='), 'shaking cancelled')
-      call remove_side_files()
+      call check_balanced(err, lines, 'rms', 1.0e-4_dp, '# operating speeds (rad/s): 0.500000 1.00000')
     end subroutine check
   end subroutine test_speeds_shaking
 

@@ -60,6 +60,32 @@ contains
     call assert_true(ok, 'model: '//err%text())
   end subroutine build
 
+  !> The linear model of `inp` under a load p_load downward at the end of
+  !> `element`, in static equilibrium q, and the joint reactions there.
+  logical function loaded_statics(inp, formulation, element, p_load, mech, model, q, jr) result(ok)
+    type(mechanism_input_t), intent(in) :: inp
+    character(len=*), intent(in) :: formulation
+    integer, intent(in) :: element
+    real(dp), intent(in) :: p_load
+    type(mechanism_t), intent(out) :: mech
+    type(mechanism_model_t), intent(out) :: model
+    real(dp), allocatable, intent(out) :: q(:)
+    type(joint_reactions_t), intent(out) :: jr
+    type(error_t) :: err
+    real(dp), allocatable :: zero(:)
+    call build(inp, element_effects_t(), formulation, mech, model, ok)
+    if (.not. ok) return
+    call model%set_loads([0.0_dp, 0.0_dp], [point_load_t(element=element, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
+    allocate(q(model%n), zero(model%n))
+    q = 0.0_dp
+    zero = 0.0_dp
+    call model%static_equilibrium(0.0_dp, q, 1, err)
+    call assert_true(.not. err%failed(), 'static solve: '//err%text())
+    call jr%init(mech)
+    if (.not. err%failed()) call jr%compute(model, 0.0_dp, q, zero, err)
+    ok = .not. err%failed()
+  end function loaded_statics
+
   !> The model at rest in its rigid state at t = 0, and BDF (MF 21) on it.
   subroutine start_at_rest(model, rtol, atol_value, ode, y)
     type(mechanism_model_t), intent(inout) :: model
@@ -241,24 +267,13 @@ contains
     type(mechanism_t) :: mech
     type(mechanism_model_t) :: model
     type(joint_reactions_t) :: jr
-    type(error_t) :: err
     type(section_values_t) :: v
     type(link_point_t) :: p
-    real(dp), allocatable :: q(:), zero(:)
+    real(dp), allocatable :: q(:)
     real(dp) :: pl, ei, x
-    logical :: ok
     integer :: e
     real(dp), parameter :: p_load = 1.0_dp
-    call build(cantilever_input(4, 0.0_dp), element_effects_t(), 'exact', mech, model, ok)
-    if (.not. ok) return
-    call model%set_loads([0.0_dp, 0.0_dp], [point_load_t(element=4, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
-    allocate(q(model%n), zero(model%n))
-    q = 0.0_dp
-    zero = 0.0_dp
-    call model%static_equilibrium(0.0_dp, q, 1, err)
-    call assert_true(.not. err%failed(), 'static solve: '//err%text())
-    call jr%init(mech)
-    call jr%compute(model, 0.0_dp, q, zero, err)
+    if (.not. loaded_statics(cantilever_input(4, 0.0_dp), 'exact', 4, p_load, mech, model, q, jr)) return
     pl = p_load*beam_length
     ei = e1*inertia
     call assert_all_close(jr%ends(1)%force, [0.0_dp, p_load], 0.0_dp, 1.0e-9_dp*p_load, 'root force')
@@ -288,25 +303,14 @@ contains
     type(mechanism_t) :: mech
     type(mechanism_model_t) :: model
     type(joint_reactions_t) :: jr
-    type(error_t) :: err
     type(link_point_t) :: p
-    real(dp), allocatable :: q(:), zero(:)
-    logical :: ok
+    real(dp), allocatable :: q(:)
     real(dp), parameter :: p_load = 10.0_dp
-    call build(beam_input('ground_pin', 2), element_effects_t(), 'consistent', mech, model, ok)
-    if (.not. ok) return
-    call model%set_loads([0.0_dp, 0.0_dp], [point_load_t(element=1, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
-    allocate(q(model%n), zero(model%n))
-    q = 0.0_dp
-    zero = 0.0_dp
-    call model%static_equilibrium(0.0_dp, q, 1, err)
-    call assert_true(.not. err%failed(), 'static solve: '//err%text())
+    if (.not. loaded_statics(beam_input('ground_pin', 2), 'consistent', 1, p_load, mech, model, q, jr)) return
     p%link = 1
     p%s = 0.5_dp
     call link_point_response(model, mech, q, p)
     call assert_rel_close(p%chord, -p_load*beam_length**3/(48.0_dp*e1*inertia), 1.0e-9_dp, 'P L^3/(48 EI)')
-    call jr%init(mech)
-    call jr%compute(model, 0.0_dp, q, zero, err)
     call assert_all_close(jr%support(1:2, 1), [0.0_dp, 0.5_dp*p_load], 0.0_dp, 1.0e-9_dp*p_load, 'left support P/2')
     call assert_all_close(jr%support(1:2, 2), [0.0_dp, 0.5_dp*p_load], 0.0_dp, 1.0e-9_dp*p_load, 'right support P/2')
     call assert_close(jr%ends(1)%moment, 0.0_dp, 1.0e-9_dp*p_load*beam_length, 'a pin carries no moment')

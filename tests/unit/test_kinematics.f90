@@ -10,6 +10,7 @@ module test_kinematics_suite
   use kinematics
   use assertions
   use test_text, only: itoa
+  use transient_fixtures, only: beam_input
   use mechanism_fixtures, only: fourbar_abcd, slider_crank_input, whitworth_input, ground_sleeve_input
   implicit none
   private
@@ -715,15 +716,9 @@ contains
     type(error_t) :: err
     type(motion_t) :: m
     integer :: k, e
-    inp%n_joints = 2
-    inp%joint_type(1:2) = [character(len=16) :: 'ground_pin', 'ground_pin']
+    inp = beam_input('ground_pin', 4)
     inp%joint_x(1:2) = [1.0_dp, 1.0_dp + 8.0_dp*sqrt(3.0_dp)]
     inp%joint_y(1:2) = [2.0_dp, 10.0_dp]
-    inp%n_links = 1
-    inp%link_joint1(1) = 1
-    inp%link_joint2(1) = 2
-    inp%link_n_elements(1) = 4
-    inp%driver_link = 0
     call make(inp, kin)
     do k = 0, 3
       call kin%solve(0.5_dp*k, err)

@@ -11,6 +11,7 @@ module test_linkage_suite
   use reference_materials, only: tennant_aluminium_e1
   use assertions
   use mechanism_fixtures, only: fourbar_abcd, slider_crank_input
+  use transient_fixtures, only: two_point_beam => beam_input
   implicit none
   private
   public :: run_all
@@ -469,16 +470,8 @@ contains
   function beam_input(end_type) result(inp)
     character(len=*), intent(in) :: end_type
     type(mechanism_input_t) :: inp
-    inp%n_joints = 2
+    inp = two_point_beam(end_type, 4)   ! 20 in long
     inp%joint_name(1:2) = [character(len=16) :: 'A', 'B']
-    inp%joint_type(1:2) = [character(len=16) :: end_type, end_type]
-    inp%joint_x(1:2) = [0.0_dp, 20.0_dp]
-    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
-    inp%n_links = 1
-    inp%link_joint1(1) = 1
-    inp%link_joint2(1) = 2
-    inp%link_n_elements(1) = 4
-    inp%driver_link = 0
   end function beam_input
 
   subroutine test_structure_without_driver()

@@ -170,33 +170,44 @@ contains
   !> the same route as MF 21: identical steps and states.
   subroutine test_bdf_band_equals_bdf()
     real(dp), allocatable :: y_full(:), y_band(:)
-    type(lsode_counters_t) :: c_full, c_band
-    integer :: nf_full, nf_band
-    call run_quarter_turn(mf_bdf_full_user, .true., y_full, c_full, nf_full)
-    call run_quarter_turn(mf_bdf_band_user, .true., y_band, c_band, nf_band)
-    call assert_equal(c_band%steps, c_full%steps, 'same steps')
-    call assert_equal(nf_band, nf_full, 'same Newton matrices')
+    type(lsode_counters_t) :: c(2)      ! full, band
+    integer :: nf(2)
+    call run_quarter_turn(mf_bdf_full_user, .true., y_full, c(1), nf(1))
+    call run_quarter_turn(mf_bdf_band_user, .true., y_band, c(2), nf(2))
+    call assert_equal(c(2)%steps, c(1)%steps, 'same steps')
+    call assert_equal(nf(2), nf(1), 'same Newton matrices')
     call assert_all_close(y_band, y_full, 0.0_dp, 1.0e-12_dp*maxval(abs(y_full)), 'same state')
   end subroutine test_bdf_band_equals_bdf
+
+  !> The decay system from y = 1 to t = 1 through its own Newton matrix (BDF,
+  !> rtol 1e-8); the counters after the run.
+  subroutine decay_to_one(sys, y, c, err, max_steps)
+    type(decay_t), intent(inout), target :: sys
+    real(dp), intent(out) :: y(3)
+    type(lsode_counters_t), intent(out) :: c
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: max_steps
+    type(lsode_t) :: ode
+    y = 1.0_dp
+    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err, max_steps=max_steps)
+    call ode%integrate_to(sys, y, 1.0_dp, err)
+    c = ode%counters()
+  end subroutine decay_to_one
 
   !> Any system with its own Newton matrix goes through it: y_k = exp(-k t)
   !> at t = 1 within the tolerance (rtol 1e-8: 1e-6 relative allows the
   !> global error's growth over the run), one factorization per Jacobian.
   subroutine test_decay_closed_form()
     type(decay_t), target :: sys
-    type(lsode_t) :: ode
     type(error_t) :: err
     type(lsode_counters_t) :: c
     real(dp) :: y(3)
     integer :: k
-    y = 1.0_dp
-    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
-    call ode%integrate_to(sys, y, 1.0_dp, err)
+    call decay_to_one(sys, y, c, err)
     call assert_true(.not. err%failed(), 'integration: '//err%text())
     do k = 1, 3
       call assert_rel_close(y(k), exp(-real(k, dp)), 1.0e-6_dp, 'y_'//trim(itoa(k))//'(1) = exp(-k)')
     end do
-    c = ode%counters()
     call assert_true(c%model_newton, 'the model''s Newton matrix was used')
     call assert_equal(sys%n_factor, c%jac_evals, 'one factorization per Jacobian')
   end subroutine test_decay_closed_form
@@ -207,16 +218,12 @@ contains
   !> IERSL = -1 this call never returns).
   subroutine test_decay_failure()
     type(decay_t), target :: sys
-    type(lsode_t) :: ode
     type(error_t) :: err
     type(lsode_counters_t) :: c
     real(dp) :: y(3)
-    y = 1.0_dp
     sys%t_fail = 0.5_dp
-    call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err, max_steps=100000)
-    call ode%integrate_to(sys, y, 1.0_dp, err)
+    call decay_to_one(sys, y, c, err, max_steps=100000)
     call assert_true(err%failed() .and. index(err%text(), 'past t_fail') > 0, 'model error reported: '//err%text())
-    c = ode%counters()
     call assert_true(c%steps < 1000, 'stopped promptly: '//trim(itoa(c%steps))//' steps')
   end subroutine test_decay_failure
 

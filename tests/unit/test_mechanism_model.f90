@@ -57,6 +57,19 @@ contains
     call model%init_fixed(specs, states, [n], ends, effects, 'exact', 0.0_dp, err)
   end subroutine beam
 
+  !> The deck's mechanism and its linear model (Kear's element, undamped).
+  logical function linear_model(inp, mech, model) result(ok)
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(out) :: mech
+    type(mechanism_model_t), intent(out) :: model
+    type(error_t) :: err
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())
+    if (.not. err%failed()) call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
+    call assert_true(.not. err%failed(), 'init_mechanism: '//err%text())
+    ok = .not. err%failed()
+  end function linear_model
+
   real(dp) function euler_bernoulli(beta_l)
     real(dp), intent(in) :: beta_l
     real(dp) :: area, inertia
@@ -258,12 +271,7 @@ contains
     inp%link_n_elements(1) = 4
     inp%driver_link = 1       ! the beam clamped on a stopped crank shaft
     inp%omega = 0.0_dp
-    call build_mechanism(inp, mech, err)
-    call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())
-    if (err%failed()) return
-    call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call assert_true(.not. err%failed(), 'init_mechanism: '//err%text())
-    if (err%failed()) return
+    if (.not. linear_model(inp, mech, model)) return
     allocate(omega(model%n), shapes(model%n, model%n))
     call model%linear_modes(omega, shapes, err)
     lo = 0.5_dp
@@ -310,10 +318,7 @@ contains
     inp%link_n_elements(1) = 4
     inp%driver_link = 1
     inp%omega = omega
-    call build_mechanism(inp, mech, err)
-    call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call assert_true(.not. err%failed(), 'model: '//err%text())
-    if (err%failed()) return
+    if (.not. linear_model(inp, mech, model)) return
     allocate(q(model%n), qd(model%n), qdd(model%n), mass(model%n, model%n), stiff(model%n, model%n))
     q = 0.0_dp
     qd = 0.0_dp
@@ -350,12 +355,7 @@ contains
     real(dp), allocatable :: q(:), qd(:), qdd(:), mass(:, :), stiff(:, :), load(:)
     inp = profiled_fourbar(150.0_dp, 'constant')
     inp%link_n_elements(1:3) = 1
-    call build_mechanism(inp, mech, err)
-    call assert_true(.not. err%failed(), 'build_mechanism: '//err%text())
-    if (err%failed()) return
-    call model%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call assert_true(.not. err%failed(), 'init_mechanism: '//err%text())
-    if (err%failed()) return
+    if (.not. linear_model(inp, mech, model)) return
     allocate(q(model%n), qd(model%n), qdd(model%n), mass(model%n, model%n), stiff(model%n, model%n))
     q = 0.0_dp
     qd = 0.0_dp

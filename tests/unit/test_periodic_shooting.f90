@@ -126,17 +126,25 @@ contains
     end do
   end subroutine test_damped_oscillator
 
-  !> Without damping both multipliers have modulus 1 (1e-7).
-  subroutine test_undamped_multipliers()
+  !> Shooting for the periodic orbit of `osc` from the rest state.
+  subroutine shoot_from_rest(osc, s, rep, err)
+    type(oscillator_t), intent(in) :: osc
+    type(shooting_settings_t), intent(in) :: s
+    type(shooting_report_t), intent(out) :: rep
+    type(error_t), intent(inout) :: err
     type(oscillator_t), target :: o
-    type(shooting_settings_t) :: s
-    type(shooting_report_t) :: rep
-    type(error_t) :: err
     real(dp) :: y0(2)
-    o = oscillator_t(n=1, omega=1.3_dp, k=4.0_dp, f1=1.0_dp)
-    s = shooting_settings_t(rtol=1.0e-11_dp, atol=1.0e-13_dp)
+    o = osc
     y0 = 0.0_dp
     call shooting_solve(o, s, y0, rep, err)
+  end subroutine shoot_from_rest
+
+  !> Without damping both multipliers have modulus 1 (1e-7).
+  subroutine test_undamped_multipliers()
+    type(shooting_report_t) :: rep
+    type(error_t) :: err
+    call shoot_from_rest(oscillator_t(n=1, omega=1.3_dp, k=4.0_dp, f1=1.0_dp), &
+                         shooting_settings_t(rtol=1.0e-11_dp, atol=1.0e-13_dp), rep, err)
     call assert_true(rep%converged, 'converged')
     call assert_all_close(sqrt(rep%mult_re**2 + rep%mult_im**2), [1.0_dp, 1.0_dp], 0.0_dp, 1.0e-7_dp, '|mu| = 1')
     call assert_close(atan2(abs(rep%mult_im(1)), rep%mult_re(1)), two_pi - modulo(2.0_dp*two_pi/1.3_dp, two_pi), &
@@ -147,15 +155,10 @@ contains
   !> Mathieu's equation (w = 2 w_n): growth exponent ~ eps w_n/4 per unit
   !> time, |mu| ~ exp(0.075 pi) = 1.27 over T = pi.  Flagged unstable.
   subroutine test_mathieu()
-    type(oscillator_t), target :: o
-    type(shooting_settings_t) :: s
     type(shooting_report_t) :: rep
     type(error_t) :: err
-    real(dp) :: y0(2)
-    o = oscillator_t(n=1, omega=2.0_dp, k=1.0_dp, eps=0.3_dp, f1=0.1_dp)
-    s%singular_rcond = 0.0_dp
-    y0 = 0.0_dp
-    call shooting_solve(o, s, y0, rep, err)
+    call shoot_from_rest(oscillator_t(n=1, omega=2.0_dp, k=1.0_dp, eps=0.3_dp, f1=0.1_dp), &
+                         shooting_settings_t(singular_rcond=0.0_dp), rep, err)
     call assert_true(.not. rep%stable, 'unstable')
     call assert_true(rep%max_multiplier > 1.15_dp .and. rep%max_multiplier < 1.4_dp, '|mu| about 1.27')
   end subroutine test_mathieu
@@ -163,14 +166,10 @@ contains
   !> Undamped, w_n = 3 w: a multiplier is exactly 1, Y(T) - I is singular,
   !> no isolated periodic solution: reported with near_resonance.
   subroutine test_resonance()
-    type(oscillator_t), target :: o
     type(shooting_settings_t) :: s
     type(shooting_report_t) :: rep
     type(error_t) :: err
-    real(dp) :: y0(2)
-    o = oscillator_t(n=1, omega=1.0_dp, k=9.0_dp, f1=1.0_dp)
-    y0 = 0.0_dp
-    call shooting_solve(o, s, y0, rep, err)
+    call shoot_from_rest(oscillator_t(n=1, omega=1.0_dp, k=9.0_dp, f1=1.0_dp), s, rep, err)
     call assert_true(err%failed() .and. rep%near_resonance, 'near resonance reported')
     call assert_true(rep%rcond_newton < s%singular_rcond, 'rcond below the limit')
   end subroutine test_resonance

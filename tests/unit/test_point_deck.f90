@@ -9,6 +9,7 @@ module test_point_deck_suite
   use deck_reader, only: deck_t
   use point_deck, only: write_point_deck, value_text, assignment_text
   use assertions
+  use deck_runner, only: write_deck
   implicit none
   private
   public :: run_all
@@ -59,22 +60,30 @@ contains
     call assert_all_close(arr, [0.0_dp, 0.5_dp, 0.5_dp, 0.5_dp], 0.0_dp, 0.0_dp, 'elements 2-4 set, 1 kept')
   end subroutine test_section
 
+  !> Write the deck `text` ('|' separates lines) to `path`, write its point
+  !> deck with `variable` of &grp set to `value`, remove the input.
+  subroutine point_from(path, text, variable, value, point, err)
+    character(len=*), intent(in) :: path, text, variable, point
+    real(dp), intent(in) :: value
+    type(error_t), intent(inout) :: err
+    type(deck_t) :: deck
+    integer :: u
+    call write_deck(path, text)
+    call deck%open(path, err)
+    call write_point_deck(deck, 'grp', variable, value, point, err)
+    call deck%close()
+    open(newunit=u, file=path, status='old')
+    close(u, status='delete')
+  end subroutine point_from
+
   !> A group with a quoted '/' on its last line: the override goes before the
   !> real terminator; the deck's other values are kept; &sweep is gone.
   subroutine test_override()
     character(len=*), parameter :: path = 'test_point_deck_in.nml', point = 'test_point_deck_out.nml'
-    type(deck_t) :: deck
     type(error_t) :: err
     integer :: u, ios
-    open(newunit=u, file=path, status='replace')
-    write(u, '(a)') '&run analysis = ''x'' /'
-    write(u, '(a)') '&grp x = 1.0,'
-    write(u, '(a)') '  n = 7, name = ''a/b'' /'
-    write(u, '(a)') '&sweep group = ''grp'', variable = ''x'', values = 2, 3 /'
-    close(u)
-    call deck%open(path, err)
-    call write_point_deck(deck, 'grp', 'x', 2.25_dp, point, err)
-    call deck%close()
+    call point_from(path, '&run analysis = ''x'' /|&grp x = 1.0,|  n = 7, name = ''a/b'' /|'// &
+                    '&sweep group = ''grp'', variable = ''x'', values = 2, 3 /', 'x', 2.25_dp, point, err)
     call assert_true(.not. err%failed(), 'written')
     x = 0.0_dp
     n = 0
@@ -88,28 +97,18 @@ contains
     rewind(u)
     call assert_true(.not. has_line(u, '&sweep'), '&sweep dropped')
     close(u, status='delete')
-    open(newunit=u, file=path, status='old')
-    close(u, status='delete')
   end subroutine test_override
 
   subroutine test_missing_group()
     character(len=*), parameter :: path = 'test_point_deck_in2.nml', point = 'test_point_deck_out2.nml'
-    type(deck_t) :: deck
     type(error_t) :: err
     integer :: u, ios
-    open(newunit=u, file=path, status='replace')
-    write(u, '(a)') '&run analysis = ''x'' /'
-    close(u)
-    call deck%open(path, err)
-    call write_point_deck(deck, 'grp', 'n', 12.0_dp, point, err)
-    call deck%close()
+    call point_from(path, '&run analysis = ''x'' /', 'n', 12.0_dp, point, err)
     n = 0
     open(newunit=u, file=point, status='old')
     read(u, nml=grp, iostat=ios)
     call assert_equal(ios, 0, 'the added group reads')
     call assert_equal(n, 12, 'integer variable set from an integral value')
-    close(u, status='delete')
-    open(newunit=u, file=path, status='old')
     close(u, status='delete')
   end subroutine test_missing_group
 

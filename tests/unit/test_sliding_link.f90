@@ -145,20 +145,25 @@ contains
   !> moving length and sleeve map against the steady model's Tennant
   !> elements: round-off of the assembly (1e-9 of the largest entry).
   subroutine test_whitworth()
-    type(mechanism_model_t) :: tm
-    type(steady_model_t) :: sm
-    call build_both(whitworth(60.0_dp), tm, sm, .false.)
-    call assert_true(tm%table%is_sleeve_element(2), 'the lever ends in the sleeve')
-    call compare_accelerations(tm, sm, 60.0_dp, 1.0e-9_dp, 'Whitworth')
+    call check_sleeve_accelerations(whitworth(60.0_dp), 2, 'Whitworth')
   end subroutine test_whitworth
 
   subroutine test_ground_sleeve()
+    call check_sleeve_accelerations(ground_sleeve(80.0_dp), 3, 'ground sleeve')
+  end subroutine test_ground_sleeve
+
+  !> Both models of `inp` (crank speed inp%omega), element `sleeve_element`
+  !> ending in the sleeve, accelerations equal to 1e-9.
+  subroutine check_sleeve_accelerations(inp, sleeve_element, label)
+    type(mechanism_input_t), intent(in) :: inp
+    integer, intent(in) :: sleeve_element
+    character(len=*), intent(in) :: label
     type(mechanism_model_t) :: tm
     type(steady_model_t) :: sm
-    call build_both(ground_sleeve(80.0_dp), tm, sm, .false.)
-    call assert_true(tm%table%is_sleeve_element(3), 'the rod ends in the sleeve')
-    call compare_accelerations(tm, sm, 80.0_dp, 1.0e-9_dp, 'ground sleeve')
-  end subroutine test_ground_sleeve
+    call build_both(inp, tm, sm, .false.)
+    call assert_true(tm%table%is_sleeve_element(sleeve_element), label//': the link ends in the sleeve')
+    call compare_accelerations(tm, sm, inp%omega, 1.0e-9_dp, label)
+  end subroutine check_sleeve_accelerations
 
   !> The decks tabulate the rigid motion (720 crank angles, quintic Hermite,
   !> 1e-12 relative); Delta and its rates then come from the interpolated

@@ -11,7 +11,7 @@ module test_spatial_model_suite
   use kear_element, only: element_effects_t, stress_report_t
   use mechanism_model, only: mechanism_model_t
   use transient_fixtures, only: fourbar_input, make_model
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user
+  use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user
   use quadrature, only: gauss_legendre_interval
   use spatial_section, only: spatial_section_init, section_rectangular, section_circular
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_local_displacement, spatial_formulation_kear
@@ -158,9 +158,7 @@ contains
     ! DLSODE is not re-entrant: the planar run first, then the spatial one
     call op%init(size(yp), 0.0_dp, mf_adams, 1.0e-11_dp, [1.0e-14_dp], err, max_steps=100000)
     do k = 1, 3
-      t = real(k, dp)*(pi/18.0_dp)/100.0_dp
-      call op%integrate_to(pm, yp, t, err)
-      call assert_true(.not. err%failed(), 'planar integration: '//err%text())
+      t = step_to(op, pm, yp, k, 'planar')
       call pm%set_time(t)
       bp(:, k) = yp(2*pm%table%map(5:6, 1) - 1)            ! crank end = B (U, W)
       call pm%element_stresses(yp(1::2), sp)
@@ -168,9 +166,7 @@ contains
     end do
     call os%init(size(ys), 0.0_dp, mf_adams, 1.0e-11_dp, [1.0e-14_dp], err, max_steps=100000)
     do k = 1, 3
-      t = real(k, dp)*(pi/18.0_dp)/100.0_dp
-      call os%integrate_to(sm, ys, t, err)
-      call assert_true(.not. err%failed(), 'spatial integration: '//err%text())
+      t = step_to(os, sm, ys, k, 'spatial')
       call sm%set_time(t)
       bs = ys(2*sm%b_dofs - 1)
       scale = maxval(abs(bp(:, k)))
@@ -182,6 +178,18 @@ contains
       end do
     end do
     call assert_true(maxval(abs(ys(1::2))) > 0.0_dp, 'the structure moved')
+  contains
+    !> On to crank angle 10 k deg (100 rad/s).
+    real(dp) function step_to(ode, sys, y, k, label) result(tk)
+      type(lsode_t), intent(inout) :: ode
+      class(ode_system_t), intent(inout), target :: sys
+      real(dp), intent(inout), contiguous :: y(:)
+      integer, intent(in) :: k
+      character(len=*), intent(in) :: label
+      tk = real(k, dp)*(pi/18.0_dp)/100.0_dp
+      call ode%integrate_to(sys, y, tk, err)
+      call assert_true(.not. err%failed(), label//' integration: '//err%text())
+    end function step_to
   end subroutine test_planar_transient
 
   !> RSSR (crank axis Z, rocker axis X), spherical B and C, 2 elements per
