@@ -11,7 +11,7 @@ module test_consistent_element_suite
                           element_kind_kear, element_kind_consistent, resolve_formulation
   use assertions
   use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
-  use fd_checks, only: fd_gradient4, fd_jacobian4
+  use fd_checks, only: fd_gradient, fd_jacobian
   use test_text, only: rtoa
   use lagrange_check, only: fd_lagrange
   implicit none
@@ -64,7 +64,7 @@ contains
     do k = 1, 4
       el = unit_element(fx(k))
       call consistent_internal_force(el, q_big, phi, f)
-      g = fd_gradient4(energy, q_big, h)
+      g = fd_gradient(energy, q_big, h)
       call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
     end do
   contains
@@ -87,7 +87,7 @@ contains
     h = 1.0e-4_dp
     el = unit_element(effects_all_on())
     call consistent_tangent_stiffness(el, q_big, phi, kt)
-    call fd_jacobian4(internal_force, q_big, h, kfd)
+    call fd_jacobian(internal_force, q_big, h, kfd)
     call assert_all_close(reshape(kt, [144]), reshape(kfd, [144]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
                           'K_t vs FD Jacobian')
     call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), 'K_t symmetric')

@@ -13,7 +13,7 @@ module test_kear_element_suite
   use kear_element
   use assertions
   use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
-  use fd_checks, only: fd_gradient4, fd_jacobian4
+  use fd_checks, only: fd_gradient, fd_jacobian
   use lagrange_check, only: fd_lagrange
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
@@ -222,7 +222,7 @@ contains
     do k = 1, 4
       el = unit_element(fx(k))
       call kear_internal_force(el, q_big, phi, f)
-      g = fd_gradient4(energy, q_big, 1.0e-4_dp)
+      g = fd_gradient(energy, q_big, 1.0e-4_dp)
       call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
     end do
   contains
@@ -256,7 +256,7 @@ contains
         label = 'exact, geometric only'
       end select
       call kear_tangent_stiffness(el, q_big, phi, kt)
-      call fd_jacobian4(internal_force, q_big, h, kfd)
+      call fd_jacobian(internal_force, q_big, h, kfd)
       call assert_all_close(reshape(kt, [64]), reshape(kfd, [64]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
                             'K_t vs FD Jacobian: '//trim(label))
       if (k /= 2) call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), &

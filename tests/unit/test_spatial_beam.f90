@@ -16,6 +16,7 @@ module test_spatial_beam_suite
   use spatial_beam
   use assertions
   use spatial_fixtures, only: cross3, spin_cross
+  use fd_checks, only: fd_gradient, fd_jacobian
   implicit none
   private
   public :: run_all
@@ -119,6 +120,52 @@ contains
     end do
   end subroutine group_frequencies
 
+  !> Internal force r and tangent k of a chain of n equal elements at the
+  !> global displacements full (element e on nodes e and e + 1).
+  subroutine assemble_chain(el, n, full, r, k)
+    type(spatial_beam_t), intent(in) :: el
+    integer, intent(in) :: n
+    real(dp), intent(in) :: full(:)
+    real(dp), intent(out) :: r(:), k(:, :)
+    real(dp) :: fe(nd), kt(nd, nd)
+    integer :: e, i0
+    r = 0.0_dp
+    k = 0.0_dp
+    do e = 1, n
+      i0 = nn*(e - 1)
+      call spatial_internal_force(el, full(i0 + 1:i0 + nd), fe)
+      call spatial_tangent_stiffness(el, full(i0 + 1:i0 + nd), kt)
+      r(i0 + 1:i0 + nd) = r(i0 + 1:i0 + nd) + fe
+      k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + kt
+    end do
+  end subroutine assemble_chain
+
+  !> One Newton step on the kept DOFs: full += -K_kk^-1 r_k.
+  subroutine newton_update(k, r, keep, full)
+    real(dp), intent(in) :: k(:, :), r(:)
+    integer, intent(in) :: keep(:)
+    real(dp), intent(inout) :: full(:)
+    real(dp), allocatable :: kr(:, :), x(:)
+    type(error_t) :: err
+    allocate(kr(size(keep), size(keep)), x(size(keep)))
+    kr = k(keep, keep)
+    x = -r(keep)
+    call solve_linear(kr, x, err)
+    call assert_true(.not. err%failed(), 'Newton solve: '//err%text())
+    full(keep) = full(keep) + x
+  end subroutine newton_update
+
+  !> group_frequencies of a chain of n elements with the DOFs `fixed` held.
+  subroutine held_frequencies(k, m, n, fixed, grp, f)
+    real(dp), intent(in) :: k(:, :), m(:, :)
+    integer, intent(in) :: n, grp
+    logical, intent(in) :: fixed(:)
+    real(dp), allocatable, intent(out) :: f(:)
+    integer, allocatable :: keep(:)
+    call keep_dofs(n + 1, fixed, keep)
+    call group_frequencies(k, m, keep, grp, f)
+  end subroutine held_frequencies
+
   subroutine keep_dofs(n_nodes, fixed, keep)
     integer, intent(in) :: n_nodes
     logical, intent(in) :: fixed(:)          !< (nn*n_nodes)
@@ -143,7 +190,6 @@ contains
     type(spatial_beam_t) :: el
     type(error_t) :: err
     real(dp), allocatable :: k(:, :), m(:, :), f(:)
-    integer, allocatable :: keep(:)
     logical :: fixed(nn*(n + 1))
     integer :: i
     real(dp) :: ref
@@ -154,26 +200,22 @@ contains
     fixed = .false.
     fixed(1:6) = .true.                      ! clamp: translations and rotations
     ! v-bending (I_z = b t^3/12 with t = 1) and w-bending (I_y, t = 0.5)
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 2, f)
+    call held_frequencies(k, m, n, fixed, 2, f)
     do i = 1, 2
       ref = bl(i)**2*sqrt(alu%e1*sec%iz/(alu%rho*sec%area*len**4))
       call assert_rel_close(f(i), ref, 1.0e-5_dp, 'v bending mode')
     end do
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 3, f)
+    call held_frequencies(k, m, n, fixed, 3, f)
     do i = 1, 2
       ref = bl(i)**2*sqrt(alu%e1*sec%iy/(alu%rho*sec%area*len**4))
       call assert_rel_close(f(i), ref, 1.0e-5_dp, 'w bending mode')
     end do
     call assert_true(abs(sec%iz/sec%iy - 4.0_dp) < 1.0e-12_dp, 'unequal planes: I_z = 4 I_y')
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 4, f)
+    call held_frequencies(k, m, n, fixed, 4, f)
     ref = pi/(2.0_dp*len)*sqrt(g_alu*sec%torsion_j/(alu%rho*sec%ip))
     call assert_rel_close(f(1), ref, 5.0e-3_dp, 'torsion mode 1 (St. Venant)')
     call assert_true(f(1) > ref, 'consistent mass: FE torsion frequency from above')
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 1, f)
+    call held_frequencies(k, m, n, fixed, 1, f)
     ref = pi/(2.0_dp*len)*sqrt(alu%e1/alu%rho)
     call assert_rel_close(f(1), ref, 5.0e-3_dp, 'axial mode 1')
   end subroutine test_cantilever_frequencies
@@ -191,7 +233,6 @@ contains
     type(error_t) :: err
     type(element_effects_t) :: fx
     real(dp), allocatable :: k(:, :), m(:, :), f(:)
-    integer, allocatable :: keep(:)
     logical :: fixed(nn*(n + 1))
     integer :: i, last
     real(dp) :: ref, rg2
@@ -207,8 +248,7 @@ contains
     fixed(last + [2, 3, 4, 7, 8]) = .true.
     rg2 = sec%iz/sec%area
     ! equal planes: each frequency twice, the eigenvectors any mix of v and w
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 5, f)
+    call held_frequencies(k, m, n, fixed, 5, f)
     do i = 1, 3
       ref = (real(i, dp)*pi/len)**2*sqrt(alu%e1*sec%iz/(alu%rho*sec%area)) &
             /sqrt(1.0_dp + rg2*(real(i, dp)*pi/len)**2)
@@ -216,12 +256,10 @@ contains
       call assert_rel_close(f(2*i), ref, 1.0e-5_dp, 'bending mode, second plane')
     end do
     call assert_rel_close(sec%torsion_j, 2.0_dp*sec%iy, 1.0e-14_dp, 'circle: J = I_p')
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 4, f)
+    call held_frequencies(k, m, n, fixed, 4, f)
     ref = pi/len*sqrt(g_alu/alu%rho)
     call assert_rel_close(f(1), ref, 5.0e-3_dp, 'torsion mode 1')
-    call keep_dofs(n + 1, fixed, keep)
-    call group_frequencies(k, m, keep, 1, f)
+    call held_frequencies(k, m, n, fixed, 1, f)
     ref = pi/(2.0_dp*len)*sqrt(alu%e1/alu%rho)
     call assert_rel_close(f(1), ref, 5.0e-3_dp, 'axial mode 1')
   end subroutine test_simply_supported_frequencies
@@ -242,8 +280,8 @@ contains
     real(dp), allocatable :: k(:, :), m(:, :), kr(:, :), x(:), full(:), r(:)
     integer, allocatable :: keep(:)
     logical :: fixed(nn*(n + 1))
-    real(dp) :: tip(4), lin(nd), kt(nd, nd), fe(nd), res0, res_prev
-    integer :: it, e, i0, tipdof
+    real(dp) :: tip(4), lin(nd), res0, res_prev
+    integer :: it, tipdof
     call spatial_section_init(sec, section_rectangular, [1.0_dp, 0.5_dp], alu, err)
     call spatial_beam_init(el, len/n, sec, alu, g_alu, all_off(), err)
     call chain(el, n, k, m)
@@ -276,25 +314,14 @@ contains
     res_prev = huge(1.0_dp)
     allocate(r(nn*(n + 1)))
     do it = 1, 8
-      r = 0.0_dp
-      k = 0.0_dp
-      do e = 1, n
-        i0 = nn*(e - 1)
-        call spatial_internal_force(el, full(i0 + 1:i0 + nd), fe)
-        call spatial_tangent_stiffness(el, full(i0 + 1:i0 + nd), kt)
-        r(i0 + 1:i0 + nd) = r(i0 + 1:i0 + nd) + fe
-        k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + kt
-      end do
+      call assemble_chain(el, n, full, r, k)
       r(tipdof + [2, 3, 4]) = r(tipdof + [2, 3, 4]) - [py, pz, tq]
       res0 = maxval(abs(r(keep)))
       if (it == 3) call assert_true(res0 < 1.0e-6_dp*max(py, tq), 'Newton quadratic: residual after 2 steps')
       if (res0 < 1.0e-9_dp) exit
       call assert_true(res0 < res_prev, 'Newton residual decreases')
       res_prev = res0
-      kr = k(keep, keep)
-      x = -r(keep)
-      call solve_linear(kr, x, err)
-      full(keep) = full(keep) + x
+      call newton_update(k, r, keep, full)
     end do
     call assert_rel_close(full(tipdof + 2), tip(1), 1.0e-3_dp, 'nonlinear v tip near linear')
     call assert_rel_close(full(tipdof + 3), tip(2), 1.0e-3_dp, 'nonlinear w tip near linear')
@@ -310,8 +337,8 @@ contains
     type(spatial_section_t) :: sec
     type(spatial_beam_t) :: el
     type(error_t) :: err
-    real(dp) :: f(nd), fd(nd), pp(nd), pm(nd), h
-    integer :: i, shape
+    real(dp) :: f(nd), fd(nd), h
+    integer :: shape
     h = 1.0e-6_dp
     do shape = 1, 2
       if (shape == 1) then
@@ -321,15 +348,14 @@ contains
       end if
       call spatial_beam_init(el, 1.3_dp, sec, soft, 400.0_dp, effects_all_on(), err)
       call spatial_internal_force(el, p_big, f)
-      do i = 1, nd
-        pp = p_big
-        pm = p_big
-        pp(i) = pp(i) + h
-        pm(i) = pm(i) - h
-        fd(i) = (spatial_strain_energy(el, pp) - spatial_strain_energy(el, pm))/(2.0_dp*h)
-      end do
+      fd = fd_gradient(energy, p_big, h, order=2)
       call assert_all_close(f, fd, 0.0_dp, 1.0e-7_dp*maxval(abs(f)), 'dSE/dp vs force')
     end do
+  contains
+    real(dp) function energy(p)
+      real(dp), intent(in) :: p(:)
+      energy = spatial_strain_energy(el, p)
+    end function energy
   end subroutine test_force_vs_energy
 
   subroutine test_tangent_vs_force()
@@ -337,8 +363,8 @@ contains
     type(spatial_beam_t) :: el
     type(error_t) :: err
     type(element_effects_t) :: fx
-    real(dp) :: k(nd, nd), kd(nd, nd), fp(nd), fm(nd), pp(nd), pm(nd), h
-    integer :: i, variant
+    real(dp) :: k(nd, nd), kd(nd, nd), h
+    integer :: variant
     h = 1.0e-6_dp
     call spatial_section_init(sec, section_rectangular, [0.3_dp, 0.2_dp], soft, err)
     do variant = 1, 3
@@ -347,20 +373,18 @@ contains
       if (variant == 3) fx%stretching = .false.
       call spatial_beam_init(el, 1.3_dp, sec, soft, 400.0_dp, fx, err)
       call spatial_tangent_stiffness(el, p_big, k)
-      do i = 1, nd
-        pp = p_big
-        pm = p_big
-        pp(i) = pp(i) + h
-        pm(i) = pm(i) - h
-        call spatial_internal_force(el, pp, fp)
-        call spatial_internal_force(el, pm, fm)
-        kd(:, i) = (fp - fm)/(2.0_dp*h)
-      end do
+      call fd_jacobian(internal_force, p_big, h, kd, order=2)
       call assert_all_close(reshape(k, [256]), reshape(kd, [256]), 0.0_dp, 1.0e-7_dp*maxval(abs(k)), &
                             'tangent vs FD of the force')
       call assert_all_close(reshape(k, [256]), reshape(transpose(k), [256]), 0.0_dp, &
                             1.0e-12_dp*maxval(abs(k)), 'tangent symmetric')
     end do
+  contains
+    subroutine internal_force(p, fp)
+      real(dp), intent(in) :: p(:)
+      real(dp), intent(out) :: fp(:)
+      call spatial_internal_force(el, p, fp)
+    end subroutine internal_force
   end subroutine test_tangent_vs_force
 
   !> Rigid motion R(t) = Rz(psi(t)) Rx(eta(t)), x1(t) quadratic; q(t)
@@ -605,11 +629,11 @@ contains
     type(spatial_beam_t) :: el
     type(error_t) :: err
     type(element_effects_t) :: fx
-    real(dp), allocatable :: k(:, :), r(:), full(:), x(:), kr(:, :)
+    real(dp), allocatable :: k(:, :), r(:), full(:)
     integer, allocatable :: keep(:)
     logical, allocatable :: fixed(:)
-    real(dp) :: kt(nd, nd), fe(nd), p, dir(3)
-    integer :: step, it, e, i0, j
+    real(dp) :: p, dir(3)
+    integer :: step, it, j
     fx = all_off()
     fx%stretching = .true.
     fx%curvature = .true.
@@ -628,22 +652,11 @@ contains
     do step = 1, 20
       p = alpha*alu%e1*(sec%iz*cos(beta)**2 + sec%iy*sin(beta)**2)/len**2*real(step, dp)/20.0_dp
       do it = 1, 30
-        r = 0.0_dp
-        k = 0.0_dp
-        do e = 1, n
-          i0 = nn*(e - 1)
-          call spatial_internal_force(el, full(i0 + 1:i0 + nd), fe)
-          call spatial_tangent_stiffness(el, full(i0 + 1:i0 + nd), kt)
-          r(i0 + 1:i0 + nd) = r(i0 + 1:i0 + nd) + fe
-          k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) = k(i0 + 1:i0 + nd, i0 + 1:i0 + nd) + kt
-        end do
+        call assemble_chain(el, n, full, r, k)
         r(nn*n + 2:nn*n + 3) = r(nn*n + 2:nn*n + 3) - p*dir(2:3)
         if (maxval(abs(r(keep))) < 1.0e-9_dp*p) exit
         call assert_true(it < 30, 'Newton converges')
-        kr = k(keep, keep)
-        x = -r(keep)
-        call solve_linear(kr, x, err)
-        full(keep) = full(keep) + x
+        call newton_update(k, r, keep, full)
       end do
     end do
     v = dot_product(full(nn*n + 2:nn*n + 3), dir(2:3))
