@@ -10,7 +10,6 @@
 module test_periodic_shooting_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
-  use periodic_system, only: periodic_system_t, nonlinear_info_t
   use periodic_shooting
   use lsode_solver, only: lsode_t, mf_adams, mf_bdf_band_user
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
@@ -20,21 +19,11 @@ module test_periodic_shooting_suite
   use mechanism_model, only: mechanism_model_t
   use kear_element, only: element_effects_t
   use assertions
+  use periodic_problems, only: oscillator_t
   use transient_fixtures, only: fourbar_input
   implicit none
   private
   public :: run_all
-
-  !> m x'' + c x' + k (1 + eps cos(w t)) x + gamma x^3 = f1 cos(w t) + f2 sin(2 w t)
-  type, extends(periodic_system_t) :: oscillator_t
-    real(dp) :: m = 1.0_dp, c = 0.0_dp, k = 1.0_dp, eps = 0.0_dp, gamma = 0.0_dp
-    real(dp) :: f1 = 0.0_dp, f2 = 0.0_dp, t = 0.0_dp
-  contains
-    procedure :: set_time => osc_set_time
-    procedure :: linear_terms => osc_linear
-    procedure :: nonlinear_terms => osc_nonlinear
-    procedure :: is_nonlinear => osc_is_nonlinear
-  end type oscillator_t
 
 contains
 
@@ -47,43 +36,6 @@ contains
     call run_test('four_bar_harmonic_series_agrees_at_low_speed', test_four_bar_low_speed)
     call run_test('four_bar_long_damped_transient_settles_on_the_orbit', test_four_bar_transient)
   end subroutine run_all
-
-  ! ------------------------------------------------------------------ the oscillator
-
-  subroutine osc_set_time(self, t, err)
-    class(oscillator_t), intent(inout) :: self
-    real(dp), intent(in) :: t
-    type(error_t), intent(inout) :: err
-    self%t = t
-    if (.false.) call err%clear()
-  end subroutine osc_set_time
-
-  subroutine osc_linear(self, mass, damp, stiff, force, velocity_terms)
-    class(oscillator_t), intent(inout) :: self
-    real(dp), intent(out) :: mass(:, :), damp(:, :), stiff(:, :), force(:)
-    logical, intent(in) :: velocity_terms
-    mass(1, 1) = self%m
-    damp(1, 1) = merge(self%c, 0.0_dp, velocity_terms)
-    stiff(1, 1) = self%k*(1.0_dp + self%eps*cos(self%omega*self%t))
-    force(1) = self%f1*cos(self%omega*self%t) + self%f2*sin(2.0_dp*self%omega*self%t)
-  end subroutine osc_linear
-
-  subroutine osc_nonlinear(self, q, fn, info, secant, tangent)
-    class(oscillator_t), intent(inout) :: self
-    real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: fn(:)
-    type(nonlinear_info_t), intent(out) :: info
-    real(dp), intent(out), optional :: secant(:, :), tangent(:, :)
-    fn(1) = self%gamma*q(1)**3
-    if (present(secant)) secant(1, 1) = self%gamma*q(1)**2
-    if (present(tangent)) tangent(1, 1) = 3.0_dp*self%gamma*q(1)**2
-    info%n_points = 0
-  end subroutine osc_nonlinear
-
-  logical function osc_is_nonlinear(self)
-    class(oscillator_t), intent(in) :: self
-    osc_is_nonlinear = abs(self%gamma) > 0.0_dp
-  end function osc_is_nonlinear
 
   !> x(t) = Re[f1/(k - m w^2 + i c w) e^(i w t)] + Re[-i f2/(k - 4 m w^2 + 2 i c w) e^(2 i w t)]
   real(dp) function osc_exact(o, t) result(x)
@@ -210,6 +162,23 @@ contains
     call assert_true(.not. err%failed(), 'mechanism')
   end subroutine four_bar_mech
 
+  !> Tennant's linear four-bar at w with damping beta and its periodic
+  !> solution by shooting from rest (y0: the state at t = 0).
+  subroutine damped_four_bar_orbit(w, beta, s, mech, model, y0, rep, err)
+    real(dp), intent(in) :: w, beta
+    type(shooting_settings_t), intent(in) :: s
+    type(mechanism_t), intent(out) :: mech
+    type(steady_model_t), intent(inout), target :: model
+    real(dp), intent(out) :: y0(:)
+    type(shooting_report_t), intent(out) :: rep
+    type(error_t), intent(inout) :: err
+    type(link_sections_t) :: secs(3)
+    call four_bar_mech(w, mech)
+    call model%init_mechanism(mech, tennant_options_t(damping_beta=beta), secs, err)
+    y0 = 0.0_dp
+    call shooting_solve(model, s, y0, rep, err)
+  end subroutine damped_four_bar_orbit
+
   !> Linear four-bar at 20 rad/s (0.014 of the lowest natural frequency),
   !> light damping beta = 2e-5 s.  The harmonic series (N = 16: the forcing
   !> of this crank-rocker needs ~16 harmonics, with N = 8 the truncation alone
@@ -219,7 +188,6 @@ contains
   subroutine test_four_bar_low_speed()
     type(mechanism_t) :: mech
     type(steady_model_t), target :: model
-    type(link_sections_t) :: secs(3)
     type(harmonic_settings_t) :: hs
     type(harmonic_report_t) :: hrep
     type(shooting_settings_t) :: s
@@ -227,16 +195,13 @@ contains
     type(error_t) :: err
     real(dp) :: times(13), qh(10, 13), qs(10, 13), qd(10, 13), y0(20)
     integer :: j
-    call four_bar_mech(20.0_dp, mech)
-    call model%init_mechanism(mech, tennant_options_t(damping_beta=2.0e-5_dp), secs, err)
+    s = shooting_settings_t(rtol=1.0e-6_dp, atol=1.0e-10_dp, newton_tol=1.0e-4_dp, bdf=.true.)
+    call damped_four_bar_orbit(20.0_dp, 2.0e-5_dp, s, mech, model, y0, rep, err)
     do j = 1, 13
       times(j) = (j - 1)*(two_pi/12)/20.0_dp
     end do
     hs%n_harmonics = 16
     call harmonic_solve(model, hs, times, qh, hrep, err)
-    s = shooting_settings_t(rtol=1.0e-6_dp, atol=1.0e-10_dp, newton_tol=1.0e-4_dp, bdf=.true.)
-    y0 = 0.0_dp
-    call shooting_solve(model, s, y0, rep, err)
     call assert_true(.not. err%failed() .and. rep%converged .and. rep%stable, 'periodic solution')
     call periodic_orbit(model, s, y0, times, qs, qd, rep, err)
     call assert_true(maxval(abs(qs(:, 13) - qs(:, 1))) < 1.0e-4_dp*maxval(abs(qs)), 'periodic')
@@ -254,7 +219,6 @@ contains
     type(mechanism_t) :: mech
     type(steady_model_t), target :: model
     type(mechanism_model_t), target :: tmodel
-    type(link_sections_t) :: secs(3)
     type(shooting_settings_t) :: s
     type(shooting_report_t) :: rep
     type(lsode_t) :: ode
@@ -262,11 +226,8 @@ contains
     real(dp), parameter :: w = 20.0_dp, beta = 2.0e-5_dp
     real(dp) :: times(9), qs(10, 9), qd(10, 9), y0(20), y(20), t_period, qt(10, 9)
     integer :: j, ml, i, k, to_steady(10)
-    call four_bar_mech(w, mech)
-    call model%init_mechanism(mech, tennant_options_t(damping_beta=beta), secs, err)
     s = shooting_settings_t(rtol=1.0e-7_dp, atol=1.0e-11_dp, newton_tol=1.0e-5_dp, bdf=.true.)
-    y0 = 0.0_dp
-    call shooting_solve(model, s, y0, rep, err)
+    call damped_four_bar_orbit(w, beta, s, mech, model, y0, rep, err)
     call assert_true(rep%converged, 'periodic solution')
     t_period = two_pi/w
     do j = 1, 9

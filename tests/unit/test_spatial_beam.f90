@@ -166,6 +166,26 @@ contains
     call group_frequencies(k, m, keep, grp, f)
   end subroutine held_frequencies
 
+  !> A circular section of radius r in `mat`, n elements over len, the
+  !> effects fx; clamped at the root: the DOFs kept.
+  subroutine clamped_circular(mat, r, len, n, fx, el, keep)
+    type(ramberg_osgood_t), intent(in) :: mat
+    real(dp), intent(in) :: r, len
+    integer, intent(in) :: n
+    type(element_effects_t), intent(in) :: fx
+    type(spatial_beam_t), intent(out) :: el
+    integer, allocatable, intent(out) :: keep(:)
+    type(spatial_section_t) :: sec
+    type(error_t) :: err
+    logical :: fixed(nn*(n + 1))
+    call spatial_section_init(sec, section_circular, [r], mat, err)
+    call spatial_beam_init(el, len/n, sec, mat, g_alu, fx, err)
+    call assert_true(.not. err%failed(), 'spinning cantilever: '//err%text())
+    fixed = .false.
+    fixed(1:6) = .true.
+    call keep_dofs(n + 1, fixed, keep)
+  end subroutine clamped_circular
+
   subroutine keep_dofs(n_nodes, fixed, keep)
     integer, intent(in) :: n_nodes
     logical, intent(in) :: fixed(:)          !< (nn*n_nodes)
@@ -686,7 +706,6 @@ contains
   subroutine test_southwell()
     integer, parameter :: n = 16
     real(dp), parameter :: len = 20.0_dp, om = 20.0_dp
-    type(spatial_section_t) :: sec
     type(spatial_beam_t) :: el
     type(error_t) :: err
     type(element_effects_t) :: fx
@@ -694,17 +713,12 @@ contains
     type(spatial_eval_info_t) :: info
     real(dp), allocatable :: res(:), jac(:, :), x(:), full(:), zero(:), kmat(:, :), mmat(:, :)
     integer, allocatable :: keep(:)
-    logical :: fixed(nn*(n + 1))
     real(dp) :: w0(2), wspin(2), k1(2)
     integer :: i, it, grp, spin
-    call spatial_section_init(sec, section_circular, [0.2_dp], alu, err)
     fx = all_off()
     fx%stretching = .true.
     fx%coupling = .true.
-    call spatial_beam_init(el, len/n, sec, alu, g_alu, fx, err)
-    fixed = .false.
-    fixed(1:6) = .true.
-    call keep_dofs(n + 1, fixed, keep)
+    call clamped_circular(alu, 0.2_dp, len, n, fx, el, keep)
     allocate(full(nn*(n + 1)), zero(nn*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
     zero = 0.0_dp
     do spin = 1, 2
@@ -829,7 +843,6 @@ contains
     real(dp), intent(in) :: r, len, om
     integer, intent(in) :: n
     real(dp), intent(out) :: tip, other
-    type(spatial_section_t) :: sec
     type(spatial_beam_t) :: el
     type(error_t) :: err
     type(element_effects_t) :: fx
@@ -837,15 +850,10 @@ contains
     type(spatial_eval_info_t) :: info
     real(dp), allocatable :: res(:), jac(:, :), x(:), full(:)
     integer, allocatable :: keep(:)
-    logical :: fixed(nn*(n + 1))
     integer :: i
-    call spatial_section_init(sec, section_circular, [r], mat, err)
     fx = all_off()
     fx%coupling = .true.
-    call spatial_beam_init(el, len/n, sec, mat, g_alu, fx, err)
-    fixed = .false.
-    fixed(1:6) = .true.
-    call keep_dofs(n + 1, fixed, keep)
+    call clamped_circular(mat, r, len, n, fx, el, keep)
     allocate(full(nn*(n + 1)), jac(size(keep), size(keep)), res(size(keep)))
     full = 0.0_dp
     ! the residual is affine in p (linear strain): one Newton step with a
