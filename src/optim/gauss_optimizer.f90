@@ -18,7 +18,9 @@
 !>   (2) the multiplier equations hold to the feasibility tolerance
 !>       (max |m_i| <= feas_tol) and every inequality multiplier is >= 0
 !>       (drop rule, §9.4);
-!>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf);
+!>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf), or
+!>   (3') F is resolved (f_resolved): with the exact model the step cannot
+!>       change F measurably (Gill, Murray & Wright's U1-U3);
 !>   (4) the predicted change of the Lagrangian is small:
 !>       |(grad F + C lambda)^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
 !> (4) uses the Lagrangian, not F: at a constrained optimum grad F = -C lambda
