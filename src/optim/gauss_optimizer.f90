@@ -18,7 +18,9 @@
 !>   (2) the multiplier equations hold to the feasibility tolerance
 !>       (max |m_i| <= feas_tol) and every inequality multiplier is >= 0
 !>       (drop rule, §9.4);
-!>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf);
+!>   (3) the step is small: ||s_k||_inf <= xtol (1 + ||x_k||_inf), or
+!>   (3') F is resolved (f_resolved): with the exact model the step cannot
+!>       change F measurably (Gill, Murray & Wright's U1-U3);
 !>   (4) the predicted change of the Lagrangian is small:
 !>       |(grad F + C lambda)^T s + s^T G s / 2| <= ftol (1 + |F(x_k)|).
 !> (4) uses the Lagrangian, not F: at a constrained optimum grad F = -C lambda
@@ -132,6 +134,7 @@ module gauss_optimizer
     procedure, private :: compute_step
     procedure, private :: derivatives
     procedure, private :: finish
+    procedure, private :: f_resolved
     procedure, private :: trial_point
     procedure, private :: step_for_set
     procedure, private :: limit_violated
@@ -258,9 +261,9 @@ contains
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:)
-    integer :: n, m, mt, k, repeats, hess_kind, stalls, escapes
+    integer :: n, m, mt, k, repeats, hess_kind, stalls, escapes, regs
     real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged, same_point, auto, again
+    logical :: solved, step_back_method, converged, same_point, auto, again, exact_model
     real(dp) :: b11_res
     logical, allocatable :: active_before(:), active_iter(:)
     character(len=:), allocatable :: stage
@@ -288,8 +291,10 @@ contains
     outer: do
       stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
+      regs = self%regularizations
       call self%derivatives(prob, hess_kind, k, err)
       if (err%failed()) exit outer
+      exact_model = hess_kind /= hessian_gauss .and. self%regularizations == regs
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
 
@@ -310,8 +315,9 @@ contains
         if (mt > 0) pred = pred + dot_product(matmul(self%dg, self%lambda), s)
         maxviol = max_violation(self%g, m)
         if (maxviol <= self%opts%feas_tol .and. b11_res <= self%opts%feas_tol &
-            .and. snorm <= self%opts%xtol*(1.0_dp + xnorm) &
-            .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f))) then
+            .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f)) &
+            .and. (snorm <= self%opts%xtol*(1.0_dp + xnorm) .or. &
+                   self%f_resolved(snorm, xnorm, exact_model))) then
           converged = .true.
           exit outer
         end if
@@ -372,6 +378,33 @@ contains
     end if
     call self%finish(k, converged, mt, err)
   end subroutine solve
+
+  !> Test (3'), the alternative to the step test (3) (Gill, Murray & Wright,
+  !> Practical Optimization (1981) §8.2.3, criteria U1-U3 with tau_F = ftol):
+  !> F at x_k is converged when the next step cannot change it measurably.
+  !> The caller has checked (1), (2) and (4) (the model's predicted change of
+  !> the Lagrangian below ftol (1 + |F|), U1 for the step still to be taken);
+  !> here U2, ||s||_inf <= sqrt(ftol) (1 + ||x||_inf), the resolution of x
+  !> that F known to ftol allows, and U3, ||grad L||_inf <= ftol^(1/3)
+  !> (1 + |F|), the first-order conditions.  Only with the exact model (G
+  !> neither regularized nor convexified at x_k): a shifted G shortens the
+  !> step and its prediction without x being near a solution.  HS 9 ended one
+  !> analysis later at a step of 1.95e-6 > xtol (1 + |x|) = 1.33e-6 with F
+  !> already optimal to 1.4e-13.
+  logical function f_resolved(self, snorm, xnorm, exact_model) result(ok)
+    class(gauss_optimizer_t), intent(in) :: self
+    real(dp), intent(in) :: snorm, xnorm
+    logical, intent(in) :: exact_model
+    real(dp) :: glag
+    ok = .false.
+    if (.not. exact_model .or. snorm > sqrt(self%opts%ftol)*(1.0_dp + xnorm)) return
+    if (size(self%lambda) > 0) then
+      glag = maxval(abs(self%gradf + matmul(self%dg, self%lambda)))
+    else
+      glag = maxval(abs(self%gradf))
+    end if
+    ok = glag <= self%opts%ftol**(1.0_dp/3.0_dp)*(1.0_dp + abs(self%f))
+  end function f_resolved
 
   !> Outcome of a run that did not fail: KKT residual, status and message
   !> (the iteration limit sets err with the best feasible iterate).

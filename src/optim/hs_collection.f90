@@ -452,12 +452,24 @@ contains
     if (.false.) call err%clear()
   end subroutine hs_objective
 
-  !> Central differences, h = eps^(1/3) max(|x_j|, 1): error ~1e-11 relative.
   subroutine hs_gradient(self, x, f, grad, err)
     class(hs_problem_t), intent(inout) :: self
     real(dp), intent(in) :: x(:), f
     real(dp), intent(out) :: grad(:)
     type(error_t), intent(inout) :: err
+    call central_gradient(self, 0, x, grad)
+    self%count%fd_analyses = self%count%fd_analyses + 2*size(x)
+    if (.false.) grad(1) = f
+    if (.false.) call err%clear()
+  end subroutine hs_gradient
+
+  !> Gradient of F (which = 0) or of constraint `which` by central
+  !> differences, h = eps^(1/3) max(|x_j|, 1): error ~1e-11 relative.
+  subroutine central_gradient(self, which, x, grad)
+    class(hs_problem_t), intent(in) :: self
+    integer, intent(in) :: which
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: grad(:)
     real(dp), allocatable :: xp(:), xm(:)
     real(dp) :: h
     integer :: j
@@ -468,14 +480,15 @@ contains
       h = 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
       xp(j) = x(j) + h
       xm(j) = x(j) - h
-      grad(j) = (hs_f(self%number, xp) - hs_f(self%number, xm))/(xp(j) - xm(j))
+      if (which == 0) then
+        grad(j) = (hs_f(self%number, xp) - hs_f(self%number, xm))/(xp(j) - xm(j))
+      else
+        grad(j) = (constraint_of(self, which, xp) - constraint_of(self, which, xm))/(xp(j) - xm(j))
+      end if
       xp(j) = x(j)
       xm(j) = x(j)
     end do
-    self%count%fd_analyses = self%count%fd_analyses + 2*size(x)
-    if (.false.) grad(1) = f
-    if (.false.) call err%clear()
-  end subroutine hs_gradient
+  end subroutine central_gradient
 
   !> Constraint i: general inequality (i <= mg: g = -c), equality (i > m).
   real(dp) function constraint_of(self, i, x) result(g)
@@ -505,20 +518,7 @@ contains
     real(dp), intent(in) :: x(:), g
     real(dp), intent(out) :: grad(:)
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: xp(:), xm(:)
-    real(dp) :: h
-    integer :: j
-    allocate(xp(size(x)), xm(size(x)))
-    xp = x
-    xm = x
-    do j = 1, size(x)
-      h = 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
-      xp(j) = x(j) + h
-      xm(j) = x(j) - h
-      grad(j) = (constraint_of(self, i, xp) - constraint_of(self, i, xm))/(xp(j) - xm(j))
-      xp(j) = x(j)
-      xm(j) = x(j)
-    end do
+    call central_gradient(self, i, x, grad)
     self%count%fd_constraint_evals = self%count%fd_constraint_evals + 2*size(x)
     if (.false.) grad(1) = g
     if (.false.) call err%clear()

@@ -363,24 +363,7 @@ contains
     real(dp), intent(in) :: x(:), f
     real(dp), intent(out) :: grad(:)
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: xp(:)
-    real(dp) :: h, fp
-    integer :: j
-    allocate(xp(size(x)))
-    grad = 0.0_dp
-    do j = 1, size(x)
-      xp = x
-      h = fd_step(self%fd_rel_step, x(j))
-      xp(j) = x(j) + h
-      h = xp(j) - x(j)
-      call self%objective(xp, fp, err)
-      self%count%fd_analyses = self%count%fd_analyses + 1
-      if (err%failed()) then
-        call err%add_context('forward-difference gradient, variable '//str(j))
-        return
-      end if
-      grad(j) = (fp - f)/h
-    end do
+    call forward_gradient(self, 0, x, f, grad, err)
   end subroutine fd_gradient
 
   !> Hessian of F by central second differences of F (step eps^(1/4), error
@@ -412,21 +395,7 @@ contains
     real(dp), intent(in) :: x(:), g
     real(dp), intent(out) :: grad(:)
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: xp(:)
-    real(dp) :: h, gp
-    integer :: j
-    allocate(xp(size(x)))
-    grad = 0.0_dp
-    do j = 1, size(x)
-      xp = x
-      h = fd_step(self%fd_rel_step, x(j))
-      xp(j) = x(j) + h
-      h = xp(j) - x(j)
-      call self%general_constraint(i, xp, gp, err)
-      self%count%fd_constraint_evals = self%count%fd_constraint_evals + 1
-      if (err%failed()) return
-      grad(j) = (gp - g)/h
-    end do
+    call forward_gradient(self, i, x, g, grad, err)
   end subroutine fd_constraint_gradient
 
   !> Hessian of general constraint i by central second differences.
@@ -482,6 +451,34 @@ contains
       end do
     end do
   end subroutine central_hessian
+
+  !> Forward-difference gradient of F (which = 0) or of general constraint
+  !> `which`; v0 = the value at x.  Step h_j = fd_rel_step max(|x_j|, 1),
+  !> taken as the representable difference (x_j + h) - x_j.
+  subroutine forward_gradient(self, which, x, v0, grad, err)
+    class(opt_problem_t), intent(inout) :: self
+    integer, intent(in) :: which
+    real(dp), intent(in) :: x(:), v0
+    real(dp), intent(out) :: grad(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: xp(:)
+    real(dp) :: h, vp
+    integer :: j
+    allocate(xp(size(x)))
+    grad = 0.0_dp
+    do j = 1, size(x)
+      xp = x
+      h = fd_step(self%fd_rel_step, x(j))
+      xp(j) = x(j) + h
+      h = xp(j) - x(j)
+      call scalar_value(self, which, xp, vp, err)
+      if (err%failed()) then
+        if (which == 0) call err%add_context('forward-difference gradient, variable '//str(j))
+        return
+      end if
+      grad(j) = (vp - v0)/h
+    end do
+  end subroutine forward_gradient
 
   !> F (which = 0) or general constraint `which` at x, counted as a
   !> finite-difference evaluation; does nothing once err is set.
