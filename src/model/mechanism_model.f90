@@ -76,6 +76,10 @@ module mechanism_model
     integer :: kd = 0                             !< half-bandwidth of M
     real(dp), allocatable :: mass_band(:, :)      !< (kd+1, n) lower band storage
     real(dp), allocatable :: force(:)
+    ! work arrays of the right-hand side and the Newton solve (automatic arrays
+    ! of run-time size are heap-allocated by gfortran: 9 malloc/free per RHS)
+    real(dp), allocatable :: work_q(:), work_qd(:), work_qdd(:), work_r1(:), work_r2(:), work_dv(:)
+    real(dp), allocatable :: work_me(:, :), work_ke(:, :), work_fe(:), work_qe(:), work_qde(:)
     ! cost and diagnostics
     integer :: n_rhs = 0                          !< RHS evaluations done by this model
     integer :: n_mass_factorizations = 0
@@ -309,6 +313,11 @@ contains
     self%n = self%table%n_global
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    allocate(self%work_q(self%n), self%work_qd(self%n), self%work_qdd(self%n), self%work_r1(self%n), &
+             self%work_r2(self%n), self%work_dv(self%n))
+    associate(nd => self%table%element_dofs)
+      allocate(self%work_me(nd, nd), self%work_ke(nd, nd), self%work_fe(nd), self%work_qe(nd), self%work_qde(nd))
+    end associate
     self%mass_constant_in_q = all([(beam_mass_constant_in_q(self%el(e)), e = 1, size(self%el))])
     self%mass_factored = .false.
   end subroutine allocate_work
@@ -460,8 +469,6 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
-    real(dp) :: qe(self%table%element_dofs), qde(self%table%element_dofs)
     type(kear_eval_info_t) :: info
     integer :: e, i, gi, kd, nd, info_chol
     logical :: new_mass
@@ -475,6 +482,7 @@ contains
                .not. self%mass_constant_in_q .or. size(self%slide) > 0
     if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
+    associate(me => self%work_me, fe => self%work_fe, qe => self%work_qe, qde => self%work_qde)
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle        ! (add_sliding_links)
       call gather_element(self, e, q, qe)
@@ -493,10 +501,11 @@ contains
       end do
       if (new_mass) call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
+    end associate
     call add_point_masses(self, new_mass)
     if (size(self%slide) > 0) call add_sliding_links(self, t, q, qd)
     if (self%err%failed()) return
-    call add_point_loads(self, t, q, self%force)
+    if (size(self%loads) > 0) call add_point_loads(self, t, q, self%force)
     if (self%has_clearance) call add_clearance_forces(self, q, qd)
     if (new_mass) then
       self%mass_factored = .false.
@@ -599,13 +608,12 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:)
     real(dp), intent(out) :: ydot(:)
-    real(dp) :: q(self%n), qd(self%n), qdd(self%n)
     self%n_rhs = self%n_rhs + 1
-    q = y(1::2)      ! contiguous copies: the state is interleaved
-    qd = y(2::2)
-    call self%accelerations(t, q, qd, qdd)
-    ydot(1::2) = qd
-    ydot(2::2) = qdd
+    self%work_q = y(1::2)      ! contiguous copies: the state is interleaved
+    self%work_qd = y(2::2)
+    call self%accelerations(t, self%work_q, self%work_qd, self%work_qdd)
+    ydot(1::2) = self%work_qd
+    ydot(2::2) = self%work_qdd
   end subroutine model_rhs
 
   !> Approximate Jacobian for DLSODE's BDF options (MF = 21, 24):
@@ -662,15 +670,15 @@ contains
   !> Element e's mass matrix and elastic tangent stiffness (global element
   !> DOFs) at the global displacements q and the current rigid state.
   subroutine element_mass_stiffness(self, e, q, me, ke)
-    type(mechanism_model_t), intent(in) :: self
+    type(mechanism_model_t), intent(inout) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: me(:, :), ke(:, :)
-    real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
     type(kear_eval_info_t) :: info
-    zero = 0.0_dp
-    call gather_element(self, e, q, qe)
-    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info, tangent=ke)   ! = beam_tangent_stiffness
+    self%work_qde = 0.0_dp
+    call gather_element(self, e, q, self%work_qe)
+    call beam_element_eval(self%el(e), self%work_qe, self%work_qde, self%rb(e), me, self%work_fe, info, &
+                           tangent=ke)   ! = beam_tangent_stiffness
   end subroutine element_mass_stiffness
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
@@ -679,7 +687,6 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
-    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
     real(dp) :: cij, c(2)
     integer :: e, i, j, gi, gj, kd, g(2)
     kd = self%kd
@@ -687,7 +694,8 @@ contains
     stiff_band = 0.0_dp
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle
-      call element_mass_stiffness(self, e, q, me, ke)
+      call element_mass_stiffness(self, e, q, self%work_me, self%work_ke)
+      associate(me => self%work_me, ke => self%work_ke)
       do j = 1, self%table%element_dofs
         gj = self%table%map(j, e)
         if (gj == 0) cycle
@@ -699,6 +707,7 @@ contains
           if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
         end do
       end do
+      end associate
     end do
     call add_sliding_matrices(self, q, mass_lower, stiff_band, kd)
     do e = 1, size(self%point_mass)
@@ -793,10 +802,10 @@ contains
   subroutine model_newton_solve(self, x)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
-    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
     type(error_t) :: err
     integer :: kd
     kd = self%kd
+    associate(r1 => self%work_r1, r2 => self%work_r2, dv => self%work_dv)
     r1 = x(1::2)
     r2 = x(2::2)
     call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
@@ -808,6 +817,7 @@ contains
     if (err%failed()) call self%fail(0.0_dp, 'Newton matrix solve: '//err%text())
     x(2::2) = dv
     x(1::2) = r1 + self%newton_hl0*dv
+    end associate
   end subroutine model_newton_solve
 
   ! ------------------------------------------------------------------ clearance joints
