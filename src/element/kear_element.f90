@@ -227,7 +227,12 @@ contains
   !> Mass matrix and force vector of Lagrange's equations (K1, K2, K11, K17).
   !> Optionally the tangent stiffness K_t = d^2 SE / dq^2 (kear1987: the
   !> Jacobian of its internal force, not symmetric).
-  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
+  !> peak_wanted = .false.: the linear model's strain peak (info%max_abs_strain,
+  !> only informative: it cannot pass the material's peak) is not computed.
+  !> force_wanted = .false. (with tangent): the linear model's force is not
+  !> computed (left undefined; the Newton matrix needs M and K_t only).
+  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, &
+                                    force_wanted)
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), qd(8)
     type(rigid_state_t), intent(in) :: rb
@@ -235,12 +240,29 @@ contains
     type(kear_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(8, 8)
     logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
+    logical, intent(in), optional :: peak_wanted, force_wanted
     real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
-    real(dp) :: mp(8, 8), fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
+    real(dp) :: fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
     logical :: linear_strain, want_k, want_m
 
     c = cos(rb%phi)
     s = sin(rb%phi)
+    want_m = .true.
+    if (present(mass_wanted)) want_m = mass_wanted
+    if (present(force_wanted) .and. present(tangent)) then
+      if (.not. force_wanted .and. is_linear_strain(el) .and. .not. (el%effects%rotary_inertia .and. &
+          el%effects%curvature)) then
+        ! M and K_t of the linear strain model do not depend on q or q_dot
+        if (want_m) then
+          mass = el%material%rho*el%area*el%mass_trans
+          if (el%effects%rotary_inertia) mass = mass + el%material%rho*el%inertia*el%rot_linear
+          call rotate_to_global(c, s, mass)
+        end if
+        tangent = el%k_linear
+        call rotate_to_global(c, s, tangent)
+        return
+      end if
+    end if
     p = to_local(c, s, q)
     v = to_local(c, s, qd)                 ! T q_dot: the q_dot part of p_dot
     jp = jb_times(p)
@@ -254,9 +276,7 @@ contains
     ! local rigid acceleration of end 1 (A^T R1_dd)
     acc0(1) = c*rb%x1_dd + s*rb%y1_dd
     acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
-    want_m = .true.
-    if (present(mass_wanted)) want_m = mass_wanted
-    if (want_m) mp = rhoa*el%mass_trans
+    if (want_m) mass = rhoa*el%mass_trans               ! local until rotated at the end
     fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
                 + rb%phi_d**2*matmul(el%centrifugal, p))
     if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
@@ -267,12 +287,16 @@ contains
     if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
     linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
     if (linear_strain) then
-      fint = matmul(el%k_linear, p)
+      call linear_forces(el%k_linear, p, prel, el%beta > 0.0_dp, fint, fdamp)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       fp = fp - fint
-      if (el%beta > 0.0_dp) fp = fp - el%beta*matmul(el%k_linear, prel)
+      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
       if (want_k) kp = el%k_linear
-      call linear_strain_peak(el, p, info)
+      if (present(peak_wanted)) then
+        if (peak_wanted) call linear_strain_peak(el, p, info)
+      else
+        call linear_strain_peak(el, p, info)
+      end if
     else
       call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
       fp = fp - fint
@@ -285,18 +309,42 @@ contains
       if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
       if (.not. el%effects%curvature) then
         ! theta = phi + w_x: linear angle, constant integrals
-        if (want_m) mp = mp + rhoi*el%rot_linear
+        if (want_m) mass = mass + rhoi*el%rot_linear
         fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
       else
-        if (.not. want_m) mp = 0.0_dp          ! (a caller's choice: this M depends on q)
-        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
+        if (.not. want_m) mass = 0.0_dp        ! (a caller's choice: this M depends on q)
+        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mass, fp, info)
       end if
     end if
 
     force = to_global(c, s, fp)
-    if (want_k) tangent = to_global_matrix(c, s, kp)
-    if (want_m) mass = to_global_matrix(c, s, mp)
+    if (want_k) then
+      tangent = kp
+      call rotate_to_global(c, s, tangent)
+    end if
+    if (want_m) call rotate_to_global(c, s, mass)
   end subroutine kear_element_eval
+
+  !> fint = K p and (if damped) fdamp = K prel in one pass over K (the same
+  !> sums, in the same order, as matmul).
+  pure subroutine linear_forces(k, p, prel, damped, fint, fdamp)
+    real(dp), intent(in) :: k(8, 8), p(8), prel(8)
+    logical, intent(in) :: damped
+    real(dp), intent(out) :: fint(8), fdamp(8)
+    integer :: j
+    fint = 0.0_dp
+    fdamp = 0.0_dp
+    if (damped) then
+      do j = 1, 8
+        fint = fint + k(:, j)*p(j)
+        fdamp = fdamp + k(:, j)*prel(j)
+      end do
+    else
+      do j = 1, 8
+        fint = fint + k(:, j)*p(j)
+      end do
+    end if
+  end subroutine linear_forces
 
   !> Internal force dSE/dq (kear1987: the printed (K17) with (K20), (K24)).
   pure subroutine kear_internal_force(el, q, phi, f)
@@ -327,7 +375,8 @@ contains
     else
       call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
     end if
-    kt = to_global_matrix(cos(phi), sin(phi), kp)
+    kt = kp
+    call rotate_to_global(cos(phi), sin(phi), kt)
   end subroutine kear_tangent_stiffness
 
   !> Strain energy (K16) with the element's quadrature.
@@ -714,22 +763,27 @@ contains
     g(6) = s*f(5) + c*f(6)
   end function to_global
 
-  !> T^T A T (T rotates the translation pairs (1,2) and (5,6)).
-  pure function to_global_matrix(c, s, a) result(g)
-    real(dp), intent(in) :: c, s, a(8, 8)
-    real(dp) :: g(8, 8), t(8, 8)
+  !> a := T^T a T in place (T rotates the translation pairs (1,2) and (5,6)):
+  !> only the four rows and columns that T mixes are touched.
+  pure subroutine rotate_to_global(c, s, a)
+    real(dp), intent(in) :: c, s
+    real(dp), intent(inout) :: a(8, 8)
+    real(dp) :: r1(8), r2(8)
     integer :: k
-    t = a
     do k = 1, 5, 4
-      t(k, :) = c*a(k, :) - s*a(k + 1, :)
-      t(k + 1, :) = s*a(k, :) + c*a(k + 1, :)
+      r1 = c*a(k, :) - s*a(k + 1, :)
+      r2 = s*a(k, :) + c*a(k + 1, :)
+      a(k, :) = r1
+      a(k + 1, :) = r2
     end do
-    g = t
     do k = 1, 5, 4
-      g(:, k) = c*t(:, k) - s*t(:, k + 1)
-      g(:, k + 1) = s*t(:, k) + c*t(:, k + 1)
+      r1 = c*a(:, k) - s*a(:, k + 1)
+      r2 = s*a(:, k) + c*a(:, k + 1)
+      a(:, k) = r1
+      a(:, k + 1) = r2
     end do
-  end function to_global_matrix
+  end subroutine rotate_to_global
+
 
   !> J_b p: (u, w) -> (-w, u) at both nodes, zero on th, m  (T_phi = -J_b T).
   pure function jb_times(p) result(r)

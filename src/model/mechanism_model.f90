@@ -487,7 +487,8 @@ contains
       if (self%table%is_sleeve_element(e)) cycle        ! (add_sliding_links)
       call gather_element(self, e, q, qe)
       call gather_element(self, e, qd, qde)
-      call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, mass_wanted=new_mass)
+      call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, mass_wanted=new_mass, &
+                             peak_wanted=.false.)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)//' (x/l = '// &
@@ -678,7 +679,7 @@ contains
     self%work_qde = 0.0_dp
     call gather_element(self, e, q, self%work_qe)
     call beam_element_eval(self%el(e), self%work_qe, self%work_qde, self%rb(e), me, self%work_fe, info, &
-                           tangent=ke)   ! = beam_tangent_stiffness
+                           tangent=ke, force_wanted=.false.)   ! = beam_tangent_stiffness
   end subroutine element_mass_stiffness
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
