@@ -328,6 +328,11 @@ contains
     self%n = self%table%n_global
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    ! (add_clearance renumbers the unknowns and calls this again)
+    if (allocated(self%work_q)) deallocate(self%work_q, self%work_qd, self%work_qdd, self%work_r1, self%work_r2, &
+                                           self%work_dv, self%work_me, self%work_ke, self%work_fe, self%work_qe, &
+                                           self%work_qde)
+    if (allocated(self%frame_basis)) deallocate(self%frame_basis)
     allocate(self%work_q(self%n), self%work_qd(self%n), self%work_qdd(self%n), self%work_r1(self%n), &
              self%work_r2(self%n), self%work_dv(self%n))
     associate(nd => self%table%element_dofs)
