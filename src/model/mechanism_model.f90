@@ -70,8 +70,10 @@ module mechanism_model
   !> coef(2, k) basis(ib(k) + 1, e), e = elem(k), with the basis
   !> [cos phi, sin phi, cos 2phi, sin 2phi] of each element.
   type :: frame_table_t
-    real(dp), allocatable :: const(:, :)
-    integer, allocatable :: row(:), col(:), ib(:), elem(:)
+    integer :: rows = 0                  !< rows of the band storage
+    real(dp), allocatable :: const(:)    !< the constant band, column-major
+    integer, allocatable :: pos(:)       !< entry's position in the band array, column-major
+    integer, allocatable :: base(:)      !< its basis pair's position in basis(4, n_elements), minus 1
     real(dp), allocatable :: coef(:, :)
   end type frame_table_t
 
@@ -384,7 +386,8 @@ contains
   subroutine start_table(ft, rows, n)
     type(frame_table_t), intent(out) :: ft
     integer, intent(in) :: rows, n
-    allocate(ft%const(rows, n), ft%row(0), ft%col(0), ft%ib(0), ft%elem(0), ft%coef(2, 0))
+    ft%rows = rows
+    allocate(ft%const(rows*n), ft%pos(0), ft%base(0), ft%coef(2, 0))
     ft%const = 0.0_dp
   end subroutine start_table
 
@@ -407,16 +410,14 @@ contains
         r = merge(1 + gi - gj, self%kd + 1 + gi - gj, lower)
         cij = self%table%coef(i, e)*self%table%coef(j, e)
         f = cij*frame_form(l, i, j)                    ! [c^2, cs, s^2, c, s, 1]
-        ft%const(r, gj) = ft%const(r, gj) + f(6) + 0.5_dp*(f(1) + f(3))
+        ft%const(r + (gj - 1)*ft%rows) = ft%const(r + (gj - 1)*ft%rows) + f(6) + 0.5_dp*(f(1) + f(3))
         varying(:, 1) = [f(4), f(5)]                   ! cos phi, sin phi
         varying(:, 2) = [0.5_dp*(f(1) - f(3)), 0.5_dp*f(2)]   ! cos 2phi, sin 2phi
         do k = 1, 2
           if (.not. (abs(varying(1, k)) > 0.0_dp .or. abs(varying(2, k)) > 0.0_dp)) cycle
-          ft%row = [ft%row, r]
-          ft%col = [ft%col, gj]
-          ft%ib = [ft%ib, 2*k - 1]
-          ft%elem = [ft%elem, e]
-          ft%coef = reshape([ft%coef, varying(:, k)], [2, size(ft%row)])
+          ft%pos = [ft%pos, r + (gj - 1)*ft%rows]
+          ft%base = [ft%base, 4*(e - 1) + 2*(k - 1)]
+          ft%coef = reshape([ft%coef, varying(:, k)], [2, size(ft%pos)])
         end do
       end do
     end do
@@ -461,18 +462,18 @@ contains
     end if
   end function t_entry
 
-  !> band = the table's matrix at the element angles of basis.
+  !> band = the table's matrix at the element angles of basis (arrays of
+  !> the table's shape, addressed by position).
   pure subroutine frame_matrix(ft, basis, band)
     type(frame_table_t), intent(in) :: ft
-    real(dp), intent(in) :: basis(:, :)
-    real(dp), intent(out) :: band(:, :)
-    integer :: k, e, b
+    real(dp), intent(in) :: basis(*)
+    real(dp), intent(out) :: band(size(ft%const))
+    integer :: k, b, i
     band = ft%const
-    do k = 1, size(ft%row)
-      e = ft%elem(k)
-      b = ft%ib(k)
-      band(ft%row(k), ft%col(k)) = band(ft%row(k), ft%col(k)) + (ft%coef(1, k)*basis(b, e) + &
-                                                                 ft%coef(2, k)*basis(b + 1, e))
+    do k = 1, size(ft%pos)
+      i = ft%pos(k)
+      b = ft%base(k)
+      band(i) = band(i) + (ft%coef(1, k)*basis(b + 1) + ft%coef(2, k)*basis(b + 2))
     end do
   end subroutine frame_matrix
 
@@ -858,7 +859,7 @@ contains
   subroutine assemble_band(self, q, mass_lower, stiff_band)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
+    real(dp), intent(out), contiguous :: mass_lower(:, :), stiff_band(:, :)
     real(dp) :: cij, c(2)
     integer :: e, i, j, gi, gj, kd, g(2)
     kd = self%kd
