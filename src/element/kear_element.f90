@@ -242,7 +242,7 @@ contains
     logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
     logical, intent(in), optional :: peak_wanted, force_wanted
     real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
-    real(dp) :: fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
+    real(dp) :: fp(8), kp(8, 8), fint(8), fdamp(8), cp(8), acc0(2), rhoa, rhoi
     logical :: linear_strain, want_k, want_m
 
     c = cos(rb%phi)
@@ -277,17 +277,21 @@ contains
     acc0(1) = c*rb%x1_dd + s*rb%y1_dd
     acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
     if (want_m) mass = rhoa*el%mass_trans               ! local until rotated at the end
+    prel = v
+    if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
+    linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
+    if (linear_strain) then                                ! K p, K p_rel and C p in one pass
+      call linear_forces(el%k_linear, el%centrifugal, p, prel, el%beta > 0.0_dp, fint, fdamp, cp)
+    else
+      cp = matmul(el%centrifugal, p)
+    end if
     fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
-                + rb%phi_d**2*matmul(el%centrifugal, p))
+                + rb%phi_d**2*cp)
     if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
 
     ! strain energy, internal force, damping
     want_k = present(tangent)
-    prel = v
-    if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
-    linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
     if (linear_strain) then
-      call linear_forces(el%k_linear, p, prel, el%beta > 0.0_dp, fint, fdamp)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       fp = fp - fint
       if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
@@ -325,23 +329,26 @@ contains
     if (want_m) call rotate_to_global(c, s, mass)
   end subroutine kear_element_eval
 
-  !> fint = K p and (if damped) fdamp = K prel in one pass over K (the same
-  !> sums, in the same order, as matmul).
-  pure subroutine linear_forces(k, p, prel, damped, fint, fdamp)
-    real(dp), intent(in) :: k(8, 8), p(8), prel(8)
+  !> fint = K p, (if damped) fdamp = K prel and cp = C p in one pass (the
+  !> same sums, in the same order, as matmul).
+  pure subroutine linear_forces(k, cen, p, prel, damped, fint, fdamp, cp)
+    real(dp), intent(in) :: k(8, 8), cen(8, 8), p(8), prel(8)
     logical, intent(in) :: damped
-    real(dp), intent(out) :: fint(8), fdamp(8)
+    real(dp), intent(out) :: fint(8), fdamp(8), cp(8)
     integer :: j
     fint = 0.0_dp
     fdamp = 0.0_dp
+    cp = 0.0_dp
     if (damped) then
       do j = 1, 8
         fint = fint + k(:, j)*p(j)
         fdamp = fdamp + k(:, j)*prel(j)
+        cp = cp + cen(:, j)*p(j)
       end do
     else
       do j = 1, 8
         fint = fint + k(:, j)*p(j)
+        cp = cp + cen(:, j)*p(j)
       end do
     end if
   end subroutine linear_forces

@@ -652,8 +652,7 @@ contains
     associate(me => self%work_me, fe => self%work_fe, qe => self%work_qe, qde => self%work_qde)
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle        ! (add_sliding_links)
-      call gather_element(self, e, q, qe)
-      call gather_element(self, e, qd, qde)
+      call gather_element(self, e, q, qe, qd, qde)
       call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, &
                              mass_wanted=new_mass .and. .not. self%frame_tables, peak_wanted=.false.)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
@@ -696,13 +695,29 @@ contains
     call band_cholesky_substitute(self%mass_band, kd, qdd)
   end subroutine accelerations
 
-  !> qe = T_e q (correlation_table%gather without its function result).
-  pure subroutine gather_element(self, e, q, qe)
+  !> qe = T_e q (correlation_table%gather without its function result), and
+  !> optionally qde = T_e qd in the same pass.
+  pure subroutine gather_element(self, e, q, qe, qd, qde)
     type(mechanism_model_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: qe(:)
+    real(dp), intent(in), optional :: qd(:)
+    real(dp), intent(out), optional :: qde(:)
     integer :: i, g
+    if (present(qd) .and. present(qde)) then
+      do i = 1, size(qe)
+        g = self%table%map(i, e)
+        if (g > 0) then
+          qe(i) = self%table%coef(i, e)*q(g)
+          qde(i) = self%table%coef(i, e)*qd(g)
+        else
+          qe(i) = 0.0_dp
+          qde(i) = 0.0_dp
+        end if
+      end do
+      return
+    end if
     do i = 1, size(qe)
       g = self%table%map(i, e)
       if (g > 0) then
