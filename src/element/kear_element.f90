@@ -36,6 +36,7 @@ module kear_element
   public :: kear_element_init, kear_element_eval, kear_internal_force, kear_tangent_stiffness
   public :: kear_strain_energy, kear_kinetic_energy, kear_stress_recovery, kear_section_strains
   public :: kear_local_dofs, kear_local_displacement
+  public :: start_stress_report, station_x_over_l, add_station_fibres   ! (shared with consistent_element)
   public :: formulation_from_name, formulation_name, effects_all_on, effects_summary
 
   integer, parameter :: kear_ndof = 8
@@ -465,44 +466,72 @@ contains
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), phi
     type(stress_report_t) :: rep
-    real(dp) :: p(8), eo, eps_n, kap, eps, sig
+    real(dp) :: p(8), eo, eps_n, kap
     type(ramberg_osgood_t) :: law
-    integer :: i, k, fib
-    law = el%material
-    if (.not. el%effects%material) law%e2 = 0.0_dp
+    integer :: i
+    call start_stress_report(el%beam_properties_t, law, rep)
     p = to_local(cos(phi), sin(phi), q)
-    rep%eps_star = el%eps_star
-    rep%max_abs_stress = -1.0_dp
-    rep%max_abs_strain = -1.0_dp
     do i = 0, el%n_gauss + 1
-      if (i == 0) then
-        eo = 0.0_dp
-      else if (i == el%n_gauss + 1) then
-        eo = 1.0_dp
-      else
-        eo = el%xg(i)/el%length
-      end if
+      eo = station_x_over_l(el%beam_properties_t, el%xg, i)
       call kear_section_strains(el, p, eo, eps_n, kap)
-      do k = 1, 2
-        fib = 3 - 2*k                                      ! +1, then -1
-        eps = eps_n - real(fib, dp)*el%fibre*kap           ! (K14), y = +-c
-        sig = ro_stress(law, eps)
-        if (abs(sig) > rep%max_abs_stress) then
-          rep%max_abs_stress = abs(sig)
-          rep%stress = sig
-          rep%stress_x_over_l = eo
-          rep%stress_fibre = fib
-        end if
-        if (abs(eps) > rep%max_abs_strain) then
-          rep%max_abs_strain = abs(eps)
-          rep%strain = eps
-          rep%strain_x_over_l = eo
-          rep%strain_fibre = fib
-        end if
-      end do
+      call add_station_fibres(law, el%fibre, eps_n, kap, eo, rep)
     end do
     rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
   end function kear_stress_recovery
+
+  !> The law of the stress recovery (E2 = 0 with the material switch off) and
+  !> an empty report (both elements' recovery).
+  pure subroutine start_stress_report(props, law, rep)
+    type(beam_properties_t), intent(in) :: props
+    type(ramberg_osgood_t), intent(out) :: law
+    type(stress_report_t), intent(out) :: rep
+    law = props%material
+    if (.not. props%effects%material) law%e2 = 0.0_dp
+    rep%eps_star = props%eps_star
+    rep%max_abs_stress = -1.0_dp
+    rep%max_abs_strain = -1.0_dp
+  end subroutine start_stress_report
+
+  !> x/l of stress station i: 0 (end 1), the Gauss points xg(1..n_gauss), 1 (end 2).
+  pure real(dp) function station_x_over_l(props, xg, i) result(eo)
+    type(beam_properties_t), intent(in) :: props
+    real(dp), intent(in) :: xg(:)
+    integer, intent(in) :: i
+    if (i == 0) then
+      eo = 0.0_dp
+    else if (i == props%n_gauss + 1) then
+      eo = 1.0_dp
+    else
+      eo = xg(i)/props%length
+    end if
+  end function station_x_over_l
+
+  !> Both outer fibres (y = +c, then -c) of the station at x/l = eo into the
+  !> report's maxima of |sigma| and |eps| (K14).
+  pure subroutine add_station_fibres(law, fibre, eps_n, kap, eo, rep)
+    type(ramberg_osgood_t), intent(in) :: law
+    real(dp), intent(in) :: fibre, eps_n, kap, eo
+    type(stress_report_t), intent(inout) :: rep
+    real(dp) :: eps, sig
+    integer :: k, fib
+    do k = 1, 2
+      fib = 3 - 2*k                                      ! +1, then -1
+      eps = eps_n - real(fib, dp)*fibre*kap              ! (K14), y = +-c
+      sig = ro_stress(law, eps)
+      if (abs(sig) > rep%max_abs_stress) then
+        rep%max_abs_stress = abs(sig)
+        rep%stress = sig
+        rep%stress_x_over_l = eo
+        rep%stress_fibre = fib
+      end if
+      if (abs(eps) > rep%max_abs_strain) then
+        rep%max_abs_strain = abs(eps)
+        rep%strain = eps
+        rep%strain_x_over_l = eo
+        rep%strain_fibre = fib
+      end if
+    end do
+  end subroutine add_station_fibres
 
   !> Axial strain eps_n and curvature kappa at x = e l from LOCAL nodal
   !> values p (see kear_local_dofs), with the element's switches.
