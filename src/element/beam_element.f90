@@ -99,19 +99,22 @@ contains
     el%depth = depth
   end subroutine beam_element_init
 
-  !> mass_wanted = .false.: mass is not computed (left undefined).
-  pure subroutine beam_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
+  !> mass_wanted = .false.: mass is not computed (left undefined).  Kear's
+  !> element only: peak_wanted = .false. skips the linear model's strain peak,
+  !> force_wanted = .false. (with tangent) its force (kear_element_eval).
+  pure subroutine beam_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, &
+                                    force_wanted)
     type(beam_element_t), intent(in) :: el
     real(dp), intent(in) :: q(:), qd(:)
     type(rigid_state_t), intent(in) :: rb
     real(dp), intent(out) :: mass(:, :), force(:)
     type(kear_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(:, :)
-    logical, intent(in), optional :: mass_wanted
+    logical, intent(in), optional :: mass_wanted, peak_wanted, force_wanted
     if (el%kind == element_kind_consistent) then
       call consistent_element_eval(el%cons, q, qd, rb, mass, force, info, tangent, mass_wanted)
     else
-      call kear_element_eval(el%kear, q, qd, rb, mass, force, info, tangent, mass_wanted)
+      call kear_element_eval(el%kear, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, force_wanted)
     end if
   end subroutine beam_element_eval
 

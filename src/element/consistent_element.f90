@@ -26,9 +26,10 @@ module consistent_element
   use error_status, only: error_t
   use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite
-  use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
+  use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
   use beam_properties, only: beam_properties_t, init_beam_properties
-  use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t
+  use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
+                          start_stress_report, station_x_over_l, add_station_fibres
   implicit none
   private
   public :: consistent_ndof, consistent_element_t
@@ -322,41 +323,15 @@ contains
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: q(nd), phi
     type(stress_report_t) :: rep
-    real(dp) :: p(nd), eo, eps_n, kap, eps, sig
+    real(dp) :: p(nd), eo, eps_n, kap
     type(ramberg_osgood_t) :: law
-    integer :: i, k, fib
-    law = el%material
-    if (.not. el%effects%material) law%e2 = 0.0_dp
+    integer :: i
+    call start_stress_report(el%beam_properties_t, law, rep)
     p = to_local(cos(phi), sin(phi), q)
-    rep%eps_star = el%eps_star
-    rep%max_abs_stress = -1.0_dp
-    rep%max_abs_strain = -1.0_dp
     do i = 0, el%n_gauss + 1
-      if (i == 0) then
-        eo = 0.0_dp
-      else if (i == el%n_gauss + 1) then
-        eo = 1.0_dp
-      else
-        eo = el%xg(i)/el%length
-      end if
+      eo = station_x_over_l(el%beam_properties_t, el%xg, i)
       call consistent_section_strains(el, p, eo, eps_n, kap)
-      do k = 1, 2
-        fib = 3 - 2*k
-        eps = eps_n - real(fib, dp)*el%fibre*kap           ! y = +-c
-        sig = ro_stress(law, eps)
-        if (abs(sig) > rep%max_abs_stress) then
-          rep%max_abs_stress = abs(sig)
-          rep%stress = sig
-          rep%stress_x_over_l = eo
-          rep%stress_fibre = fib
-        end if
-        if (abs(eps) > rep%max_abs_strain) then
-          rep%max_abs_strain = abs(eps)
-          rep%strain = eps
-          rep%strain_x_over_l = eo
-          rep%strain_fibre = fib
-        end if
-      end do
+      call add_station_fibres(law, el%fibre, eps_n, kap, eo, rep)
     end do
     rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
   end function consistent_stress_recovery

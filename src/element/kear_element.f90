@@ -36,6 +36,7 @@ module kear_element
   public :: kear_element_init, kear_element_eval, kear_internal_force, kear_tangent_stiffness
   public :: kear_strain_energy, kear_kinetic_energy, kear_stress_recovery, kear_section_strains
   public :: kear_local_dofs, kear_local_displacement
+  public :: start_stress_report, station_x_over_l, add_station_fibres   ! (shared with consistent_element)
   public :: formulation_from_name, formulation_name, effects_all_on, effects_summary
 
   integer, parameter :: kear_ndof = 8
@@ -227,7 +228,12 @@ contains
   !> Mass matrix and force vector of Lagrange's equations (K1, K2, K11, K17).
   !> Optionally the tangent stiffness K_t = d^2 SE / dq^2 (kear1987: the
   !> Jacobian of its internal force, not symmetric).
-  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
+  !> peak_wanted = .false.: the linear model's strain peak (info%max_abs_strain,
+  !> only informative: it cannot pass the material's peak) is not computed.
+  !> force_wanted = .false. (with tangent): the linear model's force is not
+  !> computed (left undefined; the Newton matrix needs M and K_t only).
+  pure subroutine kear_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, &
+                                    force_wanted)
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), qd(8)
     type(rigid_state_t), intent(in) :: rb
@@ -235,12 +241,29 @@ contains
     type(kear_eval_info_t), intent(out) :: info
     real(dp), intent(out), optional :: tangent(8, 8)
     logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
+    logical, intent(in), optional :: peak_wanted, force_wanted
     real(dp) :: c, s, p(8), v(8), jp(8), jv(8), j2p(8), pdd_nm(8), prel(8)
-    real(dp) :: mp(8, 8), fp(8), kp(8, 8), fint(8), fdamp(8), acc0(2), rhoa, rhoi
+    real(dp) :: fp(8), kp(8, 8), fint(8), fdamp(8), cp(8), acc0(2), rhoa, rhoi
     logical :: linear_strain, want_k, want_m
 
     c = cos(rb%phi)
     s = sin(rb%phi)
+    want_m = .true.
+    if (present(mass_wanted)) want_m = mass_wanted
+    if (present(force_wanted) .and. present(tangent)) then
+      if (.not. force_wanted .and. is_linear_strain(el) .and. .not. (el%effects%rotary_inertia .and. &
+          el%effects%curvature)) then
+        ! M and K_t of the linear strain model do not depend on q or q_dot
+        if (want_m) then
+          mass = el%material%rho*el%area*el%mass_trans
+          if (el%effects%rotary_inertia) mass = mass + el%material%rho*el%inertia*el%rot_linear
+          call rotate_to_global(c, s, mass)
+        end if
+        tangent = el%k_linear
+        call rotate_to_global(c, s, tangent)
+        return
+      end if
+    end if
     p = to_local(c, s, q)
     v = to_local(c, s, qd)                 ! T q_dot: the q_dot part of p_dot
     jp = jb_times(p)
@@ -254,25 +277,31 @@ contains
     ! local rigid acceleration of end 1 (A^T R1_dd)
     acc0(1) = c*rb%x1_dd + s*rb%y1_dd
     acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
-    want_m = .true.
-    if (present(mass_wanted)) want_m = mass_wanted
-    if (want_m) mp = rhoa*el%mass_trans
+    if (want_m) mass = rhoa*el%mass_trans               ! local until rotated at the end
+    prel = v
+    if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
+    linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
+    if (linear_strain) then                                ! K p, K p_rel and C p in one pass
+      call linear_forces(el%k_linear, el%centrifugal, p, prel, el%beta > 0.0_dp, fint, fdamp, cp)
+    else
+      cp = matmul(el%centrifugal, p)
+    end if
     fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
-                + rb%phi_d**2*matmul(el%centrifugal, p))
+                + rb%phi_d**2*cp)
     if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
 
     ! strain energy, internal force, damping
     want_k = present(tangent)
-    prel = v
-    if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
-    linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
     if (linear_strain) then
-      fint = matmul(el%k_linear, p)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       fp = fp - fint
-      if (el%beta > 0.0_dp) fp = fp - el%beta*matmul(el%k_linear, prel)
+      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
       if (want_k) kp = el%k_linear
-      call linear_strain_peak(el, p, info)
+      if (present(peak_wanted)) then
+        if (peak_wanted) call linear_strain_peak(el, p, info)
+      else
+        call linear_strain_peak(el, p, info)
+      end if
     else
       call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
       fp = fp - fint
@@ -285,18 +314,45 @@ contains
       if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
       if (.not. el%effects%curvature) then
         ! theta = phi + w_x: linear angle, constant integrals
-        if (want_m) mp = mp + rhoi*el%rot_linear
+        if (want_m) mass = mass + rhoi*el%rot_linear
         fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
       else
-        if (.not. want_m) mp = 0.0_dp          ! (a caller's choice: this M depends on q)
-        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
+        if (.not. want_m) mass = 0.0_dp        ! (a caller's choice: this M depends on q)
+        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mass, fp, info)
       end if
     end if
 
     force = to_global(c, s, fp)
-    if (want_k) tangent = to_global_matrix(c, s, kp)
-    if (want_m) mass = to_global_matrix(c, s, mp)
+    if (want_k) then
+      tangent = kp
+      call rotate_to_global(c, s, tangent)
+    end if
+    if (want_m) call rotate_to_global(c, s, mass)
   end subroutine kear_element_eval
+
+  !> fint = K p, (if damped) fdamp = K prel and cp = C p in one pass (the
+  !> same sums, in the same order, as matmul).
+  pure subroutine linear_forces(k, cen, p, prel, damped, fint, fdamp, cp)
+    real(dp), intent(in) :: k(8, 8), cen(8, 8), p(8), prel(8)
+    logical, intent(in) :: damped
+    real(dp), intent(out) :: fint(8), fdamp(8), cp(8)
+    integer :: j
+    fint = 0.0_dp
+    fdamp = 0.0_dp
+    cp = 0.0_dp
+    if (damped) then
+      do j = 1, 8
+        fint = fint + k(:, j)*p(j)
+        fdamp = fdamp + k(:, j)*prel(j)
+        cp = cp + cen(:, j)*p(j)
+      end do
+    else
+      do j = 1, 8
+        fint = fint + k(:, j)*p(j)
+        cp = cp + cen(:, j)*p(j)
+      end do
+    end if
+  end subroutine linear_forces
 
   !> Internal force dSE/dq (kear1987: the printed (K17) with (K20), (K24)).
   pure subroutine kear_internal_force(el, q, phi, f)
@@ -327,7 +383,8 @@ contains
     else
       call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
     end if
-    kt = to_global_matrix(cos(phi), sin(phi), kp)
+    kt = kp
+    call rotate_to_global(cos(phi), sin(phi), kt)
   end subroutine kear_tangent_stiffness
 
   !> Strain energy (K16) with the element's quadrature.
@@ -409,44 +466,72 @@ contains
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), phi
     type(stress_report_t) :: rep
-    real(dp) :: p(8), eo, eps_n, kap, eps, sig
+    real(dp) :: p(8), eo, eps_n, kap
     type(ramberg_osgood_t) :: law
-    integer :: i, k, fib
-    law = el%material
-    if (.not. el%effects%material) law%e2 = 0.0_dp
+    integer :: i
+    call start_stress_report(el%beam_properties_t, law, rep)
     p = to_local(cos(phi), sin(phi), q)
-    rep%eps_star = el%eps_star
-    rep%max_abs_stress = -1.0_dp
-    rep%max_abs_strain = -1.0_dp
     do i = 0, el%n_gauss + 1
-      if (i == 0) then
-        eo = 0.0_dp
-      else if (i == el%n_gauss + 1) then
-        eo = 1.0_dp
-      else
-        eo = el%xg(i)/el%length
-      end if
+      eo = station_x_over_l(el%beam_properties_t, el%xg, i)
       call kear_section_strains(el, p, eo, eps_n, kap)
-      do k = 1, 2
-        fib = 3 - 2*k                                      ! +1, then -1
-        eps = eps_n - real(fib, dp)*el%fibre*kap           ! (K14), y = +-c
-        sig = ro_stress(law, eps)
-        if (abs(sig) > rep%max_abs_stress) then
-          rep%max_abs_stress = abs(sig)
-          rep%stress = sig
-          rep%stress_x_over_l = eo
-          rep%stress_fibre = fib
-        end if
-        if (abs(eps) > rep%max_abs_strain) then
-          rep%max_abs_strain = abs(eps)
-          rep%strain = eps
-          rep%strain_x_over_l = eo
-          rep%strain_fibre = fib
-        end if
-      end do
+      call add_station_fibres(law, el%fibre, eps_n, kap, eo, rep)
     end do
     rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
   end function kear_stress_recovery
+
+  !> The law of the stress recovery (E2 = 0 with the material switch off) and
+  !> an empty report (both elements' recovery).
+  pure subroutine start_stress_report(props, law, rep)
+    type(beam_properties_t), intent(in) :: props
+    type(ramberg_osgood_t), intent(out) :: law
+    type(stress_report_t), intent(out) :: rep
+    law = props%material
+    if (.not. props%effects%material) law%e2 = 0.0_dp
+    rep%eps_star = props%eps_star
+    rep%max_abs_stress = -1.0_dp
+    rep%max_abs_strain = -1.0_dp
+  end subroutine start_stress_report
+
+  !> x/l of stress station i: 0 (end 1), the Gauss points xg(1..n_gauss), 1 (end 2).
+  pure real(dp) function station_x_over_l(props, xg, i) result(eo)
+    type(beam_properties_t), intent(in) :: props
+    real(dp), intent(in) :: xg(:)
+    integer, intent(in) :: i
+    if (i == 0) then
+      eo = 0.0_dp
+    else if (i == props%n_gauss + 1) then
+      eo = 1.0_dp
+    else
+      eo = xg(i)/props%length
+    end if
+  end function station_x_over_l
+
+  !> Both outer fibres (y = +c, then -c) of the station at x/l = eo into the
+  !> report's maxima of |sigma| and |eps| (K14).
+  pure subroutine add_station_fibres(law, fibre, eps_n, kap, eo, rep)
+    type(ramberg_osgood_t), intent(in) :: law
+    real(dp), intent(in) :: fibre, eps_n, kap, eo
+    type(stress_report_t), intent(inout) :: rep
+    real(dp) :: eps, sig
+    integer :: k, fib
+    do k = 1, 2
+      fib = 3 - 2*k                                      ! +1, then -1
+      eps = eps_n - real(fib, dp)*fibre*kap              ! (K14), y = +-c
+      sig = ro_stress(law, eps)
+      if (abs(sig) > rep%max_abs_stress) then
+        rep%max_abs_stress = abs(sig)
+        rep%stress = sig
+        rep%stress_x_over_l = eo
+        rep%stress_fibre = fib
+      end if
+      if (abs(eps) > rep%max_abs_strain) then
+        rep%max_abs_strain = abs(eps)
+        rep%strain = eps
+        rep%strain_x_over_l = eo
+        rep%strain_fibre = fib
+      end if
+    end do
+  end subroutine add_station_fibres
 
   !> Axial strain eps_n and curvature kappa at x = e l from LOCAL nodal
   !> values p (see kear_local_dofs), with the element's switches.
@@ -714,22 +799,27 @@ contains
     g(6) = s*f(5) + c*f(6)
   end function to_global
 
-  !> T^T A T (T rotates the translation pairs (1,2) and (5,6)).
-  pure function to_global_matrix(c, s, a) result(g)
-    real(dp), intent(in) :: c, s, a(8, 8)
-    real(dp) :: g(8, 8), t(8, 8)
+  !> a := T^T a T in place (T rotates the translation pairs (1,2) and (5,6)):
+  !> only the four rows and columns that T mixes are touched.
+  pure subroutine rotate_to_global(c, s, a)
+    real(dp), intent(in) :: c, s
+    real(dp), intent(inout) :: a(8, 8)
+    real(dp) :: r1(8), r2(8)
     integer :: k
-    t = a
     do k = 1, 5, 4
-      t(k, :) = c*a(k, :) - s*a(k + 1, :)
-      t(k + 1, :) = s*a(k, :) + c*a(k + 1, :)
+      r1 = c*a(k, :) - s*a(k + 1, :)
+      r2 = s*a(k, :) + c*a(k + 1, :)
+      a(k, :) = r1
+      a(k + 1, :) = r2
     end do
-    g = t
     do k = 1, 5, 4
-      g(:, k) = c*t(:, k) - s*t(:, k + 1)
-      g(:, k + 1) = s*t(:, k) + c*t(:, k + 1)
+      r1 = c*a(:, k) - s*a(:, k + 1)
+      r2 = s*a(:, k) + c*a(:, k + 1)
+      a(:, k) = r1
+      a(:, k + 1) = r2
     end do
-  end function to_global_matrix
+  end subroutine rotate_to_global
+
 
   !> J_b p: (u, w) -> (-w, u) at both nodes, zero on th, m  (T_phi = -J_b T).
   pure function jb_times(p) result(r)

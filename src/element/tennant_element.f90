@@ -490,18 +490,13 @@ contains
     end do
   end function jb_right
 
-  !> a J_b^2 (= -a on the translation columns, 0 elsewhere).
+  !> a J_b^2 (= -a on the translation columns, 0 elsewhere): J_b applied twice
+  !> (only copies and sign changes: the same values).
   pure function jb2_right(el, a) result(r)
     type(tennant_element_t), intent(in) :: el
     real(dp), intent(in) :: a(:, :)
     real(dp) :: r(el%nd, el%nd)
-    integer :: k, i, n
-    n = el%nd
-    r = 0.0_dp
-    do k = 0, 1
-      i = 1 + k*el%nn
-      r(:, i:i + 1) = -a(1:n, i:i + 1)
-    end do
+    r = jb_right(el, jb_right(el, a))
   end function jb2_right
 
   !> J_b^T v.

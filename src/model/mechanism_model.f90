@@ -43,7 +43,7 @@ module mechanism_model
   use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
   use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, &
                           beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_point_load, &
-                          resolve_formulation, element_kind_consistent, beam_mass_constant_in_q
+                          resolve_formulation, element_kind_consistent, element_kind_kear, beam_mass_constant_in_q
   use external_loads, only: point_load_t, load_factor_at
   use material_law, only: ramberg_osgood_t
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
@@ -65,6 +65,18 @@ module mechanism_model
     type(ramberg_osgood_t) :: material
   end type element_spec_t
 
+  !> A band matrix assembled from element matrices constant in their frames:
+  !> band = const + sum over entries k of coef(1, k) basis(ib(k), e) +
+  !> coef(2, k) basis(ib(k) + 1, e), e = elem(k), with the basis
+  !> [cos phi, sin phi, cos 2phi, sin 2phi] of each element.
+  type :: frame_table_t
+    integer :: rows = 0                  !< rows of the band storage
+    real(dp), allocatable :: const(:)    !< the constant band, column-major
+    integer, allocatable :: pos(:)       !< entry's position in the band array, column-major
+    integer, allocatable :: base(:)      !< its basis pair's position in basis(4, n_elements), minus 1
+    real(dp), allocatable :: coef(:, :)
+  end type frame_table_t
+
   type, extends(ode_system_t) :: mechanism_model_t
     logical :: moving = .true.                    !< rigid motion from kinematics (else fixed states)
     type(kinematics_t) :: kin
@@ -76,6 +88,15 @@ module mechanism_model
     integer :: kd = 0                             !< half-bandwidth of M
     real(dp), allocatable :: mass_band(:, :)      !< (kd+1, n) lower band storage
     real(dp), allocatable :: force(:)
+    ! work arrays of the right-hand side and the Newton solve (automatic arrays
+    ! of run-time size are heap-allocated by gfortran: 9 malloc/free per RHS)
+    real(dp), allocatable :: work_q(:), work_qd(:), work_qdd(:), work_r1(:), work_r2(:), work_dv(:)
+    real(dp), allocatable :: work_me(:, :), work_ke(:, :), work_fe(:), work_qe(:), work_qde(:)
+    ! element M and K_t constant in the element frame (Kear's element, linear strains): their global
+    ! band entries are tabulated once as functions of the elements' angles (build_frame_tables)
+    logical :: frame_tables = .false.
+    type(frame_table_t) :: frame_mass, frame_stiff
+    real(dp), allocatable :: frame_basis(:, :)   !< (4, element): cos phi, sin phi, cos 2phi, sin 2phi
     ! cost and diagnostics
     integer :: n_rhs = 0                          !< RHS evaluations done by this model
     integer :: n_mass_factorizations = 0
@@ -309,9 +330,164 @@ contains
     self%n = self%table%n_global
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    ! (add_clearance renumbers the unknowns and calls this again)
+    if (allocated(self%work_q)) deallocate(self%work_q, self%work_qd, self%work_qdd, self%work_r1, self%work_r2, &
+                                           self%work_dv, self%work_me, self%work_ke, self%work_fe, self%work_qe, &
+                                           self%work_qde)
+    if (allocated(self%frame_basis)) deallocate(self%frame_basis)
+    allocate(self%work_q(self%n), self%work_qd(self%n), self%work_qdd(self%n), self%work_r1(self%n), &
+             self%work_r2(self%n), self%work_dv(self%n))
+    associate(nd => self%table%element_dofs)
+      allocate(self%work_me(nd, nd), self%work_ke(nd, nd), self%work_fe(nd), self%work_qe(nd), self%work_qde(nd))
+    end associate
     self%mass_constant_in_q = all([(beam_mass_constant_in_q(self%el(e)), e = 1, size(self%el))])
     self%mass_factored = .false.
+    call build_frame_tables(self)
   end subroutine allocate_work
+
+  !> When every element is Kear's with linear strains and a mass independent
+  !> of q, its M_e and K_t are constant in the element frame and the global
+  !> ones are T(phi)^T L T(phi): an entry between two node translations is
+  !> a c^2 + b cs + g s^2 = (a + g)/2 + (a - g)/2 cos 2phi + b/2 sin 2phi, one
+  !> between a translation and a slope or curvature DOF d c + e s, the others
+  !> constant (c, s = cos phi, sin phi).  Tabulate the constant band once and
+  !> the two coefficients of each varying entry (correlation coefficients
+  !> folded in): M and K_t at a new time then cost two multiply-adds per
+  !> varying entry instead of an element evaluation, two 8 x 8 rotations and a
+  !> scatter per element (doc/transient.md, "Cost of a right-hand side").
+  subroutine build_frame_tables(self)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), dimension(8, 8) :: ml, kl
+    real(dp) :: fe(8), zero(8)
+    type(kear_eval_info_t) :: info
+    integer :: e
+    self%frame_tables = .false.
+    if (self%table%element_dofs /= 8 .or. .not. self%mass_constant_in_q) return
+    do e = 1, size(self%el)
+      if (self%el(e)%kind /= element_kind_kear) return
+      associate(fx => self%el(e)%kear%effects)
+        if (fx%stretching .or. fx%curvature .or. fx%material) return
+      end associate
+    end do
+    call start_table(self%frame_mass, self%kd + 1, self%n)
+    call start_table(self%frame_stiff, 2*self%kd + 1, self%n)
+    zero = 0.0_dp
+    do e = 1, size(self%el)
+      if (self%table%is_sleeve_element(e)) cycle
+      ! phi = 0: the element-frame matrices (T = I)
+      call beam_element_eval(self%el(e), zero, zero, rigid_state_t(), ml, fe, info, tangent=kl, force_wanted=.false.)
+      call tabulate_element(self, e, ml, .true., self%frame_mass)
+      call tabulate_element(self, e, kl, .false., self%frame_stiff)
+    end do
+    allocate(self%frame_basis(4, size(self%el)))
+    self%frame_tables = .true.
+  end subroutine build_frame_tables
+
+  subroutine start_table(ft, rows, n)
+    type(frame_table_t), intent(out) :: ft
+    integer, intent(in) :: rows, n
+    ft%rows = rows
+    allocate(ft%const(rows*n), ft%pos(0), ft%base(0), ft%coef(2, 0))
+    ft%const = 0.0_dp
+  end subroutine start_table
+
+  !> Element e's entries of T^T l T into table ft: lower band storage (mass)
+  !> or general band storage (stiffness).
+  subroutine tabulate_element(self, e, l, lower, ft)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: l(8, 8)
+    logical, intent(in) :: lower
+    type(frame_table_t), intent(inout) :: ft
+    real(dp) :: f(6), cij, varying(2, 2)
+    integer :: i, j, gi, gj, r, k
+    do j = 1, 8
+      gj = self%table%map(j, e)
+      if (gj == 0) cycle
+      do i = 1, 8
+        gi = self%table%map(i, e)
+        if (gi == 0 .or. (lower .and. gi < gj)) cycle
+        r = merge(1 + gi - gj, self%kd + 1 + gi - gj, lower)
+        cij = self%table%coef(i, e)*self%table%coef(j, e)
+        f = cij*frame_form(l, i, j)                    ! [c^2, cs, s^2, c, s, 1]
+        ft%const(r + (gj - 1)*ft%rows) = ft%const(r + (gj - 1)*ft%rows) + f(6) + 0.5_dp*(f(1) + f(3))
+        varying(:, 1) = [f(4), f(5)]                   ! cos phi, sin phi
+        varying(:, 2) = [0.5_dp*(f(1) - f(3)), 0.5_dp*f(2)]   ! cos 2phi, sin 2phi
+        do k = 1, 2
+          if (.not. (abs(varying(1, k)) > 0.0_dp .or. abs(varying(2, k)) > 0.0_dp)) cycle
+          ft%pos = [ft%pos, r + (gj - 1)*ft%rows]
+          ft%base = [ft%base, 4*(e - 1) + 2*(k - 1)]
+          ft%coef = reshape([ft%coef, varying(:, k)], [2, size(ft%pos)])
+        end do
+      end do
+    end do
+  end subroutine tabulate_element
+
+  !> Entry (i, j) of T^T L T as coefficients of [c^2, cs, s^2, c, s, 1], with
+  !> T of kear_element (p = T q: p1 = c q1 + s q2, p2 = -s q1 + c q2, the
+  !> same at DOFs 5, 6; the identity elsewhere).
+  pure function frame_form(l, i, j) result(f)
+    real(dp), intent(in) :: l(8, 8)
+    integer, intent(in) :: i, j
+    real(dp) :: f(6)
+    integer :: k, m, a(3), b(3)
+    f = 0.0_dp
+    do m = 1, 8
+      b = t_entry(m, j)
+      if (all(b == 0)) cycle
+      do k = 1, 8
+        a = t_entry(k, i)
+        if (all(a == 0)) cycle
+        f = f + l(k, m)*real([a(1)*b(1), a(1)*b(2) + a(2)*b(1), a(2)*b(2), a(1)*b(3) + a(3)*b(1), &
+                              a(2)*b(3) + a(3)*b(2), a(3)*b(3)], dp)
+      end do
+    end do
+  end function frame_form
+
+  !> T(k, i) as coefficients of (c, s, 1).
+  pure function t_entry(k, i) result(w)
+    integer, intent(in) :: k, i
+    integer :: w(3)
+    w = 0
+    if (k == 1 .or. k == 2 .or. k == 5 .or. k == 6) then
+      if (i == k) then
+        w(1) = 1                                     ! c on the diagonal of each pair
+      else if ((k == 1 .and. i == 2) .or. (k == 5 .and. i == 6)) then
+        w(2) = 1                                     ! p1 = c q1 + s q2
+      else if ((k == 2 .and. i == 1) .or. (k == 6 .and. i == 5)) then
+        w(2) = -1                                    ! p2 = -s q1 + c q2
+      end if
+    else if (i == k) then
+      w(3) = 1
+    end if
+  end function t_entry
+
+  !> band = the table's matrix at the element angles of basis (arrays of
+  !> the table's shape, addressed by position).
+  pure subroutine frame_matrix(ft, basis, band)
+    type(frame_table_t), intent(in) :: ft
+    real(dp), intent(in) :: basis(*)
+    real(dp), intent(out) :: band(size(ft%const))
+    integer :: k, b, i
+    band = ft%const
+    do k = 1, size(ft%pos)
+      i = ft%pos(k)
+      b = ft%base(k)
+      band(i) = band(i) + (ft%coef(1, k)*basis(b + 1) + ft%coef(2, k)*basis(b + 2))
+    end do
+  end subroutine frame_matrix
+
+  !> [cos phi, sin phi, cos 2phi, sin 2phi] of every element at the current rigid states.
+  subroutine set_frame_basis(self)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp) :: c, s
+    integer :: e
+    do e = 1, size(self%el)
+      c = cos(self%rb(e)%phi)
+      s = sin(self%rb(e)%phi)
+      self%frame_basis(:, e) = [c, s, (c - s)*(c + s), 2.0_dp*c*s]
+    end do
+  end subroutine set_frame_basis
 
   integer function state_size(self)
     class(mechanism_model_t), intent(in) :: self
@@ -460,8 +636,6 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs)
-    real(dp) :: qe(self%table%element_dofs), qde(self%table%element_dofs)
     type(kear_eval_info_t) :: info
     integer :: e, i, gi, kd, nd, info_chol
     logical :: new_mass
@@ -475,11 +649,12 @@ contains
                .not. self%mass_constant_in_q .or. size(self%slide) > 0
     if (new_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
+    associate(me => self%work_me, fe => self%work_fe, qe => self%work_qe, qde => self%work_qde)
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle        ! (add_sliding_links)
-      call gather_element(self, e, q, qe)
-      call gather_element(self, e, qd, qde)
-      call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, mass_wanted=new_mass)
+      call gather_element(self, e, q, qe, qd, qde)
+      call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, &
+                             mass_wanted=new_mass .and. .not. self%frame_tables, peak_wanted=.false.)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)//' (x/l = '// &
@@ -491,12 +666,18 @@ contains
         gi = self%table%map(i, e)
         if (gi > 0) self%force(gi) = self%force(gi) + self%table%coef(i, e)*fe(i)
       end do
-      if (new_mass) call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
+      if (new_mass .and. .not. self%frame_tables) &
+        call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
+    end associate
+    if (new_mass .and. self%frame_tables) then       ! (nothing was added to mass_band yet)
+      call set_frame_basis(self)
+      call frame_matrix(self%frame_mass, self%frame_basis, self%mass_band)
+    end if
     call add_point_masses(self, new_mass)
     if (size(self%slide) > 0) call add_sliding_links(self, t, q, qd)
     if (self%err%failed()) return
-    call add_point_loads(self, t, q, self%force)
+    if (size(self%loads) > 0) call add_point_loads(self, t, q, self%force)
     if (self%has_clearance) call add_clearance_forces(self, q, qd)
     if (new_mass) then
       self%mass_factored = .false.
@@ -514,13 +695,29 @@ contains
     call band_cholesky_substitute(self%mass_band, kd, qdd)
   end subroutine accelerations
 
-  !> qe = T_e q (correlation_table%gather without its function result).
-  pure subroutine gather_element(self, e, q, qe)
+  !> qe = T_e q (correlation_table%gather without its function result), and
+  !> optionally qde = T_e qd in the same pass.
+  pure subroutine gather_element(self, e, q, qe, qd, qde)
     type(mechanism_model_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: qe(:)
+    real(dp), intent(in), optional :: qd(:)
+    real(dp), intent(out), optional :: qde(:)
     integer :: i, g
+    if (present(qd) .and. present(qde)) then
+      do i = 1, size(qe)
+        g = self%table%map(i, e)
+        if (g > 0) then
+          qe(i) = self%table%coef(i, e)*q(g)
+          qde(i) = self%table%coef(i, e)*qd(g)
+        else
+          qe(i) = 0.0_dp
+          qde(i) = 0.0_dp
+        end if
+      end do
+      return
+    end if
     do i = 1, size(qe)
       g = self%table%map(i, e)
       if (g > 0) then
@@ -599,13 +796,12 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:)
     real(dp), intent(out) :: ydot(:)
-    real(dp) :: q(self%n), qd(self%n), qdd(self%n)
     self%n_rhs = self%n_rhs + 1
-    q = y(1::2)      ! contiguous copies: the state is interleaved
-    qd = y(2::2)
-    call self%accelerations(t, q, qd, qdd)
-    ydot(1::2) = qd
-    ydot(2::2) = qdd
+    self%work_q = y(1::2)      ! contiguous copies: the state is interleaved
+    self%work_qd = y(2::2)
+    call self%accelerations(t, self%work_q, self%work_qd, self%work_qdd)
+    ydot(1::2) = self%work_qd
+    ydot(2::2) = self%work_qdd
   end subroutine model_rhs
 
   !> Approximate Jacobian for DLSODE's BDF options (MF = 21, 24):
@@ -662,15 +858,15 @@ contains
   !> Element e's mass matrix and elastic tangent stiffness (global element
   !> DOFs) at the global displacements q and the current rigid state.
   subroutine element_mass_stiffness(self, e, q, me, ke)
-    type(mechanism_model_t), intent(in) :: self
+    type(mechanism_model_t), intent(inout) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: me(:, :), ke(:, :)
-    real(dp), dimension(self%table%element_dofs) :: fe, qe, zero
     type(kear_eval_info_t) :: info
-    zero = 0.0_dp
-    call gather_element(self, e, q, qe)
-    call beam_element_eval(self%el(e), qe, zero, self%rb(e), me, fe, info, tangent=ke)   ! = beam_tangent_stiffness
+    self%work_qde = 0.0_dp
+    call gather_element(self, e, q, self%work_qe)
+    call beam_element_eval(self%el(e), self%work_qe, self%work_qde, self%rb(e), me, self%work_fe, info, &
+                           tangent=ke, force_wanted=.false.)   ! = beam_tangent_stiffness
   end subroutine element_mass_stiffness
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
@@ -678,16 +874,21 @@ contains
   subroutine assemble_band(self, q, mass_lower, stiff_band)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
-    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
+    real(dp), intent(out), contiguous :: mass_lower(:, :), stiff_band(:, :)
     real(dp) :: cij, c(2)
     integer :: e, i, j, gi, gj, kd, g(2)
     kd = self%kd
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
+    if (self%frame_tables) then
+      call set_frame_basis(self)
+      call frame_matrix(self%frame_mass, self%frame_basis, mass_lower)
+      call frame_matrix(self%frame_stiff, self%frame_basis, stiff_band)
+    end if
     do e = 1, size(self%el)
-      if (self%table%is_sleeve_element(e)) cycle
-      call element_mass_stiffness(self, e, q, me, ke)
+      if (self%table%is_sleeve_element(e) .or. self%frame_tables) cycle
+      call element_mass_stiffness(self, e, q, self%work_me, self%work_ke)
+      associate(me => self%work_me, ke => self%work_ke)
       do j = 1, self%table%element_dofs
         gj = self%table%map(j, e)
         if (gj == 0) cycle
@@ -699,6 +900,7 @@ contains
           if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
         end do
       end do
+      end associate
     end do
     call add_sliding_matrices(self, q, mass_lower, stiff_band, kd)
     do e = 1, size(self%point_mass)
@@ -793,10 +995,10 @@ contains
   subroutine model_newton_solve(self, x)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
-    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
     type(error_t) :: err
     integer :: kd
     kd = self%kd
+    associate(r1 => self%work_r1, r2 => self%work_r2, dv => self%work_dv)
     r1 = x(1::2)
     r2 = x(2::2)
     call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
@@ -808,6 +1010,7 @@ contains
     if (err%failed()) call self%fail(0.0_dp, 'Newton matrix solve: '//err%text())
     x(2::2) = dv
     x(1::2) = r1 + self%newton_hl0*dv
+    end associate
   end subroutine model_newton_solve
 
   ! ------------------------------------------------------------------ clearance joints

@@ -134,9 +134,10 @@ contains
   !> y = M a - c K b for M symmetric in lower band storage m(1+i-j, j) and K
   !> in general band storage k(kd+1+i-j, j), both of half-bandwidth kd: O(N kd).
   pure subroutine band_combination(m, k, kd, a, c, b, y)
-    real(dp), intent(in) :: m(:, :), k(:, :), a(:), c, b(:)
+    real(dp), intent(in), contiguous :: m(:, :), k(:, :), a(:), b(:)
+    real(dp), intent(in) :: c
     integer, intent(in) :: kd
-    real(dp), intent(out) :: y(:)
+    real(dp), intent(out), contiguous :: y(:)
     integer :: i, j, n
     real(dp) :: aj, cbj, s
     n = size(a)
