@@ -531,14 +531,51 @@ contains
     call self%newton%factor(hl0, self%el(1)%beta, ok)
   end subroutine model_newton_factor
 
-  !> x := P^-1 x with the P of the last model_newton_factor.
+  !> x := P^-1 x with the P of the last model_newton_factor.  P (dq, dv) =
+  !> (r1, r2) is S dv = M r2 - hl0 K_t r1, dq = r1 + hl0 dv (second_order_newton);
+  !> with S = M + c K_t, c = hl0 (beta + hl0), hl0 K_t = (S - M)/(beta + hl0), so
+  !>     dv = S^-1 M (r2 + g r1) - g r1,   g = 1/(beta + hl0):
+  !> one symmetric band product with M instead of M and the general band K_t
+  !> (the same P; r1 is of order hl0 times a rate, so g r1 is a rate and
+  !> nothing cancels).  Banded LU (K_t not symmetric): second_order_newton's solve.
   subroutine model_newton_solve(self, x)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
     type(error_t) :: err
-    call self%newton%solve(x, err)
-    if (err%failed()) call self%fail(0.0_dp, err%text())
+    real(dp) :: r1(self%n), dv(self%n), g
+    if (.not. self%newton%cholesky) then
+      call self%newton%solve(x, err)
+      if (err%failed()) call self%fail(0.0_dp, err%text())
+      return
+    end if
+    g = 1.0_dp/(self%el(1)%beta + self%newton%hl0)
+    r1 = x(1::2)
+    dv = x(2::2) + g*r1
+    call symmetric_band_product(self%newton%mass, self%n, self%kd, dv)
+    call band_cholesky_substitute(self%newton%chol, self%kd, dv)
+    dv = dv - g*r1
+    x(2::2) = dv
+    x(1::2) = r1 + self%newton%hl0*dv
   end subroutine model_newton_solve
+
+  !> a := M a, M symmetric in lower band storage m(1+i-j, j): O(N kd).
+  pure subroutine symmetric_band_product(m, n, kd, a)
+    integer, intent(in) :: n, kd
+    real(dp), intent(in) :: m(kd + 1, n)
+    real(dp), intent(inout) :: a(n)
+    real(dp) :: y(n), s
+    integer :: i, j
+    y = 0.0_dp
+    do j = 1, n
+      s = m(1, j)*a(j)
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*a(j)
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
+    end do
+    a = y
+  end subroutine symmetric_band_product
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
   !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at q (current rigid states): O(N).
