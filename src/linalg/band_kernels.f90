@@ -18,7 +18,7 @@ contains
   !> A = L L^T in place (L in lower band storage).  info = 0, or the order
   !> of the first leading minor that is not positive.
   pure subroutine band_cholesky_inplace(ab, kd, info)
-    real(dp), intent(inout) :: ab(:, :)
+    real(dp), intent(inout), contiguous :: ab(:, :)
     integer, intent(in) :: kd
     integer, intent(out) :: info
     integer :: n, j, kn, i, jj
@@ -49,9 +49,9 @@ contains
 
   !> b := A^-1 b with A = L L^T from band_cholesky_inplace.
   pure subroutine band_cholesky_substitute(ab, kd, b)
-    real(dp), intent(in) :: ab(:, :)
+    real(dp), intent(in), contiguous :: ab(:, :)
     integer, intent(in) :: kd
-    real(dp), intent(inout) :: b(:)
+    real(dp), intent(inout), contiguous :: b(:)
     integer :: n, j, i
     real(dp) :: temp
     n = size(ab, 2)
