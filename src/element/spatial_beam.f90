@@ -44,7 +44,8 @@ module spatial_beam
   private
   public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
   public :: spatial_formulation_kear, spatial_formulation_consistent
-  public :: spatial_beam_init, spatial_beam_eval, spatial_internal_force, spatial_tangent_stiffness
+  public :: spatial_beam_init, spatial_beam_eval, spatial_beam_matrices, spatial_tangent_is_constant
+  public :: spatial_internal_force, spatial_tangent_stiffness
   public :: spatial_strain_energy, spatial_kinetic_energy, spatial_to_local, spatial_to_global
   public :: spatial_section_state, spatial_stress_recovery, spatial_local_displacement
 
@@ -370,6 +371,32 @@ contains
     force = spatial_to_global(rb%rot, fp, el%local_rotation)
     if (present(tangent)) tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
   end subroutine spatial_beam_eval
+
+  !> Mass and elastic tangent of the element in global DOFs q at the rigid
+  !> state rb (those of spatial_beam_eval, without its force: the Newton matrix).
+  pure subroutine spatial_beam_matrices(el, q, rb, mass, tangent)
+    type(spatial_beam_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd)
+    type(spatial_rigid_t), intent(in) :: rb
+    real(dp), intent(out) :: mass(nd, nd), tangent(nd, nd)
+    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
+    type(spatial_eval_info_t) :: info
+    mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    if (linear_strain(el)) then
+      tangent = matrix_to_global(rb%rot, el%k_lin, el%local_rotation)
+    else
+      p = spatial_to_local(rb%rot, q, el%local_rotation)
+      call strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
+      tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
+    end if
+  end subroutine spatial_beam_matrices
+
+  !> The element's tangent is its linear stiffness (no nonlinear strain effect):
+  !> independent of q.
+  pure logical function spatial_tangent_is_constant(el)
+    type(spatial_beam_t), intent(in) :: el
+    spatial_tangent_is_constant = linear_strain(el)
+  end function spatial_tangent_is_constant
 
   !> Loads of the translational inertia, LOCAL DOFs: -sum_i w_i S_i^T acc_i
   !> over the inertia stations (and the concentrated masses), with the

@@ -34,6 +34,7 @@ module spatial_model
   use spatial_section, only: spatial_section_t
   use spatial_beam, only: spatial_beam_t, spatial_rigid_t, spatial_eval_info_t, spatial_stress_t, &
                           spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &
+                          spatial_beam_matrices, spatial_tangent_is_constant, &
                           spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local, &
                           spatial_formulation_consistent
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
@@ -66,6 +67,7 @@ module spatial_model
     type(spatial_rigid_t), allocatable :: rb(:)
     integer, allocatable :: link_of(:), index_in_link(:)
     logical, allocatable :: mass_as_previous(:)   !< element e's global mass equals e-1's (same link, M_p, flags)
+    logical, allocatable :: matrices_as_previous(:)   !< and its tangent too (linear, same K)
     type(spatial_table_t) :: table
     integer :: n = 0, kd = 0
     integer :: b_dofs(3) = 0, c_dofs(3) = 0     !< global unknowns of the joint translations
@@ -136,10 +138,12 @@ contains
     self%links(link_coupler)%length = kin%coupler_length
     self%links(link_rocker)%length = kin%rocker_length
     ne = sum(self%links%n_elements)
-    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous)
+    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous, &
+                                       self%matrices_as_previous)
     if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
     call self%err%clear()
-    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne))
+    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne), &
+             self%matrices_as_previous(ne))
     e = 0
     do k = 1, 3
       self%links(k)%first_element = e + 1
@@ -168,6 +172,11 @@ contains
       self%mass_as_previous(e) = self%link_of(e) == self%link_of(e - 1) .and. &
         all(self%el(e)%local_rotation .eqv. self%el(e - 1)%local_rotation) .and. &
         maxval(abs(self%el(e)%mass0 - self%el(e - 1)%mass0)) <= 0.0_dp
+    end do
+    self%matrices_as_previous = .false.
+    do e = 2, ne
+      self%matrices_as_previous(e) = self%mass_as_previous(e) .and. spatial_tangent_is_constant(self%el(e)) .and. &
+        spatial_tangent_is_constant(self%el(e - 1)) .and. maxval(abs(self%el(e)%k_lin - self%el(e - 1)%k_lin)) <= 0.0_dp
     end do
     self%t_states = -huge(1.0_dp)
     self%t_mass = -huge(1.0_dp)
@@ -583,22 +592,30 @@ contains
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
-    real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs), cij
-    type(spatial_eval_info_t) :: info
-    integer :: e, i, j, gi, gj, kd
+    real(dp) :: me(sdofs, sdofs), ke(sdofs, sdofs), cij, c(sdofs)
+    integer :: e, i, j, gi, gj, kd, na, ii, jj, act(sdofs), g(sdofs)
     kd = self%kd
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
     do e = 1, size(self%el)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), [(0.0_dp, i=1, sdofs)], self%rb(e), me, fe, info, &
-                             tangent=ke)
-      do j = 1, sdofs
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, sdofs
-          gi = self%table%map(i, e)
-          if (gi == 0) cycle
-          cij = self%table%coef(i, e)*self%table%coef(j, e)
+      ! consecutive linear elements of a link with equal M_p and K share the global matrices
+      if (.not. self%matrices_as_previous(e)) &
+        call spatial_beam_matrices(self%el(e), self%table%gather(e, q), self%rb(e), me, ke)
+      na = 0                                     ! the element's DOFs that reach an unknown
+      do i = 1, sdofs
+        if (self%table%map(i, e) == 0) cycle
+        na = na + 1
+        act(na) = i
+        g(na) = self%table%map(i, e)
+        c(na) = self%table%coef(i, e)
+      end do
+      do jj = 1, na
+        j = act(jj)
+        gj = g(jj)
+        do ii = 1, na
+          i = act(ii)
+          gi = g(ii)
+          cij = c(ii)*c(jj)
           stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
           if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
         end do
