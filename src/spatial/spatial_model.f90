@@ -442,14 +442,14 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     logical, intent(in) :: new_mass
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(sdofs, sdofs), fe(sdofs)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs), qe(sdofs), qde(sdofs)
     type(spatial_eval_info_t) :: info
     integer :: e
     logical :: ok
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
-                             mass_wanted=.false.)
+      call self%table%gather_pair(e, q, qd, qe, qde)
+      call spatial_beam_eval(self%el(e), qe, qde, self%rb(e), me, fe, info, mass_wanted=.false.)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
