@@ -345,7 +345,7 @@ contains
     wp = skew_apply(wl, p, el%local_rotation)
     pd = v - wp
 
-    fp = translational_inertia(el, p, v, wp, wl, al, a0)
+    fp = translational_inertia(el, p, pd, wp, wl, al, a0)
     ! section rotary and torsional inertia: -int G_phi^T J alpha (columns on t_set, w's, v's sets)
     fp(t_set) = fp(t_set) - el%rot_load(t_set, 1)*al(1)
     fp(w_set) = fp(w_set) - el%rot_load(w_set, 2)*al(2)
@@ -403,31 +403,36 @@ contains
   !> station acceleration (r = S_i p, x_i e_x the station on the reference line)
   !>   acc = a0 + alpha x x_i e_x + omega x (omega x (x_i e_x + r)) - 2 omega x S_i W p
   !>         [+ alpha x r + 2 omega x S_i v: coupling]
-  !> by the precomputed sums: acc is affine in x_i and linear in S_i p, S_i W p,
-  !> S_i v through 3 x 3 matrices L, and sum_i w_i s_a L_ab s_b^T y = L_ab N_ab y.
-  pure function translational_inertia(el, p, v, wp, wl, al, a0) result(fp)
+  !>       = a0 + x_i c1 + L S_i p + Omega S_i h,   L = Omega^2 [+ skew(alpha)],
+  !>         h = -2 W p [coupling: 2 (v - W p) = 2 p_dot]
+  !> by the precomputed sums: sum_i w_i s_a (L_ab s_b^T y) = L_ab N_ab y.
+  pure function translational_inertia(el, p, pd, wp, wl, al, a0) result(fp)
     type(spatial_beam_t), intent(in) :: el
-    real(dp), intent(in) :: p(nd), v(nd), wp(nd), wl(3), al(3), a0(3)
+    real(dp), intent(in) :: p(nd), pd(nd), wp(nd), wl(3), al(3), a0(3)
     real(dp) :: fp(nd)
     real(dp), parameter :: ex(3) = [1.0_dp, 0.0_dp, 0.0_dp]
-    real(dp) :: c1(3), om2(3, 3), om(3, 3), ak(3, 3), y(6), fa(6)
+    real(dp) :: c1(3), lm(3, 3), om(3, 3), y(6), fa(6), ps(6, 3), hs(6, 3)
     integer :: a, b, k
     c1 = cross(al, ex) + cross(wl, cross(wl, ex))
     om = skew(wl)
-    ak = skew(al)
-    om2 = outer(wl, wl)                  ! omega x (omega x r) = (w w^T - |w|^2 I) r
-    do k = 1, 3
-      om2(k, k) = om2(k, k) - dot_product(wl, wl)
+    do b = 1, 3                            ! Omega^2 r = omega x (omega x r) = (w w^T - |w|^2 I) r
+      lm(:, b) = wl*wl(b)
+      lm(b, b) = lm(b, b) - dot_product(wl, wl)
+    end do
+    if (el%effects%coupling) lm = lm + skew(al)
+    do b = 1, 3
+      ps(:, b) = p(sets(:, b))
+      if (el%effects%coupling) then
+        hs(:, b) = 2.0_dp*pd(sets(:, b))
+      else
+        hs(:, b) = -2.0_dp*wp(sets(:, b))
+      end if
     end do
     fp = 0.0_dp
     do a = 1, 3
       fa = -(el%q0(:, a)*a0(a) + el%q1(:, a)*c1(a))
       do b = 1, 3
-        y = om2(a, b)*p(sets(:, b))
-        if (a /= b) then                   ! skew matrices have a zero diagonal
-          y = y - 2.0_dp*om(a, b)*wp(sets(:, b))
-          if (el%effects%coupling) y = y + ak(a, b)*p(sets(:, b)) + 2.0_dp*om(a, b)*v(sets(:, b))
-        end if
+        y = lm(a, b)*ps(:, b) + om(a, b)*hs(:, b)
         do k = 1, 6
           fa = fa - el%nab(:, k, a, b)*y(k)
         end do
