@@ -60,13 +60,14 @@ module spatial_beam
   !> rotation components carried by each node's second triple
   integer, parameter :: iu = 1, iv = 2, iw = 3, itx = 4, ity = 5, itz = 6, ivxx = 7, iwxx = 8, iux = 9, iuxx = 10
   !> the DOFs each displacement component's functions touch (u linear; v, w quintic)
-  integer, parameter :: u_set(6) = [1, 9, 10, 11, 19, 20], v_set(6) = [2, 6, 7, 12, 16, 17], &
+  integer, parameter :: u_set(6) = [1, 11, 9, 10, 19, 20], v_set(6) = [2, 6, 7, 12, 16, 17], &
                         w_set(6) = [3, 5, 8, 13, 15, 18]
   !> the four disjoint DOF sets (u, v, w and the twist) on which M_p and the
   !> linear K are block diagonal: a displacement's functions couple only with
   !> its own (rotary inertia: -w_x on w's, v_x on v's), the twist with itself
   integer, parameter :: triple_first(4) = [1, 4, 11, 14]   !< first DOF of each vector triple
   integer, parameter :: sets(6, 3) = reshape([u_set, v_set, w_set], [6, 3]), t_set(2) = [itx, no + itx]
+  !> (u's nodal values first: Kear's linear u touches only them, nact(1) = 2)
 
   !> Rigid-body state of the element frame, global components.
   type :: spatial_rigid_t
@@ -97,6 +98,7 @@ module spatial_beam
     real(dp) :: q0(6, 3) = 0.0_dp, q1(6, 3) = 0.0_dp   !< sum_i w_i s_a, sum_i w_i x_i s_a
     real(dp) :: mblk(6, 6, 3) = 0.0_dp, mt(2, 2) = 0.0_dp   !< M_p on sets(:, a) and on t_set
     real(dp) :: kblk(6, 6, 3) = 0.0_dp, kt(2, 2) = 0.0_dp   !< linear K likewise
+    integer :: nact(3) = 6                    !< leading entries of each set the interpolation uses
     real(dp), allocatable :: xg(:), wg(:)
     real(dp), allocatable :: gz(:, :, :)      !< (nd, nz, n_gauss): d z / d p, z = (u_x v_x w_x v_xx w_xx theta_x u_xx)
   end type spatial_beam_t
@@ -166,6 +168,7 @@ contains
       call err%set('spatial_beam_init', 'unknown formulation '//str(el%formulation)); return
     end if
     el%quintic_u = el%formulation == spatial_formulation_consistent
+    el%nact = [merge(6, 2, el%quintic_u), 6, 6]
     if (.not. (el%beta >= 0.0_dp .and. all(el%mcon >= 0.0_dp))) then
       call err%set('spatial_beam_init', 'damping and concentrated masses must be >= 0'); return
     end if
@@ -195,8 +198,9 @@ contains
       end do
     end do
 
-    call split_blocks(el%mass0, el%mblk, el%mt, ok)
-    if (ok) call split_blocks(el%k_lin, el%kblk, el%kt, ok)
+    call split_blocks(el%mass0, el%nact, el%mblk, el%mt, ok)
+    if (ok) call split_blocks(el%k_lin, el%nact, el%kblk, el%kt, ok)
+    if (ok) ok = all(abs(el%nab(:, 3:6, :, 1)) <= 0.0_dp) .or. el%nact(1) == 6
     if (ok) ok = rot_load_on_sets(el%rot_load)
     if (.not. ok) then                   ! cannot happen with rows_at: the sets are its structure
       call err%set('spatial_beam_init', 'mass, stiffness or rotary load outside the DOF sets'); return
@@ -225,9 +229,11 @@ contains
   end subroutine add_station
 
   !> The blocks of a on sets(:, a) and t_set; ok = .false. if a has an entry
-  !> outside them (a is then not block diagonal on the sets).
-  pure subroutine split_blocks(a, blk, at, ok)
+  !> outside them or past the used entries nact (a is then not block diagonal
+  !> on the sets).
+  pure subroutine split_blocks(a, nact, blk, at, ok)
     real(dp), intent(in) :: a(nd, nd)
+    integer, intent(in) :: nact(3)
     real(dp), intent(out) :: blk(6, 6, 3), at(2, 2)
     logical, intent(out) :: ok
     real(dp) :: rest(nd, nd)
@@ -235,7 +241,7 @@ contains
     rest = a
     do k = 1, 3
       blk(:, :, k) = a(sets(:, k), sets(:, k))
-      rest(sets(:, k), sets(:, k)) = 0.0_dp
+      rest(sets(1:nact(k), k), sets(1:nact(k), k)) = 0.0_dp
     end do
     at = a(t_set, t_set)
     rest(t_set, t_set) = 0.0_dp
@@ -253,14 +259,16 @@ contains
     ok = all(abs(rest) <= 0.0_dp)
   end function rot_load_on_sets
 
-  !> y = A x for A block diagonal on the DOF sets (blocks from split_blocks).
-  pure function block_apply(blk, at, x) result(y)
+  !> y = A x for A block diagonal on the DOF sets (blocks from split_blocks;
+  !> its columns past nact are zero).
+  pure function block_apply(blk, at, nact, x) result(y)
     real(dp), intent(in) :: blk(6, 6, 3), at(2, 2), x(nd)
+    integer, intent(in) :: nact(3)
     real(dp) :: y(nd), ys(6)
     integer :: k, j
-    do k = 1, 3                          ! column loops: the library matmul costs more than 6 x 6
-      ys = 0.0_dp
-      do j = 1, 6
+    do k = 1, 3                          ! column loops of fixed length 6 (vectorized; the library
+      ys = 0.0_dp                        ! matmul costs more at 6 x 6)
+      do j = 1, nact(k)
         ys = ys + blk(:, j, k)*x(sets(j, k))
       end do
       y(sets(:, k)) = ys
@@ -352,10 +360,10 @@ contains
     fp(v_set) = fp(v_set) - el%rot_load(v_set, 3)*al(3)
     ! transformation terms of p_dd = T^T q_dd - 2 W v + (W^2 - Wdot) p (one product with M_p)
     if (el%effects%coupling) then
-      fp = fp + block_apply(el%mblk, el%mt, 2.0_dp*skew_apply(wl, v, el%local_rotation) &
+      fp = fp + block_apply(el%mblk, el%mt, el%nact, 2.0_dp*skew_apply(wl, v, el%local_rotation) &
                             + skew_apply(al, p, el%local_rotation) - skew_apply(wl, wp, el%local_rotation))
     else
-      fp = fp - block_apply(el%mblk, el%mt, skew_apply(wl, wp, el%local_rotation))
+      fp = fp - block_apply(el%mblk, el%mt, el%nact, skew_apply(wl, wp, el%local_rotation))
     end if
 
     ! strain energy, internal force, damping on the local strain rates
@@ -433,7 +441,7 @@ contains
       fa = -(el%q0(:, a)*a0(a) + el%q1(:, a)*c1(a))
       do b = 1, 3
         y = lm(a, b)*ps(:, b) + om(a, b)*hs(:, b)
-        do k = 1, 6
+        do k = 1, el%nact(b)               ! (N_ab's columns past nact(b) are zero)
           fa = fa - el%nab(:, k, a, b)*y(k)
         end do
       end do
@@ -525,10 +533,10 @@ contains
     info%strain_energy = 0.0_dp
     info%max_abs_strain = 0.0_dp
     if (linear_strain(el)) then
-      fint = block_apply(el%kblk, el%kt, p)
+      fint = block_apply(el%kblk, el%kt, el%nact, p)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       if (want_k) kp = el%k_lin          ! kp, fdamp are left undefined when not asked for
-      if (want_damp) fdamp = block_apply(el%kblk, el%kt, prel)
+      if (want_damp) fdamp = block_apply(el%kblk, el%kt, el%nact, prel)
       ! material off here: no Ramberg-Osgood peak to watch, max_abs_strain is not computed
       return
     end if
