@@ -1,6 +1,6 @@
 !> Cost of the spatial analysis (doc/spatial.md, "Cost"):
-!>  1. one right-hand side (element evaluations, banded mass assembly and
-!>     Cholesky) against the number of elements per link: linear in the
+!>  1. one right-hand side (element evaluations, the mass solve of
+!>     spatial_mass) against the number of elements per link: linear in the
 !>     number of elements (banded);
 !>  2. the target case: Tennant's four-bar in the spatial code, four
 !>     elements per link, 150 rad/s, light damping (beta = 1e-5 s), one crank

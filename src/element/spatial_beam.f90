@@ -44,7 +44,8 @@ module spatial_beam
   private
   public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
   public :: spatial_formulation_kear, spatial_formulation_consistent
-  public :: spatial_beam_init, spatial_beam_eval, spatial_internal_force, spatial_tangent_stiffness
+  public :: spatial_beam_init, spatial_beam_eval, spatial_beam_matrices, spatial_tangent_is_constant
+  public :: spatial_internal_force, spatial_tangent_stiffness
   public :: spatial_strain_energy, spatial_kinetic_energy, spatial_to_local, spatial_to_global
   public :: spatial_section_state, spatial_stress_recovery, spatial_local_displacement
 
@@ -59,8 +60,14 @@ module spatial_beam
   !> rotation components carried by each node's second triple
   integer, parameter :: iu = 1, iv = 2, iw = 3, itx = 4, ity = 5, itz = 6, ivxx = 7, iwxx = 8, iux = 9, iuxx = 10
   !> the DOFs each displacement component's functions touch (u linear; v, w quintic)
-  integer, parameter :: u_set(6) = [1, 9, 10, 11, 19, 20], v_set(6) = [2, 6, 7, 12, 16, 17], &
+  integer, parameter :: u_set(6) = [1, 11, 9, 10, 19, 20], v_set(6) = [2, 6, 7, 12, 16, 17], &
                         w_set(6) = [3, 5, 8, 13, 15, 18]
+  !> the four disjoint DOF sets (u, v, w and the twist) on which M_p and the
+  !> linear K are block diagonal: a displacement's functions couple only with
+  !> its own (rotary inertia: -w_x on w's, v_x on v's), the twist with itself
+  integer, parameter :: triple_first(4) = [1, 4, 11, 14]   !< first DOF of each vector triple
+  integer, parameter :: sets(6, 3) = reshape([u_set, v_set, w_set], [6, 3]), t_set(2) = [itx, no + itx]
+  !> (u's nodal values first: Kear's linear u touches only them, nact(1) = 2)
 
   !> Rigid-body state of the element frame, global components.
   type :: spatial_rigid_t
@@ -85,8 +92,13 @@ module spatial_beam
     real(dp) :: mass0(nd, nd) = 0.0_dp        !< M_p (constant)
     real(dp) :: k_lin(nd, nd) = 0.0_dp        !< linear stiffness
     real(dp) :: rot_load(nd, 3) = 0.0_dp      !< int G_phi^T J dx
-    real(dp) :: xi(n_in + 2) = 0.0_dp, wi(n_in + 2) = 0.0_dp   !< inertia stations (last two: the nodes)
-    real(dp) :: si(nd, 3, n_in + 2) = 0.0_dp  !< displacement rows (u, v, w) at the inertia stations
+    ! state-independent sums over the inertia stations (and the concentrated masses), per DOF set:
+    ! s_a = the rows of displacement a (u, v, w) on sets(:, a), weight w_i = rho A dx (or m_con)
+    real(dp) :: nab(6, 6, 3, 3) = 0.0_dp      !< N_ab = sum_i w_i s_a s_b^T
+    real(dp) :: q0(6, 3) = 0.0_dp, q1(6, 3) = 0.0_dp   !< sum_i w_i s_a, sum_i w_i x_i s_a
+    real(dp) :: mblk(6, 6, 3) = 0.0_dp, mt(2, 2) = 0.0_dp   !< M_p on sets(:, a) and on t_set
+    real(dp) :: kblk(6, 6, 3) = 0.0_dp, kt(2, 2) = 0.0_dp   !< linear K likewise
+    integer :: nact(3) = 6                    !< leading entries of each set the interpolation uses
     real(dp), allocatable :: xg(:), wg(:)
     real(dp), allocatable :: gz(:, :, :)      !< (nd, nz, n_gauss): d z / d p, z = (u_x v_x w_x v_xx w_xx theta_x u_xx)
   end type spatial_beam_t
@@ -124,6 +136,7 @@ contains
     integer, intent(in), optional :: formulation         !< spatial_formulation_* (default: consistent)
     real(dp) :: x(n_in), w(n_in), s(nd, 3), gp(nd, 3), jr(3), z(nd, nz)
     integer :: i, k
+    logical :: ok
 
     if (.not. (length > 0.0_dp)) then
       call err%set('spatial_beam_init', 'element length must be positive, got '//str(length)); return
@@ -155,6 +168,7 @@ contains
       call err%set('spatial_beam_init', 'unknown formulation '//str(el%formulation)); return
     end if
     el%quintic_u = el%formulation == spatial_formulation_consistent
+    el%nact = [merge(6, 2, el%quintic_u), 6, 6]
     if (.not. (el%beta >= 0.0_dp .and. all(el%mcon >= 0.0_dp))) then
       call err%set('spatial_beam_init', 'damping and concentrated masses must be >= 0'); return
     end if
@@ -166,11 +180,9 @@ contains
     call gauss_legendre_interval(n_in, 0.0_dp, length, x, w)
     do i = 1, n_in
       call rows_at(x(i)/length, length, el%quintic_u, s, gp, z)
-      el%xi(i) = x(i)
-      el%wi(i) = material%rho*sec%area*w(i)
-      el%si(:, :, i) = s
+      call add_station(el, x(i), material%rho*sec%area*w(i), s)
       do k = 1, 3
-        el%mass0 = el%mass0 + el%wi(i)*outer(s(:, k), s(:, k)) + w(i)*jr(k)*outer(gp(:, k), gp(:, k))
+        el%mass0 = el%mass0 + material%rho*sec%area*w(i)*outer(s(:, k), s(:, k)) + w(i)*jr(k)*outer(gp(:, k), gp(:, k))
         el%rot_load(:, k) = el%rot_load(:, k) + w(i)*jr(k)*gp(:, k)
       end do
       el%k_lin = el%k_lin + w(i)*(material%e1*sec%area*outer(z(:, 1), z(:, 1)) &
@@ -180,13 +192,19 @@ contains
     end do
     do i = 1, 2                                    ! concentrated masses at the nodes
       call rows_at(real(i - 1, dp), length, el%quintic_u, s, gp, z)
-      el%xi(n_in + i) = real(i - 1, dp)*length
-      el%wi(n_in + i) = el%mcon(i)
-      el%si(:, :, n_in + i) = s
+      call add_station(el, real(i - 1, dp)*length, el%mcon(i), s)
       do k = 1, 3
         el%mass0 = el%mass0 + el%mcon(i)*outer(s(:, k), s(:, k))
       end do
     end do
+
+    call split_blocks(el%mass0, el%nact, el%mblk, el%mt, ok)
+    if (ok) call split_blocks(el%k_lin, el%nact, el%kblk, el%kt, ok)
+    if (ok) ok = all(abs(el%nab(:, 3:6, :, 1)) <= 0.0_dp) .or. el%nact(1) == 6
+    if (ok) ok = rot_load_on_sets(el%rot_load)
+    if (.not. ok) then                   ! cannot happen with rows_at: the sets are its structure
+      call err%set('spatial_beam_init', 'mass, stiffness or rotary load outside the DOF sets'); return
+    end if
 
     allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%gz(nd, nz, el%n_gauss))
     call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
@@ -194,6 +212,69 @@ contains
       call rows_at(el%xg(i)/length, length, el%quintic_u, s, gp, el%gz(:, :, i))
     end do
   end subroutine spatial_beam_init
+
+  !> Add an inertia station (position x, weight wt, displacement rows s) to
+  !> the state-independent sums N_ab, q0, q1.
+  pure subroutine add_station(el, x, wt, s)
+    type(spatial_beam_t), intent(inout) :: el
+    real(dp), intent(in) :: x, wt, s(nd, 3)
+    integer :: a, b
+    do a = 1, 3
+      el%q0(:, a) = el%q0(:, a) + wt*s(sets(:, a), a)
+      el%q1(:, a) = el%q1(:, a) + wt*x*s(sets(:, a), a)
+      do b = 1, 3
+        el%nab(:, :, a, b) = el%nab(:, :, a, b) + wt*outer(s(sets(:, a), a), s(sets(:, b), b))
+      end do
+    end do
+  end subroutine add_station
+
+  !> The blocks of a on sets(:, a) and t_set; ok = .false. if a has an entry
+  !> outside them or past the used entries nact (a is then not block diagonal
+  !> on the sets).
+  pure subroutine split_blocks(a, nact, blk, at, ok)
+    real(dp), intent(in) :: a(nd, nd)
+    integer, intent(in) :: nact(3)
+    real(dp), intent(out) :: blk(6, 6, 3), at(2, 2)
+    logical, intent(out) :: ok
+    real(dp) :: rest(nd, nd)
+    integer :: k
+    rest = a
+    do k = 1, 3
+      blk(:, :, k) = a(sets(:, k), sets(:, k))
+      rest(sets(1:nact(k), k), sets(1:nact(k), k)) = 0.0_dp
+    end do
+    at = a(t_set, t_set)
+    rest(t_set, t_set) = 0.0_dp
+    ok = all(abs(rest) <= 0.0_dp)
+  end subroutine split_blocks
+
+  !> rot_load's columns (twist, -w_x, v_x) live on t_set, w's and v's sets.
+  pure logical function rot_load_on_sets(r) result(ok)
+    real(dp), intent(in) :: r(nd, 3)
+    real(dp) :: rest(nd, 3)
+    rest = r
+    rest(t_set, 1) = 0.0_dp
+    rest(w_set, 2) = 0.0_dp
+    rest(v_set, 3) = 0.0_dp
+    ok = all(abs(rest) <= 0.0_dp)
+  end function rot_load_on_sets
+
+  !> y = A x for A block diagonal on the DOF sets (blocks from split_blocks;
+  !> its columns past nact are zero).
+  pure function block_apply(blk, at, nact, x) result(y)
+    real(dp), intent(in) :: blk(6, 6, 3), at(2, 2), x(nd)
+    integer, intent(in) :: nact(3)
+    real(dp) :: y(nd), ys(6)
+    integer :: k, j
+    do k = 1, 3                          ! column loops of fixed length 6 (vectorized; the library
+      ys = 0.0_dp                        ! matmul costs more at 6 x 6)
+      do j = 1, nact(k)
+        ys = ys + blk(:, j, k)*x(sets(j, k))
+      end do
+      y(sets(:, k)) = ys
+    end do
+    y(t_set) = at(:, 1)*x(t_set(1)) + at(:, 2)*x(t_set(2))
+  end function block_apply
 
   !> Rows at x = e l: s(:, k) gives displacement k (u, v, w), gp(:, k) the
   !> small rotation k (theta, -w_x, v_x), z(:, j) the station variables
@@ -262,8 +343,7 @@ contains
     real(dp), intent(out), optional :: tangent(nd, nd)
     logical, intent(in), optional :: mass_wanted
     real(dp) :: p(nd), v(nd), pd(nd), wl(3), al(3), a0(3), wp(nd), fp(nd), fint(nd), fdamp(nd)
-    real(dp) :: kp(nd, nd), rel(3), acc(3), vel(3), wpi(3), xe(3)
-    integer :: i
+    real(dp) :: kp(nd, nd)
 
     p = spatial_to_local(rb%rot, q, el%local_rotation)
     v = spatial_to_local(rb%rot, qd, el%local_rotation)
@@ -273,28 +353,17 @@ contains
     wp = skew_apply(wl, p, el%local_rotation)
     pd = v - wp
 
-    ! translational inertia at the stations (and the concentrated masses)
-    fp = 0.0_dp
-    do i = 1, n_in + 2
-      if (.not. (el%wi(i) > 0.0_dp)) cycle
-      xe = [el%xi(i), 0.0_dp, 0.0_dp]
-      rel = station_rows(el%si(:, :, i), p)
-      wpi = station_rows(el%si(:, :, i), wp)
-      acc = a0 + cross(al, xe) + cross(wl, cross(wl, xe + rel)) - 2.0_dp*cross(wl, wpi)
-      if (el%effects%coupling) then
-        vel = station_rows(el%si(:, :, i), v)
-        acc = acc + cross(al, rel) + 2.0_dp*cross(wl, vel)
-      end if
-      call station_scatter(el%si(:, :, i), -el%wi(i)*acc, fp)
-    end do
-    ! section rotary and torsional inertia: -int G_phi^T J alpha
-    fp = fp - matmul(el%rot_load, al)
+    fp = translational_inertia(el, p, pd, wp, wl, al, a0)
+    ! section rotary and torsional inertia: -int G_phi^T J alpha (columns on t_set, w's, v's sets)
+    fp(t_set) = fp(t_set) - el%rot_load(t_set, 1)*al(1)
+    fp(w_set) = fp(w_set) - el%rot_load(w_set, 2)*al(2)
+    fp(v_set) = fp(v_set) - el%rot_load(v_set, 3)*al(3)
     ! transformation terms of p_dd = T^T q_dd - 2 W v + (W^2 - Wdot) p (one product with M_p)
     if (el%effects%coupling) then
-      fp = fp + matmul(el%mass0, 2.0_dp*skew_apply(wl, v, el%local_rotation) + skew_apply(al, p, el%local_rotation) &
-                                 - skew_apply(wl, wp, el%local_rotation))
+      fp = fp + block_apply(el%mblk, el%mt, el%nact, 2.0_dp*skew_apply(wl, v, el%local_rotation) &
+                            + skew_apply(al, p, el%local_rotation) - skew_apply(wl, wp, el%local_rotation))
     else
-      fp = fp - matmul(el%mass0, skew_apply(wl, wp, el%local_rotation))
+      fp = fp - block_apply(el%mblk, el%mt, el%nact, skew_apply(wl, wp, el%local_rotation))
     end if
 
     ! strain energy, internal force, damping on the local strain rates
@@ -310,6 +379,84 @@ contains
     force = spatial_to_global(rb%rot, fp, el%local_rotation)
     if (present(tangent)) tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
   end subroutine spatial_beam_eval
+
+  !> Mass and elastic tangent of the element in global DOFs q at the rigid
+  !> state rb (those of spatial_beam_eval, without its force: the Newton matrix).
+  pure subroutine spatial_beam_matrices(el, q, rb, mass, tangent)
+    type(spatial_beam_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd)
+    type(spatial_rigid_t), intent(in) :: rb
+    real(dp), intent(out) :: mass(nd, nd), tangent(nd, nd)
+    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
+    type(spatial_eval_info_t) :: info
+    mass = matrix_to_global(rb%rot, el%mass0, el%local_rotation)
+    if (linear_strain(el)) then
+      tangent = matrix_to_global(rb%rot, el%k_lin, el%local_rotation)
+    else
+      p = spatial_to_local(rb%rot, q, el%local_rotation)
+      call strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
+      tangent = matrix_to_global(rb%rot, kp, el%local_rotation)
+    end if
+  end subroutine spatial_beam_matrices
+
+  !> The element's tangent is its linear stiffness (no nonlinear strain effect):
+  !> independent of q.
+  pure logical function spatial_tangent_is_constant(el)
+    type(spatial_beam_t), intent(in) :: el
+    spatial_tangent_is_constant = linear_strain(el)
+  end function spatial_tangent_is_constant
+
+  !> Loads of the translational inertia, LOCAL DOFs: -sum_i w_i S_i^T acc_i
+  !> over the inertia stations (and the concentrated masses), with the
+  !> station acceleration (r = S_i p, x_i e_x the station on the reference line)
+  !>   acc = a0 + alpha x x_i e_x + omega x (omega x (x_i e_x + r)) - 2 omega x S_i W p
+  !>         [+ alpha x r + 2 omega x S_i v: coupling]
+  !>       = a0 + x_i c1 + L S_i p + Omega S_i h,   L = Omega^2 [+ skew(alpha)],
+  !>         h = -2 W p [coupling: 2 (v - W p) = 2 p_dot]
+  !> by the precomputed sums: sum_i w_i s_a (L_ab s_b^T y) = L_ab N_ab y.
+  pure function translational_inertia(el, p, pd, wp, wl, al, a0) result(fp)
+    type(spatial_beam_t), intent(in) :: el
+    real(dp), intent(in) :: p(nd), pd(nd), wp(nd), wl(3), al(3), a0(3)
+    real(dp) :: fp(nd)
+    real(dp), parameter :: ex(3) = [1.0_dp, 0.0_dp, 0.0_dp]
+    real(dp) :: c1(3), lm(3, 3), om(3, 3), y(6), fa(6), ps(6, 3), hs(6, 3)
+    integer :: a, b, k
+    c1 = cross(al, ex) + cross(wl, cross(wl, ex))
+    om = skew(wl)
+    do b = 1, 3                            ! Omega^2 r = omega x (omega x r) = (w w^T - |w|^2 I) r
+      lm(:, b) = wl*wl(b)
+      lm(b, b) = lm(b, b) - dot_product(wl, wl)
+    end do
+    if (el%effects%coupling) lm = lm + skew(al)
+    do b = 1, 3
+      ps(:, b) = p(sets(:, b))
+      if (el%effects%coupling) then
+        hs(:, b) = 2.0_dp*pd(sets(:, b))
+      else
+        hs(:, b) = -2.0_dp*wp(sets(:, b))
+      end if
+    end do
+    fp = 0.0_dp
+    do a = 1, 3
+      fa = -(el%q0(:, a)*a0(a) + el%q1(:, a)*c1(a))
+      do b = 1, 3
+        y = lm(a, b)*ps(:, b) + om(a, b)*hs(:, b)
+        do k = 1, el%nact(b)               ! (N_ab's columns past nact(b) are zero)
+          fa = fa - el%nab(:, k, a, b)*y(k)
+        end do
+      end do
+      fp(sets(:, a)) = fa
+    end do
+  end function translational_inertia
+
+  !> The matrix of w x.
+  pure function skew(w) result(m)
+    real(dp), intent(in) :: w(3)
+    real(dp) :: m(3, 3)
+    m(:, 1) = [0.0_dp, w(3), -w(2)]
+    m(:, 2) = [-w(3), 0.0_dp, w(1)]
+    m(:, 3) = [w(2), -w(1), 0.0_dp]
+  end function skew
 
   !> Internal force dSE/dp in LOCAL DOFs.
   pure subroutine spatial_internal_force(el, p, f)
@@ -386,10 +533,10 @@ contains
     info%strain_energy = 0.0_dp
     info%max_abs_strain = 0.0_dp
     if (linear_strain(el)) then
-      fint = matmul(el%k_lin, p)
+      fint = block_apply(el%kblk, el%kt, el%nact, p)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       if (want_k) kp = el%k_lin          ! kp, fdamp are left undefined when not asked for
-      if (want_damp) fdamp = matmul(el%k_lin, prel)
+      if (want_damp) fdamp = block_apply(el%kblk, el%kt, el%nact, prel)
       ! material off here: no Ramberg-Osgood peak to watch, max_abs_strain is not computed
       return
     end if
@@ -585,25 +732,6 @@ contains
     d = matmul(p, s)
   end function spatial_local_displacement
 
-  !> (u, v, w) = s^T p at a station, over the DOFs each component touches
-  !> (s is zero elsewhere: a third of the dense product's work).
-  pure function station_rows(s, p) result(d)
-    real(dp), intent(in) :: s(nd, 3), p(nd)
-    real(dp) :: d(3)
-    d(1) = dot_product(s(u_set, 1), p(u_set))
-    d(2) = dot_product(s(v_set, 2), p(v_set))
-    d(3) = dot_product(s(w_set, 3), p(w_set))
-  end function station_rows
-
-  !> f := f + s a at a station (the transpose of station_rows).
-  pure subroutine station_scatter(s, a, f)
-    real(dp), intent(in) :: s(nd, 3), a(3)
-    real(dp), intent(inout) :: f(nd)
-    f(u_set) = f(u_set) + s(u_set, 1)*a(1)
-    f(v_set) = f(v_set) + s(v_set, 2)*a(2)
-    f(w_set) = f(w_set) + s(w_set, 3)*a(3)
-  end subroutine station_scatter
-
   ! ------------------------------------------------------------ frames
 
   !> p = T^T q: the vector triples of each node into the element frame
@@ -613,13 +741,17 @@ contains
     logical, intent(in), optional :: local(2)
     real(dp) :: p(nd)
     logical :: loc(2)
+    integer :: b, r
     loc = .false.
     if (present(local)) loc = local
     p = q
-    p(1:3) = matmul(q(1:3), rot)
-    if (.not. loc(1)) p(4:6) = matmul(q(4:6), rot)
-    p(11:13) = matmul(q(11:13), rot)
-    if (.not. loc(2)) p(14:16) = matmul(q(14:16), rot)
+    do b = 1, 4
+      if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
+      r = triple_first(b)
+      p(r) = rot(1, 1)*q(r) + rot(2, 1)*q(r + 1) + rot(3, 1)*q(r + 2)
+      p(r + 1) = rot(1, 2)*q(r) + rot(2, 2)*q(r + 1) + rot(3, 2)*q(r + 2)
+      p(r + 2) = rot(1, 3)*q(r) + rot(2, 3)*q(r + 1) + rot(3, 3)*q(r + 2)
+    end do
   end function spatial_to_local
 
   !> q = T p.
@@ -628,13 +760,15 @@ contains
     logical, intent(in), optional :: local(2)
     real(dp) :: q(nd)
     logical :: loc(2)
+    integer :: b, r
     loc = .false.
     if (present(local)) loc = local
     q = p
-    q(1:3) = matmul(rot, p(1:3))
-    if (.not. loc(1)) q(4:6) = matmul(rot, p(4:6))
-    q(11:13) = matmul(rot, p(11:13))
-    if (.not. loc(2)) q(14:16) = matmul(rot, p(14:16))
+    do b = 1, 4
+      if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
+      r = triple_first(b)
+      q(r:r + 2) = rot(:, 1)*p(r) + rot(:, 2)*p(r + 1) + rot(:, 3)*p(r + 2)
+    end do
   end function spatial_to_global
 
   !> T A T^T, by the 3 x 3 blocks of the vector triples that rotate.
@@ -642,21 +776,20 @@ contains
     real(dp), intent(in) :: rot(3, 3), a(nd, nd)
     logical, intent(in) :: local(2)
     real(dp) :: g(nd, nd), c(nd, 3)
-    integer, parameter :: first(4) = [1, 4, 11, 14]
     logical :: rotates(4)
     integer :: b, r, j
     rotates = [.true., .not. local(1), .true., .not. local(2)]
     g = a
     do b = 1, 4                                                        ! T A, rows by blocks
       if (.not. rotates(b)) cycle
-      r = first(b)
+      r = triple_first(b)
       do j = 1, nd
         g(r:r + 2, j) = rot(:, 1)*a(r, j) + rot(:, 2)*a(r + 1, j) + rot(:, 3)*a(r + 2, j)
       end do
     end do
     do b = 1, 4                                                        ! (T A) T^T, columns by blocks
       if (.not. rotates(b)) cycle
-      r = first(b)
+      r = triple_first(b)
       c = g(:, r:r + 2)
       do j = 1, 3
         g(:, r + j - 1) = c(:, 1)*rot(j, 1) + c(:, 2)*rot(j, 2) + c(:, 3)*rot(j, 3)

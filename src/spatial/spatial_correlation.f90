@@ -26,6 +26,7 @@ module spatial_correlation
     procedure :: new_unknown
     procedure :: finish
     procedure :: gather
+    procedure :: gather_pair
     procedure :: scatter_add
     procedure :: describe
   end type spatial_table_t
@@ -79,6 +80,25 @@ contains
       end if
     end do
   end function gather
+
+  !> gather of two global vectors (displacements and rates) in one pass.
+  pure subroutine gather_pair(self, e, q, qd, qe, qde)
+    class(spatial_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:), qd(:)
+    real(dp), intent(out) :: qe(sdofs), qde(sdofs)
+    integer :: i, g
+    do i = 1, sdofs
+      g = self%map(i, e)
+      if (g > 0) then
+        qe(i) = self%coef(i, e)*q(g)
+        qde(i) = self%coef(i, e)*qd(g)
+      else
+        qe(i) = 0.0_dp
+        qde(i) = 0.0_dp
+      end if
+    end do
+  end subroutine gather_pair
 
   pure subroutine scatter_add(self, e, fe, f)
     class(spatial_table_t), intent(in) :: self

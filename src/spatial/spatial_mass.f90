@@ -307,7 +307,8 @@ contains
     do k = 1, self%npair
       do jj = 1, self%pj_n(k)
         j = self%pj(jj, k)
-        do m = 1, 3
+        do m = 1, 3                    ! E is sparse in a planar linkage (R^T e_z = e_z): skip its zeros
+          if (abs(self%e(m, jj, k)) <= 0.0_dp) cycle
           self%he(:, j) = self%he(:, j) + self%h(:, 3*(k - 1) + m)*self%e(m, jj, k)
         end do
       end do
@@ -317,6 +318,7 @@ contains
       do jj = 1, self%pj_n(k)
         j = self%pj(jj, k)
         do m = 1, 3
+          if (abs(self%e(m, jj, k)) <= 0.0_dp) cycle
           r = 3*(k - 1) + m
           do i = j, self%nj
             self%schur(i, j) = self%schur(i, j) + self%e(m, jj, k)*self%he(r, i)
@@ -375,7 +377,9 @@ contains
         if (self%slot_j(sl) > 0) v(c) = self%slot_d(sl)*fj(self%slot_j(sl))
       end do
       u = matmul(v, self%rp(:, :, k))                    ! R^T v
-      x = x - self%w(:, 1, k)*u(1) - self%w(:, 2, k)*u(2) - self%w(:, 3, k)*u(3)
+      do c = 1, 3                                        ! (zero for the normal of a planar linkage)
+        if (abs(u(c)) > 0.0_dp) x = x - self%w(:, c, k)*u(c)
+      end do
     end do
     x(self%jlist) = fj
     do t = 1, self%ntri                                  ! x = T x~

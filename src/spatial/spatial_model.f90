@@ -34,6 +34,7 @@ module spatial_model
   use spatial_section, only: spatial_section_t
   use spatial_beam, only: spatial_beam_t, spatial_rigid_t, spatial_eval_info_t, spatial_stress_t, &
                           spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &
+                          spatial_beam_matrices, spatial_tangent_is_constant, &
                           spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local, &
                           spatial_formulation_consistent
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
@@ -66,6 +67,7 @@ module spatial_model
     type(spatial_rigid_t), allocatable :: rb(:)
     integer, allocatable :: link_of(:), index_in_link(:)
     logical, allocatable :: mass_as_previous(:)   !< element e's global mass equals e-1's (same link, M_p, flags)
+    logical, allocatable :: matrices_as_previous(:)   !< and its tangent too (linear, same K)
     type(spatial_table_t) :: table
     integer :: n = 0, kd = 0
     integer :: b_dofs(3) = 0, c_dofs(3) = 0     !< global unknowns of the joint translations
@@ -136,10 +138,12 @@ contains
     self%links(link_coupler)%length = kin%coupler_length
     self%links(link_rocker)%length = kin%rocker_length
     ne = sum(self%links%n_elements)
-    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous)
+    if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous, &
+                                       self%matrices_as_previous)
     if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
     call self%err%clear()
-    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne))
+    allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne), &
+             self%matrices_as_previous(ne))
     e = 0
     do k = 1, 3
       self%links(k)%first_element = e + 1
@@ -168,6 +172,11 @@ contains
       self%mass_as_previous(e) = self%link_of(e) == self%link_of(e - 1) .and. &
         all(self%el(e)%local_rotation .eqv. self%el(e - 1)%local_rotation) .and. &
         maxval(abs(self%el(e)%mass0 - self%el(e - 1)%mass0)) <= 0.0_dp
+    end do
+    self%matrices_as_previous = .false.
+    do e = 2, ne
+      self%matrices_as_previous(e) = self%mass_as_previous(e) .and. spatial_tangent_is_constant(self%el(e)) .and. &
+        spatial_tangent_is_constant(self%el(e - 1)) .and. maxval(abs(self%el(e)%k_lin - self%el(e - 1)%k_lin)) <= 0.0_dp
     end do
     self%t_states = -huge(1.0_dp)
     self%t_mass = -huge(1.0_dp)
@@ -433,14 +442,14 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     logical, intent(in) :: new_mass
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(sdofs, sdofs), fe(sdofs)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs), qe(sdofs), qde(sdofs)
     type(spatial_eval_info_t) :: info
     integer :: e
     logical :: ok
     self%force = 0.0_dp
     do e = 1, size(self%el)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
-                             mass_wanted=.false.)
+      call self%table%gather_pair(e, q, qd, qe, qde)
+      call spatial_beam_eval(self%el(e), qe, qde, self%rb(e), me, fe, info, mass_wanted=.false.)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
@@ -531,14 +540,51 @@ contains
     call self%newton%factor(hl0, self%el(1)%beta, ok)
   end subroutine model_newton_factor
 
-  !> x := P^-1 x with the P of the last model_newton_factor.
+  !> x := P^-1 x with the P of the last model_newton_factor.  P (dq, dv) =
+  !> (r1, r2) is S dv = M r2 - hl0 K_t r1, dq = r1 + hl0 dv (second_order_newton);
+  !> with S = M + c K_t, c = hl0 (beta + hl0), hl0 K_t = (S - M)/(beta + hl0), so
+  !>     dv = S^-1 M (r2 + g r1) - g r1,   g = 1/(beta + hl0):
+  !> one symmetric band product with M instead of M and the general band K_t
+  !> (the same P; r1 is of order hl0 times a rate, so g r1 is a rate and
+  !> nothing cancels).  Banded LU (K_t not symmetric): second_order_newton's solve.
   subroutine model_newton_solve(self, x)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
     type(error_t) :: err
-    call self%newton%solve(x, err)
-    if (err%failed()) call self%fail(0.0_dp, err%text())
+    real(dp) :: r1(self%n), dv(self%n), g
+    if (.not. self%newton%cholesky) then
+      call self%newton%solve(x, err)
+      if (err%failed()) call self%fail(0.0_dp, err%text())
+      return
+    end if
+    g = 1.0_dp/(self%el(1)%beta + self%newton%hl0)
+    r1 = x(1::2)
+    dv = x(2::2) + g*r1
+    call symmetric_band_product(self%newton%mass, self%n, self%kd, dv)
+    call band_cholesky_substitute(self%newton%chol, self%kd, dv)
+    dv = dv - g*r1
+    x(2::2) = dv
+    x(1::2) = r1 + self%newton%hl0*dv
   end subroutine model_newton_solve
+
+  !> a := M a, M symmetric in lower band storage m(1+i-j, j): O(N kd).
+  pure subroutine symmetric_band_product(m, n, kd, a)
+    integer, intent(in) :: n, kd
+    real(dp), intent(in) :: m(kd + 1, n)
+    real(dp), intent(inout) :: a(n)
+    real(dp) :: y(n), s
+    integer :: i, j
+    y = 0.0_dp
+    do j = 1, n
+      s = m(1, j)*a(j)
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*a(j)
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
+    end do
+    a = y
+  end subroutine symmetric_band_product
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
   !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at q (current rigid states): O(N).
@@ -546,22 +592,30 @@ contains
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
-    real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs), cij
-    type(spatial_eval_info_t) :: info
-    integer :: e, i, j, gi, gj, kd
+    real(dp) :: me(sdofs, sdofs), ke(sdofs, sdofs), cij, c(sdofs)
+    integer :: e, i, j, gi, gj, kd, na, ii, jj, act(sdofs), g(sdofs)
     kd = self%kd
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
     do e = 1, size(self%el)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), [(0.0_dp, i=1, sdofs)], self%rb(e), me, fe, info, &
-                             tangent=ke)
-      do j = 1, sdofs
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, sdofs
-          gi = self%table%map(i, e)
-          if (gi == 0) cycle
-          cij = self%table%coef(i, e)*self%table%coef(j, e)
+      ! consecutive linear elements of a link with equal M_p and K share the global matrices
+      if (.not. self%matrices_as_previous(e)) &
+        call spatial_beam_matrices(self%el(e), self%table%gather(e, q), self%rb(e), me, ke)
+      na = 0                                     ! the element's DOFs that reach an unknown
+      do i = 1, sdofs
+        if (self%table%map(i, e) == 0) cycle
+        na = na + 1
+        act(na) = i
+        g(na) = self%table%map(i, e)
+        c(na) = self%table%coef(i, e)
+      end do
+      do jj = 1, na
+        j = act(jj)
+        gj = g(jj)
+        do ii = 1, na
+          i = act(ii)
+          gi = g(ii)
+          cij = c(ii)*c(jj)
           stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
           if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
         end do
