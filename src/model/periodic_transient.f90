@@ -14,8 +14,10 @@
 !>
 !> The test, once per revolution: the largest change of any unknown at any
 !> sample from the previous revolution, relative to that unknown's peak over
-!> the revolution (peaks below 1e-3 of the largest one count as that floor:
-!> unknowns at round-off level do not decide), at most s%tolerance.  It is
+!> the revolution, at most s%tolerance.  Peaks below 1e-3 of the largest one,
+!> or below 10 atol / tolerance, count as that floor: an unknown near
+!> round-off, or a change within ten times the integration's absolute
+!> tolerance, is integration noise and does not decide.  It is
 !> stricter than the transient analysis' comparison of peaks (a phase drift
 !> with an unchanged peak passes that one, not this one).  With a
 !> contraction rho of the transient per revolution (stiffness-proportional
@@ -92,7 +94,7 @@ contains
       rep%revolutions = r
       if (r > 1) then
         peak = maxval(abs(q), dim=2)
-        floor = max(1.0e-3_dp*maxval(peak), tiny(1.0_dp))
+        floor = max(1.0e-3_dp*maxval(peak), 10.0_dp*s%atol/s%tolerance)
         rep%change = maxval(maxval(abs(q - prev), dim=2)/max(peak, floor))
         if (rep%change <= s%tolerance) then
           rep%periodic = .true.
