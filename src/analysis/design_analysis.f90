@@ -433,7 +433,7 @@ contains
 
   !> The transient evaluator integrates Kear's element, which has the linear
   !> slender element's equations (doc/steady_state.md): the &tennant options
-  !> beyond them, sections and counterweights are refused.
+  !> beyond them and sections are refused.
   subroutine check_transient_model(deck, mech, s, err)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(in) :: mech
@@ -445,8 +445,6 @@ contains
       why = 'the linear element only (&tennant d_k = d_b = d_g = 0)'
     if (s%element%shear) why = 'no shear angle (&tennant shear = F)'
     if (any(s%sections(1:mech%n_links)%n > 0)) why = 'uniform links (no &sections)'
-    if (any(mech%links(1:mech%n_links)%cw_mass > 0.0_dp) .or. any(index(variables, 'link_cw_') > 0)) &
-      why = 'no counterweights (the transient model has none)'
     if (len(why) > 0) call invalid_value(deck, 'design', 'evaluator', '''transient''', 'the transient evaluator '// &
                                          'takes '//why, err)
   end subroutine check_transient_model

@@ -43,7 +43,8 @@ module design_problem
                                shooting_diagnosis
   use kear_element, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
-  use periodic_transient, only: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic
+  use periodic_transient, only: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic, &
+                                matching_unknowns
   implicit none
   private
   public :: design_problem_t, design_variable_t, design_eval_t, parse_variable
@@ -644,18 +645,12 @@ contains
     type(mechanism_model_t), target :: tmodel
     type(periodic_transient_report_t) :: rep
     real(dp), allocatable :: qt(:, :), y(:)
-    integer :: i, k, to_steady(model%n)
+    integer :: to_steady(model%n)
     call tmodel%init_mechanism(mech, element_effects_t(rotary_inertia=self%element%rotary_inertia, coupling=.true.), &
                                'exact', self%element%damping_beta, err)
     if (err%failed()) return
     to_steady = 0
-    if (tmodel%n == model%n) then
-      do i = 1, tmodel%n
-        do k = 1, model%n
-          if (tmodel%table%label(i) == model%table%label(k)) to_steady(i) = k
-        end do
-      end do
-    end if
+    if (tmodel%n == model%n) to_steady = matching_unknowns(tmodel%table%label, model%table%label)
     if (any(to_steady == 0)) then
       call err%set('transient evaluator', 'the transient model''s unknowns do not match the steady model''s')
       return

@@ -32,7 +32,7 @@ module periodic_transient
   use mechanism_model, only: mechanism_model_t
   implicit none
   private
-  public :: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic
+  public :: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic, matching_unknowns
 
   type :: periodic_transient_settings_t
     real(dp) :: tolerance = 1.0e-6_dp     !< largest relative change per revolution (stop_when_periodic)
@@ -55,14 +55,14 @@ contains
   subroutine transient_to_periodic(model, s, y, times, q, rep, err)
     type(mechanism_model_t), intent(inout), target :: model
     type(periodic_transient_settings_t), intent(in) :: s
-    real(dp), intent(inout) :: y(:)
+    real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: times(:)
     real(dp), intent(out) :: q(:, :)
     type(periodic_transient_report_t), intent(out) :: rep
     type(error_t), intent(inout) :: err
     type(lsode_t) :: ode
     type(lsode_counters_t) :: c
-    real(dp), allocatable :: prev(:, :), y_start(:), peak(:)
+    real(dp) :: prev(size(q, 1), size(q, 2)), y_start(size(y)), peak(size(q, 1))
     real(dp) :: period, t0, floor
     integer :: r, k, ml, mf
     if (err%failed()) return
@@ -76,7 +76,6 @@ contains
     ml = min(2*model%kd + 1, size(y) - 1)
     call ode%init(size(y), 0.0_dp, mf, s%rtol, [s%atol], err, ml=ml, mu=ml, max_steps=s%max_steps)
     if (err%failed()) return
-    allocate(prev(size(q, 1), size(q, 2)), peak(size(q, 1)))
     y_start = y
     do r = 1, s%max_revolutions
       t0 = (r - 1)*period
@@ -112,4 +111,18 @@ contains
     call err%set('transient to periodic', 'not periodic after '//str(rep%revolutions)//' revolutions: the last '// &
                  'changed by '//str(rep%change, 4)//' > '//str(s%tolerance, 4)//' (stop_when_periodic)', 3)
   end subroutine transient_to_periodic
+
+  !> For each name of `from`, its position in `to` (0: none): the transient
+  !> and the steady model may number the same unknowns differently.
+  pure function matching_unknowns(from, to) result(at)
+    character(len=*), intent(in) :: from(:), to(:)
+    integer :: at(size(from))
+    integer :: i, k
+    at = 0
+    do i = 1, size(from)
+      do k = 1, size(to)
+        if (from(i) == to(k)) at(i) = k
+      end do
+    end do
+  end function matching_unknowns
 end module periodic_transient

@@ -6,6 +6,7 @@
 !> periodic in time is a failed analysis with its reason; bad values of the
 !> new deck variables are input errors (code 2).
 module test_design_transient_suite
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
@@ -132,7 +133,7 @@ contains
       call assert_true(.false., 'a reason is given')
     end if
     call pt%general_constraint(1, x0, g, err)
-    call assert_true(.not. (g <= 0.0_dp .or. g > 0.0_dp), 'its constraints are NaN (a failed trial)')
+    call assert_true(ieee_is_nan(g), 'its constraints are NaN (a failed trial)')
     call assert_equal(pt%n_failed, 1, 'counted as a failed analysis')
   end subroutine test_not_periodic
 
@@ -147,7 +148,6 @@ contains
              'at least 10 x the integration''s rtol')
     call bad(replace(bar, 'd_k = 0', 'd_k = 1'), ok//'/', 'the linear element only')
     call bad(replace(bar, 'd_k = 0', 'shear = T, d_k = 0'), ok//'/', 'no shear angle')
-    call bad(replace(bar, 'omega = 1.0', 'link_cw_mass(1) = 0.001, omega = 1.0'), ok//'/', 'no counterweights')
   contains
     subroutine bad(base, design_group, fragment)
       character(len=*), intent(in) :: base, design_group, fragment
