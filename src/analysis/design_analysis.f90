@@ -46,6 +46,9 @@ module design_analysis
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
   real(dp) :: xtol, feas_tol, move_limit
   integer :: max_iterations, samples
+  ! the transient evaluator: its periodicity test and revolution limit
+  real(dp) :: stop_when_periodic
+  integer :: max_revolutions
   ! operating speeds: every constraint at each, the objective summed or at one
   real(dp) :: speeds(max_speeds)
   integer :: objective_speed
@@ -54,7 +57,7 @@ module design_analysis
   real(dp) :: path_r, path_angle_deg, path_x(max_points), path_y(max_points), path_dgamma_deg(max_points)
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
                     frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, &
-                    speeds, objective_speed, &
+                    speeds, objective_speed, stop_when_periodic, max_revolutions, &
                     path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg
 
 contains
@@ -76,6 +79,8 @@ contains
     xtol = 1.0e-3_dp
     feas_tol = 1.0e-3_dp
     move_limit = 0.3_dp
+    stop_when_periodic = 1.0e-6_dp
+    max_revolutions = 200
     path_link = 0
     path_r = 0.0_dp
     path_angle_deg = 0.0_dp
@@ -153,8 +158,30 @@ contains
                          'the shaking force takes uniform links (no &sections)', err)
       return
     end if
+    if (evaluator == 'transient') call check_transient_model(deck, mech, s, err)
+    if (err%failed()) return
+    if (evaluator == 'transient' .and. stop_when_periodic < 10.0_dp*s%shooting%rtol) then
+      ! the change per revolution cannot fall below a few times the integration's rtol
+      call invalid_value(deck, 'design', 'stop_when_periodic', str(stop_when_periodic), 'must be at least 10 x '// &
+                         'the integration''s rtol (&steady rtol = '//str(s%shooting%rtol)//'): below it the '// &
+                         'change per revolution is integration noise', err)
+      return
+    end if
+    prob%transient%tolerance = stop_when_periodic
+    prob%transient%max_revolutions = max_revolutions
+    prob%transient%rtol = s%shooting%rtol
+    prob%transient%atol = s%shooting%atol
+    prob%transient%bdf = s%shooting%bdf
+    prob%transient%max_steps = s%shooting%max_steps
     ! finite-difference steps above the analysis' noise (doc/design.md)
-    prob%fd_rel_step = merge(1.0e-4_dp, 1.0e-5_dp, evaluator == 'shooting')
+    select case (evaluator)
+    case ('shooting')
+      prob%fd_rel_step = 1.0e-4_dp
+    case ('transient')
+      prob%fd_rel_step = 1.0e-3_dp
+    case default
+      prob%fd_rel_step = 1.0e-5_dp
+    end select
     opt%max_iterations = max_iterations
     opt%xtol = xtol
     opt%feas_tol = feas_tol
@@ -184,7 +211,12 @@ contains
     end if
     call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass', 'path', 'path_rigid', &
                       'shaking', 'shaking_peak'], err)
-    call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic'], err)
+    call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic', 'transient'], err)
+    call check_real(deck, g, 'stop_when_periodic', stop_when_periodic, err, at_least=1.0e-10_dp, at_most=1.0e-2_dp, &
+                    why='largest relative change of the sampled response per revolution (transient evaluator); '// &
+                    'below 1e-10 it is integration noise')
+    call check_integer(deck, g, 'max_revolutions', max_revolutions, err, at_least=2, at_most=100000, &
+                       why='revolutions the transient evaluator may take to its periodic state (two to compare)')
     call check_choice(deck, g, 'hessian', hessian, [character(len=16) :: 'gauss', 'structured'], err)
     call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=0.0_dp, at_most=1.0e12_dp, &
                     why='0 = no stress constraint')
@@ -399,6 +431,24 @@ contains
     end select
   end function initial_value
 
+  !> The transient evaluator integrates Kear's element, which has the linear
+  !> slender element's equations (doc/steady_state.md): the &tennant options
+  !> beyond them and sections are refused.
+  subroutine check_transient_model(deck, mech, s, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(steady_settings_t), intent(in) :: s
+    type(error_t), intent(inout) :: err
+    character(len=:), allocatable :: why
+    why = ''
+    if (max(abs(s%element%d_k), abs(s%element%d_b), abs(s%element%d_g)) > 0.0_dp) &
+      why = 'the linear element only (&tennant d_k = d_b = d_g = 0)'
+    if (s%element%shear) why = 'no shear angle (&tennant shear = F)'
+    if (any(s%sections(1:mech%n_links)%n > 0)) why = 'uniform links (no &sections)'
+    if (len(why) > 0) call invalid_value(deck, 'design', 'evaluator', '''transient''', 'the transient evaluator '// &
+                                         'takes '//why, err)
+  end subroutine check_transient_model
+
   subroutine echo_all(out, mech)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
@@ -481,6 +531,8 @@ contains
     character(len=:), allocatable :: text
     if (name == 'shooting') then
       text = 'the exact periodic steady state (shooting, DLSODE)'
+    else if (name == 'transient') then
+      text = 'the transient model (DLSODE) run to its periodic state from the previous design''s'
     else
       text = 'Tennant''s harmonic series (T26-T28)'
     end if
@@ -591,6 +643,8 @@ contains
     call out%cost('mechanism analyses NF (every distinct design, derivatives included)', str(prob%n_analyses))
     call out%cost('analyses for derivatives (forward differences)', str(opt%fd_analyses))
     call out%cost('failed analyses', str(prob%n_failed))
+    if (prob%evaluator == 'transient') call out%cost('transient revolutions integrated', str(prob%n_revolutions)// &
+      ' ('//str(real(prob%n_revolutions, dp)/max(1, prob%n_analyses), 4)//' per analysis)')
     call out%cost('cpu_seconds_per_analysis', str(prob%cpu_analyses/max(1, prob%n_analyses), 4))
     call out%cost('cpu_seconds_analyses', str(prob%cpu_analyses, 4))
     call out%cost('cpu_seconds_design', str(cpu, 4))
@@ -639,7 +693,7 @@ contains
       write(u, '(a)') '! written by '//program_name//' '//program_version//' (design analysis)'
       write(u, '(a)') '&run analysis = ''steady'', title = '''//title//''' /'
       call echo_mechanism(m, u)
-      call write_steady_groups(u, merge('shooting', 'harmonic', prob%evaluator == 'shooting'))
+      call write_steady_groups(u, merge('harmonic', 'shooting', prob%evaluator == 'harmonic'))
       close(u)
     end subroutine write_deck
 

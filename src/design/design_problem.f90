@@ -41,6 +41,10 @@ module design_problem
   use harmonic_solver, only: harmonic_settings_t, harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
                                shooting_diagnosis
+  use kear_element, only: element_effects_t
+  use mechanism_model, only: mechanism_model_t
+  use periodic_transient, only: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic, &
+                                matching_unknowns
   implicit none
   private
   public :: design_problem_t, design_variable_t, design_eval_t, parse_variable
@@ -55,6 +59,10 @@ module design_problem
   !> counterweight of link i: mass, position along and across the link
   integer, parameter :: var_cw_mass = 9, var_cw_x = 10, var_cw_y = 11
   real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
+  !> the indexed variables' deck names, in the order of their kinds
+  !> (var_link_b .. var_joint_y, then var_cw_mass .. var_cw_y after the scalars)
+  character(len=12), parameter :: indexed_names(11) = [character(len=12) :: 'link_b', 'link_h', 'link_length', &
+    'joint_x', 'joint_y', '', '', '', 'link_cw_mass', 'link_cw_x', 'link_cw_y']
 
   !> One design variable: a deck value of &mechanism.
   type :: design_variable_t
@@ -89,9 +97,12 @@ module design_problem
   type, extends(opt_problem_t) :: design_problem_t
     type(mechanism_input_t) :: base               !< the deck's mechanism
     type(design_variable_t), allocatable :: var(:)
-    character(len=16) :: evaluator = 'shooting'   !< 'shooting' (exact periodic) or 'harmonic'
+    !> 'shooting' (exact periodic), 'harmonic' or 'transient' (the transient
+    !> model run to its periodic state)
+    character(len=16) :: evaluator = 'shooting'
     type(harmonic_settings_t) :: harmonic
     type(shooting_settings_t) :: shooting
+    type(periodic_transient_settings_t) :: transient
     type(tennant_options_t) :: element
     type(link_sections_t) :: sections(max_links)
     integer :: samples = 72                       !< crank angles per revolution for stresses and frequencies
@@ -119,6 +130,7 @@ module design_problem
     integer :: n_stress = 0, i_frequency = 0
     ! ---- bookkeeping
     integer :: n_analyses = 0, n_failed = 0
+    integer :: n_revolutions = 0                  !< revolutions integrated by the transient evaluator
     real(dp) :: cpu_analyses = 0.0_dp
     real(dp), allocatable :: cache_x(:, :)        !< designs analysed lately (ring of cache_size)
     type(design_eval_t), allocatable :: cache(:)
@@ -183,26 +195,8 @@ contains
     open_at = index(word, '(')
     close_at = index(word, ')')
     if (open_at < 2 .or. close_at < open_at + 2) return
-    select case (word(1:open_at - 1))
-    case ('link_cw_mass')
-      v%kind = var_cw_mass
-    case ('link_cw_x')
-      v%kind = var_cw_x
-    case ('link_cw_y')
-      v%kind = var_cw_y
-    case ('link_b')
-      v%kind = var_link_b
-    case ('link_h')
-      v%kind = var_link_h
-    case ('link_length')
-      v%kind = var_link_length
-    case ('joint_x')
-      v%kind = var_joint_x
-    case ('joint_y')
-      v%kind = var_joint_y
-    case default
-      return
-    end select
+    v%kind = findloc(indexed_names, word(1:open_at - 1), dim=1)
+    if (v%kind == 0) return
     read(word(open_at + 1:close_at - 1), *, iostat=ios) v%index
     if (ios /= 0) return
     v%name = word
@@ -231,6 +225,7 @@ contains
     end do
     self%n_analyses = 0
     self%n_failed = 0
+    self%n_revolutions = 0
     self%cpu_analyses = 0.0_dp
     if (allocated(self%cache_x)) deallocate(self%cache_x, self%cache)
     allocate(self%cache_x(n, cache_size), self%cache(cache_size))
@@ -503,17 +498,11 @@ contains
     if (self%evaluator == 'harmonic') then
       call harmonic_solve(model, self%harmonic, times, q, hrep, err)
       if (.not. err%failed()) call harmonic_diagnosis(self%harmonic, hrep, model%omega, .false., .false., err)
+    else if (self%evaluator == 'transient') then
+      call transient_samples(self, mech, model, s, times, q, err)
     else
-      allocate(qd(model%n, nt), y0(2*model%n))
-      y0 = 0.0_dp
-      if (allocated(self%y_warm)) then
-        if (size(self%y_warm, 1) /= size(y0)) deallocate(self%y_warm)
-      end if
-      if (.not. allocated(self%y_warm)) then
-        allocate(self%y_warm(size(y0), size(self%speeds)))
-        self%y_warm = 0.0_dp
-      end if
-      y0 = self%y_warm(:, s)
+      allocate(qd(model%n, nt))
+      y0 = warm_start(self, 2*model%n, s)
       call shooting_solve(model, self%shooting, y0, srep, err)
       if (.not. err%failed()) call shooting_diagnosis(self%shooting, srep, model%omega, .false., err)
       if (.not. err%failed()) call periodic_orbit(model, self%shooting, y0, times, q, qd, srep, err)
@@ -621,6 +610,59 @@ contains
       end do
     end subroutine merged_times
   end subroutine analyse_speed
+
+  !> The previous design's periodic state at speed s (the start of this
+  !> design's periodic solution), zeros at the first; n2 = 2 unknowns.
+  function warm_start(self, n2, s) result(y0)
+    class(design_problem_t), intent(inout) :: self
+    integer, intent(in) :: n2, s
+    real(dp) :: y0(n2)
+    if (allocated(self%y_warm)) then
+      if (size(self%y_warm, 1) /= n2) deallocate(self%y_warm)
+    end if
+    if (.not. allocated(self%y_warm)) then
+      allocate(self%y_warm(n2, size(self%speeds)))
+      self%y_warm = 0.0_dp
+    end if
+    y0 = self%y_warm(:, s)
+  end function warm_start
+
+  !> The transient evaluator: the planar transient model (Kear's element
+  !> with the linear slender element's equations: rotary inertia as
+  !> &tennant says, the coupling terms, the same damping) run to its
+  !> periodic state from the previous design's (module periodic_transient);
+  !> its unknowns, matched by name, returned in the steady model's order, so
+  !> that stresses, frequencies, coupler point and shaking force are the
+  !> steady model's for every evaluator.
+  subroutine transient_samples(self, mech, model, s, times, q, err)
+    class(design_problem_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    type(steady_model_t), intent(in) :: model
+    integer, intent(in) :: s
+    real(dp), intent(in) :: times(:)
+    real(dp), intent(out) :: q(:, :)
+    type(error_t), intent(inout) :: err
+    type(mechanism_model_t), target :: tmodel
+    type(periodic_transient_report_t) :: rep
+    real(dp), allocatable :: qt(:, :), y(:)
+    integer :: to_steady(model%n)
+    call tmodel%init_mechanism(mech, element_effects_t(rotary_inertia=self%element%rotary_inertia, coupling=.true.), &
+                               'exact', self%element%damping_beta, err)
+    if (err%failed()) return
+    to_steady = 0
+    if (tmodel%n == model%n) to_steady = matching_unknowns(tmodel%table%label, model%table%label)
+    if (any(to_steady == 0)) then
+      call err%set('transient evaluator', 'the transient model''s unknowns do not match the steady model''s')
+      return
+    end if
+    y = warm_start(self, 2*tmodel%n, s)
+    allocate(qt(tmodel%n, size(times)))
+    call transient_to_periodic(tmodel, self%transient, y, times, qt, rep, err)
+    self%n_revolutions = self%n_revolutions + rep%revolutions
+    if (err%failed()) return
+    self%y_warm(:, s) = y
+    q(to_steady, :) = qt
+  end subroutine transient_samples
 
   !> The coupler point of a design: on a rigid, massless arm clamped to the
   !> link whose first element is e, at its end 1, at distance r and angle a

@@ -59,24 +59,12 @@ module design_sequence
   type, extends(opt_problem_t) :: approximate_path_t
     real(dp), allocatable :: center(:), r(:), jac(:, :)   !< x_k, r_k, J_k (n x p)
     real(dp), allocatable :: lmat(:, :), w(:)             !< the quadratic model (structured)
+    real(dp), allocatable :: shift(:)                     !< added to the proximal residuals (minimax)
     real(dp) :: rho = 1.0_dp, f0 = 1.0_dp
   contains
     procedure :: residuals => approximate_residuals
     procedure :: jacobian => approximate_jacobian
   end type approximate_path_t
-
-  !> The approximate problem of a minimax objective (the peak shaking
-  !> force) in y = (x, tau): every linearised r_k(x)/F0 at most tau, tau >= 0;
-  !> the objective tau + rho/2 |y - y_k|^2 written, up to a constant, as the
-  !> linear residuals sqrt(rho/2) (x - x_k) and sqrt(rho/2) (tau - tau_k +
-  !> 1/rho) (the Gauss matrix exact).
-  type, extends(opt_problem_t) :: approximate_minimax_t
-    real(dp), allocatable :: center(:)      !< (x_k, tau_k)
-    real(dp) :: rho = 1.0_dp
-  contains
-    procedure :: residuals => minimax_residuals
-    procedure :: jacobian => minimax_jacobian
-  end type approximate_minimax_t
 
   !> One accepted design (a row of the history).
   type :: design_step_t
@@ -141,6 +129,7 @@ contains
       phi(1:p) = (self%r + matmul(x - self%center, self%jac))/sqrt(self%f0)
     end if
     phi(p + 1:) = sqrt(0.5_dp*self%rho)*(x - self%center)
+    if (allocated(self%shift)) phi(p + 1:) = phi(p + 1:) + self%shift
   end subroutine approximate_residuals
 
   subroutine approximate_jacobian(self, x, phi, jac, err)
@@ -163,32 +152,6 @@ contains
       jac(j, p + j) = sqrt(0.5_dp*self%rho)
     end do
   end subroutine approximate_jacobian
-
-  subroutine minimax_residuals(self, x, phi, err)
-    class(approximate_minimax_t), intent(inout) :: self
-    real(dp), intent(in) :: x(:)
-    real(dp), intent(out) :: phi(:)
-    type(error_t), intent(inout) :: err
-    integer :: n
-    if (err%failed()) return
-    n = size(x)
-    phi = sqrt(0.5_dp*self%rho)*(x - self%center)
-    phi(n) = phi(n) + sqrt(0.5_dp/self%rho)
-  end subroutine minimax_residuals
-
-  subroutine minimax_jacobian(self, x, phi, jac, err)
-    class(approximate_minimax_t), intent(inout) :: self
-    real(dp), intent(in) :: x(:), phi(:)
-    real(dp), intent(out) :: jac(:, :)
-    type(error_t), intent(inout) :: err
-    integer :: j
-    if (err%failed()) return
-    if (.false.) jac(1, 1) = x(1) + phi(1)
-    jac = 0.0_dp
-    do j = 1, size(x)
-      jac(j, j) = sqrt(0.5_dp*self%rho)
-    end do
-  end subroutine minimax_jacobian
 
   subroutine sequence_solve(self, prob, x0, err)
     class(design_sequence_t), intent(inout) :: self
@@ -512,14 +475,18 @@ contains
     end do
   end subroutine quadratic_model
 
-  !> The minimax approximate problem (approximate_minimax_t) solved by GNLC.NS:
-  !> r and dr are the samples' |shaking force| and their gradients.
+  !> The minimax approximate problem solved by GNLC.NS: r and dr are the
+  !> samples' |shaking force| and their gradients.  In y = (x, tau): every
+  !> linearised r_k(x)/F0 at most tau, tau >= 0; the objective
+  !> tau + rho/2 |y - y_k|^2 is, up to a constant, the sum of squares of the
+  !> linear residuals sqrt(rho/2) (y - y_k) + (0, .., 0, sqrt(1/(2 rho)))
+  !> (an approximate_path_t without analysis residuals: its Gauss matrix exact).
   subroutine minimax_step(prob, x, g, dg, r, dr, delta, margin, x_try, events)
     type(design_problem_t), intent(inout) :: prob
     real(dp), intent(in) :: x(:), g(:), dg(:, :), r(:), dr(:, :), delta, margin
     real(dp), allocatable, intent(out) :: x_try(:)
     character(len=:), allocatable, intent(inout) :: events
-    type(approximate_minimax_t) :: ap
+    type(approximate_path_t) :: ap
     type(gauss_optimizer_t) :: opt
     type(error_t) :: err
     real(dp) :: b(size(x) + 1), lower(size(x)), upper(size(x))
@@ -531,6 +498,9 @@ contains
     ap%center(1:n) = x
     ap%center(n + 1) = maxval(r)/prob%f0
     ap%rho = delta
+    allocate(ap%r(0), ap%jac(n + 1, 0), ap%shift(n + 1))
+    ap%shift = 0.0_dp
+    ap%shift(n + 1) = sqrt(0.5_dp/ap%rho)
     call ap%init_problem('approximate minimax design problem', n + 1, n + 1, nr + 1 + nc + 2*n)
     do i = 1, nr
       b = [dr(:, i)/prob%f0, -1.0_dp]
@@ -551,11 +521,7 @@ contains
       b(i) = 1.0_dp
       call ap%set_linear_constraint(nr + nc + 2*i + 1, b, upper(i))
     end do
-    opt%opts%method = method_gnlc_ns
-    opt%opts%max_iter = 100
-    opt%opts%xtol = 1.0e-7_dp
-    opt%opts%feas_tol = 1.0e-7_dp
-    opt%opts%ftol = 1.0e-10_dp
+    call set_gnlc_options(opt)
     call opt%solve(ap, [min(max(x, lower), upper), ap%center(n + 1)], err)
     ! its solution, or where GNLC stopped (the linearised peak constraints
     ! are degenerate where tau reaches 0; the analysis of the proposal judges it)
@@ -568,6 +534,16 @@ contains
     end if
     if (err%failed()) events = events//'approximate problem: '//err%text()//'; '
   end subroutine minimax_step
+
+  !> GNLC.NS, tight: an approximate problem costs no analysis.
+  subroutine set_gnlc_options(opt)
+    type(gauss_optimizer_t), intent(inout) :: opt
+    opt%opts%method = method_gnlc_ns
+    opt%opts%max_iter = 100
+    opt%opts%xtol = 1.0e-7_dp
+    opt%opts%feas_tol = 1.0e-7_dp
+    opt%opts%ftol = 1.0e-10_dp
+  end subroutine set_gnlc_options
 
   !> Solve the approximate problem within the move limit (GNLC.NS, no
   !> analysis); the proposal is its solution, or its last iterate.
@@ -618,11 +594,7 @@ contains
       call ap%set_linear_constraint(size(g) + 2*i - 1, unit(i, -1.0_dp), -lower(i))
       call ap%set_linear_constraint(size(g) + 2*i, unit(i, 1.0_dp), upper(i))
     end do
-    opt%opts%method = method_gnlc_ns
-    opt%opts%max_iter = 100
-    opt%opts%xtol = 1.0e-7_dp
-    opt%opts%feas_tol = 1.0e-7_dp
-    opt%opts%ftol = 1.0e-10_dp
+    call set_gnlc_options(opt)
     call opt%solve(ap, min(max(x, lower), upper), err)
     ! its solution; if GNLC stopped short, its best feasible iterate
     if (.not. err%failed() .and. allocated(opt%x)) then

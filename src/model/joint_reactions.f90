@@ -29,7 +29,7 @@ module joint_reactions
   use error_status, only: error_t
   use linkage, only: mechanism_t, joint_slider_fixed, joint_slider_link
   use kear_element, only: rigid_state_t
-  use mechanism_model, only: mechanism_model_t
+  use mechanism_model, only: mechanism_model_t, counterweight_arm
   implicit none
   private
   public :: end_force_t, joint_reactions_t
@@ -106,6 +106,9 @@ contains
       self%ends(k)%force = r(base + 1:base + 2)
       self%ends(k)%moment = r(base + 3)
     end do
+    do k = 1, size(model%cw_element)
+      call add_counterweight(self, model, k, q, qd, acc)
+    end do
     ! ground or guide on joint j: G = sum of the joint's forces on its link
     ! ends + m_j (a_j - g) (the joint's own mass rides on its first link end)
     self%support = 0.0_dp
@@ -123,6 +126,37 @@ contains
                              model%point_node(k), acc) - model%gravity)
     end do
   end subroutine reactions_compute
+
+  !> Counterweight k's arm is clamped to its link's end 1 at a ground pivot:
+  !> the joint there carries the arm as well (m (a_cw - g) added to its force
+  !> on the link end), and the arm's torque on the end, J psi_dd - the
+  !> weight's moment (psi = phi + w_x), is the arm's, not the joint's.
+  subroutine add_counterweight(self, model, k, q, qd, qdd)
+    type(joint_reactions_t), intent(inout) :: self
+    type(mechanism_model_t), intent(in) :: model
+    integer, intent(in) :: k
+    real(dp), intent(in) :: q(:), qd(:), qdd(:)
+    real(dp) :: c, psi, psi_d, psi_dd, arm(2), torque_g
+    integer :: e, g, i
+    e = model%cw_element(k)
+    g = model%table%map(3, e)
+    psi = model%rb(e)%phi
+    psi_d = model%rb(e)%phi_d
+    psi_dd = model%rb(e)%phi_dd
+    if (g > 0) then
+      c = model%table%coef(3, e)
+      psi = psi + c*q(g)
+      psi_d = psi_d + c*qd(g)
+      psi_dd = psi_dd + c*qdd(g)
+    end if
+    arm = counterweight_arm(model, k, psi)
+    torque_g = -model%gravity(1)*arm(2) + model%gravity(2)*arm(1)
+    do i = 1, size(self%ends)
+      if (self%ends(i)%element /= e .or. self%ends(i)%node /= 1) cycle
+      self%ends(i)%force = self%ends(i)%force + psi_dd*[-arm(2), arm(1)] - psi_d**2*arm - model%cw_mass(k)*model%gravity
+      self%ends(i)%moment = self%ends(i)%moment + model%cw_inertia(k)*psi_dd - torque_g
+    end do
+  end subroutine add_counterweight
 
   !> The joint whose first listed link end is node `node` of element e (0: none).
   pure integer function joint_at(self, e, node) result(j)

@@ -57,7 +57,7 @@ module mechanism_model
   use tennant_element, only: tennant_info_t
   implicit none
   private
-  public :: mechanism_model_t, element_spec_t
+  public :: mechanism_model_t, element_spec_t, counterweight_arm
 
   !> What an element needs besides its rigid state (for init_fixed).
   type :: element_spec_t
@@ -118,6 +118,9 @@ module mechanism_model
     ! lumped masses at joints (slider blocks, sleeves): mass, element and node (1, 2) carrying them
     real(dp), allocatable :: point_mass(:)
     integer, allocatable :: point_element(:), point_node(:)
+    ! counterweights on arms clamped at ground pivots: element, J = m |c|^2, m c in the link's frame
+    integer, allocatable :: cw_element(:)
+    real(dp), allocatable :: cw_mass(:), cw_inertia(:), cw_moment(:, :)
     ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored
     real(dp), allocatable :: newton_mass(:, :)    !< (kd+1, n) M, lower band storage
     real(dp), allocatable :: newton_stiff(:, :)   !< (2kd+1, n) K_t, general band storage kb(kd+1+i-j, j)
@@ -182,13 +185,6 @@ contains
     character(len=:), allocatable :: resolved
     type(motion_t) :: m
 
-    do k = 1, mech%n_links
-      if (.not. mech%links(k)%cw_mass > 0.0_dp) cycle
-      ! counterweights (link_cw_mass) are modelled by the steady-state model only
-      call err%set('counterweight', 'link_cw_mass > 0: counterweights are part of the steady-state and design '// &
-                   'analyses, not of the transient model (doc/design.md)', 2)
-      return
-    end do
     self%moving = .true.
     call mechanism_link_ends(mech, ends)
     n_elements = mech%links(:)%n_elements
@@ -233,8 +229,85 @@ contains
     call allocate_work(self)
     allocate(self%loads(0))
     call register_point_masses(self, mech)
+    call register_counterweights(self, mech, err)
+    if (err%failed()) return
     call self%set_time(0.0_dp)
   end subroutine init_mechanism
+
+  !> Counterweights (link_cw_mass, on an arm clamped to the link at its end 1,
+  !> a ground pivot): the point turns about the fixed pivot with the end's
+  !> angle phi + w_x, kinetic energy J (phi_d + w_x_d)^2 / 2, J = m |c|^2, as
+  !> in the steady model (doc/design.md).
+  subroutine register_counterweights(self, mech, err)
+    type(mechanism_model_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    type(error_t), intent(inout) :: err
+    integer :: k
+    allocate(self%cw_element(0), self%cw_mass(0), self%cw_inertia(0), self%cw_moment(2, 0))
+    do k = 1, mech%n_links
+      associate (lk => mech%links(k))
+        if (.not. lk%cw_mass > 0.0_dp) cycle
+        if (lk%sliding) then
+          call err%set('counterweight', 'a counterweight on a link sliding through a sleeve is not modelled', 2)
+          return
+        end if
+        self%cw_element = [self%cw_element, lk%first_element]
+        self%cw_mass = [self%cw_mass, lk%cw_mass]
+        self%cw_inertia = [self%cw_inertia, lk%cw_mass*(lk%cw_x**2 + lk%cw_y**2)]
+        self%cw_moment = reshape([self%cw_moment, lk%cw_mass*[lk%cw_x, lk%cw_y]], [2, size(self%cw_element)])
+      end associate
+    end do
+  end subroutine register_counterweights
+
+  !> The counterweights in Lagrange's equation of their link's end slope
+  !> w_x: J on the mass diagonal; J (-phi_dd) and the weight's moment
+  !> g . d/dpsi (R(psi) m c), psi = phi + w_x, on the right.  A clamped end
+  !> (no slope unknown) takes them through the rigid motion alone.
+  subroutine add_counterweights(self, q, new_mass)
+    type(mechanism_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    logical, intent(in) :: new_mass
+    integer :: k, e, g
+    real(dp) :: c, arm(2)
+    if (new_mass) call add_counterweight_mass(self, self%mass_band, .true.)
+    do k = 1, size(self%cw_element)
+      e = self%cw_element(k)
+      g = self%table%map(3, e)
+      if (g == 0) cycle
+      c = self%table%coef(3, e)
+      arm = counterweight_arm(self, k, self%rb(e)%phi + c*q(g))
+      self%force(g) = self%force(g) + c*(-self%cw_inertia(k)*self%rb(e)%phi_dd - self%gravity(1)*arm(2) + &
+                                         self%gravity(2)*arm(1))
+    end do
+  end subroutine add_counterweights
+
+  !> m R(psi) c: the counterweight's first moment about its pivot at angle psi.
+  pure function counterweight_arm(self, k, psi) result(arm)
+    type(mechanism_model_t), intent(in) :: self
+    integer, intent(in) :: k
+    real(dp), intent(in) :: psi
+    real(dp) :: arm(2)
+    arm = [cos(psi)*self%cw_moment(1, k) - sin(psi)*self%cw_moment(2, k), &
+           sin(psi)*self%cw_moment(1, k) + cos(psi)*self%cw_moment(2, k)]
+  end function counterweight_arm
+
+  !> J on the slope's diagonal: dense (band = F) or lower band storage.
+  subroutine add_counterweight_mass(self, mass, band)
+    type(mechanism_model_t), intent(in) :: self
+    real(dp), intent(inout) :: mass(:, :)
+    logical, intent(in) :: band
+    integer :: k, e, g
+    do k = 1, size(self%cw_element)
+      e = self%cw_element(k)
+      g = self%table%map(3, e)
+      if (g == 0) cycle
+      if (band) then
+        mass(1, g) = mass(1, g) + self%cw_inertia(k)*self%table%coef(3, e)**2
+      else
+        mass(g, g) = mass(g, g) + self%cw_inertia(k)*self%table%coef(3, e)**2
+      end if
+    end do
+  end subroutine add_counterweight_mass
 
   !> Joint masses (slider blocks, sleeves) ride on the elastic translation of
   !> the node where the joint's first link end sits: kinetic energy
@@ -305,6 +378,7 @@ contains
     character(len=:), allocatable :: resolved
     self%moving = .false.
     allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0), self%slide(0))
+    allocate(self%cw_element(0), self%cw_mass(0), self%cw_inertia(0), self%cw_moment(2, 0))
     call resolve_formulation(formulation, effects, kind, code, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
@@ -675,6 +749,7 @@ contains
       call frame_matrix(self%frame_mass, self%frame_basis, self%mass_band)
     end if
     call add_point_masses(self, new_mass)
+    call add_counterweights(self, q, new_mass)
     if (size(self%slide) > 0) call add_sliding_links(self, t, q, qd)
     if (self%err%failed()) return
     if (size(self%loads) > 0) call add_point_loads(self, t, q, self%force)
@@ -853,6 +928,7 @@ contains
         if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
       end do
     end do
+    call add_counterweight_mass(self, mass, .false.)
   end subroutine assemble_dense
 
   !> Element e's mass matrix and elastic tangent stiffness (global element
@@ -909,6 +985,7 @@ contains
         if (g(i) > 0) mass_lower(1, g(i)) = mass_lower(1, g(i)) + self%point_mass(e)*c(i)**2
       end do
     end do
+    call add_counterweight_mass(self, mass_lower, .true.)
   end subroutine assemble_band
 
   ! ------------------------------------------------------------------ Newton matrix
@@ -1041,6 +1118,14 @@ contains
         where (self%clearance(m)%bearing > p) self%clearance(m)%bearing = self%clearance(m)%bearing + 2
         where (self%clearance(m)%journal > p) self%clearance(m)%journal = self%clearance(m)%journal + 2
       end do
+    end do
+    do k = 1, size(self%cw_element)
+      ! a counterweight turns about a fixed pivot (register_counterweights)
+      if (any(self%table%map(1:2, self%cw_element(k)) > 0)) then
+        call err%set('clearance', 'a joint clearance at a counterweight''s pivot is not modelled (the '// &
+                     'counterweight turns about a fixed pivot)', 2)
+        return
+      end if
     end do
     deallocate(self%mass_band, self%force)
     if (allocated(self%newton_mass)) deallocate(self%newton_mass, self%newton_stiff, self%newton_chol, &

@@ -234,7 +234,7 @@ contains
     call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, frequency_factor = NaN /', 'frequency_factor')
     call bad('&design variables = ''link_h(1)'', lower = 0, upper = 2, frequency_factor = 10 /', 'must stay > 0')
     call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, frequency_factor = 10, '// &
-             'evaluator = ''transient'' /', 'evaluator')
+             'evaluator = ''fourier'' /', 'evaluator')
     call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, frequency_factor = 10, '// &
              'hessian = ''newton'' /', 'hessian')
     call bad('&design variables = ''link_h(1)'', lower = 0.1, upper = 2, frequency_factor = 10, '// &
