@@ -25,7 +25,7 @@ module transient_analysis
     check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
   use joint_reactions, only: joint_reactions_t
-  use revolution_peaks, only: revolution_peaks_t
+  use revolution_peaks, only: revolution_peaks_t, note_peaks, write_stress_peaks
   use linkage, only: joint_clamp
   use clearance_run, only: clearance_monitor_t
   use restart_file, only: write_restart_file, start_from_restart
@@ -63,7 +63,7 @@ contains
     type(stress_report_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
     real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done, t_rows
-    integer :: k, n_out, e, ml
+    integer :: k, n_out, ml
     character(len=32), allocatable :: names(:)
     type(responses_t) :: resp
     type(revolution_peaks_t) :: pk
@@ -273,10 +273,7 @@ contains
     end if
 
     ! summary and cost
-    do e = 1, size(model%el)
-      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
-                       str(peak_angle(e), 6)//' deg')
-    end do
+    call write_stress_peaks(out, peak_stress, peak_angle)
     call write_peaks(out, names, pk)
     if (s%stop_when_periodic > 0.0_dp) then
       if (periodic) then
@@ -334,12 +331,7 @@ contains
       call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
       crank_deg = theta*180.0_dp/pi
       call model%element_stresses(q, stress)
-      do ee = 1, size(stress)
-        if (stress(ee)%max_abs_stress > peak_stress(ee)) then
-          peak_stress(ee) = stress(ee)%max_abs_stress
-          peak_angle(ee) = crank_deg
-        end if
-      end do
+      call note_peaks(stress%max_abs_stress, crank_deg, peak_stress, peak_angle)
       allocate(row(size(names)))
       row(1) = tt
       row(2) = crank_deg
