@@ -55,17 +55,16 @@ contains
     call note_peaks(values, deg, self%cur, self%cur_deg)
   end subroutine add
 
-  !> peak = the largest |value| so far, peak_deg the angle where it occurred.
-  pure subroutine note_peaks(values, deg, peak, peak_deg)
-    real(dp), intent(in) :: values(:), deg
-    real(dp), intent(inout) :: peak(:), peak_deg(:)
-    integer :: i
-    do i = 1, size(values)
-      if (abs(values(i)) > peak(i)) then
-        peak(i) = abs(values(i))
-        peak_deg(i) = deg
-      end if
-    end do
+  !> peak = the largest |value| so far, peak_deg the angle where it occurred
+  !> (elemental: an array of values, such as a component of an array of
+  !> stress reports, needs no temporary copy).
+  elemental subroutine note_peaks(value, deg, peak, peak_deg)
+    real(dp), intent(in) :: value, deg
+    real(dp), intent(inout) :: peak, peak_deg
+    if (abs(value) > peak) then
+      peak = abs(value)
+      peak_deg = deg
+    end if
   end subroutine note_peaks
 
   !> One summary line per element: its peak |stress| and where it occurred.
