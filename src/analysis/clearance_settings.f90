@@ -6,7 +6,7 @@ module clearance_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_choice
   use table_output, only: table_t
   use linkage, only: mechanism_t, max_joints, joint_pin, joint_ground_pin, joint_slider_link, joint_type_name
@@ -149,10 +149,8 @@ contains
     s%impact_speed = impact_speed
   end subroutine stage_to
 
-  subroutine read_clearance_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=clearance, iostat=ios, iomsg=iomsg)
+  subroutine read_clearance_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=clearance, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_clearance_group
 end module clearance_settings

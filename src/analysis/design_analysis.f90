@@ -18,7 +18,7 @@ module design_analysis
   use error_status, only: error_t
   use strings, only: str
   use version, only: program_name, program_version
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use linkage, only: mechanism_t, build_mechanism, profile_constant
@@ -89,11 +89,9 @@ contains
     path_dgamma_deg = unset
   end subroutine set_defaults
 
-  subroutine read_design_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=design, iostat=ios, iomsg=iomsg)
+  subroutine read_design_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=design, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_design_group
 
   subroutine run_design(deck, out, err)

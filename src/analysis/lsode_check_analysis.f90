@@ -7,7 +7,7 @@ module lsode_check_analysis
   use kinds, only: dp, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use lsode_solver, only: max_steps_ceiling, max_steps_reason, ode_system_t, lsode_t, lsode_counters_t, &
@@ -49,11 +49,9 @@ contains
     max_steps = 20000
   end subroutine set_defaults
 
-  subroutine read_lsode_check(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=lsode_check, iostat=ios, iomsg=iomsg)
+  subroutine read_lsode_check(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=lsode_check, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_lsode_check
 
   subroutine run_lsode_check(deck, out, err)

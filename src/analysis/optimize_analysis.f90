@@ -15,7 +15,7 @@ module optimize_analysis
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
-  use deck_reader, only: deck_t, invalid_value, input_error_code
+  use deck_reader, only: deck_t, invalid_value, input_error_code, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use optim_problem, only: opt_problem_t, con_kind_name
@@ -62,11 +62,9 @@ contains
     singular_g = 'regularize'
   end subroutine set_defaults
 
-  subroutine read_optimize(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=optimize, iostat=ios, iomsg=iomsg)
+  subroutine read_optimize(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=optimize, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_optimize
 
   subroutine run_optimize(deck, out, err)

@@ -9,11 +9,17 @@
 !>       largest relative change from the previous one, -1 for the first)
 !>     pk%whole, pk%whole_deg: whole run; pk%last, pk%last_deg: the last
 !>       complete revolution pk%n_complete (0: none yet)
+!>
+!> note_peaks keeps the largest |value| of each quantity and its angle (the
+!> element stress peaks of the transient and spatial drivers);
+!> write_stress_peaks writes those as summary lines.
 module revolution_peaks
   use kinds, only: dp
+  use strings, only: str
+  use table_output, only: table_t
   implicit none
   private
-  public :: revolution_peaks_t
+  public :: revolution_peaks_t, note_peaks, write_stress_peaks
 
   type :: revolution_peaks_t
     real(dp), allocatable :: whole(:), whole_deg(:)   !< whole run
@@ -45,18 +51,32 @@ contains
   subroutine add(self, values, deg)
     class(revolution_peaks_t), intent(inout) :: self
     real(dp), intent(in) :: values(:), deg
-    integer :: i
-    do i = 1, size(values)
-      if (abs(values(i)) > self%whole(i)) then
-        self%whole(i) = abs(values(i))
-        self%whole_deg(i) = deg
-      end if
-      if (abs(values(i)) > self%cur(i)) then
-        self%cur(i) = abs(values(i))
-        self%cur_deg(i) = deg
-      end if
-    end do
+    call note_peaks(values, deg, self%whole, self%whole_deg)
+    call note_peaks(values, deg, self%cur, self%cur_deg)
   end subroutine add
+
+  !> peak = the largest |value| so far, peak_deg the angle where it occurred
+  !> (elemental: an array of values, such as a component of an array of
+  !> stress reports, needs no temporary copy).
+  elemental subroutine note_peaks(value, deg, peak, peak_deg)
+    real(dp), intent(in) :: value, deg
+    real(dp), intent(inout) :: peak, peak_deg
+    if (abs(value) > peak) then
+      peak = abs(value)
+      peak_deg = deg
+    end if
+  end subroutine note_peaks
+
+  !> One summary line per element: its peak |stress| and where it occurred.
+  subroutine write_stress_peaks(out, peak_stress, peak_angle)
+    type(table_t), intent(inout) :: out
+    real(dp), intent(in) :: peak_stress(:), peak_angle(:)
+    integer :: e
+    do e = 1, size(peak_stress)
+      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
+                       str(peak_angle(e), 6)//' deg')
+    end do
+  end subroutine write_stress_peaks
 
   !> The open revolution is complete: compare it with the previous complete
   !> one (change = max over quantities of |p - p_prev| / max(p, p_prev);

@@ -1,7 +1,7 @@
 !> The &run group every deck starts with: which analysis to run and a title.
 module run_settings
   use error_status, only: error_t
-  use deck_reader, only: deck_t
+  use deck_reader, only: deck_t, group_read_t
   use table_output, only: table_t
   use version, only: program_name, program_version
   implicit none
@@ -50,10 +50,8 @@ contains
     call out%end_echo()
   end subroutine echo_run_settings
 
-  subroutine read_run_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=run, iostat=ios, iomsg=iomsg)
+  subroutine read_run_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=run, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_run_group
 end module run_settings

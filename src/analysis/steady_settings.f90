@@ -6,7 +6,7 @@ module steady_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use linkage, only: max_links
@@ -225,17 +225,13 @@ contains
     method = method_read
   end subroutine write_steady_groups
 
-  subroutine read_steady_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=steady, iostat=ios, iomsg=iomsg)
+  subroutine read_steady_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=steady, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_steady_group
 
-  subroutine read_tennant_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=tennant, iostat=ios, iomsg=iomsg)
+  subroutine read_tennant_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=tennant, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_tennant_group
 end module steady_settings

@@ -25,7 +25,7 @@ module transient_analysis
     check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
   use joint_reactions, only: joint_reactions_t
-  use revolution_peaks, only: revolution_peaks_t
+  use revolution_peaks, only: revolution_peaks_t, note_peaks, write_stress_peaks
   use linkage, only: joint_clamp
   use clearance_run, only: clearance_monitor_t
   use restart_file, only: write_restart_file, start_from_restart
@@ -61,9 +61,9 @@ contains
     type(clearance_monitor_t) :: clearance       ! joints with clearance (&clearance; doc/clearance.md)
     type(lsode_counters_t) :: c
     type(stress_report_t), allocatable :: stress(:)
-    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:), atol_vector(:)
+    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:)
     real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done, t_rows
-    integer :: k, n_out, e, ml
+    integer :: k, n_out
     character(len=32), allocatable :: names(:)
     type(responses_t) :: resp
     type(revolution_peaks_t) :: pk
@@ -72,55 +72,13 @@ contains
     logical :: buffer_rows, periodic
     real(dp) :: theta_start
 
-    call read_mechanism(deck, mech, err)
+    call read_input(deck, mech, s, loads_in, clearance, err)
     if (err%failed()) return
-    call read_transient_settings(deck, s, err)
-    call check_section_rules(deck, mech, s%effects%material, .false., err)
-    if (err%failed()) return
-    call read_loads(deck, loads_in, err)
-    if (err%failed()) return
-    call clearance%read(deck, mech, s%initial, err)
-    if (err%failed()) return
-    if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
-      call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
-        'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
-      return
-    end if
 
-    block
-      integer :: u
-      u = out%echo_unit()
-      call echo_mechanism(mech, u)
-      call out%end_echo()
-    end block
-    call echo_transient_settings(out)
-    call clearance%echo(out)
-    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
-      block
-        integer :: u
-        u = out%echo_unit()
-        call echo_loads(u)
-        call out%end_echo()
-      end block
-    end if
+    call echo_input(out, mech, clearance, loads_in)
 
-    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
-    if (err%failed()) then
-      err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &mechanism')
-      return
-    end if
-    block
-      real(dp) :: gravity(2)
-      type(point_load_t), allocatable :: point_loads(:)
-      call resolve_loads(loads_in, mech, gravity, point_loads, err)
-      if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &loads')
-        return
-      end if
-      call model%set_loads(gravity, point_loads)
-    end block
+    call build_model(deck, mech, s, loads_in, model, err)
+    if (err%failed()) return
     call setup_responses(deck, mech, s, resp, err)
     if (err%failed()) return
     if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
@@ -131,14 +89,8 @@ contains
       return
     end if
     call write_model_header(out, mech, s, model)
-    if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
-      call model%build_motion_table(s%table_points, err)
-      if (err%failed()) return
-      call out%comment('rigid-body motion: tabulated at '//str(s%table_points)//' crank angles per revolution, '// &
-                       'quintic Hermite interpolation in the crank angle')
-    else if (mech%driver%omega > 0.0_dp) then
-      call out%comment('rigid-body motion: kinematics solved at every time the integrator asks for')
-    end if
+    call prepare_motion(out, mech, s, model, err)
+    if (err%failed()) return
 
     ! natural frequencies of the linearised structure at the start position
     allocate(omega_n(model%n), shapes(model%n, model%n))
@@ -148,78 +100,16 @@ contains
     call clearance%attach(model, mech, out, err)
     if (err%failed()) return
 
-    ! initial state
     allocate(y(model%state_size()))
-    t0 = 0.0_dp
-    y = 0.0_dp
-    select case (trim(s%initial))
-    case ('mode')
-      call check_mode_number(deck, s, model%n, err)
-      if (err%failed()) return
-      y(1::2) = s%mode_amplitude*shapes(:, s%mode_number)/max_transverse(model, shapes(:, s%mode_number))
-      call out%comment('initial state: mode '//str(s%mode_number)//' scaled to a largest transverse '// &
-                       'displacement of '//str(s%mode_amplitude)//', at rest')
-    case ('restart')
-      call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
-      if (err%failed()) return
-    case default
-      call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
-    end select
-
-    ! output schedule
-    if (mech%driver%omega > 0.0_dp .and. .not. (s%t_end > 0.0_dp .and. s%output_step_t > 0.0_dp)) then
-      dt_out = s%output_step_deg*pi/180.0_dp/mech%driver%omega
-      t_end = t0 + time_to_turn(mech, s%revolutions*two_pi)
-    else
-      dt_out = s%output_step_t
-      t_end = t0 + s%t_end
-    end if
-    n_out = max(1, nint((t_end - t0)/dt_out))
-
-    ml = 2*model%kd + 1
-    ! displacements and rates have their own absolute tolerances (interleaved state)
-    allocate(atol_vector(size(y)))
-    atol_vector(1::2) = s%atol
-    atol_vector(2::2) = s%atol_rate
-    call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=min(ml, size(y) - 1), &
-                  mu=min(ml, size(y) - 1), max_steps=s%max_steps)
+    call initial_state(deck, s, model, shapes, out, t0, y, err)
     if (err%failed()) return
-    if (s%max_order > 0) then
-      ode%max_order = s%max_order           ! DLSODE's MAXORD (optional input, IOPT = 1)
-      ode%iwork(5) = s%max_order
-      call out%comment('DLSODE order limited to '//str(s%max_order))
-    end if
-    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
-      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
-                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
-    else if (s%mf == mf_bdf_band_fd) then
-      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '// &
-                       str(min(ml, size(y) - 1))//' (the band of M and K in the interleaved state)')
-    end if
 
-    ! rows written (the summary's peaks are over every output time either way)
-    select case (trim(s%output_rows))
-    case ('none')
-      t_rows = huge(1.0_dp)
-      call out%comment('output_rows = ''none'': no rows; the summary''s peaks are over every output time')
-    case ('last_revolution')
-      t_rows = t0
-      if (mech%driver%omega > 0.0_dp .and. s%revolutions > 1.0_dp) &
-        t_rows = t0 + time_to_turn(mech, (s%revolutions - 1.0_dp)*two_pi) - 0.5_dp*dt_out
-      call out%comment('output_rows = ''last_revolution'': rows of the last crank revolution only; '// &
-                       'the summary''s peaks are over every output time')
-    case default
-      t_rows = -huge(1.0_dp)
-    end select
-    ! stopping early, 'last_revolution' means the last complete one: its rows are kept until it is
-    buffer_rows = s%output_rows == 'last_revolution' .and. s%stop_when_periodic > 0.0_dp
-    if (buffer_rows) then
-      t_rows = huge(1.0_dp)
-      call out%comment('with stop_when_periodic: the rows of the last complete revolution')
-    end if
-    if (s%stop_when_periodic > 0.0_dp) call out%comment('stop_when_periodic = '//str(s%stop_when_periodic)// &
-      ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
-      'previous revolution''s by at most that fraction')
+    call output_times(mech, s, t0, dt_out, t_end, n_out)
+
+    call start_integrator(out, s, model, t0, y, ode, err)
+    if (err%failed()) return
+
+    call row_schedule(out, mech, s, t0, dt_out, t_rows, buffer_rows)
     if (s%output_digits > 0) call out%set_digits(s%output_digits)
     call write_columns(out, mech, model, resp, names, clearance%column_names())
     allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
@@ -255,15 +145,7 @@ contains
     call bar%finish()
     call cpu_time(cpu1)
 
-    if (err%failed()) then
-      ! the model's own failures carry their time; DLSODE's stops are at the solver's time
-      if (model%err%failed()) then
-        call driver_angle(mech%driver, model%t_failed, theta, theta_d, theta_dd)
-      else
-        call driver_angle(mech%driver, ode%t, theta, theta_d, theta_dd)
-      end if
-      call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
-    end if
+    if (err%failed()) call name_stop_angle(mech, model, ode%t, err)
 
     if (buffer_rows .and. n_last_rows > 0) then
       call out%columns(names)          ! again: the names are the last '#' line before the rows
@@ -273,45 +155,12 @@ contains
     end if
 
     ! summary and cost
-    do e = 1, size(model%el)
-      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
-                       str(peak_angle(e), 6)//' deg')
-    end do
+    call write_stress_peaks(out, peak_stress, peak_angle)
     call write_peaks(out, names, pk)
-    if (s%stop_when_periodic > 0.0_dp) then
-      if (periodic) then
-        call out%summary('periodic', 'at revolution '//str(pk%n_complete)//': peaks within '// &
-                         str(pk%change, 4)//' of revolution '//str(pk%n_complete - 1)//'; run stopped')
-      else if (pk%change >= 0.0_dp) then
-        call out%summary('periodic', 'not reached in '//str(pk%n_complete)//' revolutions: last change of the '// &
-                         'peaks '//str(pk%change, 4)//' > '//str(s%stop_when_periodic))
-      else
-        call out%summary('periodic', 'not judged: fewer than two complete revolutions')
-      end if
-    end if
+    if (s%stop_when_periodic > 0.0_dp) call write_periodicity(out, s, pk, periodic)
     c = ode%counters()
-    ! DLSODE rebuilds the Jacobian after a failed corrector; at a third of the
-    ! steps its finite differences are too poor (fuzz seed 9: bdf_fd with the
-    ! consistent element at atol 1e-12 took 1000 times bdf's CPU)
-    if ((s%mf == mf_bdf_full_fd .or. s%mf == mf_bdf_band_fd) .and. c%steps >= 1000 .and. 3*c%jac_evals > c%steps) &
-      call out%summary('warning', trim(s%method)//' rebuilt its finite-difference Jacobian at '// &
-                       str(c%jac_evals)//' of '//str(c%steps)//' steps: its differences are poor at these '// &
-                       'tolerances; method = ''bdf'' (analytic Jacobian) or a larger atol is far cheaper')
     revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
-    call out%cost('cpu_seconds_integration', str(cpu1 - cpu0, 4))
-    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str((cpu1 - cpu0)/revolutions_done, 4))
-    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
-    call out%cost('steps', str(c%steps))
-    call out%cost('rhs_evaluations', str(c%rhs_evals))
-    call out%cost('jacobian_evaluations', str(c%jac_evals))
-    call out%cost('lu_factorizations', str(c%lu_factorizations))
-    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%n_newton_factorizations - &
-      model%n_newton_lu)//' Cholesky and '//str(model%n_newton_lu)//' LU factorizations')
-    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
-    call out%cost('last_method_order', str(c%order_last))
-    call out%cost('kinematics_solutions', str(model%n_kinematics))
-    call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
-    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+    call write_cost(out, s, model, c, cpu1 - cpu0, revolutions_done)
     if (clearance%active) call clearance%report(out, revolutions_done, model, y, s%mf == mf_adams)
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
       call write_restart_file(s%restart_out, ode%t, y, err)
@@ -334,12 +183,7 @@ contains
       call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
       crank_deg = theta*180.0_dp/pi
       call model%element_stresses(q, stress)
-      do ee = 1, size(stress)
-        if (stress(ee)%max_abs_stress > peak_stress(ee)) then
-          peak_stress(ee) = stress(ee)%max_abs_stress
-          peak_angle(ee) = crank_deg
-        end if
-      end do
+      call note_peaks(stress%max_abs_stress, crank_deg, peak_stress, peak_angle)
       allocate(row(size(names)))
       row(1) = tt
       row(2) = crank_deg
@@ -401,6 +245,276 @@ contains
       end do
     end subroutine close_revolutions
   end subroutine run_transient
+
+  !> The groups of a transient deck, each checked as it is read.
+  subroutine read_input(deck, mech, s, loads_in, clearance, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(out) :: mech
+    type(transient_settings_t), intent(out) :: s
+    type(loads_input_t), intent(out) :: loads_in
+    type(clearance_monitor_t), intent(inout) :: clearance
+    type(error_t), intent(inout) :: err
+    call read_mechanism(deck, mech, err)
+    if (err%failed()) return
+    call read_transient_settings(deck, s, err)
+    call check_section_rules(deck, mech, s%effects%material, .false., err)
+    if (err%failed()) return
+    call read_loads(deck, loads_in, err)
+    if (err%failed()) return
+    call clearance%read(deck, mech, s%initial, err)
+    if (err%failed()) return
+    if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
+      call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
+        'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
+      return
+    end if
+  end subroutine read_input
+
+  !> The crank angle where the run stopped, as context of its error: the
+  !> model's own failures carry their time; DLSODE's stops are at the
+  !> solver's time t_ode.
+  subroutine name_stop_angle(mech, model, t_ode, err)
+    type(mechanism_t), intent(in) :: mech
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: t_ode
+    type(error_t), intent(inout) :: err
+    real(dp) :: theta, theta_d, theta_dd
+    if (model%err%failed()) then
+      call driver_angle(mech%driver, model%t_failed, theta, theta_d, theta_dd)
+    else
+      call driver_angle(mech%driver, t_ode, theta, theta_d, theta_dd)
+    end if
+    call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
+  end subroutine name_stop_angle
+
+  !> Output step and end time: by crank angle and revolutions when the crank
+  !> turns and no time span is given, else by time.
+  subroutine output_times(mech, s, t0, dt_out, t_end, n_out)
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    real(dp), intent(in) :: t0
+    real(dp), intent(out) :: dt_out, t_end
+    integer, intent(out) :: n_out
+    if (mech%driver%omega > 0.0_dp .and. .not. (s%t_end > 0.0_dp .and. s%output_step_t > 0.0_dp)) then
+      dt_out = s%output_step_deg*pi/180.0_dp/mech%driver%omega
+      t_end = t0 + time_to_turn(mech, s%revolutions*two_pi)
+    else
+      dt_out = s%output_step_t
+      t_end = t0 + s%t_end
+    end if
+    n_out = max(1, nint((t_end - t0)/dt_out))
+  end subroutine output_times
+
+  !> The rigid-body motion: tabulated per revolution or solved on demand.
+  subroutine prepare_motion(out, mech, s, model, err)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    type(mechanism_model_t), target, intent(inout) :: model
+    type(error_t), intent(inout) :: err
+    if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
+      call model%build_motion_table(s%table_points, err)
+      if (err%failed()) return
+      call out%comment('rigid-body motion: tabulated at '//str(s%table_points)//' crank angles per revolution, '// &
+                       'quintic Hermite interpolation in the crank angle')
+    else if (mech%driver%omega > 0.0_dp) then
+      call out%comment('rigid-body motion: kinematics solved at every time the integrator asks for')
+    end if
+  end subroutine prepare_motion
+
+  !> The planar model of the mechanism with its loads; a refusal of the
+  !> model or the loads is an input error of their group.
+  subroutine build_model(deck, mech, s, loads_in, model, err)
+    type(deck_t), intent(in) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    type(loads_input_t), intent(in) :: loads_in
+    type(mechanism_model_t), target, intent(inout) :: model
+    type(error_t), intent(inout) :: err
+    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
+    if (err%failed()) then
+      err%code = 2
+      call err%add_context('deck '''//deck%path//''', group &mechanism')
+      return
+    end if
+    block
+      real(dp) :: gravity(2)
+      type(point_load_t), allocatable :: point_loads(:)
+      call resolve_loads(loads_in, mech, gravity, point_loads, err)
+      if (err%failed()) then
+        err%code = 2
+        call err%add_context('deck '''//deck%path//''', group &loads')
+        return
+      end if
+      call model%set_loads(gravity, point_loads)
+    end block
+  end subroutine build_model
+
+  !> The effective input of every group the transient analysis read.
+  subroutine echo_input(out, mech, clearance, loads_in)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(clearance_monitor_t), intent(in) :: clearance
+    type(loads_input_t), intent(in) :: loads_in
+    block
+      integer :: u
+      u = out%echo_unit()
+      call echo_mechanism(mech, u)
+      call out%end_echo()
+    end block
+    call echo_transient_settings(out)
+    call clearance%echo(out)
+    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
+      block
+        integer :: u
+        u = out%echo_unit()
+        call echo_loads(u)
+        call out%end_echo()
+      end block
+    end if
+  end subroutine echo_input
+
+  !> DLSODE set up for the interleaved state (displacements and rates with
+  !> their own absolute tolerances) and its Newton matrix described.
+  subroutine start_integrator(out, s, model, t0, y, ode, err)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(in) :: s
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: t0, y(:)
+    type(lsode_t), intent(inout) :: ode
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: atol_vector(:)
+    integer :: ml
+    ml = 2*model%kd + 1
+    ! displacements and rates have their own absolute tolerances (interleaved state)
+    allocate(atol_vector(size(y)))
+    atol_vector(1::2) = s%atol
+    atol_vector(2::2) = s%atol_rate
+    call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=min(ml, size(y) - 1), &
+                  mu=min(ml, size(y) - 1), max_steps=s%max_steps)
+    if (err%failed()) return
+    if (s%max_order > 0) then
+      ode%max_order = s%max_order           ! DLSODE's MAXORD (optional input, IOPT = 1)
+      ode%iwork(5) = s%max_order
+      call out%comment('DLSODE order limited to '//str(s%max_order))
+    end if
+    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
+      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
+                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
+    else if (s%mf == mf_bdf_band_fd) then
+      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '// &
+                       str(min(ml, size(y) - 1))//' (the band of M and K in the interleaved state)')
+    end if
+  end subroutine start_integrator
+
+  !> The initial state (&transient initial): a scaled mode at rest, a restart
+  !> file, or the rigid-body motion.
+  subroutine initial_state(deck, s, model, shapes, out, t0, y, err)
+    type(deck_t), intent(in) :: deck
+    type(transient_settings_t), intent(in) :: s
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: shapes(:, :)
+    type(table_t), intent(inout) :: out
+    real(dp), intent(out) :: t0, y(:)
+    type(error_t), intent(inout) :: err
+    t0 = 0.0_dp
+    y = 0.0_dp
+    select case (trim(s%initial))
+    case ('mode')
+      call check_mode_number(deck, s, model%n, err)
+      if (err%failed()) return
+      y(1::2) = s%mode_amplitude*shapes(:, s%mode_number)/max_transverse(model, shapes(:, s%mode_number))
+      call out%comment('initial state: mode '//str(s%mode_number)//' scaled to a largest transverse '// &
+                       'displacement of '//str(s%mode_amplitude)//', at rest')
+    case ('restart')
+      call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
+      if (err%failed()) return
+    case default
+      call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+    end select
+  end subroutine initial_state
+
+  !> Which output times are written as rows: from t_rows on (the summary's
+  !> peaks are over every output time either way); buffer_rows: the rows of
+  !> each revolution are kept until it is complete (stop_when_periodic with
+  !> 'last_revolution').
+  subroutine row_schedule(out, mech, s, t0, dt_out, t_rows, buffer_rows)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    real(dp), intent(in) :: t0, dt_out
+    real(dp), intent(out) :: t_rows
+    logical, intent(out) :: buffer_rows
+    select case (trim(s%output_rows))
+    case ('none')
+      t_rows = huge(1.0_dp)
+      call out%comment('output_rows = ''none'': no rows; the summary''s peaks are over every output time')
+    case ('last_revolution')
+      t_rows = t0
+      if (mech%driver%omega > 0.0_dp .and. s%revolutions > 1.0_dp) &
+        t_rows = t0 + time_to_turn(mech, (s%revolutions - 1.0_dp)*two_pi) - 0.5_dp*dt_out
+      call out%comment('output_rows = ''last_revolution'': rows of the last crank revolution only; '// &
+                       'the summary''s peaks are over every output time')
+    case default
+      t_rows = -huge(1.0_dp)
+    end select
+    ! stopping early, 'last_revolution' means the last complete one: its rows are kept until it is
+    buffer_rows = s%output_rows == 'last_revolution' .and. s%stop_when_periodic > 0.0_dp
+    if (buffer_rows) then
+      t_rows = huge(1.0_dp)
+      call out%comment('with stop_when_periodic: the rows of the last complete revolution')
+    end if
+    if (s%stop_when_periodic > 0.0_dp) call out%comment('stop_when_periodic = '//str(s%stop_when_periodic)// &
+      ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
+      'previous revolution''s by at most that fraction')
+  end subroutine row_schedule
+
+  !> The summary line of stop_when_periodic.
+  subroutine write_periodicity(out, s, pk, periodic)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(in) :: s
+    type(revolution_peaks_t), intent(in) :: pk
+    logical, intent(in) :: periodic
+    if (periodic) then
+      call out%summary('periodic', 'at revolution '//str(pk%n_complete)//': peaks within '// &
+                       str(pk%change, 4)//' of revolution '//str(pk%n_complete - 1)//'; run stopped')
+    else if (pk%change >= 0.0_dp) then
+      call out%summary('periodic', 'not reached in '//str(pk%n_complete)//' revolutions: last change of the '// &
+                       'peaks '//str(pk%change, 4)//' > '//str(s%stop_when_periodic))
+    else
+      call out%summary('periodic', 'not judged: fewer than two complete revolutions')
+    end if
+  end subroutine write_periodicity
+
+  !> The cost footer: DLSODE's counters and the model's own work.
+  subroutine write_cost(out, s, model, c, cpu, revolutions_done)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(in) :: s
+    type(mechanism_model_t), intent(in) :: model
+    type(lsode_counters_t), intent(in) :: c
+    real(dp), intent(in) :: cpu, revolutions_done
+    ! DLSODE rebuilds the Jacobian after a failed corrector; at a third of the
+    ! steps its finite differences are too poor (fuzz seed 9: bdf_fd with the
+    ! consistent element at atol 1e-12 took 1000 times bdf's CPU)
+    if ((s%mf == mf_bdf_full_fd .or. s%mf == mf_bdf_band_fd) .and. c%steps >= 1000 .and. 3*c%jac_evals > c%steps) &
+      call out%summary('warning', trim(s%method)//' rebuilt its finite-difference Jacobian at '// &
+                       str(c%jac_evals)//' of '//str(c%steps)//' steps: its differences are poor at these '// &
+                       'tolerances; method = ''bdf'' (analytic Jacobian) or a larger atol is far cheaper')
+    call out%cost('cpu_seconds_integration', str(cpu, 4))
+    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str(cpu/revolutions_done, 4))
+    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
+    call out%cost('steps', str(c%steps))
+    call out%cost('rhs_evaluations', str(c%rhs_evals))
+    call out%cost('jacobian_evaluations', str(c%jac_evals))
+    call out%cost('lu_factorizations', str(c%lu_factorizations))
+    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%n_newton_factorizations - &
+      model%n_newton_lu)//' Cholesky and '//str(model%n_newton_lu)//' LU factorizations')
+    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
+    call out%cost('last_method_order', str(c%order_last))
+    call out%cost('kinematics_solutions', str(model%n_kinematics))
+    call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
+    call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))
+  end subroutine write_cost
 
   !> Global elastic (U, W) of joint j (mechanism_report%joint_carrier says where).
   subroutine joint_displacement(model, mech, j, q, uw)

@@ -5,7 +5,7 @@ module transient_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use lsode_solver, only: max_steps_ceiling, max_steps_reason, mf_from_method, method_names
@@ -218,18 +218,14 @@ contains
     call out%end_echo()
   end subroutine echo_transient_settings
 
-  subroutine read_transient_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=transient, iostat=ios, iomsg=iomsg)
+  subroutine read_transient_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_transient_group
 
-  subroutine read_effects_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=effects, iostat=ios, iomsg=iomsg)
+  subroutine read_effects_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=effects, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_effects_group
 
   !> initial = 'mode': mode_number must be a mode of the model (known only once

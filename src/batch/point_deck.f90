@@ -6,7 +6,7 @@
 module point_deck
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_reader, only: deck_t
+  use deck_reader, only: deck_t, terminator_column
   use strings, only: str
   implicit none
   private
@@ -88,26 +88,4 @@ contains
     end do
     s = trim(adjustl(buf))
   end function value_text
-
-  !> Column of the '/' ending a group on this line (outside quotes and
-  !> comments); on the group's first line the '&name' is skipped.
-  integer pure function terminator_column(line, is_first) result(col)
-    character(len=*), intent(in) :: line
-    logical, intent(in) :: is_first
-    integer :: start
-    character(len=1) :: quote
-    quote = ' '
-    start = 1
-    if (is_first) start = index(line, '&') + 1
-    do col = start, len(line)
-      if (quote /= ' ') then
-        if (line(col:col) == quote) quote = ' '
-      else if (line(col:col) == '''' .or. line(col:col) == '"') then
-        quote = line(col:col)
-      else if (line(col:col) == '/') then
-        return
-      end if
-    end do
-    col = len(line) + 1
-  end function terminator_column
 end module point_deck

@@ -16,7 +16,7 @@ module sweep_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str, shell_quote
+  use strings, only: str, shell_quote, file_stem, append_name
   use version, only: program_name, program_version
   use deck_reader, only: deck_t
   use run_settings, only: read_run_settings
@@ -104,11 +104,9 @@ contains
   subroutine point_names(out_path, points_dir, dir, stem)
     character(len=*), intent(in) :: out_path, points_dir
     character(len=:), allocatable, intent(out) :: dir, stem
-    integer :: slash, dot
+    integer :: slash
     slash = index(out_path, '/', back=.true.)
-    stem = out_path(slash + 1:)
-    dot = index(stem, '.', back=.true.)
-    if (dot > 1) stem = stem(1:dot - 1)
+    stem = file_stem(out_path)
     if (len_trim(points_dir) > 0) then
       dir = trim(points_dir)
     else
@@ -146,16 +144,6 @@ contains
     if (ios == 0) s = trim(buf)
     close(u)
   end function first_line
-
-  subroutine append_name(names, name)
-    character(len=64), allocatable, intent(inout) :: names(:)
-    character(len=*), intent(in) :: name
-    character(len=64), allocatable :: longer(:)
-    allocate(longer(size(names) + 1))
-    longer(1:size(names)) = names
-    longer(size(longer)) = name
-    call move_alloc(longer, names)
-  end subroutine append_name
 
   !> Names separated by spaces (metric names may be longer than a column).
   pure function column_line(names) result(s)

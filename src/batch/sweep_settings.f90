@@ -13,7 +13,7 @@ module sweep_settings
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   implicit none
   private
@@ -174,10 +174,8 @@ contains
     lines = lines//' /'
   end subroutine echo_sweep_settings
 
-  subroutine read_sweep_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=sweep, iostat=ios, iomsg=iomsg)
+  subroutine read_sweep_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=sweep, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_sweep_group
 end module sweep_settings

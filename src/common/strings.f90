@@ -4,7 +4,7 @@ module strings
   use kinds, only: dp
   implicit none
   private
-  public :: str, lower, starts_with, compact, shell_quote
+  public :: str, lower, starts_with, compact, shell_quote, file_stem, append_name
 
   interface str
     module procedure str_int, str_real, str_logical
@@ -133,4 +133,25 @@ contains
     end do
     s = s//''''
   end function shell_quote
+  !> The file name without its directory and extension (a leading dot is kept:
+  !> '.hidden' stays itself).
+  pure function file_stem(path) result(stem)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: stem
+    integer :: dot
+    stem = path(index(path, '/', back=.true.) + 1:)
+    dot = index(stem, '.', back=.true.)
+    if (dot > 1) stem = stem(1:dot - 1)
+  end function file_stem
+
+  !> A name appended to a growing list of names (figures, metrics).
+  subroutine append_name(names, name)
+    character(len=64), allocatable, intent(inout) :: names(:)
+    character(len=*), intent(in) :: name
+    character(len=64), allocatable :: longer(:)
+    allocate(longer(size(names) + 1))
+    longer(1:size(names)) = names
+    longer(size(longer)) = name
+    call move_alloc(longer, names)
+  end subroutine append_name
 end module strings

@@ -90,19 +90,15 @@ contains
     class(flow_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:)
     real(dp), intent(out) :: ydot(:)
-    type(error_t) :: err
     type(nonlinear_info_t) :: info
     integer :: n, j, n2
     real(dp) :: acc(self%n), col(self%n)
+    logical :: ok
     n = self%n
     n2 = 2*n
     ydot = 0.0_dp
-    call self%sys%set_time(t, err)
-    if (err%failed()) then
-      call self%fail(t, err%text())
-      return
-    end if
-    call self%sys%linear_terms(self%m, self%c, self%k, self%f, .true.)
+    call linear_terms_at(self, t, ok)
+    if (.not. ok) return
     if (self%sys%is_nonlinear()) then
       if (self%variational) then
         call self%sys%nonlinear_terms(y(1:n), self%fn, info, tangent=self%kt)
@@ -118,11 +114,8 @@ contains
       self%fn = 0.0_dp
       self%kt = 0.0_dp
     end if
-    call self%lu%factor(self%m, err)
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix: '//err%text())
-      return
-    end if
+    call factor_mass(self, t, ok)
+    if (.not. ok) return
     acc = self%f - matmul(self%c, y(n + 1:n2)) - matmul(self%k, y(1:n)) - self%fn
     call self%lu%solve(acc)
     ydot(1:n) = y(n + 1:n2)
@@ -141,6 +134,32 @@ contains
     end do
   end subroutine flow_rhs
 
+  !> M, C, K and f of the system at time t (the flow fails on an error).
+  subroutine linear_terms_at(self, t, ok)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    call self%sys%set_time(t, err)
+    ok = .not. err%failed()
+    if (.not. ok) then
+      call self%fail(t, err%text())
+      return
+    end if
+    call self%sys%linear_terms(self%m, self%c, self%k, self%f, .true.)
+  end subroutine linear_terms_at
+
+  !> The LU factors of M for the solves of the right-hand side.
+  subroutine factor_mass(self, t, ok)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    logical, intent(out) :: ok
+    type(error_t) :: err
+    call self%lu%factor(self%m, err)
+    ok = .not. err%failed()
+    if (.not. ok) call self%fail(t, 'mass matrix: '//err%text())
+  end subroutine factor_mass
+
   integer function method_flag(s)
     type(shooting_settings_t), intent(in) :: s
     method_flag = mf_adams
@@ -153,28 +172,21 @@ contains
     real(dp), intent(in) :: t, y(:)
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
-    type(error_t) :: err
     type(nonlinear_info_t) :: info
     real(dp) :: a(self%n, self%n), b(self%n, self%n), col(self%n)
     integer :: n, n2, nb, blk, i, j, o
+    logical :: ok
     n = self%n
     n2 = 2*n
     if (.false.) o = ml
-    call self%sys%set_time(t, err)
-    if (err%failed()) then
-      call self%fail(t, err%text())
-      return
-    end if
-    call self%sys%linear_terms(self%m, self%c, self%k, self%f, .true.)
+    call linear_terms_at(self, t, ok)
+    if (.not. ok) return
     if (self%sys%is_nonlinear()) then
       call self%sys%nonlinear_terms(y(1:n), self%fn, info, tangent=self%kt)
       self%k = self%k + self%kt
     end if
-    call self%lu%factor(self%m, err)
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix: '//err%text())
-      return
-    end if
+    call factor_mass(self, t, ok)
+    if (.not. ok) return
     do j = 1, n
       col = -self%k(:, j)
       call self%lu%solve(col)

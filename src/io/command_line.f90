@@ -4,7 +4,7 @@ module command_line
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int
   use version, only: program_name, program_version
-  use strings, only: shell_quote
+  use strings, only: shell_quote, file_stem
   implicit none
   private
   public :: parse_arguments, quit, default_output, output_path_problem
@@ -122,12 +122,7 @@ contains
   pure function default_output(path) result(name)
     character(len=*), intent(in) :: path
     character(len=:), allocatable :: name
-    integer :: slash, dot
-    slash = index(path, '/', back=.true.)
-    name = path(slash + 1:)
-    dot = index(name, '.', back=.true.)
-    if (dot > 1) name = name(1:dot - 1)
-    name = name//'.out'
+    name = file_stem(path)//'.out'
   end function default_output
 
   subroutine usage(unit)

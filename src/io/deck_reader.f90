@@ -9,9 +9,9 @@
 !>     ...set defaults...
 !>     call deck%read_group('transient', read_transient_group, required=.false., found=found, err=err)
 !>
-!>     subroutine read_transient_group(unit, ios, iomsg)   ! a module procedure
-!>       integer, intent(in) :: unit; integer, intent(out) :: ios; character(len=*), intent(inout) :: iomsg
-!>       read(unit, nml=transient, iostat=ios, iomsg=iomsg)
+!>     subroutine read_transient_group(r)   ! a module procedure
+!>       type(group_read_t), intent(inout) :: r
+!>       read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
 !>     end subroutine
 !>
 !> Given the reader, a failed read is replayed on growing prefixes of the
@@ -21,9 +21,7 @@
 !> longer than its variable would be cut silently).  The scanner that finds
 !> groups and lines reads whole lines of any length with tabs as blanks, as
 !> the namelist reader does; the groups are read from a copy of the deck
-!> whose lines all end with a newline.  `check_read` is the simpler form for
-!> callers that do the read themselves; it names the line only for unknown
-!> variables.
+!> whose lines all end with a newline.
 module deck_reader
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use, intrinsic :: ieee_exceptions, only: ieee_overflow, ieee_underflow, ieee_get_halting_mode, &
@@ -32,16 +30,23 @@ module deck_reader
   use strings, only: str, lower
   implicit none
   private
-  public :: deck_t, group_reader, invalid_value, input_error_code
+  public :: deck_t, group_reader, group_read_t, invalid_value, input_error_code, terminator_column
 
   integer, parameter :: input_error_code = 2
   integer, parameter :: shown_chars = 200    !< a deck line quoted in a message is cut after this
 
+  !> What a group reader needs for its one namelist read: the unit to read
+  !> from, and where to put the read's status and message.
+  type :: group_read_t
+    integer :: unit = 0
+    integer :: ios = 0
+    character(len=512) :: iomsg = ''
+  end type group_read_t
+
   abstract interface
-    subroutine group_reader(unit, ios, iomsg)
-      integer, intent(in) :: unit
-      integer, intent(out) :: ios
-      character(len=*), intent(inout) :: iomsg
+    subroutine group_reader(r)
+      import :: group_read_t
+      type(group_read_t), intent(inout) :: r
     end subroutine group_reader
   end interface
 
@@ -62,7 +67,6 @@ module deck_reader
     procedure :: rewind => deck_rewind
     procedure :: has_group
     procedure :: read_group
-    procedure :: check_read
     procedure :: group_line_range
   end type deck_t
 
@@ -248,20 +252,26 @@ contains
     integer, intent(in) :: unit
     integer, intent(out) :: ios
     character(len=*), intent(inout) :: iomsg
-    logical :: halt_overflow, halt_underflow
-    if (.not. (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_underflow))) then
-      call reader(unit, ios, iomsg)
-      return
+    logical :: quiet, halt_overflow, halt_underflow
+    type(group_read_t) :: r
+    r%unit = unit
+    r%iomsg = iomsg
+    quiet = ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_underflow)
+    if (quiet) then
+      call ieee_get_halting_mode(ieee_overflow, halt_overflow)
+      call ieee_get_halting_mode(ieee_underflow, halt_underflow)
+      call ieee_set_halting_mode(ieee_overflow, .false.)
+      call ieee_set_halting_mode(ieee_underflow, .false.)
     end if
-    call ieee_get_halting_mode(ieee_overflow, halt_overflow)
-    call ieee_get_halting_mode(ieee_underflow, halt_underflow)
-    call ieee_set_halting_mode(ieee_overflow, .false.)
-    call ieee_set_halting_mode(ieee_underflow, .false.)
-    call reader(unit, ios, iomsg)
-    call ieee_set_flag(ieee_overflow, .false.)
-    call ieee_set_flag(ieee_underflow, .false.)
-    call ieee_set_halting_mode(ieee_overflow, halt_overflow)
-    call ieee_set_halting_mode(ieee_underflow, halt_underflow)
+    call reader(r)
+    if (quiet) then
+      call ieee_set_flag(ieee_overflow, .false.)
+      call ieee_set_flag(ieee_underflow, .false.)
+      call ieee_set_halting_mode(ieee_overflow, halt_overflow)
+      call ieee_set_halting_mode(ieee_underflow, halt_underflow)
+    end if
+    ios = r%ios
+    iomsg = r%iomsg
   end subroutine read_quietly
 
   !> Lines [first, last] of the group: from its '&name' to the line holding its
@@ -290,38 +300,44 @@ contains
     end do
     if (first == 0) return
     do i = first, size(self%lines)
-      if (has_terminator(scan_line(self, i), i == first, len(key))) then
+      if (has_terminator(scan_line(self, i), i == first)) then
         last = i
         return
       end if
     end do
   end subroutine group_line_range
 
-  !> Does this line contain a '/' that ends a namelist group (outside quotes
-  !> and comments)?  On the group's first line, skip the '&name' token.
-  logical pure function has_terminator(line, is_first, key_len)
+  !> Does this line contain a '/' that ends a namelist group?
+  logical pure function has_terminator(line, is_first)
     character(len=*), intent(in) :: line
     logical, intent(in) :: is_first
-    integer, intent(in) :: key_len
-    integer :: i, start
+    has_terminator = terminator_column(line, is_first) <= len_trim(line)
+  end function has_terminator
+
+  !> Column of the '/' ending a group on this line (outside quotes and
+  !> comments), len(line) + 1 if there is none; on the group's first line the
+  !> '&name' is skipped.
+  integer pure function terminator_column(line, is_first) result(col)
+    character(len=*), intent(in) :: line
+    logical, intent(in) :: is_first
+    integer :: start
     character(len=1) :: quote
-    has_terminator = .false.
     quote = ' '
     start = 1
-    if (is_first) start = index(line, '&') + key_len
-    do i = start, len_trim(line)
+    if (is_first) start = index(line, '&') + 1
+    do col = start, len_trim(line)
       if (quote /= ' ') then
-        if (line(i:i) == quote) quote = ' '
-      else if (line(i:i) == '''' .or. line(i:i) == '"') then
-        quote = line(i:i)
-      else if (line(i:i) == '!') then
-        return
-      else if (line(i:i) == '/') then
-        has_terminator = .true.
+        if (line(col:col) == quote) quote = ' '
+      else if (line(col:col) == '''' .or. line(col:col) == '"') then
+        quote = line(col:col)
+      else if (line(col:col) == '!') then
+        exit
+      else if (line(col:col) == '/') then
         return
       end if
     end do
-  end function has_terminator
+    col = len(line) + 1
+  end function terminator_column
 
   !> Read one group through the owner's reader procedure and validate the read.
   subroutine read_group(self, group, reader, required, found, err)
@@ -361,7 +377,7 @@ contains
       found = .true.
       return
     end if
-    bad = first_bad_line(self, group, reader, first, last)
+    bad = first_bad_line(self, reader, first, last)
     if (bad > 0) then
       call err%set(context(self, group), 'cannot read line '//str(bad)//': "'//shown_line(self, bad)// &
                    '": '//explain(iomsg, ios, scan_line(self, bad)), input_error_code)
@@ -562,9 +578,8 @@ contains
 
   !> Replay the group on growing prefixes of its lines; the first prefix that
   !> fails to read names the offending line.
-  integer function first_bad_line(self, group, reader, first, last) result(bad)
+  integer function first_bad_line(self, reader, first, last) result(bad)
     class(deck_t), intent(in) :: self
-    character(len=*), intent(in) :: group
     procedure(group_reader) :: reader
     integer, intent(in) :: first, last
     integer :: k, u, ios, i
@@ -576,7 +591,7 @@ contains
         write(u, '(a)') trim(self%lines(i)%text)
       end do
       if (k < last) write(u, '(a)') '/'
-      if (k == first .and. .not. has_terminator(scan_line(self, first), .true., len_trim(group) + 1)) then
+      if (k == first .and. .not. has_terminator(scan_line(self, first), .true.)) then
         ! the '&group' line alone: nothing to test yet
         close(u)
         cycle
@@ -591,44 +606,6 @@ contains
       end if
     end do
   end function first_bad_line
-
-  !> For callers that perform `read(deck%unit, nml=...)` themselves.
-  subroutine check_read(self, group, ios, iomsg, required, found, err)
-    class(deck_t), intent(inout) :: self
-    character(len=*), intent(in) :: group, iomsg
-    integer, intent(in) :: ios
-    logical, intent(in) :: required
-    logical, intent(out) :: found
-    type(error_t), intent(inout) :: err
-    integer :: first, last, i
-    character(len=:), allocatable :: name
-    found = ios == 0
-    if (found) return
-    call self%group_line_range(group, first, last)
-    if (first == 0) then
-      if (required) call err%set(context(self, group), 'required group is missing from the deck', input_error_code)
-      return
-    end if
-    if (last == 0) then
-      call err%set(context(self, group), 'group starting on line '//str(first)//' is not closed with ''/''', &
-                   input_error_code)
-      return
-    end if
-    ! an unknown variable: find the line that names it
-    i = index(iomsg, 'object name ')
-    if (i > 0) then
-      name = lower(trim(iomsg(i + 12:)))
-      do i = first, last
-        if (index(scan_line(self, i), name) > 0) then
-          call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": ' &
-                       //explain(iomsg, ios, scan_line(self, i)), input_error_code)
-          return
-        end if
-      end do
-    end if
-    call err%set(context(self, group), 'lines '//str(first)//'-'//str(last)//': '//explain(iomsg, ios, ''), &
-                 input_error_code)
-  end subroutine check_read
 
   !> A value that was read but breaks a rule.
   subroutine invalid_value(deck, group, variable, value_text, rule, err)

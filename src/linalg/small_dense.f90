@@ -42,11 +42,7 @@ contains
       call self%factor(k - w2*m, err)
       return
     end if
-    if (self%n /= n) then
-      if (allocated(self%a)) deallocate(self%a, self%ipiv)
-      allocate(self%a(n, n), self%ipiv(n))
-      self%n = n
-    end if
+    call resize(self, n)
     do j = 1, n
       do i = 1, n
         self%a(i, j) = k(i, j) - w2*m(i, j)
@@ -62,11 +58,7 @@ contains
     type(error_t), intent(inout) :: err
     integer :: n, i, j
     n = size(a, 1)
-    if (self%n /= n) then
-      if (allocated(self%a)) deallocate(self%a, self%ipiv)
-      allocate(self%a(n, n), self%ipiv(n))
-      self%n = n
-    end if
+    call resize(self, n)
     do j = 1, n
       do i = 1, n
         self%a(i, j) = a(i, j)
@@ -79,6 +71,17 @@ contains
     end if
     call eliminate(self, err)
   end subroutine factor
+
+  !> Room for the factors of an n x n matrix (kept between factorizations of
+  !> the same size).
+  subroutine resize(self, n)
+    class(dense_lu_t), intent(inout) :: self
+    integer, intent(in) :: n
+    if (self%n == n) return
+    if (allocated(self%a)) deallocate(self%a, self%ipiv)
+    allocate(self%a(n, n), self%ipiv(n))
+    self%n = n
+  end subroutine resize
 
   !> Gaussian elimination with partial pivoting of self%a in place; the
   !> 1-norm of the matrix is kept for rcond.

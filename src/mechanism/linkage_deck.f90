@@ -6,7 +6,7 @@
 module linkage_deck
   use strings, only: str
   use error_status, only: error_t
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use linkage, only: mechanism_input_t, input_issue_t, mechanism_t, build_mechanism, max_links, max_joints
   use kinds, only: dp
   implicit none
@@ -84,11 +84,9 @@ contains
     end if
   end subroutine read_mechanism
 
-  subroutine read_mechanism_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=mechanism, iostat=ios, iomsg=iomsg)
+  subroutine read_mechanism_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=mechanism, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_mechanism_group
 
   !> Write the mechanism's effective input as the namelist group &mechanism.

@@ -12,7 +12,7 @@ module external_loads
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer
   use linkage, only: mechanism_t
   implicit none
@@ -191,10 +191,8 @@ contains
     write(unit, nml=loads, delim='apostrophe')
   end subroutine echo_loads
 
-  subroutine read_loads_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=loads, iostat=ios, iomsg=iomsg)
+  subroutine read_loads_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=loads, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_loads_group
 end module external_loads

@@ -21,7 +21,7 @@ module deck_problem
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer
   use optim_problem, only: opt_problem_t
   use problem_library, only: problem_info_t, quadratic_problem_t
@@ -64,11 +64,9 @@ contains
     title = 'a problem posed in the deck by its coefficients'
   end subroutine set_defaults
 
-  subroutine read_problem_data(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=problem_data, iostat=ios, iomsg=iomsg)
+  subroutine read_problem_data(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=problem_data, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_problem_data
 
   !> Read &problem_data, check every value, and build the problem.

@@ -19,6 +19,7 @@ module plot_animation
   use linkage_deck, only: read_mechanism
   use kinematics, only: kinematics_t
   use run_output, only: run_output_t, column_index
+  use plot_script, only: esc
   implicit none
   private
   public :: write_animation
@@ -199,7 +200,7 @@ contains
     write(u, '(a)') 'set ylabel "Y (in)"'
     write(u, '(a)') 'data = "'//base//'_anim.dat"'
     write(u, '(a)') 'do for [i = 0:'//str(n - 1)//'] {'
-    write(u, '(a)') '  set title "'//esc_quote(out%title)//'\nelastic displacements x '//factor_text(factor)// &
+    write(u, '(a)') '  set title "'//esc(out%title)//'\nelastic displacements x '//factor_text(factor)// &
       ' (links straight between their displaced ends); frame ".(i + 1)." of '//str(n)//'"'
     write(u, '(a)') '  plot data index i u 3:4 w lp lw 4 pt 7 ps 1.2 lc rgb "#0072b2" t "deformed x '// &
       factor_text(factor)//'", \'
@@ -220,15 +221,4 @@ contains
     end if
     s = trim(adjustl(buf))
   end function factor_text
-
-  pure function esc_quote(text) result(s)
-    character(len=*), intent(in) :: text
-    character(len=:), allocatable :: s
-    integer :: i
-    s = ''
-    do i = 1, len(text)
-      if (text(i:i) == '"' .or. text(i:i) == '\') s = s//'\'
-      s = s//text(i:i)
-    end do
-  end function esc_quote
 end module plot_animation

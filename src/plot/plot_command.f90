@@ -21,7 +21,7 @@ module plot_command
   use plot_animation, only: write_animation
   use plot_compare, only: write_compare_script
   use kinds, only: dp
-  use strings, only: shell_quote
+  use strings, only: shell_quote, file_stem
   use process_runner, only: run_command
   implicit none
   private
@@ -135,7 +135,6 @@ contains
     type(error_t) :: err
     character(len=64), allocatable :: figures(:)
     character(len=:), allocatable :: base, script, why, command
-    integer :: i
     status = 0
     base = figure_base(path, dir)
     script = base//'.gp'
@@ -167,10 +166,7 @@ contains
       status = 3
       return
     end if
-    do i = 1, size(figures)
-      write(output_unit, '(a)') program_name//' plot: drew '//base//'_'//trim(figures(i))// &
-        trim(merge('.png      ', '.png, .svg', png_only))
-    end do
+    call report_drawn(base, figures, png_only)
   end subroutine plot_one
 
   subroutine compare_runs(args, want, dir, name, only, title, run_labels, script_only, png_only, status)
@@ -199,7 +195,7 @@ contains
       k = k + 1
       call read_run_output(trim(args(i)), outs(k), err)
       if (err%failed()) exit
-      labels(k) = nth_label(run_labels, k, stem_of(trim(args(i))))
+      labels(k) = nth_label(run_labels, k, file_stem(trim(args(i))))
     end do
     if (.not. err%failed()) call write_compare_script(outs, labels, base, base//'.gp', only, title, figures, err)
     status = 0
@@ -218,11 +214,19 @@ contains
       status = 3
       return
     end if
+    call report_drawn(base, figures, png_only)
+  end subroutine compare_runs
+
+  !> One line per figure gnuplot drew.
+  subroutine report_drawn(base, figures, png_only)
+    character(len=*), intent(in) :: base, figures(:)
+    logical, intent(in) :: png_only
+    integer :: i
     do i = 1, size(figures)
       write(output_unit, '(a)') program_name//' plot: drew '//base//'_'//trim(figures(i))// &
         trim(merge('.png      ', '.png, .svg', png_only))
     end do
-  end subroutine compare_runs
+  end subroutine report_drawn
 
   !> The k-th ';'-separated label, or `default` when there is none.
   pure function nth_label(list, k, default) result(s)
@@ -239,16 +243,6 @@ contains
       a = b + 1
     end do
   end function nth_label
-
-  !> The file name without directory and extension.
-  pure function stem_of(path) result(stem)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable :: stem
-    integer :: dot
-    stem = path(index(path, '/', back=.true.) + 1:)
-    dot = index(stem, '.', back=.true.)
-    if (dot > 1) stem = stem(1:dot - 1)
-  end function stem_of
 
   subroutine animate_one(path, dir, script_only, magnify, status)
     character(len=*), intent(in) :: path
@@ -285,11 +279,9 @@ contains
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(in) :: dir
     character(len=:), allocatable :: base
-    integer :: slash, dot
+    integer :: slash
     slash = index(path, '/', back=.true.)
-    base = path(slash + 1:)
-    dot = index(base, '.', back=.true.)
-    if (dot > 1) base = base(1:dot - 1)
+    base = file_stem(path)
     if (allocated(dir)) then
       base = dir//'/'//base
     else if (slash > 0) then

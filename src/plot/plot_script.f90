@@ -20,7 +20,7 @@ module plot_script
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str, starts_with
+  use strings, only: str, starts_with, append_name
   use run_output, only: run_output_t, column_index
   implicit none
   private
@@ -96,7 +96,7 @@ contains
     integer, intent(in) :: u
     character(len=*), intent(in) :: name, subtitle
     character(len=64), allocatable, intent(inout) :: figures(:)
-    call append_figure(figures, name)
+    call append_name(figures, name)
     write(u, '(a)') ''
     write(u, '(a)') 'do for [fmt in formats] {'
     write(u, '(a)') '  reset'
@@ -130,16 +130,6 @@ contains
       end if
     end do
   end subroutine plot_series
-
-  subroutine append_figure(figures, name)
-    character(len=64), allocatable, intent(inout) :: figures(:)
-    character(len=*), intent(in) :: name
-    character(len=64), allocatable :: longer(:)
-    allocate(longer(size(figures) + 1))
-    longer(1:size(figures)) = figures
-    longer(size(longer)) = name
-    call move_alloc(longer, figures)
-  end subroutine append_figure
 
   !> A series_t built component by component (gfortran 12 mis-sizes a
   !> deferred-length component given another one in a structure constructor).

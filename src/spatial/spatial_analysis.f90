@@ -19,6 +19,7 @@ module spatial_analysis
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
   use spatial_correlation, only: sdofs
   use restart_file, only: write_restart_file, start_from_restart
+  use revolution_peaks, only: note_peaks, write_stress_peaks
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
@@ -44,7 +45,7 @@ contains
     type(spatial_stress_t), allocatable :: stress(:)
     real(dp), allocatable :: y(:), omega_n(:), peak_stress(:), peak_angle(:), ring(:, :)
     real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, ke, se
-    integer :: k, n_out, e, jb, jc, per_rev
+    integer :: k, n_out, jb, jc, per_rev
     real(dp) :: defect, dscale
     character(len=32), allocatable :: names(:)
 
@@ -116,10 +117,7 @@ contains
                            str((inp%theta0_deg*pi/180.0_dp + inp%omega*t)*180.0_dp/pi, 7)//' deg')
     end if
 
-    do e = 1, size(model%el)
-      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
-                       str(peak_angle(e), 6)//' deg')
-    end do
+    call write_stress_peaks(out, peak_stress, peak_angle)
     if (per_rev > 0 .and. .not. err%failed() .and. dscale > 0.0_dp) &
       call out%summary('periodicity defect over the last revolution', str(defect/dscale, 4)// &
                        ' (largest change of a deflection column in one revolution / its largest value)')
@@ -146,12 +144,7 @@ contains
       q = y(1::2)
       crank_deg = inp%theta0_deg + inp%omega*tt*180.0_dp/pi
       call model%element_stresses(q, stress)
-      do ee = 1, size(stress)
-        if (stress(ee)%max_abs_stress > peak_stress(ee)) then
-          peak_stress(ee) = stress(ee)%max_abs_stress
-          peak_angle(ee) = crank_deg
-        end if
-      end do
+      call note_peaks(stress%max_abs_stress, crank_deg, peak_stress, peak_angle)
       allocate(row(size(names)))
       row(1) = tt
       row(2) = crank_deg

@@ -7,7 +7,7 @@ module spatial_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use material_law, only: ramberg_osgood_t
@@ -199,10 +199,8 @@ contains
     call out%end_echo()
   end subroutine echo_spatial_mechanism
 
-  subroutine read_group(unit, ios, iomsg)
-    integer, intent(in) :: unit
-    integer, intent(out) :: ios
-    character(len=*), intent(inout) :: iomsg
-    read(unit, nml=spatial_mechanism, iostat=ios, iomsg=iomsg)
+  subroutine read_group(r)
+    type(group_read_t), intent(inout) :: r
+    read(r%unit, nml=spatial_mechanism, iostat=r%ios, iomsg=r%iomsg)
   end subroutine read_group
 end module spatial_settings
