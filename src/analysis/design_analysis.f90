@@ -216,10 +216,12 @@ contains
     call check_integer(deck, g, 'max_revolutions', max_revolutions, err, at_least=2, at_most=100000, &
                        why='revolutions the transient evaluator may take to its periodic state (two to compare)')
     call check_choice(deck, g, 'hessian', hessian, [character(len=16) :: 'gauss', 'structured'], err)
-    call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=0.0_dp, at_most=1.0e12_dp, &
-                    why='0 = no stress constraint')
-    call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=0.0_dp, at_most=1.0e3_dp, &
-                    why='lowest natural frequency >= factor x crank speed; 0 = no frequency constraint')
+    ! the constraints are logarithms of ratios to these: a subnormal one made
+    ! the ratio 0 or infinite (fuzz seed 12, case 1990: log(0) trapped)
+    call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=1.0e-3_dp, at_most=1.0e12_dp, &
+                    why='0 = no stress constraint', or_zero=.true.)
+    call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=1.0e-3_dp, at_most=1.0e3_dp, &
+                    why='lowest natural frequency >= factor x crank speed; 0 = no frequency constraint', or_zero=.true.)
     call check_integer(deck, g, 'max_iterations', max_iterations, err, at_least=1, at_most=1000)
     call check_integer(deck, g, 'samples', samples, err, at_least=8, at_most=3600, &
                        why='crank angles per revolution where stresses and frequencies are taken')
