@@ -229,8 +229,8 @@ contains
                     why='design step test, relative change of sizes; below 1e-8 it is analysis noise')
     call check_real(deck, g, 'feas_tol', feas_tol, err, at_least=1.0e-8_dp, below=1.0_dp, &
                     why='allowed ln(stress/allowable) etc.: a relative violation')
-    call check_real(deck, g, 'move_limit', move_limit, err, above=0.0_dp, at_most=2.0_dp, &
-                    why='initial largest change of ln(size) per design iteration')
+    call check_real(deck, g, 'move_limit', move_limit, err, at_least=1.0e-3_dp, at_most=2.0_dp, &
+                    why='initial largest change of ln(size) per design iteration; its inverse weighs the step')
     if (err%failed()) return
     if (objective == 'shaking' .or. objective == 'shaking_peak') then
       if (len(shaking_supported(mech)) > 0) then
@@ -284,8 +284,8 @@ contains
                       why='every design variable needs bounds')
       call check_real(deck, g, 'upper('//str(i)//')', upper(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
                       why='every design variable needs bounds')
-      call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=0.0_dp, at_most=1.0e8_dp, &
-                      why='0 = the initial value''s magnitude')
+      call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=1.0e-8_dp, at_most=1.0e8_dp, &
+                      why='0 = the initial value''s magnitude; values are divided by it', or_zero=.true.)
       if (err%failed()) return
       if (.not. (lower(i) < upper(i))) then
         call invalid_value(deck, g, 'upper('//str(i)//')', str(upper(i)), 'must exceed lower('//str(i)//') = '// &
@@ -336,7 +336,7 @@ contains
         return
       end if
     end if
-    call check_reals(deck, g, 'speeds', speeds(1:ns), err, above=0.0_dp, at_most=1.0e5_dp, &
+    call check_reals(deck, g, 'speeds', speeds(1:ns), err, at_least=1.0e-6_dp, at_most=1.0e5_dp, &
                      why='crank speeds (rad/s) the design must satisfy; > 0: a steady state needs a turning crank')
     call check_integer(deck, g, 'objective_speed', objective_speed, err, at_least=0, at_most=ns, &
                        why='0 = the objective summed over the speeds; i = at speeds(i) only')
