@@ -10,7 +10,9 @@
 !>                      constraints in B11; step-back as in gnlc
 !>   gnlc_general_ns    the same without step-back (Potter's fix (b), tried by Boston)
 !>
-!> Every iteration costs one analysis (no line search), so NF = NI + 1.
+!> Every iteration costs one analysis (no line search), so NF = NI + 1; on
+!> bounds-only problems a projected Newton point rejected by Armijo's test
+!> costs one more (projected_point).
 !>
 !> Convergence (the papers state no test; ours, see doc/optimization.md): at
 !> x_k, after the step s_k and the multipliers have been computed,

@@ -109,6 +109,8 @@ contains
     call assert_close(opt%x(1), 1.2243707487_dp, 1.0e-8_dp, 'HS 2: x1 = x1*')
     call assert_close(opt%x(2), 1.5_dp, 1.0e-8_dp, 'HS 2: x2 = x2* (on the bound)')
     call assert_close(opt%f, 0.0504261879_dp, 1.0e-9_dp, 'HS 2: F = F*')
+    ! one projected point rejected on the way (at (1.249, 1.5): P = (1, 1.5), F = 25 > 0.43)
+    call assert_equal(p%count%analyses, opt%iterations + 2, 'HS 2: NF = NI + 1 + one rejected projected point')
     call err%clear()
     call create_hs(2, p, x0, xs, fs, found)
     opt%opts%projected_newton = .false.
