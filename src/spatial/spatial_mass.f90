@@ -48,6 +48,7 @@ module spatial_mass
     real(dp), allocatable :: w(:, :, :)            !< (n, 3, npair): A^-1 P_p (block order)
     integer, allocatable :: w_lo(:, :), w_hi(:, :) !< (3, npair): its nonzero range (within the pair's blocks)
     real(dp), allocatable :: h(:, :)               !< (3 npair, 3 npair): [same element] M_p blocks - P_p^T A^-1 P_q
+    integer, allocatable :: h_lo(:), h_hi(:)       !< nonzero rows of H's columns of pair p (the pairs of its link)
     integer, allocatable :: pj_n(:), pj(:, :)      !< the distinct J unknowns of each pair (up to 3)
     real(dp), allocatable :: e(:, :, :)            !< (3, 3, npair): E_p(:, jj) = R_p^T d_(p, jj) at the last update
     real(dp), allocatable :: he(:, :)              !< (3 npair, nj) work: H E
@@ -256,7 +257,7 @@ contains
     allocate(self%slot_j(3*np), self%slot_d(3*np), self%p_n(np), self%p_idx(sdofs, np), self%p_val(sdofs, 3, np), &
              self%w(n, 3, np), self%h(3*np, 3*np), self%rp(3, 3, np), self%schur(self%nj, self%nj), &
              self%pj_n(np), self%pj(3, np), self%e(3, 3, np), self%he(3*np, self%nj), &
-             self%w_lo(3, np), self%w_hi(3, np))
+             self%w_lo(3, np), self%w_hi(3, np), self%h_lo(np), self%h_hi(np))
     self%pj_n = 0
     self%slot_j = 0
     self%slot_d = 0.0_dp
@@ -304,6 +305,11 @@ contains
                                       first(self%pair_b(j)):first(self%pair_b(j)) + 2)
       end do
     end do
+    do k = 1, np
+      self%h_lo(k) = findloc(any(abs(self%h(:, 3*k - 2:3*k)) > 0.0_dp, 2), .true., 1)
+      self%h_hi(k) = findloc(any(abs(self%h(:, 3*k - 2:3*k)) > 0.0_dp, 2), .true., 1, back=.true.)
+      if (self%h_lo(k) == 0) self%h_lo(k) = 1                           ! (empty: h_hi = 0)
+    end do
   end subroutine precompute_pairs
 
 
@@ -334,7 +340,9 @@ contains
         j = self%pj(jj, k)
         do m = 1, 3                    ! E is sparse in a planar linkage (R^T e_z = e_z): skip its zeros
           if (abs(self%e(m, jj, k)) <= 0.0_dp) cycle
-          self%he(:, j) = self%he(:, j) + self%h(:, 3*(k - 1) + m)*self%e(m, jj, k)
+          associate (lo => self%h_lo(k), hi => self%h_hi(k))
+            self%he(lo:hi, j) = self%he(lo:hi, j) + self%h(lo:hi, 3*(k - 1) + m)*self%e(m, jj, k)
+          end associate
         end do
       end do
     end do
@@ -352,12 +360,20 @@ contains
       end do
     end do
     ok = .false.                                         ! dense Cholesky of the small S (lower)
-    do j = 1, self%nj
-      s = self%schur(j, j) - sum(self%schur(j, 1:j - 1)**2)
+    do j = 1, self%nj                                    ! (sums in index order, as sum() does)
+      s = 0.0_dp
+      do m = 1, j - 1
+        s = s + self%schur(j, m)**2
+      end do
+      s = self%schur(j, j) - s
       if (.not. (s > 0.0_dp)) return
       self%schur(j, j) = sqrt(s)
       do i = j + 1, self%nj
-        self%schur(i, j) = (self%schur(i, j) - sum(self%schur(i, 1:j - 1)*self%schur(j, 1:j - 1)))/self%schur(j, j)
+        s = 0.0_dp
+        do m = 1, j - 1
+          s = s + self%schur(i, m)*self%schur(j, m)
+        end do
+        self%schur(i, j) = (self%schur(i, j) - s)/self%schur(j, j)
       end do
     end do
     ok = .true.
