@@ -574,10 +574,12 @@ contains
       call station_energy(el, z, want_k .or. want_damp, en, fz, hz, s)
       info%strain_energy = info%strain_energy + el%wg(i)*en
       fint = fint + el%wg(i)*matmul(el%gz(:, :, i), fz)
-      if (want_k .or. want_damp) then
+      if (want_k) then
         gh = el%wg(i)*matmul(el%gz(:, :, i), hz)
-        if (want_k) kp = kp + matmul(gh, transpose(el%gz(:, :, i)))
+        kp = kp + matmul(gh, transpose(el%gz(:, :, i)))
         if (want_damp) fdamp = fdamp + matmul(gh, matmul(prel, el%gz(:, :, i)))
+      else if (want_damp) then         ! G (H (G^T prel)): without the 20 x 7 product G H
+        fdamp = fdamp + el%wg(i)*matmul(el%gz(:, :, i), matmul(hz, matmul(prel, el%gz(:, :, i))))
       end if
       call section_extreme_fibre_strain(el%sec, s, emax, yf, zf)
       info%max_abs_strain = max(info%max_abs_strain, emax)
