@@ -276,6 +276,27 @@ contains
     y(t_set) = at(:, 1)*x(t_set(1)) + at(:, 2)*x(t_set(2))
   end function block_apply
 
+  !> y1 = A x1, y2 = A x2 in one pass over A's blocks (as block_apply twice).
+  pure subroutine block_apply_pair(blk, at, nact, x1, x2, y1, y2)
+    real(dp), intent(in) :: blk(6, 6, 3), at(2, 2), x1(nd), x2(nd)
+    integer, intent(in) :: nact(3)
+    real(dp), intent(out) :: y1(nd), y2(nd)
+    real(dp) :: ys1(6), ys2(6)
+    integer :: k, j
+    do k = 1, 3
+      ys1 = 0.0_dp
+      ys2 = 0.0_dp
+      do j = 1, nact(k)
+        ys1 = ys1 + blk(:, j, k)*x1(sets(j, k))
+        ys2 = ys2 + blk(:, j, k)*x2(sets(j, k))
+      end do
+      y1(sets(:, k)) = ys1
+      y2(sets(:, k)) = ys2
+    end do
+    y1(t_set) = at(:, 1)*x1(t_set(1)) + at(:, 2)*x1(t_set(2))
+    y2(t_set) = at(:, 1)*x2(t_set(1)) + at(:, 2)*x2(t_set(2))
+  end subroutine block_apply_pair
+
   !> Rows at x = e l: s(:, k) gives displacement k (u, v, w), gp(:, k) the
   !> small rotation k (theta, -w_x, v_x), z(:, j) the station variables
   !> (u_x, v_x, w_x, v_xx, w_xx, theta_x, u_xx), all as dot products with p.
@@ -440,6 +461,8 @@ contains
     do a = 1, 3
       fa = -(el%q0(:, a)*a0(a) + el%q1(:, a)*c1(a))
       do b = 1, 3
+        ! (a zero coefficient pair adds exact zeros: planar motion, omega along z, has 5 of 9)
+        if (abs(lm(a, b)) <= 0.0_dp .and. abs(om(a, b)) <= 0.0_dp) cycle
         y = lm(a, b)*ps(:, b) + om(a, b)*hs(:, b)
         do k = 1, el%nact(b)               ! (N_ab's columns past nact(b) are zero)
           fa = fa - el%nab(:, k, a, b)*y(k)
@@ -533,10 +556,13 @@ contains
     info%strain_energy = 0.0_dp
     info%max_abs_strain = 0.0_dp
     if (linear_strain(el)) then
-      fint = block_apply(el%kblk, el%kt, el%nact, p)
+      if (want_damp) then
+        call block_apply_pair(el%kblk, el%kt, el%nact, p, prel, fint, fdamp)
+      else
+        fint = block_apply(el%kblk, el%kt, el%nact, p)
+      end if
       info%strain_energy = 0.5_dp*dot_product(p, fint)
       if (want_k) kp = el%k_lin          ! kp, fdamp are left undefined when not asked for
-      if (want_damp) fdamp = block_apply(el%kblk, el%kt, el%nact, prel)
       ! material off here: no Ramberg-Osgood peak to watch, max_abs_strain is not computed
       return
     end if
@@ -548,10 +574,12 @@ contains
       call station_energy(el, z, want_k .or. want_damp, en, fz, hz, s)
       info%strain_energy = info%strain_energy + el%wg(i)*en
       fint = fint + el%wg(i)*matmul(el%gz(:, :, i), fz)
-      if (want_k .or. want_damp) then
+      if (want_k) then
         gh = el%wg(i)*matmul(el%gz(:, :, i), hz)
-        if (want_k) kp = kp + matmul(gh, transpose(el%gz(:, :, i)))
+        kp = kp + matmul(gh, transpose(el%gz(:, :, i)))
         if (want_damp) fdamp = fdamp + matmul(gh, matmul(prel, el%gz(:, :, i)))
+      else if (want_damp) then         ! G (H (G^T prel)): without the 20 x 7 product G H
+        fdamp = fdamp + el%wg(i)*matmul(el%gz(:, :, i), matmul(hz, matmul(prel, el%gz(:, :, i))))
       end if
       call section_extreme_fibre_strain(el%sec, s, emax, yf, zf)
       info%max_abs_strain = max(info%max_abs_strain, emax)
@@ -744,7 +772,10 @@ contains
     integer :: b, r
     loc = .false.
     if (present(local)) loc = local
-    p = q
+    p(7:10) = q(7:10)                    ! curvature and u-slope DOFs stay local
+    p(17:20) = q(17:20)
+    if (loc(1)) p(4:6) = q(4:6)
+    if (loc(2)) p(14:16) = q(14:16)
     do b = 1, 4
       if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
       r = triple_first(b)
@@ -763,7 +794,10 @@ contains
     integer :: b, r
     loc = .false.
     if (present(local)) loc = local
-    q = p
+    q(7:10) = p(7:10)
+    q(17:20) = p(17:20)
+    if (loc(1)) q(4:6) = p(4:6)
+    if (loc(2)) q(14:16) = p(14:16)
     do b = 1, 4
       if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
       r = triple_first(b)
