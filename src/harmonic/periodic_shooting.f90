@@ -268,7 +268,7 @@ contains
   subroutine integrate_revolution(ode, flow, y, period, s, err)
     type(lsode_t), intent(inout) :: ode
     type(flow_t), intent(inout) :: flow
-    real(dp), intent(inout) :: y(:)
+    real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: period
     type(shooting_settings_t), intent(in) :: s
     type(error_t), intent(inout) :: err
