@@ -196,8 +196,12 @@ OPT_LEVELS   := O0 O2 O3native
 OPTFLAGS_O0       := -O0
 OPTFLAGS_O2       := -O2
 OPTFLAGS_O3native := -O3 -march=native
+# one deck of each analysis (a sweep runs its points as child processes of
+# the analyses above)
 VALGRIND_DECKS := inputs/fourbar_150_damped.nml inputs/tennant_fig4_linear.nml \
-                  inputs/opt_hs35_gauss_constrained.nml inputs/lsode_kinetics.nml
+                  inputs/opt_hs35_gauss_constrained.nml inputs/lsode_kinetics.nml \
+                  inputs/design_bar_frequency.nml inputs/spatial_fourbar_planar_100.nml \
+                  inputs/fourbar_150_clearance.nml
 
 .PHONY: fuzz fuzz-ci fuzz-bins check-debug check-opt check-valgrind $(addprefix check-opt-,$(OPT_LEVELS))
 

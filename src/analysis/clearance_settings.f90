@@ -83,6 +83,13 @@ contains
                            'not modelled in a mechanism with a link sliding through a sleeve (slider_link)', err)
         return
       end if
+      ! a counterweight turns about a fixed pivot (the model's register_counterweights)
+      if (any(mech%links(1:mech%n_links)%cw_mass > 0.0_dp .and. mech%links(1:mech%n_links)%joint(1) == j)) then
+        call invalid_value(deck, g, 'joint_clearance('//str(j)//')', str(s%clearance(j)), 'joint '// &
+                           trim(mech%joints(j)%name)//' is the pivot of a counterweight: a clearance there is '// &
+                           'not modelled (the counterweight turns about a fixed pivot)', err)
+        return
+      end if
       associate (jt => mech%joints(j))
         if (.not. ((jt%kind == joint_pin .and. jt%n_links == 2) .or. (jt%kind == joint_ground_pin .and. &
                                                                        jt%n_links == 1))) then

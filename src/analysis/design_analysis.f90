@@ -225,10 +225,12 @@ contains
     if (.not. err%failed() .and. derivatives == 'variational' .and. evaluator /= 'shooting') &
       call invalid_value(deck, g, 'derivatives', '''variational''', 'the sensitivities of the periodic orbit need '// &
                          'evaluator = ''shooting'' (the exact periodic state); use ''differences''', err)
-    call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=0.0_dp, at_most=1.0e12_dp, &
-                    why='0 = no stress constraint')
-    call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=0.0_dp, at_most=1.0e3_dp, &
-                    why='lowest natural frequency >= factor x crank speed; 0 = no frequency constraint')
+    ! the constraints are logarithms of ratios to these: a subnormal one made
+    ! the ratio 0 or infinite (fuzz seed 12, case 1990: log(0) trapped)
+    call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=1.0e-3_dp, at_most=1.0e12_dp, &
+                    why='0 = no stress constraint', or_zero=.true.)
+    call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=1.0e-3_dp, at_most=1.0e3_dp, &
+                    why='lowest natural frequency >= factor x crank speed; 0 = no frequency constraint', or_zero=.true.)
     call check_integer(deck, g, 'max_iterations', max_iterations, err, at_least=1, at_most=1000)
     call check_integer(deck, g, 'samples', samples, err, at_least=8, at_most=3600, &
                        why='crank angles per revolution where stresses and frequencies are taken')
@@ -236,8 +238,8 @@ contains
                     why='design step test, relative change of sizes; below 1e-8 it is analysis noise')
     call check_real(deck, g, 'feas_tol', feas_tol, err, at_least=1.0e-8_dp, below=1.0_dp, &
                     why='allowed ln(stress/allowable) etc.: a relative violation')
-    call check_real(deck, g, 'move_limit', move_limit, err, above=0.0_dp, at_most=2.0_dp, &
-                    why='initial largest change of ln(size) per design iteration')
+    call check_real(deck, g, 'move_limit', move_limit, err, at_least=1.0e-3_dp, at_most=2.0_dp, &
+                    why='initial largest change of ln(size) per design iteration; its inverse weighs the step')
     if (err%failed()) return
     if (objective == 'shaking' .or. objective == 'shaking_peak') then
       if (len(shaking_supported(mech)) > 0) then
@@ -291,8 +293,8 @@ contains
                       why='every design variable needs bounds')
       call check_real(deck, g, 'upper('//str(i)//')', upper(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
                       why='every design variable needs bounds')
-      call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=0.0_dp, at_most=1.0e8_dp, &
-                      why='0 = the initial value''s magnitude')
+      call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=1.0e-8_dp, at_most=1.0e8_dp, &
+                      why='0 = the initial value''s magnitude; values are divided by it', or_zero=.true.)
       if (err%failed()) return
       if (.not. (lower(i) < upper(i))) then
         call invalid_value(deck, g, 'upper('//str(i)//')', str(upper(i)), 'must exceed lower('//str(i)//') = '// &
@@ -343,7 +345,7 @@ contains
         return
       end if
     end if
-    call check_reals(deck, g, 'speeds', speeds(1:ns), err, above=0.0_dp, at_most=1.0e5_dp, &
+    call check_reals(deck, g, 'speeds', speeds(1:ns), err, at_least=1.0e-6_dp, at_most=1.0e5_dp, &
                      why='crank speeds (rad/s) the design must satisfy; > 0: a steady state needs a turning crank')
     call check_integer(deck, g, 'objective_speed', objective_speed, err, at_least=0, at_most=ns, &
                        why='0 = the objective summed over the speeds; i = at speeds(i) only')

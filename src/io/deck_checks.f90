@@ -25,26 +25,33 @@ contains
 
   !> A real deck value: finite, then within the bounds given.  `above`/`below`
   !> are strict bounds, `at_least`/`at_most` inclusive ones.
-  subroutine check_real(deck, group, name, value, err, above, at_least, below, at_most, why)
+  subroutine check_real(deck, group, name, value, err, above, at_least, below, at_most, why, or_zero)
     type(deck_t), intent(in) :: deck
     character(len=*), intent(in) :: group, name
     real(dp), intent(in) :: value
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: above, at_least, below, at_most
     character(len=*), intent(in), optional :: why
-    logical :: ok
+    logical, intent(in), optional :: or_zero     !< 0 (the effect off) allowed besides the range
+    logical :: ok, zero_allowed
+    character(len=:), allocatable :: range
     if (err%failed()) return
     if (.not. ieee_is_finite(value)) then
       call invalid_value(deck, group, name, str(value), 'must be a finite number'//reason(why), err)
       return
     end if
+    zero_allowed = .false.
+    if (present(or_zero)) zero_allowed = or_zero
+    if (zero_allowed .and. .not. abs(value) > 0.0_dp) return
     ok = .true.
     if (present(above)) ok = ok .and. value > above
     if (present(at_least)) ok = ok .and. value >= at_least
     if (present(below)) ok = ok .and. value < below
     if (present(at_most)) ok = ok .and. value <= at_most
-    if (.not. ok) call invalid_value(deck, group, name, str(value), &
-                                     range_text(above, at_least, below, at_most)//reason(why), err)
+    if (ok) return
+    range = range_text(above, at_least, below, at_most)
+    if (zero_allowed) range = 'must be 0 or'//range(5:)     ! 'must lie in ...' -> 'must be 0 or lie in ...'
+    call invalid_value(deck, group, name, str(value), range//reason(why), err)
   end subroutine check_real
 
   !> Every element of a real array deck value (named name(i), or name(k,i)

@@ -439,6 +439,14 @@ contains
           ! "2.5*'text'", cut to the variable's length (fuzz seed 8)
           j = k + scan(l(k:), ' ,/*!=') - 1
           if (j < k) j = len(l) + 1
+          ! gfortran reads '3x'open'' into a character variable as undelimited
+          ! text, cut to its length (fuzz seed 12, case 10731): a number runs
+          ! on into letters only as a logical (.true.) or an exponent
+          if (verify(l(k:j - 1), '0123456789.+-ed') > 0 .and. .not. is_logical_or_special(l(k:j - 1))) then
+            call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": a value starts '// &
+                         'as a number and runs on into other characters (text values must be quoted)', input_error_code)
+            return
+          end if
           if (j <= len(l)) then
             if (l(j:j) == '*' .and. verify(l(k:j - 1), '0123456789') > 0) then
               call err%set(context(self, group), 'line '//str(i)//': "'//shown_line(self, i)//'": the repeat '// &
@@ -453,6 +461,17 @@ contains
       end do
     end do
   end subroutine check_string_lengths
+
+  !> A namelist logical written with its dots (.true., .f), or a signed
+  !> infinity or NaN (-inf: read, then refused by the finiteness checks with
+  !> the variable's name); lower case.
+  pure logical function is_logical_or_special(token)
+    character(len=*), intent(in) :: token
+    is_logical_or_special = .false.
+    if (len(token) >= 2) is_logical_or_special = token(1:1) == '.' .and. (token(2:2) == 't' .or. token(2:2) == 'f')
+    if (len(token) >= 4) is_logical_or_special = is_logical_or_special .or. (scan(token(1:1), '+-') == 1 .and. &
+                                                       (token(2:4) == 'inf' .or. token(2:4) == 'nan'))
+  end function is_logical_or_special
 
   !> The quoted value opening at l(k:k): its closing quote l(j:j) (j > len(l)
   !> if unterminated) and its length n without trailing blanks, a doubled

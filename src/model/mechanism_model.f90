@@ -71,6 +71,7 @@ module mechanism_model
   !> [cos phi, sin phi, cos 2phi, sin 2phi] of each element.
   type :: frame_table_t
     integer :: rows = 0                  !< rows of the band storage
+    integer :: n_varying = 0             !< entries that vary with the element angles
     real(dp), allocatable :: const(:)    !< the constant band, column-major
     integer, allocatable :: pos(:)       !< entry's position in the band array, column-major
     integer, allocatable :: base(:)      !< its basis pair's position in basis(4, n_elements), minus 1
@@ -443,8 +444,8 @@ contains
         if (fx%stretching .or. fx%curvature .or. fx%material) return
       end associate
     end do
-    call start_table(self%frame_mass, self%kd + 1, self%n)
-    call start_table(self%frame_stiff, 2*self%kd + 1, self%n)
+    call start_table(self%frame_mass, self%kd + 1, self%n, size(self%el))
+    call start_table(self%frame_stiff, 2*self%kd + 1, self%n, size(self%el))
     zero = 0.0_dp
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle
@@ -453,17 +454,30 @@ contains
       call tabulate_element(self, e, ml, .true., self%frame_mass)
       call tabulate_element(self, e, kl, .false., self%frame_stiff)
     end do
+    call finish_table(self%frame_mass)
+    call finish_table(self%frame_stiff)
     allocate(self%frame_basis(4, size(self%el)))
     self%frame_tables = .true.
   end subroutine build_frame_tables
 
-  subroutine start_table(ft, rows, n)
+  !> An empty table with room for every varying entry of n_elements elements
+  !> (at most two per entry of an 8 x 8 element matrix): appending one at a
+  !> time by concatenation cost O(n^2) at set-up (0.5 s at 32 elements per link).
+  subroutine start_table(ft, rows, n, n_elements)
     type(frame_table_t), intent(out) :: ft
-    integer, intent(in) :: rows, n
+    integer, intent(in) :: rows, n, n_elements
     ft%rows = rows
-    allocate(ft%const(rows*n), ft%pos(0), ft%base(0), ft%coef(2, 0))
+    allocate(ft%const(rows*n), ft%pos(128*n_elements), ft%base(128*n_elements), ft%coef(2, 128*n_elements))
     ft%const = 0.0_dp
   end subroutine start_table
+
+  !> The table cut to its n_varying entries.
+  subroutine finish_table(ft)
+    type(frame_table_t), intent(inout) :: ft
+    ft%pos = ft%pos(1:ft%n_varying)
+    ft%base = ft%base(1:ft%n_varying)
+    ft%coef = ft%coef(:, 1:ft%n_varying)
+  end subroutine finish_table
 
   !> Element e's entries of T^T l T into table ft: lower band storage (mass)
   !> or general band storage (stiffness).
@@ -489,9 +503,10 @@ contains
         varying(:, 2) = [0.5_dp*(f(1) - f(3)), 0.5_dp*f(2)]   ! cos 2phi, sin 2phi
         do k = 1, 2
           if (.not. (abs(varying(1, k)) > 0.0_dp .or. abs(varying(2, k)) > 0.0_dp)) cycle
-          ft%pos = [ft%pos, r + (gj - 1)*ft%rows]
-          ft%base = [ft%base, 4*(e - 1) + 2*(k - 1)]
-          ft%coef = reshape([ft%coef, varying(:, k)], [2, size(ft%pos)])
+          ft%n_varying = ft%n_varying + 1
+          ft%pos(ft%n_varying) = r + (gj - 1)*ft%rows
+          ft%base(ft%n_varying) = 4*(e - 1) + 2*(k - 1)
+          ft%coef(:, ft%n_varying) = varying(:, k)
         end do
       end do
     end do

@@ -10,7 +10,9 @@
 !>                      constraints in B11; step-back as in gnlc
 !>   gnlc_general_ns    the same without step-back (Potter's fix (b), tried by Boston)
 !>
-!> Every iteration costs one analysis (no line search), so NF = NI + 1.
+!> Every iteration costs one analysis (no line search), so NF = NI + 1; on
+!> bounds-only problems a projected Newton point rejected by Armijo's test
+!> costs one more (projected_point).
 !>
 !> Convergence (the papers state no test; ours, see doc/optimization.md): at
 !> x_k, after the step s_k and the multipliers have been computed,
@@ -74,6 +76,8 @@ module gauss_optimizer
                                           !< as unit-gradient linear constraints of the active set
     logical :: step_back_refine = .true.  !< step back to the boundary (farthest feasible point, P);
                                           !< .false.: one B13 interpolation, feasible side kept
+    logical :: projected_newton = .true.  !< bounds only: Bertsekas' projected Newton point P(x + s_B) tried
+                                          !< first, accepted by Armijo's test (see projected_point)
   end type gauss_options_t
 
   !> One row of the iteration log: the state after iteration k.
@@ -148,6 +152,7 @@ module gauss_optimizer
     procedure, private :: check_cycling
     procedure, private :: append_log
     procedure, private :: note
+    procedure, private :: projected_point
   end type gauss_optimizer_t
 
 contains
@@ -322,6 +327,16 @@ contains
           exit outer
         end if
         if (k >= self%opts%max_iter) exit outer
+        ! bounds only: Bertsekas' projected Newton point first (an analysis)
+        if (self%opts%projected_newton .and. .not. step_back_method .and. repeats == 0) then
+          if (self%projected_point(prob, s, err)) then
+            k = k + 1
+            self%iterations = k
+            call self%append_log(prob, k, maxval(abs(self%log(self%n_log)%x - self%x)))
+            cycle outer
+          end if
+          if (err%failed()) exit outer
+        end if
 
         call self%trial_point(prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
                               again, err)
@@ -635,6 +650,80 @@ contains
     call self%curvature(prob, hess_kind, k, err)
     if (err%failed()) return
   end subroutine derivatives
+
+  !> Bertsekas' projected Newton point (D. P. Bertsekas, SIAM J. Control
+  !> Optim. 20 (1982) 221-246), for problems whose only inequalities are
+  !> simple bounds (his setting) and the NS variants.  Binding set: the
+  !> variables at a bound whose gradient component points out of the box; a
+  !> Newton step with the model G on the others (s_B = 0 on the binding
+  !> ones); the point P(x_k + s_B) is analysed and accepted if it passes
+  !> Armijo's test F(P) <= F(x_k) + 1e-4 grad F^T (P - x_k) (his rule at unit
+  !> step).  Tried only where it differs from P(x_k + s), s our step: where
+  !> the box-QP step of compute_step holds a variable whose gradient points
+  !> into the box, or takes it along a bound it crossed.  .false.: rejected
+  !> (one analysis spent) or not applicable; the usual step follows.
+  !> HS 2 (sum of squares, G = 2 J J^T): at x_0 = (-2, 1.5) the Gauss step
+  !> (3, -9.5) crosses x2 >= 1.5, whose gradient component -500 points into
+  !> the box; our step holds x2 (the model's multiplier is +1.2) and ends at
+  !> x1 = -1.37, in the basin of the other local minimum; P(x_0 + s_B) =
+  !> (1, 1.5) has F = 25 < 634 and lies beyond the ridge F >= 226 at x1 = 0.
+  logical function projected_point(self, prob, s, err) result(done)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: s(:)
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: phi(:), gff(:, :), rhs(:), sb(:), x_new(:), g_new(:)
+    integer, allocatable :: free(:), piv(:)
+    logical, allocatable :: bind(:)
+    type(error_t) :: lerr
+    real(dp) :: f, rc, tol
+    integer :: j, n
+    done = .false.
+    n = prob%n
+    if (prob%m > prob%n_bounds .or. prob%n_eq > 0 .or. prob%n_bounds == 0 .or. .not. self%opts%hold_bounds) return
+    allocate(bind(n), sb(n), g_new(prob%m), phi(size(self%phi)))
+    tol = self%opts%feas_tol
+    do j = 1, n
+      bind(j) = (self%x(j) <= prob%xl(j) + tol .and. self%gradf(j) > 0.0_dp) .or. &
+                (self%x(j) >= prob%xu(j) - tol .and. self%gradf(j) < 0.0_dp)
+    end do
+    free = pack([(j, j=1, n)], .not. bind)
+    sb = 0.0_dp
+    if (size(free) > 0) then
+      gff = self%gm(free, free)
+      rhs = -self%gradf(free)
+      allocate(piv(size(free)))
+      call lu_factor(gff, piv, lerr, rc)
+      if (lerr%failed() .or. rc < self%opts%rcond_min) return
+      call lu_solve(gff, piv, rhs, lerr)
+      if (lerr%failed() .or. .not. all(ieee_is_finite(rhs))) return
+      sb(free) = rhs
+    end if
+    x_new = prob%project_to_bounds(self%x + sb)
+    if (maxval(abs(x_new - prob%project_to_bounds(self%x + s))) <= self%opts%xtol*(1.0_dp + maxval(abs(self%x)))) &
+      return
+    call prob%analyse(x_new, f, phi, err)
+    if (err%failed()) return
+    if (.not. (ieee_is_finite(f) .and. all(ieee_is_finite(phi)))) then
+      call self%note('projected Newton point (Bertsekas): F not finite, rejected')
+      return
+    end if
+    if (f > self%f + 1.0e-4_dp*dot_product(self%gradf, x_new - self%x)) then
+      call self%note('projected Newton point (Bertsekas) '//vec_text(x_new)//' rejected by Armijo''s test (F = ' &
+                     //str(f, 6)//')')
+      return
+    end if
+    call prob%constraint_values(x_new, g_new, err)
+    if (err%failed()) return
+    self%active = abs(g_new) <= tol
+    call self%note('projected Newton point (Bertsekas) accepted by Armijo''s test (F = '//str(f, 6)// &
+                   '); active '//set_text(self%active))
+    self%x = x_new
+    self%g = g_new
+    self%f = f
+    self%phi = phi
+    done = .true.
+  end function projected_point
 
   !> The trial point x_k + s: constraints there (a non-finite value halves
   !> the step), the step-back of the step-back methods (B13, with Potter's

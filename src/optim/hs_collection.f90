@@ -3,7 +3,8 @@
 !> Codes, Lecture Notes in Economics and Mathematical Systems 187, Springer
 !> (1981), with their standard starts and published optima.
 !>
-!> Each problem is posed as printed: a general objective f, general
+!> Each problem is posed as printed: a general objective f (Rosenbrock's
+!> HS 1 and HS 2 as the sum of squares they are, see n_residuals), general
 !> inequalities (HS write c(x) >= 0; stored as g = -c <= 0), general
 !> equalities h(x) = 0 and simple bounds (linear constraints, numbered after
 !> the general inequalities).  Derivatives are central differences (error
@@ -32,6 +33,8 @@ module hs_collection
     integer :: mg = 0                     !< general inequalities (constraints 1..mg); bounds mg+1..m
   contains
     procedure :: objective => hs_objective
+    procedure :: residuals => hs_residuals
+    procedure :: jacobian => hs_jacobian
     procedure :: gradient => hs_gradient
     procedure :: general_constraint => hs_constraint
     procedure :: general_constraint_gradient => hs_constraint_gradient
@@ -54,7 +57,7 @@ contains
     call hs_data(number, n, mg, me, lo, hi, x0, x_star, f_star)
     prob%number = number
     prob%mg = mg
-    call prob%init_problem('hs'//str(number), n, 0, mg, n_eq=me)
+    call prob%init_problem('hs'//str(number), n, n_residuals(number), mg, n_eq=me)
     do i = 1, mg
       call prob%set_general_constraint(i)
     end do
@@ -451,6 +454,52 @@ contains
     f = hs_f(self%number, x)
     if (.false.) call err%clear()
   end subroutine hs_objective
+
+  !> Residuals of the objectives posed as sums of squares, F = phi^T phi (the
+  !> Gauss method's own form, G = 2 J J^T): HS 1 and HS 2 are Rosenbrock's
+  !> function, phi = (10 (x2 - x1^2), 1 - x1), posed like HS 15 (the same
+  !> objective) in problem_library.  0: a general objective.
+  pure integer function n_residuals(number)
+    integer, intent(in) :: number
+    n_residuals = merge(2, 0, number == 1 .or. number == 2)
+  end function n_residuals
+
+  pure function hs_phi(x) result(phi)
+    real(dp), intent(in) :: x(:)
+    real(dp) :: phi(2)
+    phi = [10.0_dp*(x(2) - x(1)**2), 1.0_dp - x(1)]
+  end function hs_phi
+
+  subroutine hs_residuals(self, x, phi, err)
+    class(hs_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: phi(:)
+    type(error_t), intent(inout) :: err
+    phi = hs_phi(x)
+    if (.false.) call err%set(self%name, '')
+  end subroutine hs_residuals
+
+  !> J (n, p) by central differences, as the collection's gradients.
+  subroutine hs_jacobian(self, x, phi, jac, err)
+    class(hs_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), phi(:)
+    real(dp), intent(out) :: jac(:, :)
+    type(error_t), intent(inout) :: err
+    real(dp) :: xp(size(x)), xm(size(x))
+    integer :: j
+    xp = x
+    xm = x
+    do j = 1, size(x)
+      xp(j) = x(j) + 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
+      xm(j) = x(j) - 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
+      jac(j, :) = (hs_phi(xp) - hs_phi(xm))/(xp(j) - xm(j))
+      xp(j) = x(j)
+      xm(j) = x(j)
+    end do
+    self%count%fd_analyses = self%count%fd_analyses + 2*size(x)
+    if (.false.) jac(1, 1) = phi(1)
+    if (.false.) call err%clear()
+  end subroutine hs_jacobian
 
   subroutine hs_gradient(self, x, f, grad, err)
     class(hs_problem_t), intent(inout) :: self

@@ -11,10 +11,11 @@ flexmech=$1; work=$3
 rm -rf "$work"; mkdir -p "$work"
 sed -e 's/revolutions = 5/revolutions = 2000/' inputs/fourbar_150_damped.nml > "$work/long.nml"
 fails=0
-# a non-interactive shell starts background jobs with SIGINT ignored (and the
-# program leaves an ignored signal ignored): coreutils' env restores it
+# a non-interactive shell starts background jobs with SIGINT ignored, and a
+# suite started under nohup ignores SIGHUP (the program leaves an ignored
+# signal ignored): coreutils' env restores both
 sigs="TERM HUP"; start=""
-if env --default-signal=INT true 2>/dev/null; then sigs="TERM INT HUP"; start="env --default-signal=INT"; fi
+if env --default-signal=INT,HUP true 2>/dev/null; then sigs="TERM INT HUP"; start="env --default-signal=INT,HUP"; fi
 for sig in $sigs; do
   case $sig in TERM) want=143 ;; INT) want=130 ;; HUP) want=129 ;; esac
   $start "$flexmech" "$work/long.nml" -o "$work/long.out" > /dev/null 2>&1 &
