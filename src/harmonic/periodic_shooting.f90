@@ -558,7 +558,7 @@ contains
   subroutine sensitivity_pass(flow, s, y, times, rep, err, q, dq)
     type(sensitivity_flow_t), target, intent(inout) :: flow
     type(shooting_settings_t), intent(in) :: s
-    real(dp), intent(inout) :: y(:)
+    real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: times(:)
     type(shooting_report_t), intent(inout) :: rep
     type(error_t), intent(inout) :: err
