@@ -1,8 +1,11 @@
 !> Optimal design with the analysis in the loop: the design decks' problems
 !> through the design loop (sequential approximate problems solved by GNLC,
-!> module design_sequence) and through NLopt's SLSQP (gradient-based SQP,
-!> forward-difference gradients of the analysis) and COBYLA (derivative-free),
-!> from the same start, with the same analyses, bounds and constraints.
+!> module design_sequence) and through NLopt's SLSQP (gradient-based SQP) and
+!> COBYLA (derivative-free), from the same start, with the same analyses,
+!> bounds and constraints.  SLSQP's gradients are the design loop's: the
+!> periodic orbit's sensitivities where they apply (&design derivatives,
+!> doc/design.md), else forward differences of the analysis; `slsqp_fd`
+!> forces forward differences, `gnlc_fd` the design loop with them.
 !>
 !> Printed per run: NF (mechanism analyses of distinct designs, derivatives
 !> included: the design problem's cache counts each design once whoever
@@ -15,7 +18,7 @@ module design_nlopt_glue
   use kinds, only: dp, i8
   use nlopt_api
   use error_status, only: error_t
-  use design_problem, only: design_problem_t
+  use design_problem, only: design_problem_t, design_eval_t
   implicit none
   private
   public :: nlopt_design, alg_slsqp, alg_cobyla
@@ -29,6 +32,10 @@ module design_nlopt_glue
   ! the duration of one nlopt_design
   type(design_problem_t), pointer :: current => null()
   integer, target, save :: ids(0:100) = 0
+  !> the derivatives of the last design asked (the objective's and every
+  !> constraint's gradient at one x cost one sensitivity solve)
+  logical :: variational = .false.
+  real(dp), allocatable :: at_x(:), at_dg(:, :), at_dr(:, :)
 
 contains
 
@@ -47,6 +54,8 @@ contains
     integer :: i, r
     real(dp) :: lb(size(x)), ub(size(x))
     current => prob
+    variational = prob%variational_applies()
+    if (allocated(at_x)) deallocate(at_x)
     do i = 0, size(ids) - 1
       ids(i) = i
     end do
@@ -97,6 +106,12 @@ contains
     integer :: j
     val = objective_at(x)
     if (need_gradient == 0 .or. f_data /= 0) return
+    if (variational .and. current%has_residuals()) then
+      if (derivatives_at(x)) then
+        grad = objective_gradient(x)
+        return
+      end if
+    end if
     do j = 1, n
       xp = x
       xp(j) = x(j) + current%fd_rel_step*max(abs(x(j)), 1.0_dp)
@@ -115,12 +130,49 @@ contains
     integer :: j
     val = constraint_at(f_data, x)
     if (need_gradient == 0) return
+    if (variational) then
+      if (derivatives_at(x)) then
+        grad = at_dg(:, f_data)
+        return
+      end if
+    end if
     do j = 1, n
       xp = x
       xp(j) = x(j) + current%fd_rel_step*max(abs(x(j)), 1.0_dp)
       grad(j) = (constraint_at(f_data, xp) - val)/(xp(j) - x(j))
     end do
   end subroutine constraint_cb
+
+  !> The sensitivities at x (once per design); .false. when they fail
+  !> (forward differences then).
+  logical function derivatives_at(x) result(ok)
+    real(dp), intent(in) :: x(:)
+    ok = .true.
+    if (allocated(at_x)) then
+      if (all(transfer(at_x, 1_i8, size(at_x)) == transfer(x, 1_i8, size(x)))) return
+    end if
+    call current%derivatives_at(x, at_dg, at_dr, ok)
+    if (ok) then
+      at_x = x
+    else if (allocated(at_x)) then
+      deallocate(at_x)
+    end if
+  end function derivatives_at
+
+  !> Gradient of F = (sum of r^2, or the largest r) / F0 from dr/dx.
+  function objective_gradient(x) result(grad)
+    real(dp), intent(in) :: x(:)
+    real(dp) :: grad(size(x))
+    type(design_eval_t) :: ev
+    call current%evaluate(x, ev)
+    if (current%is_minimax()) then
+      grad = at_dr(:, maxloc(ev%residual, dim=1))/current%f0
+    else if (current%objective_kind == 'path_rigid') then
+      grad = 2.0_dp*matmul(at_dr, ev%rigid_residual)/current%f0
+    else
+      grad = 2.0_dp*matmul(at_dr, ev%residual)/current%f0
+    end if
+  end function objective_gradient
 end module design_nlopt_glue
 
 program bench_design
@@ -140,7 +192,8 @@ program bench_design
   character(len=64) :: methods
   integer :: i
 
-  ! --methods=gnlc,slsqp,cobyla (default all three) selects the optimizers
+  ! --methods=gnlc,slsqp,cobyla,gnlc_fd,slsqp_fd (default the first three)
+  ! selects the optimizers
   ! (an NLopt run of example 3 costs minutes: the bench can run one of them)
   methods = 'gnlc,slsqp,cobyla'
   allocate(decks(0))
@@ -160,9 +213,12 @@ program bench_design
     'approximate problems) beside NLopt SLSQP and COBYLA, same deck, start, analyses and constraints.'
   write(output_unit, '(a)') '# NF = mechanism analyses of distinct designs (derivatives included); F = objective '// &
     '/ its start value; viol = largest ln(value/limit) (<= 0 feasible); cpu = analysis CPU seconds.'
-  write(output_unit, '(a)') '# NLopt: forward-difference gradients with the design loop''s step, stops at '// &
+  write(output_unit, '(a)') '# gradients: the sensitivities of the periodic orbit where they apply (one solve '// &
+    'counted as one analysis), else forward differences (_fd: always); sens = sensitivity solves, cpu_sens their CPU'
+  write(output_unit, '(a)') '# NLopt: stops at '// &
     '|dx| < xtol or relative change of F < xtol/10 (the design loop''s tests), at most 3000 evaluations.'
-  write(output_unit, '(a)') '# deck | method | NF | failed | cpu | cpu/analysis | F | viol | status | design'
+  write(output_unit, '(a)') '# deck | method | NF | failed | cpu | cpu/analysis | sens | cpu_sens | F | viol | '// &
+    'status | design'
   do i = 1, size(decks)
     call run_deck(trim(decks(i)))
   end do
@@ -176,8 +232,8 @@ contains
     nf_gauss = 0
     nf_best = huge(1)
     f_gauss = huge(1.0_dp)
-    do method = 1, 3
-      if (index(methods, trim(method_key(method))) == 0) cycle
+    do method = 1, 5
+      if (index(','//trim(methods)//',', ','//trim(method_key(method))//',') == 0) cycle
       call run_method(path, method, nf_gauss, nf_best, f_gauss)
     end do
     if (nf_gauss > 0 .and. nf_best < huge(1)) then
@@ -191,7 +247,8 @@ contains
   pure function method_key(method) result(key)
     integer, intent(in) :: method
     character(len=8) :: key
-    key = merge('gnlc    ', merge('slsqp   ', 'cobyla  ', method == 2), method == 1)
+    character(len=8), parameter :: keys(5) = [character(len=8) :: 'gnlc', 'slsqp', 'cobyla', 'gnlc_fd', 'slsqp_fd']
+    key = keys(method)
   end function method_key
 
   subroutine run_method(path, method, nf_gauss, nf_best, f_gauss)
@@ -216,16 +273,17 @@ contains
       write(output_unit, '(a)') '# '//path//': '//err%text()
       return
     end if
+    if (method >= 4) prob%derivatives = 'differences'
     call prob%setup('design of '//path, x0)
     x = x0
     select case (method)
-    case (1)
-      name = 'gnlc_sequence'
+    case (1, 4)
+      name = trim(merge('gnlc_sequence   ', 'gnlc_sequence_fd', method == 1))
       call seq%solve(prob, x0, err)
       if (allocated(seq%x)) x = seq%x
       status = trim(merge('converged    ', 'not converged', seq%converged .and. .not. err%failed()))
-    case (2)
-      name = 'nlopt_slsqp'
+    case (2, 5)
+      name = trim(merge('nlopt_slsqp   ', 'nlopt_slsqp_fd', method == 2))
       call nlopt_design(prob, alg_slsqp, x, seq%xtol, 0.1_dp*seq%xtol, f, ires)
       status = 'ires='//str(ires)
     case default
@@ -248,10 +306,11 @@ contains
       design = design//' '//trim(prob%var(k)%name)//'='//str(prob%var(k)%value(x(k)), 6)
     end do
     write(output_unit, '(a)') path//' | '//name//' | '//str(prob%n_analyses)//' | '//str(prob%n_failed)//' | '// &
-      str(prob%cpu_analyses, 4)//' | '//str(prob%cpu_analyses/max(1, prob%n_analyses), 3)//' | '//str(f, 6)// &
+      str(prob%cpu_analyses, 4)//' | '//str(prob%cpu_analyses/max(1, prob%n_analyses), 3)//' | '// &
+      str(prob%n_sensitivity)//' | '//str(prob%cpu_sensitivity, 4)//' | '//str(f, 6)// &
       ' | '//str(viol, 3)//' | '//status//' |'//design
     flush(output_unit)
-    if (method == 1) then
+    if (method == 1 .or. method == 4) then
       if (seq%converged) nf_gauss = prob%n_analyses
       f_gauss = f
     else if (viol <= seq%feas_tol .and. ires > 0 .and. f <= 1.01_dp*f_gauss) then

@@ -42,7 +42,7 @@ module design_analysis
 
   ! staging variables of the &design group
   character(len=32) :: variables(max_vars), objective
-  character(len=16) :: evaluator, hessian
+  character(len=16) :: evaluator, hessian, derivatives
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
   real(dp) :: xtol, feas_tol, move_limit
   integer :: max_iterations, samples
@@ -56,7 +56,7 @@ module design_analysis
   integer :: path_link
   real(dp) :: path_r, path_angle_deg, path_x(max_points), path_y(max_points), path_dgamma_deg(max_points)
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
-                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, &
+                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
                     speeds, objective_speed, stop_when_periodic, max_revolutions, &
                     path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg
 
@@ -70,6 +70,7 @@ contains
     objective = 'mass'
     evaluator = 'shooting'
     hessian = 'gauss'
+    derivatives = ''
     speeds = unset
     objective_speed = 0
     stress_allowable = 0.0_dp
@@ -165,6 +166,7 @@ contains
                          'change per revolution is integration noise', err)
       return
     end if
+    prob%derivatives = derivatives
     prob%transient%tolerance = stop_when_periodic
     prob%transient%max_revolutions = max_revolutions
     prob%transient%rtol = s%shooting%rtol
@@ -216,6 +218,13 @@ contains
     call check_integer(deck, g, 'max_revolutions', max_revolutions, err, at_least=2, at_most=100000, &
                        why='revolutions the transient evaluator may take to its periodic state (two to compare)')
     call check_choice(deck, g, 'hessian', hessian, [character(len=16) :: 'gauss', 'structured'], err)
+    ! the periodic orbit's sensitivities by default where they apply (the
+    ! exact periodic state); the other evaluators difference their analyses
+    if (len_trim(derivatives) == 0) derivatives = merge('variational', 'differences', evaluator == 'shooting')
+    call check_choice(deck, g, 'derivatives', derivatives, [character(len=16) :: 'variational', 'differences'], err)
+    if (.not. err%failed() .and. derivatives == 'variational' .and. evaluator /= 'shooting') &
+      call invalid_value(deck, g, 'derivatives', '''variational''', 'the sensitivities of the periodic orbit need '// &
+                         'evaluator = ''shooting'' (the exact periodic state); use ''differences''', err)
     ! the constraints are logarithms of ratios to these: a subnormal one made
     ! the ratio 0 or infinite (fuzz seed 12, case 1990: log(0) trapped)
     call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=1.0e-3_dp, at_most=1.0e12_dp, &
@@ -503,8 +512,20 @@ contains
       'natural frequency over the revolution) <= 0, one per speed')
     call out%comment('bounds as linear constraints after them; each analysis: '//trim(evaluator_text(prob%evaluator))// &
       ' with stresses and frequencies at '//str(prob%samples)// &
-      ' crank angles; forward-difference derivatives, relative step '//str(prob%fd_rel_step, 3))
+      ' crank angles; '//trim(derivatives_text(prob)))
   end subroutine write_design_header
+
+  function derivatives_text(prob) result(text)
+    type(design_problem_t), intent(in) :: prob
+    character(len=:), allocatable :: text
+    if (prob%variational_applies()) then
+      text = 'derivatives from the sensitivities of the periodic orbit (variational equations; f_p and the '// &
+        'results by central differences in the design, relative step '//str(prob%variational_step, 3)// &
+        '), one sensitivity solve per iteration and speed, counted as one analysis'
+    else
+      text = 'forward-difference derivatives, relative step '//str(prob%fd_rel_step, 3)
+    end if
+  end function derivatives_text
 
   !> The operating speeds, when the design has several.
   subroutine write_speeds(out, prob)
@@ -641,7 +662,16 @@ contains
     end if
     if (allocated(prob%last_failure)) call out%comment('last failed analysis: '//prob%last_failure)
     call out%cost('mechanism analyses NF (every distinct design, derivatives included)', str(prob%n_analyses))
-    call out%cost('analyses for derivatives (forward differences)', str(opt%fd_analyses))
+    if (prob%variational_applies()) then
+      call out%cost('analyses for derivatives (sensitivity solves, one per iteration and speed, counted as one '// &
+                    'analysis each; forward differences after a failed one)', str(opt%fd_analyses))
+      call out%cost('sensitivity solves (of them failed: forward differences instead)', str(prob%n_sensitivity)// &
+                    ' ('//str(prob%n_sensitivity_fallbacks)//')')
+      call out%cost('cpu_seconds_per_sensitivity_solve', str(prob%cpu_sensitivity/max(1, prob%n_sensitivity), 4))
+      call out%cost('sensitivity right-hand sides (perturbed designs included)', str(prob%sensitivity_rhs))
+    else
+      call out%cost('analyses for derivatives (forward differences)', str(opt%fd_analyses))
+    end if
     call out%cost('failed analyses', str(prob%n_failed))
     if (prob%evaluator == 'transient') call out%cost('transient revolutions integrated', str(prob%n_revolutions)// &
       ' ('//str(real(prob%n_revolutions, dp)/max(1, prob%n_analyses), 4)//' per analysis)')

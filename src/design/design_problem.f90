@@ -40,7 +40,7 @@ module design_problem
   use shaking_force, only: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative
   use harmonic_solver, only: harmonic_settings_t, harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
-                               shooting_diagnosis
+                               shooting_diagnosis, orbit_sensitivity
   use kear_element, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
   use periodic_transient, only: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic, &
@@ -92,6 +92,7 @@ module design_problem
     real(dp) :: peak_shaking = 0.0_dp           !< largest |shaking force| over the samples (objective 'shaking')
     real(dp) :: rms_shaking = 0.0_dp            !< its root mean square over the revolution
     real(dp) :: cpu_seconds = 0.0_dp
+    real(dp), allocatable :: y_periodic(:, :)   !< (2 n, speed) periodic state at t = 0 (shooting evaluator)
   end type design_eval_t
 
   type, extends(opt_problem_t) :: design_problem_t
@@ -100,6 +101,10 @@ module design_problem
     !> 'shooting' (exact periodic), 'harmonic' or 'transient' (the transient
     !> model run to its periodic state)
     character(len=16) :: evaluator = 'shooting'
+    !> 'variational' (the periodic orbit's sensitivities, shooting evaluator)
+    !> or 'differences' (forward differences of whole analyses)
+    character(len=16) :: derivatives = 'differences'
+    real(dp) :: variational_step = 1.0e-5_dp      !< relative step of the central differences in p (f_p, outputs)
     type(harmonic_settings_t) :: harmonic
     type(shooting_settings_t) :: shooting
     type(periodic_transient_settings_t) :: transient
@@ -131,6 +136,10 @@ module design_problem
     ! ---- bookkeeping
     integer :: n_analyses = 0, n_failed = 0
     integer :: n_revolutions = 0                  !< revolutions integrated by the transient evaluator
+    integer :: n_sensitivity = 0                  !< sensitivity solves (each also counted as one analysis per speed)
+    integer :: n_sensitivity_fallbacks = 0        !< sensitivity solves that failed: forward differences instead
+    real(dp) :: cpu_sensitivity = 0.0_dp          !< CPU of the sensitivity solves (also in cpu_analyses)
+    integer :: sensitivity_rhs = 0                !< right-hand sides of the sensitivity flows (perturbed ones included)
     real(dp) :: cpu_analyses = 0.0_dp
     real(dp), allocatable :: cache_x(:, :)        !< designs analysed lately (ring of cache_size)
     type(design_eval_t), allocatable :: cache(:)
@@ -148,6 +157,10 @@ module design_problem
     procedure :: has_residuals
     procedure :: n_residuals_design
     procedure :: evaluate
+    procedure :: variational_applies
+    procedure :: derivatives_at
+    procedure :: constraints_of
+    procedure :: residuals_of
     procedure :: objective => design_objective
     procedure :: general_constraint => design_constraint
   end type design_problem_t
@@ -226,6 +239,10 @@ contains
     self%n_analyses = 0
     self%n_failed = 0
     self%n_revolutions = 0
+    self%n_sensitivity = 0
+    self%n_sensitivity_fallbacks = 0
+    self%cpu_sensitivity = 0.0_dp
+    self%sensitivity_rhs = 0
     self%cpu_analyses = 0.0_dp
     if (allocated(self%cache_x)) deallocate(self%cache_x, self%cache)
     allocate(self%cache_x(n, cache_size), self%cache(cache_size))
@@ -429,9 +446,7 @@ contains
     integer :: s, ns, n_objective
     real(dp) :: mean_square
     ns = size(self%speeds)
-    allocate(ev%stress_at(inp%n_links, ns), ev%frequency_at(ns), ev%residual(0), ev%rigid_residual(0))
-    n_objective = 0
-    mean_square = 0.0_dp
+    call start_join(self, inp%n_links, ev, n_objective, mean_square)
     do s = 1, ns
       at_speed = inp
       at_speed%omega = self%speeds(s)
@@ -441,24 +456,62 @@ contains
         if (ns > 1) ev%reason = 'at '//str(self%speeds(s), 6)//' rad/s: '//one%reason
         return
       end if
-      ev%stress_at(:, s) = one%link_stress
-      ev%frequency_at(s) = one%lowest_frequency
-      if (self%objective_speed /= 0 .and. self%objective_speed /= s) cycle
-      n_objective = n_objective + 1
-      if (allocated(one%residual)) ev%residual = [ev%residual, one%residual]
-      if (allocated(one%rigid_residual)) ev%rigid_residual = [ev%rigid_residual, one%rigid_residual]
-      ev%path_error = ev%path_error + one%path_error
-      ev%rigid_path_error = ev%rigid_path_error + one%rigid_path_error
-      ev%peak_shaking = max(ev%peak_shaking, one%peak_shaking)
-      mean_square = mean_square + one%rms_shaking**2
+      if (allocated(one%y_periodic)) then
+        if (.not. allocated(ev%y_periodic)) allocate(ev%y_periodic(size(one%y_periodic, 1), ns))
+        ev%y_periodic(:, s) = one%y_periodic(:, 1)
+      end if
+      call join_speed(self, s, one, ev, n_objective, mean_square)
     end do
+    call close_join(self, one%mass, ev, n_objective, mean_square)
+  end subroutine analyse_design
+
+  !> The joined results of the speeds, empty (analyse_design's order).
+  subroutine start_join(self, n_links, ev, n_objective, mean_square)
+    class(design_problem_t), intent(in) :: self
+    integer, intent(in) :: n_links
+    type(design_eval_t), intent(out) :: ev
+    integer, intent(out) :: n_objective
+    real(dp), intent(out) :: mean_square
+    allocate(ev%stress_at(n_links, size(self%speeds)), ev%frequency_at(size(self%speeds)), ev%residual(0), &
+             ev%rigid_residual(0))
+    n_objective = 0
+    mean_square = 0.0_dp
+  end subroutine start_join
+
+  !> Speed s's results joined: its constraints kept apart, the objective's
+  !> results added when s is one of the objective's speeds.
+  subroutine join_speed(self, s, one, ev, n_objective, mean_square)
+    class(design_problem_t), intent(in) :: self
+    integer, intent(in) :: s
+    type(design_eval_t), intent(in) :: one
+    type(design_eval_t), intent(inout) :: ev
+    integer, intent(inout) :: n_objective
+    real(dp), intent(inout) :: mean_square
+    ev%stress_at(:, s) = one%link_stress
+    ev%frequency_at(s) = one%lowest_frequency
+    if (self%objective_speed /= 0 .and. self%objective_speed /= s) return
+    n_objective = n_objective + 1
+    if (allocated(one%residual)) ev%residual = [ev%residual, one%residual]
+    if (allocated(one%rigid_residual)) ev%rigid_residual = [ev%rigid_residual, one%rigid_residual]
+    ev%path_error = ev%path_error + one%path_error
+    ev%rigid_path_error = ev%rigid_path_error + one%rigid_path_error
+    ev%peak_shaking = max(ev%peak_shaking, one%peak_shaking)
+    mean_square = mean_square + one%rms_shaking**2
+  end subroutine join_speed
+
+  subroutine close_join(self, mass, ev, n_objective, mean_square)
+    class(design_problem_t), intent(in) :: self
+    real(dp), intent(in) :: mass
+    type(design_eval_t), intent(inout) :: ev
+    integer, intent(in) :: n_objective
+    real(dp), intent(in) :: mean_square
     ev%ok = .true.
-    ev%mass = one%mass
+    ev%mass = mass
     ev%link_stress = maxval(ev%stress_at, dim=2)
     ev%lowest_frequency = minval(ev%frequency_at)
     ev%rms_shaking = sqrt(mean_square/max(n_objective, 1))
     if (self%objective_kind == 'shaking') ev%residual = ev%residual/sqrt(real(max(n_objective, 1), dp))
-  end subroutine analyse_design
+  end subroutine close_join
 
   !> One steady-state analysis at one speed (s of self%speeds): build,
   !> periodic response, stresses and frozen frequencies at `samples` crank angles.
@@ -473,45 +526,73 @@ contains
     type(error_t) :: err
     type(harmonic_report_t) :: hrep
     type(shooting_report_t) :: srep
-    real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:), wn(:)
-    type(tennant_stress_t), allocatable :: st(:)
-    integer :: k, i, e, np, nt
+    real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:)
     integer, allocatable :: at_sample(:), at_point(:)
-    real(dp) :: ra(2), rigid(2), flexible(2)
-    real(dp), allocatable :: shake(:, :), moment(:, :)
-    logical :: shaking
     ev%ok = .false.
     ev%mass = design_mass(inp)
     allocate(ev%link_stress(inp%n_links))
     ev%link_stress = 0.0_dp
-    call build_mechanism(inp, mech, err)
-    if (.not. err%failed()) call model%init_mechanism(mech, self%element, self%sections, err)
+    call build_design_model(self, inp, mech, model, err)
     if (err%failed()) then
       ev%reason = 'the design is not a valid mechanism: '//err%text()
       return
     end if
-    np = 0
-    if (self%is_path()) np = size(self%path_x)
-    nt = self%samples + np
-    allocate(q(model%n, nt), wn(model%n), st(size(model%el)))
-    call merged_times(model%period(), times, at_sample, at_point)
+    call merged_times(self, model%omega, times, at_sample, at_point)
+    allocate(q(model%n, size(times)))
     if (self%evaluator == 'harmonic') then
       call harmonic_solve(model, self%harmonic, times, q, hrep, err)
       if (.not. err%failed()) call harmonic_diagnosis(self%harmonic, hrep, model%omega, .false., .false., err)
     else if (self%evaluator == 'transient') then
       call transient_samples(self, mech, model, s, times, q, err)
     else
-      allocate(qd(model%n, nt))
+      allocate(qd(model%n, size(times)))
       y0 = warm_start(self, 2*model%n, s)
       call shooting_solve(model, self%shooting, y0, srep, err)
       if (.not. err%failed()) call shooting_diagnosis(self%shooting, srep, model%omega, .false., err)
       if (.not. err%failed()) call periodic_orbit(model, self%shooting, y0, times, q, qd, srep, err)
-      if (.not. err%failed()) self%y_warm(:, s) = y0
+      if (.not. err%failed()) then
+        self%y_warm(:, s) = y0
+        ev%y_periodic = reshape(y0, [size(y0), 1])
+      end if
     end if
     if (err%failed()) then
       ev%reason = err%text()
       return
     end if
+    call design_results(self, mech, model, x_design, times, at_sample, at_point, q, ev)
+  end subroutine analyse_speed
+
+  !> The mechanism and its steady model of a design (one speed).
+  subroutine build_design_model(self, inp, mech, model, err)
+    class(design_problem_t), intent(in) :: self
+    type(mechanism_input_t), intent(in) :: inp
+    type(mechanism_t), intent(out) :: mech
+    type(steady_model_t), intent(inout) :: model
+    type(error_t), intent(inout) :: err
+    call build_mechanism(inp, mech, err)
+    if (.not. err%failed()) call model%init_mechanism(mech, self%element, self%sections, err)
+  end subroutine build_design_model
+
+  !> What a design's periodic response q at the times gives: the coupler
+  !> point at the target points, the peak stresses, the lowest frozen
+  !> frequency and the shaking force at the samples (ev%mass and
+  !> ev%link_stress allocated by the caller).
+  subroutine design_results(self, mech, model, x_design, times, at_sample, at_point, q, ev)
+    class(design_problem_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    type(steady_model_t), intent(inout) :: model
+    real(dp), intent(in) :: x_design(:), times(:), q(:, :)
+    integer, intent(in) :: at_sample(:), at_point(:)
+    type(design_eval_t), intent(inout) :: ev
+    type(error_t) :: err
+    real(dp), allocatable :: wn(:)
+    type(tennant_stress_t), allocatable :: st(:)
+    integer :: k, i, e, np
+    real(dp) :: ra(2), rigid(2), flexible(2)
+    real(dp), allocatable :: shake(:, :), moment(:, :)
+    logical :: shaking
+    np = size(at_point)
+    allocate(wn(model%n), st(size(model%el)))
     ev%lowest_frequency = huge(1.0_dp)
     if (np > 0) then
       ! the coupler point at the target crank angles, rigid and elastic
@@ -568,48 +649,233 @@ contains
             ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
             ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking)
     if (.not. ev%ok) ev%reason = 'the analysis gave a value that is not finite'
-  contains
-    !> The stress samples (k - 1) T / samples and the target points' times
-    !> dgamma / omega (mod T), in one ascending list (the periodic orbit is
-    !> integrated once through it).
-    subroutine merged_times(period, t, where_sample, where_point)
-      real(dp), intent(in) :: period
-      real(dp), allocatable, intent(out) :: t(:)
-      integer, allocatable, intent(out) :: where_sample(:), where_point(:)
-      real(dp) :: raw(nt), tk
-      integer :: order(nt), j, m, ok_
-      do j = 1, self%samples
-        raw(j) = real(j - 1, dp)*period/self%samples
+  end subroutine design_results
+
+  !> The stress samples (k - 1) T / samples and the target points' times
+  !> dgamma / omega (mod T), in one ascending list (the periodic orbit is
+  !> integrated once through it).
+  subroutine merged_times(self, omega, t, where_sample, where_point)
+    class(design_problem_t), intent(in) :: self
+    real(dp), intent(in) :: omega
+    real(dp), allocatable, intent(out) :: t(:)
+    integer, allocatable, intent(out) :: where_sample(:), where_point(:)
+    real(dp), allocatable :: raw(:)
+    integer, allocatable :: order(:)
+    real(dp) :: tk, period
+    integer :: j, m, ok_, np, nt
+    np = 0
+    if (self%is_path()) np = size(self%path_x)
+    nt = self%samples + np
+    period = 8.0_dp*atan(1.0_dp)/omega
+    allocate(raw(nt), order(nt))
+    do j = 1, self%samples
+      raw(j) = real(j - 1, dp)*period/self%samples
+    end do
+    do j = 1, np
+      raw(self%samples + j) = modulo(self%path_dgamma(j)/omega, period)
+    end do
+    ! insertion sort of the indices (nt is a few hundred at most)
+    do j = 1, nt
+      order(j) = j
+    end do
+    do j = 2, nt
+      ok_ = order(j)
+      tk = raw(ok_)
+      m = j - 1
+      do while (m >= 1)
+        if (raw(order(m)) <= tk) exit
+        order(m + 1) = order(m)
+        m = m - 1
       end do
-      do j = 1, np
-        raw(self%samples + j) = modulo(self%path_dgamma(j)/model%omega, period)
+      order(m + 1) = ok_
+    end do
+    allocate(t(nt), where_sample(self%samples), where_point(np))
+    do j = 1, nt
+      t(j) = raw(order(j))
+      if (order(j) <= self%samples) then
+        where_sample(order(j)) = j
+      else
+        where_point(order(j) - self%samples) = j
+      end if
+    end do
+  end subroutine merged_times
+
+  !> The derivatives come from the periodic orbit's variational equations:
+  !> asked for, and the evaluator is the exact periodic state.
+  logical pure function variational_applies(self)
+    class(design_problem_t), intent(in) :: self
+    variational_applies = self%derivatives == 'variational' .and. self%evaluator == 'shooting'
+  end function variational_applies
+
+  !> Analysis constraints of an analysed design (analyse_design's order).
+  function constraints_of(self, ev) result(g)
+    class(design_problem_t), intent(in) :: self
+    type(design_eval_t), intent(in) :: ev
+    real(dp) :: g(self%n_analysis_constraints())
+    integer :: i
+    do i = 1, size(g)
+      if (i <= self%n_stress) then
+        g(i) = log(max(ev%stress_at(modulo(i - 1, self%base%n_links) + 1, (i - 1)/self%base%n_links + 1), &
+                       tiny(1.0_dp))/self%stress_allowable)
+      else
+        g(i) = log(self%frequency_factor*abs(self%speeds(i - self%n_stress))/ev%frequency_at(i - self%n_stress))
+      end if
+    end do
+  end function constraints_of
+
+  !> The objective's residuals of an analysed design (none for the mass).
+  function residuals_of(self, ev) result(r)
+    class(design_problem_t), intent(in) :: self
+    type(design_eval_t), intent(in) :: ev
+    real(dp), allocatable :: r(:)
+    if (self%n_residuals_design() == 0) then
+      allocate(r(0))
+    else if (self%objective_kind == 'path_rigid') then
+      r = ev%rigid_residual
+    else
+      r = ev%residual
+    end if
+  end function residuals_of
+
+  !> Derivatives of the analysis constraints and of the objective's residuals
+  !> with respect to x, dg(j, i) = dg_i/dx_j, dr(j, k) = dr_k/dx_j, from the
+  !> sensitivities of the exact periodic orbit (module periodic_shooting,
+  !> orbit_sensitivity) instead of differences of whole analyses: at each
+  !> speed the design's periodic state (from its analysis, cached) and
+  !> dq/dx_j along the orbit; then every result R(p, q) at the times is
+  !> differentiated as the central difference
+  !> (R(p + h_j, q + h_j dq_j) - R(p - h_j, q - h_j dq_j)) / (2 h_j), which
+  !> re-evaluates no orbit (stresses, frequencies, shaking force, coupler
+  !> point of the perturbed models only).  Counted as one analysis per speed
+  !> (n_analyses; also n_sensitivity).  ok = .false. when the design cannot
+  !> be analysed or a sensitivity solve fails (the caller then differences).
+  subroutine derivatives_at(self, x, dg, dr, ok)
+    class(design_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), allocatable, intent(out) :: dg(:, :), dr(:, :)
+    logical, intent(out) :: ok
+    type(design_eval_t) :: ev
+    type(design_eval_t), allocatable :: pm(:, :)
+    real(dp), allocatable :: xc(:), h(:)
+    integer, allocatable :: n_obj(:, :)
+    real(dp), allocatable :: msq(:, :)
+    integer :: j, side, s, nv
+    real(dp) :: cpu0, cpu1
+    nv = size(x)
+    allocate(dg(nv, self%n_analysis_constraints()), dr(nv, self%n_residuals_design()))
+    ok = .false.
+    call self%evaluate(x, ev)
+    if (.not. ev%ok .or. .not. allocated(ev%y_periodic)) return
+    call cpu_time(cpu0)
+    xc = clamped_x(self, x)
+    h = self%variational_step*max(abs(xc), 1.0_dp)
+    allocate(pm(2, nv), n_obj(2, nv), msq(2, nv))
+    do j = 1, nv
+      do side = 1, 2
+        call start_join(self, self%base%n_links, pm(side, j), n_obj(side, j), msq(side, j))
       end do
-      ! insertion sort of the indices (nt is a few hundred at most)
-      do j = 1, nt
-        order(j) = j
+    end do
+    do s = 1, size(self%speeds)
+      call speed_sensitivity(self, xc, h, s, ev%y_periodic(:, s), pm, n_obj, msq, ok)
+      if (.not. ok) exit
+    end do
+    call cpu_time(cpu1)
+    self%n_analyses = self%n_analyses + size(self%speeds)
+    self%n_sensitivity = self%n_sensitivity + size(self%speeds)
+    self%cpu_analyses = self%cpu_analyses + (cpu1 - cpu0)
+    self%cpu_sensitivity = self%cpu_sensitivity + (cpu1 - cpu0)
+    if (.not. ok) then
+      self%n_sensitivity_fallbacks = self%n_sensitivity_fallbacks + 1
+      return
+    end if
+    do j = 1, nv
+      do side = 1, 2
+        call close_join(self, ev%mass, pm(side, j), n_obj(side, j), msq(side, j))
       end do
-      do j = 2, nt
-        ok_ = order(j)
-        tk = raw(ok_)
-        m = j - 1
-        do while (m >= 1)
-          if (raw(order(m)) <= tk) exit
-          order(m + 1) = order(m)
-          m = m - 1
-        end do
-        order(m + 1) = ok_
-      end do
-      allocate(t(nt), where_sample(self%samples), where_point(np))
-      do j = 1, nt
-        t(j) = raw(order(j))
-        if (order(j) <= self%samples) then
-          where_sample(order(j)) = j
+      dg(j, :) = (self%constraints_of(pm(1, j)) - self%constraints_of(pm(2, j)))/(2.0_dp*h(j))
+      dr(j, :) = (self%residuals_of(pm(1, j)) - self%residuals_of(pm(2, j)))/(2.0_dp*h(j))
+    end do
+    ok = all(ieee_is_finite(dg)) .and. all(ieee_is_finite(dr))
+  end subroutine derivatives_at
+
+  !> x with each variable's value inside its bounds (the design analysed).
+  function clamped_x(self, x) result(xc)
+    class(design_problem_t), intent(in) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp) :: xc(size(x))
+    integer :: i
+    do i = 1, size(x)
+      xc(i) = self%var(i)%to_x(min(max(self%var(i)%value(x(i)), self%var(i)%lower), self%var(i)%upper))
+    end do
+  end function clamped_x
+
+  !> derivatives_at at speed s: the orbit's sensitivities, then the results
+  !> of the perturbed designs pm(1, j) (x + h_j) and pm(2, j) (x - h_j) with
+  !> q +- h_j dq_j, joined into the speeds' results.
+  subroutine speed_sensitivity(self, xc, h, s, y0, pm, n_obj, msq, ok)
+    class(design_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: xc(:), h(:), y0(:)
+    integer, intent(in) :: s
+    type(design_eval_t), intent(inout) :: pm(:, :)
+    integer, intent(inout) :: n_obj(:, :)
+    real(dp), intent(inout) :: msq(:, :)
+    logical, intent(out) :: ok
+    type(mechanism_t) :: mech
+    type(mechanism_t), allocatable :: mech_pm(:, :)
+    type(steady_model_t), target :: model
+    type(steady_model_t), allocatable, target :: plus(:), minus(:)
+    type(shooting_report_t) :: rep
+    type(error_t) :: err
+    type(design_eval_t) :: one
+    real(dp), allocatable :: times(:), q(:, :), dq(:, :, :), xs(:)
+    integer, allocatable :: at_sample(:), at_point(:)
+    integer :: j, side, nv
+    ok = .false.
+    nv = size(xc)
+    allocate(plus(nv), minus(nv), mech_pm(2, nv))
+    call build_design_model(self, at_speed(xc), mech, model, err)
+    do j = 1, nv
+      if (err%failed()) exit
+      xs = xc
+      xs(j) = xc(j) + h(j)
+      call build_design_model(self, at_speed(xs), mech_pm(1, j), plus(j), err)
+      xs(j) = xc(j) - h(j)
+      if (.not. err%failed()) call build_design_model(self, at_speed(xs), mech_pm(2, j), minus(j), err)
+    end do
+    if (err%failed()) return
+    call merged_times(self, model%omega, times, at_sample, at_point)
+    allocate(q(model%n, size(times)), dq(model%n, size(times), nv))
+    call orbit_sensitivity(model, plus, minus, 2.0_dp*h, self%shooting, y0, times, q, dq, rep, err)
+    self%sensitivity_rhs = self%sensitivity_rhs + rep%rhs_evaluations*(1 + 2*nv)
+    if (err%failed()) return
+    do j = 1, nv
+      do side = 1, 2
+        xs = xc
+        xs(j) = xc(j) + merge(h(j), -h(j), side == 1)
+        one = design_eval_t()
+        one%mass = design_mass(at_speed(xs))
+        allocate(one%link_stress(self%base%n_links))
+        one%link_stress = 0.0_dp
+        if (side == 1) then
+          call design_results(self, mech_pm(1, j), plus(j), xs, times, at_sample, at_point, q + h(j)*dq(:, :, j), one)
         else
-          where_point(order(j) - self%samples) = j
+          call design_results(self, mech_pm(2, j), minus(j), xs, times, at_sample, at_point, q - h(j)*dq(:, :, j), one)
         end if
+        if (.not. one%ok) return
+        call join_speed(self, s, one, pm(side, j), n_obj(side, j), msq(side, j))
       end do
-    end subroutine merged_times
-  end subroutine analyse_speed
+    end do
+    ok = .true.
+  contains
+    !> The mechanism at design xs (values as given: a step past a bound is
+    !> a step of the derivative) at speed s.
+    function at_speed(xs) result(inp)
+      real(dp), intent(in) :: xs(:)
+      type(mechanism_input_t) :: inp
+      inp = self%mechanism_at(xs, .false.)
+      inp%omega = self%speeds(s)
+    end function at_speed
+  end subroutine speed_sensitivity
 
   !> The previous design's periodic state at speed s (the start of this
   !> design's periodic solution), zeros at the first; n2 = 2 unknowns.
@@ -724,11 +990,12 @@ contains
     call self%evaluate(x, ev)
     if (.not. ev%ok) then
       g = ieee_value(g, ieee_quiet_nan)
-    else if (i <= self%n_stress) then
-      g = log(max(ev%stress_at(modulo(i - 1, self%base%n_links) + 1, (i - 1)/self%base%n_links + 1), &
-                  tiny(1.0_dp))/self%stress_allowable)
     else
-      g = log(self%frequency_factor*abs(self%speeds(i - self%n_stress))/ev%frequency_at(i - self%n_stress))
+      block
+        real(dp) :: all_g(self%n_analysis_constraints())
+        all_g = self%constraints_of(ev)
+        g = all_g(i)
+      end block
     end if
   end subroutine design_constraint
 end module design_problem

@@ -379,8 +379,10 @@ contains
     end if
   end subroutine constraints_at
 
-  !> Forward differences of the analysis constraints and of the objective's
-  !> residuals: n analyses.
+  !> Derivatives of the analysis constraints and of the objective's
+  !> residuals: from the periodic orbit's sensitivities where they apply
+  !> (one sensitivity solve, counted as one analysis per speed), else - or
+  !> when that solve fails - forward differences: n analyses.
   subroutine gradients(prob, x, g, r, dg, dr, ok)
     type(design_problem_t), intent(inout) :: prob
     real(dp), intent(in) :: x(:), g(:), r(:)
@@ -390,6 +392,11 @@ contains
     real(dp), allocatable :: gp(:), rp(:)
     real(dp) :: h
     integer :: j
+    if (prob%variational_applies()) then
+      call prob%derivatives_at(x, dg, dr, ok)
+      if (ok) return
+      deallocate(dg, dr)
+    end if
     allocate(dg(size(x), size(g)), dr(size(x), size(r)))
     ok = .true.
     do j = 1, size(x)

@@ -32,7 +32,7 @@ module periodic_shooting
   implicit none
   private
   public :: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, flow_t, max_newton_limit
-  public :: shooting_diagnosis
+  public :: shooting_diagnosis, orbit_sensitivity
 
   integer, parameter :: max_newton_limit = 50
 
@@ -71,6 +71,18 @@ module periodic_shooting
     procedure :: jacobian => flow_jacobian
     procedure :: setup
   end type flow_t
+
+  !> The flow with the parameter sensitivities S_j = dy/dp_j after the state
+  !> (and the monodromy columns, when asked): S_j' = f_y S_j + f_p_j, with
+  !> f_p_j the central difference (f(p + h_j) - f(p - h_j)) / (2 h_j) of the
+  !> right-hand sides of the two perturbed systems.
+  type, extends(flow_t) :: sensitivity_flow_t
+    logical :: with_mono = .false.
+    type(flow_t), allocatable :: plus(:), minus(:)
+    real(dp), allocatable :: inv_step(:)          !< 1 / (p_j+ - p_j-)
+  contains
+    procedure :: rhs => sensitivity_rhs
+  end type sensitivity_flow_t
 
 contains
 
@@ -424,4 +436,155 @@ contains
                    'prints it anyway)')
     end if
   end subroutine shooting_diagnosis
+
+  !> Right-hand side of [y, (Y), S_1 .. S_np]: the flow's own (state and
+  !> monodromy columns), then each sensitivity column.
+  subroutine sensitivity_rhs(self, t, y, ydot)
+    class(sensitivity_flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    type(nonlinear_info_t) :: info
+    real(dp) :: fp(2*self%n), fm(2*self%n), col(self%n)
+    integer :: n, n2, nm, j, o
+    n = self%n
+    n2 = 2*n
+    nm = n2
+    if (self%with_mono) nm = n2 + n2*n2
+    ydot = 0.0_dp
+    self%variational = self%with_mono
+    call flow_rhs(self, t, y(1:nm), ydot(1:nm))
+    if (self%err%failed()) return
+    ! flow_rhs put the tangent into K only with the monodromy columns
+    if (.not. self%with_mono) then
+      if (self%sys%is_nonlinear()) then
+        call self%sys%nonlinear_terms(y(1:n), self%fn, info, tangent=self%kt)
+        self%k = self%k + self%kt
+      end if
+    end if
+    do j = 1, size(self%plus)
+      call self%plus(j)%rhs(t, y(1:n2), fp)
+      call self%minus(j)%rhs(t, y(1:n2), fm)
+      if (self%plus(j)%err%failed() .or. self%minus(j)%err%failed()) then
+        call self%fail(t, 'sensitivity to parameter '//str(j)//': '//perturbed_failure(self%plus(j), self%minus(j)))
+        return
+      end if
+      fp = (fp - fm)*self%inv_step(j)
+      o = nm + (j - 1)*n2
+      associate (sq => y(o + 1:o + n), sv => y(o + n + 1:o + n2))
+        ydot(o + 1:o + n) = sv + fp(1:n)
+        col = -(matmul(self%k, sq) + matmul(self%c, sv))
+        call self%lu%solve(col)
+        ydot(o + n + 1:o + n2) = col + fp(n + 1:n2)
+      end associate
+    end do
+  end subroutine sensitivity_rhs
+
+  function perturbed_failure(plus, minus) result(text)
+    type(flow_t), intent(in) :: plus, minus
+    character(len=:), allocatable :: text
+    if (plus%err%failed()) then
+      text = plus%err%text()
+    else
+      text = minus%err%text()
+    end if
+  end function perturbed_failure
+
+  !> Sensitivities of the periodic orbit y0 = Phi_T(y0, p) to parameters p_j,
+  !> from the variational equations (no differences of whole analyses):
+  !> plus(j) and minus(j) are the system at p_j + h_j and p_j - h_j
+  !> (step(j) = 2 h_j), which give f_p by a central difference of the
+  !> right-hand side (RHS evaluations only).  One revolution of
+  !> [y, Y, S] from (y0, I, 0) gives the monodromy Y(T) = Phi_y and
+  !> S(T) = dPhi_T/dp; the orbit's start moves by
+  !> dy0/dp = (I - Phi_y)^-1 dPhi_T/dp; a second pass of [y, S] from
+  !> (y0, dy0/dp) gives q and dq/dp at the times (increasing, in [0, T]).
+  !> y0 must be the periodic state (shooting_solve).
+  subroutine orbit_sensitivity(sys, plus, minus, step, s, y0, times, q, dq, rep, err)
+    class(periodic_system_t), target, intent(inout) :: sys
+    class(periodic_system_t), target, intent(inout) :: plus(:), minus(:)
+    real(dp), intent(in) :: step(:)
+    type(shooting_settings_t), intent(in) :: s
+    real(dp), intent(in) :: y0(:), times(:)
+    real(dp), intent(out) :: q(:, :), dq(:, :, :)
+    type(shooting_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    type(sensitivity_flow_t), target :: flow
+    real(dp), allocatable :: y(:), a(:, :), z(:, :)
+    integer, allocatable :: ipiv(:)
+    integer :: n, n2, np, j
+    n = sys%n
+    n2 = 2*n
+    np = size(step)
+    call flow%setup(sys, .true.)
+    allocate(flow%plus(np), flow%minus(np))
+    do j = 1, np
+      call flow%plus(j)%setup(plus(j), .false.)
+      call flow%minus(j)%setup(minus(j), .false.)
+    end do
+    flow%inv_step = 1.0_dp/step
+    ! one revolution with the monodromy columns: Phi_y and dPhi_T/dp
+    flow%with_mono = .true.
+    allocate(y(n2*(1 + n2 + np)))
+    y = 0.0_dp
+    y(1:n2) = y0
+    do j = 1, n2
+      y(n2 + (j - 1)*n2 + j) = 1.0_dp
+    end do
+    call sensitivity_pass(flow, s, y, [sys%period()], rep, err)
+    if (err%failed()) return
+    a = -reshape(y(n2 + 1:n2 + n2*n2), [n2, n2])
+    do j = 1, n2
+      a(j, j) = a(j, j) + 1.0_dp
+    end do
+    z = reshape(y(n2 + n2*n2 + 1:), [n2, np])
+    allocate(ipiv(n2))
+    call lu_factor(a, ipiv, err)
+    if (.not. err%failed()) call lu_solve(a, ipiv, z, err)
+    if (err%failed()) then
+      call err%add_context('sensitivity of the periodic orbit: I - monodromy')
+      return
+    end if
+    ! the orbit and its sensitivities from (y0, dy0/dp)
+    flow%with_mono = .false.
+    deallocate(y)
+    allocate(y(n2*(1 + np)))
+    y(1:n2) = y0
+    y(n2 + 1:) = reshape(z, [n2*np])
+    call sensitivity_pass(flow, s, y, times, rep, err, q, dq)
+  end subroutine orbit_sensitivity
+
+  !> Integrate the sensitivity flow from 0 through the times; with q and dq,
+  !> record the displacements and their sensitivities there.
+  subroutine sensitivity_pass(flow, s, y, times, rep, err, q, dq)
+    type(sensitivity_flow_t), target, intent(inout) :: flow
+    type(shooting_settings_t), intent(in) :: s
+    real(dp), intent(inout), contiguous :: y(:)
+    real(dp), intent(in) :: times(:)
+    type(shooting_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: q(:, :), dq(:, :, :)
+    type(lsode_t) :: ode
+    type(lsode_counters_t) :: cnt
+    integer :: n, n2, nm, k, j
+    n = flow%n
+    n2 = 2*n
+    nm = size(y) - n2*size(flow%plus)
+    call ode%init(size(y), 0.0_dp, method_flag(s), s%rtol, [s%atol], err, max_steps=s%max_steps, ml=n2 - 1, &
+                  mu=n2 - 1)
+    if (err%failed()) return
+    do k = 1, size(times)
+      if (times(k) > ode%t) call ode%integrate_to(flow, y, times(k), err)
+      if (err%failed()) exit
+      if (present(q)) q(:, k) = y(1:n)
+      if (present(dq)) then
+        do j = 1, size(flow%plus)
+          dq(:, k, j) = y(nm + (j - 1)*n2 + 1:nm + (j - 1)*n2 + n)
+        end do
+      end if
+    end do
+    cnt = ode%counters()
+    rep%steps = rep%steps + cnt%steps
+    rep%rhs_evaluations = rep%rhs_evaluations + cnt%rhs_evals
+    rep%revolutions = rep%revolutions + 1
+  end subroutine sensitivity_pass
 end module periodic_shooting

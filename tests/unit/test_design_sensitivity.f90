@@ -1,0 +1,294 @@
+!> Tests of the design derivatives from the periodic orbit's variational
+!> equations (periodic_shooting's orbit_sensitivity, design_problem's
+!> derivatives_at): against the closed-form steady state of a forced
+!> oscillator, against central differences of converged shooting solutions
+!> of a Duffing oscillator with a parametric stiffness (the tangent term of
+!> S' = f_y S + f_p), and on the counterweight four-bar of example 3 against
+!> central differences of whole converged analyses with tight tolerances.
+module test_design_sensitivity_suite
+  use kinds, only: dp, pi
+  use error_status, only: error_t
+  use periodic_problems, only: oscillator_t
+  use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
+                               orbit_sensitivity
+  use deck_reader, only: deck_t
+  use linkage, only: mechanism_t
+  use design_problem, only: design_problem_t, design_eval_t
+  use design_sequence, only: design_sequence_t
+  use design_analysis, only: load_design
+  use deck_runner, only: scratch_path, write_deck
+  use assertions
+  implicit none
+  private
+  public :: run_all
+
+  character(len=:), allocatable :: scratch
+  !> example 3 (inputs/design_fourbar_counterweights.nml) with the
+  !> counterweights away from the pivots and the coupler's height a
+  !> variable too; &steady and &design completed by the tests
+  character(len=*), parameter :: example3 = '&run analysis = ''design'' /|&mechanism n_joints = 4, '// &
+    'joint_name = ''A'', ''B'', ''C'', ''D'', joint_type = ''clamp'', ''pin'', ''pin'', ''ground_pin'', '// &
+    'joint_x(1) = 0.0, joint_y(1) = 0.0, joint_x(4) = 10.0, joint_y(4) = 0.0, n_links = 3, '// &
+    'link_name = ''crank'', ''coupler'', ''rocker'', link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, '// &
+    'link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, link_h = 3*1.0, link_n_elements = 3*1, '// &
+    'link_cw_mass(1) = 0.001, link_cw_mass(3) = 0.001, link_cw_x(1) = -2.0, link_cw_y(1) = 0.3, '// &
+    'link_cw_x(3) = -4.0, link_cw_y(3) = -0.2, driver_link = 1, omega = 75.0 /|'// &
+    '&tennant d_k = 0, d_b = 0, d_g = 0, shear = F /|&design variables = ''link_cw_x(1)'', '// &
+    '''link_cw_y(3)'', ''link_h(2)'', lower = -6.0, -3.0, 0.2, upper = 3.0, 3.0, 4.0, scale = 3*1.0, '// &
+    'objective = ''shaking'', stress_allowable = 20000.0, '// &
+    'samples = 36, '
+
+contains
+
+  subroutine run_all()
+    scratch = scratch_path('test_design_sensitivity')
+    call run_test('orbit_sensitivity_matches_closed_form_oscillator', test_linear_oscillator)
+    call run_test('orbit_sensitivity_matches_differences_of_duffing_orbits', test_duffing)
+    call run_test('design_derivatives_match_central_differences_of_analyses', test_design_derivatives)
+    call run_test('derivatives_switch_is_checked', test_switch)
+  end subroutine run_all
+
+  !> m x'' + c x' + k x = f1 cos(w t): x = Re(X e^(i w t)),
+  !> X = f1 / (k - m w^2 + i c w).  Parameters k, c and f1 (stiffness,
+  !> damping, load: f_p enters through K, C and F); dX/dk = -X / D,
+  !> dX/dc = -i w X / D, dX/df1 = 1 / D, D = k - m w^2 + i c w.  DLSODE at
+  !> rtol 1e-11: the orbit and its sensitivities to 1e-8 of their size (the
+  !> central difference of the right-hand side is exact for a system linear
+  !> in the parameter; 1e-8 leaves two orders for the integration).  Also:
+  !> the start y0 moved by (I - Phi_y)^-1 dPhi/dp is checked at t = 0 (a
+  !> missing correction would leave dq(0) = 0).
+  subroutine test_linear_oscillator()
+    type(oscillator_t), target :: sys
+    type(oscillator_t), target :: plus(3), minus(3)
+    type(shooting_settings_t) :: ss
+    type(shooting_report_t) :: rep
+    type(error_t) :: err
+    real(dp), parameter :: w = 1.3_dp, hk = 1.0e-3_dp
+    real(dp) :: times(9), q(1, 9), dq(1, 9, 3), expected(9), y0(2)
+    complex(dp) :: x, d, dx(3)
+    integer :: j, k
+    sys = oscillator_t(m=1.0_dp, c=0.2_dp, k=4.0_dp, f1=1.5_dp)
+    sys%n = 1
+    sys%omega = w
+    d = cmplx(sys%k - sys%m*w**2, sys%c*w, dp)
+    x = sys%f1/d
+    dx = [-x/d, -cmplx(0.0_dp, w, dp)*x/d, 1.0_dp/d]
+    do j = 1, 3
+      plus(j) = sys
+      minus(j) = sys
+    end do
+    plus(1)%k = sys%k + hk
+    minus(1)%k = sys%k - hk
+    plus(2)%c = sys%c + hk
+    minus(2)%c = sys%c - hk
+    plus(3)%f1 = sys%f1 + hk
+    minus(3)%f1 = sys%f1 - hk
+    ss%rtol = 1.0e-11_dp
+    ss%atol = 1.0e-14_dp
+    y0 = [real(x), -w*aimag(x)]
+    do k = 1, 9
+      times(k) = (k - 1)*(2.0_dp*pi/w)/8.0_dp
+    end do
+    call orbit_sensitivity(sys, plus, minus, [2*hk, 2*hk, 2*hk], ss, y0, times, q, dq, rep, err)
+    call assert_true(.not. err%failed(), 'orbit_sensitivity runs: '//err%text())
+    if (err%failed()) return
+    call assert_all_close(q(1, :), real(x*exp(cmplx(0.0_dp, w*times, dp))), 0.0_dp, 1.0e-8_dp*abs(x), 'orbit')
+    do j = 1, 3
+      expected = real(dx(j)*exp(cmplx(0.0_dp, w*times, dp)))
+      call assert_all_close(dq(1, :, j), expected, 0.0_dp, 1.0e-8_dp*abs(dx(j)), 'dq/dp of parameter '//char(48 + j))
+    end do
+    call assert_true(abs(real(dx(1))) > 0.1_dp*abs(dx(1)), 'the start itself moves (dq(0) /= 0)')
+  end subroutine test_linear_oscillator
+
+  !> x'' + 0.3 x' + 2 (1 + 0.4 cos w t) x + 1.5 x^3 = 1.2 cos w t at w = 1.1:
+  !> nonlinear and time-varying, no closed form.  dq/dk and dq/dgamma from
+  !> the variational equations against central differences of periodic
+  !> orbits converged by shooting (Newton to 1e-12, DLSODE rtol 1e-12, step
+  !> 1e-4: truncation ~1e-8, integration noise ~1e-12/1e-4 = 1e-8 of the
+  !> sensitivity's size); tolerance 1e-6 of the largest sensitivity.  The
+  !> cubic's tangent 3 gamma x^2 in S' is more than 0.2 k on the orbit
+  !> (checked), so a missing tangent fails.
+  subroutine test_duffing()
+    type(oscillator_t), target :: sys, plus(2), minus(2)
+    type(shooting_settings_t) :: ss
+    type(shooting_report_t) :: rep
+    type(error_t) :: err
+    real(dp), parameter :: w = 1.1_dp, h = 1.0e-4_dp
+    real(dp) :: times(13), q(1, 13), dq(1, 13, 2), qp(1, 13), qm(1, 13), qd(1, 13), fd(13), y0(2), yp(2), ym(2)
+    integer :: j, k
+    sys = oscillator_t(m=1.0_dp, c=0.3_dp, k=2.0_dp, eps=0.4_dp, gamma=1.5_dp, f1=1.2_dp)
+    sys%n = 1
+    sys%omega = w
+    ss%rtol = 1.0e-12_dp
+    ss%atol = 1.0e-15_dp
+    ss%newton_tol = 1.0e-12_dp
+    ss%max_newton = 30
+    y0 = 0.0_dp
+    call shooting_solve(sys, ss, y0, rep, err)
+    call assert_true(.not. err%failed() .and. rep%converged .and. rep%stable, 'the Duffing orbit: '//err%text())
+    if (err%failed() .or. .not. rep%converged) return
+    do k = 1, 13
+      times(k) = (k - 1)*(2.0_dp*pi/w)/12.0_dp
+    end do
+    do j = 1, 2
+      plus(j) = sys
+      minus(j) = sys
+    end do
+    plus(1)%k = sys%k + h
+    minus(1)%k = sys%k - h
+    plus(2)%gamma = sys%gamma + h
+    minus(2)%gamma = sys%gamma - h
+    call orbit_sensitivity(sys, plus, minus, [2*h, 2*h], ss, y0, times, q, dq, rep, err)
+    call assert_true(.not. err%failed(), 'orbit_sensitivity runs: '//err%text())
+    if (err%failed()) return
+    do j = 1, 2
+      yp = y0
+      ym = y0
+      call shooting_solve(plus(j), ss, yp, rep, err)
+      if (.not. err%failed()) call periodic_orbit(plus(j), ss, yp, times, qp, qd, rep, err)
+      if (.not. err%failed()) call shooting_solve(minus(j), ss, ym, rep, err)
+      if (.not. err%failed()) call periodic_orbit(minus(j), ss, ym, times, qm, qd, rep, err)
+      call assert_true(.not. err%failed(), 'the perturbed orbits: '//err%text())
+      if (err%failed()) return
+      fd = (qp(1, :) - qm(1, :))/(2*h)
+      call assert_all_close(dq(1, :, j), fd, 0.0_dp, 1.0e-6_dp*maxval(abs(fd)), 'dq/dp against differences, '// &
+                            'parameter '//char(48 + j))
+    end do
+    ! the cubic's tangent 3 gamma x^2 is a good part of the stiffness on the
+    ! orbit: leaving it out of S' would fail the comparison above
+    call assert_true(maxval(3*sys%gamma*q(1, :)**2) > 0.2_dp*sys%k, 'the orbit is nonlinear: '// &
+                     'tangent 3 gamma x^2 above 0.2 k')
+  end subroutine test_duffing
+
+  !> Example 3's problem at a design away from the start, three variables of
+  !> three kinds: the crank counterweight's x (it acts on the shaking force
+  !> through the rigid motion only: a clamped crank's elastic equations do
+  !> not see it), the rocker counterweight's y (through the rocker's
+  !> elastic equations: f_p and the start's correction) and the coupler's
+  !> height (logarithmic; mass, stiffness and stress recovery).  The
+  !> derivatives of the stress constraints and of the shaking-force
+  !> residuals from one sensitivity solve against central differences of
+  !> whole analyses at x +- 1e-3 (analyses at rtol 1e-9, Newton to 1e-8:
+  !> their noise, about 1e-9 of a result, is 1e-6 of the derivative; the
+  !> truncation h^2 f''' / 6 about 1e-7).  Tolerance: 1e-4 of each
+  !> derivative vector's largest entry, and 1e-5 absolute for the
+  !> constraints (logarithms: the crank counterweight leaves the stresses
+  !> alone, its variational derivative is 0 to round-off - checked - and
+  !> the differences' noise there measured 1.2e-6).  Counted as one analysis.
+  subroutine test_design_derivatives()
+    type(design_problem_t) :: prob
+    real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), gp(:), gm(:), rp(:), rm(:)
+    type(design_eval_t) :: ev
+    real(dp) :: xs(3), h
+    logical :: ok
+    integer :: j, before
+    call load(example3//'/|&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-9, '// &
+              'atol = 1.0e-13 /', prob, x0)
+    prob%shooting%newton_tol = 1.0e-8_dp
+    prob%shooting%max_newton = 20
+    call prob%setup('example 3', x0)
+    call assert_true(prob%variational_applies(), 'the default derivatives are the variational ones')
+    call prob%evaluate(x0, ev)
+    call assert_true(ev%ok, 'example 3 at x0 analyses: '//reason(ev))
+    if (.not. ev%ok) return
+    before = prob%n_analyses
+    call prob%derivatives_at(x0, dg, dr, ok)
+    call assert_true(ok, 'derivatives_at succeeds')
+    if (.not. ok) return
+    call assert_equal(prob%n_analyses - before, 1, 'a sensitivity solve counts one analysis')
+    call assert_equal(prob%n_sensitivity, 1, 'one sensitivity solve')
+    call assert_true(maxval(abs(dg(1, :))) <= 1.0e-12_dp, 'the crank counterweight leaves the stresses alone')
+    call assert_true(maxval(abs(dr(1, :))) > 0.1_dp*maxval(abs(dr(3, :))), 'but moves the shaking force')
+    do j = 1, 3
+      h = 1.0e-3_dp
+      xs = x0
+      xs(j) = x0(j) + h
+      call values(prob, xs, gp, rp)
+      xs(j) = x0(j) - h
+      call values(prob, xs, gm, rm)
+      call assert_all_close(dg(j, :), (gp - gm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((gp - gm)/(2*h))) + 1.0e-5_dp, &
+                            'dg/dx of variable '//char(48 + j))
+      call assert_all_close(dr(j, :), (rp - rm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((rp - rm)/(2*h))), &
+                            'dr/dx of variable '//char(48 + j))
+    end do
+  end subroutine test_design_derivatives
+
+  subroutine values(prob, x, g, r)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:)
+    real(dp), allocatable, intent(out) :: g(:), r(:)
+    type(design_eval_t) :: ev
+    call prob%evaluate(x, ev)
+    call assert_true(ev%ok, 'a neighbour analyses: '//reason(ev))
+    g = prob%constraints_of(ev)
+    r = prob%residuals_of(ev)
+  end subroutine values
+
+  !> derivatives = 'variational' needs the shooting evaluator; an unknown
+  !> choice is an input error; 'differences' is taken.
+  subroutine test_switch()
+    type(design_problem_t) :: prob
+    real(dp), allocatable :: x0(:)
+    type(error_t) :: err
+    call load(example3//'derivatives = ''differences'' /|&steady integrator = ''bdf'' /', prob, x0)
+    call assert_true(.not. prob%variational_applies(), '''differences'' switches the sensitivities off')
+    call try_load(example3//'evaluator = ''harmonic'', derivatives = ''variational'' /|&steady rtol = 1e-7 /', err)
+    call assert_error(err, 2, 'derivatives', 'variational with the harmonic evaluator', 'shooting')
+    call err%clear()
+    call try_load(example3//'derivatives = ''adjoint'' /|&steady rtol = 1e-7 /', err)
+    call assert_error(err, 2, 'derivatives', 'an unknown choice')
+  end subroutine test_switch
+
+  function reason(ev) result(text)
+    type(design_eval_t), intent(in) :: ev
+    character(len=:), allocatable :: text
+    text = ''
+    if (allocated(ev%reason)) text = ev%reason
+  end function reason
+
+  !> Load the deck text into a design problem (not yet set up).
+  subroutine load(text, prob, x0)
+    character(len=*), intent(in) :: text
+    type(design_problem_t), intent(out) :: prob
+    real(dp), allocatable, intent(out) :: x0(:)
+    type(deck_t) :: deck
+    type(mechanism_t) :: mech
+    type(design_sequence_t) :: seq
+    type(error_t) :: err
+    call write_deck(scratch//'.nml', text)
+    call deck%open(scratch//'.nml', err)
+    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
+    call deck%close()
+    call assert_true(.not. err%failed(), 'the deck loads: '//err%text())
+    call delete_scratch()
+  end subroutine load
+
+  subroutine try_load(text, err)
+    character(len=*), intent(in) :: text
+    type(error_t), intent(inout) :: err
+    type(deck_t) :: deck
+    type(mechanism_t) :: mech
+    type(design_problem_t) :: prob
+    type(design_sequence_t) :: seq
+    real(dp), allocatable :: x0(:)
+    call write_deck(scratch//'.nml', text)
+    call deck%open(scratch//'.nml', err)
+    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
+    call deck%close()
+    call delete_scratch()
+  end subroutine try_load
+
+  subroutine delete_scratch()
+    integer :: u
+    open(newunit=u, file=scratch//'.nml', status='old')
+    close(u, status='delete')
+  end subroutine delete_scratch
+end module test_design_sensitivity_suite
+
+program test_design_sensitivity
+  use test_design_sensitivity_suite, only: run_all
+  use assertions, only: finish_suite
+  implicit none
+  call run_all()
+  call finish_suite('test_design_sensitivity')
+end program test_design_sensitivity
