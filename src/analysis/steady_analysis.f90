@@ -47,6 +47,7 @@ contains
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_steady_settings(deck, mech%n_links, s, err)
+    if (err%failed()) return         ! (a NaN d_k compared in check_steady_input traps: fuzz seed 12, case 20018)
     call check_steady_input(deck, mech, s, err)
     if (err%failed()) return
     omega = mech%driver%omega

@@ -153,6 +153,11 @@ contains
       end if
     end do
     if (.not. is_unset(f_star)) call check_real(deck, g, 'f_star', f_star, err, at_least=-big, at_most=big)
+    ! x* is only compared with the result, but a NaN there trapped the summary (fuzz seed 12, case 23272)
+    do i = 1, n
+      if (.not. is_unset(x_star(i))) call check_real(deck, g, 'x_star('//str(i)//')', x_star(i), err, &
+                                                     at_least=-big, at_most=big)
+    end do
   end subroutine check_all
 
   elemental logical function is_unset(v)
