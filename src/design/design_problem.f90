@@ -648,7 +648,16 @@ contains
     ev%ok = ieee_is_finite(ev%mass) .and. all(ieee_is_finite(ev%link_stress)) .and. &
             ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
             ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking)
-    if (.not. ev%ok) ev%reason = 'the analysis gave a value that is not finite'
+    if (.not. ev%ok) then
+      ev%reason = 'the analysis gave a value that is not finite'
+    else if (self%frequency_factor > 0.0_dp .and. .not. ev%lowest_frequency > 0.0_dp) then
+      ! a negative omega^2 (signed) is a frozen configuration that buckles or
+      ! diverges; its ln(factor omega / frequency) has no value (fuzz seed 13,
+      ! case 2650: a bar 1e7 in long)
+      ev%ok = .false.
+      ev%reason = 'the lowest frozen natural frequency is not positive ('//str(ev%lowest_frequency)// &
+                  ' rad/s): the frozen structure is unstable at this speed'
+    end if
   end subroutine design_results
 
   !> The stress samples (k - 1) T / samples and the target points' times
@@ -717,8 +726,10 @@ contains
       if (i <= self%n_stress) then
         g(i) = log(max(ev%stress_at(modulo(i - 1, self%base%n_links) + 1, (i - 1)/self%base%n_links + 1), &
                        tiny(1.0_dp))/self%stress_allowable)
-      else
+      else if (ev%frequency_at(i - self%n_stress) > 0.0_dp) then
         g(i) = log(self%frequency_factor*abs(self%speeds(i - self%n_stress))/ev%frequency_at(i - self%n_stress))
+      else
+        g(i) = ieee_value(g(i), ieee_quiet_nan)   ! an unstable frozen structure (design_results refuses it)
       end if
     end do
   end function constraints_of
