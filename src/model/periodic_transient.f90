@@ -40,7 +40,7 @@ module periodic_transient
     real(dp) :: rtol = 1.0e-7_dp          !< DLSODE relative tolerance
     real(dp) :: atol = 1.0e-11_dp         !< DLSODE absolute tolerance (displacements and rates)
     logical :: bdf = .true.               !< banded BDF with the model's Newton matrix; else Adams
-    integer :: max_steps = 2000000        !< DLSODE steps per call
+    integer :: max_steps = 200000         !< DLSODE steps per call (as shooting's per revolution)
   end type periodic_transient_settings_t
 
   type :: periodic_transient_report_t
