@@ -59,6 +59,12 @@ module mechanism_model
   private
   public :: mechanism_model_t, element_spec_t, counterweight_arm
 
+  !> DLSODE's Newton matrix of a turning mechanism: at most this many steps
+  !> old, and re-formed earlier when the chord iteration's measured
+  !> contraction factor would pass newton_contraction (model_jacobian_steps).
+  integer, parameter :: newton_age_limit = 10
+  real(dp), parameter :: newton_contraction = 0.2_dp
+
   !> What an element needs besides its rigid state (for init_fixed).
   type :: element_spec_t
     real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp
@@ -151,6 +157,7 @@ module mechanism_model
     procedure :: newton_factor => model_newton_factor
     procedure :: newton_solve => model_newton_solve
     procedure :: jacobian_steps => model_jacobian_steps
+    procedure :: jacobian_contraction => model_jacobian_contraction
     procedure :: assemble_band
     procedure :: set_time
     procedure :: build_motion_table
@@ -1066,20 +1073,35 @@ contains
     ok = .not. err%failed()
   end subroutine model_newton_factor
 
-  !> A moving mechanism's M and K_t turn with the links (150 rad/s: 5 degrees
-  !> in 20 steps of 30 us), and a Jacobian 20 steps old made the corrector
-  !> fail to converge, cut the step and re-form it anyway: at 32 elements per
-  !> link most Jacobians were such retries.  With at most 5 steps per
-  !> Jacobian the damped four-bar takes 42 % fewer steps and 47 % fewer
-  !> right-hand sides there (rtol 1e-4; doc/benchmarks.md).  A structure that does not
-  !> turn (fixed, or a driver speed of zero) keeps DLSODE's 20.
+  !> A moving mechanism's M and K_t turn with the links, and the chord
+  !> iteration's contraction factor with a Newton matrix k steps old grows as
+  !> k and, from 8 elements per link on, as the number of elements (0.05 at
+  !> 2 elements per link after four steps of 35 us, 0.33 at 32;
+  !> doc/transient.md).  DLSODE's fixed limit of 20 steps per matrix made most
+  !> Jacobians at 32 elements per link retries after a failed iteration; a
+  !> fixed 5 was still too long at 32 and too short at 2.  So the age limit
+  !> adapts: at most `newton_age_limit` steps, fewer when the measured
+  !> contraction would pass `newton_contraction` (model_jacobian_contraction,
+  !> module lsode_newton).  A structure that does not turn keeps DLSODE's 20.
   integer function model_jacobian_steps(self) result(steps)
     class(mechanism_model_t), intent(in) :: self
     steps = 0
-    if (self%moving) then
-      if (abs(self%kin%mech%driver%omega) > 0.0_dp) steps = 5
-    end if
+    if (turning(self)) steps = newton_age_limit
   end function model_jacobian_steps
+
+  !> The bound on the chord iteration's contraction factor for a turning
+  !> mechanism (model_jacobian_steps); 0 (DLSODE's fixed limit) otherwise.
+  real(dp) function model_jacobian_contraction(self) result(theta)
+    class(mechanism_model_t), intent(in) :: self
+    theta = 0.0_dp
+    if (turning(self)) theta = newton_contraction
+  end function model_jacobian_contraction
+
+  pure logical function turning(self)
+    type(mechanism_model_t), intent(in) :: self
+    turning = .false.
+    if (self%moving) turning = abs(self%kin%mech%driver%omega) > 0.0_dp
+  end function turning
 
   !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
   !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:

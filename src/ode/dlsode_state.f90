@@ -6,7 +6,7 @@ module dlsode_state
   use kinds, only: dp
   implicit none
   private
-  public :: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur, msbp
+  public :: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur, msbp, nst, nslp, lewt, lwm, crate
 
   real(dp) :: conit, crate, el(13), elco(13, 12), hold, rmax, tesco(3, 12), &
               ccmax, el0, h, hmin, hmxi, hu, rc, tn, uround

@@ -6,7 +6,17 @@
 !> are unchanged.
 !>
 !> The system may shorten DLSODE's Jacobian age limit MSBP (steps between
-!> Jacobians, DLSODE's 20: `jacobian_steps`); this routine sets it.
+!> Jacobians, DLSODE's 20: `jacobian_steps`); this routine sets it.  A system
+!> whose Newton matrix ages at a rate that depends on the problem (the
+!> mechanism model's turns with the links, and turns out of date faster the
+!> finer the mesh) asks instead for a bound on the chord iteration's
+!> contraction factor (`jacobian_contraction`): every second and later
+!> corrector iteration measures the factor theta = |dx_m| / |dx_m-1| (DSTODE's
+!> weighted norm), theta / age estimates its growth per step of age (it grows
+!> linearly with the age of the matrix; doc/transient.md), and MSBP becomes
+!> the age at which the estimate reaches the bound, between 2 and
+!> `jacobian_steps`.  Re-forming the matrix before the iteration fails saves
+!> the failed iterations, the retry and the lower BDF order that follow one.
 !>
 !> Routes, by what lsode_solver set up:
 !> - the model's own Newton matrix (lsode_solver's `active_newton_is_model`):
@@ -26,10 +36,26 @@ module lsode_newton
   use error_status, only: error_t
   use linalg, only: lu_factor, lu_solve, band_lu_factor, band_lu_solve
   use lsode_solver, only: active, active_newton_is_model
-  use dlsode_state, only: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur, msbp
+  use dlsode_state, only: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur, msbp, nst, nslp, &
+                          lewt, lwm, crate
   implicit none
   private
   public :: prepare_newton_matrix, solve_newton_matrix, rhs_f77, jac_f77
+
+  ! The adaptive age limit (one integration at a time: DLSODE is not re-entrant).
+  real(dp), save :: theta_bound = 0.0_dp     !< the system's jacobian_contraction (0: off)
+  integer, save :: longest_age = 0            !< the system's jacobian_steps
+  real(dp), save :: growth = 0.0_dp           !< contraction factor per step of age, running estimate
+  real(dp), save :: fresh = 0.0_dp            !< contraction factor of a matrix of the current step, running estimate
+  logical, save :: just_formed = .false.      !< a matrix was formed since the last solve
+  real(dp), save :: last_norm = 0.0_dp        !< weighted norm of the previous correction
+  real(dp), save :: last_tn = 0.0_dp          !< ... and the time, step count and matrix it belonged to
+  integer, save :: last_nst = -1, last_nje = -1
+  !> DSTODE's contraction estimate CRATE for a matrix just formed, at least:
+  !> DLSODE puts 0.7, so that a step right after a new matrix needs a second
+  !> iteration whenever the first correction is not already below the test;
+  !> a measured estimate (`fresh`) replaces it, not below this floor.
+  real(dp), parameter :: fresh_floor = 0.1_dp
 
   abstract interface
     subroutine rhs_f77(neq, t, y, ydot)
@@ -65,6 +91,14 @@ contains
     jcur = 1
     steps = active%jacobian_steps()          ! DLSODE resets MSBP to 20 for every new problem
     if (steps > 0) msbp = steps
+    longest_age = merge(steps, 20, steps > 0)
+    theta_bound = active%jacobian_contraction()
+    if (nst == 0) then                       ! a new problem
+      growth = 0.0_dp
+      fresh = 0.0_dp
+    end if
+    just_formed = .true.
+    if (theta_bound > 0.0_dp .and. growth > 0.0_dp) msbp = age_limit()
     if (active_newton_is_model) then
       call active%newton_factor(tn, y(1:n), h*el0, ok)
     else
@@ -92,17 +126,64 @@ contains
     if (active_newton_is_model) then
       call active%newton_solve(x(1:n))
       if (active%err%failed()) iersl = 1      ! the model stopped (integrate_to reports why)
-      return
+    else
+      select case (miter)
+      case (1, 2)
+        call dense_solve(n, wm(3), iwm(21), x)
+      case (4, 5)
+        call band_solve(n, iwm(1), iwm(2), wm(3), iwm(21), x)
+      case default
+        iersl = 1
+      end select
     end if
-    select case (miter)
-    case (1, 2)
-      call dense_solve(n, wm(3), iwm(21), x)
-    case (4, 5)
-      call band_solve(n, iwm(1), iwm(2), wm(3), iwm(21), x)
-    case default
-      iersl = 1
-    end select
+    if (theta_bound > 0.0_dp .and. iersl == 0) then
+      ! DSTODE has just put CRATE = 0.7 for a new matrix: our estimate instead
+      if (just_formed) crate = max(fresh_floor, fresh)
+      call note_contraction(wm, x)
+    end if
+    just_formed = .false.
   end subroutine solve_newton_matrix
+
+  !> After a corrector solve: when it is the second or a later iteration of
+  !> the step with the same matrix, theta = |x| / |previous x| (DSTODE's
+  !> weighted RMS norm; EWT holds the reciprocal weights and lies after WM in
+  !> DLSODE's RWORK) updates the estimate for a matrix of this age (running
+  !> means, weight 0.3 on the new value): `fresh` at age 0 (NST - NSLP), the
+  !> growth theta / age at age 1 and more; MSBP follows the growth for the
+  !> decision at the next step.
+  subroutine note_contraction(wm, x)
+    real(dp), intent(in) :: wm(*), x(*)
+    real(dp) :: norm, theta
+    integer :: age
+    norm = sqrt(sum((x(1:n)*wm(lewt - lwm + 1:lewt - lwm + n))**2)/n)
+    age = nst - nslp
+    if (nst == last_nst .and. nje == last_nje .and. .not. (tn < last_tn .or. tn > last_tn) .and. &
+        last_norm > 0.0_dp) then
+      theta = min(norm/last_norm, 1.0_dp)
+      if (age == 0) then
+        fresh = running(fresh, theta)
+      else
+        growth = running(growth, theta/age)
+        msbp = age_limit()
+      end if
+    end if
+    last_norm = norm
+    last_tn = tn
+    last_nst = nst
+    last_nje = nje
+  end subroutine note_contraction
+
+  pure real(dp) function running(mean, value)
+    real(dp), intent(in) :: mean, value
+    running = value
+    if (mean > 0.0_dp) running = 0.7_dp*mean + 0.3_dp*value
+  end function running
+
+  !> The age (steps) at which the estimated contraction factor reaches the
+  !> bound, in [2, longest_age] (2: a measurement needs a matrix a step old).
+  integer function age_limit() result(steps)
+    steps = max(2, min(longest_age, int(theta_bound/growth)))
+  end function age_limit
 
   ! ------------------------------------------------------------------ dense
 

@@ -60,6 +60,7 @@ module lsode_solver
     procedure :: newton_factor => newton_factor_not_provided
     procedure :: newton_solve => newton_solve_not_provided
     procedure :: jacobian_steps
+    procedure :: jacobian_contraction
     procedure :: fail
   end type ode_system_t
 
@@ -196,6 +197,17 @@ contains
     jacobian_steps = 0
     if (.false.) jacobian_steps = merge(1, 0, self%err%failed())   ! argument intentionally unused
   end function jacobian_steps
+
+  !> The contraction factor of DLSODE's chord iteration that the system's
+  !> Newton matrix may reach before it is re-formed; 0 (the default): DLSODE's
+  !> fixed age limit alone.  When positive, our DPREPJ/DSOLSY measure the
+  !> contraction and shorten the age limit to keep it below this value
+  !> (module lsode_newton; jacobian_steps is then the longest age).
+  real(dp) function jacobian_contraction(self)
+    class(ode_system_t), intent(in) :: self
+    jacobian_contraction = 0.0_dp
+    if (.false.) jacobian_contraction = merge(1.0_dp, 0.0_dp, self%err%failed())   ! argument intentionally unused
+  end function jacobian_contraction
 
   !> Record the first failure of the model at time t.
   subroutine fail(self, t, message)

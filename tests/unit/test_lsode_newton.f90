@@ -2,7 +2,9 @@
 !> model's banded elimination behind it): the banded solve equals an
 !> independent dense solve of the 2N x 2N P = I - hl0 J; integrations through
 !> the model's Newton matrix equal those through DLSODE-style dense P; bdf_band
-!> (MF 24) is now the same iteration as bdf (MF 21), no truncated band.
+!> (MF 24) is now the same iteration as bdf (MF 21), no truncated band; the
+!> Newton matrix's age limit follows the measured contraction of the chord
+!> iteration (a stiff system turning at a chosen rate, in closed form).
 module test_lsode_newton_suite
   use kinds, only: dp
   use error_status, only: error_t
@@ -10,7 +12,7 @@ module test_lsode_newton_suite
   use linkage, only: mechanism_t, build_mechanism
   use kear_element, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, ode_system_t
   use transient_fixtures, only: fourbar_input, make_model, all_effects, state_atol
   use assertions
   use ode_problems, only: decay_t => newton_decay_t
@@ -19,7 +21,84 @@ module test_lsode_newton_suite
   private
   public :: run_all
 
+  !> y' = A(t) y with A = R(wt)^T diag(-a, -b) R(wt), R the rotation by wt
+  !> (R = [[c, s], [-s, c]]): a stiff direction (a) and a slow one (b) that
+  !> turn at the rate w, as a link's stiff axial and soft bending directions
+  !> do.  In the turning frame z = R y the system is constant,
+  !> z' = B z with B = [[-a, w], [-w, -b]], so y(t) = R(wt)^T exp(B t) y(0).
+  !> Its Newton matrix P = I - hl0 A(t_f) is exact when formed and turns out
+  !> of date at a rate proportional to w; it asks for at most 10 steps per
+  !> matrix and a contraction bound `theta` (0: the fixed limit alone).
+  type, extends(ode_system_t) :: turning_t
+    real(dp) :: w = 0.0_dp, a = 1.0e4_dp, b = 1.0_dp, theta = 0.2_dp
+    real(dp) :: p_inv(2, 2) = 0.0_dp
+    integer :: n_factor = 0
+  contains
+    procedure :: rhs => turning_rhs
+    procedure :: has_newton_matrix => turning_has_newton
+    procedure :: newton_factor => turning_factor
+    procedure :: newton_solve => turning_solve
+    procedure :: jacobian_steps => turning_steps
+    procedure :: jacobian_contraction => turning_contraction
+  end type turning_t
+
 contains
+
+  pure function turning_matrix(self, t) result(m)
+    class(turning_t), intent(in) :: self
+    real(dp), intent(in) :: t
+    real(dp) :: m(2, 2), r(2, 2)
+    r = reshape([cos(self%w*t), -sin(self%w*t), sin(self%w*t), cos(self%w*t)], [2, 2])
+    m = matmul(transpose(r), matmul(reshape([-self%a, 0.0_dp, 0.0_dp, -self%b], [2, 2]), r))
+  end function turning_matrix
+
+  subroutine turning_rhs(self, t, y, ydot)
+    class(turning_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    real(dp), intent(out) :: ydot(:)
+    real(dp) :: m(2, 2)
+    m = turning_matrix(self, t)
+    ydot(1) = m(1, 1)*y(1) + m(1, 2)*y(2)
+    ydot(2) = m(2, 1)*y(1) + m(2, 2)*y(2)
+  end subroutine turning_rhs
+
+  logical function turning_has_newton(self)
+    class(turning_t), intent(in) :: self
+    turning_has_newton = .not. self%err%failed()
+  end function turning_has_newton
+
+  subroutine turning_factor(self, t, y, hl0, ok)
+    class(turning_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    real(dp) :: p(2, 2), det
+    p = -hl0*turning_matrix(self, t)
+    p(1, 1) = p(1, 1) + 1.0_dp
+    p(2, 2) = p(2, 2) + 1.0_dp
+    det = p(1, 1)*p(2, 2) - p(1, 2)*p(2, 1)
+    self%p_inv = reshape([p(2, 2), -p(2, 1), -p(1, 2), p(1, 1)], [2, 2])/det
+    self%n_factor = self%n_factor + 1
+    ok = size(y) == 2
+  end subroutine turning_factor
+
+  subroutine turning_solve(self, x)
+    class(turning_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    real(dp) :: x1
+    x1 = x(1)
+    x(1) = self%p_inv(1, 1)*x1 + self%p_inv(1, 2)*x(2)
+    x(2) = self%p_inv(2, 1)*x1 + self%p_inv(2, 2)*x(2)
+  end subroutine turning_solve
+
+  integer function turning_steps(self)
+    class(turning_t), intent(in) :: self
+    turning_steps = merge(10, 0, .not. self%err%failed())
+  end function turning_steps
+
+  real(dp) function turning_contraction(self)
+    class(turning_t), intent(in) :: self
+    turning_contraction = self%theta
+  end function turning_contraction
 
   subroutine run_all()
     call run_test('banded_newton_solve_equals_dense_solve_linear_model', test_solve_linear_model)
@@ -30,6 +109,7 @@ contains
     call run_test('model_newton_matrix_route_matches_closed_form', test_decay_closed_form)
     call run_test('model_failure_ends_a_run_through_its_newton_matrix', test_decay_failure)
     call run_test('optional_inputs_survive_the_switch_to_the_model_route', test_max_order_kept)
+    call run_test('newton_matrix_age_follows_its_contraction', test_age_follows_contraction)
   end subroutine run_all
 
   !> A four-bar model (2 elements per link, 150 rad/s, beta = 1e-5 s).
@@ -250,6 +330,64 @@ contains
     c = free%counters()
     call assert_true(c%order_last > 2, 'without the limit the order exceeds 2: '//trim(itoa(c%order_last)))
   end subroutine test_max_order_kept
+
+  !> The turning system from y = (1, 1) to t = 2 (BDF, rtol 1e-6, atol
+  !> 1e-9): the state against the closed form, the counters, the corrector
+  !> iterations per step (RHS evaluations per step; one of them predicts).
+  subroutine turn(w, theta, c, rhs_per_step)
+    real(dp), intent(in) :: w, theta
+    type(lsode_counters_t), intent(out) :: c
+    real(dp), intent(out) :: rhs_per_step
+    type(turning_t), target :: sys
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    real(dp) :: y(2), z(2), b(2, 2), mu, delta, t
+    sys%w = w
+    sys%theta = theta
+    y = 1.0_dp
+    t = 2.0_dp
+    call ode%init(2, 0.0_dp, mf_bdf_full_user, 1.0e-6_dp, [1.0e-9_dp], err)
+    call ode%integrate_to(sys, y, t, err)
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    c = ode%counters()
+    rhs_per_step = real(c%rhs_evals, dp)/c%steps
+    ! closed form: z = exp(B t) z0, z0 = R(0) y0 = y0, with the eigenvalues
+    ! l1 > l2 of B: exp(B t) = (e^(l1 t) (B - l2 I) - e^(l2 t) (B - l1 I)) / (l1 - l2)
+    b = reshape([-sys%a, -w, w, -sys%b], [2, 2])
+    mu = -0.5_dp*(sys%a + sys%b)
+    delta = sqrt(0.25_dp*(sys%a - sys%b)**2 - w**2)
+    z = exp((mu + delta)*t)*(matmul(b, [1.0_dp, 1.0_dp]) - (mu - delta)) - &
+        exp((mu - delta)*t)*(matmul(b, [1.0_dp, 1.0_dp]) - (mu + delta))
+    z = z/(2.0_dp*delta)
+    z = [cos(w*t)*z(1) - sin(w*t)*z(2), sin(w*t)*z(1) + cos(w*t)*z(2)]     ! y = R^T z
+    ! rtol 1e-6 per step over up to ten turns and 2,000 steps: the global
+    ! error measured is 1.5e-4 of the largest component (the same with either
+    ! age rule); 1e-3 leaves a sixfold margin, and a stale matrix that misled
+    ! the corrector would show as a phase error of the turning components
+    call assert_all_close(y, z, 0.0_dp, 1.0e-3_dp*maxval(abs(z)), 'closed form at t = 2, w = '//rtoa(w))
+  end subroutine turn
+
+  !> The age limit adapts to how fast the Newton matrix turns out of date:
+  !> turning fast (w = 30 rad/s, about ten turns in the run), the run forms
+  !> at least twice as many matrices per step as turning slowly (w = 0.01
+  !> rad/s; measured 0.50 and 0.19: in the slow run the bound acts only where
+  !> h*el0 changed since the matrix), and the corrector then needs fewer
+  !> iterations per step than with the fixed limit of 10 steps alone
+  !> (theta = 0), whose stale matrix contracts slowly (measured 1.2 against
+  !> 2.0 right-hand sides per step).  Every run against the closed form.
+  subroutine test_age_follows_contraction()
+    type(lsode_counters_t) :: slow, fast, fast_fixed
+    real(dp) :: r_slow, r_fast, r_fast_fixed, per_step_slow, per_step_fast
+    call turn(0.01_dp, 0.2_dp, slow, r_slow)
+    call turn(30.0_dp, 0.2_dp, fast, r_fast)
+    call turn(30.0_dp, 0.0_dp, fast_fixed, r_fast_fixed)
+    per_step_slow = real(slow%jac_evals, dp)/slow%steps
+    per_step_fast = real(fast%jac_evals, dp)/fast%steps
+    call assert_true(per_step_fast >= 2.0_dp*per_step_slow, 'matrices per step: fast turn '//rtoa(per_step_fast)// &
+                     ', slow turn '//rtoa(per_step_slow))
+    call assert_true(r_fast < 0.8_dp*r_fast_fixed, 'fast turn: RHS per step with the bound '//rtoa(r_fast)// &
+                     ' against the fixed limit''s '//rtoa(r_fast_fixed))
+  end subroutine test_age_follows_contraction
 end module test_lsode_newton_suite
 
 program test_lsode_newton
