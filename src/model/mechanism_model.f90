@@ -62,7 +62,7 @@ module mechanism_model
   !> DLSODE's Newton matrix of a turning mechanism: at most this many steps
   !> old, and re-formed earlier when the chord iteration's measured
   !> contraction factor would pass newton_contraction (model_jacobian_steps).
-  integer, parameter :: newton_age_limit = 10
+  integer, parameter :: newton_age_limit = 5
   real(dp), parameter :: newton_contraction = 0.2_dp
 
   !> What an element needs besides its rigid state (for init_fixed).
@@ -102,6 +102,7 @@ module mechanism_model
     ! element M and K_t constant in the element frame (Kear's element, linear strains): their global
     ! band entries are tabulated once as functions of the elements' angles (build_frame_tables)
     logical :: frame_tables = .false.
+    logical :: frame_symmetric = .false.          !< every element's frame K_t is symmetric (so every global one)
     type(frame_table_t) :: frame_mass, frame_stiff
     real(dp), allocatable :: frame_basis(:, :)   !< (4, element): cos phi, sin phi, cos 2phi, sin 2phi
     ! cost and diagnostics
@@ -443,7 +444,9 @@ contains
     real(dp) :: fe(8), zero(8)
     type(kear_eval_info_t) :: info
     integer :: e
+    logical :: symmetric
     self%frame_tables = .false.
+    symmetric = .true.
     if (self%table%element_dofs /= 8 .or. .not. self%mass_constant_in_q) return
     do e = 1, size(self%el)
       if (self%el(e)%kind /= element_kind_kear) return
@@ -460,9 +463,11 @@ contains
       call beam_element_eval(self%el(e), zero, zero, rigid_state_t(), ml, fe, info, tangent=kl, force_wanted=.false.)
       call tabulate_element(self, e, ml, .true., self%frame_mass)
       call tabulate_element(self, e, kl, .false., self%frame_stiff)
+      symmetric = symmetric .and. maxval(abs(kl - transpose(kl))) <= 1.0e-10_dp*maxval(abs(kl))
     end do
     call finish_table(self%frame_mass)
     call finish_table(self%frame_stiff)
+    self%frame_symmetric = symmetric        ! T^T L T is symmetric at every angle when L is
     allocate(self%frame_basis(4, size(self%el)))
     self%frame_tables = .true.
   end subroutine build_frame_tables
@@ -1046,7 +1051,12 @@ contains
     c = hl0*beta + hl0**2
     self%newton_hl0 = hl0
     self%n_newton_factorizations = self%n_newton_factorizations + 1
-    self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
+    ! (the frame tables know their symmetry: the check costs a fifth of a factorization)
+    if (self%frame_tables .and. .not. self%has_clearance .and. size(self%slide) == 0) then
+      self%newton_cholesky = self%frame_symmetric
+    else
+      self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
+    end if
     if (self%newton_cholesky) then
       self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
       if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_chol, 1, .true.)
@@ -1079,10 +1089,12 @@ contains
   !> 2 elements per link after four steps of 35 us, 0.33 at 32;
   !> doc/transient.md).  DLSODE's fixed limit of 20 steps per matrix made most
   !> Jacobians at 32 elements per link retries after a failed iteration; a
-  !> fixed 5 was still too long at 32 and too short at 2.  So the age limit
-  !> adapts: at most `newton_age_limit` steps, fewer when the measured
-  !> contraction would pass `newton_contraction` (model_jacobian_contraction,
-  !> module lsode_newton).  A structure that does not turn keeps DLSODE's 20.
+  !> fixed 5 still let the iteration fail at 32.  So the age limit adapts: at
+  !> most `newton_age_limit` steps, fewer when the measured contraction would
+  !> pass `newton_contraction` (model_jacobian_contraction, module
+  !> lsode_newton).  A longer limit (10) saves matrices on coarse meshes but
+  !> costs 8-17 % more steps with the rates in the error test (atol_rate =
+  !> atol, the deck default).  A structure that does not turn keeps DLSODE's 20.
   integer function model_jacobian_steps(self) result(steps)
     class(mechanism_model_t), intent(in) :: self
     steps = 0
