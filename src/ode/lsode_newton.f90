@@ -182,7 +182,11 @@ contains
   !> The age (steps) at which the estimated contraction factor reaches the
   !> bound, in [2, longest_age] (2: a measurement needs a matrix a step old).
   integer function age_limit() result(steps)
-    steps = max(2, min(longest_age, int(theta_bound/growth)))
+    if (growth*longest_age <= theta_bound) then
+      steps = longest_age                    ! (also growth = 0: a step that needed no correction)
+    else
+      steps = max(2, int(theta_bound/growth))
+    end if
   end function age_limit
 
   ! ------------------------------------------------------------------ dense
