@@ -8,7 +8,7 @@ module transient_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams
@@ -332,8 +332,7 @@ contains
     type(error_t), intent(inout) :: err
     call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
     if (err%failed()) then
-      err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &mechanism')
+      call input_error_in(deck, 'mechanism', err)
       return
     end if
     block
@@ -341,8 +340,7 @@ contains
       type(point_load_t), allocatable :: point_loads(:)
       call resolve_loads(loads_in, mech, gravity, point_loads, err)
       if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &loads')
+        call input_error_in(deck, 'loads', err)
         return
       end if
       call model%set_loads(gravity, point_loads)

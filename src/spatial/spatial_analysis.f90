@@ -10,7 +10,7 @@ module spatial_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t
@@ -63,8 +63,7 @@ contains
     call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err, &
                     formulation=spatial_formulation_of(s))
     if (err%failed()) then
-      if (err%code /= 2) err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &spatial_mechanism')
+      call input_error_in(deck, 'spatial_mechanism', err)
       return
     end if
     call write_header(out, inp, s, model)
