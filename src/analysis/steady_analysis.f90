@@ -29,6 +29,8 @@ module steady_analysis
 
 contains
 
+  !> Length (about 150 lines, 122 its own): fill (contained) writes one row of both solutions with the
+  !> host's peaks; the own body runs the harmonic and the shooting solution side by side.
   subroutine run_steady(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out

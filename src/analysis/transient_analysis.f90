@@ -47,6 +47,8 @@ module transient_analysis
 
 contains
 
+  !> Length (about 200 lines, 126 its own): output_row and close_revolutions are contained because they fill
+  !> rows and judge periodicity with the host's state, peaks and row buffers; the phases are routines below.
   subroutine run_transient(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out

@@ -91,6 +91,8 @@ contains
   !> the curvature-like DOFs m, ux, uxx are then free at every link end (a
   !> pin's zero moment is a natural condition of that element). With
   !> shear_dofs every node carries Tennant's shear-angle DOFs [a psi lam].
+  !> Length (about 190 lines, 85 its own): the contained new_dof, interior_node and end_node number the
+  !> DOFs with the host's running counter and labels.
   subroutine build(self, n_elem, ends, err, reduce_band, axial_dofs, shear_dofs)
     class(correlation_table_t), intent(out) :: self
     integer, intent(in) :: n_elem(:)

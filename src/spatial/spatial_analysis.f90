@@ -32,6 +32,8 @@ module spatial_analysis
 
 contains
 
+  !> Length (about 150 lines, 101 its own): output_row (contained) fills a row from the driver's peaks
+  !> and its one-revolution ring buffer.
   subroutine run_spatial(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out

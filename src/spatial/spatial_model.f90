@@ -194,6 +194,8 @@ contains
   end subroutine model_init
 
   !> Node rules in chain order A -> B -> C -> D (narrow band).
+  !> Length (about 155 lines, 97 its own): the contained interior, axial_slopes and joint_end number
+  !> the DOFs with the host's running counter.
   subroutine build_table(self, err)
     type(spatial_model_t), intent(inout) :: self
     type(error_t), intent(inout) :: err
