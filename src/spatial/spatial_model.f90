@@ -280,7 +280,7 @@ contains
         end associate
       end do
     end do
-    call self%table%finish()
+    call self%table%finish_band()
 
   contains
 
