@@ -40,7 +40,7 @@ module design_sequence
   use progress, only: progress_t
   implicit none
   private
-  public :: design_sequence_t, design_step_t
+  public :: design_sequence_t, design_step_t, step_back
 
   !> The approximate problem of one design iteration (explicit: no analysis).
   type, extends(opt_problem_t) :: approximate_problem_t
