@@ -170,7 +170,7 @@ contains
     real(dp), allocatable :: smat(:, :), bmat(:, :), lmat(:, :), w(:), grad(:), x_old(:), dr_old(:, :)
     real(dp) :: ratio, step_len
     real(dp), allocatable :: g_lin(:)
-    logical :: corrected, retry, interpolated
+    logical :: corrected, retry, interpolated, shifted
     real(dp) :: t_back
     type(progress_t) :: bar
     character(len=:), allocatable :: events
@@ -224,6 +224,7 @@ contains
       events = ''
       accepted = .false.
       corrected = .false.
+      shifted = .false.
       interpolated = .false.
       retry = .false.
       g_lin = g
@@ -254,7 +255,7 @@ contains
           ! promises less than xtol/10 of F, the move limit not binding
           if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
             small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
-          if (small_step .and. viol <= self%feas_tol .and. .not. corrected) then
+          if (small_step .and. viol <= self%feas_tol .and. .not. shifted) then
             self%converged = .true.
             exit
           end if
@@ -289,6 +290,7 @@ contains
             cycle
           end if
           corrected = .true.
+          shifted = .true.
           g_lin = g + max(0.0_dp, g_try - g - matmul(x_try - self%x, dg))
           events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
                    '): linearised constraints corrected; '
@@ -298,6 +300,7 @@ contains
         ! linearisation at x_k (the correction, right at the proposal, can
         ! make x_k itself look infeasible) with a shorter step
         g_lin = g
+        shifted = .false.
         if (ok) then
           events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)//'); '
         else
