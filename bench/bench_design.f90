@@ -191,6 +191,10 @@ program bench_design
   character(len=256) :: arg
   character(len=64) :: methods
   integer :: i
+  !> the design loop's accepted designs (analyses so far, F, worst
+  !> violation): where it passes an NLopt run's final F
+  integer, allocatable :: loop_nf(:)
+  real(dp), allocatable :: loop_f(:), loop_viol(:)
 
   ! --methods=gnlc,slsqp,cobyla,gnlc_fd,slsqp_fd (default the first three)
   ! selects the optimizers
@@ -231,6 +235,7 @@ contains
     real(dp) :: f_gauss
     nf_gauss = 0
     nf_best = huge(1)
+    if (allocated(loop_nf)) deallocate(loop_nf, loop_f, loop_viol)
     f_gauss = huge(1.0_dp)
     do method = 1, 5
       if (index(','//trim(methods)//',', ','//trim(method_key(method))//',') == 0) cycle
@@ -313,8 +318,22 @@ contains
     if (method == 1 .or. method == 4) then
       if (seq%converged) nf_gauss = prob%n_analyses
       f_gauss = f
-    else if (viol <= seq%feas_tol .and. ires > 0 .and. f <= 1.01_dp*f_gauss) then
-      nf_best = min(nf_best, prob%n_analyses)
+      loop_nf = [(seq%steps(k)%analyses, k = 1, seq%n_steps)]
+      loop_f = [(seq%steps(k)%objective, k = 1, seq%n_steps)]
+      loop_viol = [(seq%steps(k)%max_violation, k = 1, seq%n_steps)]
+      return
     end if
+    if (viol <= seq%feas_tol .and. ires > 0 .and. f <= 1.01_dp*f_gauss) nf_best = min(nf_best, prob%n_analyses)
+    if (.not. allocated(loop_nf) .or. viol > seq%feas_tol) return
+    ! at equal objective: the loop's analyses to its first feasible design
+    ! at least as good as this run's end
+    do k = 1, size(loop_nf)
+      if (loop_viol(k) <= seq%feas_tol .and. loop_f(k) <= f) then
+        write(output_unit, '(a)') '# '//path//': the design loop reaches '//name//'''s final F ('//str(f, 4)// &
+          ') after '//str(loop_nf(k))//' analyses, '//str(real(loop_nf(k), dp)/prob%n_analyses, 3)//' of its '// &
+          str(prob%n_analyses)
+        return
+      end if
+    end do
   end subroutine run_method
 end program bench_design

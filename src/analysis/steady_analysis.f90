@@ -10,7 +10,7 @@ module steady_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
@@ -29,6 +29,8 @@ module steady_analysis
 
 contains
 
+  !> Length (about 150 lines, 122 its own): fill (contained) writes one row of both solutions with the
+  !> host's peaks; the own body runs the harmonic and the shooting solution side by side.
   subroutine run_steady(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
@@ -61,8 +63,7 @@ contains
 
     call model%init_mechanism(mech, s%element, s%sections, err)
     if (err%failed()) then
-      err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &mechanism/&tennant')
+      call input_error_in(deck, 'mechanism/&tennant', err)
       return
     end if
     do_h = s%method /= 'shooting'

@@ -8,11 +8,11 @@ module transient_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use progress, only: progress_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd, &
-                          mf_bdf_full_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams
+  use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, driver_angle
@@ -33,7 +33,6 @@ module transient_analysis
   private
   public :: run_transient
 
-  integer, parameter :: n_modes_reported = 5
 
   !> The optional response columns of a run (each off = not computed).
   type :: responses_t
@@ -48,6 +47,8 @@ module transient_analysis
 
 contains
 
+  !> Length (about 200 lines, 126 its own): output_row and close_revolutions are contained because they fill
+  !> rows and judge periodicity with the host's state, peaks and row buffers; the phases are routines below.
   subroutine run_transient(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
@@ -106,7 +107,7 @@ contains
 
     call output_times(mech, s, t0, dt_out, t_end, n_out)
 
-    call start_integrator(out, s, model, t0, y, ode, err)
+    call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
     call row_schedule(out, mech, s, t0, dt_out, t_rows, buffer_rows)
@@ -333,8 +334,7 @@ contains
     type(error_t), intent(inout) :: err
     call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
     if (err%failed()) then
-      err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &mechanism')
+      call input_error_in(deck, 'mechanism', err)
       return
     end if
     block
@@ -342,8 +342,7 @@ contains
       type(point_load_t), allocatable :: point_loads(:)
       call resolve_loads(loads_in, mech, gravity, point_loads, err)
       if (err%failed()) then
-        err%code = 2
-        call err%add_context('deck '''//deck%path//''', group &loads')
+        call input_error_in(deck, 'loads', err)
         return
       end if
       call model%set_loads(gravity, point_loads)
@@ -373,39 +372,6 @@ contains
       end block
     end if
   end subroutine echo_input
-
-  !> DLSODE set up for the interleaved state (displacements and rates with
-  !> their own absolute tolerances) and its Newton matrix described.
-  subroutine start_integrator(out, s, model, t0, y, ode, err)
-    type(table_t), intent(inout) :: out
-    type(transient_settings_t), intent(in) :: s
-    type(mechanism_model_t), intent(in) :: model
-    real(dp), intent(in) :: t0, y(:)
-    type(lsode_t), intent(inout) :: ode
-    type(error_t), intent(inout) :: err
-    real(dp), allocatable :: atol_vector(:)
-    integer :: ml
-    ml = 2*model%kd + 1
-    ! displacements and rates have their own absolute tolerances (interleaved state)
-    allocate(atol_vector(size(y)))
-    atol_vector(1::2) = s%atol
-    atol_vector(2::2) = s%atol_rate
-    call ode%init(size(y), t0, s%mf, s%rtol, atol_vector, err, ml=min(ml, size(y) - 1), &
-                  mu=min(ml, size(y) - 1), max_steps=s%max_steps)
-    if (err%failed()) return
-    if (s%max_order > 0) then
-      ode%max_order = s%max_order           ! DLSODE's MAXORD (optional input, IOPT = 1)
-      ode%iwork(5) = s%max_order
-      call out%comment('DLSODE order limited to '//str(s%max_order))
-    end if
-    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
-      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
-                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
-    else if (s%mf == mf_bdf_band_fd) then
-      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '// &
-                       str(min(ml, size(y) - 1))//' (the band of M and K in the interleaved state)')
-    end if
-  end subroutine start_integrator
 
   !> The initial state (&transient initial): a scaled mode at rest, a restart
   !> file, or the rigid-body motion.
@@ -493,23 +459,8 @@ contains
     type(mechanism_model_t), intent(in) :: model
     type(lsode_counters_t), intent(in) :: c
     real(dp), intent(in) :: cpu, revolutions_done
-    ! DLSODE rebuilds the Jacobian after a failed corrector; at a third of the
-    ! steps its finite differences are too poor (fuzz seed 9: bdf_fd with the
-    ! consistent element at atol 1e-12 took 1000 times bdf's CPU)
-    if ((s%mf == mf_bdf_full_fd .or. s%mf == mf_bdf_band_fd) .and. c%steps >= 1000 .and. 3*c%jac_evals > c%steps) &
-      call out%summary('warning', trim(s%method)//' rebuilt its finite-difference Jacobian at '// &
-                       str(c%jac_evals)//' of '//str(c%steps)//' steps: its differences are poor at these '// &
-                       'tolerances; method = ''bdf'' (analytic Jacobian) or a larger atol is far cheaper')
-    call out%cost('cpu_seconds_integration', str(cpu, 4))
-    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str(cpu/revolutions_done, 4))
-    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
-    call out%cost('steps', str(c%steps))
-    call out%cost('rhs_evaluations', str(c%rhs_evals))
-    call out%cost('jacobian_evaluations', str(c%jac_evals))
-    call out%cost('lu_factorizations', str(c%lu_factorizations))
-    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%n_newton_factorizations - &
-      model%n_newton_lu)//' Cholesky and '//str(model%n_newton_lu)//' LU factorizations')
-    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
+    call write_integration_cost(out, s, c, cpu, revolutions_done, model%n_newton_factorizations, model%n_newton_lu, &
+                                model%n_mass_factorizations)
     call out%cost('last_method_order', str(c%order_last))
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
@@ -763,14 +714,9 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     real(dp), intent(in) :: omega_n(:)
-    integer :: i, h
+    integer :: h
     real(dp) :: w
-    character(len=:), allocatable :: line
-    line = 'natural frequencies of the linearised structure at the start position (rad/s):'
-    do i = 1, min(n_modes_reported, size(omega_n))
-      line = line//' '//str(omega_n(i), 6)
-    end do
-    call out%comment(line)
+    call write_start_frequencies(out, omega_n)
     if (s%damping_beta > 0.0_dp) then
       call out%comment('stiffness-proportional damping beta = '//str(s%damping_beta)//' s: modal damping ratio '// &
                        'zeta_1 = beta*omega_1/2 = '//str(0.5_dp*s%damping_beta*omega_n(1), 6))

@@ -35,7 +35,7 @@ module correlation_table
   use strings, only: str
   implicit none
   private
-  public :: correlation_table_t, link_end_t, dofs_per_element
+  public :: correlation_base_t, correlation_table_t, link_end_t, dofs_per_element
   public :: joint_free, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_sleeve
 
   integer, parameter :: dofs_per_element = 8
@@ -54,27 +54,43 @@ module correlation_table
     logical :: carried = .false.       !< sleeve: carried by a moving link (else on the ground)
   end type link_end_t
 
-  type :: correlation_table_t
-    integer :: n_links = 0
+  !> The table itself, for elements of any number of DOFs: every element DOF
+  !> equals coef times one global unknown, or is held at zero (map = 0); the
+  !> unknowns' labels; gather, scatter and the half-bandwidth.  The planar
+  !> rules below (correlation_table_t%build) and the spatial model's joint
+  !> rules (src/spatial: spatial_table_t) fill it.
+  type :: correlation_base_t
     integer :: n_elements = 0
     integer :: n_global = 0
     integer :: half_bandwidth = 0                  !< of assembled M and K
-    integer :: node_dofs = 4                       !< 4: [U W th m] (Kear); 6: also [ux uxx]; 7: also [a psi lam]
     integer :: element_dofs = dofs_per_element     !< 2 * node_dofs
-    integer, allocatable :: link_of_element(:)     !< (n_elements)
-    integer, allocatable :: first_element(:)       !< (n_links + 1): elements of link k are first(k):first(k+1)-1
     integer, allocatable :: map(:, :)              !< (element_dofs, n_elements) global index, 0 = held at zero
     real(dp), allocatable :: coef(:, :)            !< (element_dofs, n_elements) element DOF = coef * global
     character(len=24), allocatable :: label(:)     !< (n_global) e.g. 'L2 N1 U' or 'J3 s'
+  contains
+    procedure :: start_table
+    procedure :: new_unknown
+    procedure :: finish_band
+    procedure :: gather
+    procedure :: gather_pair
+    procedure :: scatter_add
+    procedure :: scatter_add_matrix
+    procedure :: list_unknowns
+  end type correlation_base_t
+
+  !> The planar table: links of Kear's, the consistent or Tennant's elements
+  !> joined by the planar joint rules above.
+  type, extends(correlation_base_t) :: correlation_table_t
+    integer :: n_links = 0
+    integer :: node_dofs = 4                       !< 4: [U W th m] (Kear); 6: also [ux uxx]; 7: also [a psi lam]
+    integer, allocatable :: link_of_element(:)     !< (n_elements)
+    integer, allocatable :: first_element(:)       !< (n_links + 1): elements of link k are first(k):first(k+1)-1
     integer, allocatable :: sleeve_s(:)            !< (n_elements) axial unknown of a sleeve end at node 2 (0: none)
     integer, allocatable :: sleeve_u(:), sleeve_w(:) !< the sleeve's translations (0: on the ground)
     integer, allocatable :: glob(:, :)             !< (element_dofs + 2, n_elements) globals an element uses
     integer, allocatable :: n_glob(:)              !< (n_elements)
   contains
     procedure :: build
-    procedure :: gather
-    procedure :: scatter_add
-    procedure :: scatter_add_matrix
     procedure :: element_map
     procedure :: is_sleeve_element
     procedure :: describe
@@ -91,6 +107,8 @@ contains
   !> the curvature-like DOFs m, ux, uxx are then free at every link end (a
   !> pin's zero moment is a natural condition of that element). With
   !> shear_dofs every node carries Tennant's shear-angle DOFs [a psi lam].
+  !> Length (about 190 lines, 85 its own): the contained new_dof, interior_node and end_node number the
+  !> DOFs with the host's running counter and labels.
   subroutine build(self, n_elem, ends, err, reduce_band, axial_dofs, shear_dofs)
     class(correlation_table_t), intent(out) :: self
     integer, intent(in) :: n_elem(:)
@@ -123,14 +141,11 @@ contains
       self%first_element(k + 1) = self%first_element(k) + n_elem(k)
       self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
     end do
-    allocate(self%map(2*nd, self%n_elements), self%coef(2*nd, self%n_elements))
+    call self%start_table(self%n_elements, 2*nd)
     allocate(self%sleeve_s(self%n_elements), self%sleeve_u(self%n_elements), self%sleeve_w(self%n_elements))
-    self%map = 0
-    self%coef = 0.0_dp
     self%sleeve_s = 0
     self%sleeve_u = 0
     self%sleeve_w = 0
-    allocate(self%label(0))
 
     max_joint = max(0, maxval(ends%joint))
     allocate(joint_u(max_joint), joint_w(max_joint), joint_kind(max_joint))
@@ -460,8 +475,39 @@ contains
   end subroutine reduce_bandwidth
 
   !> Element DOF vector from the global vector.
+  !> An empty table of n_elements elements with element_dofs DOFs each:
+  !> every DOF held at zero, no global unknowns yet.
+  subroutine start_table(self, n_elements, element_dofs)
+    class(correlation_base_t), intent(inout) :: self
+    integer, intent(in) :: n_elements, element_dofs
+    self%n_elements = n_elements
+    self%element_dofs = element_dofs
+    self%n_global = 0
+    if (allocated(self%map)) deallocate(self%map)
+    if (allocated(self%coef)) deallocate(self%coef)
+    if (allocated(self%label)) deallocate(self%label)
+    allocate(self%map(element_dofs, n_elements), self%coef(element_dofs, n_elements), self%label(0))
+    self%map = 0
+    self%coef = 0.0_dp
+  end subroutine start_table
+
+  !> A fresh global unknown with its label (such as 'crank N2 RZ').
+  integer function new_unknown(self, text) result(g)
+    class(correlation_base_t), intent(inout) :: self
+    character(len=*), intent(in) :: text
+    self%n_global = self%n_global + 1
+    self%label = [character(len=24) :: self%label, text]
+    g = self%n_global
+  end function new_unknown
+
+  !> The half-bandwidth of the assembled matrices, from the map alone.
+  subroutine finish_band(self)
+    class(correlation_base_t), intent(inout) :: self
+    self%half_bandwidth = bandwidth(self%map)
+  end subroutine finish_band
+
   pure function gather(self, e, qg) result(qe)
-    class(correlation_table_t), intent(in) :: self
+    class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: qg(:)
     real(dp) :: qe(self%element_dofs)
@@ -475,9 +521,28 @@ contains
     end do
   end function gather
 
+  !> gather of two global vectors (displacements and rates) in one pass.
+  pure subroutine gather_pair(self, e, q, qd, qe, qde)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: q(:), qd(:)
+    real(dp), intent(out) :: qe(:), qde(:)
+    integer :: i, g
+    do i = 1, self%element_dofs
+      g = self%map(i, e)
+      if (g > 0) then
+        qe(i) = self%coef(i, e)*q(g)
+        qde(i) = self%coef(i, e)*qd(g)
+      else
+        qe(i) = 0.0_dp
+        qde(i) = 0.0_dp
+      end if
+    end do
+  end subroutine gather_pair
+
   !> fg += T_e^T fe  (the transpose of gather).
   pure subroutine scatter_add(self, e, fe, fg)
-    class(correlation_table_t), intent(in) :: self
+    class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: fe(:)
     real(dp), intent(inout) :: fg(:)
@@ -489,7 +554,7 @@ contains
 
   !> Dense A += T_e^T Ae T_e.
   pure subroutine scatter_add_matrix(self, e, ae, ag)
-    class(correlation_table_t), intent(in) :: self
+    class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: ae(:, :)
     real(dp), intent(inout) :: ag(:, :)
@@ -504,6 +569,23 @@ contains
       end do
     end do
   end subroutine scatter_add_matrix
+
+  !> The header's list of global unknowns, four to a line, each label in
+  !> label_width characters: (n_global + 3)/4 lines.
+  subroutine list_unknowns(self, label_width, lines)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: label_width
+    character(len=*), intent(inout) :: lines(:)
+    character(len=32) :: fmt
+    integer :: i, g
+    write(fmt, '(a,i0,a)') '(2x,i4,": ",a', label_width, ')'
+    do i = 1, (self%n_global + 3)/4
+      lines(i) = ''
+      do g = 4*(i - 1) + 1, min(4*i, self%n_global)
+        write(lines(i)(len_trim(lines(i)) + 1:), fmt) g, self%label(g)
+      end do
+    end do
+  end subroutine list_unknowns
 
   logical pure function is_sleeve_element(self, e)
     class(correlation_table_t), intent(in) :: self
@@ -566,7 +648,7 @@ contains
   subroutine describe(self, lines)
     class(correlation_table_t), intent(in) :: self
     character(len=160), allocatable, intent(out) :: lines(:)
-    integer :: e, i, n, nd
+    integer :: e, n, nd
     character(len=160) :: l
     n = 3 + self%n_elements + 1 + (self%n_global + 3)/4
     allocate(lines(n))
@@ -598,12 +680,6 @@ contains
       lines(3 + e) = l
     end do
     lines(4 + self%n_elements) = '  global unknowns:'
-    do i = 1, (self%n_global + 3)/4
-      l = ''
-      do e = 4*(i - 1) + 1, min(4*i, self%n_global)
-        write(l(len_trim(l) + 1:), '(2x,i4,": ",a18)') e, self%label(e)
-      end do
-      lines(4 + self%n_elements + i) = l
-    end do
+    call self%list_unknowns(18, lines(5 + self%n_elements:))
   end subroutine describe
 end module correlation_table

@@ -17,7 +17,10 @@
 !>   3. analyses the proposal: accepted when the analysis succeeds and the
 !>      worst constraint violation falls, or stays within feas_tol while the
 !>      mass falls; otherwise rho is quadrupled (shorter step) and step 2
-!>      repeated; after an accepted step rho is halved.
+!>      repeated; after an accepted step rho is halved.  (Structured
+!>      residual objectives: a proposal that lowers F but breaks a
+!>      constraint is first cut back along itself to where the constraints,
+!>      interpolated, meet their aim - doc/design.md.)
 !> It stops when the design is feasible and rho |x_try - x_k| (the Lagrangian
 !> gradient of the linearised problem at x_k) is below xtol/move_limit.  Every analysis is counted
 !> (design_problem).
@@ -37,7 +40,7 @@ module design_sequence
   use progress, only: progress_t
   implicit none
   private
-  public :: design_sequence_t, design_step_t
+  public :: design_sequence_t, design_step_t, step_back
 
   !> The approximate problem of one design iteration (explicit: no analysis).
   type, extends(opt_problem_t) :: approximate_problem_t
@@ -165,7 +168,10 @@ contains
     integer :: stalls, nf_before
     logical :: structured, have_old
     real(dp), allocatable :: smat(:, :), bmat(:, :), lmat(:, :), w(:), grad(:), x_old(:), dr_old(:, :)
-    real(dp) :: ratio
+    real(dp) :: ratio, step_len
+    real(dp), allocatable :: g_lin(:)
+    logical :: corrected, retry, interpolated, shifted
+    real(dp) :: t_back
     type(progress_t) :: bar
     character(len=:), allocatable :: events
     n = size(x0)
@@ -217,33 +223,42 @@ contains
       end if
       events = ''
       accepted = .false.
+      corrected = .false.
+      shifted = .false.
+      interpolated = .false.
+      retry = .false.
+      g_lin = g
       do while (delta <= 1.0e6_dp)
-        if (prob%is_minimax()) then
-          call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
-        else if (structured) then
-          call approximate_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
+        if (retry) then
+          retry = .false.      ! x_try set by the step back below
         else
-          call approximate_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
-        end if
-        ! mass: rho |step| is the size of the gradient of the Lagrangian of
-        ! the linearised problem at x_k (the proximal term has no gradient
-        ! there): small, and x_k feasible, is the KKT test; no analysis is
-        ! spent on it.  Path objectives: the Gauss matrix 2 J^T J / F0
-        ! outweighs rho near the answer, so rho |step| underestimates the
-        ! gradient; the test is the step itself (Gauss-Newton steps shrink
-        ! with the distance to a zero-residual answer)
-        if (prob%has_residuals()) then
-          small_step = maxval(abs(x_try - self%x)) <= self%xtol
-        else
-          small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
-        end if
-        ! structured: the model (exact curvature estimate, fresh derivatives)
-        ! promises less than xtol/10 of F, the move limit not binding
-        if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
-          small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
-        if (small_step .and. viol <= self%feas_tol) then
-          self%converged = .true.
-          exit
+          if (prob%is_minimax()) then
+            call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+          else if (structured) then
+            call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
+          else
+            call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+          end if
+          ! mass: rho |step| is the size of the gradient of the Lagrangian of
+          ! the linearised problem at x_k (the proximal term has no gradient
+          ! there): small, and x_k feasible, is the KKT test; no analysis is
+          ! spent on it.  Path objectives: the Gauss matrix 2 J^T J / F0
+          ! outweighs rho near the answer, so rho |step| underestimates the
+          ! gradient; the test is the step itself (Gauss-Newton steps shrink
+          ! with the distance to a zero-residual answer)
+          if (prob%has_residuals()) then
+            small_step = maxval(abs(x_try - self%x)) <= self%xtol
+          else
+            small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
+          end if
+          ! structured: the model (exact curvature estimate, fresh derivatives)
+          ! promises less than xtol/10 of F, the move limit not binding
+          if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
+            small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
+          if (small_step .and. viol <= self%feas_tol .and. .not. shifted) then
+            self%converged = .true.
+            exit
+          end if
         end if
         call constraints_at(prob, x_try, g_try, r_try, ok)
         if (ok) then
@@ -253,13 +268,49 @@ contains
                      (viol_try <= max(viol, self%feas_tol) .and. mass_try <= mass)
         end if
         if (accepted) exit
+        step_len = maxval(abs(x_try - self%x))
         self%rejections = self%rejections + 1
+        if (structured .and. ok .and. .not. (corrected .or. interpolated) .and. mass_try < mass) then
+          ! F fell but a constraint's linearisation was wrong; once per
+          ! iteration either step back along the proposal to where each
+          ! violated constraint, interpolated quadratically between x_k
+          ! (value and gradient) and the proposal, reaches the aim (the
+          ! constraint interpolation of feasible-direction methods,
+          ! Vanderplaats 1984), or, when that is less than a fifth of the
+          ! step (an active constraint the step ran along), shift each
+          ! underestimating linearised constraint by its error at the
+          ! proposal and solve again (the second-order correction of SQP)
+          t_back = step_back(g, matmul(x_try - self%x, dg), g_try, 0.5_dp*self%feas_tol)
+          if (t_back >= 0.2_dp) then
+            interpolated = .true.
+            retry = .true.
+            events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
+                     '): step back to '//str(t_back, 3)//' of it; '
+            x_try = self%x + t_back*(x_try - self%x)
+            cycle
+          end if
+          corrected = .true.
+          shifted = .true.
+          g_lin = g + max(0.0_dp, g_try - g - matmul(x_try - self%x, dg))
+          events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
+                   '): linearised constraints corrected; '
+          cycle
+        end if
+        ! the corrected problem's proposal failed too: back to the
+        ! linearisation at x_k (the correction, right at the proposal, can
+        ! make x_k itself look infeasible) with a shorter step
+        g_lin = g
+        shifted = .false.
         if (ok) then
           events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)//'); '
         else
           events = events//'rejected: '//prob%last_failure//'; '
         end if
         delta = 4.0_dp*delta
+        ! structured: when rho is far below the model's curvature,
+        ! quadrupling it hardly shortens the step; ask for a quarter of it
+        if (structured) delta = max(delta, rho_for_step(prob, self%x, g_lin, dg, r, dr, 0.5_dp*self%feas_tol, &
+                                                        lmat, w, 0.25_dp*step_len, delta))
       end do
       if (self%converged) then
         if (structured) then
@@ -541,6 +592,78 @@ contains
     end if
     if (err%failed()) events = events//'approximate problem: '//err%text()//'; '
   end subroutine minimax_step
+
+  !> The fraction t in (0, 1) of a step s at which every violated constraint,
+  !> modelled as g(t) = g + a t + c t^2 (a = grad g . s, c from its value
+  !> g_try at t = 1), first reaches -margin; 0 when some constraint is
+  !> already there at t = 0 (an active one) or the model has no root.
+  pure real(dp) function step_back(g, a, g_try, margin) result(t)
+    real(dp), intent(in) :: g(:), a(:), g_try(:), margin
+    real(dp) :: c, b0, disc, ti
+    integer :: i
+    t = 1.0_dp
+    do i = 1, size(g)
+      if (g_try(i) <= margin) cycle
+      b0 = g(i) + margin
+      if (b0 >= 0.0_dp) then
+        t = 0.0_dp
+        return
+      end if
+      c = g_try(i) - g(i) - a(i)
+      if (abs(c) <= 1.0e-12_dp*abs(a(i))) then
+        ti = -b0/a(i)
+      else
+        disc = a(i)**2 - 4.0_dp*c*b0
+        if (disc < 0.0_dp) then
+          t = 0.0_dp
+          return
+        end if
+        ti = (-a(i) + sqrt(disc))/(2.0_dp*c)
+        if (ti <= 0.0_dp .or. ti > 1.0_dp) ti = (-a(i) - sqrt(disc))/(2.0_dp*c)
+      end if
+      if (.not. (ti > 0.0_dp .and. ti < 1.0_dp)) then
+        t = 0.0_dp
+        return
+      end if
+      t = min(t, ti)
+    end do
+    if (t >= 1.0_dp) t = 0.0_dp
+  end function step_back
+
+  !> The smallest proximal weight rho >= rho_min (to a factor 1.1) whose
+  !> approximate step changes no variable by more than step_max: bisection in
+  !> ln rho, each trial an approximate problem (GNLC.NS, no analysis).
+  real(dp) function rho_for_step(prob, x, g, dg, r, dr, margin, lmat, w, step_max, rho_min) result(rho)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:), g(:), dg(:, :), r(:), dr(:, :), margin, lmat(:, :), w(:), step_max, rho_min
+    real(dp), allocatable :: x_try(:)
+    character(len=:), allocatable :: events
+    real(dp) :: lo, hi
+    integer :: it
+    events = ''
+    rho = rho_min
+    if (.not. longer(rho)) return
+    lo = log(rho_min)
+    hi = lo
+    do it = 1, 60
+      hi = hi + log(16.0_dp)
+      if (.not. longer(exp(hi))) exit
+    end do
+    do while (hi - lo > log(1.1_dp))
+      if (longer(exp(0.5_dp*(lo + hi)))) then
+        lo = 0.5_dp*(lo + hi)
+      else
+        hi = 0.5_dp*(lo + hi)
+      end if
+    end do
+    rho = exp(hi)
+  contains
+    logical function longer(rho_try)
+      real(dp), intent(in) :: rho_try
+      call approximate_step(prob, x, g, dg, r, dr, rho_try, margin, x_try, events, lmat, w)
+      longer = maxval(abs(x_try - x)) > step_max
+    end function longer
+  end function rho_for_step
 
   !> GNLC.NS, tight: an approximate problem costs no analysis.
   subroutine set_gnlc_options(opt)

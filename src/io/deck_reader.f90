@@ -30,7 +30,7 @@ module deck_reader
   use strings, only: str, lower
   implicit none
   private
-  public :: deck_t, group_reader, group_read_t, invalid_value, input_error_code, terminator_column
+  public :: deck_t, group_reader, group_read_t, invalid_value, input_error_in, input_error_code, terminator_column
 
   integer, parameter :: input_error_code = 2
   integer, parameter :: shown_chars = 200    !< a deck line quoted in a message is cut after this
@@ -649,6 +649,17 @@ contains
     call err%set(context(deck, group), trim(variable)//' = '//trim(value_text)//at//': '//trim(rule), &
                  input_error_code)
   end subroutine invalid_value
+
+  !> A lower layer refused what a group's values describe (a model, loads, a
+  !> joint): the failure becomes an input error (exit status 2) with the deck
+  !> and group ('mechanism', or 'mechanism/&tennant') named as its context.
+  subroutine input_error_in(deck, group, err)
+    type(deck_t), intent(in) :: deck
+    character(len=*), intent(in) :: group
+    type(error_t), intent(inout) :: err
+    err%code = input_error_code
+    call err%add_context('deck '''//deck%path//''', group &'//group)
+  end subroutine input_error_in
 
   logical pure function names_variable(line, var)
     character(len=*), intent(in) :: line, var

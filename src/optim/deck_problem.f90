@@ -130,18 +130,8 @@ contains
     call check_reals(deck, g, 'f_q', reshape(f_q(1:n, 1:n), [n*n]), err, at_least=-big, at_most=big, why=why)
     call check_reals(deck, g, 'f_c', f_c(1:n), err, at_least=-big, at_most=big, why=why)
     call check_real(deck, g, 'f_0', f_0, err, at_least=-big, at_most=big, why=why)
-    do i = 1, n_ineq
-      call check_reals(deck, g, 'g_q(:,:,'//str(i)//')', reshape(g_q(1:n, 1:n, i), [n*n]), err, at_least=-big, &
-                       at_most=big, why=why)
-      call check_reals(deck, g, 'g_a('//str(i)//',:)', g_a(i, 1:n), err, at_least=-big, at_most=big, why=why)
-    end do
-    call check_reals(deck, g, 'g_b', g_b(1:n_ineq), err, at_least=-big, at_most=big, why=why)
-    do i = 1, n_eq
-      call check_reals(deck, g, 'h_q(:,:,'//str(i)//')', reshape(h_q(1:n, 1:n, i), [n*n]), err, at_least=-big, &
-                       at_most=big, why=why)
-      call check_reals(deck, g, 'h_a('//str(i)//',:)', h_a(i, 1:n), err, at_least=-big, at_most=big, why=why)
-    end do
-    call check_reals(deck, g, 'h_b', h_b(1:n_eq), err, at_least=-big, at_most=big, why=why)
+    call check_family('g', g_q, g_a, g_b, n_ineq)      ! the inequalities, then the equalities
+    call check_family('h', h_q, h_a, h_b, n_eq)
     call check_reals(deck, g, 'lower', lower(1:n), err, at_least=-none, at_most=none, why='-1e30 means no bound')
     call check_reals(deck, g, 'upper', upper(1:n), err, at_least=-none, at_most=none, why='1e30 means no bound')
     if (err%failed()) return
@@ -158,6 +148,20 @@ contains
       if (.not. is_unset(x_star(i))) call check_real(deck, g, 'x_star('//str(i)//')', x_star(i), err, &
                                                      at_least=-big, at_most=big)
     end do
+  contains
+    !> The m quadratic constraints c_q(:,:,k), c_a(k,:), c_b(k) of one family.
+    subroutine check_family(c, q, a, b, m)
+      character(len=1), intent(in) :: c
+      real(dp), intent(in) :: q(:, :, :), a(:, :), b(:)
+      integer, intent(in) :: m
+      integer :: k
+      do k = 1, m
+        call check_reals(deck, g, c//'_q(:,:,'//str(k)//')', reshape(q(1:n, 1:n, k), [n*n]), err, at_least=-big, &
+                         at_most=big, why=why)
+        call check_reals(deck, g, c//'_a('//str(k)//',:)', a(k, 1:n), err, at_least=-big, at_most=big, why=why)
+      end do
+      call check_reals(deck, g, c//'_b', b(1:m), err, at_least=-big, at_most=big, why=why)
+    end subroutine check_family
   end subroutine check_all
 
   elemental logical function is_unset(v)

@@ -260,6 +260,8 @@ contains
   !> best feasible iterate stays in x_best / f_best.  err reports this run
   !> only: an error left in it by an earlier call is cleared first (it would
   !> otherwise reach the problem's procedures and be blamed on them).
+  !> Length (about 135 lines): the outer iteration of Gauss/GNLC/GNLC.NS (B, P: step, multipliers, drop or
+  !> add, step-back, convergence) kept in one loop so its exits read in order; its steps are routines below.
   subroutine solve(self, prob, x0, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob

@@ -68,6 +68,7 @@ contains
   end subroutine create_hs
 
   !> Sizes, bounds, standard start and published optimum of each problem.
+  !> Length: data, one short case per problem of the collection.
   subroutine hs_data(number, n, mg, me, lo, hi, x0, xs, fs)
     integer, intent(in) :: number
     integer, intent(out) :: n, mg, me
@@ -303,6 +304,7 @@ contains
   end function hs_f
 
   !> HS inequality c_j(x) >= 0 (kind 1) or equality h_j(x) = 0 (kind 2).
+  !> Length: data, one short case per problem's constraints.
   real(dp) function hs_c(number, kind, j, x) result(c)
     integer, intent(in) :: number, kind, j
     real(dp), intent(in) :: x(:)

@@ -256,6 +256,8 @@ contains
   !> at s = 0 (x_k); a root is accepted only if the Jacobian has the inertia
   !> (n_free, l, 0) of a minimiser of the Lagrangian model on the active
   !> constraints (not a saddle or a maximum).  On return self%s is the step.
+  !> Length (about 130 lines, 101 its own): first_order_multipliers and minimiser_inertia are contained
+  !> because they read the host's KKT matrix and active set.
   subroutine kkt_newton(self, lam, tol, max_it, ok, reason, iterations, err)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(inout) :: lam(:)
@@ -447,6 +449,8 @@ contains
   !> from Powell's point.  On return the step of the returned lambda is in
   !> self%s.  err is set only if no lambda gives a step at all or an actual
   !> constraint cannot be evaluated.
+  !> Length (about 180 lines, 106 its own): the contained newton shares the host's work arrays; the own
+  !> body is the Newton -> Powell -> polish sequence in order, one decision after another.
   subroutine solve(self, lambda, tol, max_newton, res, err)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(inout) :: lambda(:)

@@ -10,10 +10,11 @@ module spatial_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use progress, only: progress_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t
+  use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost
   use kear_element, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, check_mode_number
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
@@ -31,6 +32,8 @@ module spatial_analysis
 
 contains
 
+  !> Length (about 150 lines, 101 its own): output_row (contained) fills a row from the driver's peaks
+  !> and its one-revolution ring buffer.
   subroutine run_spatial(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
@@ -62,8 +65,7 @@ contains
     call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err, &
                     formulation=spatial_formulation_of(s))
     if (err%failed()) then
-      if (err%code /= 2) err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &spatial_mechanism')
+      call input_error_in(deck, 'spatial_mechanism', err)
       return
     end if
     call write_header(out, inp, s, model)
@@ -79,7 +81,7 @@ contains
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
     t_end = t0 + s%revolutions*two_pi/inp%omega
     n_out = max(1, nint((t_end - t0)/dt_out))
-    call start_integrator(out, s, model, t0, size(y), ode, err)
+    call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
     call write_columns(out, model, names)
@@ -189,44 +191,12 @@ contains
     type(spatial_input_t), intent(in) :: inp
     type(transient_settings_t), intent(in) :: s
     real(dp), intent(in) :: omega_n(:)
-    character(len=:), allocatable :: line
-    integer :: k
-    line = 'natural frequencies of the linearised structure at the start position (rad/s):'
-    do k = 1, min(5, size(omega_n))
-      line = line//' '//str(omega_n(k), 6)
-    end do
-    call out%comment(line)
+    call write_start_frequencies(out, omega_n)
     if (inp%omega > 0.0_dp) call out%comment('crank speed '//str(inp%omega, 6)//' rad/s = '// &
                                              str(inp%omega/omega_n(1), 6)//' of the first natural frequency')
     if (s%damping_beta > 0.0_dp) call out%comment('stiffness-proportional damping beta = '// &
       str(s%damping_beta)//' s: zeta_1 = '//str(0.5_dp*s%damping_beta*omega_n(1), 6))
   end subroutine write_frequencies
-
-  !> DLSODE at t0 for n states (displacements and rates with their own
-  !> absolute tolerances, band half-widths of the model), and the header line
-  !> saying which Newton matrix it uses.
-  subroutine start_integrator(out, s, model, t0, n, ode, err)
-    type(table_t), intent(inout) :: out
-    type(transient_settings_t), intent(in) :: s
-    type(spatial_model_t), intent(in) :: model
-    real(dp), intent(in) :: t0
-    integer, intent(in) :: n
-    type(lsode_t), intent(inout) :: ode
-    type(error_t), intent(inout) :: err
-    real(dp) :: atol_vector(n)
-    integer :: ml
-    ml = min(2*model%kd + 1, n - 1)
-    atol_vector(1::2) = s%atol
-    atol_vector(2::2) = s%atol_rate
-    call ode%init(n, t0, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
-    if (err%failed()) return
-    if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
-      call out%comment('BDF Newton matrix: the model''s banded N x N elimination M + (h el0 beta + (h el0)^2) K_t, '// &
-                       'half-bandwidth '//str(model%kd)//' (doc/transient.md)')
-    else if (s%mf == mf_bdf_band_fd) then
-      call out%comment('banded BDF: finite-difference Jacobian truncated to half-bandwidths ml = mu = '//str(ml))
-    end if
-  end subroutine start_integrator
 
   !> The cost footer: CPU time, DLSODE's counters and the model's own work.
   subroutine write_cost(out, s, ode, model, cpu_seconds, revolutions_done)
@@ -237,16 +207,8 @@ contains
     real(dp), intent(in) :: cpu_seconds, revolutions_done
     type(lsode_counters_t) :: c
     c = ode%counters()
-    call out%cost('cpu_seconds_integration', str(cpu_seconds, 4))
-    if (revolutions_done > 0.0_dp) call out%cost('cpu_seconds_per_revolution', str(cpu_seconds/revolutions_done, 4))
-    call out%cost('method', trim(s%method)//' (DLSODE MF='//str(s%mf)//')')
-    call out%cost('steps', str(c%steps))
-    call out%cost('rhs_evaluations', str(c%rhs_evals))
-    call out%cost('jacobian_evaluations', str(c%jac_evals))
-    call out%cost('lu_factorizations', str(c%lu_factorizations))
-    if (c%model_newton) call out%cost('newton_matrix', 'banded N x N, '//str(model%newton%n_factorizations - &
-      model%newton%n_lu)//' Cholesky and '//str(model%newton%n_lu)//' LU factorizations')
-    call out%cost('mass_factorizations', str(model%n_mass_factorizations))
+    call write_integration_cost(out, s, c, cpu_seconds, revolutions_done, model%newton%n_factorizations, &
+                                model%newton%n_lu, model%n_mass_factorizations)
     call out%cost('kinematics_solutions', str(model%n_kinematics))
     call out%cost('kinematics_newton_iterations', str(model%kin%total_iterations))
     call out%cost('nonlinear_integrand_evaluations', str(model%n_nonlinear_points))

@@ -194,6 +194,8 @@ contains
   end subroutine model_init
 
   !> Node rules in chain order A -> B -> C -> D (narrow band).
+  !> Length (about 155 lines, 97 its own): the contained interior, axial_slopes and joint_end number
+  !> the DOFs with the host's running counter.
   subroutine build_table(self, err)
     type(spatial_model_t), intent(inout) :: self
     type(error_t), intent(inout) :: err
@@ -278,7 +280,7 @@ contains
         end associate
       end do
     end do
-    call self%table%finish()
+    call self%table%finish_band()
 
   contains
 
@@ -384,72 +386,31 @@ contains
     self%t_states = t
   end subroutine set_time
 
-  !> q_dd from M q_dd = F (banded Cholesky).  M depends on the rigid state
-  !> only (the element's M_p is constant): its factor is reused while t is
-  !> unchanged (DLSODE's corrector iterations), which is exact.
+  !> q_dd from M q_dd = F: by the banded Cholesky factor of M, or through
+  !> spatial_mass (M(t)^-1 by the constant factor and the joint unknowns' Schur
+  !> complement) when that is active.  M depends on the rigid state only (the
+  !> element's M_p is constant): its factor is reused while t is unchanged
+  !> (DLSODE's corrector iterations), which is exact.
   subroutine accelerations(self, t, q, qd, qdd)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(sdofs, sdofs), fe(sdofs)
+    real(dp) :: me(sdofs, sdofs), fe(sdofs), qe(sdofs), qde(sdofs)
     type(spatial_eval_info_t) :: info
     integer :: e, minor
-    logical :: new_mass, ok
+    logical :: new_mass, band_mass, ok
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     new_mass = t < self%t_mass .or. t > self%t_mass
-    if (self%cmass%active) then
-      call constant_factor_accelerations(self, t, q, qd, new_mass, qdd)
-      return
-    end if
-    if (new_mass) self%mass_band = 0.0_dp
-    self%force = 0.0_dp
-    do e = 1, size(self%el)
-      ! consecutive elements of a link with equal M_p share one global mass (same rotation)
-      call spatial_beam_eval(self%el(e), self%table%gather(e, q), self%table%gather(e, qd), self%rb(e), me, fe, info, &
-                             mass_wanted=new_mass .and. .not. self%mass_as_previous(e))
-      self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
-      if (info%beyond_peak .and. self%stop_beyond_peak) then
-        call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
-                       ' is past the peak of the Ramberg-Osgood curve, eps* = '//str(self%el(e)%eps_star, 6))
-        return
-      end if
-      call self%table%scatter_add(e, fe, self%force)
-      if (.not. new_mass) cycle
-      call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
-    end do
-    if (new_mass) then
-      self%t_mass = huge(1.0_dp)                ! invalid until factored
-      call band_cholesky_inplace(self%mass_band, self%kd, minor)
-      ok = minor == 0
-      self%n_mass_factorizations = self%n_mass_factorizations + 1
-      if (.not. ok) then
-        call self%fail(t, 'mass matrix is not positive definite')
-        return
-      end if
-      self%t_mass = t
-    end if
-    qdd = self%force
-    call band_cholesky_substitute(self%mass_band, self%kd, qdd)
-  end subroutine accelerations
-
-  !> accelerations through spatial_mass: the elements' forces only, M(t)^-1
-  !> by the constant factor and the joint unknowns' Schur complement (updated
-  !> at a new time).
-  subroutine constant_factor_accelerations(self, t, q, qd, new_mass, qdd)
-    class(spatial_model_t), intent(inout) :: self
-    real(dp), intent(in) :: t, q(:), qd(:)
-    logical, intent(in) :: new_mass
-    real(dp), intent(out), contiguous :: qdd(:)
-    real(dp) :: me(sdofs, sdofs), fe(sdofs), qe(sdofs), qde(sdofs)
-    type(spatial_eval_info_t) :: info
-    integer :: e
-    logical :: ok
+    band_mass = new_mass .and. .not. self%cmass%active     ! the banded M is assembled at this time
+    if (band_mass) self%mass_band = 0.0_dp
     self%force = 0.0_dp
     do e = 1, size(self%el)
       call self%table%gather_pair(e, q, qd, qe, qde)
-      call spatial_beam_eval(self%el(e), qe, qde, self%rb(e), me, fe, info, mass_wanted=.false.)
+      ! consecutive elements of a link with equal M_p share one global mass (same rotation)
+      call spatial_beam_eval(self%el(e), qe, qde, self%rb(e), me, fe, info, &
+                             mass_wanted=band_mass .and. .not. self%mass_as_previous(e))
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
       if (info%beyond_peak .and. self%stop_beyond_peak) then
         call self%fail(t, 'strain '//str(info%max_abs_strain, 6)//' in element '//str(e)// &
@@ -457,10 +418,16 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
+      if (band_mass) call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
     if (new_mass) then
       self%t_mass = huge(1.0_dp)                ! invalid until factored
-      call self%cmass%update(self%rb, ok)
+      if (self%cmass%active) then
+        call self%cmass%update(self%rb, ok)
+      else
+        call band_cholesky_inplace(self%mass_band, self%kd, minor)
+        ok = minor == 0
+      end if
       self%n_mass_factorizations = self%n_mass_factorizations + 1
       if (.not. ok) then
         call self%fail(t, 'mass matrix is not positive definite')
@@ -469,8 +436,12 @@ contains
       self%t_mass = t
     end if
     qdd = self%force
-    call self%cmass%solve(self%rb, qdd)
-  end subroutine constant_factor_accelerations
+    if (self%cmass%active) then
+      call self%cmass%solve(self%rb, qdd)
+    else
+      call band_cholesky_substitute(self%mass_band, self%kd, qdd)
+    end if
+  end subroutine accelerations
 
   subroutine model_rhs(self, t, y, ydot)
     class(spatial_model_t), intent(inout) :: self

@@ -7,7 +7,7 @@ module spatial_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, group_read_t
+  use deck_reader, only: deck_t, invalid_value, group_read_t, input_error_in
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use material_law, only: ramberg_osgood_t
@@ -175,10 +175,7 @@ contains
     joint_c = joint_kind(s%joint_c)
     if (.not. err%failed() .and. (joint_b == spatial_joint_universal .or. joint_c == spatial_joint_universal)) &
       call spatial_fourbar_set_universal(kin, joint_c == spatial_joint_universal, s%universal_axis, err)
-    if (err%failed()) then
-      err%code = 2
-      call err%add_context('deck '''//deck%path//''', group &'//g)
-    end if
+    if (err%failed()) call input_error_in(deck, g, err)
   end subroutine build_spatial
 
   pure integer function joint_kind(name)

@@ -12,6 +12,7 @@ module transient_fixtures
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_bdf_full_fd
   use assertions, only: assert_true
+  use linalg, only: solve_linear
   use test_text, only: itoa, rtoa   ! re-exported: the transient suites take them from here
   use mechanism_fixtures, only: fourbar_abcd   ! re-exported likewise
   implicit none
@@ -20,6 +21,7 @@ module transient_fixtures
   public :: probe_t, probe_modal, probe_local_w
   public :: beam_input, cantilever_input, fourbar_abcd, fourbar_input, make_model, all_effects, euler_bernoulli
   public :: modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
+  public :: rigid_fourbar_forces
 
   ! FORMULATION.md §8.1 section (b = 0.25, h = 1 in) and aluminium.
   real(dp), parameter :: e1 = 10.87e6_dp, rho = 2.536e-4_dp, width = 0.25_dp, depth = 1.0_dp
@@ -238,4 +240,106 @@ contains
   end subroutine settle
 
   !> A cantilever of in-plane depth h turning at omega about its clamped root.
+  !> The rigid §8.1 four-bar's Newton-Euler equations at crank angle th
+  !> (crank turning at w, no angular acceleration), from closed-form
+  !> position, velocity and acceleration loops on the branch of the model's
+  !> coupler; slender-rod inertias m L^2/12 (the linear model has no rotary
+  !> inertia).  Unknowns x = [F_A(2), T_A, F_B(2), F_C(2), F_D(2)]: F_B crank
+  !> on coupler, F_C coupler on rocker, F_A, F_D ground on crank, rocker;
+  !> moments about each link's centre.  m: link masses; a_g: their centres'
+  !> accelerations.  With m_cw, c_crank, c_rocker: point counterweights
+  !> turning with the crank about A and the rocker about D (local offsets).
+  !> The reference of the joint-reaction and counterweight suites.
+  subroutine rigid_fourbar_forces(model, th, w, x, m, a_g, m_cw, c_crank, c_rocker)
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: th, w
+    real(dp), intent(out) :: x(9), m(3), a_g(2, 3)
+    real(dp), intent(in), optional :: m_cw(2), c_crank(2), c_rocker(2)
+    real(dp), parameter :: r2 = 5.0_dp, r3 = 11.0_dp, r4 = 10.5_dp, d(2) = [10.0_dp, 0.0_dp]
+    real(dp) :: a(9, 9), b(2), c(2), e3(2), e4(2), n3(2), n4(2), e2(2), n2(2), w3, w4, al3, al4
+    real(dp) :: mat(2, 2), rhs(2), g2(2), g3(2), g4(2), ig(3), dist, h, base(2), perp(2), c_alt(2), a_b(2)
+    real(dp) :: p2(2), p4(2), f2(2), f4(2)
+    type(error_t) :: err
+    e2 = [cos(th), sin(th)]
+    n2 = [-e2(2), e2(1)]
+    b = r2*e2
+    ! C on both circles; the branch of the model's coupler
+    dist = norm2(d - b)
+    h = (r3**2 - r4**2 + dist**2)/(2.0_dp*dist)
+    base = b + h*(d - b)/dist
+    perp = [-(d(2) - b(2)), d(1) - b(1)]/dist*sqrt(r3**2 - h**2)
+    c = base + perp
+    c_alt = base - perp
+    if (abs(angle_diff(atan2(c_alt(2) - b(2), c_alt(1) - b(1)), model%rb(2)%phi)) < &
+        abs(angle_diff(atan2(c(2) - b(2), c(1) - b(1)), model%rb(2)%phi))) c = c_alt
+    e3 = (c - b)/r3
+    e4 = (c - d)/r4
+    n3 = [-e3(2), e3(1)]
+    n4 = [-e4(2), e4(1)]
+    ! velocities: r2 w n2 + r3 w3 n3 = r4 w4 n4
+    mat(:, 1) = r3*n3
+    mat(:, 2) = -r4*n4
+    rhs = -r2*w*n2
+    call solve_linear(mat, rhs, err)
+    w3 = rhs(1)
+    w4 = rhs(2)
+    ! accelerations: -r2 w^2 e2 + r3 (al3 n3 - w3^2 e3) = r4 (al4 n4 - w4^2 e4)
+    rhs = r2*w**2*e2 + r3*w3**2*e3 - r4*w4**2*e4
+    call solve_linear(mat, rhs, err)
+    al3 = rhs(1)
+    al4 = rhs(2)
+    a_b = -r2*w**2*e2
+    a_g(:, 1) = 0.5_dp*a_b
+    a_g(:, 2) = a_b + 0.5_dp*r3*(al3*n3 - w3**2*e3)
+    a_g(:, 3) = 0.5_dp*r4*(al4*n4 - w4**2*e4)
+    m = model%el(1)%kear%material%rho*model%el(1)%kear%area*[r2, r3, r4]
+    ig = m*[r2, r3, r4]**2/12.0_dp
+    g2 = 0.5_dp*b
+    g3 = 0.5_dp*(b + c)
+    g4 = 0.5_dp*(c + d)
+    ! the counterweights and their inertia forces m a
+    f2 = 0.0_dp
+    f4 = 0.0_dp
+    p2 = g2
+    p4 = g4
+    if (present(m_cw) .and. present(c_crank) .and. present(c_rocker)) then
+      p2 = c_crank(1)*e2 + c_crank(2)*n2
+      p4 = d + c_rocker(1)*e4 + c_rocker(2)*n4
+      f2 = -m_cw(1)*w**2*p2
+      f4 = m_cw(2)*(al4*[-(p4(2) - d(2)), p4(1) - d(1)] - w4**2*(p4 - d))
+    end if
+    a = 0.0_dp
+    ! crank: F_A - F_B = m2 a2 (+ f2); T_A + (A - G2) x F_A - (B - G2) x F_B = (P2 - G2) x f2
+    a(1, 1) = 1.0_dp; a(1, 4) = -1.0_dp
+    a(2, 2) = 1.0_dp; a(2, 5) = -1.0_dp
+    a(3, 3) = 1.0_dp
+    a(3, 1:2) = cross_row(-g2)
+    a(3, 4:5) = -cross_row(b - g2)
+    ! coupler: F_B - F_C = m3 a3; (B - G3) x F_B - (C - G3) x F_C = I3 al3
+    a(4, 4) = 1.0_dp; a(4, 6) = -1.0_dp
+    a(5, 5) = 1.0_dp; a(5, 7) = -1.0_dp
+    a(6, 4:5) = cross_row(b - g3)
+    a(6, 6:7) = -cross_row(c - g3)
+    ! rocker: F_C + F_D = m4 a4 (+ f4); (C - G4) x F_C + (D - G4) x F_D = I4 al4 + (P4 - G4) x f4
+    a(7, 6) = 1.0_dp; a(7, 8) = 1.0_dp
+    a(8, 7) = 1.0_dp; a(8, 9) = 1.0_dp
+    a(9, 6:7) = cross_row(c - g4)
+    a(9, 8:9) = cross_row(d - g4)
+    x = [m(1)*a_g(:, 1) + f2, dot_product(cross_row(p2 - g2), f2), m(2)*a_g(:, 2), ig(2)*al3, &
+         m(3)*a_g(:, 3) + f4, ig(3)*al4 + dot_product(cross_row(p4 - g4), f4)]
+    call solve_linear(a, x, err)
+    call assert_true(.not. err%failed(), 'Newton-Euler system: '//err%text())
+  end subroutine rigid_fourbar_forces
+
+  !> Coefficients of F in r x F = r(1) F(2) - r(2) F(1).
+  pure function cross_row(r) result(c)
+    real(dp), intent(in) :: r(2)
+    real(dp) :: c(2)
+    c = [-r(2), r(1)]
+  end function cross_row
+
+  pure real(dp) function angle_diff(a, b)
+    real(dp), intent(in) :: a, b
+    angle_diff = modulo(a - b + pi, two_pi) - pi
+  end function angle_diff
 end module transient_fixtures

@@ -26,6 +26,7 @@ contains
     call run_test('ground_sleeve_end_slides_along_the_link', test_sleeve_ground)
     call run_test('sleeve_map_rates_match_fd', test_sleeve_rates)
     call run_test('bad_sleeve_ends_are_rejected', test_bad_sleeves)
+    call run_test('base_table_filled_by_hand_as_the_spatial_model_does', test_base_table)
   end subroutine run_all
 
   !> crank (clamp A, pin B), coupler (pin B, pin C), rocker (pin C, ground pin D)
@@ -172,6 +173,42 @@ contains
       call assert_close(lhs, rhs, 1.0e-13_dp, 'fe . (T qg) = (T^T fe) . qg')
     end do
   end subroutine test_scatter_transpose
+
+  !> The base table as a model with its own joint rules fills it (the
+  !> spatial model): three 4-DOF elements in a chain sharing their middle
+  !> DOFs, one DOF held, one shared with coefficient -1.  gather_pair must
+  !> equal gather of each vector, the band is the widest element's index
+  !> spread, and the listing holds every label.
+  subroutine test_base_table()
+    type(correlation_base_t) :: t
+    real(dp) :: q(7), qd(7), qe(4), qde(4)
+    integer :: e, g(7)
+    character(len=160) :: lines(2)
+    call t%start_table(3, 4)
+    do e = 1, 7
+      g(e) = t%new_unknown('u'//achar(iachar('0') + e))
+    end do
+    t%map(:, 1) = [0, g(1), g(2), g(3)]
+    t%map(:, 2) = [g(2), g(3), g(4), g(5)]
+    t%map(:, 3) = [g(4), g(5), g(6), g(7)]
+    t%coef = 1.0_dp
+    t%coef(2, 2) = -1.0_dp
+    call t%finish_band()
+    call assert_equal(t%n_global, 7, 'seven unknowns')
+    call assert_equal(t%half_bandwidth, 3, 'band: largest index spread of one element')
+    q = [(sin(1.1_dp*e), e = 1, 7)]
+    qd = [(cos(0.9_dp*e), e = 1, 7)]
+    do e = 1, 3
+      call t%gather_pair(e, q, qd, qe, qde)
+      call assert_all_close(qe, t%gather(e, q), 0.0_dp, 0.0_dp, 'gather_pair displacements = gather')
+      call assert_all_close(qde, t%gather(e, qd), 0.0_dp, 0.0_dp, 'gather_pair rates = gather')
+    end do
+    qe = t%gather(2, q)
+    call assert_close(qe(2), -q(3), 0.0_dp, 'coefficient -1 applied')
+    call t%list_unknowns(8, lines)
+    call assert_true(index(lines(1), 'u1') > 0 .and. index(lines(1), 'u4') > 0 .and. index(lines(2), 'u7') > 0, &
+                     'four labels to a line: '//trim(lines(1)))
+  end subroutine test_base_table
 
   subroutine test_slider()
     type(correlation_table_t) :: t

@@ -13,9 +13,8 @@
 !>  - a flexible four-bar in motion: a pin's forces on its two links are
 !>    equal and opposite and a pin transmits no moment.
 module test_joint_reactions_suite
-  use kinds, only: dp, pi, two_pi
+  use kinds, only: dp, pi
   use error_status, only: error_t
-  use linalg, only: solve_linear
   use kear_element, only: element_effects_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use mechanism_model, only: mechanism_model_t
@@ -24,7 +23,8 @@ module test_joint_reactions_suite
   use transient_response, only: section_values_t, section_at, element_section_peaks, link_point_t, &
                                 link_point_response
   use lsode_solver, only: lsode_t, mf_bdf_full_user
-  use transient_fixtures, only: fourbar_input, cantilever_input, beam_input, beam_length, e1, inertia, area, rho, rtoa
+  use transient_fixtures, only: fourbar_input, cantilever_input, beam_input, beam_length, e1, inertia, area, rho, rtoa, &
+                                rigid_fourbar_forces
   use mechanism_fixtures, only: slider_crank_input
   use assertions
   implicit none
@@ -169,90 +169,6 @@ contains
         '; largest difference ', maxval(abs(got - expect))
     end do
   end subroutine test_rigid_fourbar
-
-  !> The rigid four-bar's Newton-Euler equations at crank angle th (crank
-  !> turning at w, no angular acceleration), from closed-form position,
-  !> velocity and acceleration loops; slender-rod inertias m L^2/12 (the
-  !> linear model has no rotary inertia).  Unknowns x = [F_A(2), T_A,
-  !> F_B(2), F_C(2), F_D(2)].
-  subroutine rigid_fourbar_forces(model, th, w, x, m, a_g)
-    type(mechanism_model_t), intent(in) :: model
-    real(dp), intent(in) :: th, w
-    real(dp), intent(out) :: x(9), m(3), a_g(2, 3)
-    real(dp), parameter :: r2 = 5.0_dp, r3 = 11.0_dp, r4 = 10.5_dp, d(2) = [10.0_dp, 0.0_dp]
-    real(dp) :: a(9, 9), b(2), c(2), e3(2), e4(2), n3(2), n4(2), e2(2), n2(2), w3, w4, al3, al4
-    real(dp) :: mat(2, 2), rhs(2), g2(2), g3(2), g4(2), ig(3), dist, h, base(2), perp(2), c_alt(2), a_b(2)
-    type(error_t) :: err
-    e2 = [cos(th), sin(th)]
-    n2 = [-e2(2), e2(1)]
-    b = r2*e2
-    ! C on both circles; the branch of the model's coupler
-    dist = norm2(d - b)
-    h = (r3**2 - r4**2 + dist**2)/(2.0_dp*dist)
-    base = b + h*(d - b)/dist
-    perp = [-(d(2) - b(2)), d(1) - b(1)]/dist*sqrt(r3**2 - h**2)
-    c = base + perp
-    c_alt = base - perp
-    if (abs(angle_diff(atan2(c_alt(2) - b(2), c_alt(1) - b(1)), model%rb(2)%phi)) < &
-        abs(angle_diff(atan2(c(2) - b(2), c(1) - b(1)), model%rb(2)%phi))) c = c_alt
-    e3 = (c - b)/r3
-    e4 = (c - d)/r4
-    n3 = [-e3(2), e3(1)]
-    n4 = [-e4(2), e4(1)]
-    ! velocities: r2 w n2 + r3 w3 n3 = r4 w4 n4
-    mat(:, 1) = r3*n3
-    mat(:, 2) = -r4*n4
-    rhs = -r2*w*n2
-    call solve_linear(mat, rhs, err)
-    w3 = rhs(1)
-    w4 = rhs(2)
-    ! accelerations: -r2 w^2 e2 + r3 (al3 n3 - w3^2 e3) = r4 (al4 n4 - w4^2 e4)
-    rhs = r2*w**2*e2 + r3*w3**2*e3 - r4*w4**2*e4
-    call solve_linear(mat, rhs, err)
-    al3 = rhs(1)
-    al4 = rhs(2)
-    a_b = -r2*w**2*e2
-    a_g(:, 1) = 0.5_dp*a_b
-    a_g(:, 2) = a_b + 0.5_dp*r3*(al3*n3 - w3**2*e3)
-    a_g(:, 3) = 0.5_dp*r4*(al4*n4 - w4**2*e4)
-    m = model%el(1)%kear%material%rho*model%el(1)%kear%area*[r2, r3, r4]
-    ig = m*[r2, r3, r4]**2/12.0_dp
-    g2 = 0.5_dp*b
-    g3 = 0.5_dp*(b + c)
-    g4 = 0.5_dp*(c + d)
-    a = 0.0_dp
-    ! crank: F_A - F_B = m2 a2; T_A + (A - G2) x F_A - (B - G2) x F_B = 0
-    a(1, 1) = 1.0_dp; a(1, 4) = -1.0_dp
-    a(2, 2) = 1.0_dp; a(2, 5) = -1.0_dp
-    a(3, 3) = 1.0_dp
-    a(3, 1:2) = cross_row(-g2)
-    a(3, 4:5) = -cross_row(b - g2)
-    ! coupler: F_B - F_C = m3 a3; (B - G3) x F_B - (C - G3) x F_C = I3 al3
-    a(4, 4) = 1.0_dp; a(4, 6) = -1.0_dp
-    a(5, 5) = 1.0_dp; a(5, 7) = -1.0_dp
-    a(6, 4:5) = cross_row(b - g3)
-    a(6, 6:7) = -cross_row(c - g3)
-    ! rocker: F_C + F_D = m4 a4; (C - G4) x F_C + (D - G4) x F_D = I4 al4
-    a(7, 6) = 1.0_dp; a(7, 8) = 1.0_dp
-    a(8, 7) = 1.0_dp; a(8, 9) = 1.0_dp
-    a(9, 6:7) = cross_row(c - g4)
-    a(9, 8:9) = cross_row(d - g4)
-    x = [m(1)*a_g(:, 1), 0.0_dp, m(2)*a_g(:, 2), ig(2)*al3, m(3)*a_g(:, 3), ig(3)*al4]
-    call solve_linear(a, x, err)
-    call assert_true(.not. err%failed(), 'Newton-Euler system: '//err%text())
-  end subroutine rigid_fourbar_forces
-
-  !> Coefficients of F in r x F = r(1) F(2) - r(2) F(1).
-  pure function cross_row(r) result(c)
-    real(dp), intent(in) :: r(2)
-    real(dp) :: c(2)
-    c = [-r(2), r(1)]
-  end function cross_row
-
-  pure real(dp) function angle_diff(a, b)
-    real(dp), intent(in) :: a, b
-    angle_diff = modulo(a - b + pi, two_pi) - pi
-  end function angle_diff
 
   ! ------------------------------------------------------------------ cantilever
 

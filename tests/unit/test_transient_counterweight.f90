@@ -12,7 +12,6 @@
 module test_transient_counterweight_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
-  use linalg, only: solve_linear
   use kear_element, only: element_effects_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use mechanism_model, only: mechanism_model_t
@@ -22,7 +21,7 @@ module test_transient_counterweight_suite
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit
   use periodic_transient, only: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic, &
                                 matching_unknowns
-  use transient_fixtures, only: fourbar_input, e1, rtoa
+  use transient_fixtures, only: fourbar_input, e1, rtoa, rigid_fourbar_forces
   use assertions
   implicit none
   private
@@ -63,7 +62,7 @@ contains
     type(mechanism_model_t) :: model
     type(joint_reactions_t) :: jr
     type(error_t) :: err
-    real(dp) :: expect(9), got(9), t, scale, omega
+    real(dp) :: expect(9), got(9), t, scale, omega, masses(3), acc_g(2, 3)
     real(dp), allocatable :: qq(:), zero(:)
     integer :: k
     omega = 150.0_dp
@@ -84,7 +83,7 @@ contains
       call assert_true(.not. err%failed(), 'equilibrium and reactions: '//err%text())
       if (err%failed()) return
       got = [jr%ends(1)%force, jr%ends(1)%moment, jr%ends(3)%force, jr%ends(5)%force, jr%ends(6)%force]
-      call newton_euler(model, omega*t, omega, expect)
+      call rigid_fourbar_forces(model, omega*t, omega, expect, masses, acc_g, m_cw, c_crank, c_rocker)
       scale = maxval(abs(expect))
       call assert_all_close(got, expect, 0.0_dp, 1.0e-6_dp*scale, 'reactions vs Newton-Euler at crank angle '// &
                             rtoa(50.0_dp*k)//' deg')
@@ -93,86 +92,6 @@ contains
         '; largest difference ', maxval(abs(got - expect))
     end do
   end subroutine test_rigid_limit
-
-  !> The rigid four-bar with the two counterweights (point masses turning
-  !> with crank and rocker about A and D), crank at constant speed w:
-  !> closed-form loops for positions, velocities, accelerations; slender
-  !> links (I = m L^2/12); unknowns [F_A(2), T_A, F_B(2), F_C(2), F_D(2)],
-  !> F_B crank on coupler, F_C coupler on rocker, F_A, F_D ground on crank,
-  !> rocker.  Moments about each link's centre.
-  subroutine newton_euler(model, th, w, x)
-    type(mechanism_model_t), intent(in) :: model
-    real(dp), intent(in) :: th, w
-    real(dp), intent(out) :: x(9)
-    real(dp), parameter :: r2 = 5.0_dp, r3 = 11.0_dp, r4 = 10.5_dp, d(2) = [10.0_dp, 0.0_dp]
-    real(dp) :: a(9, 9), b(2), c(2), e2(2), n2(2), e3(2), n3(2), e4(2), n4(2), w3, w4, al3, al4, mat(2, 2), rhs(2)
-    real(dp) :: m(3), ig(3), g2(2), g3(2), g4(2), a2(2), a3(2), a4(2), p2(2), p4(2), f2(2), f4(2), dist, h, perp(2)
-    type(error_t) :: err
-    e2 = [cos(th), sin(th)]
-    n2 = [-e2(2), e2(1)]
-    b = r2*e2
-    dist = norm2(d - b)
-    h = (r3**2 - r4**2 + dist**2)/(2.0_dp*dist)
-    perp = [-(d(2) - b(2)), d(1) - b(1)]/dist*sqrt(r3**2 - h**2)
-    ! the branch of the model's coupler
-    c = b + h*(d - b)/dist + perp
-    if (abs(modulo(atan2(c(2) - b(2), c(1) - b(1)) - model%rb(2)%phi + pi, two_pi) - pi) > 1.0e-6_dp) &
-      c = b + h*(d - b)/dist - perp
-    e3 = (c - b)/r3
-    e4 = (c - d)/r4
-    n3 = [-e3(2), e3(1)]
-    n4 = [-e4(2), e4(1)]
-    mat(:, 1) = r3*n3
-    mat(:, 2) = -r4*n4
-    rhs = -r2*w*n2
-    call solve_linear(mat, rhs, err)
-    w3 = rhs(1)
-    w4 = rhs(2)
-    mat(:, 1) = r3*n3
-    mat(:, 2) = -r4*n4
-    rhs = r2*w**2*e2 + r3*w3**2*e3 - r4*w4**2*e4
-    call solve_linear(mat, rhs, err)
-    al3 = rhs(1)
-    al4 = rhs(2)
-    a2 = -0.5_dp*r2*w**2*e2
-    a3 = -r2*w**2*e2 + 0.5_dp*r3*(al3*n3 - w3**2*e3)
-    a4 = 0.5_dp*r4*(al4*n4 - w4**2*e4)
-    m = model%el(1)%kear%material%rho*model%el(1)%kear%area*[r2, r3, r4]
-    ig = m*[r2, r3, r4]**2/12.0_dp
-    g2 = 0.5_dp*b
-    g3 = 0.5_dp*(b + c)
-    g4 = 0.5_dp*(c + d)
-    ! the counterweights and their inertia forces m a
-    p2 = c_crank(1)*e2 + c_crank(2)*n2
-    p4 = d + c_rocker(1)*e4 + c_rocker(2)*n4
-    f2 = -m_cw(1)*w**2*p2
-    f4 = m_cw(2)*(al4*[-(p4(2) - d(2)), p4(1) - d(1)] - w4**2*(p4 - d))
-    a = 0.0_dp
-    a(1, 1) = 1.0_dp; a(1, 4) = -1.0_dp
-    a(2, 2) = 1.0_dp; a(2, 5) = -1.0_dp
-    a(3, 3) = 1.0_dp
-    a(3, 1:2) = cross_row(-g2)
-    a(3, 4:5) = -cross_row(b - g2)
-    a(4, 4) = 1.0_dp; a(4, 6) = -1.0_dp
-    a(5, 5) = 1.0_dp; a(5, 7) = -1.0_dp
-    a(6, 4:5) = cross_row(b - g3)
-    a(6, 6:7) = -cross_row(c - g3)
-    a(7, 6) = 1.0_dp; a(7, 8) = 1.0_dp
-    a(8, 7) = 1.0_dp; a(8, 9) = 1.0_dp
-    a(9, 6:7) = cross_row(c - g4)
-    a(9, 8:9) = cross_row(d - g4)
-    x = [m(1)*a2 + f2, dot_product(cross_row(p2 - g2), f2), m(2)*a3, ig(2)*al3, m(3)*a4 + f4, &
-         ig(3)*al4 + dot_product(cross_row(p4 - g4), f4)]
-    call solve_linear(a, x, err)
-    call assert_true(.not. err%failed(), 'Newton-Euler system: '//err%text())
-  end subroutine newton_euler
-
-  !> Coefficients of F in r x F = r(1) F(2) - r(2) F(1).
-  pure function cross_row(r) result(c)
-    real(dp), intent(in) :: r(2)
-    real(dp) :: c(2)
-    c = [-r(2), r(1)]
-  end function cross_row
 
   !> Tennant's four-bar (one element per link, linear, rotary inertia and
   !> coupling: the equations of the steady model's linear element) at
