@@ -459,7 +459,7 @@ contains
     type(mechanism_model_t), intent(in) :: model
     type(lsode_counters_t), intent(in) :: c
     real(dp), intent(in) :: cpu, revolutions_done
-    call write_integration_cost(out, s, c, cpu, revolutions_done, model%n_newton_factorizations, model%n_newton_lu, &
+    call write_integration_cost(out, s, c, cpu, revolutions_done, model%newton%n_factorizations, model%newton%n_lu, &
                                 model%n_mass_factorizations)
     call out%cost('last_method_order', str(c%order_last))
     call out%cost('kinematics_solutions', str(model%n_kinematics))

@@ -11,7 +11,7 @@ module band_kernels
   use kinds, only: dp
   implicit none
   private
-  public :: band_cholesky_inplace, band_cholesky_substitute
+  public :: band_cholesky_inplace, band_cholesky_substitute, add_pair_band
 
 contains
 
@@ -73,4 +73,30 @@ contains
       b(j) = temp/ab(1, j)
     end do
   end subroutine band_cholesky_substitute
+
+  !> band += s * G for the 4 x 4 G = [[B, -B], [-B, B]] of a 2 x 2 block B
+  !> acting on e = (x(d1), x(d2)) - (x(d3), x(d4)) (a spring or damper
+  !> between two points; d = 0: a grounded point), in band storage
+  !> band(off + i - j, j); with lower, only i >= j (LAPACK's lower symmetric
+  !> band, off = 1).
+  pure subroutine add_pair_band(d, blk, s, band, off, lower)
+    integer, intent(in) :: d(4)
+    real(dp), intent(in) :: blk(2, 2), s
+    real(dp), intent(inout) :: band(:, :)
+    integer, intent(in) :: off
+    logical, intent(in) :: lower
+    integer :: a, b, i, j
+    real(dp) :: sgn(4)
+    sgn = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
+    do b = 1, 4
+      j = d(b)
+      if (j == 0) cycle
+      do a = 1, 4
+        i = d(a)
+        if (i == 0) cycle
+        if (lower .and. i < j) cycle
+        band(off + i - j, j) = band(off + i - j, j) + s*sgn(a)*sgn(b)*blk(mod(a - 1, 2) + 1, mod(b - 1, 2) + 1)
+      end do
+    end do
+  end subroutine add_pair_band
 end module band_kernels

@@ -16,9 +16,11 @@ module joint_clearance
   use strings, only: str
   use correlation_table, only: correlation_table_t
   use contact_law, only: contact_law_t, normal_force, friction_force
+  use band_kernels, only: add_pair_band
   implicit none
   private
-  public :: clearance_joint_t, split_journal, contact_state, add_contact_forces, contact_blocks, add_pair_block
+  public :: clearance_joint_t, split_journal, contact_state, add_contact_forces, contact_blocks, add_pair_block, &
+            pair_dofs
 
   !> One clearance joint of the model.
   type :: clearance_joint_t
@@ -175,27 +177,20 @@ contains
   end subroutine contact_blocks
 
   !> band += s * G for the 4 x 4 G = [[B, -B], [-B, B]] of a 2 x 2 block B in
-  !> e = q_journal - q_bearing, in band storage band(off + i - j, j); with
-  !> lower, only i >= j (LAPACK's lower symmetric band, off = 1).
+  !> e = q_journal - q_bearing (band_kernels' add_pair_band).
   pure subroutine add_pair_block(cj, blk, s, band, off, lower)
     type(clearance_joint_t), intent(in) :: cj
     real(dp), intent(in) :: blk(2, 2), s
     real(dp), intent(inout) :: band(:, :)
     integer, intent(in) :: off
     logical, intent(in) :: lower
-    integer :: d(4), a, b, i, j
-    real(dp) :: sgn(4)
-    d = [cj%journal, cj%bearing]
-    sgn = [1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp]
-    do b = 1, 4
-      j = d(b)
-      if (j == 0) cycle
-      do a = 1, 4
-        i = d(a)
-        if (i == 0) cycle
-        if (lower .and. i < j) cycle
-        band(off + i - j, j) = band(off + i - j, j) + s*sgn(a)*sgn(b)*blk(mod(a - 1, 2) + 1, mod(b - 1, 2) + 1)
-      end do
-    end do
+    call add_pair_band(pair_dofs(cj), blk, s, band, off, lower)
   end subroutine add_pair_block
+
+  !> The four unknowns of the contact's e = q_journal - q_bearing (0: ground).
+  pure function pair_dofs(cj) result(d)
+    type(clearance_joint_t), intent(in) :: cj
+    integer :: d(4)
+    d = [cj%journal, cj%bearing]
+  end function pair_dofs
 end module joint_clearance

@@ -35,10 +35,10 @@ module mechanism_model
   use error_status, only: error_t
   use strings, only: str
   use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
-  use linalg, only: band_lu_factor, band_lu_solve, lu_factor, lu_solve, &
+  use linalg, only: lu_factor, lu_solve, &
                     sym_generalized_eig, solve_linear
   use lsode_solver, only: ode_system_t
-  use second_order_newton, only: symmetric_band, band_combination   ! (the spatial model shares them)
+  use second_order_newton, only: second_order_newton_t
   use correlation_table, only: correlation_table_t, link_end_t
   use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
   use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, &
@@ -49,7 +49,8 @@ module mechanism_model
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
   use kinematics, only: kinematics_t, motion_t
   use kinds, only: two_pi
-  use joint_clearance, only: clearance_joint_t, split_journal, add_contact_forces, contact_blocks, add_pair_block
+  use joint_clearance, only: clearance_joint_t, split_journal, add_contact_forces, contact_blocks, add_pair_block, &
+                             pair_dofs
   use shape_functions, only: quintic_hermite
   use sliding_link, only: sliding_link_t, mechanism_link_ends, sliding_link_init, sliding_link_set_state, &
                           sliding_link_add, sliding_link_matrices, sliding_link_element_q, sliding_link_stress, &
@@ -97,7 +98,7 @@ module mechanism_model
     real(dp), allocatable :: force(:)
     ! work arrays of the right-hand side and the Newton solve (automatic arrays
     ! of run-time size are heap-allocated by gfortran: 9 malloc/free per RHS)
-    real(dp), allocatable :: work_q(:), work_qd(:), work_qdd(:), work_r1(:), work_r2(:), work_dv(:)
+    real(dp), allocatable :: work_q(:), work_qd(:), work_qdd(:)
     real(dp), allocatable :: work_me(:, :), work_ke(:, :), work_fe(:), work_qe(:), work_qde(:)
     ! element M and K_t constant in the element frame (Kear's element, linear strains): their global
     ! band entries are tabulated once as functions of the elements' angles (build_frame_tables)
@@ -129,16 +130,9 @@ module mechanism_model
     ! counterweights on arms clamped at ground pivots: element, J = m |c|^2, m c in the link's frame
     integer, allocatable :: cw_element(:)
     real(dp), allocatable :: cw_mass(:), cw_inertia(:), cw_moment(:, :)
-    ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored
-    real(dp), allocatable :: newton_mass(:, :)    !< (kd+1, n) M, lower band storage
-    real(dp), allocatable :: newton_stiff(:, :)   !< (2kd+1, n) K_t, general band storage kb(kd+1+i-j, j)
-    real(dp), allocatable :: newton_chol(:, :)    !< (kd+1, n) Cholesky factor of S
-    real(dp), allocatable :: newton_lu(:, :)      !< (3kd+1, n) banded LU of S
-    integer, allocatable :: newton_ipiv(:)
-    real(dp) :: newton_hl0 = 0.0_dp               !< h*el0 of the last factorization
-    logical :: newton_cholesky = .true.           !< S was factored by Cholesky (else banded LU)
-    integer :: n_newton_factorizations = 0
-    integer :: n_newton_lu = 0                    !< of which by banded LU (K_t not symmetric or S indefinite)
+    ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored,
+    ! the clearance contacts as its pair dampers
+    type(second_order_newton_t) :: newton
     ! external loads (src/transient/loads.f90): gravity acceleration and point forces/moments
     real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
     type(point_load_t), allocatable :: loads(:)
@@ -146,7 +140,6 @@ module mechanism_model
     ! pin joints with radial clearance (doc/clearance.md): none unless add_clearance was called
     logical :: has_clearance = .false.
     type(clearance_joint_t), allocatable :: clearance(:)
-    real(dp), allocatable :: contact_k(:, :, :), contact_c(:, :, :)   !< (2, 2, joint) at the last Newton matrix
     ! links sliding through a sleeve (module sliding_link): their element replaces el(e) in the equations
     type(sliding_link_t), allocatable :: slide(:)
   contains
@@ -414,12 +407,10 @@ contains
     self%kd = self%table%half_bandwidth
     allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
     ! (add_clearance renumbers the unknowns and calls this again)
-    if (allocated(self%work_q)) deallocate(self%work_q, self%work_qd, self%work_qdd, self%work_r1, self%work_r2, &
-                                           self%work_dv, self%work_me, self%work_ke, self%work_fe, self%work_qe, &
-                                           self%work_qde)
+    if (allocated(self%work_q)) deallocate(self%work_q, self%work_qd, self%work_qdd, self%work_me, self%work_ke, &
+                                           self%work_fe, self%work_qe, self%work_qde)
     if (allocated(self%frame_basis)) deallocate(self%frame_basis)
-    allocate(self%work_q(self%n), self%work_qd(self%n), self%work_qdd(self%n), self%work_r1(self%n), &
-             self%work_r2(self%n), self%work_dv(self%n))
+    allocate(self%work_q(self%n), self%work_qd(self%n), self%work_qdd(self%n))
     associate(nd => self%table%element_dofs)
       allocate(self%work_me(nd, nd), self%work_ke(nd, nd), self%work_fe(nd), self%work_qe(nd), self%work_qde(nd))
     end associate
@@ -1033,54 +1024,21 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:), hl0
     logical, intent(out) :: ok
-    type(error_t) :: err
-    real(dp) :: c, beta
-    integer :: kd, n, j, i, info
+    real(dp) :: beta
     ok = .false.
     call self%set_time(t)
     if (self%err%failed()) return
-    kd = self%kd
-    n = self%n
-    if (.not. allocated(self%newton_mass)) &
-      allocate(self%newton_mass(kd + 1, n), self%newton_stiff(2*kd + 1, n), self%newton_chol(kd + 1, n), &
-               self%newton_lu(3*kd + 1, n), self%newton_ipiv(n))
-    call self%assemble_band(y(1::2), self%newton_mass, self%newton_stiff)
-    if (self%has_clearance) call add_clearance_stiffness(self, y)
+    call self%newton%size_for(self%n, self%kd)
+    call self%assemble_band(y(1::2), self%newton%mass, self%newton%stiff)
     beta = 0.0_dp
     if (size(self%el) > 0) beta = self%el(1)%beta
-    c = hl0*beta + hl0**2
-    self%newton_hl0 = hl0
-    self%n_newton_factorizations = self%n_newton_factorizations + 1
+    if (self%has_clearance) call add_clearance_terms(self, y, beta)
     ! (the frame tables know their symmetry: the check costs a fifth of a factorization)
     if (self%frame_tables .and. .not. self%has_clearance .and. size(self%slide) == 0) then
-      self%newton_cholesky = self%frame_symmetric
+      call self%newton%factor(hl0, beta, ok, self%frame_symmetric)
     else
-      self%newton_cholesky = symmetric_band(self%newton_stiff, kd)
+      call self%newton%factor(hl0, beta, ok)
     end if
-    if (self%newton_cholesky) then
-      self%newton_chol = self%newton_mass + c*self%newton_stiff(kd + 1:, :)
-      if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_chol, 1, .true.)
-      call band_cholesky_inplace(self%newton_chol, kd, info)
-      self%newton_cholesky = info == 0
-    end if
-    if (self%newton_cholesky) then
-      ok = .true.
-      return
-    end if
-    ! banded LU: S in rows kd+1.. of the general band layout ab(2kd+1+i-j, j)
-    self%n_newton_lu = self%n_newton_lu + 1
-    self%newton_lu = 0.0_dp
-    self%newton_lu(kd + 1:, :) = c*self%newton_stiff
-    do j = 1, n
-      do i = j, min(n, j + kd)
-        self%newton_lu(2*kd + 1 + i - j, j) = self%newton_lu(2*kd + 1 + i - j, j) + self%newton_mass(1 + i - j, j)
-        if (i > j) self%newton_lu(2*kd + 1 + j - i, i) = self%newton_lu(2*kd + 1 + j - i, i) + &
-                                                         self%newton_mass(1 + i - j, j)
-      end do
-    end do
-    if (self%has_clearance) call add_clearance_damping(self, hl0, beta, self%newton_lu, 2*kd + 1, .false.)
-    call band_lu_factor(self%newton_lu, kd, kd, self%newton_ipiv, err)
-    ok = .not. err%failed()
   end subroutine model_newton_factor
 
   !> A moving mechanism's M and K_t turn with the links, and the chord
@@ -1122,21 +1080,8 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
     type(error_t) :: err
-    integer :: kd
-    kd = self%kd
-    associate(r1 => self%work_r1, r2 => self%work_r2, dv => self%work_dv)
-    r1 = x(1::2)
-    r2 = x(2::2)
-    call band_combination(self%newton_mass, self%newton_stiff, kd, r2, self%newton_hl0, r1, dv)
-    if (self%newton_cholesky) then
-      call band_cholesky_substitute(self%newton_chol, kd, dv)
-    else
-      call band_lu_solve(self%newton_lu, kd, kd, self%newton_ipiv, dv, err)
-    end if
-    if (err%failed()) call self%fail(0.0_dp, 'Newton matrix solve: '//err%text())
-    x(2::2) = dv
-    x(1::2) = r1 + self%newton_hl0*dv
-    end associate
+    call self%newton%solve(x, err)
+    if (err%failed()) call self%fail(0.0_dp, err%text())
   end subroutine model_newton_solve
 
   ! ------------------------------------------------------------------ clearance joints
@@ -1177,10 +1122,11 @@ contains
       end if
     end do
     deallocate(self%mass_band, self%force)
-    if (allocated(self%newton_mass)) deallocate(self%newton_mass, self%newton_stiff, self%newton_chol, &
-                                                self%newton_lu, self%newton_ipiv)
     call allocate_work(self)
-    allocate(self%contact_k(2, 2, size(joints)), self%contact_c(2, 2, size(joints)))
+    allocate(self%newton%damper(2, 2, size(joints)), self%newton%damper_dofs(4, size(joints)))
+    do k = 1, size(joints)
+      self%newton%damper_dofs(:, k) = pair_dofs(self%clearance(k))
+    end do
     self%has_clearance = .true.
   end subroutine add_clearance
 
@@ -1225,34 +1171,20 @@ contains
     call self%table%scatter_add(e, gen, self%force)
   end subroutine add_end_moment
 
-  !> Contact stiffness into K_t of the Newton matrix (newton_stiff); the
-  !> contact's own damping goes in by add_clearance_damping.
-  subroutine add_clearance_stiffness(self, y)
+  !> Contact stiffness into K_t of the Newton matrix; the contact damps by its
+  !> own C, not in proportion to K (with the elements' beta): it enters as the
+  !> Newton matrix's pair damper C - beta K.
+  subroutine add_clearance_terms(self, y, beta)
     type(mechanism_model_t), intent(inout) :: self
-    real(dp), intent(in) :: y(:)
+    real(dp), intent(in) :: y(:), beta
+    real(dp) :: kc(2, 2), cc(2, 2)
     integer :: k
     do k = 1, size(self%clearance)
-      call contact_blocks(self%clearance(k), y(1::2), y(2::2), self%clearance_spin(k), self%contact_k(:, :, k), &
-                          self%contact_c(:, :, k))
-      call add_pair_block(self%clearance(k), self%contact_k(:, :, k), 1.0_dp, self%newton_stiff, self%kd + 1, .false.)
+      call contact_blocks(self%clearance(k), y(1::2), y(2::2), self%clearance_spin(k), kc, cc)
+      call add_pair_block(self%clearance(k), kc, 1.0_dp, self%newton%stiff, self%kd + 1, .false.)
+      self%newton%damper(:, :, k) = cc - beta*kc
     end do
-  end subroutine add_clearance_stiffness
-
-  !> S += hl0 (C - beta K) of the contacts: S = M + (hl0 beta + hl0^2) K_t
-  !> already holds their K with the elements' stiffness-proportional damping,
-  !> the contact damps by its own C instead.
-  subroutine add_clearance_damping(self, hl0, beta, band, off, lower)
-    type(mechanism_model_t), intent(in) :: self
-    real(dp), intent(in) :: hl0, beta
-    real(dp), intent(inout) :: band(:, :)
-    integer, intent(in) :: off
-    logical, intent(in) :: lower
-    integer :: k
-    do k = 1, size(self%clearance)
-      call add_pair_block(self%clearance(k), self%contact_c(:, :, k) - beta*self%contact_k(:, :, k), hl0, band, off, &
-                          lower)
-    end do
-  end subroutine add_clearance_damping
+  end subroutine add_clearance_terms
 
   !> Natural frequencies (rad/s, ascending) and M-normalised mode shapes of
   !> the linearised structure at the current rigid position: K_t(q=0) x = w^2 M x.

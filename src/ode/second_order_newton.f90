@@ -12,11 +12,17 @@
 !> the factorization and calls `factor`; `solve` then serves DLSODE's DSOLSY
 !> (module lsode_newton).  Any model with this structure (the planar and the
 !> spatial mechanism models) can own one.
+!>
+!> Dampers between DOF pairs that do not damp in proportion to K_t (the
+!> contacts of clearance joints): a model that has them sets `damper`, the
+!> blocks D_k - beta K_k of each, and `damper_dofs`; then
+!>     S = M + (hl0 beta + hl0^2) K_t + hl0 sum_k (D_k - beta K_k),
+!> each block acting on e = q(dofs 1:2) - q(dofs 3:4) (add_pair_band).
 module second_order_newton
   use kinds, only: dp
   use error_status, only: error_t
   use linalg, only: band_lu_factor, band_lu_solve
-  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute, add_pair_band
   implicit none
   private
   public :: second_order_newton_t, symmetric_band, band_combination
@@ -28,6 +34,9 @@ module second_order_newton
     real(dp), allocatable :: chol(:, :)     !< (kd+1, n) Cholesky factor of S
     real(dp), allocatable :: lu(:, :)       !< (3kd+1, n) banded LU of S
     integer, allocatable :: ipiv(:)
+    real(dp), allocatable :: damper(:, :, :)   !< (2, 2, k) D_k - beta K_k of the pair dampers (filled by the model)
+    integer, allocatable :: damper_dofs(:, :)  !< (4, k) their DOFs (0: ground)
+    real(dp), allocatable :: r1(:), r2(:), dv(:)   !< work of solve
     real(dp) :: hl0 = 0.0_dp                !< h*el0 of the last factorization
     logical :: cholesky = .true.            !< S was factored by Cholesky (else banded LU)
     integer :: n_factorizations = 0
@@ -45,19 +54,23 @@ contains
     class(second_order_newton_t), intent(inout) :: self
     integer, intent(in) :: n, kd
     if (allocated(self%mass) .and. self%n == n .and. self%kd == kd) return
-    if (allocated(self%mass)) deallocate(self%mass, self%stiff, self%chol, self%lu, self%ipiv)
+    if (allocated(self%mass)) deallocate(self%mass, self%stiff, self%chol, self%lu, self%ipiv, self%r1, self%r2, &
+                                         self%dv)
     self%n = n
     self%kd = kd
     allocate(self%mass(kd + 1, n), self%stiff(2*kd + 1, n), self%chol(kd + 1, n), self%lu(3*kd + 1, n), &
-             self%ipiv(n))
+             self%ipiv(n), self%r1(n), self%r2(n), self%dv(n))
   end subroutine size_for
 
-  !> Factor S = M + (hl0 beta + hl0^2) K_t from the filled mass and stiff;
-  !> ok = .false. when S is singular (DLSODE then cuts the step).
-  subroutine factor(self, hl0, beta, ok)
+  !> Factor S = M + (hl0 beta + hl0^2) K_t (+ the dampers) from the filled
+  !> mass and stiff; ok = .false. when S is singular (DLSODE then cuts the
+  !> step).  symmetric: K_t's symmetry when the model knows it (the check
+  !> costs a fifth of a factorization).
+  subroutine factor(self, hl0, beta, ok, symmetric)
     class(second_order_newton_t), intent(inout) :: self
     real(dp), intent(in) :: hl0, beta
     logical, intent(out) :: ok
+    logical, intent(in), optional :: symmetric
     type(error_t) :: err
     real(dp) :: c
     integer :: kd, n, i, j, info
@@ -66,9 +79,14 @@ contains
     c = hl0*beta + hl0**2
     self%hl0 = hl0
     self%n_factorizations = self%n_factorizations + 1
-    self%cholesky = symmetric_band(self%stiff, kd)
+    if (present(symmetric)) then
+      self%cholesky = symmetric
+    else
+      self%cholesky = symmetric_band(self%stiff, kd)
+    end if
     if (self%cholesky) then
       self%chol = self%mass + c*self%stiff(kd + 1:, :)
+      call add_dampers(self, hl0, self%chol, 1, .true.)
       call band_cholesky_inplace(self%chol, kd, info)
       self%cholesky = info == 0
     end if
@@ -86,18 +104,34 @@ contains
         if (i > j) self%lu(2*kd + 1 + j - i, i) = self%lu(2*kd + 1 + j - i, i) + self%mass(1 + i - j, j)
       end do
     end do
+    call add_dampers(self, hl0, self%lu, 2*kd + 1, .false.)
     call band_lu_factor(self%lu, kd, kd, self%ipiv, err)
     ok = .not. err%failed()
   end subroutine factor
+
+  !> band += hl0 (D_k - beta K_k) of every pair damper (rows from off:
+  !> 1 in the Cholesky's lower band storage, 2kd+1 in the LU's layout).
+  subroutine add_dampers(self, hl0, band, off, lower)
+    type(second_order_newton_t), intent(in) :: self
+    real(dp), intent(in) :: hl0
+    real(dp), intent(inout) :: band(:, :)
+    integer, intent(in) :: off
+    logical, intent(in) :: lower
+    integer :: k
+    if (.not. allocated(self%damper)) return
+    do k = 1, size(self%damper, 3)
+      call add_pair_band(self%damper_dofs(:, k), self%damper(:, :, k), hl0, band, off, lower)
+    end do
+  end subroutine add_dampers
 
   !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
   !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:
   !>     S dv = M r2 - hl0 K_t r1,   dq = r1 + hl0 dv.
   subroutine solve(self, x, err)
-    class(second_order_newton_t), intent(in) :: self
+    class(second_order_newton_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
     type(error_t), intent(inout) :: err
-    real(dp) :: r1(self%n), r2(self%n), dv(self%n)
+    associate(r1 => self%r1, r2 => self%r2, dv => self%dv)
     r1 = x(1::2)
     r2 = x(2::2)
     call band_combination(self%mass, self%stiff, self%kd, r2, self%hl0, r1, dv)
@@ -109,6 +143,7 @@ contains
     if (err%failed()) call err%add_context('Newton matrix solve')
     x(2::2) = dv
     x(1::2) = r1 + self%hl0*dv
+    end associate
   end subroutine solve
 
   !> Whether a band matrix in general band storage (half-bandwidth kd) is

@@ -182,7 +182,7 @@ contains
                             'banded = dense solve at hl0 = '//trim(rtoa(hl0s(k))))
       call assert_true(maxval(abs(matmul(p, x_band) - b)) <= 1.0e-12_dp*maxval(sum(abs(p), dim=2))* &
                        maxval(abs(x_band)), 'residual of the banded solve at hl0 = '//trim(rtoa(hl0s(k))))
-      call assert_true(model%newton_cholesky .eqv. expect_cholesky, 'factorization: Cholesky expected '// &
+      call assert_true(model%newton%cholesky .eqv. expect_cholesky, 'factorization: Cholesky expected '// &
                        merge('yes', 'no ', expect_cholesky))
     end do
   end subroutine check_solve
@@ -224,7 +224,7 @@ contains
     call ode%integrate_to(model, y, 0.25_dp*2.0_dp*acos(-1.0_dp)/150.0_dp, err)
     call assert_true(.not. err%failed(), 'integration: '//err%text())
     c = ode%counters()
-    newton_factorizations = model%n_newton_factorizations
+    newton_factorizations = model%newton%n_factorizations
   end subroutine run_quarter_turn
 
   !> The model's Newton matrix solves the same linear systems as DLSODE's dense
