@@ -39,7 +39,7 @@ module spatial_beam
   use material_law, only: ramberg_osgood_t, validate_material, ro_stress, peak_strain
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t, spatial_section_resultants, section_extreme_fibre_strain
-  use linalg, only: outer
+  use linalg, only: outer, cross
   implicit none
   private
   public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
@@ -843,10 +843,4 @@ contains
     r(11:13) = cross(w, p(11:13))
     if (.not. local(2)) r(14:16) = cross(w, p(14:16))
   end function skew_apply
-
-  pure function cross(a, b) result(c)
-    real(dp), intent(in) :: a(3), b(3)
-    real(dp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 end module spatial_beam

@@ -17,7 +17,7 @@ module linalg
   public :: band_cholesky_factor, band_cholesky_solve
   public :: band_lu_factor, band_lu_solve
   public :: sym_generalized_eig, eigenvalues_general
-  public :: dense_to_lower_band, outer
+  public :: dense_to_lower_band, outer, cross
 
   interface
     subroutine dgetrf(m, n, a, lda, ipiv, info)
@@ -369,4 +369,11 @@ contains
       m(:, j) = x*y(j)
     end do
   end function outer
+
+  !> The vector product a x b of two 3-vectors (the spatial element and kinematics).
+  pure function cross(a, b) result(c)
+    real(dp), intent(in) :: a(3), b(3)
+    real(dp) :: c(3)
+    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
+  end function cross
 end module linalg

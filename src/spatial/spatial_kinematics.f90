@@ -29,11 +29,12 @@ module spatial_kinematics
   use kinds, only: dp, pi
   use error_status, only: error_t
   use strings, only: str
+  use linalg, only: cross
   implicit none
   private
   public :: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_init, spatial_fourbar_solve
   public :: spatial_fourbar_set_universal
-  public :: rocker_angle_closed_form, cross, rotate_about
+  public :: rocker_angle_closed_form, rotate_about
   public :: link_crank, link_coupler, link_rocker
 
   integer, parameter :: link_crank = 1, link_coupler = 2, link_rocker = 3
@@ -331,10 +332,4 @@ contains
     real(dp) :: w(3)
     w = v*cos(angle) + cross(axis, v)*sin(angle) + axis*dot_product(axis, v)*(1.0_dp - cos(angle))
   end function rotate_about
-
-  pure function cross(a, b) result(c)
-    real(dp), intent(in) :: a(3), b(3)
-    real(dp) :: c(3)
-    c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
-  end function cross
 end module spatial_kinematics

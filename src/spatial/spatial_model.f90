@@ -23,7 +23,7 @@ module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: sym_generalized_eig, dense_to_lower_band
+  use linalg, only: sym_generalized_eig, dense_to_lower_band, cross
   use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
@@ -37,7 +37,7 @@ module spatial_model
                           spatial_beam_matrices, spatial_tangent_is_constant, &
                           spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local, &
                           spatial_formulation_consistent
-  use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, cross, &
+  use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, &
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
   use spatial_mass, only: spatial_mass_t

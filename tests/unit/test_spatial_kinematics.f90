@@ -9,6 +9,7 @@ module test_spatial_kinematics_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use spatial_kinematics
+  use linalg, only: cross
   use assertions
   implicit none
   private

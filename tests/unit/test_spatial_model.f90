@@ -15,7 +15,7 @@ module test_spatial_model_suite
   use quadrature, only: gauss_legendre_interval
   use spatial_section, only: spatial_section_init, section_rectangular, section_circular
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_local_displacement, spatial_formulation_kear
-  use spatial_kinematics, only: cross
+  use linalg, only: cross
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init, spatial_fourbar_set_universal, link_rocker
   use spatial_model
   use assertions
