@@ -28,6 +28,8 @@ module consistent_element
   use shape_functions, only: quintic_hermite
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
   use beam_properties, only: beam_properties_t, init_beam_properties
+  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, add_constant_integrals, &
+                                 rotating_frame_integrals, add_station_terms, exact_angle_terms
   use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
                           start_stress_report, station_x_over_l, add_station_fibres
   implicit none
@@ -40,6 +42,7 @@ module consistent_element
 
   integer, parameter :: consistent_ndof = 12
   integer, parameter :: nd = consistent_ndof
+  integer, parameter :: node2 = 7        !< local DOF of node 2's u (then w)
   integer, parameter :: n_exact = 6      !< Gauss points exact for the constant integrals (degree <= 11)
 
   !> One element.  Arrays in the local DOF order p = [u1 w1 th1 m1 a1 b1 u2 w2 th2 m2 a2 b2].
@@ -77,7 +80,7 @@ contains
     real(dp), intent(in), optional :: damping_beta
     logical, intent(in), optional :: objective_damping
     real(dp), intent(in), optional :: fibre_distance   !< c of a section given by A, I, c (default t/2)
-    real(dp) :: x(n_exact), w(n_exact), su(nd), sw(nd), gs(nd, 4), g2(nd, nd), jb(nd, nd)
+    real(dp) :: x(n_exact), w(n_exact), su(nd), sw(nd), gs(nd, 4), g2(nd, nd)
     integer :: i
 
     call init_beam_properties(el%beam_properties_t, 'consistent_element_init', length, width, depth, material, &
@@ -89,24 +92,11 @@ contains
     call gauss_legendre_interval(n_exact, 0.0_dp, length, x, w)
     do i = 1, n_exact
       call consistent_shape(x(i)/length, length, su, sw, gs)
-      el%mass_trans = el%mass_trans + w(i)*(outer(su, su) + outer(sw, sw))
-      g2 = g2 + w(i)*(outer(sw, su) - outer(su, sw))             ! int S^T J S
-      el%load0(:, 1) = el%load0(:, 1) + w(i)*su
-      el%load0(:, 2) = el%load0(:, 2) + w(i)*sw
-      el%load1(:, 1) = el%load1(:, 1) + w(i)*x(i)*su
-      el%load1(:, 2) = el%load1(:, 2) + w(i)*x(i)*sw
-      el%k_linear = el%k_linear + w(i)*(material%e1*el%area*outer(gs(:, 1), gs(:, 1)) &
-                                        + material%e1*el%inertia*outer(gs(:, 3), gs(:, 3)))
-      el%rot_linear = el%rot_linear + w(i)*outer(gs(:, 2), gs(:, 2))
-      el%rot_load = el%rot_load + w(i)*gs(:, 2)
+      call add_constant_integrals(w(i), x(i), su, sw, gs(:, 1), gs(:, 2), gs(:, 3), material%e1*el%area, &
+                                  material%e1*el%inertia, el%mass_trans, g2, el%load0, el%load1, el%k_linear, &
+                                  el%rot_linear, el%rot_load)
     end do
-    jb = 0.0_dp
-    jb(1, 2) = -1.0_dp
-    jb(2, 1) = 1.0_dp
-    jb(7, 8) = -1.0_dp
-    jb(8, 7) = 1.0_dp
-    el%coupling = g2 - matmul(el%mass_trans, jb)
-    el%centrifugal = matmul(el%mass_trans, matmul(jb, jb)) - el%mass_trans - 2.0_dp*matmul(g2, jb)
+    call rotating_frame_integrals(el%mass_trans, g2, node2, el%coupling, el%centrifugal)
 
     allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%g(nd, 4, el%n_gauss))
     call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
@@ -147,11 +137,11 @@ contains
 
     c = cos(rb%phi)
     s = sin(rb%phi)
-    p = to_local(c, s, q)
-    v = to_local(c, s, qd)
-    jp = jb_times(p)
-    jv = jb_times(v)
-    j2p = jb_times(jp)
+    p = to_local(c, s, q, node2)
+    v = to_local(c, s, qd, node2)
+    jp = jb_times(p, node2)
+    jv = jb_times(v, node2)
+    j2p = jb_times(jp, node2)
     rhoa = el%material%rho*el%area
     rhoi = el%material%rho*el%inertia
 
@@ -195,9 +185,15 @@ contains
       end if
     end if
 
-    force = to_global(c, s, fp)
-    if (want_k) tangent = to_global_matrix(c, s, kp)
-    if (want_m) mass = to_global_matrix(c, s, mp)
+    force = to_global(c, s, fp, node2)
+    if (want_k) then
+      tangent = kp
+      call rotate_to_global(c, s, tangent, node2)
+    end if
+    if (want_m) then
+      mass = mp
+      call rotate_to_global(c, s, mass, node2)
+    end if
   end subroutine consistent_element_eval
 
   !> Internal force dSE/dq.
@@ -207,13 +203,13 @@ contains
     real(dp), intent(out) :: f(nd)
     real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
     type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
       fint = matmul(el%k_linear, p)
     else
       call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
     end if
-    f = to_global(cos(phi), sin(phi), fint)
+    f = to_global(cos(phi), sin(phi), fint, node2)
   end subroutine consistent_internal_force
 
   !> K_t = d(internal force)/dq, analytic and symmetric.
@@ -223,13 +219,14 @@ contains
     real(dp), intent(out) :: kt(nd, nd)
     real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
     type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
       kp = el%k_linear
     else
       call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
     end if
-    kt = to_global_matrix(cos(phi), sin(phi), kp)
+    kt = kp
+    call rotate_to_global(cos(phi), sin(phi), kt, node2)
   end subroutine consistent_tangent_stiffness
 
   pure real(dp) function consistent_strain_energy(el, q, phi) result(se)
@@ -237,7 +234,7 @@ contains
     real(dp), intent(in) :: q(nd), phi
     real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
     type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
       se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
     else
@@ -258,8 +255,8 @@ contains
     integer :: i
     c = cos(rb%phi)
     s = sin(rb%phi)
-    p = to_local(c, s, q)
-    pd = to_local(c, s, qd) - rb%phi_d*jb_times(p)
+    p = to_local(c, s, q, node2)
+    pd = to_local(c, s, qd, node2) - rb%phi_d*jb_times(p, node2)
     vloc(1) = c*rb%x1_d + s*rb%y1_d
     vloc(2) = -s*rb%x1_d + c*rb%y1_d
     ke = 0.0_dp
@@ -299,7 +296,7 @@ contains
     real(dp) :: c, s, p(nd), su(nd), sw(nd), g(nd, 4), fl(2), a, b, r2, r4, hp(nd, nd)
     c = cos(phi)
     s = sin(phi)
-    p = to_local(c, s, q)
+    p = to_local(c, s, q, node2)
     call consistent_shape(e, el%length, su, sw, g)
     fl = [c*f(1) + s*f(2), -s*f(1) + c*f(2)]
     hp = 0.0_dp
@@ -314,8 +311,11 @@ contains
     else
       gen = fl(1)*su + fl(2)*sw + mz*g(:, 2)             ! theta = phi + w_x
     end if
-    gen = to_global(c, s, gen)
-    if (present(dgen)) dgen = to_global_matrix(c, s, hp)
+    gen = to_global(c, s, gen, node2)
+    if (present(dgen)) then
+      dgen = hp
+      call rotate_to_global(c, s, dgen, node2)
+    end if
   end subroutine consistent_point_load
 
   !> Fibre strain and stress at y = +-t/2 at the ends and the stations.
@@ -327,7 +327,7 @@ contains
     type(ramberg_osgood_t) :: law
     integer :: i
     call start_stress_report(el%beam_properties_t, law, rep)
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     do i = 0, el%n_gauss + 1
       eo = station_x_over_l(el%beam_properties_t, el%xg, i)
       call consistent_section_strains(el, p, eo, eps_n, kap)
@@ -352,7 +352,7 @@ contains
   pure function consistent_local_dofs(phi, q) result(p)
     real(dp), intent(in) :: phi, q(nd)
     real(dp) :: p(nd)
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
   end function consistent_local_dofs
 
   !> Local elastic displacements (u, w) at x = e l.
@@ -361,7 +361,7 @@ contains
     real(dp), intent(in) :: q(nd), phi, e
     real(dp) :: uw(2)
     real(dp) :: p(nd), su(nd), sw(nd), g(nd, 4)
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     call consistent_shape(e, el%length, su, sw, g)
     uw = [dot_product(su, p), dot_product(sw, p)]
   end function consistent_local_displacement
@@ -399,7 +399,7 @@ contains
     logical, intent(in) :: want_k, want_damp
     type(kear_eval_info_t), intent(inout) :: info
     real(dp), intent(out) :: fint(nd), fdamp(nd), kp(nd, nd)
-    real(dp) :: h4(4, 4), f4(4), tn(4), tk(4), gh(nd, 4), e, ht
+    real(dp) :: e, ht
     type(strain_point_t) :: sp
     type(section_resultants_t) :: res
     integer :: i
@@ -414,18 +414,8 @@ contains
         call strain_state(el, matmul(p, g), .true., sp)
         res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
         info%strain_energy = info%strain_energy + el%wg(i)*res%energy
-        f4 = res%axial_force*sp%de + res%moment*sp%dk
-        fint = fint + el%wg(i)*matmul(g, f4)
-        if (want_k .or. want_damp) then
-          tn = res%tangent(1, 1)*sp%de + res%tangent(1, 2)*sp%dk
-          tk = res%tangent(2, 1)*sp%de + res%tangent(2, 2)*sp%dk
-          h4 = outer(sp%de, tn) + outer(sp%dk, tk) + res%axial_force*sp%he + res%moment*sp%hk
-          if (want_k) then
-            gh = el%wg(i)*matmul(g, h4)
-            kp = kp + matmul(gh, transpose(g))
-          end if
-          if (want_damp) fdamp = fdamp + el%wg(i)*matmul(g, matmul(h4, matmul(prel, g)))
-        end if
+        call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de, sp%de, sp%dk, sp%he, &
+                               sp%hk, prel, want_k, want_damp, fint, fdamp, kp)
       end associate
       e = abs(sp%eps) + ht*abs(sp%kap)
       if (e > info%max_abs_strain) then
@@ -506,32 +496,14 @@ contains
     real(dp), intent(in) :: p(nd), v(nd), jp(nd), pdd_nm(nd), phi_d, phi_dd, rhoi
     real(dp), intent(inout) :: mp(nd, nd), fp(nd)
     type(kear_eval_info_t), intent(inout) :: info
-    real(dp) :: a, b, r2, r4, xa, xb, xaa, xab, xbb, tq(nd), acc, quad, pd(nd), ua, ub, ja, jbb
+    real(dp) :: a, b, xa, xb, tq(nd), acc, quad, pd(nd)
     integer :: i
     pd = v - phi_d*jp
     do i = 1, el%n_gauss
       associate (gu => el%g(:, 1, i), gw => el%g(:, 2, i))
         a = 1.0_dp + dot_product(gu, p)
         b = dot_product(gw, p)
-        r2 = a*a + b*b
-        r4 = r2*r2
-        xa = -b/r2
-        xb = a/r2
-        xaa = 2.0_dp*a*b/r4
-        xab = (b*b - a*a)/r4
-        xbb = -xaa
-        if (el%effects%coupling) then
-          ua = dot_product(gu, pd)
-          ub = dot_product(gw, pd)
-          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub
-        else
-          ua = dot_product(gu, v)
-          ub = dot_product(gw, v)
-          ja = dot_product(gu, jp)
-          jbb = dot_product(gw, jp)
-          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub &
-                 + phi_d**2*(xaa*ja*ja + 2.0_dp*xab*ja*jbb + xbb*jbb*jbb)
-        end if
+        call exact_angle_terms(a, b, gu, gw, v, jp, pd, phi_d, el%effects%coupling, xa, xb, quad)
         tq = xa*gu + xb*gw
       end associate
       acc = phi_dd + dot_product(tq, pdd_nm) + quad
@@ -554,51 +526,4 @@ contains
     real(dp) :: s(nd)
     s = [0.0_dp, h(1), h(2), h(3), 0.0_dp, 0.0_dp, 0.0_dp, h(4), h(5), h(6), 0.0_dp, 0.0_dp]
   end function spread_w
-
-  !> p = T(phi) q: rotate the node translations (1, 2) and (7, 8).
-  pure function to_local(c, s, q) result(p)
-    real(dp), intent(in) :: c, s, q(nd)
-    real(dp) :: p(nd)
-    p = q
-    p(1) = c*q(1) + s*q(2)
-    p(2) = -s*q(1) + c*q(2)
-    p(7) = c*q(7) + s*q(8)
-    p(8) = -s*q(7) + c*q(8)
-  end function to_local
-
-  pure function to_global(c, s, f) result(g)
-    real(dp), intent(in) :: c, s, f(nd)
-    real(dp) :: g(nd)
-    g = f
-    g(1) = c*f(1) - s*f(2)
-    g(2) = s*f(1) + c*f(2)
-    g(7) = c*f(7) - s*f(8)
-    g(8) = s*f(7) + c*f(8)
-  end function to_global
-
-  pure function to_global_matrix(c, s, a) result(g)
-    real(dp), intent(in) :: c, s, a(nd, nd)
-    real(dp) :: g(nd, nd), t(nd, nd)
-    integer :: k
-    t = a
-    do k = 1, 7, 6
-      t(k, :) = c*a(k, :) - s*a(k + 1, :)
-      t(k + 1, :) = s*a(k, :) + c*a(k + 1, :)
-    end do
-    g = t
-    do k = 1, 7, 6
-      g(:, k) = c*t(:, k) - s*t(:, k + 1)
-      g(:, k + 1) = s*t(:, k) + c*t(:, k + 1)
-    end do
-  end function to_global_matrix
-
-  pure function jb_times(p) result(r)
-    real(dp), intent(in) :: p(nd)
-    real(dp) :: r(nd)
-    r = 0.0_dp
-    r(1) = -p(2)
-    r(2) = p(1)
-    r(7) = -p(8)
-    r(8) = p(7)
-  end function jb_times
 end module consistent_element

@@ -29,6 +29,8 @@ module kear_element
   use shape_functions, only: quintic_hermite, linear_lagrange
   use beam_properties, only: element_effects_t, beam_properties_t, init_beam_properties
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
+  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, add_constant_integrals, &
+                                 rotating_frame_integrals, add_station_terms, exact_angle_terms
   implicit none
   private
   public :: kear_ndof, formulation_exact, formulation_kear1987
@@ -43,6 +45,7 @@ module kear_element
   integer, parameter :: formulation_exact = 1      !< exact Lagrange equations of (K3), (K16)
   integer, parameter :: formulation_kear1987 = 2   !< as printed: (K9), (K11), (K20), (K23)
   integer, parameter :: n_exact = 6                !< Gauss points exact for the linear integrals (degree <= 11)
+  integer, parameter :: node2 = 5                  !< local DOF of node 2's u (then w)
 
   !> Rigid-body state of the element reference line (from kinematics).
   type :: rigid_state_t
@@ -120,7 +123,7 @@ contains
     logical, intent(in), optional :: objective_damping
     real(dp), intent(in), optional :: fibre_distance   !< c of a section given by A, I, c (default t/2)
     real(dp) :: x(n_exact), w(n_exact), n(2), nx(2), h(6), hx(6), hxx(6)
-    real(dp) :: su(8), sw(8), gw(8), gww(8), g2(8, 8), jb(8, 8)
+    real(dp) :: su(8), sw(8), gw(8), gww(8), g2(8, 8)
     integer :: i
 
     call init_beam_properties(el%beam_properties_t, 'kear_element_init', length, width, depth, material, effects, &
@@ -146,24 +149,10 @@ contains
       call spread_w(h, sw)
       call spread_w(hx, gw)
       call spread_w(hxx, gww)
-      el%mass_trans = el%mass_trans + w(i)*(outer(su, su) + outer(sw, sw))
-      g2 = g2 + w(i)*(outer(sw, su) - outer(su, sw))          ! int S^T J S, J = [0 -1; 1 0]
-      el%load0(:, 1) = el%load0(:, 1) + w(i)*su
-      el%load0(:, 2) = el%load0(:, 2) + w(i)*sw
-      el%load1(:, 1) = el%load1(:, 1) + w(i)*x(i)*su
-      el%load1(:, 2) = el%load1(:, 2) + w(i)*x(i)*sw
-      el%k_linear = el%k_linear + w(i)*(material%e1*el%area*outer(el%gu, el%gu) &
-                                        + material%e1*el%inertia*outer(gww, gww))
-      el%rot_linear = el%rot_linear + w(i)*outer(gw, gw)
-      el%rot_load = el%rot_load + w(i)*gw
+      call add_constant_integrals(w(i), x(i), su, sw, el%gu, gw, gww, material%e1*el%area, material%e1*el%inertia, &
+                                  el%mass_trans, g2, el%load0, el%load1, el%k_linear, el%rot_linear, el%rot_load)
     end do
-    jb = 0.0_dp
-    jb(1, 2) = -1.0_dp
-    jb(2, 1) = 1.0_dp
-    jb(5, 6) = -1.0_dp
-    jb(6, 5) = 1.0_dp
-    el%coupling = g2 - matmul(el%mass_trans, jb)
-    el%centrifugal = matmul(el%mass_trans, matmul(jb, jb)) - el%mass_trans - 2.0_dp*matmul(g2, jb)
+    call rotating_frame_integrals(el%mass_trans, g2, node2, el%coupling, el%centrifugal)
 
     ! stations for the nonlinear integrals
     allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%gw(8, el%n_gauss), el%gww(8, el%n_gauss))
@@ -257,18 +246,18 @@ contains
         if (want_m) then
           mass = el%material%rho*el%area*el%mass_trans
           if (el%effects%rotary_inertia) mass = mass + el%material%rho*el%inertia*el%rot_linear
-          call rotate_to_global(c, s, mass)
+          call rotate_to_global(c, s, mass, node2)
         end if
         tangent = el%k_linear
-        call rotate_to_global(c, s, tangent)
+        call rotate_to_global(c, s, tangent, node2)
         return
       end if
     end if
-    p = to_local(c, s, q)
-    v = to_local(c, s, qd)                 ! T q_dot: the q_dot part of p_dot
-    jp = jb_times(p)
-    jv = jb_times(v)
-    j2p = jb_times(jp)
+    p = to_local(c, s, q, node2)
+    v = to_local(c, s, qd, node2)                 ! T q_dot: the q_dot part of p_dot
+    jp = jb_times(p, node2)
+    jv = jb_times(v, node2)
+    j2p = jb_times(jp, node2)
     rhoa = el%material%rho*el%area
     rhoi = el%material%rho*el%inertia
 
@@ -322,12 +311,12 @@ contains
       end if
     end if
 
-    force = to_global(c, s, fp)
+    force = to_global(c, s, fp, node2)
     if (want_k) then
       tangent = kp
-      call rotate_to_global(c, s, tangent)
+      call rotate_to_global(c, s, tangent, node2)
     end if
-    if (want_m) call rotate_to_global(c, s, mass)
+    if (want_m) call rotate_to_global(c, s, mass, node2)
   end subroutine kear_element_eval
 
   !> fint = K p, (if damped) fdamp = K prel and cp = C p in one pass (the
@@ -361,13 +350,13 @@ contains
     real(dp), intent(out) :: f(8)
     real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
     type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
       fint = matmul(el%k_linear, p)
     else
       call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
     end if
-    f = to_global(cos(phi), sin(phi), fint)
+    f = to_global(cos(phi), sin(phi), fint, node2)
   end subroutine kear_internal_force
 
   !> K_t = d(internal force)/dq, analytic.
@@ -377,14 +366,14 @@ contains
     real(dp), intent(out) :: kt(8, 8)
     real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
     type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
       kp = el%k_linear
     else
       call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
     end if
     kt = kp
-    call rotate_to_global(cos(phi), sin(phi), kt)
+    call rotate_to_global(cos(phi), sin(phi), kt, node2)
   end subroutine kear_tangent_stiffness
 
   !> Strain energy (K16) with the element's quadrature.
@@ -393,7 +382,7 @@ contains
     real(dp), intent(in) :: q(8), phi
     real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
     type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
       se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
     else
@@ -418,8 +407,8 @@ contains
     integer :: i
     c = cos(rb%phi)
     s = sin(rb%phi)
-    p = to_local(c, s, q)
-    pd = to_local(c, s, qd) - rb%phi_d*jb_times(p)        ! p_dot = T q_dot + T_dot q
+    p = to_local(c, s, q, node2)
+    pd = to_local(c, s, qd, node2) - rb%phi_d*jb_times(p, node2)        ! p_dot = T q_dot + T_dot q
     vloc(1) = c*rb%x1_d + s*rb%y1_d
     vloc(2) = -s*rb%x1_d + c*rb%y1_d
     ke = 0.0_dp
@@ -470,7 +459,7 @@ contains
     type(ramberg_osgood_t) :: law
     integer :: i
     call start_stress_report(el%beam_properties_t, law, rep)
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     do i = 0, el%n_gauss + 1
       eo = station_x_over_l(el%beam_properties_t, el%xg, i)
       call kear_section_strains(el, p, eo, eps_n, kap)
@@ -554,7 +543,7 @@ contains
   pure function kear_local_dofs(phi, q) result(p)
     real(dp), intent(in) :: phi, q(8)
     real(dp) :: p(8)
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
   end function kear_local_dofs
 
   !> Local elastic displacements (u, w) at x = e l (K26).
@@ -563,7 +552,7 @@ contains
     real(dp), intent(in) :: q(8), phi, e
     real(dp) :: uw(2)
     real(dp) :: p(8), n(2), h(6), sw(8)
-    p = to_local(cos(phi), sin(phi), q)
+    p = to_local(cos(phi), sin(phi), q, node2)
     call linear_lagrange(e, el%length, n)
     call quintic_hermite(e, el%length, h)
     call spread_w(h, sw)
@@ -607,7 +596,7 @@ contains
     logical, intent(in) :: want_k, want_damp
     type(kear_eval_info_t), intent(inout) :: info
     real(dp), intent(out) :: fint(8), fdamp(8), kp(8, 8)
-    real(dp) :: g(8, 3), h3(3, 3), f3(3), ux, e, ht, tn(3), tk(3), gh(8, 3)
+    real(dp) :: g(8, 3), ux, e, ht
     type(strain_point_t) :: sp
     type(section_resultants_t) :: res
     integer :: i
@@ -625,18 +614,8 @@ contains
       call strain_state(el, ux, dot_product(g(:, 2), p), dot_product(g(:, 3), p), .true., sp)
       res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
       info%strain_energy = info%strain_energy + el%wg(i)*res%energy
-      f3 = res%axial_force*sp%de_used + res%moment*sp%dk            ! (K17)
-      fint = fint + el%wg(i)*matmul(g, f3)
-      if (want_k .or. want_damp) then
-        tn = res%tangent(1, 1)*sp%de_true + res%tangent(1, 2)*sp%dk  ! dN/d(a,b,c)
-        tk = res%tangent(2, 1)*sp%de_true + res%tangent(2, 2)*sp%dk  ! dM/d(a,b,c)
-        h3 = outer(sp%de_used, tn) + outer(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
-        if (want_k) then
-          gh = el%wg(i)*matmul(g, h3)
-          kp = kp + matmul(gh, transpose(g))
-        end if
-        if (want_damp) fdamp = fdamp + el%wg(i)*matmul(g, matmul(h3, matmul(prel, g)))
-      end if
+      call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de_used, sp%de_true, sp%dk, &
+                             sp%he_used, sp%hk, prel, want_k, want_damp, fint, fdamp, kp)   ! (K17)
       e = abs(sp%eps) + ht*abs(sp%kap)
       if (e > info%max_abs_strain) then
         info%max_abs_strain = e
@@ -727,8 +706,7 @@ contains
     real(dp), intent(in) :: p(8), v(8), jp(8), pdd_nm(8), phi_d, phi_dd, rhoi
     real(dp), intent(inout) :: mp(8, 8), fp(8)
     type(kear_eval_info_t), intent(inout) :: info
-    real(dp) :: a, b, r2, r4, xa, xb, xaa, xab, xbb, tq(8), acc, quad, pd(8)
-    real(dp) :: ua, ub, ja, jbb
+    real(dp) :: a, b, xa, xb, tq(8), acc, quad, pd(8)
     integer :: i
     logical :: kear
     kear = el%formulation == formulation_kear1987
@@ -741,26 +719,7 @@ contains
         xb = a
         quad = 0.0_dp                            ! (K11) omits the velocity-product term
       else
-        r2 = a*a + b*b
-        r4 = r2*r2
-        xa = -b/r2
-        xb = a/r2
-        xaa = 2.0_dp*a*b/r4
-        xab = (b*b - a*a)/r4
-        xbb = -xaa
-        if (el%effects%coupling) then
-          ua = dot_product(el%gu, pd)
-          ub = dot_product(el%gw(:, i), pd)
-          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub
-        else
-          ! without the Coriolis cross term between T q_dot and phi_dot J_b p
-          ua = dot_product(el%gu, v)
-          ub = dot_product(el%gw(:, i), v)
-          ja = dot_product(el%gu, jp)
-          jbb = dot_product(el%gw(:, i), jp)
-          quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub &
-                 + phi_d**2*(xaa*ja*ja + 2.0_dp*xab*ja*jbb + xbb*jbb*jbb)
-        end if
+        call exact_angle_terms(a, b, el%gu, el%gw(:, i), v, jp, pd, phi_d, el%effects%coupling, xa, xb, quad)
       end if
       tq = xa*el%gu + xb*el%gw(:, i)             ! d theta / d p
       acc = phi_dd + dot_product(tq, pdd_nm) + quad
@@ -777,58 +736,8 @@ contains
     sw = [0.0_dp, h(1), h(2), h(3), 0.0_dp, h(4), h(5), h(6)]
   end subroutine spread_w
 
-  !> p = T(phi) q: rotate the node translations into the element frame (K26).
-  pure function to_local(c, s, q) result(p)
-    real(dp), intent(in) :: c, s, q(8)
-    real(dp) :: p(8)
-    p = q
-    p(1) = c*q(1) + s*q(2)
-    p(2) = -s*q(1) + c*q(2)
-    p(5) = c*q(5) + s*q(6)
-    p(6) = -s*q(5) + c*q(6)
-  end function to_local
-
-  !> T^T f.
-  pure function to_global(c, s, f) result(g)
-    real(dp), intent(in) :: c, s, f(8)
-    real(dp) :: g(8)
-    g = f
-    g(1) = c*f(1) - s*f(2)
-    g(2) = s*f(1) + c*f(2)
-    g(5) = c*f(5) - s*f(6)
-    g(6) = s*f(5) + c*f(6)
-  end function to_global
-
-  !> a := T^T a T in place (T rotates the translation pairs (1,2) and (5,6)):
-  !> only the four rows and columns that T mixes are touched.
-  pure subroutine rotate_to_global(c, s, a)
-    real(dp), intent(in) :: c, s
-    real(dp), intent(inout) :: a(8, 8)
-    real(dp) :: r1(8), r2(8)
-    integer :: k
-    do k = 1, 5, 4
-      r1 = c*a(k, :) - s*a(k + 1, :)
-      r2 = s*a(k, :) + c*a(k + 1, :)
-      a(k, :) = r1
-      a(k + 1, :) = r2
-    end do
-    do k = 1, 5, 4
-      r1 = c*a(:, k) - s*a(:, k + 1)
-      r2 = s*a(:, k) + c*a(:, k + 1)
-      a(:, k) = r1
-      a(:, k + 1) = r2
-    end do
-  end subroutine rotate_to_global
 
 
-  !> J_b p: (u, w) -> (-w, u) at both nodes, zero on th, m  (T_phi = -J_b T).
-  pure function jb_times(p) result(r)
-    real(dp), intent(in) :: p(8)
-    real(dp) :: r(8)
-    r = 0.0_dp
-    r(1) = -p(2)
-    r(2) = p(1)
-    r(5) = -p(6)
-    r(6) = p(5)
-  end function jb_times
+
+
 end module kear_element

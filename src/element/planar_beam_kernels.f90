@@ -1,0 +1,175 @@
+!> The steps the two planar beam elements share (Kear's 8-DOF element and
+!> the consistent 12-DOF element, doc/element.md): the same Lagrange
+!> equations with another interpolation, so the same frame rotation, the
+!> same constant integrals of the translational inertia, the same
+!> per-station internal force and tangent and the same exact section angle.
+!> Written for any DOF layout whose node translations (u, w) stand at
+!> (1, 2) and (k2, k2 + 1): k2 = 5 for Kear's element, 7 for the consistent
+!> one.  Same arithmetic, in the same order, as each element had.
+module planar_beam_kernels
+  use kinds, only: dp
+  use linalg, only: outer
+  implicit none
+  private
+  public :: to_local, to_global, rotate_to_global, jb_times
+  public :: add_constant_integrals, rotating_frame_integrals
+  public :: add_station_terms, exact_angle_terms
+
+contains
+
+  ! ------------------------------------------------------------ frame
+
+  !> p = T(phi) q: rotate the node translations into the element frame (K26).
+  pure function to_local(c, s, q, k2) result(p)
+    real(dp), intent(in) :: c, s, q(:)
+    integer, intent(in) :: k2
+    real(dp) :: p(size(q))
+    p = q
+    p(1) = c*q(1) + s*q(2)
+    p(2) = -s*q(1) + c*q(2)
+    p(k2) = c*q(k2) + s*q(k2 + 1)
+    p(k2 + 1) = -s*q(k2) + c*q(k2 + 1)
+  end function to_local
+
+  !> T^T f.
+  pure function to_global(c, s, f, k2) result(g)
+    real(dp), intent(in) :: c, s, f(:)
+    integer, intent(in) :: k2
+    real(dp) :: g(size(f))
+    g = f
+    g(1) = c*f(1) - s*f(2)
+    g(2) = s*f(1) + c*f(2)
+    g(k2) = c*f(k2) - s*f(k2 + 1)
+    g(k2 + 1) = s*f(k2) + c*f(k2 + 1)
+  end function to_global
+
+  !> a := T^T a T in place: only the four rows and columns that T mixes are
+  !> touched.
+  pure subroutine rotate_to_global(c, s, a, k2)
+    real(dp), intent(in) :: c, s
+    real(dp), intent(inout) :: a(:, :)
+    integer, intent(in) :: k2
+    real(dp) :: r1(size(a, 1)), r2(size(a, 1))
+    integer :: k
+    do k = 1, k2, k2 - 1
+      r1 = c*a(k, :) - s*a(k + 1, :)
+      r2 = s*a(k, :) + c*a(k + 1, :)
+      a(k, :) = r1
+      a(k + 1, :) = r2
+    end do
+    do k = 1, k2, k2 - 1
+      r1 = c*a(:, k) - s*a(:, k + 1)
+      r2 = s*a(:, k) + c*a(:, k + 1)
+      a(:, k) = r1
+      a(:, k + 1) = r2
+    end do
+  end subroutine rotate_to_global
+
+  !> J_b p: (u, w) -> (-w, u) at both nodes, zero elsewhere (T_phi = -J_b T).
+  pure function jb_times(p, k2) result(r)
+    real(dp), intent(in) :: p(:)
+    integer, intent(in) :: k2
+    real(dp) :: r(size(p))
+    r = 0.0_dp
+    r(1) = -p(2)
+    r(2) = p(1)
+    r(k2) = -p(k2 + 1)
+    r(k2 + 1) = p(k2)
+  end function jb_times
+
+  ! ------------------------------------------------ constant integrals
+
+  !> One point (x, weight w) of the rule for the constant integrals, with the
+  !> interpolation u = su.p, w = sw.p and the gradients gu, gw, gww of
+  !> (u_x, w_x, w_xx): int S^T S, int S^T J S (into g2), int S^T, int x S^T,
+  !> the linear stiffness (e1a = E1 A, e1i = E1 I) and the linear rotary terms.
+  pure subroutine add_constant_integrals(w, x, su, sw, gu, gw, gww, e1a, e1i, mass_trans, g2, load0, load1, &
+                                         k_linear, rot_linear, rot_load)
+    real(dp), intent(in) :: w, x, su(:), sw(:), gu(:), gw(:), gww(:), e1a, e1i
+    real(dp), intent(inout) :: mass_trans(:, :), g2(:, :), load0(:, :), load1(:, :), k_linear(:, :)
+    real(dp), intent(inout) :: rot_linear(:, :), rot_load(:)
+    mass_trans = mass_trans + w*(outer(su, su) + outer(sw, sw))
+    g2 = g2 + w*(outer(sw, su) - outer(su, sw))             ! int S^T J S, J = [0 -1; 1 0]
+    load0(:, 1) = load0(:, 1) + w*su
+    load0(:, 2) = load0(:, 2) + w*sw
+    load1(:, 1) = load1(:, 1) + w*x*su
+    load1(:, 2) = load1(:, 2) + w*x*sw
+    k_linear = k_linear + w*(e1a*outer(gu, gu) + e1i*outer(gww, gww))
+    rot_linear = rot_linear + w*outer(gw, gw)
+    rot_load = rot_load + w*gw
+  end subroutine add_constant_integrals
+
+  !> The coupling int S^T (J S - S J_b) and centrifugal int S^T (S J_b^2 - S
+  !> - 2 J S J_b) matrices from int S^T S and g2 = int S^T J S.
+  pure subroutine rotating_frame_integrals(mass_trans, g2, k2, coupling, centrifugal)
+    real(dp), intent(in) :: mass_trans(:, :), g2(:, :)
+    integer, intent(in) :: k2
+    real(dp), intent(out) :: coupling(:, :), centrifugal(:, :)
+    real(dp) :: jb(size(g2, 1), size(g2, 1))
+    jb = 0.0_dp
+    jb(1, 2) = -1.0_dp
+    jb(2, 1) = 1.0_dp
+    jb(k2, k2 + 1) = -1.0_dp
+    jb(k2 + 1, k2) = 1.0_dp
+    coupling = g2 - matmul(mass_trans, jb)
+    centrifugal = matmul(mass_trans, matmul(jb, jb)) - mass_trans - 2.0_dp*matmul(g2, jb)
+  end subroutine rotating_frame_integrals
+
+  ! ------------------------------------------------- nonlinear stations
+
+  !> One station (weight wg, G = d(strain variables)/dp) of the internal
+  !> force f = G (N de + M dk), the tangent K = G H G^T (want_k) and K prel
+  !> (want_damp).  de is what multiplies N in the force (Kear's printed (K20)
+  !> or the true gradient de_true), he its derivative; tangent = dN, dM by
+  !> (eps, kappa) from the section.
+  pure subroutine add_station_terms(wg, g, axial_force, moment, tangent, de, de_true, dk, he, hk, prel, want_k, &
+                                    want_damp, fint, fdamp, kp)
+    real(dp), intent(in) :: wg, g(:, :), axial_force, moment, tangent(2, 2)
+    real(dp), intent(in) :: de(:), de_true(:), dk(:), he(:, :), hk(:, :), prel(:)
+    logical, intent(in) :: want_k, want_damp
+    real(dp), intent(inout) :: fint(:), fdamp(:), kp(:, :)
+    real(dp) :: h(size(de), size(de)), f(size(de)), tn(size(de)), tk(size(de)), gh(size(g, 1), size(de))
+    f = axial_force*de + moment*dk
+    fint = fint + wg*matmul(g, f)
+    if (.not. (want_k .or. want_damp)) return
+    tn = tangent(1, 1)*de_true + tangent(1, 2)*dk
+    tk = tangent(2, 1)*de_true + tangent(2, 2)*dk
+    h = outer(de, tn) + outer(dk, tk) + axial_force*he + moment*hk
+    if (want_k) then
+      gh = wg*matmul(g, h)
+      kp = kp + matmul(gh, transpose(g))
+    end if
+    if (want_damp) fdamp = fdamp + wg*matmul(g, matmul(h, matmul(prel, g)))
+  end subroutine add_station_terms
+
+  !> The exact section angle theta = phi + atan2(b, a) (K8), a = 1 + u_x,
+  !> b = w_x, at a station with gradients gu, gw: d theta/d(a, b) = (xa, xb)
+  !> and the velocity-product term quad of theta_dd.  With coupling, the rates
+  !> are pd = p_dot; without, the Coriolis cross term between T q_dot (v) and
+  !> phi_dot J_b p (jp) is left out.
+  pure subroutine exact_angle_terms(a, b, gu, gw, v, jp, pd, phi_d, coupling, xa, xb, quad)
+    real(dp), intent(in) :: a, b, gu(:), gw(:), v(:), jp(:), pd(:), phi_d
+    logical, intent(in) :: coupling
+    real(dp), intent(out) :: xa, xb, quad
+    real(dp) :: r2, r4, xaa, xab, xbb, ua, ub, ja, jbb
+    r2 = a*a + b*b
+    r4 = r2*r2
+    xa = -b/r2
+    xb = a/r2
+    xaa = 2.0_dp*a*b/r4
+    xab = (b*b - a*a)/r4
+    xbb = -xaa
+    if (coupling) then
+      ua = dot_product(gu, pd)
+      ub = dot_product(gw, pd)
+      quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub
+    else
+      ua = dot_product(gu, v)
+      ub = dot_product(gw, v)
+      ja = dot_product(gu, jp)
+      jbb = dot_product(gw, jp)
+      quad = xaa*ua*ua + 2.0_dp*xab*ua*ub + xbb*ub*ub &
+             + phi_d**2*(xaa*ja*ja + 2.0_dp*xab*ja*jbb + xbb*jbb*jbb)
+    end if
+  end subroutine exact_angle_terms
+end module planar_beam_kernels
