@@ -28,8 +28,9 @@ module consistent_element
   use shape_functions, only: quintic_hermite
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
   use beam_properties, only: beam_properties_t, init_beam_properties
-  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, add_constant_integrals, &
-                                 rotating_frame_integrals, add_station_terms, exact_angle_terms
+  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
+                                 translational_force, frame_acceleration, add_linear_rotary, &
+                                 add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
   use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
                           start_stress_report, station_x_over_l, add_station_fibres
   implicit none
@@ -137,23 +138,17 @@ contains
 
     c = cos(rb%phi)
     s = sin(rb%phi)
-    p = to_local(c, s, q, node2)
-    v = to_local(c, s, qd, node2)
-    jp = jb_times(p, node2)
-    jv = jb_times(v, node2)
-    j2p = jb_times(jp, node2)
+    call frame_vectors(c, s, q, qd, node2, p, v, jp, jv, j2p)
     rhoa = el%material%rho*el%area
     rhoi = el%material%rho*el%inertia
 
     ! translational inertia (exact, constant matrices)
-    acc0(1) = c*rb%x1_dd + s*rb%y1_dd
-    acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
+    acc0 = in_frame(c, s, rb%x1_dd, rb%y1_dd)
     want_m = .true.
     if (present(mass_wanted)) want_m = mass_wanted
     if (want_m) mp = rhoa*el%mass_trans
-    fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
-                + rb%phi_d**2*matmul(el%centrifugal, p))
-    if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
+    fp = translational_force(el%load0, el%load1, el%coupling, matmul(el%centrifugal, p), p, v, acc0, rb%phi_d, &
+                             rb%phi_dd, rhoa, el%effects%coupling)
 
     ! strain energy, internal force, damping
     want_k = present(tangent)
@@ -174,11 +169,9 @@ contains
 
     ! rotary inertia
     if (el%effects%rotary_inertia) then
-      pdd_nm = rb%phi_d**2*j2p
-      if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
+      pdd_nm = frame_acceleration(j2p, jp, jv, rb%phi_d, rb%phi_dd, el%effects%coupling)
       if (.not. el%effects%curvature) then
-        if (want_m) mp = mp + rhoi*el%rot_linear
-        fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
+        call add_linear_rotary(el%rot_linear, el%rot_load, rhoi, rb%phi_dd, pdd_nm, want_m, mp, fp)
       else
         if (.not. want_m) mp = 0.0_dp          ! (a caller's choice: this M depends on q)
         call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
@@ -257,8 +250,7 @@ contains
     s = sin(rb%phi)
     p = to_local(c, s, q, node2)
     pd = to_local(c, s, qd, node2) - rb%phi_d*jb_times(p, node2)
-    vloc(1) = c*rb%x1_d + s*rb%y1_d
-    vloc(2) = -s*rb%x1_d + c*rb%y1_d
+    vloc = in_frame(c, s, rb%x1_d, rb%y1_d)
     ke = 0.0_dp
     call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
     do i = 1, nt

@@ -29,8 +29,9 @@ module kear_element
   use shape_functions, only: quintic_hermite, linear_lagrange
   use beam_properties, only: element_effects_t, beam_properties_t, init_beam_properties
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
-  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, add_constant_integrals, &
-                                 rotating_frame_integrals, add_station_terms, exact_angle_terms
+  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
+                                 translational_force, frame_acceleration, add_linear_rotary, &
+                                 add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
   implicit none
   private
   public :: kear_ndof, formulation_exact, formulation_kear1987
@@ -253,19 +254,12 @@ contains
         return
       end if
     end if
-    p = to_local(c, s, q, node2)
-    v = to_local(c, s, qd, node2)                 ! T q_dot: the q_dot part of p_dot
-    jp = jb_times(p, node2)
-    jv = jb_times(v, node2)
-    j2p = jb_times(jp, node2)
+    call frame_vectors(c, s, q, qd, node2, p, v, jp, jv, j2p)
     rhoa = el%material%rho*el%area
     rhoi = el%material%rho*el%inertia
 
-    ! translational inertia: exact; KE is quadratic in (q, q_dot), so every term
-    ! of its Lagrange equations is a constant matrix (doc/element.md, section 3)
-    ! local rigid acceleration of end 1 (A^T R1_dd)
-    acc0(1) = c*rb%x1_dd + s*rb%y1_dd
-    acc0(2) = -s*rb%x1_dd + c*rb%y1_dd
+    ! translational inertia; local rigid acceleration of end 1 (A^T R1_dd)
+    acc0 = in_frame(c, s, rb%x1_dd, rb%y1_dd)
     if (want_m) mass = rhoa*el%mass_trans               ! local until rotated at the end
     prel = v
     if (el%objective_damping) prel = v - rb%phi_d*jp      ! p_dot: strain rates see this
@@ -275,9 +269,8 @@ contains
     else
       cp = matmul(el%centrifugal, p)
     end if
-    fp = -rhoa*(matmul(el%load0, acc0) + el%load1(:, 1)*(-rb%phi_d**2) + el%load1(:, 2)*rb%phi_dd &
-                + rb%phi_d**2*cp)
-    if (el%effects%coupling) fp = fp - rhoa*matmul(el%coupling, rb%phi_dd*p + 2.0_dp*rb%phi_d*v)
+    fp = translational_force(el%load0, el%load1, el%coupling, cp, p, v, acc0, rb%phi_d, rb%phi_dd, rhoa, &
+                             el%effects%coupling)
 
     ! strain energy, internal force, damping
     want_k = present(tangent)
@@ -299,12 +292,9 @@ contains
 
     ! rotary inertia
     if (el%effects%rotary_inertia) then
-      pdd_nm = rb%phi_d**2*j2p                             ! p_dd minus T q_dd (centrifugal part)
-      if (el%effects%coupling) pdd_nm = pdd_nm - rb%phi_dd*jp - 2.0_dp*rb%phi_d*jv
+      pdd_nm = frame_acceleration(j2p, jp, jv, rb%phi_d, rb%phi_dd, el%effects%coupling)
       if (.not. el%effects%curvature) then
-        ! theta = phi + w_x: linear angle, constant integrals
-        if (want_m) mass = mass + rhoi*el%rot_linear
-        fp = fp - rhoi*(rb%phi_dd*el%rot_load + matmul(el%rot_linear, pdd_nm))
+        call add_linear_rotary(el%rot_linear, el%rot_load, rhoi, rb%phi_dd, pdd_nm, want_m, mass, fp)
       else
         if (.not. want_m) mass = 0.0_dp        ! (a caller's choice: this M depends on q)
         call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mass, fp, info)
@@ -409,8 +399,7 @@ contains
     s = sin(rb%phi)
     p = to_local(c, s, q, node2)
     pd = to_local(c, s, qd, node2) - rb%phi_d*jb_times(p, node2)        ! p_dot = T q_dot + T_dot q
-    vloc(1) = c*rb%x1_d + s*rb%y1_d
-    vloc(2) = -s*rb%x1_d + c*rb%y1_d
+    vloc = in_frame(c, s, rb%x1_d, rb%y1_d)
     ke = 0.0_dp
     call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
     do i = 1, nt

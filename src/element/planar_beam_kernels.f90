@@ -11,7 +11,8 @@ module planar_beam_kernels
   use linalg, only: outer
   implicit none
   private
-  public :: to_local, to_global, rotate_to_global, jb_times
+  public :: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame
+  public :: translational_force, frame_acceleration, add_linear_rotary
   public :: add_constant_integrals, rotating_frame_integrals
   public :: add_station_terms, exact_angle_terms
 
@@ -76,6 +77,63 @@ contains
     r(k2) = -p(k2 + 1)
     r(k2 + 1) = p(k2)
   end function jb_times
+
+  !> The local vectors of an evaluation: p = T q, v = T q_dot (the q_dot part
+  !> of p_dot) and J_b p, J_b v, J_b^2 p.
+  pure subroutine frame_vectors(c, s, q, qd, k2, p, v, jp, jv, j2p)
+    real(dp), intent(in) :: c, s, q(:), qd(:)
+    integer, intent(in) :: k2
+    real(dp), intent(out) :: p(:), v(:), jp(:), jv(:), j2p(:)
+    p = to_local(c, s, q, k2)
+    v = to_local(c, s, qd, k2)
+    jp = jb_times(p, k2)
+    jv = jb_times(v, k2)
+    j2p = jb_times(jp, k2)
+  end subroutine frame_vectors
+
+  !> A global (x, y) in the element frame: A^T (x, y).
+  pure function in_frame(c, s, x, y) result(r)
+    real(dp), intent(in) :: c, s, x, y
+    real(dp) :: r(2)
+    r(1) = c*x + s*y
+    r(2) = -s*x + c*y
+  end function in_frame
+
+  ! ------------------------------------------------------------ inertia
+
+  !> Force of the translational inertia (exact: KE is quadratic in (q, q_dot),
+  !> so every term of its Lagrange equations is a constant matrix,
+  !> doc/element.md section 3): acc0 = the local rigid acceleration of end 1,
+  !> cp = (centrifugal matrix) p; the Coriolis and Euler terms with coupling.
+  pure function translational_force(load0, load1, coupling, cp, p, v, acc0, phi_d, phi_dd, rhoa, with_coupling) &
+    result(fp)
+    real(dp), intent(in) :: load0(:, :), load1(:, :), coupling(:, :), cp(:), p(:), v(:), acc0(2)
+    real(dp), intent(in) :: phi_d, phi_dd, rhoa
+    logical, intent(in) :: with_coupling
+    real(dp) :: fp(size(p))
+    fp = -rhoa*(matmul(load0, acc0) + load1(:, 1)*(-phi_d**2) + load1(:, 2)*phi_dd + phi_d**2*cp)
+    if (with_coupling) fp = fp - rhoa*matmul(coupling, phi_dd*p + 2.0_dp*phi_d*v)
+  end function translational_force
+
+  !> p_dd minus T q_dd: the centrifugal part, with coupling also the Euler and
+  !> Coriolis parts.
+  pure function frame_acceleration(j2p, jp, jv, phi_d, phi_dd, with_coupling) result(pdd_nm)
+    real(dp), intent(in) :: j2p(:), jp(:), jv(:), phi_d, phi_dd
+    logical, intent(in) :: with_coupling
+    real(dp) :: pdd_nm(size(j2p))
+    pdd_nm = phi_d**2*j2p
+    if (with_coupling) pdd_nm = pdd_nm - phi_dd*jp - 2.0_dp*phi_d*jv
+  end function frame_acceleration
+
+  !> Rotary inertia with the linear section angle theta = phi + w_x
+  !> (constant integrals): mp += rho I int gw gw^T (want_m), fp -= its force.
+  pure subroutine add_linear_rotary(rot_linear, rot_load, rhoi, phi_dd, pdd_nm, want_m, mp, fp)
+    real(dp), intent(in) :: rot_linear(:, :), rot_load(:), rhoi, phi_dd, pdd_nm(:)
+    logical, intent(in) :: want_m
+    real(dp), intent(inout) :: mp(:, :), fp(:)
+    if (want_m) mp = mp + rhoi*rot_linear
+    fp = fp - rhoi*(phi_dd*rot_load + matmul(rot_linear, pdd_nm))
+  end subroutine add_linear_rotary
 
   ! ------------------------------------------------ constant integrals
 
