@@ -374,10 +374,7 @@ contains
     info%max_abs_strain = 0.0_dp
     do i = 1, el%n_gauss
       e = abs(dot_product(el%g(:, 1, i), p)) + 0.5_dp*el%depth*abs(dot_product(el%g(:, 3, i), p))
-      if (e > info%max_abs_strain) then
-        info%max_abs_strain = e
-        info%x_over_l_max_strain = el%xg(i)/el%length
-      end if
+      call info%note_strain(e, el%xg(i)/el%length)
     end do
     info%beyond_peak = .false.
   end subroutine linear_strain_peak
@@ -410,10 +407,7 @@ contains
                                sp%hk, prel, want_k, want_damp, fint, fdamp, kp)
       end associate
       e = abs(sp%eps) + ht*abs(sp%kap)
-      if (e > info%max_abs_strain) then
-        info%max_abs_strain = e
-        info%x_over_l_max_strain = el%xg(i)/el%length
-      end if
+      call info%note_strain(e, el%xg(i)/el%length)
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
     info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star

@@ -82,6 +82,8 @@ module kear_element
     real(dp) :: x_over_l_max_strain = 0.0_dp
     logical :: beyond_peak = .false.        !< material on and max |eps| > eps*
     integer :: n_nonlinear_points = 0       !< cost proxy: nonlinear integrand evaluations
+  contains
+    procedure :: note_strain
   end type kear_eval_info_t
 
   !> Stress recovery at the element ends and the Gauss points, both fibres.
@@ -496,20 +498,34 @@ contains
       fib = 3 - 2*k                                      ! +1, then -1
       eps = eps_n - real(fib, dp)*fibre*kap              ! (K14), y = +-c
       sig = ro_stress(law, eps)
-      if (abs(sig) > rep%max_abs_stress) then
-        rep%max_abs_stress = abs(sig)
-        rep%stress = sig
-        rep%stress_x_over_l = eo
-        rep%stress_fibre = fib
-      end if
-      if (abs(eps) > rep%max_abs_strain) then
-        rep%max_abs_strain = abs(eps)
-        rep%strain = eps
-        rep%strain_x_over_l = eo
-        rep%strain_fibre = fib
-      end if
+      call keep_larger(sig, eo, fib, rep%max_abs_stress, rep%stress, rep%stress_x_over_l, rep%stress_fibre)
+      call keep_larger(eps, eo, fib, rep%max_abs_strain, rep%strain, rep%strain_x_over_l, rep%strain_fibre)
     end do
   end subroutine add_station_fibres
+
+  !> A report's peak |value| and where it stands: replaced when |value| is larger.
+  pure subroutine keep_larger(value, eo, fib, peak, signed, x_over_l, fibre)
+    real(dp), intent(in) :: value, eo
+    integer, intent(in) :: fib
+    real(dp), intent(inout) :: peak, signed, x_over_l
+    integer, intent(inout) :: fibre
+    if (abs(value) > peak) then
+      peak = abs(value)
+      signed = value
+      x_over_l = eo
+      fibre = fib
+    end if
+  end subroutine keep_larger
+
+  !> An evaluation's largest strain e (> 0) and where it stands (x/l).
+  pure subroutine note_strain(info, e, x_over_l)
+    class(kear_eval_info_t), intent(inout) :: info
+    real(dp), intent(in) :: e, x_over_l
+    if (e > info%max_abs_strain) then
+      info%max_abs_strain = e
+      info%x_over_l_max_strain = x_over_l
+    end if
+  end subroutine note_strain
 
   !> Axial strain eps_n and curvature kappa at x = e l from LOCAL nodal
   !> values p (see kear_local_dofs), with the element's switches.
@@ -567,10 +583,7 @@ contains
     info%max_abs_strain = 0.0_dp
     do i = 1, el%n_gauss
       e = ux + 0.5_dp*el%depth*abs(dot_product(el%gww(:, i), p))
-      if (e > info%max_abs_strain) then
-        info%max_abs_strain = e
-        info%x_over_l_max_strain = el%xg(i)/el%length
-      end if
+      call info%note_strain(e, el%xg(i)/el%length)
     end do
     info%beyond_peak = .false.            ! material switch off: no peak in the law
   end subroutine linear_strain_peak
@@ -606,10 +619,7 @@ contains
       call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de_used, sp%de_true, sp%dk, &
                              sp%he_used, sp%hk, prel, want_k, want_damp, fint, fdamp, kp)   ! (K17)
       e = abs(sp%eps) + ht*abs(sp%kap)
-      if (e > info%max_abs_strain) then
-        info%max_abs_strain = e
-        info%x_over_l_max_strain = el%xg(i)/el%length
-      end if
+      call info%note_strain(e, el%xg(i)/el%length)
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
     info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star
