@@ -30,7 +30,7 @@
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
   use companion_jacobian, only: fill_companion_jacobian
-  use band_assembly, only: add_to_lower_band
+  use band_assembly, only: add_to_lower_band, add_to_newton_bands
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -969,8 +969,8 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out), contiguous :: mass_lower(:, :), stiff_band(:, :)
-    real(dp) :: cij, c(2)
-    integer :: e, i, j, gi, gj, kd, g(2)
+    real(dp) :: c(2)
+    integer :: e, i, kd, g(2)
     kd = self%kd
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
@@ -982,19 +982,8 @@ contains
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e) .or. self%frame_tables) cycle
       call element_mass_stiffness(self, e, q, self%work_me, self%work_ke)
-      associate(me => self%work_me, ke => self%work_ke)
-      do j = 1, self%table%element_dofs
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, self%table%element_dofs
-          gi = self%table%map(i, e)
-          if (gi == 0) cycle
-          cij = self%table%coef(i, e)*self%table%coef(j, e)
-          stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
-          if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
-        end do
-      end do
-      end associate
+      call add_to_newton_bands(mass_lower, stiff_band, kd, self%work_me, self%work_ke, self%table%map(:, e), &
+                               self%table%coef(:, e))
     end do
     call add_sliding_matrices(self, q, mass_lower, stiff_band, kd)
     do e = 1, size(self%point_mass)

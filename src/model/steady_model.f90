@@ -366,10 +366,10 @@ contains
       if (self%table%is_sleeve_element(e)) then
         call sleeve_assembly(self, e, nd, me, ce, ke, fe, mass, damp, stiff, force, velocity_terms)
       else
-        call scatter_matrix(self, e, nd, me, mass)
-        if (velocity_terms) call scatter_matrix(self, e, nd, ce, damp)
-        call scatter_matrix(self, e, nd, ke, stiff)
-        call scatter_vector(self, e, nd, fe, force)
+        call self%table%scatter_add_matrix(e, me, mass)
+        if (velocity_terms) call self%table%scatter_add_matrix(e, ce, damp)
+        call self%table%scatter_add_matrix(e, ke, stiff)
+        call self%table%scatter_add(e, fe, force)
       end if
     end do
     if (allocated(self%cw_element)) call add_counterweights(self, mass, force)
@@ -389,39 +389,11 @@ contains
       fe = 0.0_dp
       me(3, 3) = self%cw_inertia(k)
       fe(3) = -self%cw_inertia(k)*self%fs(e)%phi_dd
-      call scatter_matrix(self, e, self%el(e)%nd, me, mass)
-      call scatter_vector(self, e, self%el(e)%nd, fe, force)
+      call self%table%scatter_add_matrix(e, me, mass)
+      call self%table%scatter_add(e, fe, force)
     end do
   end subroutine add_counterweights
 
-  subroutine scatter_matrix(self, e, nd, ae, ag)
-    type(steady_model_t), intent(in) :: self
-    integer, intent(in) :: e, nd
-    real(dp), intent(in) :: ae(:, :)
-    real(dp), intent(inout) :: ag(:, :)
-    integer :: i, j, gi, gj
-    do j = 1, nd
-      gj = self%table%map(j, e)
-      if (gj == 0) cycle
-      do i = 1, nd
-        gi = self%table%map(i, e)
-        if (gi == 0) cycle
-        ag(gi, gj) = ag(gi, gj) + self%table%coef(i, e)*ae(i, j)*self%table%coef(j, e)
-      end do
-    end do
-  end subroutine scatter_matrix
-
-  subroutine scatter_vector(self, e, nd, fe, fg)
-    type(steady_model_t), intent(in) :: self
-    integer, intent(in) :: e, nd
-    real(dp), intent(in) :: fe(:)
-    real(dp), intent(inout) :: fg(:)
-    integer :: i, gi
-    do i = 1, nd
-      gi = self%table%map(i, e)
-      if (gi > 0) fg(gi) = fg(gi) + self%table%coef(i, e)*fe(i)
-    end do
-  end subroutine scatter_vector
 
   subroutine sleeve_assembly(self, e, nd, me, ce, ke, fe, mass, damp, stiff, force, velocity_terms)
     type(steady_model_t), intent(in) :: self
@@ -450,18 +422,12 @@ contains
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     real(dp) :: qe(self%el(e)%nd)
-    integer :: i, ng
+    integer :: ng
     if (self%table%is_sleeve_element(e)) then
       ng = self%ng(e)
       qe = matmul(self%cm(1:self%el(e)%nd, 1:ng, e), q(self%table%glob(1:ng, e)))
     else
-      do i = 1, self%el(e)%nd
-        if (self%table%map(i, e) > 0) then
-          qe(i) = self%table%coef(i, e)*q(self%table%map(i, e))
-        else
-          qe(i) = 0.0_dp
-        end if
-      end do
+      qe = self%table%gather(e, q)
     end if
   end function element_q
 
@@ -507,9 +473,9 @@ contains
           if (present(tangent)) tangent(gg, gg) = tangent(gg, gg) + matmul(transpose(c0), matmul(kt(1:nd, 1:nd), c0))
         end associate
       else
-        call scatter_vector(self, e, nd, fe, fn)
-        if (present(secant)) call scatter_matrix(self, e, nd, ks, secant)
-        if (present(tangent)) call scatter_matrix(self, e, nd, kt, tangent)
+        call self%table%scatter_add(e, fe, fn)
+        if (present(secant)) call self%table%scatter_add_matrix(e, ks, secant)
+        if (present(tangent)) call self%table%scatter_add_matrix(e, kt, tangent)
       end if
     end do
     self%n_nonlinear_points = self%n_nonlinear_points + info%n_points

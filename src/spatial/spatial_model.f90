@@ -28,7 +28,7 @@ module spatial_model
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
   use companion_jacobian, only: fill_companion_jacobian
-  use band_assembly, only: add_to_lower_band
+  use band_assembly, only: add_to_lower_band, add_to_newton_bands
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_t
@@ -563,34 +563,15 @@ contains
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
-    real(dp) :: me(sdofs, sdofs), ke(sdofs, sdofs), cij, c(sdofs)
-    integer :: e, i, j, gi, gj, kd, na, ii, jj, act(sdofs), g(sdofs)
-    kd = self%kd
+    real(dp) :: me(sdofs, sdofs), ke(sdofs, sdofs)
+    integer :: e
     mass_lower = 0.0_dp
     stiff_band = 0.0_dp
     do e = 1, size(self%el)
       ! consecutive linear elements of a link with equal M_p and K share the global matrices
       if (.not. self%matrices_as_previous(e)) &
         call spatial_beam_matrices(self%el(e), self%table%gather(e, q), self%rb(e), me, ke)
-      na = 0                                     ! the element's DOFs that reach an unknown
-      do i = 1, sdofs
-        if (self%table%map(i, e) == 0) cycle
-        na = na + 1
-        act(na) = i
-        g(na) = self%table%map(i, e)
-        c(na) = self%table%coef(i, e)
-      end do
-      do jj = 1, na
-        j = act(jj)
-        gj = g(jj)
-        do ii = 1, na
-          i = act(ii)
-          gi = g(ii)
-          cij = c(ii)*c(jj)
-          stiff_band(kd + 1 + gi - gj, gj) = stiff_band(kd + 1 + gi - gj, gj) + cij*ke(i, j)
-          if (gi >= gj) mass_lower(1 + gi - gj, gj) = mass_lower(1 + gi - gj, gj) + cij*me(i, j)
-        end do
-      end do
+      call add_to_newton_bands(mass_lower, stiff_band, self%kd, me, ke, self%table%map(:, e), self%table%coef(:, e))
     end do
   end subroutine assemble_band
 
@@ -601,22 +582,14 @@ contains
     real(dp), intent(out) :: mass(:, :), stiff(:, :)
     real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs)
     type(spatial_eval_info_t) :: info
-    integer :: e, i, j, gi, gj
+    integer :: e, i
     mass = 0.0_dp
     stiff = 0.0_dp
     do e = 1, size(self%el)
       call spatial_beam_eval(self%el(e), self%table%gather(e, q), [(0.0_dp, i=1, sdofs)], self%rb(e), me, fe, info, &
                              tangent=ke)
-      do j = 1, sdofs
-        gj = self%table%map(j, e)
-        if (gj == 0) cycle
-        do i = 1, sdofs
-          gi = self%table%map(i, e)
-          if (gi == 0) cycle
-          mass(gi, gj) = mass(gi, gj) + self%table%coef(i, e)*me(i, j)*self%table%coef(j, e)
-          stiff(gi, gj) = stiff(gi, gj) + self%table%coef(i, e)*ke(i, j)*self%table%coef(j, e)
-        end do
-      end do
+      call self%table%scatter_add_matrix(e, me, mass)
+      call self%table%scatter_add_matrix(e, ke, stiff)
     end do
   end subroutine assemble_dense
 
