@@ -13,16 +13,14 @@ module steady_model
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linkage, only: mechanism_t, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_slider_link, &
-                     joint_free
+  use linkage, only: mechanism_t, joint_slider_link
   use kinematics, only: kinematics_t, motion_t
   use material_law, only: ramberg_osgood_t
   use tennant_element, only: tennant_element_t, tennant_options_t, tennant_section_t, frame_state_t, tennant_info_t, &
                              tennant_stress_t, tennant_element_init, tennant_linear_terms, tennant_nonlinear_terms, &
                              tennant_stress_recovery, tennant_local_field, tennant_max_sections, tennant_max_dof
-  use correlation_table, only: correlation_table_t, link_end_t, end_free => joint_free, end_pin => joint_pin, &
-                               end_ground_pin => joint_ground_pin, end_clamp => joint_clamp, &
-                               end_slider_fixed => joint_slider_fixed, end_sleeve => joint_sleeve
+  use correlation_table, only: correlation_table_t, link_end_t
+  use sliding_link, only: mechanism_link_ends
   use periodic_system, only: periodic_system_t, nonlinear_info_t
   use linalg, only: sym_generalized_eig
   implicit none
@@ -91,17 +89,12 @@ contains
     type(motion_t) :: m
     type(tennant_section_t), allocatable :: es(:)
     real(dp) :: masses(2)
-    integer :: k, side, j, e, i
+    integer :: k, e, i
     integer :: n_elem(mech%n_links)
 
     self%moving = .true.
     allocate(ends(2, mech%n_links))
-    do k = 1, mech%n_links
-      do side = 1, 2
-        j = mech%links(k)%joint(side)
-        ends(side, k) = link_end(mech, k, j)
-      end do
-    end do
+    call mechanism_link_ends(mech, ends)
     n_elem = mech%links(:)%n_elements
     call self%table%build(n_elem, ends, err, shear_dofs=opt%shear)
     if (err%failed()) return
@@ -193,37 +186,6 @@ contains
     allocate(self%cache_fs(ne, n_cache))
   end subroutine finish_init
 
-  !> The table's description of one link end.
-  function link_end(mech, k, j) result(te)
-    type(mechanism_t), intent(in) :: mech
-    integer, intent(in) :: k, j
-    type(link_end_t) :: te
-    integer :: i
-    te%joint = j
-    select case (mech%joints(j)%kind)
-    case (joint_pin)
-      te%kind = end_pin
-    case (joint_ground_pin)
-      te%kind = end_ground_pin
-    case (joint_clamp)
-      te%kind = end_clamp
-    case (joint_slider_fixed)
-      te%kind = end_slider_fixed
-      te%guide_angle = atan2(mech%joints(j)%guide(2), mech%joints(j)%guide(1))
-    case (joint_slider_link)
-      if (mech%joints(j)%sliding_link == k) then
-        te%kind = end_sleeve
-        te%carried = .false.
-        do i = 1, mech%joints(j)%n_links
-          if (mech%joints(j)%link(i) /= k) te%carried = .true.
-        end do
-      else
-        te%kind = end_pin        ! a carrier: pinned to the sleeve
-      end if
-    case (joint_free)
-      te%kind = end_free
-    end select
-  end function link_end
 
   !> A lumped joint mass goes to one link end at the joint: the first one
   !> that is not the sliding link of a sleeve (a ground sleeve does not move).
