@@ -35,12 +35,12 @@ module lsode_newton
   use kinds, only: dp
   use error_status, only: error_t
   use linalg, only: lu_factor, lu_solve, band_lu_factor, band_lu_solve
-  use lsode_solver, only: active, active_newton_is_model
+  use lsode_solver, only: active, active_newton_is_model, rhs_f77, jac_f77
   use dlsode_state, only: h, el0, tn, uround, n, miter, nje, nfe, ierpj, iersl, jcur, msbp, nst, nslp, &
                           lewt, lwm, crate
   implicit none
   private
-  public :: prepare_newton_matrix, solve_newton_matrix, rhs_f77, jac_f77
+  public :: prepare_newton_matrix, solve_newton_matrix
 
   ! The adaptive age limit (one integration at a time: DLSODE is not re-entrant).
   real(dp), save :: theta_bound = 0.0_dp     !< the system's jacobian_contraction (0: off)
@@ -56,21 +56,6 @@ module lsode_newton
   !> iteration whenever the first correction is not already below the test;
   !> a measured estimate (`fresh`) replaces it, not below this floor.
   real(dp), parameter :: fresh_floor = 0.1_dp
-
-  abstract interface
-    subroutine rhs_f77(neq, t, y, ydot)
-      import :: dp
-      integer, intent(in) :: neq(*)
-      real(dp), intent(in) :: t, y(*)
-      real(dp), intent(out) :: ydot(*)
-    end subroutine rhs_f77
-    subroutine jac_f77(neq, t, y, ml, mu, pd, nrowpd)
-      import :: dp
-      integer, intent(in) :: neq(*), ml, mu, nrowpd
-      real(dp), intent(in) :: t, y(*)
-      real(dp), intent(inout) :: pd(nrowpd, *)
-    end subroutine jac_f77
-  end interface
 
 contains
 

@@ -32,6 +32,7 @@ module lsode_solver
   public :: istate_sentence, mf_from_method, method_names
   public :: active, active_newton_is_model
   public :: max_steps_ceiling, max_steps_reason
+  public :: rhs_f77, jac_f77
 
   !> Method names accepted in decks, and the DLSODE method flag each means.
   character(len=*), parameter :: method_names = 'adams (MF=10), bdf (21), bdf_fd (22), bdf_band (24), bdf_band_fd (25)'
@@ -110,24 +111,29 @@ module lsode_solver
     procedure :: dense_output
   end type lsode_t
 
+  !> ODEPACK's F77 callbacks: the right-hand side and the Jacobian (DLSODE's
+  !> F and JAC, passed on to DPREPJ and DSOLSY, module lsode_newton).
+  abstract interface
+    subroutine rhs_f77(neq, t, y, ydot)
+      import :: dp
+      integer, intent(in) :: neq(*)
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(out) :: ydot(*)
+    end subroutine rhs_f77
+    subroutine jac_f77(neq, t, y, ml, mu, pd, nrowpd)
+      import :: dp
+      integer, intent(in) :: neq(*), ml, mu, nrowpd
+      real(dp), intent(in) :: t, y(*)
+      real(dp), intent(inout) :: pd(nrowpd, *)
+    end subroutine jac_f77
+  end interface
+
   interface
     subroutine dlsode(f, neq, y, t, tout, itol, rtol, atol, itask, istate, iopt, &
                       rwork, lrw, iwork, liw, jac, mf)
-      import :: dp
-      interface
-        subroutine f(neq, t, y, ydot)
-          import :: dp
-          integer, intent(in) :: neq(*)
-          real(dp), intent(in) :: t, y(*)
-          real(dp), intent(out) :: ydot(*)
-        end subroutine f
-        subroutine jac(neq, t, y, ml, mu, pd, nrowpd)
-          import :: dp
-          integer, intent(in) :: neq(*), ml, mu, nrowpd
-          real(dp), intent(in) :: t, y(*)
-          real(dp), intent(inout) :: pd(nrowpd, *)
-        end subroutine jac
-      end interface
+      import :: dp, rhs_f77, jac_f77
+      procedure(rhs_f77) :: f
+      procedure(jac_f77) :: jac
       integer, intent(in) :: neq(*), itol, itask, iopt, lrw, liw, mf
       real(dp), intent(inout) :: y(*), t
       real(dp), intent(in) :: tout, rtol(*), atol(*)

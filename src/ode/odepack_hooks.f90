@@ -56,7 +56,8 @@ end subroutine xerrwd
 !> factor P = I - h*el0*J.  Arguments as DSTODE passes them (YH and NYH unused).
 subroutine dprepj(neq, y, yh, nyh, ewt, ftem, savf, wm, iwm, f, jac)
   use kinds, only: dp
-  use lsode_newton, only: prepare_newton_matrix, rhs_f77, jac_f77
+  use lsode_newton, only: prepare_newton_matrix
+  use lsode_solver, only: rhs_f77, jac_f77
   implicit none
   integer, intent(in) :: neq(*), nyh
   real(dp), intent(inout) :: y(*), ftem(*), wm(*)
