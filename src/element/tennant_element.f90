@@ -32,6 +32,7 @@ module tennant_element
   use strings, only: str
   use quadrature, only: gauss_legendre, gauss_legendre_interval
   use shape_functions, only: quintic_hermite
+  use frame_motion, only: frame_state_t => motion_t   ! (the element frame: end 1, angle, length and rates, T1)
   use material_law, only: ramberg_osgood_t, section_resultants_t, validate_material, section_response, &
                           ro_stress, peak_strain, has_odd_integer_exponent
   implicit none
@@ -74,14 +75,6 @@ module tennant_element
     real(dp) :: e0 = 0.0_dp, e1 = 1.0_dp
     real(dp) :: b = 0.0_dp, h = 0.0_dp
   end type tennant_section_t
-
-  !> Rigid-body state of the element reference line and its length (T1).
-  type :: frame_state_t
-    real(dp) :: x1 = 0.0_dp, y1 = 0.0_dp, phi = 0.0_dp
-    real(dp) :: x1_d = 0.0_dp, y1_d = 0.0_dp, phi_d = 0.0_dp
-    real(dp) :: x1_dd = 0.0_dp, y1_dd = 0.0_dp, phi_dd = 0.0_dp
-    real(dp) :: length = 0.0_dp, length_d = 0.0_dp, length_dd = 0.0_dp
-  end type frame_state_t
 
   !> Constant local integrals at one length (local DOF order, nodal values p).
   type :: local_matrices_t

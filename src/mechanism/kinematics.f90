@@ -20,6 +20,7 @@ module kinematics
   use error_status, only: error_t
   use strings, only: str
   use linalg, only: lu_factor, lu_solve
+  use frame_motion, only: motion_t      ! (the rigid-body motion of a link or element)
   use linkage, only: mechanism_t, joint_slider_fixed, joint_slider_link, driver_angle
   implicit none
   private
@@ -41,15 +42,6 @@ module kinematics
     integer :: link1 = 0, link2 = 0
     integer :: sign = 0          !< branch: sign of the dyad's orientation (+1 open)
   end type assembly_step_t
-
-  !> Rigid-body motion of a link or of one of its elements: end 1, angle of
-  !> the reference line, length, and their first and second time derivatives.
-  type :: motion_t
-    real(dp) :: x1 = 0.0_dp, y1 = 0.0_dp, phi = 0.0_dp
-    real(dp) :: x1_d = 0.0_dp, y1_d = 0.0_dp, phi_d = 0.0_dp
-    real(dp) :: x1_dd = 0.0_dp, y1_dd = 0.0_dp, phi_dd = 0.0_dp
-    real(dp) :: length = 0.0_dp, length_d = 0.0_dp, length_dd = 0.0_dp
-  end type motion_t
 
   type :: kinematics_t
     type(mechanism_t) :: mech

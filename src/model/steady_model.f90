@@ -248,7 +248,6 @@ contains
     class(steady_model_t), intent(inout) :: self
     real(dp), intent(in) :: t
     type(error_t), intent(inout) :: err
-    type(motion_t) :: m
     integer :: e, i, n_steps
     real(dp) :: period, te, t0, dt_max, tol
     if (.not. self%moving) return
@@ -275,9 +274,7 @@ contains
     end if
     self%t_kin = te
     do e = 1, size(self%el)
-      m = self%kin%element_motion_global(e)
-      self%fs(e) = frame_state_t(m%x1, m%y1, m%phi, m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd, &
-                                 m%length, m%length_d, m%length_dd)
+      self%fs(e) = self%kin%element_motion_global(e)
     end do
     self%t_states = t
     call refresh_maps(self)
