@@ -29,7 +29,8 @@ module consistent_element
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
   use beam_properties, only: beam_properties_t, init_beam_properties
   use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
-                                 translational_force, frame_acceleration, add_linear_rotary, &
+                                 translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
+                                 subtract_elastic_forces, to_global_results, &
                                  add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
   use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
                           start_stress_report, station_x_over_l, add_station_fibres
@@ -133,7 +134,7 @@ contains
     real(dp), intent(out), optional :: tangent(nd, nd)
     logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
     real(dp) :: c, s, p(nd), v(nd), jp(nd), jv(nd), j2p(nd), pdd_nm(nd), prel(nd)
-    real(dp) :: mp(nd, nd), fp(nd), kp(nd, nd), fint(nd), fdamp(nd), acc0(2), rhoa, rhoi
+    real(dp) :: fp(nd), kp(nd, nd), fint(nd), fdamp(nd), acc0(2), rhoa, rhoi
     logical :: want_k, want_m
 
     c = cos(rb%phi)
@@ -146,7 +147,7 @@ contains
     acc0 = in_frame(c, s, rb%x1_dd, rb%y1_dd)
     want_m = .true.
     if (present(mass_wanted)) want_m = mass_wanted
-    if (want_m) mp = rhoa*el%mass_trans
+    if (want_m) mass = rhoa*el%mass_trans
     fp = translational_force(el%load0, el%load1, el%coupling, matmul(el%centrifugal, p), p, v, acc0, rb%phi_d, &
                              rb%phi_dd, rhoa, el%effects%coupling)
 
@@ -157,36 +158,27 @@ contains
     if (is_linear_strain(el)) then
       fint = matmul(el%k_linear, p)
       info%strain_energy = 0.5_dp*dot_product(p, fint)
-      fp = fp - fint
-      if (el%beta > 0.0_dp) fp = fp - el%beta*matmul(el%k_linear, prel)
+      if (el%beta > 0.0_dp) fdamp = matmul(el%k_linear, prel)
+      call subtract_elastic_forces(fp, fint, fdamp, el%beta)
       if (want_k) kp = el%k_linear
       call linear_strain_peak(el, p, info)
     else
       call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
-      fp = fp - fint
-      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
+      call subtract_elastic_forces(fp, fint, fdamp, el%beta)
     end if
 
     ! rotary inertia
     if (el%effects%rotary_inertia) then
       pdd_nm = frame_acceleration(j2p, jp, jv, rb%phi_d, rb%phi_dd, el%effects%coupling)
       if (.not. el%effects%curvature) then
-        call add_linear_rotary(el%rot_linear, el%rot_load, rhoi, rb%phi_dd, pdd_nm, want_m, mp, fp)
+        call add_linear_rotary(el%rot_linear, el%rot_load, rhoi, rb%phi_dd, pdd_nm, want_m, mass, fp)
       else
-        if (.not. want_m) mp = 0.0_dp          ! (a caller's choice: this M depends on q)
-        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mp, fp, info)
+        if (.not. want_m) mass = 0.0_dp          ! (a caller's choice: this M depends on q)
+        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mass, fp, info)
       end if
     end if
 
-    force = to_global(c, s, fp, node2)
-    if (want_k) then
-      tangent = kp
-      call rotate_to_global(c, s, tangent, node2)
-    end if
-    if (want_m) then
-      mass = mp
-      call rotate_to_global(c, s, mass, node2)
-    end if
+    call to_global_results(c, s, node2, fp, force, want_m, mass, kp, tangent)
   end subroutine consistent_element_eval
 
   !> Internal force dSE/dq.
@@ -244,7 +236,7 @@ contains
     type(rigid_state_t), intent(in) :: rb
     integer, parameter :: nt = 8
     real(dp) :: c, s, p(nd), pd(nd), x(nt), w(nt), su(nd), sw(nd), g(nd, 4)
-    real(dp) :: vloc(2), rdot(2), a, b, ad, bd, thd
+    real(dp) :: vloc(2), a, b, ad, bd, thd
     integer :: i
     c = cos(rb%phi)
     s = sin(rb%phi)
@@ -255,9 +247,7 @@ contains
     call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
     do i = 1, nt
       call consistent_shape(x(i)/el%length, el%length, su, sw, g)
-      rdot(1) = vloc(1) + dot_product(su, pd) - rb%phi_d*dot_product(sw, p)
-      rdot(2) = vloc(2) + dot_product(sw, pd) + rb%phi_d*(x(i) + dot_product(su, p))
-      ke = ke + 0.5_dp*el%material%rho*el%area*w(i)*(rdot(1)**2 + rdot(2)**2)
+      ke = ke + point_kinetic_energy(el%material%rho*el%area, w(i), x(i), vloc, su, sw, p, pd, rb%phi_d)
     end do
     if (el%effects%rotary_inertia) then
       do i = 1, el%n_gauss

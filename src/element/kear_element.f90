@@ -30,7 +30,8 @@ module kear_element
   use beam_properties, only: element_effects_t, beam_properties_t, init_beam_properties
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
   use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
-                                 translational_force, frame_acceleration, add_linear_rotary, &
+                                 translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
+                                 subtract_elastic_forces, to_global_results, &
                                  add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
   implicit none
   private
@@ -278,8 +279,7 @@ contains
     want_k = present(tangent)
     if (linear_strain) then
       info%strain_energy = 0.5_dp*dot_product(p, fint)
-      fp = fp - fint
-      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
+      call subtract_elastic_forces(fp, fint, fdamp, el%beta)
       if (want_k) kp = el%k_linear
       if (present(peak_wanted)) then
         if (peak_wanted) call linear_strain_peak(el, p, info)
@@ -288,8 +288,7 @@ contains
       end if
     else
       call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
-      fp = fp - fint
-      if (el%beta > 0.0_dp) fp = fp - el%beta*fdamp
+      call subtract_elastic_forces(fp, fint, fdamp, el%beta)
     end if
 
     ! rotary inertia
@@ -303,12 +302,7 @@ contains
       end if
     end if
 
-    force = to_global(c, s, fp, node2)
-    if (want_k) then
-      tangent = kp
-      call rotate_to_global(c, s, tangent, node2)
-    end if
-    if (want_m) call rotate_to_global(c, s, mass, node2)
+    call to_global_results(c, s, node2, fp, force, want_m, mass, kp, tangent)
   end subroutine kear_element_eval
 
   !> fint = K p, (if damped) fdamp = K prel and cp = C p in one pass (the
@@ -395,7 +389,7 @@ contains
     type(rigid_state_t), intent(in) :: rb
     integer, parameter :: nt = 8
     real(dp) :: c, s, p(8), pd(8), x(nt), w(nt), n(2), h(6), hx(6), su(8), sw(8), gw(8)
-    real(dp) :: vloc(2), rdot(2), a, b, ad, bd, thd, r2
+    real(dp) :: vloc(2), a, b, ad, bd, thd, r2
     integer :: i
     c = cos(rb%phi)
     s = sin(rb%phi)
@@ -412,9 +406,7 @@ contains
       su(5) = n(2)
       call spread_w(h, sw)
       ! r_dot in the element frame (K6): R1_dot + rho_dot + phi_dot J rho
-      rdot(1) = vloc(1) + dot_product(su, pd) - rb%phi_d*dot_product(sw, p)
-      rdot(2) = vloc(2) + dot_product(sw, pd) + rb%phi_d*(x(i) + dot_product(su, p))
-      ke = ke + 0.5_dp*el%material%rho*el%area*w(i)*(rdot(1)**2 + rdot(2)**2)
+      ke = ke + point_kinetic_energy(el%material%rho*el%area, w(i), x(i), vloc, su, sw, p, pd, rb%phi_d)
     end do
     if (el%effects%rotary_inertia) then
       do i = 1, el%n_gauss

@@ -12,7 +12,8 @@ module planar_beam_kernels
   implicit none
   private
   public :: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame
-  public :: translational_force, frame_acceleration, add_linear_rotary
+  public :: translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy
+  public :: subtract_elastic_forces, to_global_results
   public :: add_constant_integrals, rotating_frame_integrals
   public :: add_station_terms, exact_angle_terms
 
@@ -99,6 +100,32 @@ contains
     r(2) = -s*x + c*y
   end function in_frame
 
+  !> An evaluation's local results into the global frame: force = T^T fp,
+  !> tangent = T^T kp T (when asked for), mass := T^T mass T (want_m).
+  pure subroutine to_global_results(c, s, k2, fp, force, want_m, mass, kp, tangent)
+    real(dp), intent(in) :: c, s, fp(:), kp(:, :)
+    integer, intent(in) :: k2
+    real(dp), intent(out) :: force(:)
+    logical, intent(in) :: want_m
+    real(dp), intent(inout) :: mass(:, :)
+    real(dp), intent(out), optional :: tangent(:, :)
+    force = to_global(c, s, fp, k2)
+    if (present(tangent)) then
+      tangent = kp
+      call rotate_to_global(c, s, tangent, k2)
+    end if
+    if (want_m) call rotate_to_global(c, s, mass, k2)
+  end subroutine to_global_results
+
+  !> fp -= the internal force fint and, with beta > 0, the stiffness-
+  !> proportional damping force beta fdamp (fdamp = K_t p_rel).
+  pure subroutine subtract_elastic_forces(fp, fint, fdamp, beta)
+    real(dp), intent(inout) :: fp(:)
+    real(dp), intent(in) :: fint(:), fdamp(:), beta
+    fp = fp - fint
+    if (beta > 0.0_dp) fp = fp - beta*fdamp
+  end subroutine subtract_elastic_forces
+
   ! ------------------------------------------------------------ inertia
 
   !> Force of the translational inertia (exact: KE is quadratic in (q, q_dot),
@@ -134,6 +161,17 @@ contains
     if (want_m) mp = mp + rhoi*rot_linear
     fp = fp - rhoi*(phi_dd*rot_load + matmul(rot_linear, pdd_nm))
   end subroutine add_linear_rotary
+
+  !> The translational kinetic energy at one point (x, weight w) of a direct
+  !> quadrature (K3, K6): rho A w |r_dot|^2 / 2 with r_dot in the element
+  !> frame = R1_dot (vloc) + rho_dot + phi_dot J rho, rho = (x + u, w).
+  pure real(dp) function point_kinetic_energy(rhoa, w, x, vloc, su, sw, p, pd, phi_d) result(ke)
+    real(dp), intent(in) :: rhoa, w, x, vloc(2), su(:), sw(:), p(:), pd(:), phi_d
+    real(dp) :: rdot(2)
+    rdot(1) = vloc(1) + dot_product(su, pd) - phi_d*dot_product(sw, p)
+    rdot(2) = vloc(2) + dot_product(sw, pd) + phi_d*(x + dot_product(su, p))
+    ke = 0.5_dp*rhoa*w*(rdot(1)**2 + rdot(2)**2)
+  end function point_kinetic_energy
 
   ! ------------------------------------------------ constant integrals
 
