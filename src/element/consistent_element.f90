@@ -186,14 +186,8 @@ contains
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: q(nd), phi
     real(dp), intent(out) :: f(nd)
-    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
-    type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q, node2)
-    if (is_linear_strain(el)) then
-      fint = matmul(el%k_linear, p)
-    else
-      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
-    end if
+    real(dp) :: fint(nd), kp(nd, nd), se
+    call static_strain_terms(el, q, phi, .false., fint, kp, se)
     f = to_global(cos(phi), sin(phi), fint, node2)
   end subroutine consistent_internal_force
 
@@ -202,31 +196,38 @@ contains
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: q(nd), phi
     real(dp), intent(out) :: kt(nd, nd)
-    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
-    type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q, node2)
-    if (is_linear_strain(el)) then
-      kp = el%k_linear
-    else
-      call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
-    end if
-    kt = kp
+    real(dp) :: fint(nd), se
+    call static_strain_terms(el, q, phi, .true., fint, kt, se)
     call rotate_to_global(cos(phi), sin(phi), kt, node2)
   end subroutine consistent_tangent_stiffness
 
   pure real(dp) function consistent_strain_energy(el, q, phi) result(se)
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: q(nd), phi
-    real(dp) :: p(nd), fint(nd), fdamp(nd), kp(nd, nd)
+    real(dp) :: fint(nd), kp(nd, nd)
+    call static_strain_terms(el, q, phi, .false., fint, kp, se)
+  end function consistent_strain_energy
+
+  !> Internal force fint = dSE/dp (local), with want_k the tangent kp, and the
+  !> strain energy se at (q, phi), without the motion (the static terms of
+  !> consistent_internal_force, _tangent_stiffness and _strain_energy).
+  pure subroutine static_strain_terms(el, q, phi, want_k, fint, kp, se)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(nd), phi
+    logical, intent(in) :: want_k
+    real(dp), intent(out) :: fint(nd), kp(nd, nd), se
+    real(dp) :: p(nd), fdamp(nd)
     type(kear_eval_info_t) :: info
     p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
-      se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
+      fint = matmul(el%k_linear, p)
+      se = 0.5_dp*dot_product(p, fint)
+      if (want_k) kp = el%k_linear
     else
-      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
+      call nonlinear_strain_terms(el, p, p, want_k, .false., info, fint, fdamp, kp)
       se = info%strain_energy
     end if
-  end function consistent_strain_energy
+  end subroutine static_strain_terms
 
   !> Kinetic energy from the positions (K5) and the section angle (K8)
   !> directly, independent of the precomputed matrices (a check of them).

@@ -334,14 +334,8 @@ contains
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), phi
     real(dp), intent(out) :: f(8)
-    real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
-    type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q, node2)
-    if (is_linear_strain(el)) then
-      fint = matmul(el%k_linear, p)
-    else
-      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
-    end if
+    real(dp) :: fint(8), kp(8, 8), se
+    call static_strain_terms(el, q, phi, .false., fint, kp, se)
     f = to_global(cos(phi), sin(phi), fint, node2)
   end subroutine kear_internal_force
 
@@ -350,15 +344,8 @@ contains
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), phi
     real(dp), intent(out) :: kt(8, 8)
-    real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
-    type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q, node2)
-    if (is_linear_strain(el)) then
-      kp = el%k_linear
-    else
-      call nonlinear_strain_terms(el, p, p, .true., .false., info, fint, fdamp, kp)
-    end if
-    kt = kp
+    real(dp) :: fint(8), se
+    call static_strain_terms(el, q, phi, .true., fint, kt, se)
     call rotate_to_global(cos(phi), sin(phi), kt, node2)
   end subroutine kear_tangent_stiffness
 
@@ -366,16 +353,30 @@ contains
   pure real(dp) function kear_strain_energy(el, q, phi) result(se)
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), phi
-    real(dp) :: p(8), fint(8), fdamp(8), kp(8, 8)
+    real(dp) :: fint(8), kp(8, 8)
+    call static_strain_terms(el, q, phi, .false., fint, kp, se)
+  end function kear_strain_energy
+
+  !> Internal force fint = dSE/dp (local), with want_k the tangent kp, and the
+  !> strain energy se at (q, phi), without the motion (the static terms of
+  !> kear_internal_force, _tangent_stiffness and _strain_energy).
+  pure subroutine static_strain_terms(el, q, phi, want_k, fint, kp, se)
+    type(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(8), phi
+    logical, intent(in) :: want_k
+    real(dp), intent(out) :: fint(8), kp(8, 8), se
+    real(dp) :: p(8), fdamp(8)
     type(kear_eval_info_t) :: info
     p = to_local(cos(phi), sin(phi), q, node2)
     if (is_linear_strain(el)) then
-      se = 0.5_dp*dot_product(p, matmul(el%k_linear, p))
+      fint = matmul(el%k_linear, p)
+      se = 0.5_dp*dot_product(p, fint)
+      if (want_k) kp = el%k_linear
     else
-      call nonlinear_strain_terms(el, p, p, .false., .false., info, fint, fdamp, kp)
+      call nonlinear_strain_terms(el, p, p, want_k, .false., info, fint, fdamp, kp)
       se = info%strain_energy
     end if
-  end function kear_strain_energy
+  end subroutine static_strain_terms
 
   !> Kinetic energy (K3) of the element, evaluated directly from the
   !> positions (K5) and section angle (K8), independent of the precomputed
