@@ -33,7 +33,7 @@ module consistent_element
                                  subtract_elastic_forces, to_global_results, &
                                  add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
   use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
-                          start_stress_report, station_x_over_l, add_station_fibres
+                          stress_report, station_x_over_l
   implicit none
   private
   public :: consistent_ndof, consistent_element_t
@@ -306,17 +306,13 @@ contains
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: q(nd), phi
     type(stress_report_t) :: rep
-    real(dp) :: p(nd), eo, eps_n, kap
-    type(ramberg_osgood_t) :: law
+    real(dp) :: p(nd), eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
     integer :: i
-    call start_stress_report(el%beam_properties_t, law, rep)
     p = to_local(cos(phi), sin(phi), q, node2)
     do i = 0, el%n_gauss + 1
-      eo = station_x_over_l(el%beam_properties_t, el%xg, i)
-      call consistent_section_strains(el, p, eo, eps_n, kap)
-      call add_station_fibres(law, el%fibre, eps_n, kap, eo, rep)
+      call consistent_section_strains(el, p, station_x_over_l(el%beam_properties_t, el%xg, i), eps_n(i), kap(i))
     end do
-    rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
+    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
   end function consistent_stress_recovery
 
   !> Axial strain and curvature at x = e l from LOCAL nodal values p.

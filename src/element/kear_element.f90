@@ -40,7 +40,7 @@ module kear_element
   public :: kear_element_init, kear_element_eval, kear_internal_force, kear_tangent_stiffness
   public :: kear_strain_energy, kear_kinetic_energy, kear_stress_recovery, kear_section_strains
   public :: kear_local_dofs, kear_local_displacement
-  public :: start_stress_report, station_x_over_l, add_station_fibres   ! (shared with consistent_element)
+  public :: stress_report, station_x_over_l   ! (shared with consistent_element)
   public :: formulation_from_name, formulation_name, effects_all_on, effects_summary
 
   integer, parameter :: kear_ndof = 8
@@ -439,18 +439,29 @@ contains
     type(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: q(8), phi
     type(stress_report_t) :: rep
-    real(dp) :: p(8), eo, eps_n, kap
-    type(ramberg_osgood_t) :: law
+    real(dp) :: p(8), eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
     integer :: i
-    call start_stress_report(el%beam_properties_t, law, rep)
     p = to_local(cos(phi), sin(phi), q, node2)
     do i = 0, el%n_gauss + 1
-      eo = station_x_over_l(el%beam_properties_t, el%xg, i)
-      call kear_section_strains(el, p, eo, eps_n, kap)
-      call add_station_fibres(law, el%fibre, eps_n, kap, eo, rep)
+      call kear_section_strains(el, p, station_x_over_l(el%beam_properties_t, el%xg, i), eps_n(i), kap(i))
     end do
-    rep%beyond_peak = el%effects%material .and. rep%max_abs_strain > el%eps_star
+    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
   end function kear_stress_recovery
+
+  !> The stress report of the stations i = 0 .. n_gauss + 1 (station_x_over_l)
+  !> from their axial strain and curvature (both elements' recovery).
+  pure function stress_report(props, xg, eps_n, kap) result(rep)
+    type(beam_properties_t), intent(in) :: props
+    real(dp), intent(in) :: xg(:), eps_n(0:), kap(0:)
+    type(stress_report_t) :: rep
+    type(ramberg_osgood_t) :: law
+    integer :: i
+    call start_stress_report(props, law, rep)
+    do i = 0, props%n_gauss + 1
+      call add_station_fibres(law, props%fibre, eps_n(i), kap(i), station_x_over_l(props, xg, i), rep)
+    end do
+    rep%beyond_peak = props%effects%material .and. rep%max_abs_strain > props%eps_star
+  end function stress_report
 
   !> The law of the stress recovery (E2 = 0 with the material switch off) and
   !> an empty report (both elements' recovery).
