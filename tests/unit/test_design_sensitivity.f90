@@ -11,12 +11,9 @@ module test_design_sensitivity_suite
   use periodic_problems, only: oscillator_t
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
                                orbit_sensitivity
-  use deck_reader, only: deck_t
-  use linkage, only: mechanism_t
   use design_problem, only: design_problem_t, design_eval_t
-  use design_sequence, only: design_sequence_t
-  use design_analysis, only: load_design
-  use deck_runner, only: scratch_path, write_deck
+  use design_fixtures, only: load_design_text, eval_reason
+  use deck_runner, only: scratch_path
   use assertions
   implicit none
   private
@@ -189,7 +186,7 @@ contains
     call prob%setup('example 3', x0)
     call assert_true(prob%variational_applies(), 'the default derivatives are the variational ones')
     call prob%evaluate(x0, ev)
-    call assert_true(ev%ok, 'example 3 at x0 analyses: '//reason(ev))
+    call assert_true(ev%ok, 'example 3 at x0 analyses: '//eval_reason(ev))
     if (.not. ev%ok) return
     before = prob%n_analyses
     call prob%derivatives_at(x0, dg, dr, ok)
@@ -219,7 +216,7 @@ contains
     real(dp), allocatable, intent(out) :: g(:), r(:)
     type(design_eval_t) :: ev
     call prob%evaluate(x, ev)
-    call assert_true(ev%ok, 'a neighbour analyses: '//reason(ev))
+    call assert_true(ev%ok, 'a neighbour analyses: '//eval_reason(ev))
     g = prob%constraints_of(ev)
     r = prob%residuals_of(ev)
   end subroutine values
@@ -239,50 +236,23 @@ contains
     call assert_error(err, 2, 'derivatives', 'an unknown choice')
   end subroutine test_switch
 
-  function reason(ev) result(text)
-    type(design_eval_t), intent(in) :: ev
-    character(len=:), allocatable :: text
-    text = ''
-    if (allocated(ev%reason)) text = ev%reason
-  end function reason
-
   !> Load the deck text into a design problem (not yet set up).
   subroutine load(text, prob, x0)
     character(len=*), intent(in) :: text
     type(design_problem_t), intent(out) :: prob
     real(dp), allocatable, intent(out) :: x0(:)
-    type(deck_t) :: deck
-    type(mechanism_t) :: mech
-    type(design_sequence_t) :: seq
     type(error_t) :: err
-    call write_deck(scratch//'.nml', text)
-    call deck%open(scratch//'.nml', err)
-    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
-    call deck%close()
+    call load_design_text(scratch, text, prob, x0, err)
     call assert_true(.not. err%failed(), 'the deck loads: '//err%text())
-    call delete_scratch()
   end subroutine load
 
   subroutine try_load(text, err)
     character(len=*), intent(in) :: text
     type(error_t), intent(inout) :: err
-    type(deck_t) :: deck
-    type(mechanism_t) :: mech
     type(design_problem_t) :: prob
-    type(design_sequence_t) :: seq
     real(dp), allocatable :: x0(:)
-    call write_deck(scratch//'.nml', text)
-    call deck%open(scratch//'.nml', err)
-    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
-    call deck%close()
-    call delete_scratch()
+    call load_design_text(scratch, text, prob, x0, err)
   end subroutine try_load
-
-  subroutine delete_scratch()
-    integer :: u
-    open(newunit=u, file=scratch//'.nml', status='old')
-    close(u, status='delete')
-  end subroutine delete_scratch
 end module test_design_sensitivity_suite
 
 program test_design_sensitivity
