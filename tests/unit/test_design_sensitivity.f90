@@ -57,6 +57,7 @@ contains
   subroutine test_linear_oscillator()
     type(oscillator_t), target :: sys
     type(oscillator_t), target :: plus(3), minus(3)
+    character(len=*), parameter :: names(3) = [character(len=2) :: 'k', 'c', 'f1']
     type(shooting_settings_t) :: ss
     type(shooting_report_t) :: rep
     type(error_t) :: err
@@ -71,15 +72,9 @@ contains
     x = sys%f1/d
     dx = [-x/d, -cmplx(0.0_dp, w, dp)*x/d, 1.0_dp/d]
     do j = 1, 3
-      plus(j) = sys
-      minus(j) = sys
+      plus(j) = shifted(sys, names(j), hk)
+      minus(j) = shifted(sys, names(j), -hk)
     end do
-    plus(1)%k = sys%k + hk
-    minus(1)%k = sys%k - hk
-    plus(2)%c = sys%c + hk
-    minus(2)%c = sys%c - hk
-    plus(3)%f1 = sys%f1 + hk
-    minus(3)%f1 = sys%f1 - hk
     ss%rtol = 1.0e-11_dp
     ss%atol = 1.0e-14_dp
     y0 = [real(x), -w*aimag(x)]
@@ -107,6 +102,7 @@ contains
   !> (checked), so a missing tangent fails.
   subroutine test_duffing()
     type(oscillator_t), target :: sys, plus(2), minus(2)
+    character(len=*), parameter :: names(2) = [character(len=5) :: 'k', 'gamma']
     type(shooting_settings_t) :: ss
     type(shooting_report_t) :: rep
     type(error_t) :: err
@@ -128,13 +124,9 @@ contains
       times(k) = (k - 1)*(2.0_dp*pi/w)/12.0_dp
     end do
     do j = 1, 2
-      plus(j) = sys
-      minus(j) = sys
+      plus(j) = shifted(sys, names(j), h)
+      minus(j) = shifted(sys, names(j), -h)
     end do
-    plus(1)%k = sys%k + h
-    minus(1)%k = sys%k - h
-    plus(2)%gamma = sys%gamma + h
-    minus(2)%gamma = sys%gamma - h
     call orbit_sensitivity(sys, plus, minus, [2*h, 2*h], ss, y0, times, q, dq, rep, err)
     call assert_true(.not. err%failed(), 'orbit_sensitivity runs: '//err%text())
     if (err%failed()) return
@@ -235,6 +227,28 @@ contains
     call try_load(example3//'derivatives = ''adjoint'' /|&steady rtol = 1e-7 /', err)
     call assert_error(err, 2, 'derivatives', 'an unknown choice')
   end subroutine test_switch
+
+  !> A copy of the oscillator with its parameter `name` moved by dh (the
+  !> central differences' neighbours).
+  function shifted(sys, name, dh) result(moved)
+    type(oscillator_t), intent(in) :: sys
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: dh
+    type(oscillator_t) :: moved
+    moved = sys
+    select case (trim(name))
+    case ('k')
+      moved%k = sys%k + dh
+    case ('c')
+      moved%c = sys%c + dh
+    case ('f1')
+      moved%f1 = sys%f1 + dh
+    case ('gamma')
+      moved%gamma = sys%gamma + dh
+    case default
+      call assert_true(.false., 'no oscillator parameter '//name)
+    end select
+  end function shifted
 
   !> Load the deck text into a design problem (not yet set up).
   subroutine load(text, prob, x0)
