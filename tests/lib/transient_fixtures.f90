@@ -21,7 +21,7 @@ module transient_fixtures
   public :: e1, rho, width, depth, area, inertia, radius_gyration, beam_length, bl_clamped, bl_cantilever
   public :: probe_t, probe_modal, probe_local_w
   public :: beam_input, cantilever_input, fourbar_abcd, fourbar_input, make_model, all_effects, euler_bernoulli
-  public :: modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
+  public :: mode_start, modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
   public :: rigid_fourbar_forces, rigid_limit_state, fourbar_unknowns
 
   ! FORMULATION.md §8.1 section (b = 0.25, h = 1 in) and aluminium.
@@ -133,6 +133,27 @@ contains
     real(dp), intent(in) :: beta_l, l
     euler_bernoulli = (beta_l/l)**2*sqrt(e1*inertia/(rho*area))
   end function euler_bernoulli
+
+  !> The linear modes of `model` (omega, shapes: allocated here) and a state
+  !> at rest displaced along mode `mode`, scaled so that its largest entry,
+  !> or with `at` its entry at DOF at, is `amplitude`: the start of the
+  !> free-vibration, period and energy tests.
+  subroutine mode_start(model, mode, amplitude, omega, shapes, y, err, at)
+    type(mechanism_model_t), intent(inout) :: model
+    integer, intent(in) :: mode
+    real(dp), intent(in) :: amplitude
+    real(dp), allocatable, intent(out) :: omega(:), shapes(:, :), y(:)
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: at
+    allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
+    call model%linear_modes(omega, shapes, err)
+    y = 0.0_dp
+    if (present(at)) then
+      y(1::2) = amplitude*shapes(:, mode)/shapes(at, mode)
+    else
+      y(1::2) = amplitude*shapes(:, mode)/maxval(abs(shapes(:, mode)))
+    end if
+  end subroutine mode_start
 
   !> Probe on the modal coordinate of mode k: c = M0 x_k, so that c.q is the
   !> amplitude of mode k (M-orthonormal modes of the structure at rest).
