@@ -10,7 +10,7 @@ module design_fixtures
   use design_problem, only: design_problem_t, design_eval_t
   use design_sequence, only: design_sequence_t
   use design_analysis, only: load_design
-  use deck_runner, only: read_deck_text
+  use deck_runner, only: open_deck_text, close_deck_text
   implicit none
   private
   public :: bar_deck, load_design_text, eval_reason
@@ -32,15 +32,12 @@ contains
     type(design_problem_t), intent(out) :: prob
     real(dp), allocatable, intent(out) :: x0(:)
     type(error_t), intent(inout) :: err
-    call read_deck_text(reader, stem, text, err)
-  contains
-    subroutine reader(deck, rerr)
-      type(deck_t), intent(inout) :: deck
-      type(error_t), intent(inout) :: rerr
-      type(mechanism_t) :: mech
-      type(design_sequence_t) :: seq
-      call load_design(deck, mech, prob, x0, seq, rerr)
-    end subroutine reader
+    type(deck_t) :: deck
+    type(mechanism_t) :: mech
+    type(design_sequence_t) :: seq
+    call open_deck_text(stem, text, deck, err)
+    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
+    call close_deck_text(stem, deck)
   end subroutine load_design_text
 
   !> Why the evaluation failed ('' when it gave no reason).

@@ -19,6 +19,13 @@ module element_checks
   private
   public :: unit_beam, check_force_is_gradient, check_tangent_is_jacobian, check_inertia_is_lagrange
 
+  !> The element and frame angle under check, read by the module procedures
+  !> the finite differences call (module procedures, not internal ones: an
+  !> internal procedure passed as an argument needs an executable stack for
+  !> gfortran's trampoline, and this module is linked into every test).
+  type(beam_element_t), save :: checked
+  real(dp), save :: checked_phi = 0.0_dp
+
 contains
 
   !> The soft unit element of `kind` (element_kind_kear or _consistent) with
@@ -41,26 +48,20 @@ contains
   subroutine check_force_is_gradient(kind, q)
     integer, intent(in) :: kind
     real(dp), intent(in) :: q(:)
-    real(dp), parameter :: phi = 0.7_dp
     type(element_effects_t) :: fx(4)
-    type(beam_element_t) :: el
     real(dp) :: f(size(q)), g(size(q))
     integer :: k
     fx(1) = element_effects_t(stretching=.true.)
     fx(2) = element_effects_t(curvature=.true.)
     fx(3) = element_effects_t(material=.true.)
     fx(4) = effects_all_on()
+    checked_phi = 0.7_dp
     do k = 1, 4
-      el = unit_beam(kind, fx(k))
-      call beam_internal_force(el, q, phi, f)
-      g = fd_gradient(energy, q, 1.0e-4_dp)
+      checked = unit_beam(kind, fx(k))
+      call beam_internal_force(checked, q, checked_phi, f)
+      g = fd_gradient(checked_strain_energy, q, 1.0e-4_dp)
       call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
     end do
-  contains
-    real(dp) function energy(qq)
-      real(dp), intent(in) :: qq(:)
-      energy = beam_strain_energy(el, qq, phi)
-    end function energy
   end subroutine check_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against the
@@ -72,22 +73,17 @@ contains
     real(dp), intent(in) :: q(:)
     character(len=*), intent(in) :: label
     logical, intent(in), optional :: symmetric
-    real(dp), parameter :: phi = -0.4_dp
     real(dp) :: kt(size(q), size(q)), kfd(size(q), size(q))
-    call beam_tangent_stiffness(el, q, phi, kt)
-    call fd_jacobian(internal_force, q, 1.0e-4_dp, kfd)
+    checked = el
+    checked_phi = -0.4_dp
+    call beam_tangent_stiffness(checked, q, checked_phi, kt)
+    call fd_jacobian(checked_internal_force, q, 1.0e-4_dp, kfd)
     call assert_all_close(reshape(kt, [size(kt)]), reshape(kfd, [size(kfd)]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
                           'K_t vs FD Jacobian: '//label)
     if (present(symmetric)) then
       if (.not. symmetric) return
     end if
     call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), 'K_t symmetric: '//label)
-  contains
-    subroutine internal_force(qq, f)
-      real(dp), intent(in) :: qq(:)
-      real(dp), intent(out) :: f(:)
-      call beam_internal_force(el, qq, phi, f)
-    end subroutine internal_force
   end subroutine check_tangent_is_jacobian
 
   !> The inertial operator M qdd - F - dSE/dq of the element against
@@ -104,7 +100,6 @@ contains
     real(dp), parameter :: t = 0.37_dp
     character(len=12), parameter :: label(3) = [character(len=12) :: 'all on', 'linear angle', 'linear model']
     type(element_effects_t) :: fx(3)
-    type(beam_element_t) :: el
     type(rigid_state_t) :: rb
     type(kear_eval_info_t) :: info
     real(dp) :: op(size(q)), lag(size(q)), m(size(q), size(q)), f(size(q)), fint(size(q))
@@ -113,18 +108,30 @@ contains
     fx(2) = element_effects_t(stretching=.true., rotary_inertia=.true., coupling=.true.)
     fx(3) = element_effects_t(coupling=.true.)
     do k = 1, 3
-      el = unit_beam(kind, fx(k))
+      checked = unit_beam(kind, fx(k))
       rb = rigid_at(t)
-      call beam_element_eval(el, q, qd, rb, m, f, info)
-      call beam_internal_force(el, q, rb%phi, fint)
+      call beam_element_eval(checked, q, qd, rb, m, f, info)
+      call beam_internal_force(checked, q, rb%phi, fint)
       op = matmul(m, qdd) - f - fint
-      lag = fd_lagrange(energy, q, qd, qdd, t)
+      lag = fd_lagrange(checked_kinetic_energy, q, qd, qdd, t)
       call assert_all_close(op, lag, 0.0_dp, 1.0e-7_dp*maxval(abs(lag)), 'Lagrange operator: '//trim(label(k)))
     end do
-  contains
-    real(dp) function energy(qq, qqd, tt)
-      real(dp), intent(in) :: qq(:), qqd(:), tt
-      energy = beam_kinetic_energy(el, qq, qqd, rigid_at(tt))
-    end function energy
   end subroutine check_inertia_is_lagrange
+
+  real(dp) function checked_strain_energy(q) result(se)
+    real(dp), intent(in) :: q(:)
+    se = beam_strain_energy(checked, q, checked_phi)
+  end function checked_strain_energy
+
+  subroutine checked_internal_force(q, f)
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out) :: f(:)
+    call beam_internal_force(checked, q, checked_phi, f)
+  end subroutine checked_internal_force
+
+  !> The kinetic energy under the prescribed rigid motion rigid_at(t).
+  real(dp) function checked_kinetic_energy(q, qd, t) result(ke)
+    real(dp), intent(in) :: q(:), qd(:), t
+    ke = beam_kinetic_energy(checked, q, qd, rigid_at(t))
+  end function checked_kinetic_energy
 end module element_checks
