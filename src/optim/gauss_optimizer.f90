@@ -34,6 +34,7 @@ module gauss_optimizer
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
+  use name_table, only: name_of, code_of
   use linalg, only: lu_factor, lu_solve, sym_generalized_eig, cholesky_factor
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
   use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
@@ -53,6 +54,10 @@ module gauss_optimizer
   character(len=*), parameter :: method_names = &
     "'auto', 'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
   integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
+  !> the names of method_gauss .. method_auto and hessian_auto .. hessian_exact
+  character(len=*), parameter :: method_table(7) = [character(len=17) :: 'gauss', 'gauss_constrained', 'gnlc', &
+    'gnlc_ns', 'gnlc_general', 'gnlc_general_ns', 'auto']
+  character(len=*), parameter :: hessian_table(3) = [character(len=5) :: 'auto', 'gauss', 'exact']
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
   integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
 
@@ -159,76 +164,36 @@ contains
 
   ! ================================================================ names
 
+  !> 'gnlc.ns' (B's spelling) is read as 'gnlc_ns'; 0 for an unknown name.
   integer function method_from_name(name) result(method)
     character(len=*), intent(in) :: name
-    select case (lower(trim(adjustl(name))))
-    case ('gauss')
-      method = method_gauss
-    case ('gauss_constrained')
-      method = method_gauss_constrained
-    case ('gnlc')
-      method = method_gnlc
-    case ('gnlc_ns', 'gnlc.ns')
+    if (lower(trim(adjustl(name))) == 'gnlc.ns') then
       method = method_gnlc_ns
-    case ('gnlc_general')
-      method = method_gnlc_general
-    case ('gnlc_general_ns')
-      method = method_gnlc_general_ns
-    case ('auto')
-      method = method_auto
-    case default
-      method = 0
-    end select
+    else
+      method = code_of(method_table, name, method_gauss, 0)
+    end if
   end function method_from_name
 
   function method_name(method) result(name)
     integer, intent(in) :: method
     character(len=:), allocatable :: name
-    select case (method)
-    case (method_gauss)
-      name = 'gauss'
-    case (method_gauss_constrained)
-      name = 'gauss_constrained'
-    case (method_gnlc)
-      name = 'gnlc'
-    case (method_gnlc_ns)
-      name = 'gnlc_ns'
-    case (method_gnlc_general)
-      name = 'gnlc_general'
-    case (method_gnlc_general_ns)
-      name = 'gnlc_general_ns'
-    case (method_auto)
-      name = 'auto'
-    case default
-      name = 'unknown'
-    end select
+    name = name_of(method_table, method, method_gauss, 'unknown')
   end function method_name
 
+  !> A blank name is 'auto'; -1 for an unknown name.
   integer function hessian_from_name(name) result(h)
     character(len=*), intent(in) :: name
-    select case (lower(trim(adjustl(name))))
-    case ('auto', '')
+    if (len_trim(name) == 0) then
       h = hessian_auto
-    case ('gauss')
-      h = hessian_gauss
-    case ('exact')
-      h = hessian_exact
-    case default
-      h = -1
-    end select
+    else
+      h = code_of(hessian_table, name, hessian_auto, -1)
+    end if
   end function hessian_from_name
 
   function hessian_name(h) result(name)
     integer, intent(in) :: h
     character(len=:), allocatable :: name
-    select case (h)
-    case (hessian_gauss)
-      name = 'gauss'
-    case (hessian_exact)
-      name = 'exact'
-    case default
-      name = 'auto'
-    end select
+    name = name_of(hessian_table, h, hessian_auto, 'auto')
   end function hessian_name
 
   function method_label(self) result(name)
