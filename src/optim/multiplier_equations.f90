@@ -25,7 +25,7 @@ module multiplier_equations
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: lu_factor, lu_solve, cholesky_factor, sym_generalized_eig
+  use linalg, only: lu_factor, lu_solve, solve_linear, cholesky_factor, sym_generalized_eig
   use optim_problem, only: opt_problem_t
   use powell_minimizer, only: powell_function_t, powell_options_t, powell_result_t, powell_minimize
   implicit none
@@ -638,14 +638,8 @@ contains
     real(dp), intent(out), contiguous :: s(:)
     type(error_t), intent(inout) :: err
     real(dp), intent(out), optional :: rcond
-    real(dp), allocatable :: lu(:, :)
-    integer, allocatable :: ipiv(:)
-    allocate(lu(size(gmat, 1), size(gmat, 2)), ipiv(size(gmat, 1)))
-    lu = gmat
     s = -gradf
-    call lu_factor(lu, ipiv, err, rcond)
-    if (err%failed()) return
-    call lu_solve(lu, ipiv, s, err)
+    call solve_linear(gmat, s, err, rcond)
   end subroutine gauss_step
 
   !> Multipliers and step for linear active constraints (A_j = 0), closed
