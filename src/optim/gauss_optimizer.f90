@@ -35,9 +35,10 @@ module gauss_optimizer
   use error_status, only: error_t
   use strings, only: str, lower
   use name_table, only: name_of, code_of
-  use linalg, only: lu_factor, lu_solve, sym_generalized_eig, cholesky_factor
+  use linalg, only: lu_factor, lu_solve, cholesky_factor
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
-  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
+  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers, &
+                                  symmetric_eigenvalues
   use feasibility_restoration, only: restore_feasibility
   implicit none
   private
@@ -1002,7 +1003,7 @@ contains
     class(opt_problem_t), intent(inout) :: prob
     integer, intent(in) :: hess_kind, k
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: lu(:, :), ev(:), eye(:, :)
+    real(dp), allocatable :: lu(:, :), ev(:)
     integer, allocatable :: ipiv(:)
     type(error_t) :: lerr
     real(dp) :: rc, mu, gmax
@@ -1057,13 +1058,9 @@ contains
     ! eigenvalues of G (DSYGV with M = I) give the numerical rank; for
     ! G = 2JJ^T they are 2 sigma_i^2 of the residual Jacobian
     rank_text = ''
-    allocate(ev(n), eye(n, n))
-    eye = 0.0_dp
-    do i = 1, n
-      eye(i, i) = 1.0_dp
-    end do
+    allocate(ev(n))
     call lerr%clear()
-    call sym_generalized_eig(self%gm, eye, ev, lerr)
+    call symmetric_eigenvalues(self%gm, ev, lerr)
     if (.not. lerr%failed()) then
       rank = count(ev > self%opts%rcond_min*max(ev(n), tiny(1.0_dp)))
       rank_text = '; eigenvalues of G from '//str(ev(1), 3)//' to '//str(ev(n), 3)//', numerical rank '// &
@@ -1119,11 +1116,11 @@ contains
   subroutine make_convex(self, n)
     class(gauss_optimizer_t), intent(inout) :: self
     integer, intent(in) :: n
-    real(dp), allocatable :: c(:, :), ev(:), eye(:, :)
+    real(dp), allocatable :: c(:, :), ev(:), c_kept(:, :)
     type(error_t) :: lerr
     real(dp) :: mu
     integer :: i
-    allocate(c(n, n), ev(n), eye(n, n))
+    allocate(c(n, n), ev(n), c_kept(n, n))
     c = self%gm
     ! a Powell compromise's multipliers (often huge) describe no model
     if (self%last_solved) then
@@ -1133,16 +1130,11 @@ contains
     end if
     if (count(self%active) >= n) return        ! no tangent space: nothing to convexify
     call project_tangent(c)
-    eye = c
+    c_kept = c
     call cholesky_factor(c, lerr)
     if (.not. lerr%failed()) return
-    c = eye
-    eye = 0.0_dp
-    do i = 1, n
-      eye(i, i) = 1.0_dp
-    end do
     call lerr%clear()
-    call sym_generalized_eig(c, eye, ev, lerr)
+    call symmetric_eigenvalues(c_kept, ev, lerr)
     if (lerr%failed()) return
     if (ev(1) >= -1.0e-8_dp*maxval(abs(ev))) return     ! singular, not indefinite: handled below
     mu = -2.0_dp*ev(1)

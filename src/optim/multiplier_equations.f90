@@ -31,7 +31,7 @@ module multiplier_equations
   implicit none
   private
   public :: multiplier_system_t, multiplier_result_t
-  public :: gauss_step, linear_multipliers
+  public :: gauss_step, linear_multipliers, symmetric_eigenvalues, identity
 
   !> Value of H where s(lambda) does not exist (M singular): large but finite.
   real(dp), parameter :: h_undefined = 1.0e30_dp
@@ -374,16 +374,11 @@ contains
     end subroutine first_order_multipliers
 
     logical function minimiser_inertia() result(good)
-      real(dp), allocatable :: eye(:, :), ev(:)
+      real(dp), allocatable :: ev(:)
       real(dp) :: big
-      integer :: i
-      allocate(eye(nk, nk), ev(nk))
-      eye = 0.0_dp
-      do i = 1, nk
-        eye(i, i) = 1.0_dp
-      end do
+      allocate(ev(nk))
       call lerr%clear()
-      call sym_generalized_eig(kk, eye, ev, lerr)
+      call symmetric_eigenvalues(kk, ev, lerr)
       good = .not. lerr%failed()
       if (.not. good) return
       big = 1.0e-12_dp*maxval(abs(ev))
@@ -641,6 +636,28 @@ contains
     s = -gradf
     call solve_linear(gmat, s, err, rcond)
   end subroutine gauss_step
+
+  !> Eigenvalues (ascending) of a symmetric matrix: linalg's generalized
+  !> eigensolver with M = I (the inertia and convexity tests of the models,
+  !> the design sequence's quadratic model); with `vectors`, orthonormal
+  !> eigenvectors in its columns.
+  subroutine symmetric_eigenvalues(a, ev, err, vectors)
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(out) :: ev(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: vectors(:, :)
+    call sym_generalized_eig(a, identity(size(a, 1)), ev, err, vectors)
+  end subroutine symmetric_eigenvalues
+
+  pure function identity(n) result(eye)
+    integer, intent(in) :: n
+    real(dp) :: eye(n, n)
+    integer :: i
+    eye = 0.0_dp
+    do i = 1, n
+      eye(i, i) = 1.0_dp
+    end do
+  end function identity
 
   !> Multipliers and step for linear active constraints (A_j = 0), closed
   !> form.  With r_S = g_S(x_k) (zero when x_k lies on the active
