@@ -172,6 +172,21 @@ contains
     end do
   end subroutine residual
 
+  !> The residual m at the step in self%s, as a Newton iterate uses it:
+  !> values not finite or past 1e100 (the iterates diverge) set `reason`
+  !> ('constraint values overflow at '//where); `reason` is kept otherwise.
+  subroutine checked_residual(self, r, where, reason, err)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(out) :: r(:)
+    character(len=*), intent(in) :: where
+    character(len=:), allocatable, intent(inout) :: reason
+    type(error_t), intent(inout) :: err
+    call self%residual(r, err)
+    if (err%failed()) return
+    if (.not. all(ieee_is_finite(r)) .or. maxval(abs(r)) > 1.0e100_dp) &
+      reason = 'constraint values overflow at '//where
+  end subroutine checked_residual
+
   !> dm_i/dlambda_j = -w_i^T M^{-1} w_j, w_j = c_j + A_j s (the model gradient
   !> at x_k + s; for Potter's actual constraints an approximation).
   !> ok = .false. when M is too nearly singular for the products to stay
@@ -284,12 +299,8 @@ contains
     do it = 0, max_it
       iterations = it
       self%s = s
-      call self%residual(r2, err)
-      if (err%failed()) return
-      if (.not. all(ieee_is_finite(r2)) .or. maxval(abs(r2)) > 1.0e100_dp) then
-        reason = 'constraint values overflow at iterate '//str(it)
-        return
-      end if
+      call checked_residual(self, r2, 'iterate '//str(it), reason, err)
+      if (err%failed() .or. len(reason) > 0) return
       ! constraint gradients at x_k + s: the model's c + A s, or for Potter's
       ! actual constraints their own gradient (the stationarity of the
       ! quadratic F model under the actual constraint; with the model
@@ -574,12 +585,8 @@ contains
           reason = 'G + Sum lambda_j A_j singular at Newton iterate '//str(it)
           return
         end if
-        call self%residual(r, nerr)
-        if (nerr%failed()) return
-        if (.not. all(ieee_is_finite(r)) .or. maxval(abs(r)) > 1.0e100_dp) then
-          reason = 'constraint values overflow at Newton iterate '//str(it)
-          return
-        end if
+        call checked_residual(self, r, 'Newton iterate '//str(it), reason, nerr)
+        if (nerr%failed() .or. len(reason) > 0) return
         h = sum(r**2)
         if (h < h_best) then
           h_best = h
