@@ -16,16 +16,16 @@ module beam_element
   use material_law, only: ramberg_osgood_t
   use shape_functions, only: quintic_hermite, linear_lagrange
   use kear_element, only: kear_element_t, element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
-                          kear_element_init, kear_element_eval, kear_tangent_stiffness, &
+                          kear_element_init, kear_element_eval, kear_tangent_stiffness, kear_internal_force, &
                           kear_strain_energy, kear_kinetic_energy, kear_stress_recovery, kear_local_displacement, &
                           kear_local_dofs, kear_section_strains, formulation_from_name
   use consistent_element, only: consistent_element_t, consistent_element_init, consistent_element_eval, &
-                                consistent_tangent_stiffness, consistent_strain_energy, &
+                                consistent_tangent_stiffness, consistent_internal_force, consistent_strain_energy, &
                                 consistent_kinetic_energy, consistent_stress_recovery, consistent_local_displacement, &
                                 consistent_point_load, consistent_local_dofs, consistent_section_strains
   implicit none
   private
-  public :: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness
+  public :: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, beam_internal_force
   public :: beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_local_displacement
   public :: beam_point_load, beam_section_strains, resolve_formulation, formulation_names
   public :: element_kind_kear, element_kind_consistent, beam_mass_constant_in_q
@@ -141,6 +141,17 @@ contains
       call kear_tangent_stiffness(el%kear, q, phi, kt)
     end if
   end subroutine beam_tangent_stiffness
+
+  pure subroutine beam_internal_force(el, q, phi, f)
+    type(beam_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(:), phi
+    real(dp), intent(out) :: f(:)
+    if (el%kind == element_kind_consistent) then
+      call consistent_internal_force(el%cons, q, phi, f)
+    else
+      call kear_internal_force(el%kear, q, phi, f)
+    end if
+  end subroutine beam_internal_force
 
 
   pure real(dp) function beam_strain_energy(el, q, phi) result(se)
