@@ -54,11 +54,8 @@ contains
       call err%set('contact law', 'unknown law '''//trim(name)//'''')
       return
     end if
-    law%stiffness = stiffness
-    law%exponent = exponent
-    law%restitution = restitution
-    law%friction = friction
-    law%friction_speed = friction_speed
+    law = contact_law_t(law=law%law, stiffness=stiffness, exponent=exponent, restitution=restitution, &
+                        friction=friction, friction_speed=friction_speed)
     select case (law%law)
     case (law_lankarani_nikravesh)
       law%chi = 0.75_dp*(1.0_dp - restitution**2)

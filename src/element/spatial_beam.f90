@@ -151,11 +151,7 @@ contains
     if (err%failed()) then
       call err%add_context('spatial_beam_init'); return
     end if
-    el%length = length
-    el%sec = sec
-    el%material = material
-    el%shear_modulus = shear_modulus
-    el%effects = effects
+    el = spatial_beam_t(length=length, sec=sec, material=material, shear_modulus=shear_modulus, effects=effects)
     if (present(n_gauss)) el%n_gauss = n_gauss
     if (el%n_gauss < 2 .or. el%n_gauss > max_gauss_points) then
       call err%set('spatial_beam_init', 'n_gauss must be in 2..'//str(max_gauss_points)); return
