@@ -237,6 +237,20 @@ contains
     found%rule = trim(rule)
   end subroutine bad
 
+  !> The name of the next joint or link after `earlier`: the deck's, or
+  !> prefix and number when blank; an issue if an earlier one has it.
+  pure subroutine take_name(given, prefix, earlier, what, name, found)
+    character(len=*), intent(in) :: given, prefix, earlier(:), what
+    character(len=*), intent(out) :: name
+    type(input_issue_t), intent(inout) :: found
+    integer :: i, k
+    i = size(earlier) + 1
+    name = adjustl(given)
+    if (len_trim(name) == 0) name = prefix//str(i)
+    k = findloc(earlier, name, dim=1)
+    if (k > 0) call bad(found, idx(what//'_name', i), quoted(name), 'is already the name of '//what//' '//str(k))
+  end subroutine take_name
+
   logical pure function failed(found)
     type(input_issue_t), intent(in) :: found
     failed = allocated(found%variable)
@@ -360,7 +374,7 @@ contains
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(inout) :: mech
     type(input_issue_t), intent(inout) :: found
-    integer :: j, k
+    integer :: j
     character(len=16) :: word
     do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
@@ -370,13 +384,8 @@ contains
           call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), &
                    'must be one of pin, ground_pin, clamp, slider_fixed, slider_link, free'); return
         end if
-        jt%name = adjustl(inp%joint_name(j))
-        if (len_trim(jt%name) == 0) jt%name = 'J'//str(j)
-        do k = 1, j - 1
-          if (mech%joints(k)%name == jt%name) then
-            call bad(found, idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
-          end if
-        end do
+        call take_name(inp%joint_name(j), 'J', mech%joints(1:j - 1)%name, 'joint', jt%name, found)
+        if (failed(found)) return
         if (is_set(inp%joint_x(j)) .neqv. is_set(inp%joint_y(j))) then
           call bad(found, idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
                    'give both coordinates of joint '//trim(jt%name)//' or neither'); return
@@ -424,16 +433,11 @@ contains
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(inout) :: mech
     type(input_issue_t), intent(inout) :: found
-    integer :: i, k
+    integer :: i
     do i = 1, mech%n_links
       associate (lk => mech%links(i))
-        lk%name = adjustl(inp%link_name(i))
-        if (len_trim(lk%name) == 0) lk%name = 'link'//str(i)
-        do k = 1, i - 1
-          if (mech%links(k)%name == lk%name) then
-            call bad(found, idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
-          end if
-        end do
+        call take_name(inp%link_name(i), 'link', mech%links(1:i - 1)%name, 'link', lk%name, found)
+        if (failed(found)) return
         if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > mech%n_joints) then
           call bad(found, idx('link_joint1', i), str(inp%link_joint1(i)), &
                    'must be a joint number 1..'//str(mech%n_joints)); return
