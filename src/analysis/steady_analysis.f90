@@ -217,9 +217,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(steady_settings_t), intent(in) :: s
     type(steady_model_t), intent(in) :: model
-    character(len=160), allocatable :: tlines(:)
-    call model%table%describe(tlines)
-    call write_mechanism_header(out, mech, tlines)
+    call write_mechanism_header(out, mech, model%table)
     associate (o => s%element)
       if (o%shear .and. o%shear_modulus <= 0.0_dp) then
         call out%comment('element: Tennant (T17-T19), 14 DOFs with shear angle alpha; shear modulus G = '// &

@@ -700,9 +700,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
-    character(len=160), allocatable :: tlines(:)
-    call model%table%describe(tlines)
-    call write_mechanism_header(out, mech, tlines)
+    call write_mechanism_header(out, mech, model%table)
     call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(model%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &

@@ -43,6 +43,7 @@ module table_output
   contains
     procedure :: open => table_open
     procedure :: comment
+    procedure :: comments
     procedure :: echo_unit
     procedure :: end_echo
     procedure :: columns
@@ -127,6 +128,16 @@ contains
       write(self%unit, '(a)') '# '//trim(text)
     end if
   end subroutine comment
+
+  !> Lines as comments, one '#' line each.
+  subroutine comments(self, lines)
+    class(table_t), intent(inout) :: self
+    character(len=*), intent(in) :: lines(:)
+    integer :: i
+    do i = 1, size(lines)
+      call self%comment(lines(i))
+    end do
+  end subroutine comments
 
   !> A scratch unit to write a namelist group to; end_echo copies it into the
   !> header as '#' lines.

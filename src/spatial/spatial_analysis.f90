@@ -287,7 +287,6 @@ contains
     type(transient_settings_t), intent(in) :: s
     type(spatial_model_t), intent(in) :: model
     character(len=160), allocatable :: lines(:)
-    integer :: i
     call out%comment('spatial four-bar: joints B '//trim(inp%joint_b)//', C '//trim(inp%joint_c)// &
                      '; crank '//str(model%kin%crank_radius, 6)//', coupler '//str(model%kin%coupler_length, 6)// &
                      ', rocker '//str(model%kin%rocker_length, 6)//' in; elements per link '// &
@@ -301,9 +300,7 @@ contains
     end if
     call out%comment('rigid-body motion: loop closure solved by Newton at every time the integrator asks for')
     call model%table%describe(lines)
-    do i = 1, size(lines)
-      call out%comment(trim(lines(i)))
-    end do
+    call out%comments(lines)
   end subroutine write_header
 
   subroutine write_columns(out, model, names)
