@@ -47,7 +47,7 @@ contains
     character(len=*), parameter :: g = 'clearance'
     integer :: j, nj
     call stage_from(s)
-    call deck%read_group(g, read_clearance_group, .false., s%found, err)
+    call deck%read_group(g, clearance_group, .false., s%found, err)
     if (err%failed() .or. .not. s%found) return
     call stage_to(s)
     nj = mech%n_joints
@@ -122,12 +122,9 @@ contains
   subroutine echo_clearance_settings(s, out)
     type(clearance_settings_t), intent(in) :: s
     type(table_t), intent(inout) :: out
-    integer :: u
     if (.not. s%found) return
     call stage_from(s)
-    u = out%echo_unit()
-    write(u, nml=clearance, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(clearance_group)
   end subroutine echo_clearance_settings
 
   subroutine stage_from(s)
@@ -156,8 +153,13 @@ contains
     s%impact_speed = impact_speed
   end subroutine stage_to
 
-  subroutine read_clearance_group(r)
+  !> The &clearance group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine clearance_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=clearance, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_clearance_group
+    if (r%writing) then
+      write(r%unit, nml=clearance, delim='apostrophe')
+    else
+      read(r%unit, nml=clearance, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine clearance_group
 end module clearance_settings

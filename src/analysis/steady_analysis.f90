@@ -53,12 +53,7 @@ contains
     call check_steady_input(deck, mech, s, err)
     if (err%failed()) return
     omega = mech%driver%omega
-    block
-      integer :: u
-      u = out%echo_unit()
-      call echo_mechanism(mech, u)
-      call out%end_echo()
-    end block
+    call echo_mechanism(mech, out)
     call echo_steady_settings(out)
 
     call model%init_mechanism(mech, s%element, s%sections, err)

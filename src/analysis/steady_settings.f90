@@ -6,7 +6,7 @@ module steady_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, group_read_t
+  use deck_reader, only: deck_t, invalid_value, group_read_t, write_group
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use linkage, only: max_links
@@ -76,7 +76,7 @@ contains
     max_steps = s%shooting%max_steps
     unit_circle_tol = s%shooting%unit_circle_tol
     singular_rcond = s%shooting%singular_rcond
-    call deck%read_group('steady', read_steady_group, .false., found, err)
+    call deck%read_group('steady', steady_group, .false., found, err)
     if (err%failed()) return
 
     d_k = s%element%d_k
@@ -93,7 +93,7 @@ contains
     section_end = 0.0_dp
     section_b = 0.0_dp
     section_h = 0.0_dp
-    call deck%read_group('tennant', read_tennant_group, .false., found, err)
+    call deck%read_group('tennant', tennant_group, .false., found, err)
     if (err%failed()) return
 
     s%method = method
@@ -205,11 +205,8 @@ contains
 
   subroutine echo_steady_settings(out)
     type(table_t), intent(inout) :: out
-    integer :: u
-    u = out%echo_unit()
-    write(u, nml=steady, delim='apostrophe')
-    write(u, nml=tennant, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(steady_group)
+    call out%echo_group(tennant_group)
   end subroutine echo_steady_settings
 
   !> The &steady and &tennant groups as read, with method set, for a deck
@@ -220,18 +217,28 @@ contains
     character(len=16) :: method_read
     method_read = method
     method = method_text
-    write(unit, nml=steady, delim='apostrophe')
-    write(unit, nml=tennant, delim='apostrophe')
+    call write_group(steady_group, unit)
+    call write_group(tennant_group, unit)
     method = method_read
   end subroutine write_steady_groups
 
-  subroutine read_steady_group(r)
+  !> The &steady group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine steady_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=steady, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_steady_group
+    if (r%writing) then
+      write(r%unit, nml=steady, delim='apostrophe')
+    else
+      read(r%unit, nml=steady, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine steady_group
 
-  subroutine read_tennant_group(r)
+  !> The &tennant group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine tennant_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=tennant, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_tennant_group
+    if (r%writing) then
+      write(r%unit, nml=tennant, delim='apostrophe')
+    else
+      read(r%unit, nml=tennant, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine tennant_group
 end module steady_settings

@@ -76,9 +76,9 @@ contains
     logical :: found
 
     call set_defaults()
-    call deck%read_group('transient', read_transient_group, .false., found, err)
+    call deck%read_group('transient', transient_group, .false., found, err)
     if (err%failed()) return
-    call deck%read_group('effects', read_effects_group, .false., found, err)
+    call deck%read_group('effects', effects_group, .false., found, err)
     if (err%failed()) return
 
     s = transient_settings_t(method=method, mf=mf_from_method(method), rtol=rtol, atol=atol, atol_rate=atol_rate, &
@@ -196,22 +196,29 @@ contains
 
   subroutine echo_transient_settings(out)
     type(table_t), intent(inout) :: out
-    integer :: u
-    u = out%echo_unit()
-    write(u, nml=transient, delim='apostrophe')
-    write(u, nml=effects, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(transient_group)
+    call out%echo_group(effects_group)
   end subroutine echo_transient_settings
 
-  subroutine read_transient_group(r)
+  !> The &transient group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine transient_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_transient_group
+    if (r%writing) then
+      write(r%unit, nml=transient, delim='apostrophe')
+    else
+      read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine transient_group
 
-  subroutine read_effects_group(r)
+  !> The &effects group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine effects_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=effects, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_effects_group
+    if (r%writing) then
+      write(r%unit, nml=effects, delim='apostrophe')
+    else
+      read(r%unit, nml=effects, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine effects_group
 
   !> initial = 'mode': mode_number must be a mode of the model (known only once
   !> the model is built; the range check of the deck is in the settings above).

@@ -16,6 +16,7 @@ module table_output
   use error_status, only: error_t
   use strings, only: str
   use fast_format, only: format_es, es_width
+  use deck_reader, only: group_reader, write_group
   implicit none
   private
   public :: table_t, column_width
@@ -46,6 +47,7 @@ module table_output
     procedure :: comments
     procedure :: echo_unit
     procedure :: end_echo
+    procedure :: echo_group
     procedure :: columns
     procedure :: row
     procedure :: summary
@@ -162,6 +164,17 @@ contains
     close(self%echo)
     self%echoing = .false.
   end subroutine end_echo
+
+  !> A namelist group with its values, written by its owner's group
+  !> procedure, as '#' lines.
+  subroutine echo_group(self, group_io)
+    class(table_t), intent(inout) :: self
+    procedure(group_reader) :: group_io
+    integer :: u
+    u = self%echo_unit()
+    call write_group(group_io, u)
+    call self%end_echo()
+  end subroutine echo_group
 
   !> The column-name line: '#' then names right-aligned over their columns.
   subroutine columns(self, names)

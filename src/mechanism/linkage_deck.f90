@@ -6,12 +6,13 @@
 module linkage_deck
   use strings, only: str
   use error_status, only: error_t
-  use deck_reader, only: deck_t, invalid_value, group_read_t
+  use deck_reader, only: deck_t, invalid_value, group_read_t, write_group
+  use table_output, only: table_t
   use linkage, only: mechanism_input_t, input_issue_t, mechanism_t, build_mechanism, max_links, max_joints
   use kinds, only: dp
   implicit none
   private
-  public :: read_mechanism, echo_mechanism, check_section_rules
+  public :: read_mechanism, echo_mechanism, write_mechanism_group, check_section_rules
 
   ! Staging variables of the deck group &mechanism (module variables because
   ! the deck reader's callback receives only the unit; see read_mechanism).
@@ -74,7 +75,7 @@ contains
     type(input_issue_t) :: issue
     logical :: found
     call stage_from(inp)
-    call deck%read_group('mechanism', read_mechanism_group, required=.true., found=found, err=err)
+    call deck%read_group('mechanism', mechanism_group, required=.true., found=found, err=err)
     if (err%failed()) return
     call stage_to(inp)
     call build_mechanism(inp, mech, err, issue)
@@ -84,18 +85,31 @@ contains
     end if
   end subroutine read_mechanism
 
-  subroutine read_mechanism_group(r)
+  !> The &mechanism group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine mechanism_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=mechanism, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_mechanism_group
+    if (r%writing) then
+      write(r%unit, nml=mechanism, delim='apostrophe')
+    else
+      read(r%unit, nml=mechanism, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine mechanism_group
 
-  !> Write the mechanism's effective input as the namelist group &mechanism.
-  subroutine echo_mechanism(mech, unit)
+  !> Echo the mechanism's effective input, the group &mechanism, into an output.
+  subroutine echo_mechanism(mech, out)
+    type(mechanism_t), intent(in) :: mech
+    type(table_t), intent(inout) :: out
+    call stage_from(mech%input)
+    call out%echo_group(mechanism_group)
+  end subroutine echo_mechanism
+
+  !> Write the mechanism's effective input as the group &mechanism of a deck.
+  subroutine write_mechanism_group(mech, unit)
     type(mechanism_t), intent(in) :: mech
     integer, intent(in) :: unit
     call stage_from(mech%input)
-    write(unit, nml=mechanism, delim='apostrophe')
-  end subroutine echo_mechanism
+    call write_group(mechanism_group, unit)
+  end subroutine write_mechanism_group
 
   subroutine stage_from(inp)
     type(mechanism_input_t), intent(in) :: inp

@@ -17,7 +17,7 @@ module external_loads
   use linkage, only: mechanism_t
   implicit none
   private
-  public :: point_load_t, load_factor_at, loads_input_t, read_loads, resolve_loads, echo_loads
+  public :: point_load_t, load_factor_at, loads_input_t, read_loads, resolve_loads, loads_group
   public :: max_loads, max_load_points
 
   integer, parameter :: max_loads = 20, max_load_points = 100
@@ -102,7 +102,7 @@ contains
     load_n_points = inp%load_n_points
     load_time = inp%load_time
     load_factor = inp%load_factor
-    call deck%read_group(g, read_loads_group, .false., found, err)
+    call deck%read_group(g, loads_group, .false., found, err)
     if (err%failed()) return
     inp = loads_input_t(gravity_g, gravity_direction, n_loads, load_joint, load_link, load_position, load_fx, &
                         load_fy, load_moment, load_n_points, load_time, load_factor)
@@ -186,13 +186,13 @@ contains
     end do
   end subroutine resolve_loads
 
-  subroutine echo_loads(unit)
-    integer, intent(in) :: unit
-    write(unit, nml=loads, delim='apostrophe')
-  end subroutine echo_loads
-
-  subroutine read_loads_group(r)
+  !> The &loads group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine loads_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=loads, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_loads_group
+    if (r%writing) then
+      write(r%unit, nml=loads, delim='apostrophe')
+    else
+      read(r%unit, nml=loads, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine loads_group
 end module external_loads

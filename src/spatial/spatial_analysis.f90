@@ -23,7 +23,7 @@ module spatial_analysis
   use revolution_peaks, only: note_peaks, write_stress_peaks
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
-  use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
+  use spatial_settings, only: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
   implicit none
   private
   public :: run_spatial
@@ -58,7 +58,7 @@ contains
     if (err%failed()) return
     call check_supported(deck, s, inp, err)
     if (err%failed()) return
-    call echo_spatial_mechanism(out)
+    call out%echo_group(spatial_mechanism_group)
     call echo_transient_settings(out)
     call build_spatial(deck, inp, kin, links, jb, jc, err)
     if (err%failed()) return

@@ -9,7 +9,6 @@ module spatial_settings
   use strings, only: str
   use deck_reader, only: deck_t, invalid_value, group_read_t, input_error_in
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
-  use table_output, only: table_t
   use material_law, only: ramberg_osgood_t
   use reference_materials, only: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, &
     tennant_aluminium_rho
@@ -18,7 +17,7 @@ module spatial_settings
   use spatial_model, only: spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
   implicit none
   private
-  public :: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
+  public :: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
 
   type :: spatial_input_t
     real(dp) :: crank_pivot(3) = 0.0_dp, crank_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp], crank_pin(3) = 0.0_dp
@@ -79,7 +78,7 @@ contains
     link_m = s%link_m
     link_rho = s%link_rho
     link_poisson = s%link_poisson
-    call deck%read_group(g, read_group, .true., found, err)
+    call deck%read_group(g, spatial_mechanism_group, .true., found, err)
     if (err%failed()) return
     s = spatial_input_t(crank_pivot, crank_axis, crank_pin, rocker_pivot, rocker_axis, rocker_length, &
                         coupler_length, branch, joint_b, joint_c, universal_axis, omega, theta0_deg, &
@@ -190,16 +189,13 @@ contains
     end select
   end function joint_kind
 
-  subroutine echo_spatial_mechanism(out)
-    type(table_t), intent(inout) :: out
-    integer :: u
-    u = out%echo_unit()
-    write(u, nml=spatial_mechanism, delim='apostrophe')
-    call out%end_echo()
-  end subroutine echo_spatial_mechanism
-
-  subroutine read_group(r)
+  !> The &spatial_mechanism group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine spatial_mechanism_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=spatial_mechanism, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_group
+    if (r%writing) then
+      write(r%unit, nml=spatial_mechanism, delim='apostrophe')
+    else
+      read(r%unit, nml=spatial_mechanism, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine spatial_mechanism_group
 end module spatial_settings
