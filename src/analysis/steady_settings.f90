@@ -96,23 +96,15 @@ contains
     call deck%read_group('tennant', tennant_group, .false., found, err)
     if (err%failed()) return
 
-    s%method = method
-    s%harmonic = harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, &
-                                     resonance_ratio)
-    s%allow_resonance = allow_resonance
-    s%allow_beyond_peak = allow_beyond_peak
-    s%output_step_deg = output_step_deg
-    s%shooting%rtol = rtol
-    s%shooting%atol = atol
-    s%shooting%newton_tol = newton_tol
-    s%shooting%max_newton = max_newton
-    s%shooting%max_steps = max_steps
-    s%shooting%unit_circle_tol = unit_circle_tol
-    s%shooting%singular_rcond = singular_rcond
-    s%shooting%bdf = integrator == 'bdf'
-    s%element = tennant_options_t(d_k=d_k, d_b=d_b, d_g=d_g, shear=shear, rotary_inertia=rotary_inertia, &
-                                  shear_inertia=shear_inertia, shear_modulus=shear_modulus, poisson=poisson, &
-                                  shear_factor=shear_factor, n_gauss=n_gauss, damping_beta=damping_beta)
+    s = steady_settings_t(method=method, output_step_deg=output_step_deg, allow_resonance=allow_resonance, &
+      allow_beyond_peak=allow_beyond_peak, &
+      harmonic=harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio), &
+      shooting=shooting_settings_t(rtol=rtol, atol=atol, newton_tol=newton_tol, max_newton=max_newton, &
+                                   max_steps=max_steps, unit_circle_tol=unit_circle_tol, singular_rcond=singular_rcond, &
+                                   bdf=integrator == 'bdf'), &
+      element=tennant_options_t(d_k=d_k, d_b=d_b, d_g=d_g, shear=shear, rotary_inertia=rotary_inertia, &
+                                shear_inertia=shear_inertia, shear_modulus=shear_modulus, poisson=poisson, &
+                                shear_factor=shear_factor, n_gauss=n_gauss, damping_beta=damping_beta))
     do k = 1, max_links
       s%sections(k)%n = n_sections(k)
       if (n_sections(k) > 0 .and. n_sections(k) <= ms) then
