@@ -10,6 +10,7 @@
 module table_output
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc, c_null_funptr, &
                                          c_intptr_t
+  use c_library, only: c_rename, c_getpid, c_unlink, c_signal, c_raise
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: int64
   use kinds, only: dp
@@ -58,29 +59,6 @@ module table_output
     procedure :: non_finite_text
     procedure :: set_digits
   end type table_t
-
-  interface
-    integer(c_int) function c_rename(old, new) bind(c, name='rename')
-      import :: c_int, c_char
-      character(kind=c_char), intent(in) :: old(*), new(*)
-    end function c_rename
-    integer(c_int) function c_getpid() bind(c, name='getpid')
-      import :: c_int
-    end function c_getpid
-    integer(c_int) function c_unlink(path) bind(c, name='unlink')
-      import :: c_int, c_char
-      character(kind=c_char), intent(in) :: path(*)
-    end function c_unlink
-    type(c_funptr) function c_signal(signum, handler) bind(c, name='signal')
-      import :: c_int, c_funptr
-      integer(c_int), value :: signum
-      type(c_funptr), value :: handler
-    end function c_signal
-    integer(c_int) function c_raise(signum) bind(c, name='raise')
-      import :: c_int
-      integer(c_int), value :: signum
-    end function c_raise
-  end interface
 
   !> POSIX signal numbers (the same on Linux, the BSDs and macOS).
   integer(c_int), parameter :: sighup = 1, sigint = 2, sigterm = 15
