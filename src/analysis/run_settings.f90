@@ -6,11 +6,7 @@ module run_settings
   use version, only: program_name, program_version
   implicit none
   private
-  public :: read_run_settings, write_run_header, analysis_names
-
-  !> Analyses the program knows, for messages.
-  character(len=*), parameter :: analysis_names = '''transient'', ''steady'', ''optimize'', ''design'', '// &
-                                                  '''spatial'', ''lsode_check'''
+  public :: read_run_settings, write_run_header
 
   character(len=32) :: analysis
   character(len=256) :: title
