@@ -30,6 +30,7 @@ module design_analysis
                             var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y
   use shaking_force, only: shaking_supported
   use design_sequence, only: design_sequence_t
+  use periodic_transient, only: periodic_transient_settings_t
   implicit none
   private
   public :: run_design, load_design
@@ -172,12 +173,9 @@ contains
       return
     end if
     prob%derivatives = derivatives
-    prob%transient%tolerance = stop_when_periodic
-    prob%transient%max_revolutions = max_revolutions
-    prob%transient%rtol = s%shooting%rtol
-    prob%transient%atol = s%shooting%atol
-    prob%transient%bdf = s%shooting%bdf
-    prob%transient%max_steps = s%shooting%max_steps
+    prob%transient = periodic_transient_settings_t(tolerance=stop_when_periodic, max_revolutions=max_revolutions, &
+                                                   rtol=s%shooting%rtol, atol=s%shooting%atol, bdf=s%shooting%bdf, &
+                                                   max_steps=s%shooting%max_steps)
     ! finite-difference steps above the analysis' noise (doc/design.md)
     select case (evaluator)
     case ('shooting')
@@ -187,11 +185,8 @@ contains
     case default
       prob%fd_rel_step = 1.0e-5_dp
     end select
-    opt%max_iterations = max_iterations
-    opt%xtol = xtol
-    opt%feas_tol = feas_tol
-    opt%move_limit = move_limit
-    opt%hessian = hessian
+    opt = design_sequence_t(max_iterations=max_iterations, xtol=xtol, feas_tol=feas_tol, move_limit=move_limit, &
+                            hessian=hessian)
   end subroutine load_design
 
   !> Read &design and make the problem's variables; x0 = initial values/scale.
