@@ -49,7 +49,9 @@ contains
     call stage_from(s)
     call deck%read_group(g, clearance_group, .false., s%found, err)
     if (err%failed() .or. .not. s%found) return
-    call stage_to(s)
+    s = clearance_settings_t(found=s%found, clearance=joint_clearance, stiffness=joint_stiffness, &
+                             restitution=joint_restitution, friction=joint_friction, journal_radius=journal_radius, &
+                             law=law, exponent=exponent, friction_speed=friction_speed, impact_speed=impact_speed)
     nj = mech%n_joints
     call check_reals(deck, g, 'joint_clearance', s%clearance, err, at_least=0.0_dp, at_most=0.05_dp*mech%length_scale, &
                      why='a radial clearance (in): small against the links (5% of their mean length) for the '// &
@@ -139,19 +141,6 @@ contains
     friction_speed = s%friction_speed
     impact_speed = s%impact_speed
   end subroutine stage_from
-
-  subroutine stage_to(s)
-    type(clearance_settings_t), intent(inout) :: s
-    s%clearance = joint_clearance
-    s%stiffness = joint_stiffness
-    s%restitution = joint_restitution
-    s%friction = joint_friction
-    s%journal_radius = journal_radius
-    s%law = law
-    s%exponent = exponent
-    s%friction_speed = friction_speed
-    s%impact_speed = impact_speed
-  end subroutine stage_to
 
   !> The &clearance group's namelist read and write (deck_reader, table_t%echo_group).
   subroutine clearance_group(r)
