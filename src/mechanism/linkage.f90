@@ -251,6 +251,16 @@ contains
     if (k > 0) call bad(found, idx(what//'_name', i), quoted(name), 'is already the name of '//what//' '//str(k))
   end subroutine take_name
 
+  !> Record an issue unless x > 0 (a NaN included), if none is recorded yet.
+  pure subroutine need_positive(found, name, i, x, rule)
+    type(input_issue_t), intent(inout) :: found
+    character(len=*), intent(in) :: name, rule
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x
+    if (failed(found)) return
+    if (.not. (x > 0.0_dp)) call bad(found, idx(name, i), str(x), rule)
+  end subroutine need_positive
+
   logical pure function failed(found)
     type(input_issue_t), intent(in) :: found
     failed = allocated(found%variable)
@@ -509,12 +519,9 @@ contains
                  'a rectangle is given by link_b and link_h; for a section given by A, I and c set '// &
                  idx('link_section', q)//' = ''general'''); return
       end if
-      if (.not. (inp%link_b(q) > 0.0_dp)) then
-        call bad(found, idx('link_b', q), str(inp%link_b(q)), 'the section width must be > 0'); return
-      end if
-      if (.not. (inp%link_h(q) > 0.0_dp)) then
-        call bad(found, idx('link_h', q), str(inp%link_h(q)), 'the section height must be > 0'); return
-      end if
+      call need_positive(found, 'link_b', q, inp%link_b(q), 'the section width must be > 0')
+      call need_positive(found, 'link_h', q, inp%link_h(q), 'the section height must be > 0')
+      if (failed(found)) return
       lk%b = inp%link_b(q)
       lk%h = inp%link_h(q)
       lk%area = lk%b*lk%h
@@ -523,9 +530,8 @@ contains
       return
     case ('circle', 'tube')
       d = inp%link_h(q)
-      if (.not. (d > 0.0_dp)) then
-        call bad(found, idx('link_h', q), str(d), 'the outer diameter of a '//trim(lk%section)//' must be > 0'); return
-      end if
+      call need_positive(found, 'link_h', q, d, 'the outer diameter of a '//trim(lk%section)//' must be > 0')
+      if (failed(found)) return
       di = 0.0_dp
       if (lk%section == 'tube') then
         if (.not. (inp%link_wall(q) > 0.0_dp .and. inp%link_wall(q) < 0.5_dp*d)) then
@@ -538,16 +544,11 @@ contains
       lk%inertia = pi*(d**4 - di**4)/64.0_dp
       lk%fibre = 0.5_dp*d
     case ('general')
-      if (.not. (inp%link_area(q) > 0.0_dp)) then
-        call bad(found, idx('link_area', q), str(inp%link_area(q)), 'a general section needs its area A > 0'); return
-      end if
-      if (.not. (inp%link_inertia(q) > 0.0_dp)) then
-        call bad(found, idx('link_inertia', q), str(inp%link_inertia(q)), 'a general section needs I > 0'); return
-      end if
-      if (.not. (inp%link_c(q) > 0.0_dp)) then
-        call bad(found, idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
-                 'c > 0 (for stresses)'); return
-      end if
+      call need_positive(found, 'link_area', q, inp%link_area(q), 'a general section needs its area A > 0')
+      call need_positive(found, 'link_inertia', q, inp%link_inertia(q), 'a general section needs I > 0')
+      call need_positive(found, 'link_c', q, inp%link_c(q), 'a general section needs its outer-fibre distance '// &
+                         'c > 0 (for stresses)')
+      if (failed(found)) return
       ! the size ranges of b and h, squared and to the fourth power, and
       ! I <= c^2 A (no section has its radius of gyration beyond its
       ! outer fibre); without them 12 I/A overflowed for I = 1.8e308
