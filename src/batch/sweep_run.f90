@@ -17,6 +17,7 @@ module sweep_run
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, shell_quote, file_stem, append_name
+  use name_table, only: name_of
   use version, only: program_name, program_version
   use deck_reader, only: deck_t
   use run_settings, only: read_run_settings
@@ -156,23 +157,14 @@ contains
     end do
   end function column_line
 
+  !> A run's exit status in words: -1 for a run that could not be started,
+  !> 0..3 flexmech's exit codes, anything else a crash.
   pure function status_meaning(status) result(s)
     integer, intent(in) :: status
     character(len=:), allocatable :: s
-    select case (status)
-    case (0)
-      s = 'ok'
-    case (1)
-      s = 'usage or output error'
-    case (2)
-      s = 'input error'
-    case (3)
-      s = 'analysis stopped'
-    case (-1)
-      s = 'could not be started'
-    case default
-      s = 'crashed'
-    end select
+    character(len=*), parameter :: meanings(5) = [character(len=21) :: 'could not be started', 'ok', &
+      'usage or output error', 'input error', 'analysis stopped']
+    s = name_of(meanings, status, -1, 'crashed')
   end function status_meaning
 
   !> The summary table: a row per point that succeeded, with the numbers its

@@ -36,7 +36,7 @@ module design_sequence
   use optim_problem, only: opt_problem_t
   use gauss_optimizer, only: gauss_optimizer_t, method_gnlc_ns
   use design_problem, only: design_problem_t, design_eval_t
-  use linalg, only: sym_generalized_eig
+  use multiplier_equations, only: symmetric_eigenvalues, identity
   use progress, only: progress_t
   implicit none
   private
@@ -510,18 +510,14 @@ contains
   subroutine quadratic_model(bmat, grad, lmat, w)
     real(dp), intent(in) :: bmat(:, :), grad(:)
     real(dp), allocatable, intent(out) :: lmat(:, :), w(:)
-    real(dp) :: lam(size(grad)), v(size(grad), size(grad)), eye(size(grad), size(grad)), floor
+    real(dp) :: lam(size(grad)), v(size(grad), size(grad)), floor
     type(error_t) :: err
     integer :: j, n
     n = size(grad)
-    eye = 0.0_dp
-    do j = 1, n
-      eye(j, j) = 1.0_dp
-    end do
-    call sym_generalized_eig(0.5_dp*(bmat + transpose(bmat)), eye, lam, err, v)
+    call symmetric_eigenvalues(0.5_dp*(bmat + transpose(bmat)), lam, err, v)
     if (err%failed()) then
       ! no decomposition: the identity scaled by the trace
-      v = eye
+      v = identity(n)
       lam = max(sum([(abs(bmat(j, j)), j = 1, n)])/n, tiny(1.0_dp))
     end if
     floor = max(1.0e-6_dp*maxval(abs(lam)), tiny(1.0_dp))

@@ -24,7 +24,8 @@ module kear_element
   use kinds, only: dp
   use linalg, only: outer
   use error_status, only: error_t
-  use strings, only: str, lower
+  use strings, only: str
+  use name_table, only: name_of, code_of
   use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite, linear_lagrange
   use beam_properties, only: element_effects_t, beam_properties_t, init_beam_properties
@@ -42,6 +43,7 @@ module kear_element
   integer, parameter :: kear_ndof = 8
   integer, parameter :: formulation_exact = 1      !< exact Lagrange equations of (K3), (K16)
   integer, parameter :: formulation_kear1987 = 2   !< as printed: (K9), (K11), (K20), (K23)
+  character(len=*), parameter :: formulation_table(2) = [character(len=8) :: 'exact', 'kear1987']
   integer, parameter :: n_exact = 6                !< Gauss points exact for the linear integrals (degree <= 11)
 
   !> Rigid-body state of the element reference line (from kinematics).
@@ -180,28 +182,14 @@ contains
     character(len=*), intent(in) :: name
     integer, intent(out) :: code
     type(error_t), intent(inout) :: err
-    select case (lower(trim(adjustl(name))))
-    case ('exact')
-      code = formulation_exact
-    case ('kear1987')
-      code = formulation_kear1987
-    case default
-      code = 0
-      call err%set('formulation', "unknown formulation '"//trim(name)//"' (expected exact or kear1987)")
-    end select
+    code = code_of(formulation_table, name, formulation_exact, 0)
+    if (code == 0) call err%set('formulation', "unknown formulation '"//trim(name)//"' (expected exact or kear1987)")
   end subroutine formulation_from_name
 
   pure function formulation_name(code) result(name)
     integer, intent(in) :: code
     character(len=:), allocatable :: name
-    select case (code)
-    case (formulation_exact)
-      name = 'exact'
-    case (formulation_kear1987)
-      name = 'kear1987'
-    case default
-      name = 'unknown'
-    end select
+    name = name_of(formulation_table, code, formulation_exact, 'unknown')
   end function formulation_name
 
   pure function effects_all_on() result(fx)

@@ -24,6 +24,7 @@ module lsode_solver
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
+  use name_table, only: name_of
   use lsode_messages, only: take_lsode_messages, clear_lsode_messages
   implicit none
   private
@@ -457,34 +458,27 @@ contains
   function istate_sentence(istate, mf) result(s)
     integer, intent(in) :: istate, mf
     character(len=:), allocatable :: s
-    select case (istate)
-    case (1)
-      s = 'nothing was done: TOUT equals T'
-    case (2)
-      s = 'integration successful'
-    case (-1)
-      s = 'excess work done: the step limit for one output interval was reached before TOUT'
-      if (mf == mf_adams) then
-        s = s//'; the problem is probably stiff for the Adams method (MF=10): use a BDF method ' &
-              //'(method = ''bdf'', MF=21, or ''bdf_fd'', MF=22)'
-      else
-        s = s//'; raise max_steps or shorten the output interval'
-      end if
-    case (-2)
-      s = 'excess accuracy requested: rtol/atol are too small for machine precision; loosen them'
-    case (-3)
-      s = 'illegal input detected by DLSODE (see its message)'
-    case (-4)
-      s = 'repeated error-test failures on one step: the solution may have a singularity or ' &
-          //'the model produced inaccurate derivatives'
-    case (-5)
-      s = 'repeated corrector convergence failures on one step: the Jacobian may be wrong or ' &
-          //'the tolerances inappropriate'
-    case (-6)
-      s = 'a component of the error weight vanished (pure relative error control, atol = 0, ' &
-          //'on a solution component that became zero)'
-    case default
-      s = 'unknown ISTATE '//str(istate)
-    end select
+    ! ISTATE = -6 .. 2 (0 is never returned)
+    character(len=*), parameter :: sentences(9) = [character(len=122) :: &
+      'a component of the error weight vanished (pure relative error control, atol = 0, ' &   ! -6
+      //'on a solution component that became zero)', &
+      'repeated corrector convergence failures on one step: the Jacobian may be wrong or ' &   ! -5
+      //'the tolerances inappropriate', &
+      'repeated error-test failures on one step: the solution may have a singularity or ' &    ! -4
+      //'the model produced inaccurate derivatives', &
+      'illegal input detected by DLSODE (see its message)', &                                  ! -3
+      'excess accuracy requested: rtol/atol are too small for machine precision; loosen them', & ! -2
+      'excess work done: the step limit for one output interval was reached before TOUT', &    ! -1
+      '', &                                                                                    ! 0
+      'nothing was done: TOUT equals T', &                                                     ! 1
+      'integration successful']                                                                ! 2
+    s = name_of(sentences, istate, -6, 'unknown ISTATE '//str(istate))
+    if (istate /= -1) return
+    if (mf == mf_adams) then
+      s = s//'; the problem is probably stiff for the Adams method (MF=10): use a BDF method ' &
+            //'(method = ''bdf'', MF=21, or ''bdf_fd'', MF=22)'
+    else
+      s = s//'; raise max_steps or shorten the output interval'
+    end if
   end function istate_sentence
 end module lsode_solver

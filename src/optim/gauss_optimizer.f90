@@ -34,9 +34,11 @@ module gauss_optimizer
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
-  use linalg, only: lu_factor, lu_solve, sym_generalized_eig, cholesky_factor
+  use name_table, only: name_of, code_of
+  use linalg, only: lu_factor, lu_solve, cholesky_factor
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
-  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
+  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers, &
+                                  symmetric_eigenvalues
   use feasibility_restoration, only: restore_feasibility
   implicit none
   private
@@ -53,6 +55,10 @@ module gauss_optimizer
   character(len=*), parameter :: method_names = &
     "'auto', 'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
   integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
+  !> the names of method_gauss .. method_auto and hessian_auto .. hessian_exact
+  character(len=*), parameter :: method_table(7) = [character(len=17) :: 'gauss', 'gauss_constrained', 'gnlc', &
+    'gnlc_ns', 'gnlc_general', 'gnlc_general_ns', 'auto']
+  character(len=*), parameter :: hessian_table(3) = [character(len=5) :: 'auto', 'gauss', 'exact']
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
   integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
 
@@ -159,76 +165,36 @@ contains
 
   ! ================================================================ names
 
+  !> 'gnlc.ns' (B's spelling) is read as 'gnlc_ns'; 0 for an unknown name.
   integer function method_from_name(name) result(method)
     character(len=*), intent(in) :: name
-    select case (lower(trim(adjustl(name))))
-    case ('gauss')
-      method = method_gauss
-    case ('gauss_constrained')
-      method = method_gauss_constrained
-    case ('gnlc')
-      method = method_gnlc
-    case ('gnlc_ns', 'gnlc.ns')
+    if (lower(trim(adjustl(name))) == 'gnlc.ns') then
       method = method_gnlc_ns
-    case ('gnlc_general')
-      method = method_gnlc_general
-    case ('gnlc_general_ns')
-      method = method_gnlc_general_ns
-    case ('auto')
-      method = method_auto
-    case default
-      method = 0
-    end select
+    else
+      method = code_of(method_table, name, method_gauss, 0)
+    end if
   end function method_from_name
 
   function method_name(method) result(name)
     integer, intent(in) :: method
     character(len=:), allocatable :: name
-    select case (method)
-    case (method_gauss)
-      name = 'gauss'
-    case (method_gauss_constrained)
-      name = 'gauss_constrained'
-    case (method_gnlc)
-      name = 'gnlc'
-    case (method_gnlc_ns)
-      name = 'gnlc_ns'
-    case (method_gnlc_general)
-      name = 'gnlc_general'
-    case (method_gnlc_general_ns)
-      name = 'gnlc_general_ns'
-    case (method_auto)
-      name = 'auto'
-    case default
-      name = 'unknown'
-    end select
+    name = name_of(method_table, method, method_gauss, 'unknown')
   end function method_name
 
+  !> A blank name is 'auto'; -1 for an unknown name.
   integer function hessian_from_name(name) result(h)
     character(len=*), intent(in) :: name
-    select case (lower(trim(adjustl(name))))
-    case ('auto', '')
+    if (len_trim(name) == 0) then
       h = hessian_auto
-    case ('gauss')
-      h = hessian_gauss
-    case ('exact')
-      h = hessian_exact
-    case default
-      h = -1
-    end select
+    else
+      h = code_of(hessian_table, name, hessian_auto, -1)
+    end if
   end function hessian_from_name
 
   function hessian_name(h) result(name)
     integer, intent(in) :: h
     character(len=:), allocatable :: name
-    select case (h)
-    case (hessian_gauss)
-      name = 'gauss'
-    case (hessian_exact)
-      name = 'exact'
-    case default
-      name = 'auto'
-    end select
+    name = name_of(hessian_table, h, hessian_auto, 'auto')
   end function hessian_name
 
   function method_label(self) result(name)
@@ -1037,7 +1003,7 @@ contains
     class(opt_problem_t), intent(inout) :: prob
     integer, intent(in) :: hess_kind, k
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: lu(:, :), ev(:), eye(:, :)
+    real(dp), allocatable :: lu(:, :), ev(:)
     integer, allocatable :: ipiv(:)
     type(error_t) :: lerr
     real(dp) :: rc, mu, gmax
@@ -1092,13 +1058,9 @@ contains
     ! eigenvalues of G (DSYGV with M = I) give the numerical rank; for
     ! G = 2JJ^T they are 2 sigma_i^2 of the residual Jacobian
     rank_text = ''
-    allocate(ev(n), eye(n, n))
-    eye = 0.0_dp
-    do i = 1, n
-      eye(i, i) = 1.0_dp
-    end do
+    allocate(ev(n))
     call lerr%clear()
-    call sym_generalized_eig(self%gm, eye, ev, lerr)
+    call symmetric_eigenvalues(self%gm, ev, lerr)
     if (.not. lerr%failed()) then
       rank = count(ev > self%opts%rcond_min*max(ev(n), tiny(1.0_dp)))
       rank_text = '; eigenvalues of G from '//str(ev(1), 3)//' to '//str(ev(n), 3)//', numerical rank '// &
@@ -1154,11 +1116,11 @@ contains
   subroutine make_convex(self, n)
     class(gauss_optimizer_t), intent(inout) :: self
     integer, intent(in) :: n
-    real(dp), allocatable :: c(:, :), ev(:), eye(:, :)
+    real(dp), allocatable :: c(:, :), ev(:), c_kept(:, :)
     type(error_t) :: lerr
     real(dp) :: mu
     integer :: i
-    allocate(c(n, n), ev(n), eye(n, n))
+    allocate(c(n, n), ev(n), c_kept(n, n))
     c = self%gm
     ! a Powell compromise's multipliers (often huge) describe no model
     if (self%last_solved) then
@@ -1168,16 +1130,11 @@ contains
     end if
     if (count(self%active) >= n) return        ! no tangent space: nothing to convexify
     call project_tangent(c)
-    eye = c
+    c_kept = c
     call cholesky_factor(c, lerr)
     if (.not. lerr%failed()) return
-    c = eye
-    eye = 0.0_dp
-    do i = 1, n
-      eye(i, i) = 1.0_dp
-    end do
     call lerr%clear()
-    call sym_generalized_eig(c, eye, ev, lerr)
+    call symmetric_eigenvalues(c_kept, ev, lerr)
     if (lerr%failed()) return
     if (ev(1) >= -1.0e-8_dp*maxval(abs(ev))) return     ! singular, not indefinite: handled below
     mu = -2.0_dp*ev(1)

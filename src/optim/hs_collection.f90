@@ -489,14 +489,9 @@ contains
     type(error_t), intent(inout) :: err
     real(dp) :: xp(size(x)), xm(size(x))
     integer :: j
-    xp = x
-    xm = x
     do j = 1, size(x)
-      xp(j) = x(j) + 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
-      xm(j) = x(j) - 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
+      call central_points(x, j, xp, xm)
       jac(j, :) = (hs_phi(xp) - hs_phi(xm))/(xp(j) - xm(j))
-      xp(j) = x(j)
-      xm(j) = x(j)
     end do
     self%count%fd_analyses = self%count%fd_analyses + 2*size(x)
     if (.false.) jac(1, 1) = phi(1)
@@ -514,32 +509,37 @@ contains
     if (.false.) call err%clear()
   end subroutine hs_gradient
 
-  !> Gradient of F (which = 0) or of constraint `which` by central
-  !> differences, h = eps^(1/3) max(|x_j|, 1): error ~1e-11 relative.
+  !> Gradient of F (which = 0) or of constraint `which` by central differences.
   subroutine central_gradient(self, which, x, grad)
     class(hs_problem_t), intent(in) :: self
     integer, intent(in) :: which
     real(dp), intent(in) :: x(:)
     real(dp), intent(out) :: grad(:)
-    real(dp), allocatable :: xp(:), xm(:)
-    real(dp) :: h
+    real(dp) :: xp(size(x)), xm(size(x))
     integer :: j
-    allocate(xp(size(x)), xm(size(x)))
-    xp = x
-    xm = x
     do j = 1, size(x)
-      h = 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
-      xp(j) = x(j) + h
-      xm(j) = x(j) - h
+      call central_points(x, j, xp, xm)
       if (which == 0) then
         grad(j) = (hs_f(self%number, xp) - hs_f(self%number, xm))/(xp(j) - xm(j))
       else
         grad(j) = (constraint_of(self, which, xp) - constraint_of(self, which, xm))/(xp(j) - xm(j))
       end if
-      xp(j) = x(j)
-      xm(j) = x(j)
     end do
   end subroutine central_gradient
+
+  !> The points x +- h e_j of the collection's central differences,
+  !> h = eps^(1/3) max(|x_j|, 1): error ~1e-11 relative.
+  pure subroutine central_points(x, j, xp, xm)
+    real(dp), intent(in) :: x(:)
+    integer, intent(in) :: j
+    real(dp), intent(out) :: xp(:), xm(:)
+    real(dp) :: h
+    xp = x
+    xm = x
+    h = 6.0554544523933395e-6_dp*max(abs(x(j)), 1.0_dp)
+    xp(j) = x(j) + h
+    xm(j) = x(j) - h
+  end subroutine central_points
 
   !> Constraint i: general inequality (i <= mg: g = -c), equality (i > m).
   real(dp) function constraint_of(self, i, x) result(g)

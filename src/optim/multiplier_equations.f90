@@ -25,13 +25,13 @@ module multiplier_equations
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: lu_factor, lu_solve, cholesky_factor, sym_generalized_eig
+  use linalg, only: lu_factor, lu_solve, solve_linear, cholesky_factor, sym_generalized_eig
   use optim_problem, only: opt_problem_t
   use powell_minimizer, only: powell_function_t, powell_options_t, powell_result_t, powell_minimize
   implicit none
   private
   public :: multiplier_system_t, multiplier_result_t
-  public :: gauss_step, linear_multipliers
+  public :: gauss_step, linear_multipliers, symmetric_eigenvalues, identity
 
   !> Value of H where s(lambda) does not exist (M singular): large but finite.
   real(dp), parameter :: h_undefined = 1.0e30_dp
@@ -172,6 +172,21 @@ contains
     end do
   end subroutine residual
 
+  !> The residual m at the step in self%s, as a Newton iterate uses it:
+  !> values not finite or past 1e100 (the iterates diverge) set `reason`
+  !> ('constraint values overflow at '//where); `reason` is kept otherwise.
+  subroutine checked_residual(self, r, where, reason, err)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(out) :: r(:)
+    character(len=*), intent(in) :: where
+    character(len=:), allocatable, intent(inout) :: reason
+    type(error_t), intent(inout) :: err
+    call self%residual(r, err)
+    if (err%failed()) return
+    if (.not. all(ieee_is_finite(r)) .or. maxval(abs(r)) > 1.0e100_dp) &
+      reason = 'constraint values overflow at '//where
+  end subroutine checked_residual
+
   !> dm_i/dlambda_j = -w_i^T M^{-1} w_j, w_j = c_j + A_j s (the model gradient
   !> at x_k + s; for Potter's actual constraints an approximation).
   !> ok = .false. when M is too nearly singular for the products to stay
@@ -284,12 +299,8 @@ contains
     do it = 0, max_it
       iterations = it
       self%s = s
-      call self%residual(r2, err)
-      if (err%failed()) return
-      if (.not. all(ieee_is_finite(r2)) .or. maxval(abs(r2)) > 1.0e100_dp) then
-        reason = 'constraint values overflow at iterate '//str(it)
-        return
-      end if
+      call checked_residual(self, r2, 'iterate '//str(it), reason, err)
+      if (err%failed() .or. len(reason) > 0) return
       ! constraint gradients at x_k + s: the model's c + A s, or for Potter's
       ! actual constraints their own gradient (the stationarity of the
       ! quadratic F model under the actual constraint; with the model
@@ -374,16 +385,11 @@ contains
     end subroutine first_order_multipliers
 
     logical function minimiser_inertia() result(good)
-      real(dp), allocatable :: eye(:, :), ev(:)
+      real(dp), allocatable :: ev(:)
       real(dp) :: big
-      integer :: i
-      allocate(eye(nk, nk), ev(nk))
-      eye = 0.0_dp
-      do i = 1, nk
-        eye(i, i) = 1.0_dp
-      end do
+      allocate(ev(nk))
       call lerr%clear()
-      call sym_generalized_eig(kk, eye, ev, lerr)
+      call symmetric_eigenvalues(kk, ev, lerr)
       good = .not. lerr%failed()
       if (.not. good) return
       big = 1.0e-12_dp*maxval(abs(ev))
@@ -579,12 +585,8 @@ contains
           reason = 'G + Sum lambda_j A_j singular at Newton iterate '//str(it)
           return
         end if
-        call self%residual(r, nerr)
-        if (nerr%failed()) return
-        if (.not. all(ieee_is_finite(r)) .or. maxval(abs(r)) > 1.0e100_dp) then
-          reason = 'constraint values overflow at Newton iterate '//str(it)
-          return
-        end if
+        call checked_residual(self, r, 'Newton iterate '//str(it), reason, nerr)
+        if (nerr%failed() .or. len(reason) > 0) return
         h = sum(r**2)
         if (h < h_best) then
           h_best = h
@@ -638,15 +640,31 @@ contains
     real(dp), intent(out), contiguous :: s(:)
     type(error_t), intent(inout) :: err
     real(dp), intent(out), optional :: rcond
-    real(dp), allocatable :: lu(:, :)
-    integer, allocatable :: ipiv(:)
-    allocate(lu(size(gmat, 1), size(gmat, 2)), ipiv(size(gmat, 1)))
-    lu = gmat
     s = -gradf
-    call lu_factor(lu, ipiv, err, rcond)
-    if (err%failed()) return
-    call lu_solve(lu, ipiv, s, err)
+    call solve_linear(gmat, s, err, rcond)
   end subroutine gauss_step
+
+  !> Eigenvalues (ascending) of a symmetric matrix: linalg's generalized
+  !> eigensolver with M = I (the inertia and convexity tests of the models,
+  !> the design sequence's quadratic model); with `vectors`, orthonormal
+  !> eigenvectors in its columns.
+  subroutine symmetric_eigenvalues(a, ev, err, vectors)
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(out) :: ev(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: vectors(:, :)
+    call sym_generalized_eig(a, identity(size(a, 1)), ev, err, vectors)
+  end subroutine symmetric_eigenvalues
+
+  pure function identity(n) result(eye)
+    integer, intent(in) :: n
+    real(dp) :: eye(n, n)
+    integer :: i
+    eye = 0.0_dp
+    do i = 1, n
+      eye(i, i) = 1.0_dp
+    end do
+  end function identity
 
   !> Multipliers and step for linear active constraints (A_j = 0), closed
   !> form.  With r_S = g_S(x_k) (zero when x_k lies on the active

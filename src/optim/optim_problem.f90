@@ -30,12 +30,14 @@ module optim_problem
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
+  use name_table, only: name_of
   implicit none
   private
   public :: opt_problem_t, opt_counters_t
   public :: con_linear, con_quadratic, con_general, con_kind_name
 
   integer, parameter :: con_linear = 1, con_quadratic = 2, con_general = 3
+  character(len=*), parameter :: con_kind_table(3) = [character(len=9) :: 'linear', 'quadratic', 'general']
 
   type :: opt_counters_t
     integer :: analyses = 0              !< NF: objective evaluations asked for by the optimizer
@@ -106,16 +108,7 @@ contains
   pure function con_kind_name(kind) result(s)
     integer, intent(in) :: kind
     character(len=:), allocatable :: s
-    select case (kind)
-    case (con_linear)
-      s = 'linear'
-    case (con_quadratic)
-      s = 'quadratic'
-    case (con_general)
-      s = 'general'
-    case default
-      s = 'unset'
-    end select
+    s = name_of(con_kind_table, kind, con_linear, 'unset')
   end function con_kind_name
 
   ! ================================================================ set-up
