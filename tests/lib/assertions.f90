@@ -5,6 +5,10 @@
 !>     ...
 !>     call finish_suite('test_lsode_solver')      ! prints "suite: N passed, M failed"
 !>
+!> finish_suite prints the number of assertions evaluated before that line
+!> ("suite: K assertions"), so a refactoring of a suite can show it checks
+!> as much as before (issue 9).
+!>
 !> A test procedure fails if any assertion inside it fails.  Every failure
 !> prints expected, actual, the difference and the tolerance.
 module assertions
@@ -28,6 +32,7 @@ module assertions
   end interface assert_equal
 
   integer :: n_passed = 0, n_failed = 0
+  integer :: n_assertions = 0
   integer :: failures_in_current = 0
   character(len=128) :: current_name = ''
 
@@ -49,9 +54,11 @@ contains
     flush(output_unit)
   end subroutine run_test
 
-  !> Print "suite: N passed, M failed" and stop with status 1 if any failed.
+  !> Print "suite: K assertions", then "suite: N passed, M failed" (the
+  !> line tests/run_tests.sh reads) and stop with status 1 if any failed.
   subroutine finish_suite(suite)
     character(len=*), intent(in) :: suite
+    write(output_unit, '(a,": ",i0," assertions")') trim(suite), n_assertions
     write(output_unit, '(a,": ",i0," passed, ",i0," failed")') trim(suite), n_passed, n_failed
     if (n_failed > 0) error stop 1
   end subroutine finish_suite
@@ -65,6 +72,7 @@ contains
   subroutine assert_true(condition, message)
     logical, intent(in) :: condition
     character(len=*), intent(in) :: message
+    n_assertions = n_assertions + 1
     if (.not. condition) call record_failure(message)
   end subroutine assert_true
 
@@ -73,6 +81,7 @@ contains
     real(dp), intent(in) :: actual, expected, tol
     character(len=*), intent(in) :: message
     character(len=256) :: detail
+    n_assertions = n_assertions + 1
     if (ieee_is_nan(actual) .or. .not. (abs(actual - expected) <= tol)) then
       write(detail, '(a,es23.15,a,es23.15,a,es10.3,a,es10.3)') ' expected ', expected, ' got ', actual, &
         ' diff ', actual - expected, ' tol ', tol
@@ -85,6 +94,7 @@ contains
     real(dp), intent(in) :: actual, expected, rtol
     character(len=*), intent(in) :: message
     character(len=256) :: detail
+    n_assertions = n_assertions + 1
     if (ieee_is_nan(actual) .or. .not. (abs(actual - expected) <= rtol*abs(expected))) then
       write(detail, '(a,es23.15,a,es23.15,a,es10.3,a,es10.3)') ' expected ', expected, ' got ', actual, &
         ' rel.diff ', (actual - expected)/merge(expected, 1.0_dp, abs(expected) > 0.0_dp), ' rtol ', rtol
@@ -99,6 +109,7 @@ contains
     character(len=256) :: detail
     real(dp), allocatable :: excess(:)
     integer :: i
+    n_assertions = n_assertions + 1
     if (size(actual) /= size(expected)) then
       write(detail, '(a,i0,a,i0)') ' size mismatch: got ', size(actual), ' expected ', size(expected)
       call record_failure(trim(message)//trim(detail))
@@ -124,6 +135,7 @@ contains
     character(len=*), intent(in) :: fragment, message
     character(len=*), intent(in), optional :: fragment2
     logical :: named
+    n_assertions = n_assertions + 1
     named = index(err%text(), fragment) > 0
     if (present(fragment2)) named = named .and. index(err%text(), fragment2) > 0
     if (.not. (err%failed() .and. err%code == code .and. named)) &
@@ -134,6 +146,7 @@ contains
     integer, intent(in) :: actual, expected
     character(len=*), intent(in) :: message
     character(len=96) :: detail
+    n_assertions = n_assertions + 1
     if (actual /= expected) then
       write(detail, '(a,i0,a,i0)') ' expected ', expected, ' got ', actual
       call record_failure(trim(message)//trim(detail))
@@ -143,6 +156,7 @@ contains
   subroutine assert_equal_str(actual, expected, message)
     character(len=*), intent(in) :: actual, expected
     character(len=*), intent(in) :: message
+    n_assertions = n_assertions + 1
     if (actual /= expected) call record_failure(trim(message)//' expected "'//expected//'" got "'//actual//'"')
   end subroutine assert_equal_str
 end module assertions

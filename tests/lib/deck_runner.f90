@@ -12,6 +12,7 @@ module deck_runner
   implicit none
   private
   public :: scratch_path, write_deck, run_deck, analysis_runner, read_deck_text, group_reader
+  public :: open_deck_text, close_deck_text
   public :: has_line, summary_value, count_rows, line_length
   public :: start_suite, suite_stem, run_text, read_text_groups
 
@@ -158,14 +159,30 @@ contains
     character(len=*), intent(in) :: stem, text
     type(error_t), intent(inout) :: err
     type(deck_t) :: deck
-    integer :: u
+    call open_deck_text(stem, text, deck, err)
+    if (.not. err%failed()) call reader(deck, err)
+    call close_deck_text(stem, deck)
+  end subroutine read_deck_text
+
+  !> Write the deck text ('|' between lines) to stem.nml and open it: for a
+  !> reader that needs more than read_deck_text's (deck, err) arguments.
+  subroutine open_deck_text(stem, text, deck, err)
+    character(len=*), intent(in) :: stem, text
+    type(deck_t), intent(inout) :: deck
+    type(error_t), intent(inout) :: err
     call write_deck(stem//'.nml', text)
     call deck%open(stem//'.nml', err)
-    if (.not. err%failed()) call reader(deck, err)
+  end subroutine open_deck_text
+
+  !> Close the deck open_deck_text opened and remove stem.nml.
+  subroutine close_deck_text(stem, deck)
+    character(len=*), intent(in) :: stem
+    type(deck_t), intent(inout) :: deck
+    integer :: u
     call deck%close()
     open(newunit=u, file=stem//'.nml', status='old')
     close(u, status='delete')
-  end subroutine read_deck_text
+  end subroutine close_deck_text
 
   logical function has_line(lines, fragment)
     character(len=*), intent(in) :: lines(:), fragment

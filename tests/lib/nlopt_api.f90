@@ -25,7 +25,40 @@ module nlopt_api
     end subroutine nlopt_callback
   end interface
 
+  !> the shapes NLopt's setters share: one real, one array of n reals, a
+  !> constraint callback with its tolerance
+  abstract interface
+    subroutine nlopt_set_real(ires, opt, tol)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: tol
+    end subroutine nlopt_set_real
+    subroutine nlopt_set_reals(ires, opt, values)
+      import :: i8, dp
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      real(dp), intent(in) :: values(*)
+    end subroutine nlopt_set_reals
+    subroutine nlopt_add_constraint(ires, opt, fc, fc_data, tol)
+      import :: i8, dp, nlopt_callback
+      integer, intent(out) :: ires
+      integer(i8), intent(in) :: opt
+      procedure(nlopt_callback) :: fc
+      integer, intent(in) :: fc_data
+      real(dp), intent(in) :: tol
+    end subroutine nlopt_add_constraint
+  end interface
+
   ! NLopt's F77 API (libnlopt, nlopt.f): explicit interfaces
+  procedure(nlopt_add_constraint) :: nlo_add_inequality_constraint
+  procedure(nlopt_add_constraint) :: nlo_add_equality_constraint
+  procedure(nlopt_set_real) :: nlo_set_xtol_rel
+  procedure(nlopt_set_real) :: nlo_set_ftol_rel
+  procedure(nlopt_set_real) :: nlo_set_xtol_abs1
+  procedure(nlopt_set_reals) :: nlo_set_lower_bounds
+  procedure(nlopt_set_reals) :: nlo_set_upper_bounds
+
   interface
     subroutine nlo_create(opt, alg, n)
       import :: i8
@@ -43,34 +76,6 @@ module nlopt_api
       procedure(nlopt_callback) :: f
       integer, intent(in) :: f_data
     end subroutine nlo_set_min_objective
-    subroutine nlo_add_inequality_constraint(ires, opt, fc, fc_data, tol)
-      import :: i8, dp, nlopt_callback
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      procedure(nlopt_callback) :: fc
-      integer, intent(in) :: fc_data
-      real(dp), intent(in) :: tol
-    end subroutine nlo_add_inequality_constraint
-    subroutine nlo_add_equality_constraint(ires, opt, fc, fc_data, tol)
-      import :: i8, dp, nlopt_callback
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      procedure(nlopt_callback) :: fc
-      integer, intent(in) :: fc_data
-      real(dp), intent(in) :: tol
-    end subroutine nlo_add_equality_constraint
-    subroutine nlo_set_xtol_rel(ires, opt, tol)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: tol
-    end subroutine nlo_set_xtol_rel
-    subroutine nlo_set_ftol_rel(ires, opt, tol)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: tol
-    end subroutine nlo_set_ftol_rel
     subroutine nlo_set_maxeval(ires, opt, n)
       import :: i8
       integer, intent(out) :: ires
@@ -84,23 +89,5 @@ module nlopt_api
       real(dp), intent(inout) :: x(*)
       real(dp), intent(out) :: f
     end subroutine nlo_optimize
-    subroutine nlo_set_lower_bounds(ires, opt, lb)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: lb(*)
-    end subroutine nlo_set_lower_bounds
-    subroutine nlo_set_upper_bounds(ires, opt, ub)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: ub(*)
-    end subroutine nlo_set_upper_bounds
-    subroutine nlo_set_xtol_abs1(ires, opt, tol)
-      import :: i8, dp
-      integer, intent(out) :: ires
-      integer(i8), intent(in) :: opt
-      real(dp), intent(in) :: tol
-    end subroutine nlo_set_xtol_abs1
   end interface
 end module nlopt_api

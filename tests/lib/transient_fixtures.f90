@@ -10,6 +10,7 @@ module transient_fixtures
   use kear_element, only: element_effects_t
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
+  use joint_reactions, only: joint_reactions_t
   use lsode_solver, only: lsode_t, mf_bdf_full_fd
   use assertions, only: assert_true
   use linalg, only: solve_linear
@@ -20,8 +21,8 @@ module transient_fixtures
   public :: e1, rho, width, depth, area, inertia, radius_gyration, beam_length, bl_clamped, bl_cantilever
   public :: probe_t, probe_modal, probe_local_w
   public :: beam_input, cantilever_input, fourbar_abcd, fourbar_input, make_model, all_effects, euler_bernoulli
-  public :: modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
-  public :: rigid_fourbar_forces
+  public :: mode_start, modal_probe, probe_value, measure_period, settle, state_atol, itoa, rtoa
+  public :: rigid_fourbar_forces, rigid_limit_state, fourbar_unknowns
 
   ! FORMULATION.md §8.1 section (b = 0.25, h = 1 in) and aluminium.
   real(dp), parameter :: e1 = 10.87e6_dp, rho = 2.536e-4_dp, width = 0.25_dp, depth = 1.0_dp
@@ -133,6 +134,27 @@ contains
     euler_bernoulli = (beta_l/l)**2*sqrt(e1*inertia/(rho*area))
   end function euler_bernoulli
 
+  !> The linear modes of `model` (omega, shapes: allocated here) and a state
+  !> at rest displaced along mode `mode`, scaled so that its largest entry,
+  !> or with `at` its entry at DOF at, is `amplitude`: the start of the
+  !> free-vibration, period and energy tests.
+  subroutine mode_start(model, mode, amplitude, omega, shapes, y, err, at)
+    type(mechanism_model_t), intent(inout) :: model
+    integer, intent(in) :: mode
+    real(dp), intent(in) :: amplitude
+    real(dp), allocatable, intent(out) :: omega(:), shapes(:, :), y(:)
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: at
+    allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
+    call model%linear_modes(omega, shapes, err)
+    y = 0.0_dp
+    if (present(at)) then
+      y(1::2) = amplitude*shapes(:, mode)/shapes(at, mode)
+    else
+      y(1::2) = amplitude*shapes(:, mode)/maxval(abs(shapes(:, mode)))
+    end if
+  end subroutine mode_start
+
   !> Probe on the modal coordinate of mode k: c = M0 x_k, so that c.q is the
   !> amplitude of mode k (M-orthonormal modes of the structure at rest).
   function modal_probe(model, shapes, k) result(p)
@@ -238,6 +260,32 @@ contains
     call assert_true(.not. err%failed(), 'settling run: '//err%text())
     ok = .not. err%failed()
   end subroutine settle
+
+  !> The rigid-limit tests of the joint-reaction and counterweight suites:
+  !> crank angle 50 k deg (k = 0..6) of the crank turning at omega, its time
+  !> t, and the quasi-static elastic state there, F(q, 0, t) = 0 from q = 0
+  !> (one load step: deflections ~1e-8 in with links 1e6 times stiffer than
+  !> aluminium).
+  subroutine rigid_limit_state(model, omega, k, t, qq, err)
+    type(mechanism_model_t), intent(inout) :: model
+    real(dp), intent(in) :: omega
+    integer, intent(in) :: k
+    real(dp), intent(out) :: t
+    real(dp), intent(out) :: qq(:)
+    type(error_t), intent(inout) :: err
+    t = (50.0_dp*k*pi/180.0_dp)/omega
+    qq = 0.0_dp
+    call model%static_equilibrium(t, qq, 1, err)
+  end subroutine rigid_limit_state
+
+  !> rigid_fourbar_forces' unknowns read from the four-bar's link-end
+  !> reactions (ends A, B, B, C, C, D in deck order): F_A, T_A on the crank,
+  !> F_B on the coupler, F_C on the rocker, F_D on the rocker.
+  function fourbar_unknowns(jr) result(x)
+    type(joint_reactions_t), intent(in) :: jr
+    real(dp) :: x(9)
+    x = [jr%ends(1)%force, jr%ends(1)%moment, jr%ends(3)%force, jr%ends(5)%force, jr%ends(6)%force]
+  end function fourbar_unknowns
 
   !> A cantilever of in-plane depth h turning at omega about its clamped root.
   !> The rigid §8.1 four-bar's Newton-Euler equations at crank angle th

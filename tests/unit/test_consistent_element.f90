@@ -12,8 +12,8 @@ module test_consistent_element_suite
   use assertions
   use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
   use fd_checks, only: fd_gradient, fd_jacobian
+  use element_checks, only: unit_beam, check_force_is_gradient, check_tangent_is_jacobian, check_inertia_is_lagrange
   use test_text, only: rtoa
-  use lagrange_check, only: fd_lagrange
   implicit none
   private
   public :: run_all
@@ -51,27 +51,7 @@ contains
   !> analytic internal force, each nonlinear effect alone and all on: 1e-8
   !> of the largest component.
   subroutine test_force_is_gradient()
-    type(consistent_element_t) :: el
-    type(element_effects_t) :: fx(4)
-    real(dp) :: f(12), g(12), h, phi
-    integer :: k
-    fx(1) = element_effects_t(stretching=.true.)
-    fx(2) = element_effects_t(curvature=.true.)
-    fx(3) = element_effects_t(material=.true.)
-    fx(4) = effects_all_on()
-    phi = 0.7_dp
-    h = 1.0e-4_dp
-    do k = 1, 4
-      el = unit_element(fx(k))
-      call consistent_internal_force(el, q_big, phi, f)
-      g = fd_gradient(energy, q_big, h)
-      call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
-    end do
-  contains
-    real(dp) function energy(q)
-      real(dp), intent(in) :: q(:)
-      energy = consistent_strain_energy(el, q, phi)
-    end function energy
+    call check_force_is_gradient(element_kind_consistent, q_big)
   end subroutine test_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against K_t:
@@ -79,29 +59,17 @@ contains
   !> returned by the evaluation equals the stand-alone one.
   subroutine test_tangent_is_jacobian()
     type(consistent_element_t) :: el
-    real(dp) :: kt(12, 12), k2(12, 12), kfd(12, 12), h, phi
+    real(dp) :: kt(12, 12), k2(12, 12)
     real(dp) :: m(12, 12), f(12)
     type(kear_eval_info_t) :: info
     type(rigid_state_t) :: rb
-    phi = -0.4_dp
-    h = 1.0e-4_dp
+    call check_tangent_is_jacobian(unit_beam(element_kind_consistent, effects_all_on()), q_big, 'all on')
     el = unit_element(effects_all_on())
-    call consistent_tangent_stiffness(el, q_big, phi, kt)
-    call fd_jacobian(internal_force, q_big, h, kfd)
-    call assert_all_close(reshape(kt, [144]), reshape(kfd, [144]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
-                          'K_t vs FD Jacobian')
-    call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), 'K_t symmetric')
     rb = rigid_at(0.0_dp)
     call consistent_element_eval(el, q_big, qd_big, rb, m, f, info, k2)
     call consistent_tangent_stiffness(el, q_big, rb%phi, kt)
     call assert_all_close(reshape(k2, [144]), reshape(kt, [144]), 0.0_dp, 1.0e-13_dp*maxval(abs(kt)), &
                           'tangent of eval = consistent_tangent_stiffness')
-  contains
-    subroutine internal_force(q, fq)
-      real(dp), intent(in) :: q(:)
-      real(dp), intent(out) :: fq(:)
-      call consistent_internal_force(el, q, phi, fq)
-    end subroutine internal_force
   end subroutine test_tangent_is_jacobian
 
   !> M qdd - F - dSE/dq of the element against d/dt dT/dqdot - dT/dq by finite
@@ -110,29 +78,7 @@ contains
   !> with phi, X1, Y1 all accelerating: 1e-7 of the largest component (FD
   !> accuracy), all effects on, the linear section angle, the linear model.
   subroutine test_lagrange_fd()
-    type(consistent_element_t) :: el
-    type(element_effects_t) :: fx(3)
-    real(dp) :: op(12), lag(12), m(12, 12), f(12), fint(12)
-    type(kear_eval_info_t) :: info
-    type(rigid_state_t) :: rb
-    integer :: k
-    fx(1) = effects_all_on()
-    fx(2) = element_effects_t(stretching=.true., rotary_inertia=.true., coupling=.true.)
-    fx(3) = element_effects_t(coupling=.true.)
-    do k = 1, 3
-      el = unit_element(fx(k))
-      rb = rigid_at(0.37_dp)
-      call consistent_element_eval(el, q_big, qd_big, rb, m, f, info)
-      call consistent_internal_force(el, q_big, rb%phi, fint)
-      op = matmul(m, qdd_big) - f - fint
-      lag = fd_lagrange(energy, q_big, qd_big, qdd_big, 0.37_dp)
-      call assert_all_close(op, lag, 0.0_dp, 1.0e-7_dp*maxval(abs(lag)), 'Lagrange: '//effects_summary(fx(k)))
-    end do
-  contains
-    real(dp) function energy(q, qd, t)
-      real(dp), intent(in) :: q(:), qd(:), t
-      energy = consistent_kinetic_energy(el, q, qd, rigid_at(t))
-    end function energy
+    call check_inertia_is_lagrange(element_kind_consistent, q_big, qd_big, qdd_big)
   end subroutine test_lagrange_fd
 
   !> A straight element turned rigidly by alpha = 2.5 rad about node 1

@@ -5,17 +5,12 @@ module test_design_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
   use design_analysis, only: run_design
+  use design_fixtures, only: bar_deck
   use deck_runner, only: start_suite, suite_stem, run_text, has_line, summary_value, line_length
   use assertions
   implicit none
   private
   public :: run_all
-
-  !> A crank of 10 in, 0.25 x 1 in, free at its end, 1 rad/s (inputs/design_bar_frequency.nml).
-  character(len=*), parameter :: bar = '&run analysis = ''design'' /|&mechanism n_joints = 2, '// &
-    'joint_type = ''clamp'', ''free'', joint_x(1) = 0, joint_y(1) = 0, n_links = 1, link_joint1 = 1, '// &
-    'link_joint2 = 2, link_length = 10.0, link_b = 0.25, link_h = 1.0, link_n_elements = 4, driver_link = 1, '// &
-    'omega = 1.0 /|&steady damping_beta = 1.0e-4 /|&tennant d_k = 0, d_b = 0, d_g = 0 /|'
 
 contains
 
@@ -87,7 +82,7 @@ contains
     real(dp), parameter :: e1 = 10.87e6_dp, rho = 2.536e-4_dp, beta_l = 1.875104068711961_dp
     real(dp) :: h_star, h
     h_star = 100.0_dp/((beta_l/10.0_dp)**2*sqrt(e1/(12.0_dp*rho)))
-    call run_text(bar//'&design variables = ''link_h(1)'', lower = 0.01, upper = 10.0, frequency_factor = 100, '// &
+    call run_text(bar_deck//'&design variables = ''link_h(1)'', lower = 0.01, upper = 10.0, frequency_factor = 100, '// &
                   'evaluator = ''harmonic'' /', err, lines)
     call assert_true(.not. err%failed(), 'converges: '//err%text())
     call assert_true(has_line(lines, '# summary: status = converged'), 'status converged')
@@ -143,7 +138,7 @@ contains
     real(dp), parameter :: e1 = 10.87e6_dp, rho = 2.536e-4_dp, beta_l = 1.875104068711961_dp
     real(dp) :: h_star, h, nf
     h_star = 0.8_dp*100.0_dp/((beta_l/10.0_dp)**2*sqrt(e1/(12.0_dp*rho)))
-    call run_text(bar//'&design variables = ''link_h(1)'', lower = 0.01, upper = 10.0, frequency_factor = 100, '// &
+    call run_text(bar_deck//'&design variables = ''link_h(1)'', lower = 0.01, upper = 10.0, frequency_factor = 100, '// &
                   'evaluator = ''harmonic'', speeds = 0.4, 0.8, 0.6 /', err, lines)
     call assert_true(.not. err%failed(), 'converges: '//err%text())
     h = summary_value(lines, '# summary: final link_h(1) =')
@@ -264,7 +259,7 @@ contains
       character(len=line_length), allocatable :: lines(:)
       character(len=:), allocatable :: text
       integer :: at
-      text = bar
+      text = bar_deck
       if (present(tennant_extra)) then
         if (tennant_extra(1:5) == 'link_') then
           at = index(text, 'omega = 1.0')

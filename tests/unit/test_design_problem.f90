@@ -10,9 +10,8 @@ module test_design_problem_suite
   use fourbar_path, only: table3_design, coupler_point
   use design_problem, only: coupler_point_of, design_problem_t, design_eval_t
   use design_sequence, only: design_sequence_t
-  use design_analysis, only: load_design
-  use deck_reader, only: deck_t
-  use deck_runner, only: scratch_path, write_deck
+  use design_fixtures, only: load_design_text
+  use deck_runner, only: scratch_path
   use assertions
   implicit none
   private
@@ -91,22 +90,12 @@ contains
       '''theta0_deg'', lower = 22.0, 62.0, 54.0, upper = 29.0, 82.0, 74.0, objective = ''path'', '// &
       'evaluator = ''harmonic'', samples = 12, path_link = 2, path_r = 16.026, path_angle_deg = 72.13538640697064, '// &
       'path_x = 8*0.0, path_y = 8*0.0, path_dgamma_deg = 0, 45, 90, 135, 180, 225, 270, 315 /'
-    character(len=:), allocatable :: path
-    type(deck_t) :: deck
-    type(mechanism_t) :: mech
     type(design_problem_t), target :: prob
     type(design_sequence_t) :: seq
     type(design_eval_t) :: ev
     type(error_t) :: err
     real(dp), allocatable :: x_star(:), x0(:)
-    integer :: u
-    path = scratch_path('test_design_problem')//'.nml'
-    call write_deck(path, deck_text)
-    call deck%open(path, err)
-    if (.not. err%failed()) call load_design(deck, mech, prob, x_star, seq, err)
-    call deck%close()
-    open(newunit=u, file=path, status='old')
-    close(u, status='delete')
+    call load_design_text(scratch_path('test_design_problem'), deck_text, prob, x_star, err)
     call assert_true(.not. err%failed(), 'deck loads: '//err%text())
     if (err%failed()) return
     ! the elastic coupler points of the design x_star become the targets

@@ -11,12 +11,9 @@ module test_design_sensitivity_suite
   use periodic_problems, only: oscillator_t
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
                                orbit_sensitivity
-  use deck_reader, only: deck_t
-  use linkage, only: mechanism_t
   use design_problem, only: design_problem_t, design_eval_t
-  use design_sequence, only: design_sequence_t
-  use design_analysis, only: load_design
-  use deck_runner, only: scratch_path, write_deck
+  use design_fixtures, only: load_design_text, eval_reason
+  use deck_runner, only: scratch_path
   use assertions
   implicit none
   private
@@ -60,6 +57,7 @@ contains
   subroutine test_linear_oscillator()
     type(oscillator_t), target :: sys
     type(oscillator_t), target :: plus(3), minus(3)
+    character(len=*), parameter :: names(3) = [character(len=2) :: 'k', 'c', 'f1']
     type(shooting_settings_t) :: ss
     type(shooting_report_t) :: rep
     type(error_t) :: err
@@ -74,15 +72,9 @@ contains
     x = sys%f1/d
     dx = [-x/d, -cmplx(0.0_dp, w, dp)*x/d, 1.0_dp/d]
     do j = 1, 3
-      plus(j) = sys
-      minus(j) = sys
+      plus(j) = shifted(sys, names(j), hk)
+      minus(j) = shifted(sys, names(j), -hk)
     end do
-    plus(1)%k = sys%k + hk
-    minus(1)%k = sys%k - hk
-    plus(2)%c = sys%c + hk
-    minus(2)%c = sys%c - hk
-    plus(3)%f1 = sys%f1 + hk
-    minus(3)%f1 = sys%f1 - hk
     ss%rtol = 1.0e-11_dp
     ss%atol = 1.0e-14_dp
     y0 = [real(x), -w*aimag(x)]
@@ -110,6 +102,7 @@ contains
   !> (checked), so a missing tangent fails.
   subroutine test_duffing()
     type(oscillator_t), target :: sys, plus(2), minus(2)
+    character(len=*), parameter :: names(2) = [character(len=5) :: 'k', 'gamma']
     type(shooting_settings_t) :: ss
     type(shooting_report_t) :: rep
     type(error_t) :: err
@@ -131,13 +124,9 @@ contains
       times(k) = (k - 1)*(2.0_dp*pi/w)/12.0_dp
     end do
     do j = 1, 2
-      plus(j) = sys
-      minus(j) = sys
+      plus(j) = shifted(sys, names(j), h)
+      minus(j) = shifted(sys, names(j), -h)
     end do
-    plus(1)%k = sys%k + h
-    minus(1)%k = sys%k - h
-    plus(2)%gamma = sys%gamma + h
-    minus(2)%gamma = sys%gamma - h
     call orbit_sensitivity(sys, plus, minus, [2*h, 2*h], ss, y0, times, q, dq, rep, err)
     call assert_true(.not. err%failed(), 'orbit_sensitivity runs: '//err%text())
     if (err%failed()) return
@@ -189,7 +178,7 @@ contains
     call prob%setup('example 3', x0)
     call assert_true(prob%variational_applies(), 'the default derivatives are the variational ones')
     call prob%evaluate(x0, ev)
-    call assert_true(ev%ok, 'example 3 at x0 analyses: '//reason(ev))
+    call assert_true(ev%ok, 'example 3 at x0 analyses: '//eval_reason(ev))
     if (.not. ev%ok) return
     before = prob%n_analyses
     call prob%derivatives_at(x0, dg, dr, ok)
@@ -219,7 +208,7 @@ contains
     real(dp), allocatable, intent(out) :: g(:), r(:)
     type(design_eval_t) :: ev
     call prob%evaluate(x, ev)
-    call assert_true(ev%ok, 'a neighbour analyses: '//reason(ev))
+    call assert_true(ev%ok, 'a neighbour analyses: '//eval_reason(ev))
     g = prob%constraints_of(ev)
     r = prob%residuals_of(ev)
   end subroutine values
@@ -239,50 +228,45 @@ contains
     call assert_error(err, 2, 'derivatives', 'an unknown choice')
   end subroutine test_switch
 
-  function reason(ev) result(text)
-    type(design_eval_t), intent(in) :: ev
-    character(len=:), allocatable :: text
-    text = ''
-    if (allocated(ev%reason)) text = ev%reason
-  end function reason
+  !> A copy of the oscillator with its parameter `name` moved by dh (the
+  !> central differences' neighbours).
+  function shifted(sys, name, dh) result(moved)
+    type(oscillator_t), intent(in) :: sys
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: dh
+    type(oscillator_t) :: moved
+    moved = sys
+    select case (trim(name))
+    case ('k')
+      moved%k = sys%k + dh
+    case ('c')
+      moved%c = sys%c + dh
+    case ('f1')
+      moved%f1 = sys%f1 + dh
+    case ('gamma')
+      moved%gamma = sys%gamma + dh
+    case default
+      call assert_true(.false., 'no oscillator parameter '//name)
+    end select
+  end function shifted
 
   !> Load the deck text into a design problem (not yet set up).
   subroutine load(text, prob, x0)
     character(len=*), intent(in) :: text
     type(design_problem_t), intent(out) :: prob
     real(dp), allocatable, intent(out) :: x0(:)
-    type(deck_t) :: deck
-    type(mechanism_t) :: mech
-    type(design_sequence_t) :: seq
     type(error_t) :: err
-    call write_deck(scratch//'.nml', text)
-    call deck%open(scratch//'.nml', err)
-    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
-    call deck%close()
+    call load_design_text(scratch, text, prob, x0, err)
     call assert_true(.not. err%failed(), 'the deck loads: '//err%text())
-    call delete_scratch()
   end subroutine load
 
   subroutine try_load(text, err)
     character(len=*), intent(in) :: text
     type(error_t), intent(inout) :: err
-    type(deck_t) :: deck
-    type(mechanism_t) :: mech
     type(design_problem_t) :: prob
-    type(design_sequence_t) :: seq
     real(dp), allocatable :: x0(:)
-    call write_deck(scratch//'.nml', text)
-    call deck%open(scratch//'.nml', err)
-    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
-    call deck%close()
-    call delete_scratch()
+    call load_design_text(scratch, text, prob, x0, err)
   end subroutine try_load
-
-  subroutine delete_scratch()
-    integer :: u
-    open(newunit=u, file=scratch//'.nml', status='old')
-    close(u, status='delete')
-  end subroutine delete_scratch
 end module test_design_sensitivity_suite
 
 program test_design_sensitivity

@@ -9,12 +9,10 @@ module test_design_transient_suite
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kinds, only: dp
   use error_status, only: error_t
-  use deck_reader, only: deck_t
-  use linkage, only: mechanism_t
   use design_problem, only: design_problem_t, design_eval_t
-  use design_sequence, only: design_sequence_t
-  use design_analysis, only: run_design, load_design
-  use deck_runner, only: scratch_path, write_deck, run_deck, line_length
+  use design_analysis, only: run_design
+  use design_fixtures, only: bar_deck, load_design_text, eval_reason
+  use deck_runner, only: scratch_path, run_deck, line_length
   use assertions
   implicit none
   private
@@ -30,11 +28,6 @@ module test_design_transient_suite
     'omega = 150.0 /|&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-7, atol = 1.0e-11 /|'// &
     '&tennant d_k = 0, d_b = 0, d_g = 0, shear = F /|&design variables = ''link_h(1)'', ''link_h(2)'', '// &
     '''link_h(3)'', lower = 3*0.2, upper = 3*4.0, stress_allowable = 20000.0, frequency_factor = 5.0, '
-  !> a crank of 10 in free at its end, 1 rad/s
-  character(len=*), parameter :: bar = '&run analysis = ''design'' /|&mechanism n_joints = 2, '// &
-    'joint_type = ''clamp'', ''free'', joint_x(1) = 0, joint_y(1) = 0, n_links = 1, link_joint1 = 1, '// &
-    'link_joint2 = 2, link_length = 10.0, link_b = 0.25, link_h = 1.0, link_n_elements = 4, driver_link = 1, '// &
-    'omega = 1.0 /|&steady damping_beta = 1.0e-4 /|&tennant d_k = 0, d_b = 0, d_g = 0 /|'
 
 contains
 
@@ -50,21 +43,10 @@ contains
     character(len=*), intent(in) :: evaluator, extra
     type(design_problem_t), intent(out) :: prob
     real(dp), allocatable, intent(out) :: x0(:)
-    type(deck_t) :: deck
-    type(mechanism_t) :: mech
-    type(design_sequence_t) :: seq
     type(error_t) :: err
-    call write_deck(scratch//'.nml', example1//'evaluator = '''//evaluator//''''//extra//' /')
-    call deck%open(scratch//'.nml', err)
-    if (.not. err%failed()) call load_design(deck, mech, prob, x0, seq, err)
-    call deck%close()
+    call load_design_text(scratch, example1//'evaluator = '''//evaluator//''''//extra//' /', prob, x0, err)
     call assert_true(.not. err%failed(), 'example 1 loads: '//err%text())
     call prob%setup('example 1', x0)
-    block
-      integer :: u
-      open(newunit=u, file=scratch//'.nml', status='old')
-      close(u, status='delete')
-    end block
   end subroutine load
 
   !> Peak stresses (the constraints ln(stress/allowable)) at the initial
@@ -94,8 +76,8 @@ contains
         call ps%evaluate(x1, es)
         call pt%evaluate(x1, et)
       end if
-      call assert_true(es%ok, 'shooting succeeds: '//reason(es))
-      call assert_true(et%ok, 'transient succeeds: '//reason(et))
+      call assert_true(es%ok, 'shooting succeeds: '//eval_reason(es))
+      call assert_true(et%ok, 'transient succeeds: '//eval_reason(et))
       if (.not. (es%ok .and. et%ok)) return
       do i = 1, 3
         call assert_close(log(et%link_stress(i)/es%link_stress(i)), 0.0_dp, 1.0e-5_dp, 'ln(stress) of link '// &
@@ -107,13 +89,6 @@ contains
     end do
     call assert_true(abs(es%link_stress(1)/stress1 - 1.0_dp) > 0.1_dp, 'the two designs'' stresses differ')
   end subroutine test_agrees_with_shooting
-
-  function reason(ev) result(text)
-    type(design_eval_t), intent(in) :: ev
-    character(len=:), allocatable :: text
-    text = ''
-    if (allocated(ev%reason)) text = ev%reason
-  end function reason
 
   !> Two revolutions from rest cannot meet 1e-6 (the contraction is about
   !> 0.7 per revolution): the analysis fails, the
@@ -140,14 +115,14 @@ contains
   subroutine test_bad_values()
     character(len=*), parameter :: ok = '&design variables = ''link_h(1)'', lower = 0.1, upper = 2, '// &
       'frequency_factor = 10, evaluator = ''transient'', '
-    call bad(bar, ok//'stop_when_periodic = 0.0 /', 'stop_when_periodic')
-    call bad(bar, ok//'stop_when_periodic = NaN /', 'stop_when_periodic')
-    call bad(bar, ok//'stop_when_periodic = 0.5 /', 'stop_when_periodic')
-    call bad(bar, ok//'max_revolutions = 1 /', 'max_revolutions')
-    call bad(replace(bar, 'damping_beta = 1.0e-4', 'damping_beta = 1.0e-4, rtol = 1.0e-6'), ok//'/', &
+    call bad(bar_deck, ok//'stop_when_periodic = 0.0 /', 'stop_when_periodic')
+    call bad(bar_deck, ok//'stop_when_periodic = NaN /', 'stop_when_periodic')
+    call bad(bar_deck, ok//'stop_when_periodic = 0.5 /', 'stop_when_periodic')
+    call bad(bar_deck, ok//'max_revolutions = 1 /', 'max_revolutions')
+    call bad(replace(bar_deck, 'damping_beta = 1.0e-4', 'damping_beta = 1.0e-4, rtol = 1.0e-6'), ok//'/', &
              'at least 10 x the integration''s rtol')
-    call bad(replace(bar, 'd_k = 0', 'd_k = 1'), ok//'/', 'the linear element only')
-    call bad(replace(bar, 'd_k = 0', 'shear = T, d_k = 0'), ok//'/', 'no shear angle')
+    call bad(replace(bar_deck, 'd_k = 0', 'd_k = 1'), ok//'/', 'the linear element only')
+    call bad(replace(bar_deck, 'd_k = 0', 'shear = T, d_k = 0'), ok//'/', 'no shear angle')
   contains
     subroutine bad(base, design_group, fragment)
       character(len=*), intent(in) :: base, design_group, fragment

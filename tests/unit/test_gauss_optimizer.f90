@@ -33,6 +33,15 @@ module test_gauss_optimizer_suite
     procedure :: jacobian => log_jacobian
   end type log_domain_t
 
+  !> The run under test of every test that solves a library problem through
+  !> run_problem (the suite's fixture): the optimizer, the problem, the
+  !> library's data for it and the run's error.  Tests that build their own
+  !> problem declare their own.
+  type(gauss_optimizer_t) :: opt
+  class(opt_problem_t), allocatable :: prob
+  type(problem_info_t) :: info
+  type(error_t) :: err
+
 contains
 
   subroutine run_all()
@@ -227,6 +236,7 @@ contains
   end subroutine test_non_finite_trial
 
   !> Solve library problem `name` with `method` from x0 (default: the library's).
+  !> The run starts without an error (the fixture's err outlives a test).
   subroutine run_problem(name, method, opt, prob, info, err, x0, max_iter, regularization, potter_repeat, auto_reg)
     character(len=*), intent(in) :: name, method
     type(gauss_optimizer_t), intent(out) :: opt
@@ -236,6 +246,7 @@ contains
     real(dp), intent(in), optional :: x0(:), regularization
     integer, intent(in), optional :: max_iter
     logical, intent(in), optional :: potter_repeat, auto_reg
+    call err%clear()
     call create_problem(name, prob, info, err)
     if (err%failed()) return
     opt%opts%method = method_from_name(method)
@@ -257,10 +268,6 @@ contains
     real(dp) :: starts(4, 7)
     character(len=8) :: methods(7)
     integer :: ni_paper(7), nf_paper(7), k
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     character(len=80) :: label
     starts = reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, &
                       0.0_dp, 0.0_dp, r5, 0.0_dp, 0.0_dp, 0.0_dp, r5, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, &
@@ -283,10 +290,6 @@ contains
   end subroutine test_table_one
 
   subroutine test_nf_ni()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=[0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
     ! no line search: one analysis per iteration plus the start (§9)
     call assert_equal(prob%count%analyses, opt%iterations + 1, 'NF = NI + 1')
@@ -326,10 +329,6 @@ contains
   end subroutine test_plain_b13
 
   subroutine test_infeasible_start()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=[2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp])
     call assert_true(err%failed() .and. err%code == 2, 'input error (code 2)')
     call assert_true(index(err%text(), 'infeasible') > 0, 'says the start is infeasible')
@@ -340,10 +339,6 @@ contains
 
   subroutine test_unconstrained()
     character(len=16), parameter :: names(3) = [character(len=16) :: 'rosenbrock', 'helical_valley', 'bard']
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     integer :: k
     do k = 1, 3
       call run_problem(trim(names(k)), 'gauss', opt, prob, info, err)
@@ -361,10 +356,8 @@ contains
 
   subroutine test_linear_constraints()
     character(len=8), parameter :: names(2) = [character(len=8) :: 'hs21', 'hs35']
-    type(gauss_optimizer_t) :: opt, opt2
-    class(opt_problem_t), allocatable :: prob, prob2
-    type(problem_info_t) :: info
-    type(error_t) :: err
+    type(gauss_optimizer_t) :: opt2
+    class(opt_problem_t), allocatable :: prob2
     integer :: k
     do k = 1, 2
       call run_problem(trim(names(k)), 'gauss_constrained', opt, prob, info, err)
@@ -382,10 +375,6 @@ contains
   !> lies on the constraints active at the optimum.  HS35 from (1, 1, 0.5),
   !> on x1 + x2 + 2 x3 = 3; Rosen-Suzuki from a point on g1 = g3 = 0.
   subroutine test_one_iteration()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     real(dp) :: x0(4)
     call run_problem('hs35', 'gauss_constrained', opt, prob, info, err, x0=[1.0_dp, 1.0_dp, 0.5_dp])
     call assert_equal(opt%iterations, 1, 'HS35: one iteration')
@@ -420,10 +409,6 @@ contains
 
   !> HS28: two residuals for three variables, so J J^T is singular everywhere.
   subroutine test_rank_deficient()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('hs28', 'gauss_constrained', opt, prob, info, err, auto_reg=.false.)
     call assert_true(err%failed() .and. opt%status == status_failed, 'singular G stops the run')
     call assert_true(index(err%text(), 'singular') > 0, 'diagnosis says singular')
@@ -464,10 +449,6 @@ contains
   !> B11 is solved by Newton, and the step lands on x* (quadratic F and
   !> constraints): NI = 1, no Powell fallback.
   subroutine test_powell_fallback()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('three_circles', 'gnlc_ns', opt, prob, info, err)
     call assert_true(opt%status == status_converged, 'converged: '//err%text())
     call assert_equal(opt%powell_fallbacks, 0, 'no Powell fallback')
@@ -480,10 +461,6 @@ contains
   end subroutine test_powell_fallback
 
   subroutine test_iteration_limit()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('rosen_suzuki', 'gnlc', opt, prob, info, err, x0=[0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], max_iter=2)
     call assert_true(opt%status == status_max_iter, 'status: iteration limit')
     call assert_true(err%failed() .and. err%code /= 2, 'error set, not an input error')
@@ -497,10 +474,6 @@ contains
   !> x* of the active set {1} violates x2 >= -1/2; backing out along the chord
   !> enters |x| < 1 and ends back at x_k with the same active set.
   subroutine test_potter_cycling()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('potter_cycling', 'gnlc', opt, prob, info, err, potter_repeat=.false.)
     call assert_true(err%failed() .and. opt%status == status_failed, 'cycling stops the run when not escaped')
     call assert_true(index(err%text(), 'cycling') > 0 .and. index(err%text(), 'Potter') > 0, &
@@ -517,10 +490,6 @@ contains
   end subroutine test_potter_cycling
 
   subroutine test_general_constraints()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('general_convex', 'gnlc_general', opt, prob, info, err)
     call assert_true(opt%status == status_converged, 'gnlc_general converged: '//err%text())
     call assert_all_close(opt%x, info%x_star, 0.0_dp, 1.0e-8_dp, 'x* = (1, 1)')
@@ -539,10 +508,6 @@ contains
   !> literature starts: only GNLC.NS applies.
   subroutine test_ns_infeasible_starts()
     character(len=8), parameter :: names(2) = [character(len=8) :: 'hs15', 'hs65']
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     integer :: k
     do k = 1, 2
       call run_problem(trim(names(k)), 'gnlc_ns', opt, prob, info, err)
@@ -559,10 +524,6 @@ contains
   end subroutine test_ns_infeasible_starts
 
   subroutine test_mismatch()
-    type(gauss_optimizer_t) :: opt
-    class(opt_problem_t), allocatable :: prob
-    type(problem_info_t) :: info
-    type(error_t) :: err
     call run_problem('rosen_suzuki', 'gauss', opt, prob, info, err)
     call assert_true(err%code == 2 .and. index(err%text(), 'unconstrained') > 0, 'gauss on a constrained problem')
     call err%clear()

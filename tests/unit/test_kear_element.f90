@@ -13,8 +13,8 @@ module test_kear_element_suite
   use kear_element
   use assertions
   use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
-  use fd_checks, only: fd_gradient, fd_jacobian
-  use lagrange_check, only: fd_lagrange
+  use beam_element, only: element_kind_kear
+  use element_checks, only: unit_beam, check_force_is_gradient, check_tangent_is_jacobian, check_inertia_is_lagrange
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
   private
@@ -130,17 +130,6 @@ contains
   end function jb
 
   !> Element inertial operator M qdd - F - dSE/dq (beta = 0).
-  function element_operator(el, q, qd, qdd, rb) result(op)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), qd(8), qdd(8)
-    type(rigid_state_t), intent(in) :: rb
-    real(dp) :: op(8), m(8, 8), f(8), fint(8)
-    type(kear_eval_info_t) :: info
-    call kear_element_eval(el, q, qd, rb, m, f, info)
-    call kear_internal_force(el, q, rb%phi, fint)
-    op = matmul(m, qdd) - f - fint
-  end function element_operator
-
   ! -------------------------------------------------------------- tests
 
   !> All effects off: K, translational M and rotary M (curvature off) are the
@@ -210,26 +199,7 @@ contains
   !> formulation with each nonlinear effect alone and all together, at the
   !> strongly deformed state: agreement to 1e-8 of the largest component.
   subroutine test_force_is_gradient()
-    type(kear_element_t) :: el
-    type(element_effects_t) :: fx(4)
-    real(dp) :: f(8), g(8), phi
-    integer :: k
-    fx(1) = element_effects_t(stretching=.true.)
-    fx(2) = element_effects_t(curvature=.true.)
-    fx(3) = element_effects_t(material=.true.)
-    fx(4) = effects_all_on()
-    phi = 0.7_dp
-    do k = 1, 4
-      el = unit_element(fx(k))
-      call kear_internal_force(el, q_big, phi, f)
-      g = fd_gradient(energy, q_big, 1.0e-4_dp)
-      call assert_all_close(f, g, 0.0_dp, 1.0e-8_dp*maxval(abs(g)), 'dSE/dq: '//effects_summary(fx(k)))
-    end do
-  contains
-    real(dp) function energy(q)
-      real(dp), intent(in) :: q(:)
-      energy = kear_strain_energy(el, q, phi)
-    end function energy
+    call check_force_is_gradient(element_kind_kear, q_big)
   end subroutine test_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against the
@@ -237,37 +207,11 @@ contains
   !> effects on, and geometric effects with linear material.  The exact K_t
   !> is symmetric (a Hessian) to round-off.
   subroutine test_tangent_is_jacobian()
-    type(kear_element_t) :: el
-    real(dp) :: kt(8, 8), kfd(8, 8), phi, h
-    integer :: k
-    character(len=40) :: label
-    phi = -0.4_dp
-    h = 1.0e-4_dp
-    do k = 1, 3
-      select case (k)
-      case (1)
-        el = unit_element(effects_all_on())
-        label = 'exact, all on'
-      case (2)
-        el = unit_element(effects_all_on(), formulation=formulation_kear1987)
-        label = 'kear1987, all on'
-      case default
-        el = unit_element(element_effects_t(stretching=.true., curvature=.true.))
-        label = 'exact, geometric only'
-      end select
-      call kear_tangent_stiffness(el, q_big, phi, kt)
-      call fd_jacobian(internal_force, q_big, h, kfd)
-      call assert_all_close(reshape(kt, [64]), reshape(kfd, [64]), 0.0_dp, 1.0e-7_dp*maxval(abs(kfd)), &
-                            'K_t vs FD Jacobian: '//trim(label))
-      if (k /= 2) call assert_true(maxval(abs(kt - transpose(kt))) <= 1.0e-12_dp*maxval(abs(kt)), &
-                                   'K_t symmetric: '//trim(label))
-    end do
-  contains
-    subroutine internal_force(q, f)
-      real(dp), intent(in) :: q(:)
-      real(dp), intent(out) :: f(:)
-      call kear_internal_force(el, q, phi, f)
-    end subroutine internal_force
+    call check_tangent_is_jacobian(unit_beam(element_kind_kear, effects_all_on()), q_big, 'exact, all on')
+    call check_tangent_is_jacobian(unit_beam(element_kind_kear, effects_all_on(), formulation_kear1987), q_big, &
+                                   'kear1987, all on', symmetric=.false.)
+    call check_tangent_is_jacobian(unit_beam(element_kind_kear, element_effects_t(stretching=.true., curvature=.true.)), &
+                                   q_big, 'exact, geometric only')
   end subroutine test_tangent_is_jacobian
 
   !> eps_n and kappa from kear_section_strains against formulas (K19), exact
@@ -427,25 +371,7 @@ contains
   !> d/dt and dT/dq: 4th-order differences (steps 1e-3 and 1e-4).
   !> Tolerance 1e-7 of the largest component.
   subroutine test_lagrange_fd()
-    type(kear_element_t) :: el
-    type(element_effects_t) :: fx(3)
-    real(dp) :: op(8), lag(8)
-    integer :: k
-    character(len=12), parameter :: label(3) = [character(len=12) :: 'all on', 'linear angle', 'linear model']
-    fx(1) = effects_all_on()
-    fx(2) = element_effects_t(stretching=.true., rotary_inertia=.true., coupling=.true.)
-    fx(3) = element_effects_t(coupling=.true.)
-    do k = 1, 3
-      el = unit_element(fx(k))
-      op = element_operator(el, q_big, qd_big, qdd_big, rigid_at(0.37_dp))
-      lag = fd_lagrange(energy, q_big, qd_big, qdd_big, 0.37_dp)
-      call assert_all_close(op, lag, 0.0_dp, 1.0e-7_dp*maxval(abs(lag)), 'Lagrange operator: '//trim(label(k)))
-    end do
-  contains
-    real(dp) function energy(q, qd, t)
-      real(dp), intent(in) :: q(:), qd(:), t
-      energy = kear_kinetic_energy(el, q, qd, rigid_at(t))
-    end function energy
+    call check_inertia_is_lagrange(element_kind_kear, q_big, qd_big, qdd_big)
   end subroutine test_lagrange_fd
 
   !> The printed internal force (K17) with (K20) and (K24):

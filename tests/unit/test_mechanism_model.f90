@@ -13,7 +13,7 @@ module test_mechanism_model_suite
   use linalg, only: solve_linear
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use assertions
-  use transient_fixtures, only: fourbar_input
+  use transient_fixtures, only: fourbar_input, cantilever_input, mode_start
   implicit none
   private
   public :: run_all
@@ -118,10 +118,7 @@ contains
     real(dp) :: t_theory, dt, t, a_prev, a, crossings(16), period, q(1000)
     integer :: k, n_cross
     call beam(4, end_kind, element_effects_t(), model, err)
-    allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
-    call model%linear_modes(omega, shapes, err)
-    y = 0.0_dp
-    y(1::2) = 1.0e-3_dp*shapes(:, mode)/maxval(abs(shapes(:, mode)))
+    call mode_start(model, mode, 1.0e-3_dp, omega, shapes, y, err)
     t_theory = 2.0_dp*pi/euler_bernoulli(beta_l)
     dt = t_theory/200.0_dp
     call ode%init(size(y), 0.0_dp, mf_adams, 1.0e-9_dp, [1.0e-14_dp], err)
@@ -167,11 +164,8 @@ contains
     real(dp) :: t, ke, se, e0, drift, q(100), qd(100)
     integer :: k
     call beam(2, joint_ground_pin, element_effects_t(.true., .true., .true., .true., .true.), model, err)
-    allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
-    call model%linear_modes(omega, shapes, err)
-    y = 0.0_dp
     ! amplitude of about one section depth: strongly nonlinear (stretching)
-    y(1::2) = 0.02_dp*shapes(:, 1)/maxval(abs(shapes(:, 1)))
+    call mode_start(model, 1, 0.02_dp, omega, shapes, y, err)
     q(1:model%n) = y(1::2)
     qd(1:model%n) = y(2::2)
     call model%energies(0.0_dp, q(1:model%n), qd(1:model%n), ke, se)
@@ -258,19 +252,8 @@ contains
     real(dp) :: mu, lo, hi, mid, bl
     integer :: i
     mu = 0.5_dp
-    inp%n_joints = 2
-    inp%joint_name(1:2) = [character(len=16) :: 'A', 'T']
-    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'free']
-    inp%joint_x(1:2) = [0.0_dp, length]
-    inp%joint_y(1:2) = [0.0_dp, 0.0_dp]
+    inp = cantilever_input(4, 0.0_dp)       ! the beam clamped on a stopped crank shaft
     inp%joint_mass(2) = mu*rho*width*depth*length
-    inp%n_links = 1
-    inp%link_name(1) = 'beam'
-    inp%link_joint1(1) = 1
-    inp%link_joint2(1) = 2
-    inp%link_n_elements(1) = 4
-    inp%driver_link = 1       ! the beam clamped on a stopped crank shaft
-    inp%omega = 0.0_dp
     if (.not. linear_model(inp, mech, model)) return
     allocate(omega(model%n), shapes(model%n, model%n))
     call model%linear_modes(omega, shapes, err)
@@ -304,20 +287,8 @@ contains
     integer :: last
     omega = 100.0_dp
     big_m = 0.5_dp*rho*width*depth*length
-    inp%n_joints = 2
-    inp%joint_name(1:2) = [character(len=16) :: 'A', 'T']
-    inp%joint_type(1:2) = [character(len=16) :: 'clamp', 'free']
-    inp%joint_x(1) = 0.0_dp
-    inp%joint_y(1) = 0.0_dp
+    inp = cantilever_input(4, omega)
     inp%joint_mass(2) = big_m
-    inp%n_links = 1
-    inp%link_name(1) = 'arm'
-    inp%link_joint1(1) = 1
-    inp%link_joint2(1) = 2
-    inp%link_length(1) = length
-    inp%link_n_elements(1) = 4
-    inp%driver_link = 1
-    inp%omega = omega
     if (.not. linear_model(inp, mech, model)) return
     allocate(q(model%n), qd(model%n), qdd(model%n), mass(model%n, model%n), stiff(model%n, model%n))
     q = 0.0_dp

@@ -236,9 +236,7 @@ contains
     type(tennant_element_t) :: el
     type(tennant_options_t) :: opt
     type(tennant_section_t) :: secs(3)
-    secs(1) = tennant_section_t(0.0_dp, 0.2_dp, 0.3_dp, 1.2_dp)
-    secs(2) = tennant_section_t(0.2_dp, 0.7_dp, 0.25_dp, 1.0_dp)
-    secs(3) = tennant_section_t(0.7_dp, 1.0_dp, 0.2_dp, 0.8_dp)
+    secs = sections([0.0_dp, 0.2_dp, 0.7_dp, 1.0_dp], [0.3_dp, 0.25_dp, 0.2_dp], [1.2_dp, 1.0_dp, 0.8_dp])
     call make(el, 9.0_dp, opt)
     call check_lagrange(el, .false., 'slender, rotary inertia')
     opt%rotary_inertia = .false.
@@ -297,6 +295,17 @@ contains
     end subroutine poly
   end subroutine test_shape_rates
 
+  !> Sections of widths b(i) and heights h(i) between the breakpoints
+  !> e(i) < e(i + 1) along the element (fractions of its length, 0 to 1).
+  pure function sections(e, b, h) result(secs)
+    real(dp), intent(in) :: e(:), b(:), h(:)
+    type(tennant_section_t) :: secs(size(b))
+    integer :: i
+    do i = 1, size(b)
+      secs(i) = tennant_section_t(e(i), e(i + 1), b(i), h(i))
+    end do
+  end function sections
+
   !> Central differences of the strain energy (h = 1e-7 of each DOF scale):
   !> tolerance 1e-6 of the largest force component.
   subroutine check_gradient(el, q, label)
@@ -322,8 +331,7 @@ contains
     type(tennant_element_t) :: el
     type(tennant_options_t) :: opt
     type(tennant_section_t) :: secs(2)
-    secs(1) = tennant_section_t(0.0_dp, 0.4_dp, 0.3_dp, 1.1_dp)
-    secs(2) = tennant_section_t(0.4_dp, 1.0_dp, 0.25_dp, 0.9_dp)
+    secs = sections([0.0_dp, 0.4_dp, 1.0_dp], [0.3_dp, 0.25_dp], [1.1_dp, 0.9_dp])
     opt = tennant_options_t(d_k=1.0_dp, d_b=1.0_dp, d_g=1.0_dp)
     call make(el, 9.0_dp, opt)
     call check_gradient(el, sample_q(8, 21, 5.0_dp), 'slender, all tracing constants')
@@ -408,7 +416,6 @@ contains
   !> constant leaves the others' fields untouched (a with D_b or D_k on = linear).
   subroutine test_tracing_constants()
     type(tennant_element_t) :: el
-    type(tennant_options_t) :: opt
     type(frame_state_t) :: fs
     real(dp), parameter :: l = 9.0_dp, a = 1.0e-3_dp, b = 0.05_dp, kk = 0.01_dp
     real(dp) :: qa(8), qb(8), qc(8), area, inertia, xg(40), wg(40), ref
@@ -420,22 +427,14 @@ contains
     qb = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, a*l, 0.0_dp, 0.0_dp, 0.0_dp]
     qc = [0.0_dp, 0.0_dp, b, kk, 0.0_dp, 0.5_dp*kk*l*l + b*l, b + kk*l, kk]
     ! (a) stretching
-    opt = tennant_options_t(d_g=1.0_dp)
-    call make(el, l, opt)
-    call assert_rel_close(tennant_strain_energy(el, qa, fs), 0.5_dp*e1*area*l*(a + 0.5_dp*b*b)**2, 1.0e-12_dp, &
+    call assert_rel_close(energy(tennant_options_t(d_g=1.0_dp), qa), 0.5_dp*e1*area*l*(a + 0.5_dp*b*b)**2, 1.0e-12_dp, &
                           'D_g energy')
-    opt = tennant_options_t(d_b=1.0_dp, d_k=0.0_dp)
-    call make(el, l, opt)
-    call assert_rel_close(tennant_strain_energy(el, qa, fs), 0.5_dp*e1*area*l*a*a, 1.0e-12_dp, &
+    call assert_rel_close(energy(tennant_options_t(d_b=1.0_dp, d_k=0.0_dp), qa), 0.5_dp*e1*area*l*a*a, 1.0e-12_dp, &
                           'D_b does not stretch the axis')
     ! (b) material
-    opt = tennant_options_t(d_k=1.0_dp)
-    call make(el, l, opt)
-    call assert_rel_close(tennant_strain_energy(el, qb, fs), area*l*(0.5_dp*e1*a*a - 0.25_dp*e2*a**4), 1.0e-12_dp, &
+    call assert_rel_close(energy(tennant_options_t(d_k=1.0_dp), qb), area*l*(0.5_dp*e1*a*a - 0.25_dp*e2*a**4), 1.0e-12_dp, &
                           'D_k energy')
-    opt = tennant_options_t(d_g=1.0_dp, d_b=1.0_dp)
-    call make(el, l, opt)
-    call assert_rel_close(tennant_strain_energy(el, qb, fs), 0.5_dp*e1*area*l*a*a, 1.0e-12_dp, &
+    call assert_rel_close(energy(tennant_options_t(d_g=1.0_dp, d_b=1.0_dp), qb), 0.5_dp*e1*area*l*a*a, 1.0e-12_dp, &
                           'geometric constants do not touch the material law')
     ! (c) curvature
     call gauss_legendre_interval(40, 0.0_dp, l, xg, wg)
@@ -443,14 +442,17 @@ contains
     do i = 1, 40
       ref = ref + wg(i)*0.5_dp*e1*inertia*kk*kk/(1.0_dp + (b + kk*xg(i))**2)**3
     end do
-    opt = tennant_options_t(d_b=1.0_dp)
-    opt%n_gauss = 24
-    call make(el, l, opt)
-    call assert_rel_close(tennant_strain_energy(el, qc, fs), ref, 1.0e-10_dp, 'D_b energy')
-    opt = tennant_options_t(d_k=1.0_dp)
-    call make(el, l, opt)
-    call assert_true(abs(tennant_strain_energy(el, qc, fs) - 0.5_dp*e1*inertia*kk*kk*l) > &
+    call assert_rel_close(energy(tennant_options_t(d_b=1.0_dp, n_gauss=24), qc), ref, 1.0e-10_dp, 'D_b energy')
+    call assert_true(abs(energy(tennant_options_t(d_k=1.0_dp), qc) - 0.5_dp*e1*inertia*kk*kk*l) > &
                      1.0e-6_dp*0.5_dp*e1*inertia*kk*kk*l, 'the material constant changes the bending energy')
+  contains
+    !> The strain energy at q of the element with the tracing constants of o.
+    real(dp) function energy(o, q)
+      type(tennant_options_t), intent(in) :: o
+      real(dp), intent(in) :: q(:)
+      call make(el, l, o)
+      energy = tennant_strain_energy(el, q, fs)
+    end function energy
   end subroutine test_tracing_constants
 
   !> D_k = D_b = D_g = 0: f_n = 0 exactly, no nonlinear integrand evaluated,
@@ -536,9 +538,7 @@ contains
     type(tennant_info_t) :: info
     real(dp), dimension(14, 14) :: ma, ca, ka, mb, cb, kb, sa, sb
     real(dp), dimension(14) :: fa, fb, na, nb, q
-    secs(1) = tennant_section_t(0.0_dp, 0.15_dp, bw, hd)
-    secs(2) = tennant_section_t(0.15_dp, 0.6_dp, bw, hd)
-    secs(3) = tennant_section_t(0.6_dp, 1.0_dp, bw, hd)
+    secs = sections([0.0_dp, 0.15_dp, 0.6_dp, 1.0_dp], [bw, bw, bw], [hd, hd, hd])
     opt = tennant_options_t(d_k=1.0_dp, d_b=1.0_dp, d_g=1.0_dp, shear=.true., damping_beta=1.0e-5_dp, n_gauss=24)
     call make(a, 9.0_dp, opt)
     call make(b, 9.0_dp, opt, secs)
@@ -569,8 +569,7 @@ contains
     type(frame_state_t) :: fs
     real(dp) :: m(8, 8), c(8, 8), k(8, 8), f(8), tr(8), a1, a2, l
     l = 10.0_dp
-    secs(1) = tennant_section_t(0.0_dp, 0.3_dp, 0.5_dp, 1.0_dp)
-    secs(2) = tennant_section_t(0.3_dp, 1.0_dp, 0.25_dp, 1.0_dp)
+    secs = sections([0.0_dp, 0.3_dp, 1.0_dp], [0.5_dp, 0.25_dp], [1.0_dp, 1.0_dp])
     a1 = 0.5_dp
     a2 = 0.25_dp
     opt%rotary_inertia = .false.

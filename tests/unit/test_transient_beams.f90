@@ -169,10 +169,7 @@ contains
     period = 0.0_dp
     call make_model(beam_input(end_type, n), effects, 0.0_dp, model, ok)
     if (.not. ok) return
-    allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
-    call model%linear_modes(omega, shapes, err)
-    y = 0.0_dp
-    y(1::2) = 1.0e-3_dp*shapes(:, mode)/maxval(abs(shapes(:, mode)))
+    call mode_start(model, mode, 1.0e-3_dp, omega, shapes, y, err)
     p = modal_probe(model, shapes, mode)
     call measure_period(model, y, 0.0_dp, t_guess, 3, mf_adams, 1.0e-9_dp, 1.0e-14_dp, p, period, ok)
   end subroutine release_period
@@ -252,11 +249,8 @@ contains
     call make_model(beam_input('ground_pin', n), element_effects_t(stretching=.true.), 0.0_dp, model, ok, &
                     formulation=formulation)
     if (.not. ok) return
-    allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
-    call model%linear_modes(omega, shapes, err)
     mid = model%table%map(model%table%node_dofs + 2, n/2)    ! W at the end of element n/2: mid-span
-    y = 0.0_dp
-    y(1::2) = a_over_r*radius_gyration*shapes(:, 1)/shapes(mid, 1)
+    call mode_start(model, 1, a_over_r*radius_gyration, omega, shapes, y, err, at=mid)
     p%kind = probe_modal
     allocate(p%c(model%n))
     p%c = 0.0_dp

@@ -67,10 +67,7 @@ contains
     drift = huge(1.0_dp)
     call make_model(fourbar_input(1, 0.0_dp, 60.0_dp), all_effects(), 0.0_dp, model, ok, formulation=formulation)
     if (.not. ok) return
-    allocate(y(model%state_size()), omega(model%n), shapes(model%n, model%n))
-    call model%linear_modes(omega, shapes, err)
-    y = 0.0_dp
-    y(1::2) = 0.02_dp*shapes(:, 1)/maxval(abs(shapes(:, 1)))
+    call mode_start(model, 1, 0.02_dp, omega, shapes, y, err)
     call model%energies(0.0_dp, y(1::2), y(2::2), ke, se)
     e0 = ke + se
     call ode%init(size(y), 0.0_dp, mf_adams, rtol, [1.0e-5_dp*rtol], err, max_steps=1000000)
