@@ -47,9 +47,11 @@ contains
     character(len=*), parameter :: g = 'clearance'
     integer :: j, nj
     call stage_from(s)
-    call deck%read_group(g, read_clearance_group, .false., s%found, err)
+    call deck%read_group(g, clearance_group, .false., s%found, err)
     if (err%failed() .or. .not. s%found) return
-    call stage_to(s)
+    s = clearance_settings_t(found=s%found, clearance=joint_clearance, stiffness=joint_stiffness, &
+                             restitution=joint_restitution, friction=joint_friction, journal_radius=journal_radius, &
+                             law=law, exponent=exponent, friction_speed=friction_speed, impact_speed=impact_speed)
     nj = mech%n_joints
     call check_reals(deck, g, 'joint_clearance', s%clearance, err, at_least=0.0_dp, at_most=0.05_dp*mech%length_scale, &
                      why='a radial clearance (in): small against the links (5% of their mean length) for the '// &
@@ -122,12 +124,9 @@ contains
   subroutine echo_clearance_settings(s, out)
     type(clearance_settings_t), intent(in) :: s
     type(table_t), intent(inout) :: out
-    integer :: u
     if (.not. s%found) return
     call stage_from(s)
-    u = out%echo_unit()
-    write(u, nml=clearance, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(clearance_group)
   end subroutine echo_clearance_settings
 
   subroutine stage_from(s)
@@ -143,21 +142,13 @@ contains
     impact_speed = s%impact_speed
   end subroutine stage_from
 
-  subroutine stage_to(s)
-    type(clearance_settings_t), intent(inout) :: s
-    s%clearance = joint_clearance
-    s%stiffness = joint_stiffness
-    s%restitution = joint_restitution
-    s%friction = joint_friction
-    s%journal_radius = journal_radius
-    s%law = law
-    s%exponent = exponent
-    s%friction_speed = friction_speed
-    s%impact_speed = impact_speed
-  end subroutine stage_to
-
-  subroutine read_clearance_group(r)
+  !> The &clearance group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine clearance_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=clearance, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_clearance_group
+    if (r%writing) then
+      write(r%unit, nml=clearance, delim='apostrophe')
+    else
+      read(r%unit, nml=clearance, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine clearance_group
 end module clearance_settings

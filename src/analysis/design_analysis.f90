@@ -22,7 +22,7 @@ module design_analysis
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use linkage, only: mechanism_t, build_mechanism, profile_constant
-  use linkage_deck, only: read_mechanism, echo_mechanism
+  use linkage_deck, only: read_mechanism, echo_mechanism, write_mechanism_group
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_analysis, only: run_steady
   use run_settings, only: read_run_settings, write_run_header
@@ -30,6 +30,7 @@ module design_analysis
                             var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y
   use shaking_force, only: shaking_supported
   use design_sequence, only: design_sequence_t
+  use periodic_transient, only: periodic_transient_settings_t
   implicit none
   private
   public :: run_design, load_design
@@ -90,10 +91,15 @@ contains
     path_dgamma_deg = unset
   end subroutine set_defaults
 
-  subroutine read_design_group(r)
+  !> The &design group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine design_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=design, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_design_group
+    if (r%writing) then
+      write(r%unit, nml=design, delim='apostrophe')
+    else
+      read(r%unit, nml=design, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine design_group
 
   subroutine run_design(deck, out, err)
     type(deck_t), intent(inout) :: deck
@@ -167,12 +173,9 @@ contains
       return
     end if
     prob%derivatives = derivatives
-    prob%transient%tolerance = stop_when_periodic
-    prob%transient%max_revolutions = max_revolutions
-    prob%transient%rtol = s%shooting%rtol
-    prob%transient%atol = s%shooting%atol
-    prob%transient%bdf = s%shooting%bdf
-    prob%transient%max_steps = s%shooting%max_steps
+    prob%transient = periodic_transient_settings_t(tolerance=stop_when_periodic, max_revolutions=max_revolutions, &
+                                                   rtol=s%shooting%rtol, atol=s%shooting%atol, bdf=s%shooting%bdf, &
+                                                   max_steps=s%shooting%max_steps)
     ! finite-difference steps above the analysis' noise (doc/design.md)
     select case (evaluator)
     case ('shooting')
@@ -182,11 +185,8 @@ contains
     case default
       prob%fd_rel_step = 1.0e-5_dp
     end select
-    opt%max_iterations = max_iterations
-    opt%xtol = xtol
-    opt%feas_tol = feas_tol
-    opt%move_limit = move_limit
-    opt%hessian = hessian
+    opt = design_sequence_t(max_iterations=max_iterations, xtol=xtol, feas_tol=feas_tol, move_limit=move_limit, &
+                            hessian=hessian)
   end subroutine load_design
 
   !> Read &design and make the problem's variables; x0 = initial values/scale.
@@ -201,7 +201,7 @@ contains
     integer :: n, i, limit
     real(dp) :: value
     call set_defaults()
-    call deck%read_group(g, read_design_group, .true., found, err)
+    call deck%read_group(g, design_group, .true., found, err)
     if (err%failed()) return
     n = count(len_trim(variables) > 0)
     if (n == 0 .or. any(len_trim(variables(1:n)) == 0)) then
@@ -461,14 +461,9 @@ contains
   subroutine echo_all(out, mech)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
-    integer :: u
-    u = out%echo_unit()
-    call echo_mechanism(mech, u)
-    call out%end_echo()
+    call echo_mechanism(mech, out)
     call echo_steady_settings(out)
-    u = out%echo_unit()
-    write(u, nml=design, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(design_group)
   end subroutine echo_all
 
   subroutine write_design_header(out, prob)
@@ -722,7 +717,7 @@ contains
       open(newunit=u, file=path, status='replace', action='write')
       write(u, '(a)') '! written by '//program_name//' '//program_version//' (design analysis)'
       write(u, '(a)') '&run analysis = ''steady'', title = '''//title//''' /'
-      call echo_mechanism(m, u)
+      call write_mechanism_group(m, u)
       call write_steady_groups(u, merge('harmonic', 'shooting', prob%evaluator == 'harmonic'))
       close(u)
     end subroutine write_deck

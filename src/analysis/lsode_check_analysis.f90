@@ -49,17 +49,22 @@ contains
     max_steps = 20000
   end subroutine set_defaults
 
-  subroutine read_lsode_check(r)
+  !> The &lsode_check group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine lsode_check_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=lsode_check, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_lsode_check
+    if (r%writing) then
+      write(r%unit, nml=lsode_check, delim='apostrophe')
+    else
+      read(r%unit, nml=lsode_check, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine lsode_check_group
 
   subroutine run_lsode_check(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
     type(error_t), intent(inout) :: err
     logical :: found
-    integer :: mf, k, neq, u
+    integer :: mf, k, neq
     real(dp) :: tout
     real(dp), allocatable :: y(:)
     type(kinetics_t), target :: kinetics
@@ -70,7 +75,7 @@ contains
     character(len=*), parameter :: g = 'lsode_check'
 
     call set_defaults()
-    call deck%read_group('lsode_check', read_lsode_check, .false., found, err)
+    call deck%read_group('lsode_check', lsode_check_group, .false., found, err)
     if (err%failed()) return
     mf = mf_from_method(method)
     if (mf == 0) then
@@ -99,9 +104,7 @@ contains
                          'must stay below 1e300', err)
     if (err%failed()) return
 
-    u = out%echo_unit()
-    write(u, nml=lsode_check, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(lsode_check_group)
 
     if (problem == 'kinetics') then
       neq = 3

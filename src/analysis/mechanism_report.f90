@@ -7,6 +7,7 @@ module mechanism_report
   use table_output, only: table_t
   use linkage, only: mechanism_t, joint_pin, joint_slider_fixed, joint_free, joint_slider_link
   use linkage_report, only: mechanism_summary
+  use correlation_table, only: correlation_table_t
   implicit none
   private
   public :: write_mechanism_header, joint_moves, joint_carrier, response_column_names, response_columns_text
@@ -19,20 +20,18 @@ module mechanism_report
 
 contains
 
-  !> The mechanism summary, then the lines of the correlation table.
-  subroutine write_mechanism_header(out, mech, table_lines)
+  !> The mechanism summary (its non-blank lines), then the model's
+  !> correlation table.
+  subroutine write_mechanism_header(out, mech, table)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
-    character(len=*), intent(in) :: table_lines(:)
-    integer :: i
+    type(correlation_table_t), intent(in) :: table
+    character(len=160), allocatable :: table_lines(:)
     associate (lines => mechanism_summary(mech))
-      do i = 1, size(lines)
-        if (len_trim(lines(i)) > 0) call out%comment(trim(lines(i)))
-      end do
+      call out%comments(pack(lines, len_trim(lines) > 0))
     end associate
-    do i = 1, size(table_lines)
-      call out%comment(trim(table_lines(i)))
-    end do
+    call table%describe(table_lines)
+    call out%comments(table_lines)
   end subroutine write_mechanism_header
 
   !> Joints whose elastic translation is a model unknown: pins, slider blocks,

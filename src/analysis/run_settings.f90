@@ -6,11 +6,7 @@ module run_settings
   use version, only: program_name, program_version
   implicit none
   private
-  public :: read_run_settings, echo_run_settings, write_run_header, analysis_names
-
-  !> Analyses the program knows, for messages.
-  character(len=*), parameter :: analysis_names = '''transient'', ''steady'', ''optimize'', ''design'', '// &
-                                                  '''spatial'', ''lsode_check'''
+  public :: read_run_settings, write_run_header
 
   character(len=32) :: analysis
   character(len=256) :: title
@@ -25,7 +21,7 @@ contains
     logical :: found
     analysis = ''
     title = ''
-    call deck%read_group('run', read_run_group, .true., found, err)
+    call deck%read_group('run', run_group, .true., found, err)
     analysis_out = analysis
     title_out = title
   end subroutine read_run_settings
@@ -39,19 +35,16 @@ contains
     call out%comment('deck: '//deck_path)
     if (len_trim(title_text) > 0) call out%comment('title: '//trim(title_text))
     call out%comment('effective input (every value, defaults included):')
-    call echo_run_settings(out)
+    call out%echo_group(run_group)
   end subroutine write_run_header
 
-  subroutine echo_run_settings(out)
-    type(table_t), intent(inout) :: out
-    integer :: u
-    u = out%echo_unit()
-    write(u, nml=run, delim='apostrophe')
-    call out%end_echo()
-  end subroutine echo_run_settings
-
-  subroutine read_run_group(r)
+  !> The &run group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine run_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=run, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_run_group
+    if (r%writing) then
+      write(r%unit, nml=run, delim='apostrophe')
+    else
+      read(r%unit, nml=run, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine run_group
 end module run_settings

@@ -53,12 +53,7 @@ contains
     call check_steady_input(deck, mech, s, err)
     if (err%failed()) return
     omega = mech%driver%omega
-    block
-      integer :: u
-      u = out%echo_unit()
-      call echo_mechanism(mech, u)
-      call out%end_echo()
-    end block
+    call echo_mechanism(mech, out)
     call echo_steady_settings(out)
 
     call model%init_mechanism(mech, s%element, s%sections, err)
@@ -217,9 +212,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(steady_settings_t), intent(in) :: s
     type(steady_model_t), intent(in) :: model
-    character(len=160), allocatable :: tlines(:)
-    call model%table%describe(tlines)
-    call write_mechanism_header(out, mech, tlines)
+    call write_mechanism_header(out, mech, model%table)
     associate (o => s%element)
       if (o%shear .and. o%shear_modulus <= 0.0_dp) then
         call out%comment('element: Tennant (T17-T19), 14 DOFs with shear angle alpha; shear modulus G = '// &

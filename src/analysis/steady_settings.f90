@@ -6,7 +6,7 @@ module steady_settings
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, group_read_t
+  use deck_reader, only: deck_t, invalid_value, group_read_t, write_group
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use linkage, only: max_links
@@ -76,7 +76,7 @@ contains
     max_steps = s%shooting%max_steps
     unit_circle_tol = s%shooting%unit_circle_tol
     singular_rcond = s%shooting%singular_rcond
-    call deck%read_group('steady', read_steady_group, .false., found, err)
+    call deck%read_group('steady', steady_group, .false., found, err)
     if (err%failed()) return
 
     d_k = s%element%d_k
@@ -93,26 +93,18 @@ contains
     section_end = 0.0_dp
     section_b = 0.0_dp
     section_h = 0.0_dp
-    call deck%read_group('tennant', read_tennant_group, .false., found, err)
+    call deck%read_group('tennant', tennant_group, .false., found, err)
     if (err%failed()) return
 
-    s%method = method
-    s%harmonic = harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, &
-                                     resonance_ratio)
-    s%allow_resonance = allow_resonance
-    s%allow_beyond_peak = allow_beyond_peak
-    s%output_step_deg = output_step_deg
-    s%shooting%rtol = rtol
-    s%shooting%atol = atol
-    s%shooting%newton_tol = newton_tol
-    s%shooting%max_newton = max_newton
-    s%shooting%max_steps = max_steps
-    s%shooting%unit_circle_tol = unit_circle_tol
-    s%shooting%singular_rcond = singular_rcond
-    s%shooting%bdf = integrator == 'bdf'
-    s%element = tennant_options_t(d_k=d_k, d_b=d_b, d_g=d_g, shear=shear, rotary_inertia=rotary_inertia, &
-                                  shear_inertia=shear_inertia, shear_modulus=shear_modulus, poisson=poisson, &
-                                  shear_factor=shear_factor, n_gauss=n_gauss, damping_beta=damping_beta)
+    s = steady_settings_t(method=method, output_step_deg=output_step_deg, allow_resonance=allow_resonance, &
+      allow_beyond_peak=allow_beyond_peak, &
+      harmonic=harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio), &
+      shooting=shooting_settings_t(rtol=rtol, atol=atol, newton_tol=newton_tol, max_newton=max_newton, &
+                                   max_steps=max_steps, unit_circle_tol=unit_circle_tol, singular_rcond=singular_rcond, &
+                                   bdf=integrator == 'bdf'), &
+      element=tennant_options_t(d_k=d_k, d_b=d_b, d_g=d_g, shear=shear, rotary_inertia=rotary_inertia, &
+                                shear_inertia=shear_inertia, shear_modulus=shear_modulus, poisson=poisson, &
+                                shear_factor=shear_factor, n_gauss=n_gauss, damping_beta=damping_beta))
     do k = 1, max_links
       s%sections(k)%n = n_sections(k)
       if (n_sections(k) > 0 .and. n_sections(k) <= ms) then
@@ -205,11 +197,8 @@ contains
 
   subroutine echo_steady_settings(out)
     type(table_t), intent(inout) :: out
-    integer :: u
-    u = out%echo_unit()
-    write(u, nml=steady, delim='apostrophe')
-    write(u, nml=tennant, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(steady_group)
+    call out%echo_group(tennant_group)
   end subroutine echo_steady_settings
 
   !> The &steady and &tennant groups as read, with method set, for a deck
@@ -220,18 +209,28 @@ contains
     character(len=16) :: method_read
     method_read = method
     method = method_text
-    write(unit, nml=steady, delim='apostrophe')
-    write(unit, nml=tennant, delim='apostrophe')
+    call write_group(steady_group, unit)
+    call write_group(tennant_group, unit)
     method = method_read
   end subroutine write_steady_groups
 
-  subroutine read_steady_group(r)
+  !> The &steady group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine steady_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=steady, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_steady_group
+    if (r%writing) then
+      write(r%unit, nml=steady, delim='apostrophe')
+    else
+      read(r%unit, nml=steady, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine steady_group
 
-  subroutine read_tennant_group(r)
+  !> The &tennant group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine tennant_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=tennant, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_tennant_group
+    if (r%writing) then
+      write(r%unit, nml=tennant, delim='apostrophe')
+    else
+      read(r%unit, nml=tennant, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine tennant_group
 end module steady_settings

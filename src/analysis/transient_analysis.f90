@@ -20,7 +20,7 @@ module transient_analysis
   use kear_element, only: stress_report_t, effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
-  use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, echo_loads
+  use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, loads_group
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, &
     check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
@@ -355,22 +355,10 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(clearance_monitor_t), intent(in) :: clearance
     type(loads_input_t), intent(in) :: loads_in
-    block
-      integer :: u
-      u = out%echo_unit()
-      call echo_mechanism(mech, u)
-      call out%end_echo()
-    end block
+    call echo_mechanism(mech, out)
     call echo_transient_settings(out)
     call clearance%echo(out)
-    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) then
-      block
-        integer :: u
-        u = out%echo_unit()
-        call echo_loads(u)
-        call out%end_echo()
-      end block
-    end if
+    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) call out%echo_group(loads_group)
   end subroutine echo_input
 
   !> The initial state (&transient initial): a scaled mode at rest, a restart
@@ -700,9 +688,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
-    character(len=160), allocatable :: tlines(:)
-    call model%table%describe(tlines)
-    call write_mechanism_header(out, mech, tlines)
+    call write_mechanism_header(out, mech, model%table)
     call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(model%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &

@@ -17,38 +17,39 @@ module transient_settings
 
   integer, parameter :: max_points = 20          !< link points a deck can name
 
+  !> The settings of a run; the defaults are those of set_defaults.
   type :: transient_settings_t
-    character(len=16) :: method = 'adams'
-    integer :: mf = 10
-    real(dp) :: rtol = 1.0e-6_dp
-    real(dp) :: atol = 1.0e-9_dp
-    real(dp) :: atol_rate = -1.0_dp                !< absolute tolerance of the rates; < 0: atol
-    real(dp) :: revolutions = 1.0_dp
-    real(dp) :: output_step_deg = 5.0_dp
-    real(dp) :: t_end = 0.0_dp          !< used when the driver does not turn (omega = 0)
-    real(dp) :: output_step_t = 0.0_dp
-    real(dp) :: damping_beta = 0.0_dp   !< stiffness-proportional damping, seconds
-    character(len=16) :: initial = 'rigid'
-    integer :: mode_number = 1
-    real(dp) :: mode_amplitude = 0.0_dp
-    character(len=256) :: restart_in = ''
-    character(len=256) :: restart_out = ''
-    integer :: max_steps = 200000
-    integer :: max_order = 0                       !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF)
-    character(len=16) :: kinematics = 'table'      !< rigid motion: 'table' (per revolution) or 'direct'
-    integer :: table_points = 720                  !< crank angles per revolution in the table
-    type(element_effects_t) :: effects             !< the papers' tracing constants, all off = linear
-    character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
-                                                   !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
-    character(len=16) :: output_rows = 'all'       !< rows written: 'all', 'last_revolution' or 'none'
+    character(len=16) :: method
+    integer :: mf
+    real(dp) :: rtol
+    real(dp) :: atol
+    real(dp) :: atol_rate                !< absolute tolerance of the rates; < 0: atol
+    real(dp) :: revolutions
+    real(dp) :: output_step_deg
+    real(dp) :: t_end                    !< used when the driver does not turn (omega = 0)
+    real(dp) :: output_step_t
+    real(dp) :: damping_beta             !< stiffness-proportional damping, seconds
+    character(len=16) :: initial
+    integer :: mode_number
+    real(dp) :: mode_amplitude
+    character(len=256) :: restart_in
+    character(len=256) :: restart_out
+    integer :: max_steps
+    integer :: max_order                 !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF)
+    character(len=16) :: kinematics      !< rigid motion: 'table' (per revolution) or 'direct'
+    integer :: table_points              !< crank angles per revolution in the table
+    type(element_effects_t) :: effects   !< the papers' tracing constants, all off = linear
+    character(len=16) :: formulation     !< element: 'default' (consistent with stretching on, else
+                                         !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
+    character(len=16) :: output_rows     !< rows written: 'all', 'last_revolution' or 'none'
     ! optional response columns (off: not computed; doc/transient.md, "Output")
-    character(len=16) :: stress_columns = 'outer'  !< 'outer' (sigma_max only) or 'all' (+ bending, axial, M, N)
-    logical :: link_points = .false.               !< columns of link points (u, w, deflection from the chord)
-    character(len=16) :: point_link(max_points) = ''   !< links of the points; none named: every link's mid-span
-    real(dp) :: point_at(max_points) = 0.5_dp     !< position along the link, 0 (end 1) .. 1 (end 2)
-    logical :: reactions = .false.                 !< columns of joint reaction forces
-    real(dp) :: stop_when_periodic = 0.0_dp        !< > 0: stop when successive revolutions' peaks agree to this
-    integer :: output_digits = 0                   !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
+    character(len=16) :: stress_columns  !< 'outer' (sigma_max only) or 'all' (+ bending, axial, M, N)
+    logical :: link_points               !< columns of link points (u, w, deflection from the chord)
+    character(len=16) :: point_link(max_points)   !< links of the points; none named: every link's mid-span
+    real(dp) :: point_at(max_points)     !< position along the link, 0 (end 1) .. 1 (end 2)
+    logical :: reactions                 !< columns of joint reaction forces
+    real(dp) :: stop_when_periodic       !< > 0: stop when successive revolutions' peaks agree to this
+    integer :: output_digits             !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
@@ -74,79 +75,63 @@ contains
     type(error_t), intent(inout) :: err
     logical :: found
 
-    method = s%method
-    rtol = s%rtol
-    atol = s%atol
-    atol_rate = s%atol_rate
-    revolutions = s%revolutions
-    output_step_deg = s%output_step_deg
-    t_end = s%t_end
-    output_step_t = s%output_step_t
-    damping_beta = s%damping_beta
-    initial = s%initial
-    mode_number = s%mode_number
-    mode_amplitude = s%mode_amplitude
-    restart_in = s%restart_in
-    restart_out = s%restart_out
-    max_steps = s%max_steps
-    kinematics = s%kinematics
-    table_points = s%table_points
-    max_order = s%max_order
-    output_rows = s%output_rows
-    stress_columns = s%stress_columns
-    link_points = s%link_points
-    point_link = s%point_link
-    point_at = s%point_at
-    reactions = s%reactions
-    stop_when_periodic = s%stop_when_periodic
-    output_digits = s%output_digits
-    call deck%read_group('transient', read_transient_group, .false., found, err)
+    call set_defaults()
+    call deck%read_group('transient', transient_group, .false., found, err)
+    if (err%failed()) return
+    call deck%read_group('effects', effects_group, .false., found, err)
     if (err%failed()) return
 
-    stretching = s%effects%stretching
-    curvature = s%effects%curvature
-    material = s%effects%material
-    rotary_inertia = s%effects%rotary_inertia
-    coupling = s%effects%coupling
-    formulation = s%formulation
-    call deck%read_group('effects', read_effects_group, .false., found, err)
-    if (err%failed()) return
-
-    s%method = method
-    s%mf = mf_from_method(method)
-    s%rtol = rtol
-    s%atol = atol
-    s%atol_rate = atol_rate
-    s%revolutions = revolutions
-    s%output_step_deg = output_step_deg
-    s%t_end = t_end
-    s%output_step_t = output_step_t
-    s%damping_beta = damping_beta
-    s%initial = initial
-    s%mode_number = mode_number
-    s%mode_amplitude = mode_amplitude
-    s%restart_in = restart_in
-    s%restart_out = restart_out
-    s%max_steps = max_steps
-    s%kinematics = kinematics
-    s%table_points = table_points
-    s%max_order = max_order
-    s%output_rows = output_rows
-    s%stress_columns = stress_columns
-    s%link_points = link_points
-    s%point_link = point_link
-    s%point_at = point_at
-    s%reactions = reactions
-    s%stop_when_periodic = stop_when_periodic
-    s%output_digits = output_digits
-    s%effects = element_effects_t(stretching, curvature, material, rotary_inertia, coupling)
-    s%formulation = formulation
+    s = transient_settings_t(method=method, mf=mf_from_method(method), rtol=rtol, atol=atol, atol_rate=atol_rate, &
+      revolutions=revolutions, output_step_deg=output_step_deg, t_end=t_end, output_step_t=output_step_t, &
+      damping_beta=damping_beta, initial=initial, mode_number=mode_number, mode_amplitude=mode_amplitude, &
+      restart_in=restart_in, restart_out=restart_out, max_steps=max_steps, max_order=max_order, &
+      kinematics=kinematics, table_points=table_points, output_rows=output_rows, stress_columns=stress_columns, &
+      link_points=link_points, point_link=point_link, point_at=point_at, reactions=reactions, &
+      stop_when_periodic=stop_when_periodic, output_digits=output_digits, formulation=formulation, &
+      effects=element_effects_t(stretching, curvature, material, rotary_inertia, coupling))
     call validate(deck, s, err)
     if (err%failed()) return
     if (s%atol_rate < 0.0_dp) s%atol_rate = s%atol
     call check_integer(deck, 'transient', 'max_order', s%max_order, err, at_least=0, &
                        at_most=merge(12, 5, s%mf == 10), why='DLSODE''s orders: Adams 1..12, BDF 1..5 (0 = default)')
   end subroutine read_transient_settings
+
+  !> The documented defaults (doc/decks.md), on the namelist variables.
+  subroutine set_defaults()
+    type(element_effects_t) :: off       ! the element's defaults: every effect off
+    method = 'adams'
+    rtol = 1.0e-6_dp
+    atol = 1.0e-9_dp
+    atol_rate = -1.0_dp
+    revolutions = 1.0_dp
+    output_step_deg = 5.0_dp
+    t_end = 0.0_dp
+    output_step_t = 0.0_dp
+    damping_beta = 0.0_dp
+    initial = 'rigid'
+    mode_number = 1
+    mode_amplitude = 0.0_dp
+    restart_in = ''
+    restart_out = ''
+    max_steps = 200000
+    kinematics = 'table'
+    table_points = 720
+    max_order = 0
+    output_rows = 'all'
+    stress_columns = 'outer'
+    link_points = .false.
+    point_link = ''
+    point_at = 0.5_dp
+    reactions = .false.
+    stop_when_periodic = 0.0_dp
+    output_digits = 0
+    stretching = off%stretching
+    curvature = off%curvature
+    material = off%material
+    rotary_inertia = off%rotary_inertia
+    coupling = off%coupling
+    formulation = 'default'
+  end subroutine set_defaults
 
   !> One line per variable: the allowed range and why (doc/decks.md).
   subroutine validate(deck, s, err)
@@ -211,22 +196,29 @@ contains
 
   subroutine echo_transient_settings(out)
     type(table_t), intent(inout) :: out
-    integer :: u
-    u = out%echo_unit()
-    write(u, nml=transient, delim='apostrophe')
-    write(u, nml=effects, delim='apostrophe')
-    call out%end_echo()
+    call out%echo_group(transient_group)
+    call out%echo_group(effects_group)
   end subroutine echo_transient_settings
 
-  subroutine read_transient_group(r)
+  !> The &transient group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine transient_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_transient_group
+    if (r%writing) then
+      write(r%unit, nml=transient, delim='apostrophe')
+    else
+      read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine transient_group
 
-  subroutine read_effects_group(r)
+  !> The &effects group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine effects_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=effects, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_effects_group
+    if (r%writing) then
+      write(r%unit, nml=effects, delim='apostrophe')
+    else
+      read(r%unit, nml=effects, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine effects_group
 
   !> initial = 'mode': mode_number must be a mode of the model (known only once
   !> the model is built; the range check of the deck is in the settings above).

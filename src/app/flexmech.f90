@@ -14,7 +14,7 @@ program flexmech
   use version, only: program_name
   use deck_reader, only: deck_t, invalid_value, input_error_code
   use table_output, only: table_t
-  use run_settings, only: read_run_settings, write_run_header, analysis_names
+  use run_settings, only: read_run_settings, write_run_header
   use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
@@ -25,6 +25,22 @@ program flexmech
   use subcommands, only: dispatch_subcommands
   implicit none
 
+  abstract interface
+    subroutine analysis_run(deck, out, err)
+      import :: deck_t, table_t, error_t
+      type(deck_t), intent(inout) :: deck
+      type(table_t), intent(inout) :: out
+      type(error_t), intent(inout) :: err
+    end subroutine analysis_run
+  end interface
+
+  !> An analysis a deck can name in &run: its name and its driver.
+  type :: analysis_t
+    character(len=16) :: name
+    procedure(analysis_run), pointer, nopass :: run
+  end type analysis_t
+
+  type(analysis_t), allocatable :: analyses(:)
   character(len=:), allocatable :: deck_path, out_path
   type(deck_t) :: deck
   type(table_t) :: out
@@ -32,6 +48,7 @@ program flexmech
   real(dp) :: cpu0, cpu1
   character(len=32) :: analysis
   character(len=256) :: title
+  integer :: k
 
   call cpu_time(cpu0)
   call dispatch_subcommands()   ! plot, sweeps, batches (src/batch); returns for a single deck
@@ -55,23 +72,16 @@ program flexmech
   end if
   call write_run_header(out, deck_path, title)
 
-  select case (trim(analysis))
-  case ('lsode_check')
-    call run_lsode_check(deck, out, err)
-  case ('transient')
-    call run_transient(deck, out, err)
-  case ('optimize')
-    call run_optimize(deck, out, err)
-  case ('steady')
-    call run_steady(deck, out, err)
-  case ('spatial')
-    call run_spatial(deck, out, err)
-  case ('design')
-    call run_design(deck, out, err)
-  case default
-    call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', &
-                       'must be one of '//analysis_names, err)
-  end select
+  ! the analyses, in the order the message of an unknown name lists them
+  analyses = [analysis_t('transient', run_transient), analysis_t('steady', run_steady), &
+              analysis_t('optimize', run_optimize), analysis_t('design', run_design), &
+              analysis_t('spatial', run_spatial), analysis_t('lsode_check', run_lsode_check)]
+  k = findloc(analyses%name, trim(analysis), dim=1)
+  if (k > 0) then
+    call analyses(k)%run(deck, out, err)
+  else
+    call invalid_value(deck, 'run', 'analysis', ''''//trim(analysis)//'''', 'must be one of '//names(analyses), err)
+  end if
   call deck%close()
   if (.not. err%failed()) then
     if (out%bad_row > 0) call err%set('output', out%non_finite_text(), 3)
@@ -102,6 +112,17 @@ program flexmech
   write(output_unit, '(a)') program_name//': wrote '//out_path
 
 contains
+
+  !> 'a', 'b', ... : the analyses' names for a message.
+  function names(list) result(text)
+    type(analysis_t), intent(in) :: list(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''''//trim(list(1)%name)//''''
+    do i = 2, size(list)
+      text = text//', '''//trim(list(i)%name)//''''
+    end do
+  end function names
 
   subroutine fail_input(err)
     type(error_t), intent(in) :: err

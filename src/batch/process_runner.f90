@@ -5,20 +5,11 @@
 !> result is the same whether the batch runs serially or on MPI ranks.
 module process_runner
   use, intrinsic :: iso_c_binding, only: c_char, c_size_t, c_null_char, c_long
+  use c_library, only: c_readlink
   use strings, only: shell_quote
   implicit none
   private
   public :: run_command, self_executable, flexmech_command, is_child
-
-  interface
-    function c_readlink(path, buf, bufsize) bind(c, name='readlink') result(n)
-      import :: c_char, c_size_t, c_long
-      character(kind=c_char), intent(in) :: path(*)
-      character(kind=c_char), intent(out) :: buf(*)
-      integer(c_size_t), value :: bufsize
-      integer(c_long) :: n
-    end function c_readlink
-  end interface
 
 contains
 

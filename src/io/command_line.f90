@@ -3,18 +3,12 @@
 module command_line
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use, intrinsic :: iso_c_binding, only: c_int
+  use c_library, only: c_exit
   use version, only: program_name, program_version
   use strings, only: shell_quote, file_stem
   implicit none
   private
   public :: parse_arguments, quit, default_output, output_path_problem
-
-  interface
-    subroutine c_exit(status) bind(c, name='exit')
-      import :: c_int
-      integer(c_int), value :: status
-    end subroutine c_exit
-  end interface
 
 contains
 

@@ -3,15 +3,22 @@
 !> offending line and its number.  All input errors carry code 2 (the main
 !> program exits with status 2 and writes no output file).
 !>
-!> Preferred use, from the module that owns a group:
+!> Preferred use, from the module that owns a group: one group procedure
+!> holds the group's namelist read and write; the deck reads through it, an
+!> output echoes through it (table_t%echo_group) and a written deck too
+!> (write_group).
 !>
 !>     namelist /transient/ rtol, atol, ...     ! staging variables of that module
 !>     ...set defaults...
-!>     call deck%read_group('transient', read_transient_group, required=.false., found=found, err=err)
+!>     call deck%read_group('transient', transient_group, required=.false., found=found, err=err)
 !>
-!>     subroutine read_transient_group(r)   ! a module procedure
+!>     subroutine transient_group(r)   ! a module procedure
 !>       type(group_read_t), intent(inout) :: r
-!>       read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
+!>       if (r%writing) then
+!>         write(r%unit, nml=transient, delim='apostrophe')
+!>       else
+!>         read(r%unit, nml=transient, iostat=r%ios, iomsg=r%iomsg)
+!>       end if
 !>     end subroutine
 !>
 !> Given the reader, a failed read is replayed on growing prefixes of the
@@ -30,15 +37,17 @@ module deck_reader
   use strings, only: str, lower
   implicit none
   private
-  public :: deck_t, group_reader, group_read_t, invalid_value, input_error_in, input_error_code, terminator_column
+  public :: deck_t, group_reader, group_read_t, write_group, invalid_value, input_error_in, input_error_code, terminator_column
 
   integer, parameter :: input_error_code = 2
   integer, parameter :: shown_chars = 200    !< a deck line quoted in a message is cut after this
 
-  !> What a group reader needs for its one namelist read: the unit to read
-  !> from, and where to put the read's status and message.
+  !> What a group procedure needs for its one namelist read or write: the
+  !> unit, the direction (writing: the group with its values, for an echo or
+  !> a written deck), and where a read puts its status and message.
   type :: group_read_t
     integer :: unit = 0
+    logical :: writing = .false.
     integer :: ios = 0
     character(len=512) :: iomsg = ''
   end type group_read_t
@@ -273,6 +282,16 @@ contains
     ios = r%ios
     iomsg = r%iomsg
   end subroutine read_quietly
+
+  !> Write a group with its current values through its owner's group procedure.
+  subroutine write_group(group_io, unit)
+    procedure(group_reader) :: group_io
+    integer, intent(in) :: unit
+    type(group_read_t) :: r
+    r%unit = unit
+    r%writing = .true.
+    call group_io(r)
+  end subroutine write_group
 
   !> Lines [first, last] of the group: from its '&name' to the line holding its
   !> terminating '/'.  first = 0 if absent; last = 0 if never terminated.

@@ -8,6 +8,7 @@
 !> shown once a run has taken a second, and redrawn at most ten times a second.
 module progress
   use, intrinsic :: iso_c_binding, only: c_int
+  use c_library, only: c_isatty
   use, intrinsic :: iso_fortran_env, only: error_unit, int64
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
@@ -27,13 +28,6 @@ module progress
     procedure :: update
     procedure :: finish
   end type progress_t
-
-  interface
-    integer(c_int) function c_isatty(fd) bind(c, name='isatty')
-      import :: c_int
-      integer(c_int), value :: fd
-    end function c_isatty
-  end interface
 
 contains
 

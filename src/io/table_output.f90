@@ -10,12 +10,14 @@
 module table_output
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_funptr, c_funloc, c_null_funptr, &
                                          c_intptr_t
+  use c_library, only: c_rename, c_getpid, c_unlink, c_signal, c_raise
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: int64
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
   use fast_format, only: format_es, es_width
+  use deck_reader, only: group_reader, write_group
   implicit none
   private
   public :: table_t, column_width
@@ -43,8 +45,10 @@ module table_output
   contains
     procedure :: open => table_open
     procedure :: comment
+    procedure :: comments
     procedure :: echo_unit
     procedure :: end_echo
+    procedure :: echo_group
     procedure :: columns
     procedure :: row
     procedure :: summary
@@ -55,29 +59,6 @@ module table_output
     procedure :: non_finite_text
     procedure :: set_digits
   end type table_t
-
-  interface
-    integer(c_int) function c_rename(old, new) bind(c, name='rename')
-      import :: c_int, c_char
-      character(kind=c_char), intent(in) :: old(*), new(*)
-    end function c_rename
-    integer(c_int) function c_getpid() bind(c, name='getpid')
-      import :: c_int
-    end function c_getpid
-    integer(c_int) function c_unlink(path) bind(c, name='unlink')
-      import :: c_int, c_char
-      character(kind=c_char), intent(in) :: path(*)
-    end function c_unlink
-    type(c_funptr) function c_signal(signum, handler) bind(c, name='signal')
-      import :: c_int, c_funptr
-      integer(c_int), value :: signum
-      type(c_funptr), value :: handler
-    end function c_signal
-    integer(c_int) function c_raise(signum) bind(c, name='raise')
-      import :: c_int
-      integer(c_int), value :: signum
-    end function c_raise
-  end interface
 
   !> POSIX signal numbers (the same on Linux, the BSDs and macOS).
   integer(c_int), parameter :: sighup = 1, sigint = 2, sigterm = 15
@@ -128,6 +109,16 @@ contains
     end if
   end subroutine comment
 
+  !> Lines as comments, one '#' line each.
+  subroutine comments(self, lines)
+    class(table_t), intent(inout) :: self
+    character(len=*), intent(in) :: lines(:)
+    integer :: i
+    do i = 1, size(lines)
+      call self%comment(lines(i))
+    end do
+  end subroutine comments
+
   !> A scratch unit to write a namelist group to; end_echo copies it into the
   !> header as '#' lines.
   integer function echo_unit(self)
@@ -151,6 +142,17 @@ contains
     close(self%echo)
     self%echoing = .false.
   end subroutine end_echo
+
+  !> A namelist group with its values, written by its owner's group
+  !> procedure, as '#' lines.
+  subroutine echo_group(self, group_io)
+    class(table_t), intent(inout) :: self
+    procedure(group_reader) :: group_io
+    integer :: u
+    u = self%echo_unit()
+    call write_group(group_io, u)
+    call self%end_echo()
+  end subroutine echo_group
 
   !> The column-name line: '#' then names right-aligned over their columns.
   subroutine columns(self, names)

@@ -237,6 +237,30 @@ contains
     found%rule = trim(rule)
   end subroutine bad
 
+  !> The name of the next joint or link after `earlier`: the deck's, or
+  !> prefix and number when blank; an issue if an earlier one has it.
+  pure subroutine take_name(given, prefix, earlier, what, name, found)
+    character(len=*), intent(in) :: given, prefix, earlier(:), what
+    character(len=*), intent(out) :: name
+    type(input_issue_t), intent(inout) :: found
+    integer :: i, k
+    i = size(earlier) + 1
+    name = adjustl(given)
+    if (len_trim(name) == 0) name = prefix//str(i)
+    k = findloc(earlier, name, dim=1)
+    if (k > 0) call bad(found, idx(what//'_name', i), quoted(name), 'is already the name of '//what//' '//str(k))
+  end subroutine take_name
+
+  !> Record an issue unless x > 0 (a NaN included), if none is recorded yet.
+  pure subroutine need_positive(found, name, i, x, rule)
+    type(input_issue_t), intent(inout) :: found
+    character(len=*), intent(in) :: name, rule
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x
+    if (failed(found)) return
+    if (.not. (x > 0.0_dp)) call bad(found, idx(name, i), str(x), rule)
+  end subroutine need_positive
+
   logical pure function failed(found)
     type(input_issue_t), intent(in) :: found
     failed = allocated(found%variable)
@@ -360,7 +384,7 @@ contains
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(inout) :: mech
     type(input_issue_t), intent(inout) :: found
-    integer :: j, k
+    integer :: j
     character(len=16) :: word
     do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
@@ -370,13 +394,8 @@ contains
           call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), &
                    'must be one of pin, ground_pin, clamp, slider_fixed, slider_link, free'); return
         end if
-        jt%name = adjustl(inp%joint_name(j))
-        if (len_trim(jt%name) == 0) jt%name = 'J'//str(j)
-        do k = 1, j - 1
-          if (mech%joints(k)%name == jt%name) then
-            call bad(found, idx('joint_name', j), quoted(jt%name), 'is already the name of joint '//str(k)); return
-          end if
-        end do
+        call take_name(inp%joint_name(j), 'J', mech%joints(1:j - 1)%name, 'joint', jt%name, found)
+        if (failed(found)) return
         if (is_set(inp%joint_x(j)) .neqv. is_set(inp%joint_y(j))) then
           call bad(found, idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
                    'give both coordinates of joint '//trim(jt%name)//' or neither'); return
@@ -424,16 +443,11 @@ contains
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(inout) :: mech
     type(input_issue_t), intent(inout) :: found
-    integer :: i, k
+    integer :: i
     do i = 1, mech%n_links
       associate (lk => mech%links(i))
-        lk%name = adjustl(inp%link_name(i))
-        if (len_trim(lk%name) == 0) lk%name = 'link'//str(i)
-        do k = 1, i - 1
-          if (mech%links(k)%name == lk%name) then
-            call bad(found, idx('link_name', i), quoted(lk%name), 'is already the name of link '//str(k)); return
-          end if
-        end do
+        call take_name(inp%link_name(i), 'link', mech%links(1:i - 1)%name, 'link', lk%name, found)
+        if (failed(found)) return
         if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > mech%n_joints) then
           call bad(found, idx('link_joint1', i), str(inp%link_joint1(i)), &
                    'must be a joint number 1..'//str(mech%n_joints)); return
@@ -505,12 +519,9 @@ contains
                  'a rectangle is given by link_b and link_h; for a section given by A, I and c set '// &
                  idx('link_section', q)//' = ''general'''); return
       end if
-      if (.not. (inp%link_b(q) > 0.0_dp)) then
-        call bad(found, idx('link_b', q), str(inp%link_b(q)), 'the section width must be > 0'); return
-      end if
-      if (.not. (inp%link_h(q) > 0.0_dp)) then
-        call bad(found, idx('link_h', q), str(inp%link_h(q)), 'the section height must be > 0'); return
-      end if
+      call need_positive(found, 'link_b', q, inp%link_b(q), 'the section width must be > 0')
+      call need_positive(found, 'link_h', q, inp%link_h(q), 'the section height must be > 0')
+      if (failed(found)) return
       lk%b = inp%link_b(q)
       lk%h = inp%link_h(q)
       lk%area = lk%b*lk%h
@@ -519,9 +530,8 @@ contains
       return
     case ('circle', 'tube')
       d = inp%link_h(q)
-      if (.not. (d > 0.0_dp)) then
-        call bad(found, idx('link_h', q), str(d), 'the outer diameter of a '//trim(lk%section)//' must be > 0'); return
-      end if
+      call need_positive(found, 'link_h', q, d, 'the outer diameter of a '//trim(lk%section)//' must be > 0')
+      if (failed(found)) return
       di = 0.0_dp
       if (lk%section == 'tube') then
         if (.not. (inp%link_wall(q) > 0.0_dp .and. inp%link_wall(q) < 0.5_dp*d)) then
@@ -534,16 +544,11 @@ contains
       lk%inertia = pi*(d**4 - di**4)/64.0_dp
       lk%fibre = 0.5_dp*d
     case ('general')
-      if (.not. (inp%link_area(q) > 0.0_dp)) then
-        call bad(found, idx('link_area', q), str(inp%link_area(q)), 'a general section needs its area A > 0'); return
-      end if
-      if (.not. (inp%link_inertia(q) > 0.0_dp)) then
-        call bad(found, idx('link_inertia', q), str(inp%link_inertia(q)), 'a general section needs I > 0'); return
-      end if
-      if (.not. (inp%link_c(q) > 0.0_dp)) then
-        call bad(found, idx('link_c', q), str(inp%link_c(q)), 'a general section needs its outer-fibre distance '// &
-                 'c > 0 (for stresses)'); return
-      end if
+      call need_positive(found, 'link_area', q, inp%link_area(q), 'a general section needs its area A > 0')
+      call need_positive(found, 'link_inertia', q, inp%link_inertia(q), 'a general section needs I > 0')
+      call need_positive(found, 'link_c', q, inp%link_c(q), 'a general section needs its outer-fibre distance '// &
+                         'c > 0 (for stresses)')
+      if (failed(found)) return
       ! the size ranges of b and h, squared and to the fourth power, and
       ! I <= c^2 A (no section has its radius of gyration beyond its
       ! outer fibre); without them 12 I/A overflowed for I = 1.8e308

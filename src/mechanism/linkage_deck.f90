@@ -6,12 +6,13 @@
 module linkage_deck
   use strings, only: str
   use error_status, only: error_t
-  use deck_reader, only: deck_t, invalid_value, group_read_t
+  use deck_reader, only: deck_t, invalid_value, group_read_t, write_group
+  use table_output, only: table_t
   use linkage, only: mechanism_input_t, input_issue_t, mechanism_t, build_mechanism, max_links, max_joints
   use kinds, only: dp
   implicit none
   private
-  public :: read_mechanism, echo_mechanism, check_section_rules
+  public :: read_mechanism, echo_mechanism, write_mechanism_group, check_section_rules
 
   ! Staging variables of the deck group &mechanism (module variables because
   ! the deck reader's callback receives only the unit; see read_mechanism).
@@ -63,9 +64,8 @@ contains
     end do
   end subroutine check_section_rules
 
-  !> Validate the flat input and build the indexed mechanism.  Any failure is
-
-  !> mechanism.  Invalid values are reported with their deck line.
+  !> Read &mechanism (required), validate the flat input and build the
+  !> indexed mechanism.  Invalid values are reported with their deck line.
   subroutine read_mechanism(deck, mech, err)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(out) :: mech
@@ -74,9 +74,16 @@ contains
     type(input_issue_t) :: issue
     logical :: found
     call stage_from(inp)
-    call deck%read_group('mechanism', read_mechanism_group, required=.true., found=found, err=err)
+    call deck%read_group('mechanism', mechanism_group, required=.true., found=found, err=err)
     if (err%failed()) return
-    call stage_to(inp)
+    inp = mechanism_input_t(n_joints=n_joints, joint_name=joint_name, joint_type=joint_type, joint_x=joint_x, &
+      joint_y=joint_y, joint_guide_deg=joint_guide_deg, joint_sliding_link=joint_sliding_link, &
+      joint_branch=joint_branch, joint_mass=joint_mass, n_links=n_links, link_name=link_name, &
+      link_joint1=link_joint1, link_joint2=link_joint2, link_length=link_length, link_b=link_b, link_h=link_h, &
+      link_area=link_area, link_inertia=link_inertia, link_section=link_section, link_c=link_c, link_wall=link_wall, &
+      link_e1=link_e1, link_e2=link_e2, link_m=link_m, link_rho=link_rho, link_n_elements=link_n_elements, &
+      link_cw_mass=link_cw_mass, link_cw_x=link_cw_x, link_cw_y=link_cw_y, driver_link=driver_link, omega=omega, &
+      theta0_deg=theta0_deg, profile=profile, spinup_time=spinup_time, branch=branch, toggle_rcond=toggle_rcond)
     call build_mechanism(inp, mech, err, issue)
     if (err%failed() .and. allocated(issue%variable)) then
       call err%clear()
@@ -84,18 +91,31 @@ contains
     end if
   end subroutine read_mechanism
 
-  subroutine read_mechanism_group(r)
+  !> The &mechanism group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine mechanism_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=mechanism, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_mechanism_group
+    if (r%writing) then
+      write(r%unit, nml=mechanism, delim='apostrophe')
+    else
+      read(r%unit, nml=mechanism, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine mechanism_group
 
-  !> Write the mechanism's effective input as the namelist group &mechanism.
-  subroutine echo_mechanism(mech, unit)
+  !> Echo the mechanism's effective input, the group &mechanism, into an output.
+  subroutine echo_mechanism(mech, out)
+    type(mechanism_t), intent(in) :: mech
+    type(table_t), intent(inout) :: out
+    call stage_from(mech%input)
+    call out%echo_group(mechanism_group)
+  end subroutine echo_mechanism
+
+  !> Write the mechanism's effective input as the group &mechanism of a deck.
+  subroutine write_mechanism_group(mech, unit)
     type(mechanism_t), intent(in) :: mech
     integer, intent(in) :: unit
     call stage_from(mech%input)
-    write(unit, nml=mechanism, delim='apostrophe')
-  end subroutine echo_mechanism
+    call write_group(mechanism_group, unit)
+  end subroutine write_mechanism_group
 
   subroutine stage_from(inp)
     type(mechanism_input_t), intent(in) :: inp
@@ -136,44 +156,4 @@ contains
     branch = inp%branch
     toggle_rcond = inp%toggle_rcond
   end subroutine stage_from
-
-  subroutine stage_to(inp)
-    type(mechanism_input_t), intent(inout) :: inp
-    inp%n_joints = n_joints
-    inp%joint_name = joint_name
-    inp%joint_type = joint_type
-    inp%joint_x = joint_x
-    inp%joint_y = joint_y
-    inp%joint_guide_deg = joint_guide_deg
-    inp%joint_sliding_link = joint_sliding_link
-    inp%joint_branch = joint_branch
-    inp%joint_mass = joint_mass
-    inp%n_links = n_links
-    inp%link_name = link_name
-    inp%link_joint1 = link_joint1
-    inp%link_joint2 = link_joint2
-    inp%link_length = link_length
-    inp%link_b = link_b
-    inp%link_h = link_h
-    inp%link_area = link_area
-    inp%link_inertia = link_inertia
-    inp%link_section = link_section
-    inp%link_c = link_c
-    inp%link_wall = link_wall
-    inp%link_e1 = link_e1
-    inp%link_e2 = link_e2
-    inp%link_m = link_m
-    inp%link_rho = link_rho
-    inp%link_n_elements = link_n_elements
-    inp%link_cw_mass = link_cw_mass
-    inp%link_cw_x = link_cw_x
-    inp%link_cw_y = link_cw_y
-    inp%driver_link = driver_link
-    inp%omega = omega
-    inp%theta0_deg = theta0_deg
-    inp%profile = profile
-    inp%spinup_time = spinup_time
-    inp%branch = branch
-    inp%toggle_rcond = toggle_rcond
-  end subroutine stage_to
 end module linkage_deck

@@ -17,7 +17,7 @@ module external_loads
   use linkage, only: mechanism_t
   implicit none
   private
-  public :: point_load_t, load_factor_at, loads_input_t, read_loads, resolve_loads, echo_loads
+  public :: point_load_t, load_factor_at, loads_input_t, read_loads, resolve_loads, loads_group
   public :: max_loads, max_load_points
 
   integer, parameter :: max_loads = 20, max_load_points = 100
@@ -32,20 +32,20 @@ module external_loads
     real(dp), allocatable :: factors(:)    !< factor at those times
   end type point_load_t
 
-  !> The &loads group as given.
+  !> The &loads group as given; the defaults are those of set_defaults.
   type :: loads_input_t
-    real(dp) :: gravity_g = 0.0_dp
-    real(dp) :: gravity_direction(2) = [0.0_dp, -1.0_dp]
-    integer :: n_loads = 0
-    character(len=16) :: load_joint(max_loads) = ''
-    character(len=16) :: load_link(max_loads) = ''
-    real(dp) :: load_position(max_loads) = 1.0_dp
-    real(dp) :: load_fx(max_loads) = 0.0_dp
-    real(dp) :: load_fy(max_loads) = 0.0_dp
-    real(dp) :: load_moment(max_loads) = 0.0_dp
-    integer :: load_n_points(max_loads) = 0
-    real(dp) :: load_time(max_load_points, max_loads) = 0.0_dp
-    real(dp) :: load_factor(max_load_points, max_loads) = 0.0_dp
+    real(dp) :: gravity_g
+    real(dp) :: gravity_direction(2)
+    integer :: n_loads
+    character(len=16) :: load_joint(max_loads)
+    character(len=16) :: load_link(max_loads)
+    real(dp) :: load_position(max_loads)
+    real(dp) :: load_fx(max_loads)
+    real(dp) :: load_fy(max_loads)
+    real(dp) :: load_moment(max_loads)
+    integer :: load_n_points(max_loads)
+    real(dp) :: load_time(max_load_points, max_loads)
+    real(dp) :: load_factor(max_load_points, max_loads)
   end type loads_input_t
 
   ! namelist staging variables
@@ -90,19 +90,8 @@ contains
     logical :: found
     integer :: k, n
     character(len=*), parameter :: g = 'loads'
-    gravity_g = inp%gravity_g
-    gravity_direction = inp%gravity_direction
-    n_loads = inp%n_loads
-    load_joint = inp%load_joint
-    load_link = inp%load_link
-    load_position = inp%load_position
-    load_fx = inp%load_fx
-    load_fy = inp%load_fy
-    load_moment = inp%load_moment
-    load_n_points = inp%load_n_points
-    load_time = inp%load_time
-    load_factor = inp%load_factor
-    call deck%read_group(g, read_loads_group, .false., found, err)
+    call set_defaults()
+    call deck%read_group(g, loads_group, .false., found, err)
     if (err%failed()) return
     inp = loads_input_t(gravity_g, gravity_direction, n_loads, load_joint, load_link, load_position, load_fx, &
                         load_fy, load_moment, load_n_points, load_time, load_factor)
@@ -186,13 +175,30 @@ contains
     end do
   end subroutine resolve_loads
 
-  subroutine echo_loads(unit)
-    integer, intent(in) :: unit
-    write(unit, nml=loads, delim='apostrophe')
-  end subroutine echo_loads
+  !> The documented defaults (doc/mechanism_deck.md), on the namelist variables:
+  !> no gravity, no loads.
+  subroutine set_defaults()
+    gravity_g = 0.0_dp
+    gravity_direction = [0.0_dp, -1.0_dp]
+    n_loads = 0
+    load_joint = ''
+    load_link = ''
+    load_position = 1.0_dp
+    load_fx = 0.0_dp
+    load_fy = 0.0_dp
+    load_moment = 0.0_dp
+    load_n_points = 0
+    load_time = 0.0_dp
+    load_factor = 0.0_dp
+  end subroutine set_defaults
 
-  subroutine read_loads_group(r)
+  !> The &loads group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine loads_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=loads, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_loads_group
+    if (r%writing) then
+      write(r%unit, nml=loads, delim='apostrophe')
+    else
+      read(r%unit, nml=loads, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine loads_group
 end module external_loads

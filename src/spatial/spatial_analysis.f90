@@ -23,7 +23,7 @@ module spatial_analysis
   use revolution_peaks, only: note_peaks, write_stress_peaks
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
-  use spatial_settings, only: spatial_input_t, read_spatial_mechanism, echo_spatial_mechanism, build_spatial
+  use spatial_settings, only: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
   implicit none
   private
   public :: run_spatial
@@ -58,7 +58,7 @@ contains
     if (err%failed()) return
     call check_supported(deck, s, inp, err)
     if (err%failed()) return
-    call echo_spatial_mechanism(out)
+    call out%echo_group(spatial_mechanism_group)
     call echo_transient_settings(out)
     call build_spatial(deck, inp, kin, links, jb, jc, err)
     if (err%failed()) return
@@ -287,7 +287,6 @@ contains
     type(transient_settings_t), intent(in) :: s
     type(spatial_model_t), intent(in) :: model
     character(len=160), allocatable :: lines(:)
-    integer :: i
     call out%comment('spatial four-bar: joints B '//trim(inp%joint_b)//', C '//trim(inp%joint_c)// &
                      '; crank '//str(model%kin%crank_radius, 6)//', coupler '//str(model%kin%coupler_length, 6)// &
                      ', rocker '//str(model%kin%rocker_length, 6)//' in; elements per link '// &
@@ -301,9 +300,7 @@ contains
     end if
     call out%comment('rigid-body motion: loop closure solved by Newton at every time the integrator asks for')
     call model%table%describe(lines)
-    do i = 1, size(lines)
-      call out%comment(trim(lines(i)))
-    end do
+    call out%comments(lines)
   end subroutine write_header
 
   subroutine write_columns(out, model, names)

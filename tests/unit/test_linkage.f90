@@ -6,7 +6,7 @@ module test_linkage_suite
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use linkage
-  use linkage_deck, only: read_mechanism, echo_mechanism
+  use linkage_deck, only: read_mechanism, write_mechanism_group
   use linkage_report, only: mechanism_summary, classify_mechanism
   use reference_materials, only: tennant_aluminium_e1
   use assertions
@@ -387,7 +387,7 @@ contains
     call assert_close(mech%links(1)%e1, tennant_aluminium_e1, 0.0_dp, 'default material kept')
     ! echo, read back
     open(newunit=u, file=echo_path, status='replace', action='write')
-    call echo_mechanism(mech, u)
+    call write_mechanism_group(mech, u)
     close(u)
     call deck2%open(echo_path, err)
     call read_mechanism(deck2, mech2, err)

@@ -8,6 +8,7 @@
 !> not in a busy receive, so that it does not take a core from the workers.
 module job_pool
   use, intrinsic :: iso_c_binding, only: c_int
+  use c_library, only: c_usleep
   use mpi_f08, only: MPI_Init, MPI_Initialized, MPI_Finalize, MPI_Finalized, MPI_Comm_rank, MPI_Comm_size, &
     MPI_Send, MPI_Recv, MPI_Irecv, MPI_Test, MPI_Barrier, MPI_Bcast, MPI_COMM_WORLD, MPI_INTEGER, &
     MPI_ANY_SOURCE, MPI_Status, MPI_Request, MPI_STATUS_IGNORE
@@ -20,13 +21,6 @@ module job_pool
 
   integer, parameter :: tag_request = 1, tag_job = 2
   logical, save :: started_here = .false.
-
-  interface
-    integer(c_int) function c_usleep(usec) bind(c, name='usleep')
-      import :: c_int
-      integer(c_int), value :: usec
-    end function c_usleep
-  end interface
 
 contains
 
