@@ -84,6 +84,8 @@ module design_problem
     real(dp), allocatable :: link_stress(:)     !< peak |stress| over the revolution, per link (largest over the speeds)
     real(dp) :: lowest_frequency = 0.0_dp       !< lowest frozen natural frequency over the revolution (and the speeds)
     real(dp), allocatable :: stress_at(:, :)    !< (link, speed) peak |stress| at each operating speed
+    !> (sample, link, speed) the link's largest |stress| at each sample: stress_at is its maximum
+    real(dp), allocatable :: sample_stress(:, :, :)
     real(dp), allocatable :: frequency_at(:)    !< (speed) lowest frozen natural frequency at each speed
     real(dp), allocatable :: residual(:)        !< coupler point - target, (x, y) per target point, elastic included
     real(dp), allocatable :: rigid_residual(:)  !< the same for the rigid-body coupler point
@@ -160,6 +162,8 @@ module design_problem
     procedure :: variational_applies
     procedure :: derivatives_at
     procedure :: constraints_of
+    procedure :: constraints_at_peaks_of
+    procedure :: neighbour_constraints
     procedure :: residuals_of
     procedure :: objective => design_objective
     procedure :: general_constraint => design_constraint
@@ -473,7 +477,7 @@ contains
     integer, intent(out) :: n_objective
     real(dp), intent(out) :: mean_square
     allocate(ev%stress_at(n_links, size(self%speeds)), ev%frequency_at(size(self%speeds)), ev%residual(0), &
-             ev%rigid_residual(0))
+             ev%rigid_residual(0), ev%sample_stress(self%samples, n_links, size(self%speeds)))
     n_objective = 0
     mean_square = 0.0_dp
   end subroutine start_join
@@ -488,6 +492,7 @@ contains
     integer, intent(inout) :: n_objective
     real(dp), intent(inout) :: mean_square
     ev%stress_at(:, s) = one%link_stress
+    ev%sample_stress(:, :, s) = one%sample_stress(:, :, 1)
     ev%frequency_at(s) = one%lowest_frequency
     if (self%objective_speed /= 0 .and. self%objective_speed /= s) return
     n_objective = n_objective + 1
@@ -614,6 +619,8 @@ contains
     end if
     shaking = self%is_shaking()
     if (shaking) allocate(shake(2, self%samples), moment(2, self%samples))
+    allocate(ev%sample_stress(self%samples, mech%n_links, 1))
+    ev%sample_stress = 0.0_dp
     do k = 1, self%samples
       call model%set_time(times(at_sample(k)), err)
       if (.not. err%failed() .and. self%frequency_factor > 0.0_dp) call model%frozen_frequencies(wn, err)
@@ -630,6 +637,7 @@ contains
       do i = 1, mech%n_links
         do e = mech%links(i)%first_element, mech%links(i)%first_element + mech%links(i)%n_elements - 1
           ev%link_stress(i) = max(ev%link_stress(i), st(e)%max_abs_stress)
+          ev%sample_stress(k, i, 1) = max(ev%sample_stress(k, i, 1), st(e)%max_abs_stress)
         end do
       end do
     end do
@@ -733,6 +741,43 @@ contains
       end if
     end do
   end function constraints_of
+
+  !> The analysis constraints of design ev with each peak stress taken at the
+  !> sample where base's stress is largest (at base itself: its peak): a
+  !> forward difference from base then gives the derivative at base's
+  !> largest sample, the one the variational derivative takes, not a chord
+  !> across a switch of the largest sample.  Frequencies as constraints_of.
+  function constraints_at_peaks_of(self, ev, base) result(g)
+    class(design_problem_t), intent(in) :: self
+    type(design_eval_t), intent(in) :: ev, base
+    real(dp) :: g(self%n_analysis_constraints())
+    integer :: i, l, s
+    g = self%constraints_of(ev)
+    do i = 1, self%n_stress
+      l = modulo(i - 1, self%base%n_links) + 1
+      s = (i - 1)/self%base%n_links + 1
+      g(i) = log(max(ev%sample_stress(maxloc(base%sample_stress(:, l, s), dim=1), l, s), tiny(1.0_dp)) &
+                 /self%stress_allowable)
+    end do
+  end function constraints_at_peaks_of
+
+  !> A forward difference from x to its neighbour xp: gp, the constraints at
+  !> xp, with the transient evaluator's peak stresses taken at x's largest
+  !> samples (constraints_at_peaks_of).  Its result is only within about
+  !> 1e-6 of the orbit, so its step is 1e-3, long enough for the largest
+  !> sample to switch often near an active constraint (example 1: a chord
+  !> that is neither side's derivative; doc/design.md).  The other
+  !> evaluators' differences keep the peak itself (steps 1e-4 and 1e-5).
+  subroutine neighbour_constraints(self, x, xp, gp)
+    class(design_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), xp(:)
+    real(dp), intent(inout) :: gp(:)
+    type(design_eval_t) :: ev, evp
+    if (self%evaluator /= 'transient') return
+    call self%evaluate(x, ev)
+    call self%evaluate(xp, evp)
+    if (ev%ok .and. evp%ok) gp = self%constraints_at_peaks_of(evp, ev)
+  end subroutine neighbour_constraints
 
   !> The objective's residuals of an analysed design (none for the mass).
   function residuals_of(self, ev) result(r)

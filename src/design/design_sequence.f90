@@ -456,6 +456,7 @@ contains
       xp(j) = x(j) + h
       call constraints_at(prob, xp, gp, rp, ok)
       if (.not. ok) return
+      call prob%neighbour_constraints(x, xp, gp)
       dg(j, :) = (gp - g)/(xp(j) - x(j))
       dr(j, :) = (rp - r)/(xp(j) - x(j))
     end do
