@@ -76,7 +76,7 @@ program flexmech
   analyses = [analysis_t('transient', run_transient), analysis_t('steady', run_steady), &
               analysis_t('optimize', run_optimize), analysis_t('design', run_design), &
               analysis_t('spatial', run_spatial), analysis_t('lsode_check', run_lsode_check)]
-  k = findloc(analyses%name, trim(analysis), dim=1)
+  k = position(analyses, analysis)
   if (k > 0) then
     call analyses(k)%run(deck, out, err)
   else
@@ -112,6 +112,17 @@ program flexmech
   write(output_unit, '(a)') program_name//': wrote '//out_path
 
 contains
+
+  !> The index of the analysis called `name` in `list`, 0 if none.
+  integer function position(list, name)
+    type(analysis_t), intent(in) :: list(:)
+    character(len=*), intent(in) :: name
+    integer :: i
+    position = 0
+    do i = 1, size(list)
+      if (list(i)%name == name) position = i
+    end do
+  end function position
 
   !> 'a', 'b', ... : the analyses' names for a message.
   function names(list) result(text)

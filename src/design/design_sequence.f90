@@ -36,7 +36,7 @@ module design_sequence
   use optim_problem, only: opt_problem_t
   use gauss_optimizer, only: gauss_optimizer_t, method_gnlc_ns
   use design_problem, only: design_problem_t, design_eval_t
-  use multiplier_equations, only: symmetric_eigenvalues, identity
+  use linalg, only: symmetric_eigenvalues, identity
   use progress, only: progress_t
   implicit none
   private

@@ -16,7 +16,7 @@ module linalg
   public :: cholesky_factor, cholesky_solve
   public :: band_cholesky_factor, band_cholesky_solve
   public :: band_lu_factor, band_lu_solve
-  public :: sym_generalized_eig, eigenvalues_general
+  public :: sym_generalized_eig, symmetric_eigenvalues, identity, eigenvalues_general
   public :: dense_to_lower_band, outer, cross
 
   interface
@@ -338,6 +338,28 @@ contains
     end if
     if (present(vectors) .and. .not. err%failed()) vectors = a
   end subroutine sym_generalized_eig
+
+  !> Eigenvalues (ascending) of a symmetric matrix: the generalized
+  !> eigensolver with M = I (the inertia and convexity tests of the models,
+  !> the design sequence's quadratic model); with `vectors`, orthonormal
+  !> eigenvectors in its columns.
+  subroutine symmetric_eigenvalues(a, ev, err, vectors)
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(out) :: ev(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: vectors(:, :)
+    call sym_generalized_eig(a, identity(size(a, 1)), ev, err, vectors)
+  end subroutine symmetric_eigenvalues
+
+  pure function identity(n) result(eye)
+    integer, intent(in) :: n
+    real(dp) :: eye(n, n)
+    integer :: i
+    eye = 0.0_dp
+    do i = 1, n
+      eye(i, i) = 1.0_dp
+    end do
+  end function identity
 
   !> Eigenvalues (wr + i wi) of a general square matrix (DGEEV, no vectors).
   subroutine eigenvalues_general(a, wr, wi, err)

@@ -384,7 +384,7 @@ contains
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(inout) :: mech
     type(input_issue_t), intent(inout) :: found
-    integer :: j
+    integer :: j, k
     character(len=16) :: word
     do j = 1, mech%n_joints
       associate (jt => mech%joints(j))
@@ -394,7 +394,7 @@ contains
           call bad(found, idx('joint_type', j), quoted(inp%joint_type(j)), &
                    'must be one of pin, ground_pin, clamp, slider_fixed, slider_link, free'); return
         end if
-        call take_name(inp%joint_name(j), 'J', mech%joints(1:j - 1)%name, 'joint', jt%name, found)
+        call take_name(inp%joint_name(j), 'J', [(mech%joints(k)%name, k = 1, j - 1)], 'joint', jt%name, found)
         if (failed(found)) return
         if (is_set(inp%joint_x(j)) .neqv. is_set(inp%joint_y(j))) then
           call bad(found, idx('joint_x', j)//', '//idx('joint_y', j), 'only one given', &
@@ -443,10 +443,10 @@ contains
     type(mechanism_input_t), intent(in) :: inp
     type(mechanism_t), intent(inout) :: mech
     type(input_issue_t), intent(inout) :: found
-    integer :: i
+    integer :: i, k
     do i = 1, mech%n_links
       associate (lk => mech%links(i))
-        call take_name(inp%link_name(i), 'link', mech%links(1:i - 1)%name, 'link', lk%name, found)
+        call take_name(inp%link_name(i), 'link', [(mech%links(k)%name, k = 1, i - 1)], 'link', lk%name, found)
         if (failed(found)) return
         if (inp%link_joint1(i) < 1 .or. inp%link_joint1(i) > mech%n_joints) then
           call bad(found, idx('link_joint1', i), str(inp%link_joint1(i)), &

@@ -35,10 +35,9 @@ module gauss_optimizer
   use error_status, only: error_t
   use strings, only: str, lower
   use name_table, only: name_of, code_of
-  use linalg, only: lu_factor, lu_solve, cholesky_factor
+  use linalg, only: lu_factor, lu_solve, cholesky_factor, symmetric_eigenvalues
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
-  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers, &
-                                  symmetric_eigenvalues
+  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
   use feasibility_restoration, only: restore_feasibility
   implicit none
   private

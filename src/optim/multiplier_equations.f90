@@ -25,13 +25,13 @@ module multiplier_equations
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: lu_factor, lu_solve, solve_linear, cholesky_factor, sym_generalized_eig
+  use linalg, only: lu_factor, lu_solve, solve_linear, cholesky_factor, symmetric_eigenvalues
   use optim_problem, only: opt_problem_t
   use powell_minimizer, only: powell_function_t, powell_options_t, powell_result_t, powell_minimize
   implicit none
   private
   public :: multiplier_system_t, multiplier_result_t
-  public :: gauss_step, linear_multipliers, symmetric_eigenvalues, identity
+  public :: gauss_step, linear_multipliers
 
   !> Value of H where s(lambda) does not exist (M singular): large but finite.
   real(dp), parameter :: h_undefined = 1.0e30_dp
@@ -643,28 +643,6 @@ contains
     s = -gradf
     call solve_linear(gmat, s, err, rcond)
   end subroutine gauss_step
-
-  !> Eigenvalues (ascending) of a symmetric matrix: linalg's generalized
-  !> eigensolver with M = I (the inertia and convexity tests of the models,
-  !> the design sequence's quadratic model); with `vectors`, orthonormal
-  !> eigenvectors in its columns.
-  subroutine symmetric_eigenvalues(a, ev, err, vectors)
-    real(dp), intent(in) :: a(:, :)
-    real(dp), intent(out) :: ev(:)
-    type(error_t), intent(inout) :: err
-    real(dp), intent(out), optional :: vectors(:, :)
-    call sym_generalized_eig(a, identity(size(a, 1)), ev, err, vectors)
-  end subroutine symmetric_eigenvalues
-
-  pure function identity(n) result(eye)
-    integer, intent(in) :: n
-    real(dp) :: eye(n, n)
-    integer :: i
-    eye = 0.0_dp
-    do i = 1, n
-      eye(i, i) = 1.0_dp
-    end do
-  end function identity
 
   !> Multipliers and step for linear active constraints (A_j = 0), closed
   !> form.  With r_S = g_S(x_k) (zero when x_k lies on the active

@@ -4,25 +4,19 @@
 !> the analysis suites used to copy: a suite names itself and its analysis
 !> once (start_suite), then runs deck texts with run_text.
 module deck_runner
-  use, intrinsic :: iso_c_binding, only: c_int
   use kinds, only: dp
+  use c_library, only: c_getpid
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use table_output, only: table_t
   implicit none
   private
-  public :: scratch_path, write_deck, run_deck, analysis_runner, read_deck_text, group_reader
+  public :: scratch_path, write_deck, run_deck, analysis_runner
   public :: open_deck_text, close_deck_text
   public :: has_line, summary_value, count_rows, line_length
-  public :: start_suite, suite_stem, run_text, read_text_groups
+  public :: start_suite, suite_stem, run_text
 
   integer, parameter :: line_length = 2048
-
-  interface
-    integer(c_int) function c_getpid() bind(c, name='getpid')
-      import :: c_int
-    end function c_getpid
-  end interface
 
   abstract interface
     !> An analysis driver: run_transient, run_steady, run_optimize, ...
@@ -32,14 +26,6 @@ module deck_runner
       type(table_t), intent(inout) :: out
       type(error_t), intent(inout) :: err
     end subroutine analysis_runner
-
-    !> A settings reader: read_steady_settings, read_sweep_settings, ...
-    !> wrapped by the test so that it fills the test's own variable.
-    subroutine group_reader(deck, err)
-      import :: deck_t, error_t
-      type(deck_t), intent(inout) :: deck
-      type(error_t), intent(inout) :: err
-    end subroutine group_reader
   end interface
 
   !> The running suite's scratch stem and analysis (one suite per executable).
@@ -70,14 +56,6 @@ contains
     character(len=line_length), allocatable, intent(out) :: lines(:)
     call run_deck(suite_analysis, stem, text, err, lines)
   end subroutine run_text
-
-  !> read_deck_text on the suite's stem.
-  subroutine read_text_groups(reader, text, err)
-    procedure(group_reader) :: reader
-    character(len=*), intent(in) :: text
-    type(error_t), intent(inout) :: err
-    call read_deck_text(reader, stem, text, err)
-  end subroutine read_text_groups
 
   !> $TMPDIR/flexmech_<name>_<pid> (or /tmp/...): the process id keeps two
   !> test runs at once (two checkouts, two optimisation levels) apart.
@@ -153,19 +131,8 @@ contains
     close(u, status='delete')
   end subroutine run_deck
 
-  !> Write the deck to stem.nml, let `reader` read its groups, remove the file.
-  subroutine read_deck_text(reader, stem, text, err)
-    procedure(group_reader) :: reader
-    character(len=*), intent(in) :: stem, text
-    type(error_t), intent(inout) :: err
-    type(deck_t) :: deck
-    call open_deck_text(stem, text, deck, err)
-    if (.not. err%failed()) call reader(deck, err)
-    call close_deck_text(stem, deck)
-  end subroutine read_deck_text
-
-  !> Write the deck text ('|' between lines) to stem.nml and open it: for a
-  !> reader that needs more than read_deck_text's (deck, err) arguments.
+  !> Write the deck text ('|' between lines) to stem.nml and open it, for a
+  !> settings reader the test calls itself (close_deck_text after it).
   subroutine open_deck_text(stem, text, deck, err)
     character(len=*), intent(in) :: stem, text
     type(deck_t), intent(inout) :: deck

@@ -5,7 +5,7 @@ module test_steady_settings_suite
   use kinds, only: dp
   use error_status, only: error_t
   use deck_reader, only: deck_t
-  use deck_runner, only: start_suite, read_text_groups
+  use deck_runner, only: start_suite, suite_stem, open_deck_text, close_deck_text
   use steady_settings, only: steady_settings_t, read_steady_settings
   use assertions
   implicit none
@@ -25,13 +25,10 @@ contains
     character(len=*), intent(in) :: text
     type(steady_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
-    call read_text_groups(read_groups, text, err)
-  contains
-    subroutine read_groups(deck, rerr)
-      type(deck_t), intent(inout) :: deck
-      type(error_t), intent(inout) :: rerr
-      call read_steady_settings(deck, 3, s, rerr)
-    end subroutine read_groups
+    type(deck_t) :: deck
+    call open_deck_text(suite_stem(), text, deck, err)
+    if (.not. err%failed()) call read_steady_settings(deck, 3, s, err)
+    call close_deck_text(suite_stem(), deck)
   end subroutine read_text
 
   subroutine test_defaults()

@@ -6,7 +6,7 @@ module test_sweep_settings_suite
   use deck_reader, only: deck_t
   use sweep_settings, only: sweep_settings_t, read_sweep_settings
   use assertions
-  use deck_runner, only: start_suite, read_text_groups
+  use deck_runner, only: start_suite, suite_stem, open_deck_text, close_deck_text
   implicit none
   private
   public :: run_all
@@ -25,13 +25,10 @@ contains
     character(len=*), intent(in) :: text
     type(sweep_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
-    call read_text_groups(read_groups, '&run analysis = ''steady'' /|'//text, err)
-  contains
-    subroutine read_groups(deck, rerr)
-      type(deck_t), intent(inout) :: deck
-      type(error_t), intent(inout) :: rerr
-      call read_sweep_settings(deck, s, rerr)
-    end subroutine read_groups
+    type(deck_t) :: deck
+    call open_deck_text(suite_stem(), '&run analysis = ''steady'' /|'//text, deck, err)
+    if (.not. err%failed()) call read_sweep_settings(deck, s, err)
+    call close_deck_text(suite_stem(), deck)
   end subroutine read_text
 
   subroutine test_list()
