@@ -6,7 +6,18 @@ module run_settings
   use version, only: program_name, program_version
   implicit none
   private
-  public :: read_run_settings, write_run_header
+  public :: read_run_settings, write_run_header, analysis_driver
+
+  abstract interface
+    !> An analysis driver (run_transient, run_steady, ...): the deck in, the
+    !> output table filled, an error value out.
+    subroutine analysis_driver(deck, out, err)
+      import :: deck_t, table_t, error_t
+      type(deck_t), intent(inout) :: deck
+      type(table_t), intent(inout) :: out
+      type(error_t), intent(inout) :: err
+    end subroutine analysis_driver
+  end interface
 
   character(len=32) :: analysis
   character(len=256) :: title

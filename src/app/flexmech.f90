@@ -14,7 +14,7 @@ program flexmech
   use version, only: program_name
   use deck_reader, only: deck_t, invalid_value, input_error_code
   use table_output, only: table_t
-  use run_settings, only: read_run_settings, write_run_header
+  use run_settings, only: read_run_settings, write_run_header, analysis_driver
   use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
@@ -25,19 +25,10 @@ program flexmech
   use subcommands, only: dispatch_subcommands
   implicit none
 
-  abstract interface
-    subroutine analysis_run(deck, out, err)
-      import :: deck_t, table_t, error_t
-      type(deck_t), intent(inout) :: deck
-      type(table_t), intent(inout) :: out
-      type(error_t), intent(inout) :: err
-    end subroutine analysis_run
-  end interface
-
   !> An analysis a deck can name in &run: its name and its driver.
   type :: analysis_t
     character(len=16) :: name
-    procedure(analysis_run), pointer, nopass :: run
+    procedure(analysis_driver), pointer, nopass :: run
   end type analysis_t
 
   type(analysis_t), allocatable :: analyses(:)

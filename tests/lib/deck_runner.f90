@@ -9,6 +9,7 @@ module deck_runner
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use table_output, only: table_t
+  use run_settings, only: analysis_runner => analysis_driver
   implicit none
   private
   public :: scratch_path, write_deck, run_deck, analysis_runner
@@ -17,16 +18,6 @@ module deck_runner
   public :: start_suite, suite_stem, run_text
 
   integer, parameter :: line_length = 2048
-
-  abstract interface
-    !> An analysis driver: run_transient, run_steady, run_optimize, ...
-    subroutine analysis_runner(deck, out, err)
-      import :: deck_t, table_t, error_t
-      type(deck_t), intent(inout) :: deck
-      type(table_t), intent(inout) :: out
-      type(error_t), intent(inout) :: err
-    end subroutine analysis_runner
-  end interface
 
   !> The running suite's scratch stem and analysis (one suite per executable).
   character(len=:), allocatable, save :: stem
