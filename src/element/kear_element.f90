@@ -33,7 +33,7 @@ module kear_element
   use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
                                  translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
                                  subtract_elastic_forces, to_global_results, &
-                                 add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
+                                 add_constant_integrals, rotating_frame_integrals, exact_angle_terms
   implicit none
   private
   public :: kear_ndof, formulation_exact, formulation_kear1987
@@ -590,7 +590,7 @@ contains
     logical, intent(in) :: want_k, want_damp
     type(kear_eval_info_t), intent(inout) :: info
     real(dp), intent(out) :: fint(8), fdamp(8), kp(8, 8)
-    real(dp) :: g(8, 3), ux, e, ht
+    real(dp) :: g(8, 3), h3(3, 3), f3(3), ux, e, ht, tn(3), tk(3), gh(8, 3)
     type(strain_point_t) :: sp
     type(section_resultants_t) :: res
     integer :: i
@@ -608,8 +608,21 @@ contains
       call strain_state(el, ux, dot_product(g(:, 2), p), dot_product(g(:, 3), p), .true., sp)
       res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
       info%strain_energy = info%strain_energy + el%wg(i)*res%energy
-      call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de_used, sp%de_true, sp%dk, &
-                             sp%he_used, sp%hk, prel, want_k, want_damp, fint, fdamp, kp)   ! (K17)
+      ! the station's terms written here with fixed sizes (planar_beam_kernels'
+      ! add_station_terms does the same for any size): the compiler unrolls
+      ! these 8 x 3 products, and this loop is the transient analysis' hot path
+      f3 = res%axial_force*sp%de_used + res%moment*sp%dk            ! (K17)
+      fint = fint + el%wg(i)*matmul(g, f3)
+      if (want_k .or. want_damp) then
+        tn = res%tangent(1, 1)*sp%de_true + res%tangent(1, 2)*sp%dk  ! dN/d(a,b,c)
+        tk = res%tangent(2, 1)*sp%de_true + res%tangent(2, 2)*sp%dk  ! dM/d(a,b,c)
+        h3 = outer(sp%de_used, tn) + outer(sp%dk, tk) + res%axial_force*sp%he_used + res%moment*sp%hk
+        if (want_k) then
+          gh = el%wg(i)*matmul(g, h3)
+          kp = kp + matmul(gh, transpose(g))
+        end if
+        if (want_damp) fdamp = fdamp + el%wg(i)*matmul(g, matmul(h3, matmul(prel, g)))
+      end if
       e = abs(sp%eps) + ht*abs(sp%kap)
       call info%note_strain(e, el%xg(i)/el%length)
     end do

@@ -49,21 +49,22 @@ contains
   !> touched.
   pure subroutine rotate_to_global(c, s, a, k2)
     real(dp), intent(in) :: c, s
-    real(dp), intent(inout) :: a(:, :)
+    real(dp), intent(inout) :: a(:, :)   !< square, at most 12 x 12
     integer, intent(in) :: k2
-    real(dp) :: r1(size(a, 1)), r2(size(a, 1))
-    integer :: k
+    real(dp) :: r1(12), r2(12)   ! fixed size: an automatic array would take the heap on every call
+    integer :: k, n
+    n = size(a, 1)
     do k = 1, k2, k2 - 1
-      r1 = c*a(k, :) - s*a(k + 1, :)
-      r2 = s*a(k, :) + c*a(k + 1, :)
-      a(k, :) = r1
-      a(k + 1, :) = r2
+      r1(:n) = c*a(k, :) - s*a(k + 1, :)
+      r2(:n) = s*a(k, :) + c*a(k + 1, :)
+      a(k, :) = r1(:n)
+      a(k + 1, :) = r2(:n)
     end do
     do k = 1, k2, k2 - 1
-      r1 = c*a(:, k) - s*a(:, k + 1)
-      r2 = s*a(:, k) + c*a(:, k + 1)
-      a(:, k) = r1
-      a(:, k + 1) = r2
+      r1(:n) = c*a(:, k) - s*a(:, k + 1)
+      r2(:n) = s*a(:, k) + c*a(:, k + 1)
+      a(:, k) = r1(:n)
+      a(:, k + 1) = r2(:n)
     end do
   end subroutine rotate_to_global
 
@@ -224,18 +225,75 @@ contains
     real(dp), intent(in) :: de(:), de_true(:), dk(:), he(:, :), hk(:, :), prel(:)
     logical, intent(in) :: want_k, want_damp
     real(dp), intent(inout) :: fint(:), fdamp(:), kp(:, :)
-    real(dp) :: h(size(de), size(de)), f(size(de)), tn(size(de)), tk(size(de)), gh(size(g, 1), size(de))
-    f = axial_force*de + moment*dk
-    fint = fint + wg*matmul(g, f)
+    ! This is the innermost loop of every planar model evaluation: the products
+    ! are written out over fixed-size work arrays, because matmul and automatic
+    ! arrays of assumed-shape operands take the heap on every call (twice the
+    ! run time of a transient deck).  Each acc runs in matmul's order.
+    integer, parameter :: max_dofs = 12, max_terms = 4
+    real(dp) :: h(max_terms, max_terms), f(max_terms), tn(max_terms), tk(max_terms)
+    real(dp) :: gh(max_dofs, max_terms), pg(max_terms), hp(max_terms), acc
+    integer :: n, m, i, j, k
+    n = size(g, 1)
+    m = size(de)
+    f(:m) = axial_force*de + moment*dk
+    do i = 1, n
+      acc = 0.0_dp
+      do k = 1, m
+        acc = acc + g(i, k)*f(k)
+      end do
+      fint(i) = fint(i) + wg*acc
+    end do
     if (.not. (want_k .or. want_damp)) return
-    tn = tangent(1, 1)*de_true + tangent(1, 2)*dk
-    tk = tangent(2, 1)*de_true + tangent(2, 2)*dk
-    h = outer(de, tn) + outer(dk, tk) + axial_force*he + moment*hk
+    tn(:m) = tangent(1, 1)*de_true + tangent(1, 2)*dk
+    tk(:m) = tangent(2, 1)*de_true + tangent(2, 2)*dk
+    do j = 1, m
+      do i = 1, m
+        h(i, j) = de(i)*tn(j) + dk(i)*tk(j) + axial_force*he(i, j) + moment*hk(i, j)
+      end do
+    end do
     if (want_k) then
-      gh = wg*matmul(g, h)
-      kp = kp + matmul(gh, transpose(g))
+      do j = 1, m
+        do i = 1, n
+          acc = 0.0_dp
+          do k = 1, m
+            acc = acc + g(i, k)*h(k, j)
+          end do
+          gh(i, j) = wg*acc
+        end do
+      end do
+      do j = 1, n
+        do i = 1, n
+          acc = 0.0_dp
+          do k = 1, m
+            acc = acc + gh(i, k)*g(j, k)
+          end do
+          kp(i, j) = kp(i, j) + acc
+        end do
+      end do
     end if
-    if (want_damp) fdamp = fdamp + wg*matmul(g, matmul(h, matmul(prel, g)))
+    if (want_damp) then
+      do j = 1, m
+        acc = 0.0_dp
+        do k = 1, n
+          acc = acc + prel(k)*g(k, j)
+        end do
+        pg(j) = acc
+      end do
+      do i = 1, m
+        acc = 0.0_dp
+        do k = 1, m
+          acc = acc + h(i, k)*pg(k)
+        end do
+        hp(i) = acc
+      end do
+      do i = 1, n
+        acc = 0.0_dp
+        do k = 1, m
+          acc = acc + g(i, k)*hp(k)
+        end do
+        fdamp(i) = fdamp(i) + wg*acc
+      end do
+    end if
   end subroutine add_station_terms
 
   !> The exact section angle theta = phi + atan2(b, a) (K8), a = 1 + u_x,
