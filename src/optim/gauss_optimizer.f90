@@ -60,6 +60,8 @@ module gauss_optimizer
   character(len=*), parameter :: hessian_table(3) = [character(len=5) :: 'auto', 'gauss', 'exact']
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
   integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
+  !> outcomes of next_point
+  integer, parameter :: found_trial = 0, found_converged = 1, found_limit = 2, found_projected = 3
 
   type :: gauss_options_t
     integer :: method = method_auto       !< auto: chosen from the problem (see check_setup); solve
@@ -139,11 +141,15 @@ module gauss_optimizer
     procedure, private :: add_to_active
     procedure, private :: release_satisfied
     procedure, private :: curvature
+    procedure, private :: model_rcond
+    procedure, private :: rank_text
     procedure, private :: make_convex
     procedure, private :: compute_step
     procedure, private :: derivatives
     procedure, private :: finish
     procedure, private :: f_resolved
+    procedure, private :: next_point
+    procedure, private :: kkt_converged
     procedure, private :: trial_point
     procedure, private :: step_for_set
     procedure, private :: limit_violated
@@ -225,19 +231,18 @@ contains
   !> best feasible iterate stays in x_best / f_best.  err reports this run
   !> only: an error left in it by an earlier call is cleared first (it would
   !> otherwise reach the problem's procedures and be blamed on them).
-  !> Length (about 135 lines): the outer iteration of Gauss/GNLC/GNLC.NS (B, P: step, multipliers, drop or
-  !> add, step-back, convergence) kept in one loop so its exits read in order; its steps are routines below.
+  !> The outer iteration of Gauss/GNLC/GNLC.NS (B, P): derivatives at x_k,
+  !> the step and its trial point (next_point: multipliers, drop or add,
+  !> step-back, convergence test), the cycling checks, the analysis of x_{k+1}.
   subroutine solve(self, prob, x0, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout), target :: prob
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:)
-    integer :: n, m, mt, k, repeats, hess_kind, stalls, escapes, regs
-    real(dp) :: xnorm, snorm, pred, t, maxviol
-    logical :: solved, step_back_method, converged, same_point, auto, again, exact_model
-    real(dp) :: b11_res
-    logical, allocatable :: active_before(:), active_iter(:)
+    integer :: n, mt, k, hess_kind, stalls, escapes, regs, outcome
+    real(dp) :: xnorm, snorm, t
+    logical :: step_back_method, auto, exact_model
     character(len=:), allocatable :: stage
 
     call err%clear()
@@ -249,7 +254,6 @@ contains
       return
     end if
     n = prob%n
-    m = prob%m
     mt = prob%m + prob%n_eq
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
     call self%start(prob, x0, step_back_method, auto, err)
@@ -259,7 +263,7 @@ contains
     k = 0
     stalls = 0
     escapes = 0
-    converged = .false.
+    outcome = found_limit
     outer: do
       stage = 'iteration '//str(k + 1)
       ! ---- derivatives and curvature at x_k
@@ -270,66 +274,14 @@ contains
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
 
-      repeats = 0
-      active_iter = self%active
-      inner: do
-        if (k > 0 .and. repeats == 0) then     ! a violation no Newton step can reach
-          if (self%restoration(prob, .false., step_back_method, x_new, g_new, t, err)) exit inner
-          if (err%failed()) exit outer
-        end if
-        active_before = self%active
-        call self%compute_step(prob, s, solved, b11_res, err)
-        if (err%failed()) exit outer
-        self%last_solved = solved
-        ! ---- convergence test at x_k (module header)
-        snorm = maxval(abs(s))
-        pred = dot_product(self%gradf, s) + 0.5_dp*dot_product(s, matmul(self%gm, s))
-        if (mt > 0) pred = pred + dot_product(matmul(self%dg, self%lambda), s)
-        maxviol = max_violation(self%g, m)
-        if (maxviol <= self%opts%feas_tol .and. b11_res <= self%opts%feas_tol &
-            .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f)) &
-            .and. (snorm <= self%opts%xtol*(1.0_dp + xnorm) .or. &
-                   self%f_resolved(snorm, xnorm, exact_model))) then
-          converged = .true.
-          exit outer
-        end if
-        if (k >= self%opts%max_iter) exit outer
-        ! bounds only: Bertsekas' projected Newton point first (an analysis)
-        if (self%opts%projected_newton .and. .not. step_back_method .and. repeats == 0) then
-          if (self%projected_point(prob, s, err)) then
-            k = k + 1
-            self%iterations = k
-            call self%append_log(prob, k, maxval(abs(self%log(self%n_log)%x - self%x)))
-            cycle outer
-          end if
-          if (err%failed()) exit outer
-        end if
-
-        call self%trial_point(prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
-                              again, err)
-        if (err%failed()) exit outer
-        if (again) cycle inner
-        ! ---- a zero-length step (x_{k+1} = x_k bit for bit) costs no analysis:
-        ! with a changed active set the step is recomputed at x_k; with the
-        ! same set the next iteration would repeat this one exactly
-        same_point = maxval(abs(x_new - self%x)) <= 0.0_dp
-        if (same_point .and. any(self%active .neqv. active_before) .and. repeats < 2*mt) then
-          repeats = repeats + 1
-          call self%note('zero-length step: recomputed at x_k with the new active set')
-          cycle inner
-        end if
-        if (same_point) then
-          if (self%arc_step(prob, step_back_method, active_iter, x_new, g_new, t, err)) exit inner
-          if (err%failed()) exit outer
-          if (self%restoration(prob, .true., step_back_method, x_new, g_new, t, err)) exit inner
-          if (err%failed()) exit outer
-          call err%set(self%method_label(), 'zero-length step at iteration '//str(k + 1)//' with the active set ' &
-            //set_text(self%active)//' unchanged: the next iteration would repeat this one (max violation ' &
-            //str(maxviol, 3)//', B11 residual '//str(b11_res, 3)//'); stopped without another analysis')
-          exit outer
-        end if
-        exit inner
-      end do inner
+      call self%next_point(prob, k, exact_model, xnorm, step_back_method, s, snorm, x_new, g_new, t, outcome, err)
+      if (err%failed() .or. outcome == found_converged .or. outcome == found_limit) exit outer
+      if (outcome == found_projected) then       ! analysed already
+        k = k + 1
+        self%iterations = k
+        call self%append_log(prob, k, maxval(abs(self%log(self%n_log)%x - self%x)))
+        cycle outer
+      end if
 
       ! ---- cycling and stalls (issue 11): a trial point that returns to one
       ! of the last iterates.  Back to an earlier one: damp the step (halved
@@ -358,8 +310,107 @@ contains
       self%message = err%text()
       return
     end if
-    call self%finish(k, converged, mt, err)
+    call self%finish(k, outcome == found_converged, mt, err)
   end subroutine solve
+
+  !> One iteration's step from x_k: B10/B11 for the step s and the
+  !> multipliers, the convergence test (kkt_converged), then the trial point
+  !> x_new = x_k + t s (trial_point: step-back, additions), or the restored
+  !> point or the Levenberg arc's where the run is stuck.  A zero-length step
+  !> (x_new = x_k bit for bit) costs no analysis: with a changed active set
+  !> the step is recomputed at x_k; with the same set the next iteration
+  !> would repeat this one exactly.  outcome: found_trial (x_new, g_new, t,
+  !> snorm = |s|), found_converged, found_limit (max_iter reached), or
+  !> found_projected (bounds only: Bertsekas' projected Newton point, already
+  !> analysed, is x_{k+1}).  snorm keeps its value where a restoration at
+  !> the start gives the point without a step.
+  subroutine next_point(self, prob, k, exact_model, xnorm, step_back_method, s, snorm, x_new, g_new, t, outcome, &
+                        err)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(inout), target :: prob
+    integer, intent(in) :: k
+    logical, intent(in) :: exact_model
+    real(dp), intent(in) :: xnorm
+    logical, intent(inout) :: step_back_method
+    real(dp), intent(inout) :: s(:), snorm, x_new(:), g_new(:), t
+    integer, intent(out) :: outcome
+    type(error_t), intent(inout) :: err
+    integer :: mt, repeats
+    real(dp) :: b11_res, maxviol
+    logical :: solved, same_point, again
+    logical, allocatable :: active_before(:), active_iter(:)
+    mt = prob%m + prob%n_eq
+    outcome = found_trial
+    repeats = 0
+    allocate(active_iter, source=self%active)
+    do
+      if (k > 0 .and. repeats == 0) then     ! a violation no Newton step can reach
+        if (self%restoration(prob, .false., step_back_method, x_new, g_new, t, err)) return
+        if (err%failed()) return
+      end if
+      active_before = self%active
+      call self%compute_step(prob, s, solved, b11_res, err)
+      if (err%failed()) return
+      self%last_solved = solved
+      snorm = maxval(abs(s))
+      maxviol = max_violation(self%g, prob%m)
+      if (self%kkt_converged(s, snorm, xnorm, maxviol, b11_res, mt, exact_model)) then
+        outcome = found_converged
+        return
+      end if
+      if (k >= self%opts%max_iter) then
+        outcome = found_limit
+        return
+      end if
+      ! bounds only: Bertsekas' projected Newton point first (an analysis)
+      if (self%opts%projected_newton .and. .not. step_back_method .and. repeats == 0) then
+        if (self%projected_point(prob, s, err)) then
+          outcome = found_projected
+          return
+        end if
+        if (err%failed()) return
+      end if
+
+      call self%trial_point(prob, s, snorm, xnorm, k, step_back_method, solved, x_new, g_new, t, repeats, &
+                            again, err)
+      if (err%failed()) return
+      if (again) cycle
+      same_point = maxval(abs(x_new - self%x)) <= 0.0_dp
+      if (same_point .and. any(self%active .neqv. active_before) .and. repeats < 2*mt) then
+        repeats = repeats + 1
+        call self%note('zero-length step: recomputed at x_k with the new active set')
+        cycle
+      end if
+      if (same_point) then
+        if (self%arc_step(prob, step_back_method, active_iter, x_new, g_new, t, err)) return
+        if (err%failed()) return
+        if (self%restoration(prob, .true., step_back_method, x_new, g_new, t, err)) return
+        if (err%failed()) return
+        call err%set(self%method_label(), 'zero-length step at iteration '//str(k + 1)//' with the active set ' &
+          //set_text(self%active)//' unchanged: the next iteration would repeat this one (max violation ' &
+          //str(maxviol, 3)//', B11 residual '//str(b11_res, 3)//'); stopped without another analysis')
+      end if
+      return
+    end do
+  end subroutine next_point
+
+  !> The convergence test at x_k (module header) for the step s just
+  !> computed (snorm = ||s||_inf) and its multipliers: (1) feasible (maxviol,
+  !> the largest violation at x_k), (2) B11 solved (residual b11_res), (4)
+  !> the Lagrangian's predicted change small, and (3) the step small or (3')
+  !> F resolved; mt constraints in all.
+  logical function kkt_converged(self, s, snorm, xnorm, maxviol, b11_res, mt, exact_model) result(ok)
+    class(gauss_optimizer_t), intent(in) :: self
+    real(dp), intent(in) :: s(:), snorm, xnorm, maxviol, b11_res
+    integer, intent(in) :: mt
+    logical, intent(in) :: exact_model
+    real(dp) :: pred
+    pred = dot_product(self%gradf, s) + 0.5_dp*dot_product(s, matmul(self%gm, s))
+    if (mt > 0) pred = pred + dot_product(matmul(self%dg, self%lambda), s)
+    ok = maxviol <= self%opts%feas_tol .and. b11_res <= self%opts%feas_tol &
+         .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f)) &
+         .and. (snorm <= self%opts%xtol*(1.0_dp + xnorm) .or. self%f_resolved(snorm, xnorm, exact_model))
+  end function kkt_converged
 
   !> Test (3'), the alternative to the step test (3) (Gill, Murray & Wright,
   !> Practical Optimization (1981) §8.2.3, criteria U1-U3 with tau_F = ftol):
@@ -1002,15 +1053,12 @@ contains
     class(opt_problem_t), intent(inout) :: prob
     integer, intent(in) :: hess_kind, k
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: lu(:, :), ev(:)
-    integer, allocatable :: ipiv(:)
-    type(error_t) :: lerr
     real(dp) :: rc, mu, gmax
     real(dp), allocatable :: glag(:)
     real(dp), parameter :: auto_factor = 1.0e-8_dp, auto_rcond = 1.4901161193847656e-8_dp
     logical :: auto_exact
-    character(len=:), allocatable :: what, rank_text, how
-    integer :: i, j, n, rank
+    character(len=:), allocatable :: what, how
+    integer :: i, n
     n = prob%n
     if (hess_kind == hessian_gauss) then
       self%gm = 2.0_dp*matmul(self%jac, transpose(self%jac))
@@ -1024,29 +1072,7 @@ contains
       what = 'the objective Hessian G'
       if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp) call self%make_convex(n)
     end if
-    allocate(lu(n, n), ipiv(n))
-    lu = self%gm
-    ! (default settings) B10 needs M = G + Sum lambda_j A_j, not G, to be
-    ! regular, and the step only on the tangent space of the equalities,
-    ! which are active at every step: judge M (multipliers and constraint
-    ! Hessians of the last solved step) + scale Sum_eq c c^T/|c|^2.  Where
-    ! that is regular and G is not, no Levenberg shift slows the iteration:
-    ! where M itself is singular, B10 in lambda fails and B10/B11 are solved
-    ! together in (s, lambda) (HS 28, 2 residuals in 3 variables and one
-    ! linear equality: x* in one step; HS 27: f independent of x3, M regular
-    ! through the equality's curvature)
-    if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp .and. self%last_solved) then
-      do i = 1, size(self%lambda)
-        if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) lu = lu + self%lambda(i)*self%hess(:, :, i)
-      end do
-    end if
-    do i = prob%m + 1, prob%m + prob%n_eq
-      if (.not. self%opts%auto_regularize .or. self%opts%regularization > 0.0_dp) exit   ! the user's choice
-      if (norm2(self%dg(:, i)) > 0.0_dp) lu = lu + max(maxval([(abs(self%gm(j, j)), j=1, n)]), 1.0_dp)* &
-        spread(self%dg(:, i), 2, n)*spread(self%dg(:, i), 1, n)/norm2(self%dg(:, i))**2
-    end do
-    call lu_factor(lu, ipiv, lerr, rc)
-    if (lerr%failed()) rc = 0.0_dp
+    rc = self%model_rcond(prob)
     ! with the automatic choice (default) an objective Hessian is treated as
     ! singular below sqrt(eps): a difference Hessian is only good to ~1e-8
     ! relative, so smaller eigenvalues are noise, and M would be too
@@ -1054,24 +1080,6 @@ contains
     ! positive semi-definite by construction and keeps rcond_min)
     auto_exact = hess_kind /= hessian_gauss .and. self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp
     if (rc >= self%opts%rcond_min .and. .not. (auto_exact .and. rc < auto_rcond)) return
-    ! eigenvalues of G (DSYGV with M = I) give the numerical rank; for
-    ! G = 2JJ^T they are 2 sigma_i^2 of the residual Jacobian
-    rank_text = ''
-    allocate(ev(n))
-    call lerr%clear()
-    call symmetric_eigenvalues(self%gm, ev, lerr)
-    if (.not. lerr%failed()) then
-      rank = count(ev > self%opts%rcond_min*max(ev(n), tiny(1.0_dp)))
-      rank_text = '; eigenvalues of G from '//str(ev(1), 3)//' to '//str(ev(n), 3)//', numerical rank '// &
-                  str(rank)//' of '//str(n)
-      if (hess_kind == hessian_gauss) then
-        if (prob%n_residuals < n) then
-          rank_text = rank_text//' (only '//str(prob%n_residuals)//' residuals for '//str(n)//' variables)'
-        else
-          rank_text = rank_text//' (rank-deficient residual Jacobian J)'
-        end if
-      end if
-    end if
     if (self%opts%regularization > 0.0_dp .or. self%opts%auto_regularize) then
       gmax = maxval([(abs(self%gm(i, i)), i=1, n)])
       if (self%opts%regularization > 0.0_dp) then
@@ -1099,10 +1107,72 @@ contains
       return
     end if
     call err%set('curvature', what//' at x_'//str(k)//' is singular or nearly singular (rcond = '//str(rc, 3) &
-      //' < rcond_min = '//str(self%opts%rcond_min, 3)//')'//rank_text//'. The Gauss step (B10/B12) is ' &
-      //'undefined; remove redundant variables, or set singular_g = ''regularize'' (the default) or ' &
-      //'regularization > 0 in &optimize to add mu*I (Levenberg)')
+      //' < rcond_min = '//str(self%opts%rcond_min, 3)//')'//self%rank_text(prob, hess_kind)//'. The Gauss ' &
+      //'step (B10/B12) is undefined; remove redundant variables, or set singular_g = ''regularize'' (the ' &
+      //'default) or regularization > 0 in &optimize to add mu*I (Levenberg)')
   end subroutine curvature
+
+  !> The reciprocal condition number (0: singular) of the matrix curvature
+  !> judges: G, or with the default settings M = G + Sum lambda_j A_j +
+  !> scale Sum_eq c c^T/|c|^2.  B10 needs M, not G, to be regular, and the
+  !> step only on the tangent space of the equalities, which are active at
+  !> every step (multipliers and constraint Hessians of the last solved
+  !> step).  Where that is regular and G is not, no Levenberg shift slows
+  !> the iteration: where M itself is singular, B10 in lambda fails and
+  !> B10/B11 are solved together in (s, lambda) (HS 28, 2 residuals in 3
+  !> variables and one linear equality: x* in one step; HS 27: f independent
+  !> of x3, M regular through the equality's curvature).
+  real(dp) function model_rcond(self, prob) result(rc)
+    class(gauss_optimizer_t), intent(in) :: self
+    class(opt_problem_t), intent(in) :: prob
+    real(dp), allocatable :: lu(:, :)
+    integer, allocatable :: ipiv(:)
+    type(error_t) :: lerr
+    integer :: i, j, n
+    n = prob%n
+    allocate(lu(n, n), ipiv(n))
+    lu = self%gm
+    if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp .and. self%last_solved) then
+      do i = 1, size(self%lambda)
+        if (self%active(i) .and. abs(self%lambda(i)) > 0.0_dp) lu = lu + self%lambda(i)*self%hess(:, :, i)
+      end do
+    end if
+    do i = prob%m + 1, prob%m + prob%n_eq
+      if (.not. self%opts%auto_regularize .or. self%opts%regularization > 0.0_dp) exit   ! the user's choice
+      if (norm2(self%dg(:, i)) > 0.0_dp) lu = lu + max(maxval([(abs(self%gm(j, j)), j=1, n)]), 1.0_dp)* &
+        spread(self%dg(:, i), 2, n)*spread(self%dg(:, i), 1, n)/norm2(self%dg(:, i))**2
+    end do
+    call lu_factor(lu, ipiv, lerr, rc)
+    if (lerr%failed()) rc = 0.0_dp
+  end function model_rcond
+
+  !> For the diagnosis of a singular G: its eigenvalues (DSYGV with M = I)
+  !> and numerical rank; for G = 2JJ^T they are 2 sigma_i^2 of the residual
+  !> Jacobian.  '' if the eigenvalues cannot be computed.
+  function rank_text(self, prob, hess_kind) result(text)
+    class(gauss_optimizer_t), intent(in) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: hess_kind
+    character(len=:), allocatable :: text
+    real(dp), allocatable :: ev(:)
+    type(error_t) :: lerr
+    integer :: n, rank
+    n = prob%n
+    text = ''
+    allocate(ev(n))
+    call symmetric_eigenvalues(self%gm, ev, lerr)
+    if (lerr%failed()) return
+    rank = count(ev > self%opts%rcond_min*max(ev(n), tiny(1.0_dp)))
+    text = '; eigenvalues of G from '//str(ev(1), 3)//' to '//str(ev(n), 3)//', numerical rank '// &
+           str(rank)//' of '//str(n)
+    if (hess_kind == hessian_gauss) then
+      if (prob%n_residuals < n) then
+        text = text//' (only '//str(prob%n_residuals)//' residuals for '//str(n)//' variables)'
+      else
+        text = text//' (rank-deficient residual Jacobian J)'
+      end if
+    end if
+  end function rank_text
 
   !> An indefinite model (default settings): B10 minimises the Lagrangian
   !> model with M = G + Sum lambda_j A_j over the tangent space of the active
