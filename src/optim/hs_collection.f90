@@ -303,155 +303,153 @@ contains
     end select
   end function hs_f
 
-  !> HS inequality c_j(x) >= 0 of problem `number`, one case per constraint
-  !> (number*10 + j).
-  real(dp) function hs_inequality(number, j, x) result(c)
-    integer, intent(in) :: number, j
+  !> HS inequality c_j(x) >= 0 (kind 1) or equality h_j(x) = 0 (kind 2).
+  !> Length (about 140 lines): a flat data table, one case per constraint
+  !> (number*10 + j) holding its printed formula and nothing else; the
+  !> formulas share no step to fold, and a split (by kind or by problem)
+  !> would only repeat the dispatch around the same table.
+  real(dp) function hs_c(number, kind, j, x) result(c)
+    integer, intent(in) :: number, kind, j
     real(dp), intent(in) :: x(:)
     c = 0.0_dp
-    select case (number*10 + j)
-    case (101)
-      c = -3.0_dp*x(1)**2 + 2.0_dp*x(1)*x(2) - x(2)**2 + 1.0_dp
-    case (111)
-      c = -x(1)**2 + x(2)
-    case (121)
-      c = 25.0_dp - 4.0_dp*x(1)**2 - x(2)**2
-    case (141)
-      c = -0.25_dp*x(1)**2 - x(2)**2 + 1.0_dp
-    case (161, 201)
-      c = x(1) + x(2)**2
-    case (162, 202)
-      c = x(1)**2 + x(2)
-    case (171)
-      c = x(2)**2 - x(1)
-    case (172)
-      c = x(1)**2 - x(2)
-    case (181)
-      c = x(1)*x(2) - 25.0_dp
-    case (182)
-      c = x(1)**2 + x(2)**2 - 25.0_dp
-    case (203)
-      c = x(1)**2 + x(2)**2 - 1.0_dp
-    case (221)
-      c = -x(1) - x(2) + 2.0_dp
-    case (222)
-      c = -x(1)**2 + x(2)
-    case (231)
-      c = x(1) + x(2) - 1.0_dp
-    case (232)
-      c = x(1)**2 + x(2)**2 - 1.0_dp
-    case (233)
-      c = 9.0_dp*x(1)**2 + x(2)**2 - 9.0_dp
-    case (234)
-      c = x(1)**2 - x(2)
-    case (235)
-      c = x(2)**2 - x(1)
-    case (241)
-      c = x(1)/s3 - x(2)
-    case (242)
-      c = x(1) + s3*x(2)
-    case (243)
-      c = -x(1) - s3*x(2) + 6.0_dp
-    case (291)
-      c = -x(1)**2 - 2.0_dp*x(2)**2 - 4.0_dp*x(3)**2 + 48.0_dp
-    case (301)
-      c = x(1)**2 + x(2)**2 - 1.0_dp
-    case (311)
-      c = x(1)*x(2) - 1.0_dp
-    case (321)
-      c = 6.0_dp*x(2) + 4.0_dp*x(3) - x(1)**3 - 3.0_dp
-    case (341)
-      c = x(2) - exp(min(x(1), 700.0_dp))     ! guarded: trial points far out must not overflow
-    case (342)
-      c = x(3) - exp(min(x(2), 700.0_dp))
-    case (361, 371)
-      c = 72.0_dp - x(1) - 2.0_dp*x(2) - 2.0_dp*x(3)
-    case (372)
-      c = x(1) + 2.0_dp*x(2) + 2.0_dp*x(3)
-    case (711)
-      c = x(1)*x(2)*x(3)*x(4) - 25.0_dp
-    case (761)
-      c = -x(1) - 2.0_dp*x(2) - x(3) - x(4) + 5.0_dp
-    case (762)
-      c = -3.0_dp*x(1) - x(2) - 2.0_dp*x(3) + x(4) + 4.0_dp
-    case (763)
-      c = x(2) + 4.0_dp*x(3) - 1.5_dp
-    end select
-  end function hs_inequality
-
-  !> HS equality h_j(x) = 0 of problem `number`, one case per constraint
-  !> (number*10 + j).
-  real(dp) function hs_equality(number, j, x) result(c)
-    integer, intent(in) :: number, j
-    real(dp), intent(in) :: x(:)
-    c = 0.0_dp
-    select case (number*10 + j)
-    case (61)
-      c = 10.0_dp*(x(2) - x(1)**2)
-    case (71)
-      c = (1.0_dp + x(1)**2)**2 + x(2)**2 - 4.0_dp
-    case (91)
-      c = 4.0_dp*x(1) - 3.0_dp*x(2)
-    case (141)
-      c = x(1) - 2.0_dp*x(2) + 1.0_dp
-    case (271)
-      c = x(1) + x(3)**2 + 1.0_dp
-    case (321)
-      c = 1.0_dp - x(1) - x(2) - x(3)
-    case (391)
-      c = x(2) - x(1)**3 - x(3)**2
-    case (392)
-      c = x(1)**2 - x(2) - x(4)**2
-    case (401)
-      c = x(1)**3 + x(2)**2 - 1.0_dp
-    case (402)
-      c = x(1)**2*x(4) - x(3)
-    case (403)
-      c = x(4)**2 - x(2)
-    case (421)
-      c = x(1) - 2.0_dp
-    case (422)
-      c = x(3)**2 + x(4)**2 - 2.0_dp
-    case (481)
-      c = sum(x(1:5)) - 5.0_dp
-    case (482)
-      c = x(3) - 2.0_dp*(x(4) + x(5)) + 3.0_dp
-    case (501)
-      c = x(1) + 2.0_dp*x(2) + 3.0_dp*x(3) - 6.0_dp
-    case (502)
-      c = x(2) + 2.0_dp*x(3) + 3.0_dp*x(4) - 6.0_dp
-    case (503)
-      c = x(3) + 2.0_dp*x(4) + 3.0_dp*x(5) - 6.0_dp
-    case (511)
-      c = x(1) + 3.0_dp*x(2) - 4.0_dp
-    case (512, 522, 532)
-      c = x(3) + x(4) - 2.0_dp*x(5)
-    case (513, 523, 533)
-      c = x(2) - x(5)
-    case (521, 531)
-      c = x(1) + 3.0_dp*x(2)
-    case (601)
-      c = x(1)*(1.0_dp + x(2)**2) + x(3)**4 - 4.0_dp - 3.0_dp*s2
-    case (711)
-      c = sum(x(1:4)**2) - 40.0_dp
-    case (771)
-      c = x(1)**2*x(4) + sin(x(4) - x(5)) - 2.0_dp*s2
-    case (772)
-      c = x(2) + x(3)**4*x(4)**2 - 8.0_dp - s2
-    case (781)
-      c = sum(x(1:5)**2) - 10.0_dp
-    case (782)
-      c = x(2)*x(3) - 5.0_dp*x(4)*x(5)
-    case (783)
-      c = x(1)**3 + x(2)**3 + 1.0_dp
-    case (791)
-      c = x(1) + x(2)**2 + x(3)**3 - 2.0_dp - 3.0_dp*s2
-    case (792)
-      c = x(2) - x(3)**2 + x(4) + 2.0_dp - 2.0_dp*s2
-    case (793)
-      c = x(1)*x(5) - 2.0_dp
-    end select
-  end function hs_equality
+    if (kind == 1) then
+      select case (number*10 + j)
+      case (101)
+        c = -3.0_dp*x(1)**2 + 2.0_dp*x(1)*x(2) - x(2)**2 + 1.0_dp
+      case (111)
+        c = -x(1)**2 + x(2)
+      case (121)
+        c = 25.0_dp - 4.0_dp*x(1)**2 - x(2)**2
+      case (141)
+        c = -0.25_dp*x(1)**2 - x(2)**2 + 1.0_dp
+      case (161, 201)
+        c = x(1) + x(2)**2
+      case (162, 202)
+        c = x(1)**2 + x(2)
+      case (171)
+        c = x(2)**2 - x(1)
+      case (172)
+        c = x(1)**2 - x(2)
+      case (181)
+        c = x(1)*x(2) - 25.0_dp
+      case (182)
+        c = x(1)**2 + x(2)**2 - 25.0_dp
+      case (203)
+        c = x(1)**2 + x(2)**2 - 1.0_dp
+      case (221)
+        c = -x(1) - x(2) + 2.0_dp
+      case (222)
+        c = -x(1)**2 + x(2)
+      case (231)
+        c = x(1) + x(2) - 1.0_dp
+      case (232)
+        c = x(1)**2 + x(2)**2 - 1.0_dp
+      case (233)
+        c = 9.0_dp*x(1)**2 + x(2)**2 - 9.0_dp
+      case (234)
+        c = x(1)**2 - x(2)
+      case (235)
+        c = x(2)**2 - x(1)
+      case (241)
+        c = x(1)/s3 - x(2)
+      case (242)
+        c = x(1) + s3*x(2)
+      case (243)
+        c = -x(1) - s3*x(2) + 6.0_dp
+      case (291)
+        c = -x(1)**2 - 2.0_dp*x(2)**2 - 4.0_dp*x(3)**2 + 48.0_dp
+      case (301)
+        c = x(1)**2 + x(2)**2 - 1.0_dp
+      case (311)
+        c = x(1)*x(2) - 1.0_dp
+      case (321)
+        c = 6.0_dp*x(2) + 4.0_dp*x(3) - x(1)**3 - 3.0_dp
+      case (341)
+        c = x(2) - exp(min(x(1), 700.0_dp))     ! guarded: trial points far out must not overflow
+      case (342)
+        c = x(3) - exp(min(x(2), 700.0_dp))
+      case (361, 371)
+        c = 72.0_dp - x(1) - 2.0_dp*x(2) - 2.0_dp*x(3)
+      case (372)
+        c = x(1) + 2.0_dp*x(2) + 2.0_dp*x(3)
+      case (711)
+        c = x(1)*x(2)*x(3)*x(4) - 25.0_dp
+      case (761)
+        c = -x(1) - 2.0_dp*x(2) - x(3) - x(4) + 5.0_dp
+      case (762)
+        c = -3.0_dp*x(1) - x(2) - 2.0_dp*x(3) + x(4) + 4.0_dp
+      case (763)
+        c = x(2) + 4.0_dp*x(3) - 1.5_dp
+      end select
+    else
+      select case (number*10 + j)
+      case (61)
+        c = 10.0_dp*(x(2) - x(1)**2)
+      case (71)
+        c = (1.0_dp + x(1)**2)**2 + x(2)**2 - 4.0_dp
+      case (91)
+        c = 4.0_dp*x(1) - 3.0_dp*x(2)
+      case (141)
+        c = x(1) - 2.0_dp*x(2) + 1.0_dp
+      case (271)
+        c = x(1) + x(3)**2 + 1.0_dp
+      case (321)
+        c = 1.0_dp - x(1) - x(2) - x(3)
+      case (391)
+        c = x(2) - x(1)**3 - x(3)**2
+      case (392)
+        c = x(1)**2 - x(2) - x(4)**2
+      case (401)
+        c = x(1)**3 + x(2)**2 - 1.0_dp
+      case (402)
+        c = x(1)**2*x(4) - x(3)
+      case (403)
+        c = x(4)**2 - x(2)
+      case (421)
+        c = x(1) - 2.0_dp
+      case (422)
+        c = x(3)**2 + x(4)**2 - 2.0_dp
+      case (481)
+        c = sum(x(1:5)) - 5.0_dp
+      case (482)
+        c = x(3) - 2.0_dp*(x(4) + x(5)) + 3.0_dp
+      case (501)
+        c = x(1) + 2.0_dp*x(2) + 3.0_dp*x(3) - 6.0_dp
+      case (502)
+        c = x(2) + 2.0_dp*x(3) + 3.0_dp*x(4) - 6.0_dp
+      case (503)
+        c = x(3) + 2.0_dp*x(4) + 3.0_dp*x(5) - 6.0_dp
+      case (511)
+        c = x(1) + 3.0_dp*x(2) - 4.0_dp
+      case (512, 522, 532)
+        c = x(3) + x(4) - 2.0_dp*x(5)
+      case (513, 523, 533)
+        c = x(2) - x(5)
+      case (521, 531)
+        c = x(1) + 3.0_dp*x(2)
+      case (601)
+        c = x(1)*(1.0_dp + x(2)**2) + x(3)**4 - 4.0_dp - 3.0_dp*s2
+      case (711)
+        c = sum(x(1:4)**2) - 40.0_dp
+      case (771)
+        c = x(1)**2*x(4) + sin(x(4) - x(5)) - 2.0_dp*s2
+      case (772)
+        c = x(2) + x(3)**4*x(4)**2 - 8.0_dp - s2
+      case (781)
+        c = sum(x(1:5)**2) - 10.0_dp
+      case (782)
+        c = x(2)*x(3) - 5.0_dp*x(4)*x(5)
+      case (783)
+        c = x(1)**3 + x(2)**3 + 1.0_dp
+      case (791)
+        c = x(1) + x(2)**2 + x(3)**3 - 2.0_dp - 3.0_dp*s2
+      case (792)
+        c = x(2) - x(3)**2 + x(4) + 2.0_dp - 2.0_dp*s2
+      case (793)
+        c = x(1)*x(5) - 2.0_dp
+      end select
+    end if
+  end function hs_c
 
   subroutine hs_objective(self, x, f, err)
     class(hs_problem_t), intent(inout) :: self
@@ -552,9 +550,9 @@ contains
     integer, intent(in) :: i
     real(dp), intent(in) :: x(:)
     if (i <= self%mg) then
-      g = -hs_inequality(self%number, i, x)
+      g = -hs_c(self%number, 1, i, x)
     else
-      g = hs_equality(self%number, i - self%m, x)
+      g = hs_c(self%number, 2, i - self%m, x)
     end if
   end function constraint_of
 
