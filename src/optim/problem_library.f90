@@ -79,12 +79,9 @@ contains
       call create_quadratic(info, prob)
     case ('fourbar_path', 'fourbar_path_13', 'fourbar_path_offset', 'fourbar_path_13_offset')
       call create_fourbar(info, prob)
-    case ('rosenbrock', 'helical_valley', 'powell_singular', 'bard')
-      call create_mgh(info, prob)
-    case ('hs15', 'hs28', 'hs65')
-      call create_hs_lsq(info, prob)
-    case ('general_convex', 'three_circles', 'potter_cycling')
-      call create_constructed(info, prob)
+    case ('rosenbrock', 'helical_valley', 'powell_singular', 'bard', 'hs15', 'hs28', 'hs65', 'general_convex', &
+          'three_circles', 'potter_cycling')
+      call create_lsq(info, prob)
     case default
       call err%set('problem_library', 'unknown problem '''//trim(name)//'''; expected one of '//problem_names, &
                    code=2)
@@ -179,13 +176,19 @@ contains
     call move_alloc(fp, prob)
   end subroutine create_fourbar
 
-  !> Unconstrained least-squares problems of More, Garbow & Hillstrom.
-  subroutine create_mgh(info, prob)
+  !> The sums of squares with analytic Jacobians (test_lsq_t): More, Garbow
+  !> & Hillstrom's unconstrained problems, Hock-Schittkowski problems written
+  !> as least squares with constraints, and the constructed problems with
+  !> exactly known optima (Rosen & Suzuki's recipe).
+  subroutine create_lsq(info, prob)
     type(problem_info_t), intent(inout) :: info
     class(opt_problem_t), allocatable, intent(inout) :: prob
     type(test_lsq_t), allocatable :: lp
+    real(dp) :: e(2, 2), s3
+    integer :: i
     allocate(lp)
     select case (info%name)
+    ! ---- More, Garbow & Hillstrom, unconstrained
     case ('rosenbrock')
       lp%which = p_rosenbrock
       call lp%init_problem('rosenbrock', 2, 2, 0)
@@ -206,18 +209,7 @@ contains
       call lp%init_problem('bard', 3, 15, 0)
       call set_info(info, 'Bard data fit, 15 residuals, non-zero residual at x*', 'MGH problem 8', 'gauss', &
                     [1.0_dp, 1.0_dp, 1.0_dp], [0.08241056_dp, 1.133036_dp, 2.343695_dp], 8.21487e-3_dp)
-    end select
-    call move_alloc(lp, prob)
-  end subroutine create_mgh
-
-  !> Hock-Schittkowski problems written as least squares with constraints.
-  subroutine create_hs_lsq(info, prob)
-    type(problem_info_t), intent(inout) :: info
-    class(opt_problem_t), allocatable, intent(inout) :: prob
-    type(test_lsq_t), allocatable :: lp
-    integer :: i
-    allocate(lp)
-    select case (info%name)
+    ! ---- Hock-Schittkowski as least squares with constraints
     case ('hs15')
       lp%which = p_hs15
       call lp%init_problem('hs15', 2, 2, 3)
@@ -248,18 +240,7 @@ contains
       call set_info(info, 'sum of squares in a ball and a box; infeasible start', 'HS 65', 'gnlc_ns', &
                     [-5.0_dp, 5.0_dp, 0.0_dp], [3.65046172521_dp, 3.65046172521_dp, 4.62041755532_dp], &
                     0.9535288567_dp, [0.0821532773_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp])
-    end select
-    call move_alloc(lp, prob)
-  end subroutine create_hs_lsq
-
-  !> The constructed problems with exactly known optima (Rosen & Suzuki's recipe).
-  subroutine create_constructed(info, prob)
-    type(problem_info_t), intent(inout) :: info
-    class(opt_problem_t), allocatable, intent(inout) :: prob
-    type(test_lsq_t), allocatable :: lp
-    real(dp) :: e(2, 2), s3
-    allocate(lp)
-    select case (info%name)
+    ! ---- constructed, exactly known optima
     case ('general_convex')
       lp%which = p_general_convex
       lp%target = [2.0_dp, 2.5_dp]
@@ -295,7 +276,7 @@ contains
                     [1.0_dp - 0.2_dp/s3, 1.0_dp - 0.2_dp/s3])
     end select
     call move_alloc(lp, prob)
-  end subroutine create_constructed
+  end subroutine create_lsq
 
   subroutine set_info(info, title, source, method, x0, x_star, f_star, lambda_star)
     type(problem_info_t), intent(inout) :: info
@@ -464,10 +445,7 @@ contains
     real(dp), intent(out) :: g
     type(error_t), intent(inout) :: err
     g = 0.0_dp
-    if (self%which /= p_general_convex) then
-      call err%set('test_lsq', 'problem '//self%name//' has no general constraint '//str(i))
-      return
-    end if
+    if (.not. has_general_constraint(self, i, err)) return
     select case (i)
     case (1)
       g = exp(min(x(1) - 1.0_dp, 700.0_dp)) + x(2)**2 - 2.0_dp
@@ -484,10 +462,7 @@ contains
     type(error_t), intent(inout) :: err
     grad = 0.0_dp
     if (.false.) grad(1) = g
-    if (self%which /= p_general_convex) then
-      call err%set('test_lsq', 'problem '//self%name//' has no general constraint '//str(i))
-      return
-    end if
+    if (.not. has_general_constraint(self, i, err)) return
     select case (i)
     case (1)
       grad = [exp(min(x(1) - 1.0_dp, 700.0_dp)), 2.0_dp*x(2)]
@@ -495,4 +470,14 @@ contains
       grad = (x(1) + x(2))**3/4.0_dp
     end select
   end subroutine lsq_general_constraint_gradient
+
+  !> Only general_convex has general constraints: .false. with err set for
+  !> constraint i of any other problem.
+  logical function has_general_constraint(self, i, err) result(has)
+    class(test_lsq_t), intent(in) :: self
+    integer, intent(in) :: i
+    type(error_t), intent(inout) :: err
+    has = self%which == p_general_convex
+    if (.not. has) call err%set('test_lsq', 'problem '//self%name//' has no general constraint '//str(i))
+  end function has_general_constraint
 end module problem_library
