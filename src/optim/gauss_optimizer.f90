@@ -37,7 +37,8 @@ module gauss_optimizer
   use name_table, only: name_of, code_of
   use linalg, only: lu_factor, lu_solve, cholesky_factor, symmetric_eigenvalues
   use optim_problem, only: opt_problem_t, con_linear, con_general, con_kind_name
-  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
+  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, multiplier_system, gauss_step, &
+                                  linear_multipliers
   use feasibility_restoration, only: restore_feasibility
   implicit none
   private
@@ -1458,8 +1459,8 @@ contains
       end if
       actual(j) = prob%con_kind(i) == con_general
     end do
-    call msys%setup(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
-                    actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
+    msys = multiplier_system(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), self%hess(:, :, idx), &
+                             actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
     if (l == 0) then
       call msys%evaluate_step(lam, ok)                   ! B12 on the free variables
       if (.not. ok) call err%set('gauss_step', 'G restricted to the free variables is singular (rcond = '// &

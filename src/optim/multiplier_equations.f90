@@ -30,7 +30,7 @@ module multiplier_equations
   use powell_minimizer, only: powell_function_t, powell_options_t, powell_result_t, powell_minimize
   implicit none
   private
-  public :: multiplier_system_t, multiplier_result_t
+  public :: multiplier_system_t, multiplier_result_t, multiplier_system
   public :: gauss_step, linear_multipliers
 
   !> Value of H where s(lambda) does not exist (M singular): large but finite.
@@ -62,7 +62,6 @@ module multiplier_equations
     integer :: evaluations = 0              !< evaluations of m(lambda)
     logical :: in_powell = .false.          !< counting: evaluations now are Powell's
   contains
-    procedure :: setup
     procedure :: evaluate_step
     procedure :: residual
     procedure :: newton_matrix
@@ -86,42 +85,34 @@ module multiplier_equations
 
 contains
 
-  !> Load the data of one iteration and active set.  `prob` is only used for
-  !> constraints with actual(j) = .true.
-  subroutine setup(self, gmat, gradf, xk, idx, gval, c, a, actual, prob, nonneg, fixed, s_fix)
-    class(multiplier_system_t), intent(inout) :: self
+  !> The system of one iteration and active set.  `prob` is only used for
+  !> constraints with actual(j) = .true.; every constraint may take either
+  !> sign (default) and no variable is held (default).
+  function multiplier_system(gmat, gradf, xk, idx, gval, c, a, actual, prob, nonneg, fixed, s_fix) result(sys)
     real(dp), intent(in) :: gmat(:, :), gradf(:), xk(:), gval(:), c(:, :), a(:, :, :)
     integer, intent(in) :: idx(:)
     logical, intent(in) :: actual(:)
     class(opt_problem_t), intent(in), pointer :: prob
-    logical, intent(in), optional :: nonneg(:)   !< default: no sign restriction
-    logical, intent(in), optional :: fixed(:)    !< (n) variables held at a bound (default none)
+    logical, intent(in), optional :: nonneg(:)   !< (l) inequality: lambda_j >= 0 in Powell's compromise
+    logical, intent(in), optional :: fixed(:)    !< (n) variables held at a bound
     real(dp), intent(in), optional :: s_fix(:)   !< (n) their step
-    integer :: j
-    self%n = size(xk)
-    self%l = size(idx)
-    self%gmat = gmat
-    self%gradf = gradf
-    self%xk = xk
-    self%idx = idx
-    self%gval = gval
-    self%c = c
-    self%a = a
-    self%actual = actual
-    self%nonneg = [(.false., j=1, size(idx))]
-    if (present(nonneg)) self%nonneg = nonneg
-    self%fixed = [(.false., j=1, size(xk))]
-    self%s_fix = [(0.0_dp, j=1, size(xk))]
-    if (present(fixed)) self%fixed = fixed
-    if (present(s_fix)) self%s_fix = s_fix
-    self%fix_scale = max(maxval([(abs(gmat(j, j)), j=1, size(xk))]), 1.0e-300_dp)
-    self%prob => prob
-    if (allocated(self%mlu)) deallocate(self%mlu, self%ipiv, self%s)
-    allocate(self%mlu(self%n, self%n), self%ipiv(self%n), self%s(self%n))
-    self%s = 0.0_dp
-    call self%eval_err%clear()
-    self%evaluations = 0
-  end subroutine setup
+    type(multiplier_system_t) :: sys
+    logical :: sign_kept(size(idx)), held(size(xk))
+    real(dp) :: held_step(size(xk))
+    integer :: j, n
+    n = size(xk)
+    sign_kept = .false.
+    if (present(nonneg)) sign_kept = nonneg
+    held = .false.
+    held_step = 0.0_dp
+    if (present(fixed)) held = fixed
+    if (present(s_fix)) held_step = s_fix
+    sys = multiplier_system_t(n=n, l=size(idx), gmat=gmat, gradf=gradf, xk=xk, idx=idx, gval=gval, c=c, a=a, &
+                              actual=actual, nonneg=sign_kept, fixed=held, s_fix=held_step, &
+                              fix_scale=max(maxval([(abs(gmat(j, j)), j=1, n)]), 1.0e-300_dp), prob=prob)
+    allocate(sys%mlu(n, n), sys%ipiv(n), sys%s(n))
+    sys%s = 0.0_dp
+  end function multiplier_system
 
   !> s(lambda) from B10; ok = .false. if G + Sum lambda_j A_j is singular.
   subroutine evaluate_step(self, lambda, ok)

@@ -6,7 +6,8 @@ module test_multiplier_equations_suite
   use kinds, only: dp
   use error_status, only: error_t
   use optim_problem, only: opt_problem_t
-  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, gauss_step, linear_multipliers
+  use multiplier_equations, only: multiplier_system_t, multiplier_result_t, multiplier_system, gauss_step, &
+                                  linear_multipliers
   use assertions
   implicit none
   private
@@ -123,7 +124,7 @@ contains
     c(:, 1) = matmul(a(:, :, 1), x) + [1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp]
     c(:, 2) = matmul(a(:, :, 2), x) + [2.0_dp, -1.0_dp, 0.0_dp, -1.0_dp]
     gval = [0.0_dp, 0.0_dp]
-    call msys%setup(g, gradf, x, [1, 3], gval, c, a, [.false., .false.], none)
+    msys = multiplier_system(g, gradf, x, [1, 3], gval, c, a, [.false., .false.], none)
     lam = [0.0_dp, 0.0_dp]
     call msys%solve(lam, 1.0e-12_dp, 30, res, err)
     call assert_true(res%solved .and. res%how == 'newton', 'solved by Newton')
@@ -137,7 +138,7 @@ contains
     c(:, 2) = matmul(a(:, :, 2), x) + [2.0_dp, -1.0_dp, 0.0_dp, -1.0_dp]
     gval(1) = 0.5_dp*dot_product(x, matmul(a(:, :, 1), x)) + dot_product([1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp], x) - 8.0_dp
     gval(2) = 0.5_dp*dot_product(x, matmul(a(:, :, 2), x)) + dot_product([2.0_dp, -1.0_dp, 0.0_dp, -1.0_dp], x) - 5.0_dp
-    call msys%setup(g, gradf, x, [1, 3], gval, c, a, [.false., .false.], none)
+    msys = multiplier_system(g, gradf, x, [1, 3], gval, c, a, [.false., .false.], none)
     lam = [0.0_dp, 0.0_dp]
     call msys%solve(lam, 1.0e-12_dp, 30, res, err)
     call assert_all_close(x + msys%s, [0.0_dp, 1.0_dp, 2.0_dp, -1.0_dp], 0.0_dp, 1.0e-10_dp, &
@@ -169,7 +170,7 @@ contains
     a = 0.0_dp
     x = [0.1_dp, 0.2_dp, 0.3_dp]
     gval = [-0.4_dp, 0.25_dp]        ! off the constraints: the general form of P16
-    call msys%setup(g, gradf, x, [1, 2], gval, c, a, [.false., .false.], none)
+    msys = multiplier_system(g, gradf, x, [1, 2], gval, c, a, [.false., .false.], none)
     lam = [5.0_dp, -5.0_dp]
     call msys%solve(lam, 1.0e-13_dp, 30, res, err)
     call linear_multipliers(g, gradf, c, gval, lam_cf, s_cf, err)
@@ -199,7 +200,7 @@ contains
       c(:, j) = 2.0_dp*(x - centres(:, j))
       gval(j) = sum((x - centres(:, j))**2) - 4.0_dp
     end do
-    call msys%setup(g, gradf, x, [1, 2, 3], gval, c, a, [.false., .false., .false.], none)
+    msys = multiplier_system(g, gradf, x, [1, 2, 3], gval, c, a, [.false., .false., .false.], none)
     lam = 0.0_dp
     call msys%solve(lam, 1.0e-10_dp, 30, res, err)
     call assert_true(.not. err%failed(), 'no error')
@@ -235,7 +236,7 @@ contains
     gval(1) = exp(x(1)) - x(2)
     c(:, 1) = [exp(x(1)), -1.0_dp]
     a(:, :, 1) = reshape([exp(x(1)), 0.0_dp, 0.0_dp, 0.0_dp], [2, 2])   ! re-approximation at x_k (P24)
-    call msys%setup(g, gradf, x, [1], gval, c, a, [.true.], pp)
+    msys = multiplier_system(g, gradf, x, [1], gval, c, a, [.true.], pp)
     lam = 0.0_dp
     call msys%solve(lam, 1.0e-12_dp, 50, res, err)
     xn = x + msys%s
