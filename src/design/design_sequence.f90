@@ -104,6 +104,7 @@ module design_sequence
     type(design_step_t), allocatable :: steps(:)
   contains
     procedure :: solve => sequence_solve
+    procedure, private :: next_design
   end type design_sequence_t
 
 contains
@@ -156,6 +157,9 @@ contains
     end do
   end subroutine approximate_jacobian
 
+  !> The design loop of the module header from x0: per iteration the
+  !> derivatives at x_k, the proposal (next_design), the move limit of the
+  !> next one (controlled_rho) and the stall test; the history in self%steps.
   subroutine sequence_solve(self, prob, x0, err)
     class(design_sequence_t), intent(inout) :: self
     type(design_problem_t), target, intent(inout) :: prob
@@ -164,14 +168,10 @@ contains
     integer :: n, nc, k
     real(dp), allocatable :: g(:), dg(:, :), x_try(:), g_try(:), r(:), dr(:, :), r_try(:)
     real(dp) :: delta, viol, viol_try, mass, mass_try
-    logical :: ok, accepted, small_step
+    logical :: ok, accepted
     integer :: stalls, nf_before
     logical :: structured, have_old
     real(dp), allocatable :: smat(:, :), bmat(:, :), lmat(:, :), w(:), grad(:), x_old(:), dr_old(:, :)
-    real(dp) :: ratio, step_len
-    real(dp), allocatable :: g_lin(:)
-    logical :: corrected, retry, interpolated, shifted
-    real(dp) :: t_back
     type(progress_t) :: bar
     character(len=:), allocatable :: events
     n = size(x0)
@@ -221,106 +221,10 @@ contains
                      'analysed: '//prob%last_failure)
         return
       end if
-      events = ''
-      accepted = .false.
-      corrected = .false.
-      shifted = .false.
-      interpolated = .false.
-      retry = .false.
-      g_lin = g
-      do while (delta <= 1.0e6_dp)
-        if (retry) then
-          retry = .false.      ! x_try set by the step back below
-        else
-          if (prob%is_minimax()) then
-            call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
-          else if (structured) then
-            call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
-          else
-            call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
-          end if
-          ! mass: rho |step| is the size of the gradient of the Lagrangian of
-          ! the linearised problem at x_k (the proximal term has no gradient
-          ! there): small, and x_k feasible, is the KKT test; no analysis is
-          ! spent on it.  Path objectives: the Gauss matrix 2 J^T J / F0
-          ! outweighs rho near the answer, so rho |step| underestimates the
-          ! gradient; the test is the step itself (Gauss-Newton steps shrink
-          ! with the distance to a zero-residual answer)
-          if (prob%has_residuals()) then
-            small_step = maxval(abs(x_try - self%x)) <= self%xtol
-          else
-            small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
-          end if
-          ! structured: the model (exact curvature estimate, fresh derivatives)
-          ! promises less than xtol/10 of F, the move limit not binding
-          if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
-            small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
-          if (small_step .and. viol <= self%feas_tol .and. .not. shifted) then
-            self%converged = .true.
-            exit
-          end if
-        end if
-        call constraints_at(prob, x_try, g_try, r_try, ok)
-        if (ok) then
-          viol_try = max(0.0_dp, maxval([0.0_dp, g_try]))
-          mass_try = scaled_mass(prob, x_try)
-          accepted = viol_try < viol - 0.1_dp*self%feas_tol .or. &
-                     (viol_try <= max(viol, self%feas_tol) .and. mass_try <= mass)
-        end if
-        if (accepted) exit
-        step_len = maxval(abs(x_try - self%x))
-        self%rejections = self%rejections + 1
-        if (structured .and. ok .and. .not. (corrected .or. interpolated) .and. mass_try < mass) then
-          ! F fell but a constraint's linearisation was wrong; once per
-          ! iteration either step back along the proposal to where each
-          ! violated constraint, interpolated quadratically between x_k
-          ! (value and gradient) and the proposal, reaches the aim (the
-          ! constraint interpolation of feasible-direction methods,
-          ! Vanderplaats 1984), or, when that is less than a fifth of the
-          ! step (an active constraint the step ran along), shift each
-          ! underestimating linearised constraint by its error at the
-          ! proposal and solve again (the second-order correction of SQP)
-          t_back = step_back(g, matmul(x_try - self%x, dg), g_try, 0.5_dp*self%feas_tol)
-          if (t_back >= 0.2_dp) then
-            interpolated = .true.
-            retry = .true.
-            events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
-                     '): step back to '//str(t_back, 3)//' of it; '
-            x_try = self%x + t_back*(x_try - self%x)
-            cycle
-          end if
-          corrected = .true.
-          shifted = .true.
-          g_lin = g + max(0.0_dp, g_try - g - matmul(x_try - self%x, dg))
-          events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
-                   '): linearised constraints corrected; '
-          cycle
-        end if
-        ! the corrected problem's proposal failed too: back to the
-        ! linearisation at x_k (the correction, right at the proposal, can
-        ! make x_k itself look infeasible) with a shorter step
-        g_lin = g
-        shifted = .false.
-        if (ok) then
-          events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)//'); '
-        else
-          events = events//'rejected: '//prob%last_failure//'; '
-        end if
-        delta = 4.0_dp*delta
-        ! structured: when rho is far below the model's curvature,
-        ! quadrupling it hardly shortens the step; ask for a quarter of it
-        if (structured) delta = max(delta, rho_for_step(prob, self%x, g_lin, dg, r, dr, 0.5_dp*self%feas_tol, &
-                                                        lmat, w, 0.25_dp*step_len, delta))
-      end do
+      call self%next_design(prob, structured, g, dg, r, dr, lmat, w, grad, viol, mass, delta, x_try, g_try, r_try, &
+                            viol_try, mass_try, accepted, events)
       if (self%converged) then
-        if (structured) then
-          self%message = 'feasible, and the step of the approximate problem below xtol or its predicted '// &
-                         'decrease below xtol/10 of F'
-        else if (prob%has_residuals()) then
-          self%message = 'feasible, and the step of the approximate problem below xtol'
-        else
-          self%message = 'feasible, and the approximate problem''s KKT residual below xtol'
-        end if
+        self%message = converged_message(structured, prob%has_residuals())
         exit
       end if
       if (.not. accepted) then
@@ -328,20 +232,7 @@ contains
         exit
       end if
       if (structured .or. prob%is_minimax()) then
-        ! Levenberg-Marquardt control: the ratio of the actual to the
-        ! model's decrease (the model with the floored B it minimised; for
-        ! the minimax, the largest linearised r_k)
-        if (structured) then
-          ratio = (mass - mass_try)/max(model_decrease(grad, lmat, x_try - self%x), tiny(1.0_dp))
-        else
-          ratio = (mass - mass_try)/max(mass - max(0.0_dp, maxval(r + matmul(x_try - self%x, dr)))/prob%f0, &
-                  tiny(1.0_dp))
-        end if
-        if (ratio >= 0.75_dp) then
-          delta = max(0.125_dp*delta, 1.0e-6_dp)
-        else if (ratio >= 0.25_dp) then
-          delta = max(0.5_dp*delta, 1.0e-6_dp)
-        end if
+        delta = controlled_rho(prob, structured, delta, mass, mass_try, grad, lmat, x_try - self%x, r, dr)
         x_old = self%x
         dr_old = dr
         have_old = .true.
@@ -389,6 +280,157 @@ contains
       self%n_steps = self%n_steps + 1
     end subroutine record
   end subroutine sequence_solve
+
+  !> One design iteration's proposal: the approximate problem at x_k (rho =
+  !> delta) solved and its solution analysed, until a proposal is accepted
+  !> (accepted: x_try, g_try, r_try, viol_try, mass_try hold it), x_k passes
+  !> the convergence test (self%converged; no analysis spent on it), or rho
+  !> exceeds 1e6.  A rejected proposal is stepped back or answered by
+  !> corrected linearisations once (structured), else by a larger rho.
+  !> events: what happened, for the history.
+  subroutine next_design(self, prob, structured, g, dg, r, dr, lmat, w, grad, viol, mass, delta, x_try, g_try, &
+                         r_try, viol_try, mass_try, accepted, events)
+    class(design_sequence_t), intent(inout) :: self
+    type(design_problem_t), target, intent(inout) :: prob
+    logical, intent(in) :: structured
+    real(dp), intent(in) :: g(:), dg(:, :), r(:), dr(:, :), grad(:), viol, mass
+    real(dp), allocatable, intent(in) :: lmat(:, :), w(:)     !< the structured model (allocated if structured)
+    real(dp), intent(inout) :: delta, viol_try, mass_try
+    real(dp), allocatable, intent(inout) :: x_try(:), g_try(:), r_try(:)
+    logical, intent(out) :: accepted
+    character(len=:), allocatable, intent(inout) :: events
+    real(dp), allocatable :: g_lin(:)
+    real(dp) :: step_len, t_back
+    logical :: ok, small_step, corrected, retry, interpolated, shifted
+    events = ''
+    accepted = .false.
+    corrected = .false.
+    shifted = .false.
+    interpolated = .false.
+    retry = .false.
+    g_lin = g
+    do while (delta <= 1.0e6_dp)
+      if (retry) then
+        retry = .false.      ! x_try set by the step back below
+      else
+        if (prob%is_minimax()) then
+          call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+        else if (structured) then
+          call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
+        else
+          call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+        end if
+        ! mass: rho |step| is the size of the gradient of the Lagrangian of
+        ! the linearised problem at x_k (the proximal term has no gradient
+        ! there): small, and x_k feasible, is the KKT test; no analysis is
+        ! spent on it.  Path objectives: the Gauss matrix 2 J^T J / F0
+        ! outweighs rho near the answer, so rho |step| underestimates the
+        ! gradient; the test is the step itself (Gauss-Newton steps shrink
+        ! with the distance to a zero-residual answer)
+        if (prob%has_residuals()) then
+          small_step = maxval(abs(x_try - self%x)) <= self%xtol
+        else
+          small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
+        end if
+        ! structured: the model (exact curvature estimate, fresh derivatives)
+        ! promises less than xtol/10 of F, the move limit not binding
+        if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
+          small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
+        if (small_step .and. viol <= self%feas_tol .and. .not. shifted) then
+          self%converged = .true.
+          exit
+        end if
+      end if
+      call constraints_at(prob, x_try, g_try, r_try, ok)
+      if (ok) then
+        viol_try = max(0.0_dp, maxval([0.0_dp, g_try]))
+        mass_try = scaled_mass(prob, x_try)
+        accepted = viol_try < viol - 0.1_dp*self%feas_tol .or. &
+                   (viol_try <= max(viol, self%feas_tol) .and. mass_try <= mass)
+      end if
+      if (accepted) exit
+      step_len = maxval(abs(x_try - self%x))
+      self%rejections = self%rejections + 1
+      if (structured .and. ok .and. .not. (corrected .or. interpolated) .and. mass_try < mass) then
+        ! F fell but a constraint's linearisation was wrong; once per
+        ! iteration either step back along the proposal to where each
+        ! violated constraint, interpolated quadratically between x_k
+        ! (value and gradient) and the proposal, reaches the aim (the
+        ! constraint interpolation of feasible-direction methods,
+        ! Vanderplaats 1984), or, when that is less than a fifth of the
+        ! step (an active constraint the step ran along), shift each
+        ! underestimating linearised constraint by its error at the
+        ! proposal and solve again (the second-order correction of SQP)
+        t_back = step_back(g, matmul(x_try - self%x, dg), g_try, 0.5_dp*self%feas_tol)
+        if (t_back >= 0.2_dp) then
+          interpolated = .true.
+          retry = .true.
+          events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
+                   '): step back to '//str(t_back, 3)//' of it; '
+          x_try = self%x + t_back*(x_try - self%x)
+          cycle
+        end if
+        corrected = .true.
+        shifted = .true.
+        g_lin = g + max(0.0_dp, g_try - g - matmul(x_try - self%x, dg))
+        events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)// &
+                 '): linearised constraints corrected; '
+        cycle
+      end if
+      ! the corrected problem's proposal failed too: back to the
+      ! linearisation at x_k (the correction, right at the proposal, can
+      ! make x_k itself look infeasible) with a shorter step
+      g_lin = g
+      shifted = .false.
+      if (ok) then
+        events = events//'rejected (violation '//str(viol_try, 3)//', objective '//str(mass_try, 6)//'); '
+      else
+        events = events//'rejected: '//prob%last_failure//'; '
+      end if
+      delta = 4.0_dp*delta
+      ! structured: when rho is far below the model's curvature,
+      ! quadrupling it hardly shortens the step; ask for a quarter of it
+      if (structured) delta = max(delta, rho_for_step(prob, self%x, g_lin, dg, r, dr, 0.5_dp*self%feas_tol, &
+                                                      lmat, w, 0.25_dp*step_len, delta))
+    end do
+  end subroutine next_design
+
+  !> The message of a converged run (the test that passed).
+  function converged_message(structured, residuals) result(text)
+    logical, intent(in) :: structured, residuals
+    character(len=:), allocatable :: text
+    if (structured) then
+      text = 'feasible, and the step of the approximate problem below xtol or its predicted '// &
+             'decrease below xtol/10 of F'
+    else if (residuals) then
+      text = 'feasible, and the step of the approximate problem below xtol'
+    else
+      text = 'feasible, and the approximate problem''s KKT residual below xtol'
+    end if
+  end function converged_message
+
+  !> rho of the next iteration after an accepted step s (structured and
+  !> minimax objectives), by Levenberg-Marquardt control: the ratio of the
+  !> actual to the model's decrease (the model with the floored B it
+  !> minimised; for the minimax, the largest linearised r_k).
+  real(dp) function controlled_rho(prob, structured, delta, mass, mass_try, grad, lmat, s, r, dr) result(rho)
+    type(design_problem_t), intent(in) :: prob
+    logical, intent(in) :: structured
+    real(dp), intent(in) :: delta, mass, mass_try, grad(:), s(:), r(:), dr(:, :)
+    real(dp), allocatable, intent(in) :: lmat(:, :)     !< the structured model (allocated if structured)
+    real(dp) :: ratio
+    if (structured) then
+      ratio = (mass - mass_try)/max(model_decrease(grad, lmat, s), tiny(1.0_dp))
+    else
+      ratio = (mass - mass_try)/max(mass - max(0.0_dp, maxval(r + matmul(s, dr)))/prob%f0, tiny(1.0_dp))
+    end if
+    rho = delta
+    if (ratio >= 0.75_dp) then
+      rho = max(0.125_dp*delta, 1.0e-6_dp)
+    else if (ratio >= 0.25_dp) then
+      rho = max(0.5_dp*delta, 1.0e-6_dp)
+    end if
+  end function controlled_rho
 
   !> Mass and path errors of design x (from the cache: no new analysis).
   subroutine describe(prob, x, st)
