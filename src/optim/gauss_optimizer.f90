@@ -333,7 +333,8 @@ contains
     logical, intent(in) :: exact_model
     real(dp), intent(in) :: xnorm
     logical, intent(inout) :: step_back_method
-    real(dp), intent(inout) :: s(:), snorm, x_new(:), g_new(:), t
+    real(dp), intent(inout), contiguous :: s(:)       !< contiguous as compute_step's: no copy in and out
+    real(dp), intent(inout) :: snorm, x_new(:), g_new(:), t
     integer, intent(out) :: outcome
     type(error_t), intent(inout) :: err
     integer :: mt, repeats
