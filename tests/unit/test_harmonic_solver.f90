@@ -90,6 +90,22 @@ contains
     beam%f3 = -8.0_dp
   end subroutine make_beam
 
+  !> The cantilever of make_beam (damping beta) solved by (T26) with settings
+  !> s at size(t) times of one revolution (returned in t).
+  subroutine solve_beam(beta, s, beam, t, q, rep, err)
+    real(dp), intent(in) :: beta
+    type(harmonic_settings_t), intent(in) :: s
+    type(forced_beam_t), intent(out) :: beam
+    real(dp), intent(out) :: t(:)
+    real(dp), allocatable, intent(out) :: q(:, :)
+    type(harmonic_report_t), intent(out) :: rep
+    type(error_t), intent(inout) :: err
+    call make_beam(beam, beta)
+    allocate(q(beam%n, size(t)))
+    t = revolution_times(beam%omega, size(t))
+    call harmonic_solve(beam, s, t, q, rep, err)
+  end subroutine solve_beam
+
   !> Closed form: Q = K^-1 f0 + Re[(K - w^2 M + i w C)^-1 f1 e^(i w t)] + (third harmonic).
   function beam_exact(beam, t, with_damping) result(q)
     type(forced_beam_t), intent(inout) :: beam
@@ -216,12 +232,9 @@ contains
     real(dp) :: t(13)
     real(dp), allocatable :: q(:, :)
     integer :: j
-    call make_beam(beam, 0.0_dp)
-    call assert_equal(beam%n, 9, 'unknowns (m1, and U W th m at two nodes)')
-    allocate(q(beam%n, 13))
-    t = revolution_times(beam%omega, 13)
     s%n_harmonics = 4
-    call harmonic_solve(beam, s, t, q, rep, err)
+    call solve_beam(0.0_dp, s, beam, t, q, rep, err)
+    call assert_equal(beam%n, 9, 'unknowns (m1, and U W th m at two nodes)')
     call assert_true(.not. err%failed(), 'solve')
     do j = 1, 13
       call assert_all_close(q(:, j), beam_exact(beam, t(j), .false.), 0.0_dp, 1.0e-10_dp*maxval(abs(q)), 'Q(t)')
@@ -240,11 +253,9 @@ contains
     real(dp) :: t(8)
     real(dp), allocatable :: q(:, :), ex(:, :)
     integer :: j
-    call make_beam(beam, 0.0_dp)
-    allocate(q(beam%n, 8), ex(beam%n, 8))
-    t = revolution_times(beam%omega, 8)
     s%n_harmonics = 2
-    call harmonic_solve(beam, s, t, q, rep, err)
+    call solve_beam(0.0_dp, s, beam, t, q, rep, err)
+    allocate(ex(beam%n, 8))
     do j = 1, 8
       ex(:, j) = beam_exact(beam, t(j), .false.)
     end do
@@ -261,13 +272,10 @@ contains
     real(dp) :: t(9)
     real(dp), allocatable :: q(:, :)
     integer :: j
-    call make_beam(beam, 2.0e-4_dp)
-    allocate(q(beam%n, 9))
-    t = revolution_times(beam%omega, 9)
     s%n_harmonics = 4
     s%velocity_terms = .true.
     s%outer_tol = 1.0e-12_dp
-    call harmonic_solve(beam, s, t, q, rep, err)
+    call solve_beam(2.0e-4_dp, s, beam, t, q, rep, err)
     call assert_true(.not. err%failed() .and. rep%converged, 'converged')
     call assert_true(rep%velocity_iterations > 2, 'C Q_dot needs iterations')
     do j = 1, 9
