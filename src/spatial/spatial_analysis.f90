@@ -192,6 +192,8 @@ contains
       return
     end if
     call out%row(row)
+    ! the sample's index counts output steps from t = 0, not from t0: after a restart (t0 > 0) samples
+    ! before the last revolution are judged too, the first against ring slots never written (as before)
     call defect%add(nint(tt/dt_out), row(3:2 + n_deflections))
   end subroutine record_row
 
