@@ -148,16 +148,23 @@ contains
     type(design_sequence_t), intent(out) :: opt
     type(error_t), intent(inout) :: err
     type(steady_settings_t) :: s
+    type(design_variable_t), allocatable :: var(:)
+    integer :: n_speeds
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
     call read_steady_settings(deck, mech%n_links, s, err)
     if (err%failed()) return
-    call read_design(deck, mech, prob, x0, err)
+    call read_design(deck, mech, var, x0, n_speeds, err)
     if (err%failed()) return
-    prob%element = s%element
-    prob%sections = s%sections
-    prob%harmonic = s%harmonic
-    prob%shooting = s%shooting
+    prob = design_problem_t(base=mech%input, var=var, objective_kind=objective, evaluator=evaluator, &
+                            samples=samples, stress_allowable=stress_allowable, frequency_factor=frequency_factor, &
+                            speeds=speeds(1:n_speeds), objective_speed=objective_speed, element=s%element, &
+                            sections=s%sections, harmonic=s%harmonic, shooting=s%shooting, derivatives=derivatives, &
+                            transient=periodic_transient_settings_t(tolerance=stop_when_periodic, &
+                              max_revolutions=max_revolutions, rtol=s%shooting%rtol, atol=s%shooting%atol, &
+                              bdf=s%shooting%bdf, max_steps=s%shooting%max_steps), &
+                            fd_rel_step=difference_step(evaluator))
+    if (prob%is_path()) call set_path(prob)
     if (prob%is_shaking() .and. any(s%sections(1:mech%n_links)%n > 0)) then
       call invalid_value(deck, 'design', 'objective', ''''//trim(prob%objective_kind)//'''', &
                          'the shaking force takes uniform links (no &sections)', err)
@@ -172,43 +179,61 @@ contains
                          'change per revolution is integration noise', err)
       return
     end if
-    prob%derivatives = derivatives
-    prob%transient = periodic_transient_settings_t(tolerance=stop_when_periodic, max_revolutions=max_revolutions, &
-                                                   rtol=s%shooting%rtol, atol=s%shooting%atol, bdf=s%shooting%bdf, &
-                                                   max_steps=s%shooting%max_steps)
-    ! finite-difference steps above the analysis' noise (doc/design.md)
-    select case (evaluator)
-    case ('shooting')
-      prob%fd_rel_step = 1.0e-4_dp
-    case ('transient')
-      prob%fd_rel_step = 1.0e-3_dp
-    case default
-      prob%fd_rel_step = 1.0e-5_dp
-    end select
     opt = design_sequence_t(max_iterations=max_iterations, xtol=xtol, feas_tol=feas_tol, move_limit=move_limit, &
                             hessian=hessian)
   end subroutine load_design
 
-  !> Read &design and make the problem's variables; x0 = initial values/scale.
-  subroutine read_design(deck, mech, prob, x0, err)
+  !> Finite-difference steps above the analysis' noise (doc/design.md).
+  real(dp) function difference_step(evaluator) result(step)
+    character(len=*), intent(in) :: evaluator
+    select case (evaluator)
+    case ('shooting')
+      step = 1.0e-4_dp
+    case ('transient')
+      step = 1.0e-3_dp
+    case default
+      step = 1.0e-5_dp
+    end select
+  end function difference_step
+
+  !> Read and check &design: its values, what the objective needs, the
+  !> operating speeds (n_speeds given) and the design variables var with
+  !> x0 = their initial values/scale.
+  subroutine read_design(deck, mech, var, x0, n_speeds, err)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(in) :: mech
-    type(design_problem_t), intent(inout) :: prob
+    type(design_variable_t), allocatable, intent(out) :: var(:)
     real(dp), allocatable, intent(out) :: x0(:)
+    integer, intent(out) :: n_speeds
     type(error_t), intent(inout) :: err
-    character(len=*), parameter :: g = 'design'
-    logical :: found, ok
-    integer :: n, i, limit
-    real(dp) :: value
+    logical :: found
+    integer :: n, i
+    n_speeds = 0
     call set_defaults()
-    call deck%read_group(g, design_group, .true., found, err)
+    call deck%read_group('design', design_group, .true., found, err)
     if (err%failed()) return
     n = count(len_trim(variables) > 0)
     if (n == 0 .or. any(len_trim(variables(1:n)) == 0)) then
-      call invalid_value(deck, g, 'variables', str(n)//' given', 'name one or more design variables, '// &
+      call invalid_value(deck, 'design', 'variables', str(n)//' given', 'name one or more design variables, '// &
                          'one after another (e.g. ''link_h(1)'', ''link_b(2)'', ''joint_x(4)'')', err)
       return
     end if
+    call check_settings(deck, err)
+    if (err%failed()) return
+    call check_objective(deck, mech, n_speeds, err)
+    if (err%failed()) return
+    allocate(var(n), x0(n))
+    do i = 1, n
+      call read_variable(deck, mech, i, var(i), x0(i), err)
+      if (err%failed()) return
+    end do
+  end subroutine read_design
+
+  !> The one-line checks of &design's choices, tolerances and limits.
+  subroutine check_settings(deck, err)
+    type(deck_t), intent(inout) :: deck
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
     call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass', 'path', 'path_rigid', &
                       'shaking', 'shaking_peak'], err)
     call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic', 'transient'], err)
@@ -240,7 +265,18 @@ contains
                     why='allowed ln(stress/allowable) etc.: a relative violation')
     call check_real(deck, g, 'move_limit', move_limit, err, at_least=1.0e-3_dp, at_most=2.0_dp, &
                     why='initial largest change of ln(size) per design iteration; its inverse weighs the step')
-    if (err%failed()) return
+  end subroutine check_settings
+
+  !> What the objective needs (the shaking force's model, a path's targets,
+  !> a constraint for the least mass), the operating speeds (n_speeds given)
+  !> and a crank turning at constant speed.
+  subroutine check_objective(deck, mech, n_speeds, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(out) :: n_speeds
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    n_speeds = 0
     if (objective == 'shaking' .or. objective == 'shaking_peak') then
       if (len(shaking_supported(mech)) > 0) then
         call invalid_value(deck, g, 'objective', ''''//trim(objective)//'''', 'the shaking force is not built when '// &
@@ -248,118 +284,118 @@ contains
         return
       end if
     else if (objective /= 'mass') then
-      call read_path(deck, mech, prob, err)
+      call check_path(deck, mech, err)
       if (err%failed()) return
     else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp)) then
       call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress or a '// &
                          'frequency constraint (else the minimum is the lower bounds)', err)
       return
     end if
-    call read_speeds(deck, prob, err)
+    call check_speeds(deck, n_speeds, err)
     if (err%failed()) return
     if (frequency_factor > 0.0_dp .and. .not. abs(mech%driver%omega) > 0.0_dp) then
       call invalid_value(deck, g, 'frequency_factor', str(frequency_factor), 'needs a turning crank (omega > 0)', err)
       return
     end if
-    if (.not. mech%driver%omega > 0.0_dp .or. mech%driver%profile /= profile_constant) then
+    if (.not. mech%driver%omega > 0.0_dp .or. mech%driver%profile /= profile_constant) &
       call invalid_value(deck, 'mechanism', 'omega', str(mech%driver%omega), 'a design at the steady state '// &
                          'needs a crank turning at constant speed > 0', err)
-      return
-    end if
-    allocate(prob%var(n), x0(n))
-    do i = 1, n
-      call parse_variable(variables(i), prob%var(i), ok)
-      if (.not. ok) then
-        call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'must be '// &
-                           'link_b(i), link_h(i), link_length(i), joint_x(j) or joint_y(j)', err)
-        return
-      end if
-      if ((prob%var(i)%kind == var_path_r .or. prob%var(i)%kind == var_path_angle) .and. .not. &
-          (objective == 'path' .or. objective == 'path_rigid')) then
-        call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the coupler '// &
-                           'point is a variable of the path objectives only', err)
-        return
-      end if
-      limit = merge(mech%n_joints, mech%n_links, prob%var(i)%kind >= 4)
-      if (prob%var(i)%kind >= var_theta0) limit = 0
-      if (prob%var(i)%kind >= var_cw_mass) limit = mech%n_links
-      if ((prob%var(i)%index < 1 .and. limit > 0) .or. prob%var(i)%index > limit) then
-        call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the index must '// &
-                           'lie in 1..'//str(limit), err)
-        return
-      end if
-      value = initial_value(mech, prob%var(i))
-      call check_real(deck, g, 'lower('//str(i)//')', lower(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
-                      why='every design variable needs bounds')
-      call check_real(deck, g, 'upper('//str(i)//')', upper(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
-                      why='every design variable needs bounds')
-      call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=1.0e-8_dp, at_most=1.0e8_dp, &
-                      why='0 = the initial value''s magnitude; values are divided by it', or_zero=.true.)
-      if (err%failed()) return
-      if (.not. (lower(i) < upper(i))) then
-        call invalid_value(deck, g, 'upper('//str(i)//')', str(upper(i)), 'must exceed lower('//str(i)//') = '// &
-                           str(lower(i)), err)
-        return
-      end if
-      prob%var(i)%lower = lower(i)
-      prob%var(i)%upper = upper(i)
-      prob%var(i)%scale = scale(i)
-      if (.not. scale(i) > 0.0_dp) prob%var(i)%scale = max(abs(value), 1.0e-3_dp*(upper(i) - lower(i)))
-      if (prob%var(i)%logarithmic .and. .not. lower(i) > 0.0_dp) then
-        call invalid_value(deck, g, 'lower('//str(i)//')', str(lower(i)), 'a size or length must stay > 0', err)
-        return
-      end if
-      if (.not. (value >= lower(i) .and. value <= upper(i))) then
-        call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//''' = '//str(value), &
-                           'the initial design must lie within its bounds ['//str(lower(i))//', '//str(upper(i))//']', err)
-        return
-      end if
-      x0(i) = prob%var(i)%to_x(value)
-    end do
-    prob%base = mech%input
-    prob%objective_kind = objective
-    prob%evaluator = evaluator
-    prob%samples = samples
-    prob%stress_allowable = stress_allowable
-    prob%frequency_factor = frequency_factor
-  end subroutine read_design
+  end subroutine check_objective
 
-  !> The operating speeds (none: the deck's omega) and the objective's speed.
-  subroutine read_speeds(deck, prob, err)
+  !> Design variable i: its name, index, bounds and scale; x0 its initial
+  !> value over the scale.
+  subroutine read_variable(deck, mech, i, v, x0, err)
     type(deck_t), intent(inout) :: deck
-    type(design_problem_t), intent(inout) :: prob
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: i
+    type(design_variable_t), intent(inout) :: v
+    real(dp), intent(out) :: x0
     type(error_t), intent(inout) :: err
     character(len=*), parameter :: g = 'design'
-    integer :: ns, i
+    logical :: ok
+    integer :: limit
+    real(dp) :: value
+    call parse_variable(variables(i), v, ok)
+    if (.not. ok) then
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'must be '// &
+                         'link_b(i), link_h(i), link_length(i), joint_x(j) or joint_y(j)', err)
+      return
+    end if
+    if ((v%kind == var_path_r .or. v%kind == var_path_angle) .and. .not. &
+        (objective == 'path' .or. objective == 'path_rigid')) then
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the coupler '// &
+                         'point is a variable of the path objectives only', err)
+      return
+    end if
+    limit = merge(mech%n_joints, mech%n_links, v%kind >= 4)
+    if (v%kind >= var_theta0) limit = 0
+    if (v%kind >= var_cw_mass) limit = mech%n_links
+    if ((v%index < 1 .and. limit > 0) .or. v%index > limit) then
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the index must '// &
+                         'lie in 1..'//str(limit), err)
+      return
+    end if
+    value = initial_value(mech, v)
+    call check_real(deck, g, 'lower('//str(i)//')', lower(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
+                    why='every design variable needs bounds')
+    call check_real(deck, g, 'upper('//str(i)//')', upper(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
+                    why='every design variable needs bounds')
+    call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=1.0e-8_dp, at_most=1.0e8_dp, &
+                    why='0 = the initial value''s magnitude; values are divided by it', or_zero=.true.)
+    if (err%failed()) return
+    if (.not. (lower(i) < upper(i))) then
+      call invalid_value(deck, g, 'upper('//str(i)//')', str(upper(i)), 'must exceed lower('//str(i)//') = '// &
+                         str(lower(i)), err)
+      return
+    end if
+    v%lower = lower(i)
+    v%upper = upper(i)
+    v%scale = scale(i)
+    if (.not. scale(i) > 0.0_dp) v%scale = max(abs(value), 1.0e-3_dp*(upper(i) - lower(i)))
+    if (v%logarithmic .and. .not. lower(i) > 0.0_dp) then
+      call invalid_value(deck, g, 'lower('//str(i)//')', str(lower(i)), 'a size or length must stay > 0', err)
+      return
+    end if
+    if (.not. (value >= lower(i) .and. value <= upper(i))) then
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//''' = '//str(value), &
+                         'the initial design must lie within its bounds ['//str(lower(i))//', '//str(upper(i))//']', err)
+      return
+    end if
+    x0 = v%to_x(value)
+  end subroutine read_variable
+
+  !> The operating speeds given (n_speeds; none: the deck's omega) and the
+  !> objective's speed.
+  subroutine check_speeds(deck, n_speeds, err)
+    type(deck_t), intent(inout) :: deck
+    integer, intent(out) :: n_speeds
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    integer :: i
     logical :: given(max_speeds)
     ! given: not the sentinel (a NaN counts as given, and check_reals names it)
     do i = 1, max_speeds
       given(i) = .not. ieee_is_finite(speeds(i))
       if (.not. given(i)) given(i) = speeds(i) > 0.5_dp*unset
     end do
-    ns = count(given)
-    if (ns > 0) then
-      if (.not. all(given(1:ns))) then
-        call invalid_value(deck, g, 'speeds', str(ns)//' given, then a gap', 'give the operating speeds one after '// &
-                           'another, speeds(1), speeds(2), ...', err)
+    n_speeds = count(given)
+    if (n_speeds > 0) then
+      if (.not. all(given(1:n_speeds))) then
+        call invalid_value(deck, g, 'speeds', str(n_speeds)//' given, then a gap', 'give the operating speeds '// &
+                           'one after another, speeds(1), speeds(2), ...', err)
         return
       end if
     end if
-    call check_reals(deck, g, 'speeds', speeds(1:ns), err, at_least=1.0e-6_dp, at_most=1.0e5_dp, &
+    call check_reals(deck, g, 'speeds', speeds(1:n_speeds), err, at_least=1.0e-6_dp, at_most=1.0e5_dp, &
                      why='crank speeds (rad/s) the design must satisfy; > 0: a steady state needs a turning crank')
-    call check_integer(deck, g, 'objective_speed', objective_speed, err, at_least=0, at_most=ns, &
+    call check_integer(deck, g, 'objective_speed', objective_speed, err, at_least=0, at_most=n_speeds, &
                        why='0 = the objective summed over the speeds; i = at speeds(i) only')
-    if (err%failed()) return
-    allocate(prob%speeds(0))
-    if (ns > 0) prob%speeds = speeds(1:ns)
-    prob%objective_speed = objective_speed
-  end subroutine read_speeds
+  end subroutine check_speeds
 
   !> The coupler point and its target points (path objectives).
-  subroutine read_path(deck, mech, prob, err)
+  subroutine check_path(deck, mech, err)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(in) :: mech
-    type(design_problem_t), intent(inout) :: prob
     type(error_t), intent(inout) :: err
     character(len=*), parameter :: g = 'design'
     integer :: np, k
@@ -401,13 +437,21 @@ contains
                          'every target point', err)
       return
     end if
+  end subroutine check_path
+
+  !> The coupler point and its targets (checked by check_path) into the
+  !> problem, the angles in radians.
+  subroutine set_path(prob)
+    type(design_problem_t), intent(inout) :: prob
+    integer :: np
+    np = count(path_x > 0.5_dp*unset)
     prob%path_link = path_link
     prob%path_r = path_r
     prob%path_angle = path_angle_deg*deg
     prob%path_x = path_x(1:np)
     prob%path_y = path_y(1:np)
     prob%path_dgamma = path_dgamma_deg(1:np)*deg
-  end subroutine read_path
+  end subroutine set_path
 
   !> The deck value a variable starts from (a link length from the joints
   !> when the deck gives none).

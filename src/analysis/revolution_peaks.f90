@@ -10,16 +10,16 @@
 !>     pk%whole, pk%whole_deg: whole run; pk%last, pk%last_deg: the last
 !>       complete revolution pk%n_complete (0: none yet)
 !>
-!> note_peaks keeps the largest |value| of each quantity and its angle (the
-!> element stress peaks of the transient and spatial drivers);
-!> write_stress_peaks writes those as summary lines.
+!> element_peaks_t keeps the largest |stress| of every element and its
+!> crank angle (the transient and spatial drivers) and writes them as
+!> summary lines.
 module revolution_peaks
   use kinds, only: dp
   use strings, only: str
   use table_output, only: table_t
   implicit none
   private
-  public :: revolution_peaks_t, note_peaks, write_stress_peaks
+  public :: revolution_peaks_t, element_peaks_t
 
   type :: revolution_peaks_t
     real(dp), allocatable :: whole(:), whole_deg(:)   !< whole run
@@ -32,6 +32,14 @@ module revolution_peaks
     procedure :: add
     procedure :: close_revolution
   end type revolution_peaks_t
+
+  type :: element_peaks_t
+    real(dp), allocatable :: peak(:), deg(:)          !< largest |stress| of each element, its crank angle
+  contains
+    procedure :: init => init_element_peaks
+    procedure :: note => note_element_peaks
+    procedure :: write => write_element_peaks
+  end type element_peaks_t
 
 contains
 
@@ -56,8 +64,7 @@ contains
   end subroutine add
 
   !> peak = the largest |value| so far, peak_deg the angle where it occurred
-  !> (elemental: an array of values, such as a component of an array of
-  !> stress reports, needs no temporary copy).
+  !> (elemental: one call for every quantity).
   elemental subroutine note_peaks(value, deg, peak, peak_deg)
     real(dp), intent(in) :: value, deg
     real(dp), intent(inout) :: peak, peak_deg
@@ -67,16 +74,33 @@ contains
     end if
   end subroutine note_peaks
 
+  subroutine init_element_peaks(self, n_elements)
+    class(element_peaks_t), intent(inout) :: self
+    integer, intent(in) :: n_elements
+    allocate(self%peak(n_elements), self%deg(n_elements))
+    self%peak = 0.0_dp
+    self%deg = 0.0_dp
+  end subroutine init_element_peaks
+
+  !> The elements' largest |stress| at crank angle deg (pass a contiguous
+  !> array: a component of an array of stress reports made the debug build
+  !> print 'array temporary was created').
+  subroutine note_element_peaks(self, stress, deg)
+    class(element_peaks_t), intent(inout) :: self
+    real(dp), intent(in) :: stress(:), deg
+    call note_peaks(stress, deg, self%peak, self%deg)
+  end subroutine note_element_peaks
+
   !> One summary line per element: its peak |stress| and where it occurred.
-  subroutine write_stress_peaks(out, peak_stress, peak_angle)
+  subroutine write_element_peaks(self, out)
+    class(element_peaks_t), intent(in) :: self
     type(table_t), intent(inout) :: out
-    real(dp), intent(in) :: peak_stress(:), peak_angle(:)
     integer :: e
-    do e = 1, size(peak_stress)
-      call out%summary('element '//str(e)//' peak |stress|', str(peak_stress(e), 8)//' psi at crank angle '// &
-                       str(peak_angle(e), 6)//' deg')
+    do e = 1, size(self%peak)
+      call out%summary('element '//str(e)//' peak |stress|', str(self%peak(e), 8)//' psi at crank angle '// &
+                       str(self%deg(e), 6)//' deg')
     end do
-  end subroutine write_stress_peaks
+  end subroutine write_element_peaks
 
   !> The open revolution is complete: compare it with the previous complete
   !> one (change = max over quantities of |p - p_prev| / max(p, p_prev);

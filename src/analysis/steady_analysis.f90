@@ -29,8 +29,8 @@ module steady_analysis
 
 contains
 
-  !> Length (about 150 lines, 122 its own): fill (contained) writes one row of both solutions with the
-  !> host's peaks; the own body runs the harmonic and the shooting solution side by side.
+  !> Read, build, the harmonic series and/or the exact periodic solution over
+  !> one revolution, then the table of both.
   subroutine run_steady(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
@@ -38,13 +38,8 @@ contains
     type(mechanism_t) :: mech
     type(steady_settings_t) :: s
     type(steady_model_t), target :: model
-    type(harmonic_report_t) :: hrep
-    type(shooting_report_t) :: srep
-    real(dp), allocatable :: times(:), qh(:, :), qs(:, :), qsd(:, :), y0(:), row(:), peak(:, :), peak_at(:, :)
-    real(dp) :: cpu0, cpu1, cpu_h, cpu_s, omega
-    integer :: n_out, k, n_el
-    logical :: do_h, do_s
-    character(len=32), allocatable :: names(:)
+    real(dp), allocatable :: times(:), qh(:, :), qs(:, :)
+    integer :: n_out, k
 
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
@@ -52,7 +47,6 @@ contains
     if (err%failed()) return         ! (a NaN d_k compared in check_steady_input traps: fuzz seed 12, case 20018)
     call check_steady_input(deck, mech, s, err)
     if (err%failed()) return
-    omega = mech%driver%omega
     call echo_mechanism(mech, out)
     call echo_steady_settings(out)
 
@@ -61,8 +55,6 @@ contains
       call input_error_in(deck, 'mechanism/&tennant', err)
       return
     end if
-    do_h = s%method /= 'shooting'
-    do_s = s%method /= 'harmonic'
     call write_model_header(out, mech, s, model)
     call frequency_scan(out, model, s, err)
     if (err%failed()) return
@@ -71,68 +63,116 @@ contains
     n_out = max(1, nint(360.0_dp/s%output_step_deg))
     allocate(times(n_out + 1))
     do k = 0, n_out
-      times(k + 1) = real(k, dp)*(two_pi/n_out)/omega
+      times(k + 1) = real(k, dp)*(two_pi/n_out)/model%omega
     end do
-    n_el = size(model%el)
 
-    cpu_h = 0.0_dp
-    cpu_s = 0.0_dp
-    if (do_h) then
-      allocate(qh(model%n, n_out + 1))
-      call cpu_time(cpu0)
-      call harmonic_solve(model, s%harmonic, times, qh, hrep, err)
-      call cpu_time(cpu1)
-      cpu_h = cpu1 - cpu0
-      call report_harmonic(out, s, hrep, omega)
-      call harmonic_cost(out, model, s, hrep, cpu_h)
-      if (err%failed()) then
-        call err%add_context('harmonic series')
-        return
-      end if
-      call harmonic_diagnosis(s%harmonic, hrep, omega, s%allow_resonance, s%allow_beyond_peak, err)
-      if (err%failed()) return
-      if (hrep%beyond_peak) call out%comment('WARNING: a strain passes the peak of the Ramberg-Osgood law ('// &
-        str(hrep%max_abs_strain, 5)//' in element '//str(hrep%strain_element)//'); printed because '// &
-        'allow_beyond_peak = .true.: the material law has no stable meaning there')
-    end if
-    if (do_s) then
-      allocate(qs(model%n, n_out + 1), qsd(model%n, n_out + 1), y0(2*model%n))
-      y0 = 0.0_dp
-      if (do_h) y0(1:model%n) = qh(:, 1)
-      call cpu_time(cpu0)
-      call shooting_solve(model, s%shooting, y0, srep, err)
-      if (.not. err%failed() .and. (srep%converged .and. (srep%stable .or. s%allow_resonance))) &
-        call periodic_orbit(model, s%shooting, y0, times, qs, qsd, srep, err)
-      call cpu_time(cpu1)
-      cpu_s = cpu1 - cpu0
-      call report_shooting(out, s, srep, omega)
-      call out%cost('shooting_revolutions_integrated', str(srep%revolutions))
-      call out%cost('shooting_steps', str(srep%steps))
-      call out%cost('shooting_rhs_evaluations', str(srep%rhs_evaluations))
-      call out%cost('cpu_seconds_shooting', str(cpu_s, 4))
-      if (err%failed()) then
-        call err%add_context('exact periodic solution (shooting) at crank speed '//str(omega, 6)//' rad/s')
-        return
-      end if
-      call shooting_diagnosis(s%shooting, srep, omega, s%allow_resonance, err)
+    if (s%method /= 'shooting') then
+      call solve_harmonic(out, model, s, times, qh, err)
       if (err%failed()) return
     end if
+    if (s%method /= 'harmonic') then
+      call solve_shooting(out, model, s, times, qh, qs, err)
+      if (err%failed()) return
+    end if
+    call write_table(out, mech, model, times, qh, qs, err)
+    if (err%failed()) return
+    call out%cost('kinematics_solutions', str(model%n_kinematics))
+  end subroutine run_steady
 
-    ! the table
+  !> Tennant's harmonic series (T26-T28) at the output times, qh(:, k) at
+  !> times(k), with its report, cost and diagnosis.
+  subroutine solve_harmonic(out, model, s, times, qh, err)
+    type(table_t), intent(inout) :: out
+    type(steady_model_t), target, intent(inout) :: model
+    type(steady_settings_t), intent(in) :: s
+    real(dp), intent(in) :: times(:)
+    real(dp), allocatable, intent(out) :: qh(:, :)
+    type(error_t), intent(inout) :: err
+    type(harmonic_report_t) :: hrep
+    real(dp) :: cpu0, cpu1
+    allocate(qh(model%n, size(times)))
+    call cpu_time(cpu0)
+    call harmonic_solve(model, s%harmonic, times, qh, hrep, err)
+    call cpu_time(cpu1)
+    call report_harmonic(out, s, hrep, model%omega)
+    call harmonic_cost(out, model, s, hrep, cpu1 - cpu0)
+    if (err%failed()) then
+      call err%add_context('harmonic series')
+      return
+    end if
+    call harmonic_diagnosis(s%harmonic, hrep, model%omega, s%allow_resonance, s%allow_beyond_peak, err)
+    if (err%failed()) return
+    if (hrep%beyond_peak) call out%comment('WARNING: a strain passes the peak of the Ramberg-Osgood law ('// &
+      str(hrep%max_abs_strain, 5)//' in element '//str(hrep%strain_element)//'); printed because '// &
+      'allow_beyond_peak = .true.: the material law has no stable meaning there')
+  end subroutine solve_harmonic
+
+  !> The exact periodic solution by shooting (started from the harmonic
+  !> series' state at t = 0 where there is one) at the output times, with its
+  !> Floquet report, cost and diagnosis.
+  subroutine solve_shooting(out, model, s, times, qh, qs, err)
+    type(table_t), intent(inout) :: out
+    type(steady_model_t), target, intent(inout) :: model
+    type(steady_settings_t), intent(in) :: s
+    real(dp), intent(in) :: times(:)
+    real(dp), allocatable, intent(in) :: qh(:, :)
+    real(dp), allocatable, intent(out) :: qs(:, :)
+    type(error_t), intent(inout) :: err
+    type(shooting_report_t) :: srep
+    real(dp), allocatable :: qsd(:, :), y0(:)
+    real(dp) :: cpu0, cpu1
+    allocate(qs(model%n, size(times)), qsd(model%n, size(times)), y0(2*model%n))
+    y0 = 0.0_dp
+    if (allocated(qh)) y0(1:model%n) = qh(:, 1)
+    call cpu_time(cpu0)
+    call shooting_solve(model, s%shooting, y0, srep, err)
+    if (.not. err%failed() .and. (srep%converged .and. (srep%stable .or. s%allow_resonance))) &
+      call periodic_orbit(model, s%shooting, y0, times, qs, qsd, srep, err)
+    call cpu_time(cpu1)
+    call report_shooting(out, s, srep, model%omega)
+    call out%cost('shooting_revolutions_integrated', str(srep%revolutions))
+    call out%cost('shooting_steps', str(srep%steps))
+    call out%cost('shooting_rhs_evaluations', str(srep%rhs_evaluations))
+    call out%cost('cpu_seconds_shooting', str(cpu1 - cpu0, 4))
+    if (err%failed()) then
+      call err%add_context('exact periodic solution (shooting) at crank speed '//str(model%omega, 6)//' rad/s')
+      return
+    end if
+    call shooting_diagnosis(s%shooting, srep, model%omega, s%allow_resonance, err)
+  end subroutine solve_shooting
+
+  !> The rows over the revolution of the solutions there are (qh: harmonic
+  !> series, qs: exact periodic), each element's peak stress in each and
+  !> how far apart the two are.
+  subroutine write_table(out, mech, model, times, qh, qs, err)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(steady_model_t), target, intent(inout) :: model
+    real(dp), intent(in) :: times(:)
+    real(dp), allocatable, intent(in) :: qh(:, :), qs(:, :)
+    type(error_t), intent(inout) :: err
+    character(len=32), allocatable :: names(:)
+    real(dp), allocatable :: row(:)
+    real(dp) :: peak(size(model%el), 2), peak_at(size(model%el), 2)
+    integer :: k
+    logical :: do_h, do_s
+    do_h = allocated(qh)
+    do_s = allocated(qs)
     call column_names(out, mech, model, do_h, do_s, names)
-    allocate(row(size(names)), peak(n_el, 2), peak_at(n_el, 2))
+    allocate(row(size(names)))
     peak = 0.0_dp
     peak_at = 0.0_dp
-    do k = 1, n_out + 1
+    do k = 1, size(times)
       call model%set_time(times(k), err)
       if (err%failed()) return
-      row(1) = times(k)*omega*180.0_dp/pi + mech%driver%theta0*180.0_dp/pi
+      row(1) = times(k)*model%omega*180.0_dp/pi + mech%driver%theta0*180.0_dp/pi
       row(2) = times(k)
-      if (do_h) call fill(qh(:, k), 1)
-      if (do_s) call fill(qs(:, k), 2)
+      if (do_h) call fill_solution(mech, model, qh(:, k), row, 2, peak(:, 1), peak_at(:, 1))
+      if (do_s) call fill_solution(mech, model, qs(:, k), row, merge(2 + (size(row) - 2)/2, 2, do_h), peak(:, 2), &
+                                   peak_at(:, 2))
       call out%row(row)
     end do
-    do k = 1, n_el
+    do k = 1, size(model%el)
       if (do_h) call out%summary('element '//str(k)//' peak |stress| (harmonic series)', str(peak(k, 1), 8)// &
                                  ' psi at crank angle '//str(peak_at(k, 1), 6)//' deg')
       if (do_s) call out%summary('element '//str(k)//' peak |stress| (exact periodic)', str(peak(k, 2), 8)// &
@@ -142,41 +182,41 @@ contains
       call out%summary('harmonic series vs exact periodic', 'max |Q_h - Q_exact| / max |Q_exact| = '// &
                        str(maxval(abs(qh - qs))/max(maxval(abs(qs)), tiny(1.0_dp)), 4))
     end if
-    call out%cost('kinematics_solutions', str(model%n_kinematics))
+  end subroutine write_table
 
-  contains
-
-    subroutine fill(q, which)
-      real(dp), intent(in) :: q(:)
-      integer, intent(in) :: which
-      type(tennant_stress_t) :: st(n_el)
-      integer :: j, i, e, c
-      c = 2
-      if (which == 2 .and. do_h) c = 2 + (size(row) - 2)/2
-      do j = 1, mech%n_joints
-        if (.not. joint_moves(mech, j)) cycle
-        row(c + 1:c + 2) = joint_displacement(model, mech, j, q)
-        c = c + 2
-      end do
-      do i = 1, mech%n_links
-        e = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        block
-          real(dp) :: uwa(3)
-          uwa = model%local_field(e, q, 1.0_dp)
-          row(c + 1:c + 2) = uwa(1:2)
-        end block
-        c = c + 2
-      end do
-      call model%stresses(q, st)
-      do e = 1, n_el
-        row(c + e) = st(e)%max_abs_stress
-        if (st(e)%max_abs_stress > peak(e, which)) then
-          peak(e, which) = st(e)%max_abs_stress
-          peak_at(e, which) = row(1)
-        end if
-      end do
-    end subroutine fill
-  end subroutine run_steady
+  !> One solution's columns of a row, from row(c + 1) on: joints, link ends,
+  !> element stresses (their peaks noted at the row's crank angle row(1)).
+  subroutine fill_solution(mech, model, q, row, c, peak, peak_at)
+    type(mechanism_t), intent(in) :: mech
+    type(steady_model_t), intent(in) :: model
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(inout) :: row(:)
+    integer, intent(in) :: c
+    real(dp), intent(inout) :: peak(:), peak_at(:)
+    type(tennant_stress_t) :: st(size(model%el))
+    real(dp) :: uwa(3)
+    integer :: j, i, e, k
+    k = c
+    do j = 1, mech%n_joints
+      if (.not. joint_moves(mech, j)) cycle
+      row(k + 1:k + 2) = joint_displacement(model, mech, j, q)
+      k = k + 2
+    end do
+    do i = 1, mech%n_links
+      e = mech%links(i)%first_element + mech%links(i)%n_elements - 1
+      uwa = model%local_field(e, q, 1.0_dp)
+      row(k + 1:k + 2) = uwa(1:2)
+      k = k + 2
+    end do
+    call model%stresses(q, st)
+    do e = 1, size(st)
+      row(k + e) = st(e)%max_abs_stress
+      if (st(e)%max_abs_stress > peak(e)) then
+        peak(e) = st(e)%max_abs_stress
+        peak_at(e) = row(1)
+      end if
+    end do
+  end subroutine fill_solution
 
   !> What the steady-state analysis needs of the mechanism and of &tennant:
   !> rectangular links where the material, shear or tapered sections need

@@ -25,7 +25,8 @@ module transient_analysis
     check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
   use joint_reactions, only: joint_reactions_t
-  use revolution_peaks, only: revolution_peaks_t, note_peaks, write_stress_peaks
+  use revolution_peaks, only: element_peaks_t
+  use revolution_rows, only: revolution_rows_t
   use linkage, only: joint_clamp
   use clearance_run, only: clearance_monitor_t
   use restart_file, only: write_restart_file, start_from_restart
@@ -47,8 +48,7 @@ module transient_analysis
 
 contains
 
-  !> Length (about 200 lines, 126 its own): output_row and close_revolutions are contained because they fill
-  !> rows and judge periodicity with the host's state, peaks and row buffers; the phases are routines below.
+  !> Read, build, integrate row by row to the end (or to the periodic state), then the summary and cost.
   subroutine run_transient(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
@@ -61,17 +61,13 @@ contains
     type(progress_t) :: bar
     type(clearance_monitor_t) :: clearance       ! joints with clearance (&clearance; doc/clearance.md)
     type(lsode_counters_t) :: c
-    type(stress_report_t), allocatable :: stress(:)
-    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :), peak_stress(:), peak_angle(:)
-    real(dp) :: t0, t_end, dt_out, t, theta, theta_d, theta_dd, cpu0, cpu1, revolutions_done, t_rows
+    real(dp), allocatable :: y(:), omega_n(:), shapes(:, :)
+    real(dp) :: t0, t_end, dt_out, t, theta, cpu0, cpu1, revolutions_done
     integer :: k, n_out
     character(len=32), allocatable :: names(:)
     type(responses_t) :: resp
-    type(revolution_peaks_t) :: pk
-    real(dp), allocatable :: rev_rows(:, :), last_rows(:, :)
-    integer :: n_rev_rows, n_last_rows
-    logical :: buffer_rows, periodic
-    real(dp) :: theta_start
+    type(revolution_rows_t) :: rows
+    type(element_peaks_t) :: stress_peaks
 
     call read_input(deck, mech, s, loads_in, clearance, err)
     if (err%failed()) return
@@ -110,22 +106,12 @@ contains
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
-    call row_schedule(out, mech, s, t0, dt_out, t_rows, buffer_rows)
-    if (s%output_digits > 0) call out%set_digits(s%output_digits)
-    call write_columns(out, mech, model, resp, names, clearance%column_names())
-    allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
-    peak_stress = 0.0_dp
-    peak_angle = 0.0_dp
-    call pk%init(size(names) - 2)
-    n_rev_rows = 0
-    n_last_rows = 0
-    if (buffer_rows) allocate(rev_rows(size(names), 16), last_rows(size(names), 0))
-    periodic = .false.
-    call driver_angle(mech%driver, t0, theta_start, theta_d, theta_dd)
+    call start_rows(out, mech, s, model, resp, clearance, t0, dt_out, names, rows)
+    call stress_peaks%init(size(model%el))
 
     call bar%start('transient', t0, t_end)
     call cpu_time(cpu0)
-    call output_row(t0)
+    call record_row(out, t0, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
@@ -135,10 +121,10 @@ contains
         call ode%integrate_to(model, y, t, err)
       end if
       if (err%failed()) exit
-      call output_row(t)
+      call record_row(out, t, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
       if (err%failed()) exit
-      call close_revolutions(t)
-      if (periodic) exit
+      call rows%close_revolutions(out, theta)
+      if (rows%periodic) exit
       c = ode%counters()
       call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
                       ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
@@ -148,17 +134,11 @@ contains
 
     if (err%failed()) call name_stop_angle(mech, model, ode%t, err)
 
-    if (buffer_rows .and. n_last_rows > 0) then
-      call out%columns(names)          ! again: the names are the last '#' line before the rows
-      do k = 1, n_last_rows
-        call out%row(last_rows(:, k))
-      end do
-    end if
-
+    call rows%write_last_revolution(out, names)
     ! summary and cost
-    call write_stress_peaks(out, peak_stress, peak_angle)
-    call write_peaks(out, names, pk)
-    if (s%stop_when_periodic > 0.0_dp) call write_periodicity(out, s, pk, periodic)
+    call stress_peaks%write(out)
+    call rows%write_peaks(out, names)
+    call rows%write_periodicity(out)
     c = ode%counters()
     revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
     call write_cost(out, s, model, c, cpu1 - cpu0, revolutions_done)
@@ -167,85 +147,79 @@ contains
       call write_restart_file(s%restart_out, ode%t, y, err)
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
     end if
-
-  contains
-
-    subroutine output_row(tt)
-      real(dp), intent(in) :: tt
-      real(dp), allocatable :: row(:)
-      real(dp) :: q(model%n), crank_deg
-      integer :: j, i, kk, ee
-      call model%set_time(tt)
-      if (model%err%failed()) then
-        call err%set('', model%err%text())
-        return
-      end if
-      q = y(1::2)
-      call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
-      crank_deg = theta*180.0_dp/pi
-      call model%element_stresses(q, stress)
-      call note_peaks(stress%max_abs_stress, crank_deg, peak_stress, peak_angle)
-      allocate(row(size(names)))
-      row(1) = tt
-      row(2) = crank_deg
-      kk = 2
-      do j = 1, mech%n_joints
-        if (.not. joint_moves(mech, j)) cycle
-        call joint_displacement(model, mech, j, q, row(kk + 1:kk + 2))
-        kk = kk + 2
-      end do
-      do i = 1, mech%n_links
-        ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
-        row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%element_q(ee, q), model%rb(ee)%phi, &
-                                                     1.0_dp)
-        kk = kk + 2
-      end do
-      do ee = 1, size(stress)
-        row(kk + ee) = stress(ee)%max_abs_stress
-      end do
-      kk = kk + size(stress)
-      call fill_responses(resp, model, mech, tt, y, row, kk, err)
-      if (err%failed()) return
-      if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
-      call pk%add(row(3:), crank_deg)
-      if (buffer_rows) then
-        if (n_rev_rows == size(rev_rows, 2)) rev_rows = reshape(rev_rows, [size(rev_rows, 1), 2*n_rev_rows], &
-                                                                 pad=[0.0_dp])
-        n_rev_rows = n_rev_rows + 1
-        rev_rows(:, n_rev_rows) = row
-      end if
-      if (tt < t_rows) return
-      call out%row(row)
-    end subroutine output_row
-
-    !> Close every revolution the crank has completed by time tt (its turns
-    !> counted from t0); with stop_when_periodic, set periodic when the
-    !> peaks of the one just closed agree with the previous one's.
-    subroutine close_revolutions(tt)
-      real(dp), intent(in) :: tt
-      real(dp) :: turns
-      if (.not. mech%driver%omega > 0.0_dp) return
-      call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
-      turns = (theta - theta_start)/two_pi
-      do while (turns >= pk%n_complete + 1 - 1.0e-9_dp)
-        call pk%close_revolution()
-        if (buffer_rows) then
-          last_rows = rev_rows(:, 1:n_rev_rows)
-          n_last_rows = n_rev_rows
-          n_rev_rows = 0
-        end if
-        if (s%stop_when_periodic > 0.0_dp .and. pk%change >= 0.0_dp) call out%comment('revolution '// &
-          str(pk%n_complete)//': largest relative change of a column''s peak from revolution '// &
-          str(pk%n_complete - 1)//': '//str(pk%change, 4))
-        if (s%stop_when_periodic > 0.0_dp .and. pk%change >= 0.0_dp .and. pk%change <= s%stop_when_periodic) then
-          periodic = .true.
-          call out%comment('periodic at revolution '//str(pk%n_complete)//' (crank angle '// &
-                           str(theta*180.0_dp/pi, 6)//' deg): stopped')
-          return
-        end if
-      end do
-    end subroutine close_revolutions
   end subroutine run_transient
+
+  !> The rows' schedule, digits and columns, and the revolution rows that
+  !> keep them (rows from t0; the crank angle there starts the revolutions).
+  subroutine start_rows(out, mech, s, model, resp, clearance, t0, dt_out, names, rows)
+    type(table_t), intent(inout) :: out
+    type(mechanism_t), intent(in) :: mech
+    type(transient_settings_t), intent(in) :: s
+    type(mechanism_model_t), intent(in) :: model
+    type(responses_t), intent(in) :: resp
+    type(clearance_monitor_t), intent(in) :: clearance
+    real(dp), intent(in) :: t0, dt_out
+    character(len=32), allocatable, intent(out) :: names(:)
+    type(revolution_rows_t), intent(out) :: rows
+    real(dp) :: t_rows, theta_start, theta_d, theta_dd
+    logical :: buffered
+    call row_schedule(out, mech, s, t0, dt_out, t_rows, buffered)
+    if (s%output_digits > 0) call out%set_digits(s%output_digits)
+    call write_columns(out, mech, model, resp, names, clearance%column_names())
+    call driver_angle(mech%driver, t0, theta_start, theta_d, theta_dd)
+    rows = revolution_rows_t(n_columns=size(names), t_rows=t_rows, buffered=buffered, stop_change=s%stop_when_periodic, &
+                             turning=mech%driver%omega > 0.0_dp, theta_start=theta_start)
+    call rows%start()
+  end subroutine start_rows
+
+  !> The row of output time tt (joints, link ends, element stresses, the
+  !> optional responses, clearance columns) into the run's rows and peaks;
+  !> theta: the crank angle at tt.
+  subroutine record_row(out, tt, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+    type(table_t), intent(inout) :: out
+    real(dp), intent(in) :: tt
+    type(mechanism_t), intent(in) :: mech
+    type(mechanism_model_t), target, intent(inout) :: model
+    type(responses_t), intent(inout) :: resp
+    type(clearance_monitor_t), intent(inout) :: clearance
+    real(dp), intent(in) :: y(:)
+    type(revolution_rows_t), intent(inout) :: rows
+    type(element_peaks_t), intent(inout) :: stress_peaks
+    real(dp), intent(out) :: theta
+    type(error_t), intent(inout) :: err
+    type(stress_report_t) :: stress(size(model%el))
+    real(dp) :: row(rows%n_columns), q(model%n), crank_deg, theta_d, theta_dd
+    integer :: j, i, kk, ee
+    call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
+    call model%set_time(tt)
+    if (model%err%failed()) then
+      call err%set('', model%err%text())
+      return
+    end if
+    q = y(1::2)
+    crank_deg = theta*180.0_dp/pi
+    call model%element_stresses(q, stress)
+    row(1) = tt
+    row(2) = crank_deg
+    kk = 2
+    do j = 1, mech%n_joints
+      if (.not. joint_moves(mech, j)) cycle
+      call joint_displacement(model, mech, j, q, row(kk + 1:kk + 2))
+      kk = kk + 2
+    end do
+    do i = 1, mech%n_links
+      ee = mech%links(i)%first_element + mech%links(i)%n_elements - 1
+      row(kk + 1:kk + 2) = beam_local_displacement(model%el(ee), model%element_q(ee, q), model%rb(ee)%phi, 1.0_dp)
+      kk = kk + 2
+    end do
+    row(kk + 1:kk + size(stress)) = stress%max_abs_stress
+    call stress_peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
+    kk = kk + size(stress)
+    call fill_responses(resp, model, mech, tt, y, row, kk, err)
+    if (err%failed()) return
+    if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
+    call rows%add(out, tt, row, crank_deg)
+  end subroutine record_row
 
   !> The groups of a transient deck, each checked as it is read.
   subroutine read_input(deck, mech, s, loads_in, clearance, err)
@@ -422,23 +396,6 @@ contains
       ': the run stops at the end of the first revolution whose peaks of every column differ from the '// &
       'previous revolution''s by at most that fraction')
   end subroutine row_schedule
-
-  !> The summary line of stop_when_periodic.
-  subroutine write_periodicity(out, s, pk, periodic)
-    type(table_t), intent(inout) :: out
-    type(transient_settings_t), intent(in) :: s
-    type(revolution_peaks_t), intent(in) :: pk
-    logical, intent(in) :: periodic
-    if (periodic) then
-      call out%summary('periodic', 'at revolution '//str(pk%n_complete)//': peaks within '// &
-                       str(pk%change, 4)//' of revolution '//str(pk%n_complete - 1)//'; run stopped')
-    else if (pk%change >= 0.0_dp) then
-      call out%summary('periodic', 'not reached in '//str(pk%n_complete)//' revolutions: last change of the '// &
-                       'peaks '//str(pk%change, 4)//' > '//str(s%stop_when_periodic))
-    else
-      call out%summary('periodic', 'not judged: fewer than two complete revolutions')
-    end if
-  end subroutine write_periodicity
 
   !> The cost footer: DLSODE's counters and the model's own work.
   subroutine write_cost(out, s, model, c, cpu, revolutions_done)
@@ -663,25 +620,6 @@ contains
       end if
     end do
   end subroutine fill_responses
-
-  !> One summary line per column: its peak |value| over the last complete
-  !> revolution and over the whole run, with the crank angles.
-  subroutine write_peaks(out, names, pk)
-    type(table_t), intent(inout) :: out
-    character(len=*), intent(in) :: names(:)
-    type(revolution_peaks_t), intent(in) :: pk
-    integer :: i
-    do i = 1, size(pk%whole)
-      if (pk%n_complete > 0) then
-        call out%summary('peak |'//trim(names(i + 2))//'|', str(pk%last(i), 8)//' at '//str(pk%last_deg(i), 6)// &
-          ' deg in revolution '//str(pk%n_complete)//' (the last complete); whole run '//str(pk%whole(i), 8)// &
-          ' at '//str(pk%whole_deg(i), 6)//' deg')
-      else
-        call out%summary('peak |'//trim(names(i + 2))//'|', str(pk%whole(i), 8)//' at '//str(pk%whole_deg(i), 6)// &
-          ' deg (whole run; no complete revolution)')
-      end if
-    end do
-  end subroutine write_peaks
 
   subroutine write_model_header(out, mech, s, model)
     type(table_t), intent(inout) :: out

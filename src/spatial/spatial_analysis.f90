@@ -20,7 +20,8 @@ module spatial_analysis
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
   use spatial_correlation, only: sdofs
   use restart_file, only: write_restart_file, start_from_restart
-  use revolution_peaks, only: note_peaks, write_stress_peaks
+  use revolution_peaks, only: element_peaks_t
+  use revolution_rows, only: revolution_defect_t
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
@@ -29,11 +30,12 @@ module spatial_analysis
   public :: run_spatial
 
   character(len=7), parameter :: link_names(3) = ['crank  ', 'coupler', 'rocker ']
+  !> the deflection columns (joints B, C and the links' ends) whose periodicity is judged
+  integer, parameter :: n_deflections = 24
 
 contains
 
-  !> Length (about 150 lines, 101 its own): output_row (contained) fills a row from the driver's peaks
-  !> and its one-revolution ring buffer.
+  !> Read, build, integrate row by row over the revolutions, then the summary and cost.
   subroutine run_spatial(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
@@ -45,11 +47,11 @@ contains
     type(spatial_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
-    type(spatial_stress_t), allocatable :: stress(:)
-    real(dp), allocatable :: y(:), omega_n(:), peak_stress(:), peak_angle(:), ring(:, :)
+    type(element_peaks_t) :: stress_peaks
+    type(revolution_defect_t) :: defect
+    real(dp), allocatable :: y(:), omega_n(:)
     real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, ke, se
-    integer :: k, n_out, jb, jc, per_rev
-    real(dp) :: defect, dscale
+    integer :: k, n_out, jb, jc
     character(len=32), allocatable :: names(:)
 
     call read_spatial_mechanism(deck, inp, err)
@@ -85,44 +87,26 @@ contains
     if (err%failed()) return
 
     call write_columns(out, model, names)
-    allocate(stress(size(model%el)), peak_stress(size(model%el)), peak_angle(size(model%el)))
-    peak_stress = 0.0_dp
-    peak_angle = 0.0_dp
-    ! periodicity defect: the deflection columns one revolution apart, when
-    ! the output step divides a revolution
-    per_rev = nint(360.0_dp/s%output_step_deg)
-    if (abs(per_rev*s%output_step_deg - 360.0_dp) > 1.0e-9_dp .or. n_out < 2*per_rev) per_rev = 0
-    allocate(ring(24, 0:max(per_rev, 1) - 1))
-    defect = 0.0_dp
-    dscale = 0.0_dp
+    call stress_peaks%init(size(model%el))
+    call defect%init(n_deflections, samples_per_revolution(s%output_step_deg), n_out)
     call bar%start('spatial', t0, t_end)
     call cpu_time(cpu0)
-    call output_row(t0)
+    call record_row(out, inp, model, t0, y, dt_out, stress_peaks, defect, size(names), err)
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
       call ode%integrate_to(model, y, t, err)
       if (err%failed()) exit
-      call output_row(t)
+      call record_row(out, inp, model, t, y, dt_out, stress_peaks, defect, size(names), err)
       if (err%failed()) exit
       call bar%update(t)
     end do
     call bar%finish()
     call cpu_time(cpu1)
-    if (err%failed()) then
-      if (model%err%failed()) then
-        t = model%t_failed
-      else
-        t = ode%t
-      end if
-      call err%add_context('spatial analysis stopped at crank angle '// &
-                           str((inp%theta0_deg*pi/180.0_dp + inp%omega*t)*180.0_dp/pi, 7)//' deg')
-    end if
+    if (err%failed()) call name_stop_angle(inp, model, ode%t, err)
 
-    call write_stress_peaks(out, peak_stress, peak_angle)
-    if (per_rev > 0 .and. .not. err%failed() .and. dscale > 0.0_dp) &
-      call out%summary('periodicity defect over the last revolution', str(defect/dscale, 4)// &
-                       ' (largest change of a deflection column in one revolution / its largest value)')
+    call stress_peaks%write(out)
+    if (.not. err%failed()) call defect%write(out)
     call model%energies(ode%t, y(1::2), y(2::2), ke, se)
     call out%summary('final elastic strain energy', str(se, 8)//' lb in')
     if (.not. err%failed() .and. len_trim(s%restart_out) > 0) then
@@ -130,59 +114,88 @@ contains
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
     end if
     call write_cost(out, s, ode, model, cpu1 - cpu0, max(0.0_dp, (ode%t - t0)*inp%omega/two_pi))
-
-  contains
-
-    subroutine output_row(tt)
-      real(dp), intent(in) :: tt
-      real(dp), allocatable :: row(:)
-      real(dp) :: q(model%n), p(sdofs), crank_deg
-      integer :: kk, i, ee
-      call model%set_time(tt)
-      if (model%err%failed()) then
-        call err%set('', model%err%text())
-        return
-      end if
-      q = y(1::2)
-      crank_deg = inp%theta0_deg + inp%omega*tt*180.0_dp/pi
-      call model%element_stresses(q, stress)
-      call note_peaks(stress%max_abs_stress, crank_deg, peak_stress, peak_angle)
-      allocate(row(size(names)))
-      row(1) = tt
-      row(2) = crank_deg
-      row(3:5) = q(model%b_dofs)
-      row(6:8) = q(model%c_dofs)
-      kk = 8
-      do i = 1, 3
-        ee = model%links(i)%first_element + model%links(i)%n_elements - 1
-        p = spatial_to_local(model%rb(ee)%rot, model%table%gather(ee, q), model%el(ee)%local_rotation)
-        row(kk + 1:kk + 6) = p(11:16)
-        kk = kk + 6
-      end do
-      do i = 1, 3
-        ee = model%links(i)%first_element
-        row(kk + 1:kk + 4) = [stress(ee)%axial_force(1), stress(ee)%moment_y(1), stress(ee)%moment_z(1), &
-                              stress(ee)%torque(1)]
-        kk = kk + 4
-      end do
-      row(kk + 1:kk + size(stress)) = stress%max_abs_stress
-      kk = kk + size(stress)
-      call model%support_forces(tt, q, y(2::2), row(kk + 1:kk + 3), row(kk + 4:kk + 6))
-      if (model%err%failed()) then
-        call err%set('', model%err%text())
-        return
-      end if
-      call out%row(row)
-      if (per_rev > 0) then
-        kk = nint(tt/dt_out)
-        if (kk >= n_out - per_rev) then
-          defect = max(defect, maxval(abs(row(3:26) - ring(:, mod(kk, per_rev)))))
-          dscale = max(dscale, maxval(abs(row(3:26))))
-        end if
-        ring(:, mod(kk, per_rev)) = row(3:26)
-      end if
-    end subroutine output_row
   end subroutine run_spatial
+
+  !> Output rows per revolution for the periodicity defect: the deflection
+  !> columns one revolution apart, when the output step divides a revolution
+  !> (else 0: no defect).
+  integer function samples_per_revolution(step_deg) result(per_rev)
+    real(dp), intent(in) :: step_deg
+    per_rev = nint(360.0_dp/step_deg)
+    if (abs(per_rev*step_deg - 360.0_dp) > 1.0e-9_dp) per_rev = 0
+  end function samples_per_revolution
+
+  !> The crank angle where the run stopped, as context of its error: the
+  !> model's own failures carry their time; DLSODE's stops are at the
+  !> solver's time t_ode.
+  subroutine name_stop_angle(inp, model, t_ode, err)
+    type(spatial_input_t), intent(in) :: inp
+    type(spatial_model_t), intent(in) :: model
+    real(dp), intent(in) :: t_ode
+    type(error_t), intent(inout) :: err
+    real(dp) :: t
+    if (model%err%failed()) then
+      t = model%t_failed
+    else
+      t = t_ode
+    end if
+    call err%add_context('spatial analysis stopped at crank angle '// &
+                         str((inp%theta0_deg*pi/180.0_dp + inp%omega*t)*180.0_dp/pi, 7)//' deg')
+  end subroutine name_stop_angle
+
+  !> The row of output time tt (joints B, C; link ends; link roots' resultants;
+  !> element stresses; support forces), written, with the element peaks and
+  !> the deflection columns' periodicity defect.
+  subroutine record_row(out, inp, model, tt, y, dt_out, stress_peaks, defect, n_columns, err)
+    type(table_t), intent(inout) :: out
+    type(spatial_input_t), intent(in) :: inp
+    type(spatial_model_t), target, intent(inout) :: model
+    real(dp), intent(in) :: tt, y(:), dt_out
+    type(element_peaks_t), intent(inout) :: stress_peaks
+    type(revolution_defect_t), intent(inout) :: defect
+    integer, intent(in) :: n_columns
+    type(error_t), intent(inout) :: err
+    type(spatial_stress_t) :: stress(size(model%el))
+    real(dp) :: row(n_columns), q(model%n), p(sdofs), crank_deg
+    integer :: kk, i, ee
+    call model%set_time(tt)
+    if (model%err%failed()) then
+      call err%set('', model%err%text())
+      return
+    end if
+    q = y(1::2)
+    crank_deg = inp%theta0_deg + inp%omega*tt*180.0_dp/pi
+    call model%element_stresses(q, stress)
+    row(1) = tt
+    row(2) = crank_deg
+    row(3:5) = q(model%b_dofs)
+    row(6:8) = q(model%c_dofs)
+    kk = 8
+    do i = 1, 3
+      ee = model%links(i)%first_element + model%links(i)%n_elements - 1
+      p = spatial_to_local(model%rb(ee)%rot, model%table%gather(ee, q), model%el(ee)%local_rotation)
+      row(kk + 1:kk + 6) = p(11:16)
+      kk = kk + 6
+    end do
+    do i = 1, 3
+      ee = model%links(i)%first_element
+      row(kk + 1:kk + 4) = [stress(ee)%axial_force(1), stress(ee)%moment_y(1), stress(ee)%moment_z(1), &
+                            stress(ee)%torque(1)]
+      kk = kk + 4
+    end do
+    row(kk + 1:kk + size(stress)) = stress%max_abs_stress
+    call stress_peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
+    kk = kk + size(stress)
+    call model%support_forces(tt, q, y(2::2), row(kk + 1:kk + 3), row(kk + 4:kk + 6))
+    if (model%err%failed()) then
+      call err%set('', model%err%text())
+      return
+    end if
+    call out%row(row)
+    ! the sample's index counts output steps from t = 0, not from t0: after a restart (t0 > 0) samples
+    ! before the last revolution are judged too, the first against ring slots never written (as before)
+    call defect%add(nint(tt/dt_out), row(3:2 + n_deflections))
+  end subroutine record_row
 
   !> The lowest natural frequencies at the start position, the crank speed
   !> against the first and the damping ratio beta gives it.
