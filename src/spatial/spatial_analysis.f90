@@ -91,13 +91,13 @@ contains
     call defect%init(n_deflections, samples_per_revolution(s%output_step_deg), n_out)
     call bar%start('spatial', t0, t_end)
     call cpu_time(cpu0)
-    call record_row(out, inp, model, t0, y, dt_out, stress_peaks, defect, size(names), err)
+    call record_row(out, inp, model, 0, t0, y, stress_peaks, defect, size(names), err)
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
       call ode%integrate_to(model, y, t, err)
       if (err%failed()) exit
-      call record_row(out, inp, model, t, y, dt_out, stress_peaks, defect, size(names), err)
+      call record_row(out, inp, model, k, t, y, stress_peaks, defect, size(names), err)
       if (err%failed()) exit
       call bar%update(t)
     end do
@@ -143,14 +143,16 @@ contains
                          str((inp%theta0_deg*pi/180.0_dp + inp%omega*t)*180.0_dp/pi, 7)//' deg')
   end subroutine name_stop_angle
 
-  !> The row of output time tt (joints B, C; link ends; link roots' resultants;
-  !> element stresses; support forces), written, with the element peaks and
-  !> the deflection columns' periodicity defect.
-  subroutine record_row(out, inp, model, tt, y, dt_out, stress_peaks, defect, n_columns, err)
+  !> The row of output step k at time tt (joints B, C; link ends; link roots'
+  !> resultants; element stresses; support forces), written, with the element
+  !> peaks and the deflection columns' periodicity defect (k counts the output
+  !> steps of this run: 0 at its start time, after a restart too).
+  subroutine record_row(out, inp, model, k, tt, y, stress_peaks, defect, n_columns, err)
     type(table_t), intent(inout) :: out
     type(spatial_input_t), intent(in) :: inp
     type(spatial_model_t), target, intent(inout) :: model
-    real(dp), intent(in) :: tt, y(:), dt_out
+    integer, intent(in) :: k
+    real(dp), intent(in) :: tt, y(:)
     type(element_peaks_t), intent(inout) :: stress_peaks
     type(revolution_defect_t), intent(inout) :: defect
     integer, intent(in) :: n_columns
@@ -192,9 +194,7 @@ contains
       return
     end if
     call out%row(row)
-    ! the sample's index counts output steps from t = 0, not from t0: after a restart (t0 > 0) samples
-    ! before the last revolution are judged too, the first against ring slots never written (as before)
-    call defect%add(nint(tt/dt_out), row(3:2 + n_deflections))
+    call defect%add(k, row(3:2 + n_deflections))
   end subroutine record_row
 
   !> The lowest natural frequencies at the start position, the crank speed
