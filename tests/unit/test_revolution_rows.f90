@@ -18,14 +18,19 @@ module test_revolution_rows_suite
 
   character(len=*), parameter :: path = 'test_revolution_rows.tmp'
   integer, parameter :: per_rev = 8              !< output rows per crank revolution
+  type(table_t) :: out                           !< the suite's output table (removed at the end)
 
 contains
 
   subroutine run_all()
+    type(error_t) :: err
+    call out%open(path, err)
+    call assert_true(.not. err%failed(), 'open: '//err%text())
     call run_test('repeated_peaks_stop_the_run_changed_ones_do_not', test_periodic_stop)
     call run_test('last_complete_revolution_rows_are_kept', test_last_revolution)
     call run_test('defect_is_the_largest_change_from_a_revolution_earlier', test_defect)
     call run_test('too_short_a_run_has_no_defect', test_short_run)
+    call out%discard()
   end subroutine run_all
 
   !> Row k (crank angle k/per_rev turns) of a column whose amplitude is amp
@@ -41,9 +46,8 @@ contains
 
   !> Feed revolutions of amplitudes amps (one revolution each) into rows,
   !> closing each at its end; periodic_after(r): rows%periodic after closing r.
-  subroutine feed(rows, out, amps, periodic_after)
+  subroutine feed(rows, amps, periodic_after)
     type(revolution_rows_t), intent(inout) :: rows
-    type(table_t), intent(inout) :: out
     real(dp), intent(in) :: amps(:)
     logical, intent(out) :: periodic_after(size(amps))
     integer :: r, j, k
@@ -65,15 +69,11 @@ contains
   !> change 1e-3 > 1e-6, never periodic.
   subroutine test_periodic_stop()
     type(revolution_rows_t) :: rows
-    type(table_t) :: out
-    type(error_t) :: err
     logical :: periodic(3)
     integer :: k
-    call out%open(path, err)
-    call assert_true(.not. err%failed(), 'open: '//err%text())
     rows = revolution_rows_t(n_columns=3, stop_change=1.0e-6_dp, turning=.true., theta_start=0.0_dp)
     call rows%start()
-    call feed(rows, out, [2.0_dp, 1.0_dp, 1.0_dp], periodic)
+    call feed(rows, [2.0_dp, 1.0_dp, 1.0_dp], periodic)
     call assert_true(.not. periodic(1) .and. .not. periodic(2), 'not periodic after revolutions 1 and 2')
     call assert_true(periodic(3), 'periodic after revolution 3 (its peak repeats revolution 2''s)')
     call assert_equal(rows%pk%n_complete, 3, 'three revolutions closed')
@@ -81,32 +81,26 @@ contains
                       per_rev + 0.3_dp))), 1.0e-14_dp, 'whole-run peak: revolution 1''s')
     rows = revolution_rows_t(n_columns=3, stop_change=1.0e-6_dp, turning=.true., theta_start=0.0_dp)
     call rows%start()
-    call feed(rows, out, [2.0_dp, 1.0_dp, 1.001_dp], periodic)
+    call feed(rows, [2.0_dp, 1.0_dp, 1.001_dp], periodic)
     call assert_true(.not. any(periodic), 'a 1e-3 change of the peak is not periodic at 1e-6')
     call assert_rel_close(rows%pk%change, 1.0e-3_dp/1.001_dp, 1.0e-9_dp, 'change = |1.001 - 1|/1.001')
-    call out%discard()
   end subroutine test_periodic_stop
 
   !> Buffered rows (output_rows = 'last_revolution'): after three
   !> revolutions the rows kept are revolution 3's, per_rev of them, in order.
   subroutine test_last_revolution()
     type(revolution_rows_t) :: rows
-    type(table_t) :: out
-    type(error_t) :: err
     logical :: periodic(3)
     integer :: j
-    call out%open(path, err)
-    call assert_true(.not. err%failed(), 'open: '//err%text())
     rows = revolution_rows_t(n_columns=3, t_rows=huge(1.0_dp), buffered=.true., turning=.true., theta_start=0.0_dp)
     call rows%start()
-    call feed(rows, out, [3.0_dp, 2.0_dp, 1.0_dp], periodic)
+    call feed(rows, [3.0_dp, 2.0_dp, 1.0_dp], periodic)
     call assert_equal(size(rows%last_rows, 2), per_rev, 'one revolution of rows kept')
     do j = 1, per_rev
       call assert_all_close(rows%last_rows(:, j), sample_row(2*per_rev + j, 1.0_dp), 0.0_dp, 0.0_dp, &
                             'kept row '//itoa(j)//' is revolution 3''s')
     end do
     call assert_equal(rows%n_open, 0, 'no row of an open revolution left')
-    call out%discard()
   end subroutine test_last_revolution
 
   !> Three revolutions of samples v_k = (1 + 0.1 k) sin(2 pi k/per_rev + 0.3),
