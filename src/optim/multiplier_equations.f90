@@ -542,25 +542,42 @@ contains
     character(len=:), allocatable, intent(out) :: why
     type(multiplier_result_t), intent(inout) :: res
     type(error_t), intent(inout) :: err
-    real(dp) :: lam_newton(size(lambda))
+    real(dp) :: start(size(lambda))
     character(len=:), allocatable :: why2
-    integer :: its
-    lam_newton = lambda
-    call lambda_newton(self, work, lam_newton, ok, why, its, err)
+    start = lambda
+    call newton_from(self, work, start, lambda, 'newton', ok, why, res, err)
     if (err%failed()) return
-    res%newton_iterations = its
     if (.not. ok .and. maxval(abs(lambda)) > 0.0_dp) then
-      lam_newton = 0.0_dp
-      call lambda_newton(self, work, lam_newton, ok, why2, its, err)
+      start = 0.0_dp
+      call newton_from(self, work, start, lambda, 'newton', ok, why2, res, err)
       if (err%failed()) return
-      res%newton_iterations = res%newton_iterations + its
       if (.not. ok) why = why//'; from lambda = 0: '//why2
     end if
+  end subroutine newton_starts
+
+  !> Newton in lambda (lambda_newton) from start, its iterations counted in
+  !> res; on convergence lambda takes the root and res%how = how.
+  subroutine newton_from(self, work, start, lambda, how, ok, why, res, err)
+    class(multiplier_system_t), intent(inout) :: self
+    type(lambda_search_t), intent(inout) :: work
+    real(dp), intent(in) :: start(:)
+    real(dp), intent(inout) :: lambda(:)
+    character(len=*), intent(in) :: how
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: why
+    type(multiplier_result_t), intent(inout) :: res
+    type(error_t), intent(inout) :: err
+    real(dp) :: lam_newton(size(start))
+    integer :: its
+    lam_newton = start
+    call lambda_newton(self, work, lam_newton, ok, why, its, err)
+    if (err%failed()) return
+    res%newton_iterations = res%newton_iterations + its
     if (ok) then
       lambda = lam_newton
-      res%how = 'newton'
+      res%how = how
     end if
-  end subroutine newton_starts
+  end subroutine newton_from
 
   !> B10 and B11 together (kkt_newton) after Newton in lambda failed: where
   !> the elimination of s is degenerate (M or the Newton matrix singular),
@@ -612,10 +629,9 @@ contains
     type(error_t), intent(inout) :: err
     type(powell_options_t) :: popts
     type(powell_result_t) :: pres
-    real(dp) :: lam_newton(size(lambda))
+    real(dp) :: start(size(lambda))
     character(len=:), allocatable :: why
     logical :: ok
-    integer :: its
     popts%ftol = 1.0e-15_dp
     popts%f_target = (0.01_dp*work%tol)**2
     popts%initial_step = 0.1_dp*max(1.0_dp, maxval(abs(work%lam_best)))
@@ -633,14 +649,8 @@ contains
       return
     end if
     res%how = 'powell'
-    lam_newton = lambda
-    call lambda_newton(self, work, lam_newton, ok, why, its, err)
-    if (err%failed()) return
-    res%newton_iterations = res%newton_iterations + its
-    if (ok) then
-      lambda = lam_newton
-      res%how = 'powell+newton'
-    end if
+    start = lambda
+    call newton_from(self, work, start, lambda, 'powell+newton', ok, why, res, err)
   end subroutine powell_compromise
 
   !> B11 by Newton-Raphson in lambda, with work%tol and work%max_newton;
