@@ -70,12 +70,15 @@ module correlation_table
   contains
     procedure :: start_table
     procedure :: new_unknown
+    procedure :: shared_unknowns
+    procedure :: join_nodes
     procedure :: finish_band
     procedure :: gather
     procedure :: gather_pair
     procedure :: scatter_add
     procedure :: scatter_add_matrix
     procedure :: list_unknowns
+    procedure :: table_lines
   end type correlation_base_t
 
   !> The planar table: links of Kear's, the consistent or Tennant's elements
@@ -107,8 +110,6 @@ contains
   !> the curvature-like DOFs m, ux, uxx are then free at every link end (a
   !> pin's zero moment is a natural condition of that element). With
   !> shear_dofs every node carries Tennant's shear-angle DOFs [a psi lam].
-  !> Length (about 190 lines, 85 its own): the contained new_dof, interior_node and end_node number the
-  !> DOFs with the host's running counter and labels.
   subroutine build(self, n_elem, ends, err, reduce_band, axial_dofs, shear_dofs)
     class(correlation_table_t), intent(out) :: self
     integer, intent(in) :: n_elem(:)
@@ -117,9 +118,9 @@ contains
     logical, intent(in), optional :: reduce_band   !< renumber by reverse Cuthill-McKee when it narrows the band
     logical, intent(in), optional :: axial_dofs    !< six DOFs per node [U W th m ux uxx]
     logical, intent(in), optional :: shear_dofs    !< seven DOFs per node [U W th m a psi lam]
-    integer :: k, e, n_links, next, node_dofs(7), max_joint, nd
-    integer, allocatable :: joint_u(:), joint_w(:), joint_kind(:)
-    real(dp) :: c(7)
+    integer :: k, j, n_links, nd
+    integer, allocatable :: joint_dofs(:, :), node_map(:, :)
+    real(dp), allocatable :: node_coef(:, :)
 
     n_links = size(n_elem)
     call check_ends(n_elem, ends, err)
@@ -132,48 +133,21 @@ contains
       if (shear_dofs) self%node_dofs = 7
     end if
     nd = self%node_dofs
-    self%element_dofs = 2*nd
-    self%n_links = n_links
-    self%n_elements = sum(n_elem)
-    allocate(self%first_element(n_links + 1), self%link_of_element(self%n_elements))
-    self%first_element(1) = 1
-    do k = 1, n_links
-      self%first_element(k + 1) = self%first_element(k) + n_elem(k)
-      self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
-    end do
-    call self%start_table(self%n_elements, 2*nd)
-    allocate(self%sleeve_s(self%n_elements), self%sleeve_u(self%n_elements), self%sleeve_w(self%n_elements))
-    self%sleeve_s = 0
-    self%sleeve_u = 0
-    self%sleeve_w = 0
+    call lay_out_links(self, n_elem)
 
-    max_joint = max(0, maxval(ends%joint))
-    allocate(joint_u(max_joint), joint_w(max_joint), joint_kind(max_joint))
-    joint_u = 0
-    joint_w = 0
-    joint_kind = -1
-    next = 0
+    ! joint_dofs(:, jid): a joint's shared unknowns (U, W of a pin; s of a slider)
+    allocate(joint_dofs(2, max(0, maxval(ends%joint))), node_map(nd, 0:maxval(n_elem)), &
+             node_coef(nd, 0:maxval(n_elem)))
+    joint_dofs = 0
     do k = 1, n_links
-      do e = self%first_element(k), self%first_element(k + 1) - 1
-        ! start node: shared with the previous element of the same link, or a link end
-        if (e == self%first_element(k)) then
-          call end_node(ends(1, k), k, 1, e, node_dofs(1:nd), c(1:nd))
-        else
-          node_dofs(1:nd) = self%map(nd + 1:2*nd, e - 1)
-          c(1:nd) = self%coef(nd + 1:2*nd, e - 1)
-        end if
-        self%map(1:nd, e) = node_dofs(1:nd)
-        self%coef(1:nd, e) = c(1:nd)
-        if (e == self%first_element(k + 1) - 1) then
-          call end_node(ends(2, k), k, n_elem(k) + 1, e, node_dofs(1:nd), c(1:nd))
-        else
-          call interior_node(k, e - self%first_element(k) + 2, node_dofs(1:nd), c(1:nd))
-        end if
-        self%map(nd + 1:2*nd, e) = node_dofs(1:nd)
-        self%coef(nd + 1:2*nd, e) = c(1:nd)
+      call end_node(self, joint_dofs, ends(1, k), k, 1, self%first_element(k), node_map(:, 0), node_coef(:, 0))
+      do j = 1, n_elem(k) - 1
+        call interior_node(self, k, j + 1, node_map(:, j), node_coef(:, j))
       end do
+      call end_node(self, joint_dofs, ends(2, k), k, n_elem(k) + 1, self%first_element(k + 1) - 1, &
+                    node_map(:, n_elem(k)), node_coef(:, n_elem(k)))
+      call self%join_nodes(self%first_element(k), node_map(:, 0:n_elem(k)), node_coef(:, 0:n_elem(k)))
     end do
-    self%n_global = next
     if (self%n_global == 0) then
       call err%set('correlation table', 'the supports leave no free degree of freedom')
       return
@@ -183,119 +157,130 @@ contains
       ! (a sleeve couples unknowns the map does not show: keep its numbering)
       if (reduce_band .and. all(self%sleeve_s == 0)) call reduce_bandwidth(self)
     end if
-
-  contains
-
-    integer function new_dof(text)
-      character(len=*), intent(in) :: text
-      next = next + 1
-      self%label = [character(len=24) :: self%label, text]
-      new_dof = next
-    end function new_dof
-
-    character(len=3) function dof_name(d)
-      integer, intent(in) :: d
-      if (nd == 7) then
-        dof_name = shear_names(d)
-      else
-        dof_name = axial_names(d)
-      end if
-    end function dof_name
-
-    subroutine interior_node(link, node, dofs, coefs)
-      integer, intent(in) :: link, node
-      integer, intent(out) :: dofs(:)
-      real(dp), intent(out) :: coefs(:)
-      integer :: d
-      do d = 1, size(dofs)
-        dofs(d) = new_dof('L'//str(link)//' N'//str(node)//' '//trim(dof_name(d)))
-      end do
-      coefs = 1.0_dp
-    end subroutine interior_node
-
-    subroutine end_node(attach, link, node, ee, dofs, coefs)
-      type(link_end_t), intent(in) :: attach
-      integer, intent(in) :: link, node, ee
-      integer, intent(out) :: dofs(:)
-      real(dp), intent(out) :: coefs(:)
-      character(len=:), allocatable :: where
-      integer :: jid, d
-      where = 'L'//str(link)//' N'//str(node)
-      dofs = 0
-      coefs = 0.0_dp
-      jid = attach%joint
-      select case (attach%kind)
-      case (joint_free)
-        call interior_node(link, node, dofs, coefs)
-        return
-      case (joint_pin)
-        call pin_translations(jid)
-        dofs(1:2) = [joint_u(jid), joint_w(jid)]
-        dofs(3) = new_dof(where//' th')
-        coefs(1:3) = 1.0_dp
-      case (joint_ground_pin)
-        dofs(3) = new_dof(where//' th')
-        coefs(3) = 1.0_dp
-      case (joint_clamp)
-        dofs(4) = new_dof(where//' m')
-        coefs(4) = 1.0_dp
-      case (joint_slider_fixed)
-        ! one unknown s along the guide: U = s cos(alpha), W = s sin(alpha)
-        if (jid > 0) then
-          if (joint_kind(jid) == -1) then
-            joint_kind(jid) = joint_slider_fixed
-            joint_u(jid) = new_dof('J'//str(jid)//' s')
-          end if
-          dofs(1:2) = joint_u(jid)
-        else
-          dofs(1:2) = new_dof(where//' s')
-        end if
-        coefs(1:2) = [cos(attach%guide_angle), sin(attach%guide_angle)]
-        dofs(3) = new_dof(where//' th')
-        coefs(3) = 1.0_dp
-      case (joint_sleeve)
-        ! (U2, W2) depend on the link angle: element_map builds them; map(U2)
-        ! records the axial unknown for the printed table
-        self%sleeve_s(ee) = new_dof(where//' s (sleeve)')
-        if (attach%carried) then
-          call pin_translations(jid)
-          self%sleeve_u(ee) = joint_u(jid)
-          self%sleeve_w(ee) = joint_w(jid)
-        end if
-        dofs(1) = self%sleeve_s(ee)
-        coefs(1) = 1.0_dp
-        dofs(3) = new_dof(where//' th')
-        coefs(3) = 1.0_dp
-      end select
-      if (nd == 6) then
-        ! consistent element: curvature and axial-strain DOFs free at every end
-        do d = 4, 6
-          if (dofs(d) == 0) dofs(d) = new_dof(where//' '//trim(axial_names(d)))
-          coefs(d) = 1.0_dp
-        end do
-      else if (nd == 7) then
-        ! shear angle a follows th, psi follows m, lam is always own
-        if (attach%kind /= joint_clamp) then
-          dofs(5) = new_dof(where//' a')
-          coefs(5) = 1.0_dp
-        else
-          dofs(6) = new_dof(where//' psi')
-          coefs(6) = 1.0_dp
-        end if
-        dofs(7) = new_dof(where//' lam')
-        coefs(7) = 1.0_dp
-      end if
-    end subroutine end_node
-
-    subroutine pin_translations(jid)
-      integer, intent(in) :: jid
-      if (joint_kind(jid) == -1) then
-        joint_kind(jid) = joint_pin
-        joint_u(jid) = new_dof('J'//str(jid)//' U')
-        joint_w(jid) = new_dof('J'//str(jid)//' W')
-      end if
-    end subroutine pin_translations
   end subroutine build
+
+  !> Links and their elements, and the empty table (no sleeve ends yet).
+  subroutine lay_out_links(self, n_elem)
+    type(correlation_table_t), intent(inout) :: self
+    integer, intent(in) :: n_elem(:)
+    integer :: k
+    self%element_dofs = 2*self%node_dofs
+    self%n_links = size(n_elem)
+    self%n_elements = sum(n_elem)
+    allocate(self%first_element(self%n_links + 1), self%link_of_element(self%n_elements))
+    self%first_element(1) = 1
+    do k = 1, self%n_links
+      self%first_element(k + 1) = self%first_element(k) + n_elem(k)
+      self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
+    end do
+    call self%start_table(self%n_elements, self%element_dofs)
+    allocate(self%sleeve_s(self%n_elements), self%sleeve_u(self%n_elements), self%sleeve_w(self%n_elements))
+    self%sleeve_s = 0
+    self%sleeve_u = 0
+    self%sleeve_w = 0
+  end subroutine lay_out_links
+
+  !> The name of node DOF d in a table of nd DOFs per node.
+  pure character(len=3) function node_dof_name(nd, d)
+    integer, intent(in) :: nd, d
+    if (nd == 7) then
+      node_dof_name = shear_names(d)
+    else
+      node_dof_name = axial_names(d)
+    end if
+  end function node_dof_name
+
+  !> A node inside a link (or a free end): all its DOFs are own unknowns.
+  subroutine interior_node(self, link, node, dofs, coefs)
+    type(correlation_table_t), intent(inout) :: self
+    integer, intent(in) :: link, node
+    integer, intent(out) :: dofs(:)
+    real(dp), intent(out) :: coefs(:)
+    integer :: d
+    do d = 1, size(dofs)
+      dofs(d) = self%new_unknown('L'//str(link)//' N'//str(node)//' '//trim(node_dof_name(self%node_dofs, d)))
+    end do
+    coefs = 1.0_dp
+  end subroutine interior_node
+
+  !> The node DOFs of a link end by its attachment's rule (module header);
+  !> ee is the element the end belongs to (a sleeve's unknowns are per element).
+  subroutine end_node(self, joint_dofs, attach, link, node, ee, dofs, coefs)
+    type(correlation_table_t), intent(inout) :: self
+    integer, intent(inout) :: joint_dofs(:, :)
+    type(link_end_t), intent(in) :: attach
+    integer, intent(in) :: link, node, ee
+    integer, intent(out) :: dofs(:)
+    real(dp), intent(out) :: coefs(:)
+    character(len=:), allocatable :: where
+    character(len=24) :: pin_labels(2), slider_label(1)
+    integer :: jid, d
+    jid = attach%joint
+    where = 'L'//str(link)//' N'//str(node)
+    pin_labels(1) = 'J'//str(jid)//' U'
+    pin_labels(2) = 'J'//str(jid)//' W'
+    slider_label(1) = 'J'//str(jid)//' s'
+    dofs = 0
+    coefs = 0.0_dp
+    select case (attach%kind)
+    case (joint_free)
+      call interior_node(self, link, node, dofs, coefs)
+      return
+    case (joint_pin)
+      call self%shared_unknowns(joint_dofs(:, jid), pin_labels)
+      dofs(1:2) = joint_dofs(:, jid)
+      dofs(3) = self%new_unknown(where//' th')
+      coefs(1:3) = 1.0_dp
+    case (joint_ground_pin)
+      dofs(3) = self%new_unknown(where//' th')
+      coefs(3) = 1.0_dp
+    case (joint_clamp)
+      dofs(4) = self%new_unknown(where//' m')
+      coefs(4) = 1.0_dp
+    case (joint_slider_fixed)
+      ! one unknown s along the guide: U = s cos(alpha), W = s sin(alpha)
+      if (jid > 0) then
+        call self%shared_unknowns(joint_dofs(1:1, jid), slider_label)
+        dofs(1:2) = joint_dofs(1, jid)
+      else
+        dofs(1:2) = self%new_unknown(where//' s')
+      end if
+      coefs(1:2) = [cos(attach%guide_angle), sin(attach%guide_angle)]
+      dofs(3) = self%new_unknown(where//' th')
+      coefs(3) = 1.0_dp
+    case (joint_sleeve)
+      ! (U2, W2) depend on the link angle: element_map builds them; map(U2)
+      ! records the axial unknown for the printed table
+      self%sleeve_s(ee) = self%new_unknown(where//' s (sleeve)')
+      if (attach%carried) then
+        call self%shared_unknowns(joint_dofs(:, jid), pin_labels)
+        self%sleeve_u(ee) = joint_dofs(1, jid)
+        self%sleeve_w(ee) = joint_dofs(2, jid)
+      end if
+      dofs(1) = self%sleeve_s(ee)
+      coefs(1) = 1.0_dp
+      dofs(3) = self%new_unknown(where//' th')
+      coefs(3) = 1.0_dp
+    end select
+    if (self%node_dofs == 6) then
+      ! consistent element: curvature and axial-strain DOFs free at every end
+      do d = 4, 6
+        if (dofs(d) == 0) dofs(d) = self%new_unknown(where//' '//trim(axial_names(d)))
+        coefs(d) = 1.0_dp
+      end do
+    else if (self%node_dofs == 7) then
+      ! shear angle a follows th, psi follows m, lam is always own
+      if (attach%kind /= joint_clamp) then
+        dofs(5) = self%new_unknown(where//' a')
+        coefs(5) = 1.0_dp
+      else
+        dofs(6) = self%new_unknown(where//' psi')
+        coefs(6) = 1.0_dp
+      end if
+      dofs(7) = self%new_unknown(where//' lam')
+      coefs(7) = 1.0_dp
+    end if
+  end subroutine end_node
 
   !> Shape and joint ids of the end descriptions; a sleeve is end 2 of a
   !> one-element link (its length varies with the sleeve, T24).
@@ -378,9 +363,9 @@ contains
   !> before, and the band would grow with the number of elements.
   subroutine reduce_bandwidth(self)
     type(correlation_table_t), intent(inout) :: self
-    integer, allocatable :: degree(:), start(:), adj(:), order(:), new_index(:), fill(:), new_map(:, :)
+    integer, allocatable :: degree(:), start(:), adj(:), order(:), new_index(:), fill(:), new_map(:, :), all_unknowns(:)
     logical, allocatable :: placed(:)
-    integer :: n, e, i, j, a, b, head, tail, root, v, k, best, m
+    integer :: n, e, i, j, a, b, head, tail, root, v, best
     character(len=24), allocatable :: new_label(:)
     n = self%n_global
     ! adjacency of the unknowns (two unknowns of one element are coupled), in CSR form
@@ -415,19 +400,11 @@ contains
     end do
     ! Cuthill-McKee from a lowest-degree unknown of every component, then reversed
     allocate(order(n), placed(n))
+    all_unknowns = [(i, i=1, n)]
     placed = .false.
     tail = 0
     do while (tail < n)
-      root = 0
-      do i = 1, n
-        if (.not. placed(i)) then
-          if (root == 0) then
-            root = i
-          else if (degree(i) < degree(root)) then
-            root = i
-          end if
-        end if
-      end do
+      root = least_degree(all_unknowns, degree, placed)
       tail = tail + 1
       order(tail) = root
       placed(root) = .true.
@@ -437,16 +414,7 @@ contains
         head = head + 1
         ! append the unplaced neighbours of v, lowest degree first
         do
-          best = 0
-          do k = start(v), start(v + 1) - 1
-            m = adj(k)
-            if (placed(m)) cycle
-            if (best == 0) then
-              best = m
-            else if (degree(m) < degree(best)) then
-              best = m
-            end if
-          end do
+          best = least_degree(adj(start(v):start(v + 1) - 1), degree, placed)
           if (best == 0) exit
           tail = tail + 1
           order(tail) = best
@@ -474,7 +442,23 @@ contains
     call collect_globals(self)
   end subroutine reduce_bandwidth
 
-  !> Element DOF vector from the global vector.
+  !> The first unplaced candidate of least degree (0: all are placed).
+  pure integer function least_degree(candidates, degree, placed) result(best)
+    integer, intent(in) :: candidates(:), degree(:)
+    logical, intent(in) :: placed(:)
+    integer :: k, m
+    best = 0
+    do k = 1, size(candidates)
+      m = candidates(k)
+      if (placed(m)) cycle
+      if (best == 0) then
+        best = m
+      else if (degree(m) < degree(best)) then
+        best = m
+      end if
+    end do
+  end function least_degree
+
   !> An empty table of n_elements elements with element_dofs DOFs each:
   !> every DOF held at zero, no global unknowns yet.
   subroutine start_table(self, n_elements, element_dofs)
@@ -500,12 +484,44 @@ contains
     g = self%n_global
   end function new_unknown
 
+  !> A joint's shared unknowns, created with their labels at the joint's
+  !> first visit (ids still 0); later visits find them in ids.
+  subroutine shared_unknowns(self, ids, labels)
+    class(correlation_base_t), intent(inout) :: self
+    integer, intent(inout) :: ids(:)
+    character(len=*), intent(in) :: labels(:)
+    integer :: i
+    if (ids(1) /= 0) return
+    do i = 1, size(ids)
+      ids(i) = self%new_unknown(labels(i))
+    end do
+  end subroutine shared_unknowns
+
+  !> The elements of one link from its nodes 0..n (node_map(:, j): the node
+  !> DOFs' global unknowns, node_coef their coefficients): element
+  !> first_element + j - 1 joins nodes j - 1 and j.
+  subroutine join_nodes(self, first_element, node_map, node_coef)
+    class(correlation_base_t), intent(inout) :: self
+    integer, intent(in) :: first_element
+    integer, intent(in) :: node_map(:, 0:)
+    real(dp), intent(in) :: node_coef(:, 0:)
+    integer :: j, nd
+    nd = size(node_map, 1)
+    do j = 1, ubound(node_map, 2)
+      self%map(1:nd, first_element + j - 1) = node_map(:, j - 1)
+      self%coef(1:nd, first_element + j - 1) = node_coef(:, j - 1)
+      self%map(nd + 1:2*nd, first_element + j - 1) = node_map(:, j)
+      self%coef(nd + 1:2*nd, first_element + j - 1) = node_coef(:, j)
+    end do
+  end subroutine join_nodes
+
   !> The half-bandwidth of the assembled matrices, from the map alone.
   subroutine finish_band(self)
     class(correlation_base_t), intent(inout) :: self
     self%half_bandwidth = bandwidth(self%map)
   end subroutine finish_band
 
+  !> Element DOF vector from the global vector.
   pure function gather(self, e, qg) result(qe)
     class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
@@ -587,6 +603,23 @@ contains
     end do
   end subroutine list_unknowns
 
+  !> The header's table: the head lines, one row per element, then the
+  !> global unknowns (list_unknowns).
+  subroutine table_lines(self, head, rows, label_width, lines)
+    class(correlation_base_t), intent(in) :: self
+    character(len=*), intent(in) :: head(:), rows(:)
+    integer, intent(in) :: label_width
+    character(len=160), allocatable, intent(out) :: lines(:)
+    integer :: n_head, n_rows
+    n_head = size(head)
+    n_rows = size(rows)
+    allocate(lines(n_head + n_rows + 1 + (self%n_global + 3)/4))
+    lines(1:n_head) = head
+    lines(n_head + 1:n_head + n_rows) = rows
+    lines(n_head + n_rows + 1) = '  global unknowns:'
+    call self%list_unknowns(label_width, lines(n_head + n_rows + 2:))
+  end subroutine table_lines
+
   logical pure function is_sleeve_element(self, e)
     class(correlation_table_t), intent(in) :: self
     integer, intent(in) :: e
@@ -648,24 +681,23 @@ contains
   subroutine describe(self, lines)
     class(correlation_table_t), intent(in) :: self
     character(len=160), allocatable, intent(out) :: lines(:)
-    integer :: e, n, nd
+    character(len=160) :: head(3), rows(self%n_elements)
+    integer :: e, nd
     character(len=160) :: l
-    n = 3 + self%n_elements + 1 + (self%n_global + 3)/4
-    allocate(lines(n))
-    write(lines(1), '(a,i0,a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements of ', &
+    write(head(1), '(a,i0,a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements of ', &
       self%element_dofs, ' DOFs, ', self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
     nd = self%node_dofs
     select case (nd)
     case (6)
-      lines(2) = '  element link :   U1   W1  th1   m1  ux1 uxx1   U2   W2  th2   m2  ux2 uxx2   (global unknown; ' &
-                 //'0 = held at zero)'
+      head(2) = '  element link :   U1   W1  th1   m1  ux1 uxx1   U2   W2  th2   m2  ux2 uxx2   (global unknown; ' &
+                //'0 = held at zero)'
     case (7)
-      lines(2) = '  element link :   U1   W1  th1   m1   a1 psi1 lam1   U2   W2  th2   m2   a2 psi2 lam2   (global ' &
-                 //'unknown; 0 = held at zero)'
+      head(2) = '  element link :   U1   W1  th1   m1   a1 psi1 lam1   U2   W2  th2   m2   a2 psi2 lam2   (global ' &
+                //'unknown; 0 = held at zero)'
     case default
-      lines(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
+      head(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
     end select
-    lines(3) = '  ----------------------------------------------------------------------'
+    head(3) = '  ----------------------------------------------------------------------'
     do e = 1, self%n_elements
       write(l, '(2x,i7,i5,a,14i5)') e, self%link_of_element(e), ' :', self%map(:, e)
       if (self%sleeve_s(e) > 0 .and. self%sleeve_u(e) > 0) then
@@ -677,9 +709,8 @@ contains
                any(self%map(nd + 1:nd + 2, e) > 0 .and. self%map(nd + 1:nd + 2, e) == self%map([nd + 2, nd + 1], e))) then
         l = trim(l)//'  (slider: U, W = s * guide direction)'
       end if
-      lines(3 + e) = l
+      rows(e) = l
     end do
-    lines(4 + self%n_elements) = '  global unknowns:'
-    call self%list_unknowns(18, lines(5 + self%n_elements:))
+    call self%table_lines(head, rows, 18, lines)
   end subroutine describe
 end module correlation_table

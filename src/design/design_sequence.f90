@@ -105,6 +105,9 @@ module design_sequence
   contains
     procedure :: solve => sequence_solve
     procedure, private :: next_design
+    procedure, private :: record
+    procedure, private :: start_history
+    procedure, private :: propose
   end type design_sequence_t
 
 contains
@@ -171,20 +174,15 @@ contains
     logical :: ok, accepted
     integer :: stalls, nf_before
     logical :: structured, have_old
-    real(dp), allocatable :: smat(:, :), bmat(:, :), lmat(:, :), w(:), grad(:), x_old(:), dr_old(:, :)
+    real(dp), allocatable :: smat(:, :), lmat(:, :), w(:), grad(:), x_old(:), dr_old(:, :)
     type(progress_t) :: bar
     character(len=:), allocatable :: events
     n = size(x0)
     nc = prob%n_analysis_constraints()
-    self%x = x0
-    self%converged = .false.
-    self%n_steps = 0
-    self%rejections = 0
-    allocate(self%steps(0))
+    call self%start_history(x0)
     delta = 1.0_dp/self%move_limit           ! rho of the proximal term
     stalls = 0
     events = ''
-    self%fd_analyses = 0
     structured = self%hessian == 'structured' .and. prob%has_residuals() .and. .not. prob%is_minimax()
     have_old = .false.
     allocate(smat(n, n), x_old(n), dr_old(n, 0), grad(n))
@@ -201,7 +199,7 @@ contains
     end if
     mass = scaled_mass(prob, self%x)
     viol = max(0.0_dp, maxval([0.0_dp, g]))
-    call record(0, 'initial design')
+    call self%record(prob, 0, 'initial design', mass, viol, delta, g)
     call bar%start('design iterations', 0.0_dp, real(self%max_iterations, dp), counts=.true.)
     do k = 1, self%max_iterations
       self%iterations = k
@@ -212,9 +210,7 @@ contains
       self%fd_analyses = self%fd_analyses + prob%n_analyses - nf_before
       if (ok .and. structured) then
         if (have_old) call secant_update(smat, self%x - x_old, dr_old, dr, r, prob%f0)
-        grad = 2.0_dp*matmul(dr, r)/prob%f0
-        bmat = 2.0_dp*matmul(dr, transpose(dr))/prob%f0 + smat
-        call quadratic_model(bmat, grad, lmat, w)
+        call structured_model(prob%f0, smat, dr, r, grad, lmat, w)
       end if
       if (.not. ok) then
         call err%set('design', 'iteration '//str(k)//': a finite-difference neighbour of the design cannot be '// &
@@ -252,7 +248,7 @@ contains
       r = r_try
       viol = viol_try
       mass = mass_try
-      call record(k, events)
+      call self%record(prob, k, events, mass, viol, delta, g)
       if (stalls >= 2) then
         self%converged = .true.
         self%message = 'feasible, and the objective changed by less than xtol/10 twice in a row'
@@ -261,25 +257,55 @@ contains
     end do
     call bar%finish()
     if (.not. allocated(self%message)) self%message = 'iteration limit reached'
-  contains
-    subroutine record(kk, text)
-      integer, intent(in) :: kk
-      character(len=*), intent(in) :: text
-      type(design_step_t) :: st
-      st%k = kk
-      st%analyses = prob%n_analyses
-      st%cpu = prob%cpu_analyses
-      call describe(prob, self%x, st)
-      st%objective = mass
-      st%max_violation = viol
-      st%move_limit = 1.0_dp/delta
-      st%x = self%x
-      st%g = g
-      st%events = trim(text)
-      self%steps = [self%steps, st]
-      self%n_steps = self%n_steps + 1
-    end subroutine record
   end subroutine sequence_solve
+
+  !> No history yet, the design at x0.
+  subroutine start_history(self, x0)
+    class(design_sequence_t), intent(inout) :: self
+    real(dp), intent(in) :: x0(:)
+    self%x = x0
+    self%converged = .false.
+    self%n_steps = 0
+    self%rejections = 0
+    allocate(self%steps(0))
+    self%fd_analyses = 0
+  end subroutine start_history
+
+  !> A row of the history: design kk (self%x, its objective, violation and
+  !> constraints g), the move limit 1/delta of its next approximate problem.
+  subroutine record(self, prob, kk, text, mass, viol, delta, g)
+    class(design_sequence_t), intent(inout) :: self
+    type(design_problem_t), intent(inout) :: prob
+    integer, intent(in) :: kk
+    character(len=*), intent(in) :: text
+    real(dp), intent(in) :: mass, viol, delta, g(:)
+    type(design_step_t) :: st
+    st%k = kk
+    st%analyses = prob%n_analyses
+    st%cpu = prob%cpu_analyses
+    call describe(prob, self%x, st)
+    st%objective = mass
+    st%max_violation = viol
+    st%move_limit = 1.0_dp/delta
+    st%x = self%x
+    st%g = g
+    st%events = trim(text)
+    self%steps = [self%steps, st]
+    self%n_steps = self%n_steps + 1
+  end subroutine record
+
+  !> The structured model of a residual objective at x_k: grad F = 2 J r / F0
+  !> and B = 2 J J^T / F0 + S (S the secant estimate of the residuals'
+  !> second-order term) as the linear residuals lmat, w (quadratic_model).
+  subroutine structured_model(f0, smat, dr, r, grad, lmat, w)
+    real(dp), intent(in) :: f0, smat(:, :), dr(:, :), r(:)
+    real(dp), intent(inout) :: grad(:)
+    real(dp), allocatable, intent(inout) :: lmat(:, :), w(:)
+    real(dp), allocatable :: bmat(:, :)
+    grad = 2.0_dp*matmul(dr, r)/f0
+    bmat = 2.0_dp*matmul(dr, transpose(dr))/f0 + smat
+    call quadratic_model(bmat, grad, lmat, w)
+  end subroutine structured_model
 
   !> One design iteration's proposal: the approximate problem at x_k (rho =
   !> delta) solved and its solution analysed, until a proposal is accepted
@@ -313,29 +339,7 @@ contains
       if (retry) then
         retry = .false.      ! x_try set by the step back below
       else
-        if (prob%is_minimax()) then
-          call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
-        else if (structured) then
-          call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
-        else
-          call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
-        end if
-        ! mass: rho |step| is the size of the gradient of the Lagrangian of
-        ! the linearised problem at x_k (the proximal term has no gradient
-        ! there): small, and x_k feasible, is the KKT test; no analysis is
-        ! spent on it.  Path objectives: the Gauss matrix 2 J^T J / F0
-        ! outweighs rho near the answer, so rho |step| underestimates the
-        ! gradient; the test is the step itself (Gauss-Newton steps shrink
-        ! with the distance to a zero-residual answer)
-        if (prob%has_residuals()) then
-          small_step = maxval(abs(x_try - self%x)) <= self%xtol
-        else
-          small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
-        end if
-        ! structured: the model (exact curvature estimate, fresh derivatives)
-        ! promises less than xtol/10 of F, the move limit not binding
-        if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
-          small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
+        call self%propose(prob, structured, g, g_lin, dg, r, dr, lmat, w, grad, mass, delta, x_try, events, small_step)
         if (small_step .and. viol <= self%feas_tol .and. .not. shifted) then
           self%converged = .true.
           exit
@@ -394,6 +398,42 @@ contains
                                                       lmat, w, 0.25_dp*step_len, delta))
     end do
   end subroutine next_design
+
+  !> The solution x_try of the approximate problem at x_k (rho = delta;
+  !> g_lin: the constraint values it linearises) and small_step, its part
+  !> of the convergence test: no analysis is spent on either.
+  subroutine propose(self, prob, structured, g, g_lin, dg, r, dr, lmat, w, grad, mass, delta, x_try, events, small_step)
+    class(design_sequence_t), intent(in) :: self
+    type(design_problem_t), target, intent(inout) :: prob
+    logical, intent(in) :: structured
+    real(dp), intent(in) :: g(:), g_lin(:), dg(:, :), r(:), dr(:, :), grad(:), mass, delta
+    real(dp), allocatable, intent(in) :: lmat(:, :), w(:)     !< the structured model (allocated if structured)
+    real(dp), allocatable, intent(inout) :: x_try(:)
+    character(len=:), allocatable, intent(inout) :: events
+    logical, intent(out) :: small_step
+    if (prob%is_minimax()) then
+      call minimax_step(prob, self%x, g, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+    else if (structured) then
+      call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events, lmat, w)
+    else
+      call approximate_step(prob, self%x, g_lin, dg, r, dr, delta, 0.5_dp*self%feas_tol, x_try, events)
+    end if
+    ! mass: rho |step| is the size of the gradient of the Lagrangian of
+    ! the linearised problem at x_k (the proximal term has no gradient
+    ! there): small, and x_k feasible, is the KKT test.  Path objectives:
+    ! the Gauss matrix 2 J^T J / F0 outweighs rho near the answer, so
+    ! rho |step| underestimates the gradient; the test is the step itself
+    ! (Gauss-Newton steps shrink with the distance to a zero-residual answer)
+    if (prob%has_residuals()) then
+      small_step = maxval(abs(x_try - self%x)) <= self%xtol
+    else
+      small_step = delta*self%move_limit*maxval(abs(x_try - self%x)) <= self%xtol
+    end if
+    ! structured: the model (exact curvature estimate, fresh derivatives)
+    ! promises less than xtol/10 of F, the move limit not binding
+    if (structured .and. .not. small_step .and. delta <= 1.0_dp/self%move_limit) &
+      small_step = model_decrease(grad, lmat, x_try - self%x) <= 0.1_dp*self%xtol*mass
+  end subroutine propose
 
   !> The message of a converged run (the test that passed).
   function converged_message(structured, residuals) result(text)

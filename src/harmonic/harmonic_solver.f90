@@ -70,6 +70,19 @@ module harmonic_solver
     logical :: beyond_peak = .false.
   end type harmonic_report_t
 
+  !> One revolution's samples (T28) and the coefficients (T27) of the
+  !> forcing (of F - C Q_d when C Q_d is kept): what the series (T26) at
+  !> every time reads.
+  type :: revolution_samples_t
+    integer :: nh = 0                          !< N harmonics
+    integer :: ns = 0                          !< 2N samples
+    integer :: keep = 0                        !< N' harmonics kept in (T26)
+    real(dp) :: period = 0.0_dp
+    real(dp), allocatable :: f(:, :)           !< (n, 0:ns-1) F(t_k)
+    real(dp), allocatable :: a(:, :), b(:, :)  !< (n, 0:nh) the coefficients
+    real(dp), allocatable :: m(:, :, :), k(:, :, :), c(:, :, :)   !< (n, n, 0:ns-1) M, K, C(t_k) where kept
+  end type revolution_samples_t
+
 contains
 
   !> The square collocation (T27) on 2N samples: f(:, k) = F(t_k) ->
@@ -98,7 +111,9 @@ contains
     a(:, nh) = a(:, nh)/ns
   end subroutine fourier_coefficients
 
-  !> Steady state Q(t) at the given times.
+  !> Steady state Q(t) at the given times: the revolution's samples and
+  !> the forcing's coefficients (T27, T28; with C Q_d kept, the iteration on
+  !> the samples), then the series (T26) and the outer iteration at each time.
   subroutine harmonic_solve(sys, s, times, q, rep, err)
     class(periodic_system_t), intent(inout) :: sys
     type(harmonic_settings_t), intent(in) :: s
@@ -106,167 +121,205 @@ contains
     real(dp), intent(out) :: q(:, :)
     type(harmonic_report_t), intent(out) :: rep
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: fsamp(:, :), a(:, :), b(:, :), msamp(:, :, :), csamp(:, :, :), ksamp(:, :, :)
-    real(dp), allocatable :: m(:, :), c(:, :), k(:, :), kn(:, :), f(:), qold(:), qnew(:), fn(:)
-    real(dp) :: period, t, ch, scale
-    integer :: n, nh, ns, keep, j, kk, it
-    logical :: nonlinear
-    type(nonlinear_info_t) :: info
+    type(revolution_samples_t) :: smp
+    integer :: j
 
-    n = sys%n
-    nh = s%n_harmonics
-    ns = 2*nh
-    keep = s%n_kept
-    if (keep <= 0 .or. keep > nh) keep = nh
-    rep%n_samples = ns
-    rep%n_kept = keep
-    if (nh < 1) then
+    smp%nh = s%n_harmonics
+    smp%ns = 2*smp%nh
+    smp%keep = s%n_kept
+    if (smp%keep <= 0 .or. smp%keep > smp%nh) smp%keep = smp%nh
+    rep%n_samples = smp%ns
+    rep%n_kept = smp%keep
+    if (smp%nh < 1) then
       call err%set('harmonic series', 'needs at least one harmonic'); return
     end if
-    if (size(q, 1) /= n .or. size(q, 2) /= size(times)) then
+    if (size(q, 1) /= sys%n .or. size(q, 2) /= size(times)) then
       call err%set('harmonic series', 'result array has the wrong shape'); return
     end if
-    period = sys%period()
-    nonlinear = sys%is_nonlinear()
-    allocate(fsamp(n, 0:ns - 1), a(n, 0:nh), b(n, 0:nh), m(n, n), c(n, n), k(n, n), kn(n, n), f(n), &
-             qold(n), qnew(n), fn(n))
-
-    ! (T27), (T28): forcing at 2N equally spaced times of one revolution;
-    ! M and K of the samples are kept for small systems (output times often
-    ! are sample times) and whenever C Q_d is kept
-    if (s%velocity_terms .or. n*n*ns <= cache_limit) allocate(msamp(n, n, 0:ns - 1), ksamp(n, n, 0:ns - 1))
-    if (s%velocity_terms) allocate(csamp(n, n, 0:ns - 1))
-    do kk = 0, ns - 1
-      t = kk*period/ns
-      call sys%set_time(t, err)
-      if (err%failed()) return
-      call sys%linear_terms(m, c, k, f, s%velocity_terms)
-      fsamp(:, kk) = f
-      if (allocated(msamp)) then
-        msamp(:, :, kk) = m
-        ksamp(:, :, kk) = k
-      end if
-      if (s%velocity_terms) csamp(:, :, kk) = c
-    end do
-    call fourier_coefficients(fsamp, nh, a, b)
+    smp%period = sys%period()
+    call sample_revolution(sys, s, smp, err)
+    if (err%failed()) return
     if (s%velocity_terms) then
-      call velocity_phase()
+      call velocity_phase(sys, s, smp, rep, err)
       if (err%failed()) return
     end if
-
-    ! (T26) at every requested time: linear pass, then the outer iteration
     rep%change = 0.0_dp
     do j = 1, size(times)
-      t = times(j)
-      call sys%set_time(t, err)
+      call steady_at(sys, s, smp, times(j), q(:, j), rep, err)
       if (err%failed()) return
-      kk = sample_index(t)
-      if (kk >= 0 .and. allocated(msamp)) then
-        m = msamp(:, :, kk)
-        k = ksamp(:, :, kk)
-      else
-        call sys%linear_terms(m, c, k, f, s%velocity_terms)
-      end if
-      call series(t, k, m, qold, .true.)
-      if (err%failed()) return
-      q(:, j) = qold
-      if (.not. nonlinear) cycle
-      scale = maxval(abs(qold))
-      do it = 1, s%max_outer
-        call sys%nonlinear_terms(qold, fn, info, secant=kn)
-        call series(t, k + kn, m, qnew, .false.)
-        if (err%failed()) return
-        scale = max(scale, maxval(abs(qnew)))
-        ch = 0.0_dp
-        if (scale > 0.0_dp) ch = maxval(abs(qnew - qold))/scale
-        rep%change(it) = max(rep%change(it), ch)
-        qold = qnew
-        if (ch <= s%outer_tol) exit
-      end do
-      if (it > s%max_outer) then
-        rep%converged = .false.
-        it = s%max_outer
-      end if
-      rep%outer_iterations = max(rep%outer_iterations, it)
-      q(:, j) = qold
-      call note_strain(info, t)
     end do
-
-  contains
-
-    !> The sample k with t_k = tt (to round-off) or -1.
-    integer function sample_index(tt) result(ks)
-      real(dp), intent(in) :: tt
-      integer :: i
-      ks = -1
-      do i = 0, ns - 1
-        if (abs(tt - i*period/ns) <= 1.0e-12_dp*period) then
-          ks = i
-          return
-        end if
-      end do
-    end function sample_index
-
-    !> (T26) with the matrices of time tt.
-    subroutine series(tt, kmat, mmat, qq, with_rcond)
-      real(dp), intent(in) :: tt, kmat(:, :), mmat(:, :)
-      real(dp), intent(out) :: qq(:)
-      logical, intent(in) :: with_rcond
-      call harmonic_sum(tt, sys%omega, keep, kmat, mmat, a, b, qq, rep, s%resonance_ratio, with_rcond, err)
-    end subroutine series
-
-    subroutine note_strain(inf, tt)
-      type(nonlinear_info_t), intent(in) :: inf
-      real(dp), intent(in) :: tt
-      if (inf%max_abs_strain > rep%max_abs_strain) then
-        rep%max_abs_strain = inf%max_abs_strain
-        rep%strain_time = tt
-        rep%strain_element = inf%element
-      end if
-      rep%beyond_peak = rep%beyond_peak .or. inf%beyond_peak
-    end subroutine note_strain
-
-    !> C Q_d kept: iterate on the samples, F_eff = F - C Q_d, Q_d from the
-    !> trigonometric interpolant of Q at the samples; then (a, b) describe F_eff.
-    subroutine velocity_phase()
-      real(dp), allocatable :: qs(:, :), qsn(:, :), qd(:, :), feff(:, :), aq(:, :), bq(:, :)
-      real(dp) :: chv, sc
-      integer :: itv, kq, nn
-      allocate(qs(n, 0:ns - 1), qsn(n, 0:ns - 1), qd(n, 0:ns - 1), feff(n, 0:ns - 1), aq(n, 0:nh), bq(n, 0:nh))
-      qs = 0.0_dp
-      do itv = 1, s%max_outer
-        ! spectral derivative of the samples (the Nyquist term has zero slope there)
-        call fourier_coefficients(qs, nh, aq, bq)
-        qd = 0.0_dp
-        do kq = 0, ns - 1
-          do nn = 1, nh - 1
-            qd(:, kq) = qd(:, kq) + (nn*sys%omega)*(-aq(:, nn)*sin(two_pi*nn*kq/real(ns, dp)) + &
-                                                    bq(:, nn)*cos(two_pi*nn*kq/real(ns, dp)))
-          end do
-          feff(:, kq) = fsamp(:, kq) - matmul(csamp(:, :, kq), qd(:, kq))
-        end do
-        call fourier_coefficients(feff, nh, a, b)
-        do kq = 0, ns - 1
-          kn = 0.0_dp
-          if (nonlinear .and. itv > 1) then
-            call sys%set_time(kq*period/ns, err)
-            if (err%failed()) return
-            call sys%nonlinear_terms(qs(:, kq), fn, info, secant=kn)
-          end if
-          call series(kq*period/ns, ksamp(:, :, kq) + kn, msamp(:, :, kq), qsn(:, kq), itv == 1)
-          if (err%failed()) return
-        end do
-        sc = maxval(abs(qsn))
-        chv = 0.0_dp
-        if (sc > 0.0_dp) chv = maxval(abs(qsn - qs))/sc
-        rep%velocity_change(itv) = chv
-        qs = qsn
-        if (chv <= s%outer_tol .and. itv > 1) exit
-      end do
-      rep%velocity_iterations = min(itv, s%max_outer)
-      if (itv > s%max_outer) rep%converged = .false.
-    end subroutine velocity_phase
   end subroutine harmonic_solve
+
+  !> (T27), (T28): forcing at 2N equally spaced times of one revolution and
+  !> its coefficients; M and K of the samples are kept for small systems
+  !> (output times often are sample times) and whenever C Q_d is kept.
+  subroutine sample_revolution(sys, s, smp, err)
+    class(periodic_system_t), intent(inout) :: sys
+    type(harmonic_settings_t), intent(in) :: s
+    type(revolution_samples_t), intent(inout) :: smp
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: m(:, :), c(:, :), k(:, :), f(:)
+    integer :: n, ns, kk
+    n = sys%n
+    ns = smp%ns
+    allocate(smp%f(n, 0:ns - 1), smp%a(n, 0:smp%nh), smp%b(n, 0:smp%nh), m(n, n), c(n, n), k(n, n), f(n))
+    if (s%velocity_terms .or. n*n*ns <= cache_limit) allocate(smp%m(n, n, 0:ns - 1), smp%k(n, n, 0:ns - 1))
+    if (s%velocity_terms) allocate(smp%c(n, n, 0:ns - 1))
+    do kk = 0, ns - 1
+      call sys%set_time(kk*smp%period/ns, err)
+      if (err%failed()) return
+      call sys%linear_terms(m, c, k, f, s%velocity_terms)
+      smp%f(:, kk) = f
+      if (allocated(smp%m)) then
+        smp%m(:, :, kk) = m
+        smp%k(:, :, kk) = k
+      end if
+      if (s%velocity_terms) smp%c(:, :, kk) = c
+    end do
+    call fourier_coefficients(smp%f, smp%nh, smp%a, smp%b)
+  end subroutine sample_revolution
+
+  !> (T26) at time t: the linear pass, then the outer iteration on K_n
+  !> (T §3.8) until the change of Q is below outer_tol; qt = Q(t).
+  subroutine steady_at(sys, s, smp, t, qt, rep, err)
+    class(periodic_system_t), intent(inout) :: sys
+    type(harmonic_settings_t), intent(in) :: s
+    type(revolution_samples_t), intent(in) :: smp
+    real(dp), intent(in) :: t
+    real(dp), intent(out) :: qt(:)
+    type(harmonic_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: m(:, :), c(:, :), k(:, :), kn(:, :), f(:), qold(:), qnew(:), fn(:)
+    real(dp) :: ch, scale
+    integer :: n, kk, it
+    type(nonlinear_info_t) :: info
+    n = sys%n
+    allocate(m(n, n), c(n, n), k(n, n), kn(n, n), f(n), qold(n), qnew(n), fn(n))
+    call sys%set_time(t, err)
+    if (err%failed()) return
+    kk = sample_index(smp, t)
+    if (kk >= 0 .and. allocated(smp%m)) then
+      m = smp%m(:, :, kk)
+      k = smp%k(:, :, kk)
+    else
+      call sys%linear_terms(m, c, k, f, s%velocity_terms)
+    end if
+    call series(sys, s, smp, t, k, m, qold, .true., rep, err)
+    if (err%failed()) return
+    qt = qold
+    if (.not. sys%is_nonlinear()) return
+    scale = maxval(abs(qold))
+    do it = 1, s%max_outer
+      call sys%nonlinear_terms(qold, fn, info, secant=kn)
+      call series(sys, s, smp, t, k + kn, m, qnew, .false., rep, err)
+      if (err%failed()) return
+      scale = max(scale, maxval(abs(qnew)))
+      ch = 0.0_dp
+      if (scale > 0.0_dp) ch = maxval(abs(qnew - qold))/scale
+      rep%change(it) = max(rep%change(it), ch)
+      qold = qnew
+      if (ch <= s%outer_tol) exit
+    end do
+    if (it > s%max_outer) then
+      rep%converged = .false.
+      it = s%max_outer
+    end if
+    rep%outer_iterations = max(rep%outer_iterations, it)
+    qt = qold
+    call note_strain(rep, info, t)
+  end subroutine steady_at
+
+  !> The sample k with t_k = tt (to round-off) or -1.
+  integer function sample_index(smp, tt) result(ks)
+    type(revolution_samples_t), intent(in) :: smp
+    real(dp), intent(in) :: tt
+    integer :: i
+    ks = -1
+    do i = 0, smp%ns - 1
+      if (abs(tt - i*smp%period/smp%ns) <= 1.0e-12_dp*smp%period) then
+        ks = i
+        return
+      end if
+    end do
+  end function sample_index
+
+  !> (T26) with the matrices of time tt.
+  subroutine series(sys, s, smp, tt, kmat, mmat, qq, with_rcond, rep, err)
+    class(periodic_system_t), intent(in) :: sys
+    type(harmonic_settings_t), intent(in) :: s
+    type(revolution_samples_t), intent(in) :: smp
+    real(dp), intent(in) :: tt, kmat(:, :), mmat(:, :)
+    real(dp), intent(out) :: qq(:)
+    logical, intent(in) :: with_rcond
+    type(harmonic_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    call harmonic_sum(tt, sys%omega, smp%keep, kmat, mmat, smp%a, smp%b, qq, rep, s%resonance_ratio, with_rcond, err)
+  end subroutine series
+
+  !> The largest strain so far and where, and whether any passed the peak.
+  subroutine note_strain(rep, inf, tt)
+    type(harmonic_report_t), intent(inout) :: rep
+    type(nonlinear_info_t), intent(in) :: inf
+    real(dp), intent(in) :: tt
+    if (inf%max_abs_strain > rep%max_abs_strain) then
+      rep%max_abs_strain = inf%max_abs_strain
+      rep%strain_time = tt
+      rep%strain_element = inf%element
+    end if
+    rep%beyond_peak = rep%beyond_peak .or. inf%beyond_peak
+  end subroutine note_strain
+
+  !> C Q_d kept: iterate on the samples, F_eff = F - C Q_d, Q_d from the
+  !> trigonometric interpolant of Q at the samples; then (a, b) describe F_eff.
+  subroutine velocity_phase(sys, s, smp, rep, err)
+    class(periodic_system_t), intent(inout) :: sys
+    type(harmonic_settings_t), intent(in) :: s
+    type(revolution_samples_t), intent(inout) :: smp
+    type(harmonic_report_t), intent(inout) :: rep
+    type(error_t), intent(inout) :: err
+    real(dp), allocatable :: qs(:, :), qsn(:, :), qd(:, :), feff(:, :), aq(:, :), bq(:, :), kn(:, :), fn(:)
+    real(dp) :: chv, sc
+    integer :: itv, kq, nn, n, nh, ns
+    type(nonlinear_info_t) :: info
+    n = sys%n
+    nh = smp%nh
+    ns = smp%ns
+    allocate(qs(n, 0:ns - 1), qsn(n, 0:ns - 1), qd(n, 0:ns - 1), feff(n, 0:ns - 1), aq(n, 0:nh), bq(n, 0:nh), &
+             kn(n, n), fn(n))
+    qs = 0.0_dp
+    do itv = 1, s%max_outer
+      ! spectral derivative of the samples (the Nyquist term has zero slope there)
+      call fourier_coefficients(qs, nh, aq, bq)
+      qd = 0.0_dp
+      do kq = 0, ns - 1
+        do nn = 1, nh - 1
+          qd(:, kq) = qd(:, kq) + (nn*sys%omega)*(-aq(:, nn)*sin(two_pi*nn*kq/real(ns, dp)) + &
+                                                  bq(:, nn)*cos(two_pi*nn*kq/real(ns, dp)))
+        end do
+        feff(:, kq) = smp%f(:, kq) - matmul(smp%c(:, :, kq), qd(:, kq))
+      end do
+      call fourier_coefficients(feff, nh, smp%a, smp%b)
+      do kq = 0, ns - 1
+        kn = 0.0_dp
+        if (sys%is_nonlinear() .and. itv > 1) then
+          call sys%set_time(kq*smp%period/ns, err)
+          if (err%failed()) return
+          call sys%nonlinear_terms(qs(:, kq), fn, info, secant=kn)
+        end if
+        call series(sys, s, smp, kq*smp%period/ns, smp%k(:, :, kq) + kn, smp%m(:, :, kq), qsn(:, kq), itv == 1, &
+                    rep, err)
+        if (err%failed()) return
+      end do
+      sc = maxval(abs(qsn))
+      chv = 0.0_dp
+      if (sc > 0.0_dp) chv = maxval(abs(qsn - qs))/sc
+      rep%velocity_change(itv) = chv
+      qs = qsn
+      if (chv <= s%outer_tol .and. itv > 1) exit
+    end do
+    rep%velocity_iterations = min(itv, s%max_outer)
+    if (itv > s%max_outer) rep%converged = .false.
+  end subroutine velocity_phase
 
   !> Q = sum_{n=0}^{keep} (K - n^2 w^2 M)^-1 (a_n cos n w t + b_n sin n w t),
   !> equilibrated by D = diag(K)^(-1/2); with_rcond: conditioning into rep.

@@ -83,6 +83,16 @@ module multiplier_equations
     real(dp) :: residual = 0.0_dp             !< max |m_i(lambda)|
   end type multiplier_result_t
 
+  !> The work of one `solve`: the residual m(lambda) of the last iterate and
+  !> the best point Newton in lambda saw (least H = Sum m_i^2: Powell's start).
+  type :: lambda_search_t
+    real(dp), allocatable :: r(:)
+    real(dp), allocatable :: lam_best(:)
+    real(dp) :: h_best = huge(1.0_dp)
+    real(dp) :: tol = 0.0_dp                !< max |m_i| accepted as a solution
+    integer :: max_newton = 0
+  end type lambda_search_t
+
 contains
 
   !> The system of one iteration and active set.  `prob` is only used for
@@ -262,8 +272,6 @@ contains
   !> at s = 0 (x_k); a root is accepted only if the Jacobian has the inertia
   !> (n_free, l, 0) of a minimiser of the Lagrangian model on the active
   !> constraints (not a saddle or a maximum).  On return self%s is the step.
-  !> Length (about 130 lines, 101 its own): first_order_multipliers and minimiser_inertia are contained
-  !> because they read the host's KKT matrix and active set.
   subroutine kkt_newton(self, lam, tol, max_it, ok, reason, iterations, err)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(inout) :: lam(:)
@@ -273,16 +281,16 @@ contains
     character(len=:), allocatable, intent(out) :: reason
     integer, intent(out) :: iterations
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: mm(:, :), kk(:, :), w(:, :), r1(:), r2(:), d(:), s(:), dsc(:)
-    integer, allocatable :: free(:), piv(:)
+    real(dp), allocatable :: mm(:, :), kk(:, :), w(:, :), r1(:), r2(:), d(:), s(:)
+    integer, allocatable :: free(:)
     integer :: nf, l, nk, it, j
-    real(dp) :: rc, scale
-    type(error_t) :: lerr
+    real(dp) :: scale
+    logical :: singular
     l = self%l
     free = pack([(j, j=1, self%n)], .not. self%fixed)
     nf = size(free)
     nk = nf + l
-    allocate(mm(self%n, self%n), kk(nk, nk), w(self%n, l), r1(self%n), r2(l), d(nk), piv(nk), dsc(nk))
+    allocate(mm(self%n, self%n), kk(nk, nk), w(self%n, l), r1(self%n), r2(l), d(nk))
     s = merge(self%s_fix, 0.0_dp, self%fixed)
     ok = .false.
     reason = ''
@@ -292,21 +300,9 @@ contains
       self%s = s
       call checked_residual(self, r2, 'iterate '//str(it), reason, err)
       if (err%failed() .or. len(reason) > 0) return
-      ! constraint gradients at x_k + s: the model's c + A s, or for Potter's
-      ! actual constraints their own gradient (the stationarity of the
-      ! quadratic F model under the actual constraint; with the model
-      ! gradient the multipliers pass a pole where c + A s vanishes, as for
-      ! exp(x) at s = -1 in HS 34, and Newton converges only linearly)
-      do j = 1, l
-        if (self%actual(j) .and. it > 0) then
-          call self%prob%general_constraint_gradient(self%idx(j), self%xk + s, r2(j), w(:, j), err)
-          self%prob%count%constraint_gradients = self%prob%count%constraint_gradients + 1
-          if (err%failed()) return
-        else
-          w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), s)
-        end if
-      end do
-      if (it == 0) call first_order_multipliers()
+      call constraint_normals(self, s, it > 0, r2, w, err)
+      if (err%failed()) return
+      if (it == 0) call first_order_multipliers(self, w, free, lam)
       mm = self%gmat
       r1 = self%gradf + matmul(self%gmat, s) + matmul(w, lam)
       scale = maxval(abs(self%gradf)) + maxval(abs(matmul(self%gmat, s))) + sum(abs(lam)*maxval(abs(w), dim=1))
@@ -322,7 +318,7 @@ contains
       kk(1:nf, nf + 1:nk) = w(free, :)
       kk(nf + 1:nk, 1:nf) = transpose(w(free, :))
       if (maxval(abs(r2)) <= tol .and. maxval(abs(r1(free)), mask=nf > 0) <= 1.0e-9_dp*max(scale, tiny(1.0_dp))) then
-        ok = minimiser_inertia()
+        ok = minimiser_inertia(kk, nf, l)
         if (.not. ok) reason = 'root is no minimiser of the Lagrangian model (inertia of [M W; W^T 0])'
         return
       end if
@@ -332,22 +328,11 @@ contains
       end if
       d(1:nf) = -r1(free)
       d(nf + 1:nk) = -r2
-      ! symmetric equilibration: the multipliers and the step live on
-      ! different scales, and rcond should judge singularity, not units
-      do j = 1, nk
-        dsc(j) = 1.0_dp/sqrt(max(maxval(abs(kk(j, :))), tiny(1.0_dp)))
-      end do
-      do j = 1, nk
-        kk(:, j) = dsc*kk(:, j)*dsc(j)
-      end do
-      d = dsc*d
-      call lu_factor(kk, piv, lerr, rc)
-      if (lerr%failed() .or. rc < 1.0e-14_dp) then
+      call equilibrated_solve(kk, d, singular)
+      if (singular) then
         reason = 'singular KKT matrix at iterate '//str(it)
         return
       end if
-      call lu_solve(kk, piv, d, lerr)
-      d = dsc*d
       s(free) = s(free) + d(1:nf)
       lam = lam + d(nf + 1:nk)
       if (maxval(abs(lam)) > 1.0e12_dp .or. .not. all(ieee_is_finite(s))) then
@@ -355,38 +340,97 @@ contains
         return
       end if
     end do
-  contains
-    !> The start: least-squares multipliers of grad F + W lambda = 0 on the
-    !> free variables at x_k (the warm start may be a Powell compromise,
-    !> huge and meaningless).  Kept if W_F is rank-deficient.
-    subroutine first_order_multipliers()
-      real(dp), allocatable :: ww(:, :), rhs(:)
-      integer, allocatable :: p(:)
-      real(dp) :: rcw
-      type(error_t) :: werr
-      if (nf == 0) return
-      allocate(ww(l, l), rhs(l), p(l))
-      ww = matmul(transpose(w(free, :)), w(free, :))
-      rhs = -matmul(transpose(w(free, :)), self%gradf(free))
-      call lu_factor(ww, p, werr, rcw)
-      if (werr%failed() .or. rcw < 1.0e-12_dp) return
-      call lu_solve(ww, p, rhs, werr)
-      if (werr%failed()) return
-      lam = rhs
-    end subroutine first_order_multipliers
-
-    logical function minimiser_inertia() result(good)
-      real(dp), allocatable :: ev(:)
-      real(dp) :: big
-      allocate(ev(nk))
-      call lerr%clear()
-      call symmetric_eigenvalues(kk, ev, lerr)
-      good = .not. lerr%failed()
-      if (.not. good) return
-      big = 1.0e-12_dp*maxval(abs(ev))
-      good = count(ev > big) == nf .and. count(ev < -big) == l
-    end function minimiser_inertia
   end subroutine kkt_newton
+
+  !> The active constraints' gradients at x_k + s (kkt_newton's W): the
+  !> model's c + A s, or for Potter's actual constraints past the first
+  !> iterate their own gradient (the stationarity of the quadratic F model
+  !> under the actual constraint; with the model gradient the multipliers
+  !> pass a pole where c + A s vanishes, as for exp(x) at s = -1 in HS 34,
+  !> and Newton converges only linearly); r2 takes their values there.
+  subroutine constraint_normals(self, s, actual_gradients, r2, w, err)
+    class(multiplier_system_t), intent(inout) :: self
+    real(dp), intent(in) :: s(:)
+    logical, intent(in) :: actual_gradients
+    real(dp), intent(inout) :: r2(:)
+    real(dp), intent(inout) :: w(:, :)
+    type(error_t), intent(inout) :: err
+    integer :: j
+    do j = 1, self%l
+      if (self%actual(j) .and. actual_gradients) then
+        call self%prob%general_constraint_gradient(self%idx(j), self%xk + s, r2(j), w(:, j), err)
+        self%prob%count%constraint_gradients = self%prob%count%constraint_gradients + 1
+        if (err%failed()) return
+      else
+        w(:, j) = self%c(:, j) + matmul(self%a(:, :, j), s)
+      end if
+    end do
+  end subroutine constraint_normals
+
+  !> kkt_newton's start: least-squares multipliers of grad F + W lambda = 0
+  !> on the free variables at x_k (the warm start may be a Powell
+  !> compromise, huge and meaningless).  lam is kept if W_F is rank-deficient.
+  subroutine first_order_multipliers(self, w, free, lam)
+    class(multiplier_system_t), intent(in) :: self
+    real(dp), intent(in) :: w(:, :)
+    integer, intent(in) :: free(:)
+    real(dp), intent(inout) :: lam(:)
+    real(dp), allocatable :: ww(:, :), rhs(:)
+    integer, allocatable :: p(:)
+    real(dp) :: rcw
+    type(error_t) :: werr
+    integer :: l
+    if (size(free) == 0) return
+    l = self%l
+    allocate(ww(l, l), rhs(l), p(l))
+    ww = matmul(transpose(w(free, :)), w(free, :))
+    rhs = -matmul(transpose(w(free, :)), self%gradf(free))
+    call lu_factor(ww, p, werr, rcw)
+    if (werr%failed() .or. rcw < 1.0e-12_dp) return
+    call lu_solve(ww, p, rhs, werr)
+    if (werr%failed()) return
+    lam = rhs
+  end subroutine first_order_multipliers
+
+  !> Has the KKT matrix [M_FF W_F; W_F^T 0] the inertia (nf, l, 0) of a
+  !> minimiser of the Lagrangian model on the active constraints?
+  logical function minimiser_inertia(kk, nf, l) result(good)
+    real(dp), intent(in) :: kk(:, :)
+    integer, intent(in) :: nf, l
+    real(dp), allocatable :: ev(:)
+    real(dp) :: big
+    type(error_t) :: lerr
+    allocate(ev(size(kk, 1)))
+    call symmetric_eigenvalues(kk, ev, lerr)
+    good = .not. lerr%failed()
+    if (.not. good) return
+    big = 1.0e-12_dp*maxval(abs(ev))
+    good = count(ev > big) == nf .and. count(ev < -big) == l
+  end function minimiser_inertia
+
+  !> kk d = rhs solved in place (kk overwritten) after symmetric
+  !> equilibration: the multipliers and the step live on different scales,
+  !> and rcond should judge singularity, not units.  singular: rcond < 1e-14.
+  subroutine equilibrated_solve(kk, d, singular)
+    real(dp), intent(inout) :: kk(:, :)
+    real(dp), intent(inout), contiguous :: d(:)
+    logical, intent(out) :: singular
+    real(dp) :: dsc(size(d)), rc
+    integer :: piv(size(d)), j
+    type(error_t) :: lerr
+    do j = 1, size(d)
+      dsc(j) = 1.0_dp/sqrt(max(maxval(abs(kk(j, :))), tiny(1.0_dp)))
+    end do
+    do j = 1, size(d)
+      kk(:, j) = dsc*kk(:, j)*dsc(j)
+    end do
+    d = dsc*d
+    call lu_factor(kk, piv, lerr, rc)
+    singular = lerr%failed() .or. rc < 1.0e-14_dp
+    if (singular) return
+    call lu_solve(kk, piv, d, lerr)
+    d = dsc*d
+  end subroutine equilibrated_solve
 
   !> Is G + Sum lambda_j A_j positive definite (Cholesky succeeds)?
   logical function model_positive_definite(self, lambda) result(pd)
@@ -446,8 +490,6 @@ contains
   !> from Powell's point.  On return the step of the returned lambda is in
   !> self%s.  err is set only if no lambda gives a step at all or an actual
   !> constraint cannot be evaluated.
-  !> Length (about 180 lines, 106 its own): the contained newton shares the host's work arrays; the own
-  !> body is the Newton -> Powell -> polish sequence in order, one decision after another.
   subroutine solve(self, lambda, tol, max_newton, res, err)
     class(multiplier_system_t), intent(inout) :: self
     real(dp), intent(inout) :: lambda(:)
@@ -455,90 +497,26 @@ contains
     integer, intent(in) :: max_newton
     type(multiplier_result_t), intent(out) :: res
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: lam_best(:), lam_newton(:), r(:)
-    real(dp) :: h_best
-    type(powell_options_t) :: popts
-    type(powell_result_t) :: pres
+    type(lambda_search_t) :: work
     logical :: ok, kkt_done
-    character(len=:), allocatable :: why, why2
-    integer :: its
+    character(len=:), allocatable :: why
 
-    allocate(r(self%l))
+    allocate(work%r(self%l))
+    work%lam_best = lambda
+    work%tol = tol
+    work%max_newton = max_newton
     res%newton_failure = ''
-    lam_best = lambda
-    h_best = huge(1.0_dp)
-    lam_newton = lambda
-    call newton(lam_newton, ok, why, its, err)
+    call newton_starts(self, work, lambda, ok, why, res, err)
     if (err%failed()) return
-    res%newton_iterations = its
-    if (.not. ok .and. maxval(abs(lambda)) > 0.0_dp) then
-      ! a second Newton start from lambda = 0 (the unconstrained step)
-      lam_newton = 0.0_dp
-      call newton(lam_newton, ok, why2, its, err)
-      if (err%failed()) return
-      res%newton_iterations = res%newton_iterations + its
-      if (.not. ok) why = why//'; from lambda = 0: '//why2
-    end if
     kkt_done = .false.
-    if (ok) then
-      lambda = lam_newton
-      res%how = 'newton'
-    else if (.true.) then
-      ! B10 and B11 together: where the elimination of s is degenerate (M or
-      ! the Newton matrix singular), the (s, lambda) system needs M
-      ! nonsingular only on the tangent space.  Not where Newton diverged
-      ! or stalled: there B11 has no root near and Powell's compromise is
-      ! the papers' remedy (with it HS 15 reaches x*; the (s, lambda) root,
-      ! a vertex with a negative multiplier, led to its other local minimum)
-      lam_newton = lambda
-      call self%kkt_newton(lam_newton, tol, max_newton, kkt_done, why2, its, err)
+    if (.not. ok) then
+      call tangent_space_newton(self, work, lambda, why, kkt_done, res, err)
       if (err%failed()) return
-      res%newton_iterations = res%newton_iterations + its
-      ! a negative multiplier of a violated inequality would make the drop
-      ! rule abandon its restoration on the strength of a root that Newton in
-      ! lambda (with its positive-definiteness safeguard) did not reach:
-      ! such a root is left to Powell's compromise (HS 15: the root is the
-      ! vertex (-1, -1) with lambda_2 = -201; dropping g2 there led to HS 15's
-      ! other local minimum)
-      if (kkt_done) kkt_done = .not. any(self%nonneg .and. self%gval > 100.0_dp*tol .and. lam_newton < 0.0_dp)
-      if (kkt_done) then
-        lambda = lam_newton
-        res%how = 'kkt'
-        res%newton_failure = why
-      else
-        if (len(why2) == 0) why2 = 'negative multiplier of a violated inequality'
-        why = why//'; (s, lambda) Newton: '//why2
-      end if
     end if
     if (.not. (ok .or. kkt_done)) then
       res%newton_failure = why
-      ! Powell on H from the best point Newton saw (Boston et al. after B11)
-      popts%ftol = 1.0e-15_dp
-      popts%f_target = (0.01_dp*tol)**2
-      popts%initial_step = 0.1_dp*max(1.0_dp, maxval(abs(lam_best)))
-      popts%max_iter = 100*max(1, self%l)
-      lambda = self%project(lam_best)
-      self%in_powell = .true.
-      call powell_minimize(self, lambda, popts, pres)
-      self%in_powell = .false.
-      lambda = self%project(lambda)
-      res%powell_evaluations = pres%evaluations
-      if (associated(self%prob)) self%prob%count%powell_h_evals = self%prob%count%powell_h_evals + pres%evaluations
-      if (self%eval_err%failed()) then
-        err = self%eval_err
-        call err%add_context('multiplier equations (Powell)')
-        return
-      end if
-      res%how = 'powell'
-      ! polish: Newton converges quadratically once Powell is near a root
-      lam_newton = lambda
-      call newton(lam_newton, ok, why, its, err)
+      call powell_compromise(self, work, lambda, res, err)
       if (err%failed()) return
-      res%newton_iterations = res%newton_iterations + its
-      if (ok) then
-        lambda = lam_newton
-        res%how = 'powell+newton'
-      end if
     end if
     ok = .true.
     if (.not. kkt_done) call self%evaluate_step(lambda, ok)
@@ -547,82 +525,207 @@ contains
                    //str(self%m_rcond, 3)//'); the active set cannot define a step')
       return
     end if
-    call self%residual(r, err)
+    call self%residual(work%r, err)
     if (err%failed()) return
-    res%residual = maxval(abs(r))
+    res%residual = maxval(abs(work%r))
     res%solved = res%residual <= tol
-
-  contains
-    subroutine newton(lam, converged, reason, iterations, nerr)
-      real(dp), intent(inout) :: lam(:)
-      logical, intent(out) :: converged
-      character(len=:), allocatable, intent(out) :: reason
-      integer, intent(out) :: iterations
-      type(error_t), intent(inout) :: nerr
-      real(dp), allocatable :: jm(:, :), d(:)
-      integer, allocatable :: piv(:)
-      real(dp) :: rc, h
-      type(error_t) :: lerr
-      logical :: okstep, ok_matrix
-      integer :: it, halvings
-      allocate(jm(self%l, self%l), d(self%l), piv(self%l))
-      converged = .false.
-      reason = ''
-      iterations = 0
-      do it = 0, max_newton
-        iterations = it
-        call self%evaluate_step(lam, okstep)
-        if (.not. okstep) then
-          reason = 'G + Sum lambda_j A_j singular at Newton iterate '//str(it)
-          return
-        end if
-        call checked_residual(self, r, 'Newton iterate '//str(it), reason, nerr)
-        if (nerr%failed() .or. len(reason) > 0) return
-        h = sum(r**2)
-        if (h < h_best) then
-          h_best = h
-          lam_best = lam
-        end if
-        if (maxval(abs(r)) <= tol) then
-          converged = .true.
-          return
-        end if
-        if (it == max_newton) then
-          reason = 'no convergence in '//str(max_newton)//' Newton iterations (max |g| = ' &
-                   //str(maxval(abs(r)), 3)//')'
-          return
-        end if
-        call self%newton_matrix(jm, ok_matrix)
-        if (.not. ok_matrix) then
-          reason = 'the Newton matrix for the multipliers overflows (G + Sum lambda A nearly singular)'
-          return
-        end if
-        call lu_factor(jm, piv, lerr, rc)
-        if (lerr%failed() .or. rc < 1.0e-14_dp) then
-          reason = 'singular Newton matrix for the multipliers (active constraints dependent, ' &
-                   //'or more active constraints than the step can satisfy)'
-          return
-        end if
-        d = -r
-        call lu_solve(jm, piv, d, lerr)
-        ! our safeguard (the papers are silent): while G + Sum lambda A is
-        ! positive definite, halve steps that would leave that region, so B10
-        ! stays the minimiser of the quadratic Lagrangian model and Newton
-        ! does not jump to a root that maximises it
-        if (self%model_positive_definite(lam)) then
-          do halvings = 1, 30
-            if (self%model_positive_definite(lam + d)) exit
-            d = 0.5_dp*d
-          end do
-        end if
-        lam = lam + d
-        if (maxval(abs(lam)) > 1.0e12_dp) then
-          reason = 'Newton iterates for the multipliers diverge (|lambda| > 1e12)'
-          return
-        end if
-      end do
-    end subroutine newton
   end subroutine solve
+
+  !> Newton in lambda (B11) from the given lambda and, if that fails, from
+  !> lambda = 0 (the unconstrained step); ok: lambda is the root.  why: the
+  !> failures.
+  subroutine newton_starts(self, work, lambda, ok, why, res, err)
+    class(multiplier_system_t), intent(inout) :: self
+    type(lambda_search_t), intent(inout) :: work
+    real(dp), intent(inout) :: lambda(:)
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: why
+    type(multiplier_result_t), intent(inout) :: res
+    type(error_t), intent(inout) :: err
+    real(dp) :: start(size(lambda))
+    character(len=:), allocatable :: why2
+    start = lambda
+    call newton_from(self, work, start, lambda, 'newton', ok, why, res, err)
+    if (err%failed()) return
+    if (.not. ok .and. maxval(abs(lambda)) > 0.0_dp) then
+      start = 0.0_dp
+      call newton_from(self, work, start, lambda, 'newton', ok, why2, res, err)
+      if (err%failed()) return
+      if (.not. ok) why = why//'; from lambda = 0: '//why2
+    end if
+  end subroutine newton_starts
+
+  !> Newton in lambda (lambda_newton) from start, its iterations counted in
+  !> res; on convergence lambda takes the root and res%how = how.
+  subroutine newton_from(self, work, start, lambda, how, ok, why, res, err)
+    class(multiplier_system_t), intent(inout) :: self
+    type(lambda_search_t), intent(inout) :: work
+    real(dp), intent(in) :: start(:)
+    real(dp), intent(inout) :: lambda(:)
+    character(len=*), intent(in) :: how
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: why
+    type(multiplier_result_t), intent(inout) :: res
+    type(error_t), intent(inout) :: err
+    real(dp) :: lam_newton(size(start))
+    integer :: its
+    lam_newton = start
+    call lambda_newton(self, work, lam_newton, ok, why, its, err)
+    if (err%failed()) return
+    res%newton_iterations = res%newton_iterations + its
+    if (ok) then
+      lambda = lam_newton
+      res%how = how
+    end if
+  end subroutine newton_from
+
+  !> B10 and B11 together (kkt_newton) after Newton in lambda failed: where
+  !> the elimination of s is degenerate (M or the Newton matrix singular),
+  !> the (s, lambda) system needs M nonsingular only on the tangent space.
+  !> Not where Newton diverged or stalled: there B11 has no root near and
+  !> Powell's compromise is the papers' remedy (with it HS 15 reaches x*;
+  !> the (s, lambda) root, a vertex with a negative multiplier, led to its
+  !> other local minimum).  done: lambda and self%s are that root.
+  subroutine tangent_space_newton(self, work, lambda, why, done, res, err)
+    class(multiplier_system_t), intent(inout) :: self
+    type(lambda_search_t), intent(in) :: work
+    real(dp), intent(inout) :: lambda(:)
+    character(len=:), allocatable, intent(inout) :: why
+    logical, intent(out) :: done
+    type(multiplier_result_t), intent(inout) :: res
+    type(error_t), intent(inout) :: err
+    real(dp) :: lam_newton(size(lambda))
+    character(len=:), allocatable :: why2
+    integer :: its
+    lam_newton = lambda
+    call self%kkt_newton(lam_newton, work%tol, work%max_newton, done, why2, its, err)
+    if (err%failed()) return
+    res%newton_iterations = res%newton_iterations + its
+    ! a negative multiplier of a violated inequality would make the drop
+    ! rule abandon its restoration on the strength of a root that Newton in
+    ! lambda (with its positive-definiteness safeguard) did not reach:
+    ! such a root is left to Powell's compromise (HS 15: the root is the
+    ! vertex (-1, -1) with lambda_2 = -201; dropping g2 there led to HS 15's
+    ! other local minimum)
+    if (done) done = .not. any(self%nonneg .and. self%gval > 100.0_dp*work%tol .and. lam_newton < 0.0_dp)
+    if (done) then
+      lambda = lam_newton
+      res%how = 'kkt'
+      res%newton_failure = why
+    else
+      if (len(why2) == 0) why2 = 'negative multiplier of a violated inequality'
+      why = why//'; (s, lambda) Newton: '//why2
+    end if
+  end subroutine tangent_space_newton
+
+  !> Powell on H from the best point Newton saw (Boston et al. after B11),
+  !> then a Newton polish from Powell's point (Newton converges
+  !> quadratically once Powell is near a root).
+  subroutine powell_compromise(self, work, lambda, res, err)
+    class(multiplier_system_t), intent(inout) :: self
+    type(lambda_search_t), intent(inout) :: work
+    real(dp), intent(inout) :: lambda(:)
+    type(multiplier_result_t), intent(inout) :: res
+    type(error_t), intent(inout) :: err
+    type(powell_options_t) :: popts
+    type(powell_result_t) :: pres
+    real(dp) :: start(size(lambda))
+    character(len=:), allocatable :: why
+    logical :: ok
+    popts%ftol = 1.0e-15_dp
+    popts%f_target = (0.01_dp*work%tol)**2
+    popts%initial_step = 0.1_dp*max(1.0_dp, maxval(abs(work%lam_best)))
+    popts%max_iter = 100*max(1, self%l)
+    lambda = self%project(work%lam_best)
+    self%in_powell = .true.
+    call powell_minimize(self, lambda, popts, pres)
+    self%in_powell = .false.
+    lambda = self%project(lambda)
+    res%powell_evaluations = pres%evaluations
+    if (associated(self%prob)) self%prob%count%powell_h_evals = self%prob%count%powell_h_evals + pres%evaluations
+    if (self%eval_err%failed()) then
+      err = self%eval_err
+      call err%add_context('multiplier equations (Powell)')
+      return
+    end if
+    res%how = 'powell'
+    start = lambda
+    call newton_from(self, work, start, lambda, 'powell+newton', ok, why, res, err)
+  end subroutine powell_compromise
+
+  !> B11 by Newton-Raphson in lambda, with work%tol and work%max_newton;
+  !> the best point seen (least H = Sum m_i^2) goes into work.
+  subroutine lambda_newton(self, work, lam, converged, reason, iterations, nerr)
+    class(multiplier_system_t), intent(inout) :: self
+    type(lambda_search_t), intent(inout) :: work
+    real(dp), intent(inout) :: lam(:)
+    logical, intent(out) :: converged
+    character(len=:), allocatable, intent(out) :: reason
+    integer, intent(out) :: iterations
+    type(error_t), intent(inout) :: nerr
+    real(dp), allocatable :: jm(:, :), d(:)
+    integer, allocatable :: piv(:)
+    real(dp) :: rc, h
+    type(error_t) :: lerr
+    logical :: okstep, ok_matrix
+    integer :: it, halvings
+    allocate(jm(self%l, self%l), d(self%l), piv(self%l))
+    converged = .false.
+    reason = ''
+    iterations = 0
+    do it = 0, work%max_newton
+      iterations = it
+      call self%evaluate_step(lam, okstep)
+      if (.not. okstep) then
+        reason = 'G + Sum lambda_j A_j singular at Newton iterate '//str(it)
+        return
+      end if
+      call checked_residual(self, work%r, 'Newton iterate '//str(it), reason, nerr)
+      if (nerr%failed() .or. len(reason) > 0) return
+      h = sum(work%r**2)
+      if (h < work%h_best) then
+        work%h_best = h
+        work%lam_best = lam
+      end if
+      if (maxval(abs(work%r)) <= work%tol) then
+        converged = .true.
+        return
+      end if
+      if (it == work%max_newton) then
+        reason = 'no convergence in '//str(work%max_newton)//' Newton iterations (max |g| = ' &
+                 //str(maxval(abs(work%r)), 3)//')'
+        return
+      end if
+      call self%newton_matrix(jm, ok_matrix)
+      if (.not. ok_matrix) then
+        reason = 'the Newton matrix for the multipliers overflows (G + Sum lambda A nearly singular)'
+        return
+      end if
+      call lu_factor(jm, piv, lerr, rc)
+      if (lerr%failed() .or. rc < 1.0e-14_dp) then
+        reason = 'singular Newton matrix for the multipliers (active constraints dependent, ' &
+                 //'or more active constraints than the step can satisfy)'
+        return
+      end if
+      d = -work%r
+      call lu_solve(jm, piv, d, lerr)
+      ! our safeguard (the papers are silent): while G + Sum lambda A is
+      ! positive definite, halve steps that would leave that region, so B10
+      ! stays the minimiser of the quadratic Lagrangian model and Newton
+      ! does not jump to a root that maximises it
+      if (self%model_positive_definite(lam)) then
+        do halvings = 1, 30
+          if (self%model_positive_definite(lam + d)) exit
+          d = 0.5_dp*d
+        end do
+      end if
+      lam = lam + d
+      if (maxval(abs(lam)) > 1.0e12_dp) then
+        reason = 'Newton iterates for the multipliers diverge (|lambda| > 1e12)'
+        return
+      end if
+    end do
+  end subroutine lambda_newton
 
   !> Unconstrained Gauss step (B12, P2): s = -G^{-1} grad F = -(J J^T)^{-1} J phi
   !> for G = 2 J J^T, grad F = 2 J phi.

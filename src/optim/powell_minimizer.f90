@@ -126,107 +126,114 @@ contains
     a = 0.0_dp
     fa = f
     b = 1.0_dp
-    fb = along(b)
+    fb = along(fun, x, d, b, nev)
     if (fb > fa) then       ! walk downhill from b towards a and beyond
       tmp = a; a = b; b = tmp
       tmp = fa; fa = fb; fb = tmp
     end if
     c = b + golden*(b - a)
-    fc = along(c)
+    fc = along(fun, x, d, c, nev)
     do k = 1, 80
       if (fc >= fb) exit
       a = b; fa = fb
       b = c; fb = fc
       c = b + golden*(b - a)
-      fc = along(c)
+      fc = along(fun, x, d, c, nev)
     end do
     if (fc < fb) then       ! no bracket within the expansion limit: keep the best point
       amin = c
       fmin = fc
     else
-      call brent(min(a, c), max(a, c), b, fb, amin, fmin)
+      call brent(fun, x, d, nev, min(a, c), max(a, c), b, fb, amin, fmin)
     end if
     if (fmin < f) then
       x = x + amin*d
       f = fmin
     end if
-  contains
-    real(dp) function along(alpha)
-      real(dp), intent(in) :: alpha
-      along = fun%value(x + alpha*d)
-      nev = nev + 1
-    end function along
+  end subroutine line_minimize
 
-    !> Brent's minimiser on [lo, hi] starting from the interior point xb.
-    subroutine brent(lo, hi, xb, fxb, xmin, fxmin)
-      real(dp), intent(in) :: lo, hi, xb, fxb
-      real(dp), intent(out) :: xmin, fxmin
-      real(dp), parameter :: rel = 1.0e-10_dp, abs_tol = 1.0e-14_dp
-      real(dp) :: aa, bb, v, w, xx, fv, fw, fx, e, dd, u, fu, xm, tol1, tol2, p, q, r
-      integer :: it
-      aa = lo; bb = hi
-      xx = xb; w = xb; v = xb
-      fx = fxb; fw = fxb; fv = fxb
-      e = 0.0_dp
-      dd = 0.0_dp
-      do it = 1, 100
-        xm = 0.5_dp*(aa + bb)
-        tol1 = rel*abs(xx) + abs_tol
-        tol2 = 2.0_dp*tol1
-        if (abs(xx - xm) <= tol2 - 0.5_dp*(bb - aa)) exit
-        if (abs(e) > tol1) then
-          ! parabola through (v, w, x); accepted only if it falls inside the
-          ! interval and moves less than half the step before last
-          r = (xx - w)*(fx - fv)
-          q = (xx - v)*(fx - fw)
-          p = (xx - v)*q - (xx - w)*r
-          q = 2.0_dp*(q - r)
-          if (q > 0.0_dp) p = -p
-          q = abs(q)
-          if (abs(p) >= abs(0.5_dp*q*e) .or. p <= q*(aa - xx) .or. p >= q*(bb - xx)) then
-            e = merge(aa - xx, bb - xx, xx >= xm)
-            dd = cgold*e
-          else
-            e = dd
-            dd = p/q
-            u = xx + dd
-            if (u - aa < tol2 .or. bb - u < tol2) dd = sign(tol1, xm - xx)
-          end if
-        else
+  !> f(x + alpha d), counted in nev.
+  real(dp) function along(fun, x, d, alpha, nev)
+    class(powell_function_t), intent(inout) :: fun
+    real(dp), intent(in) :: x(:), d(:), alpha
+    integer, intent(inout) :: nev
+    along = fun%value(x + alpha*d)
+    nev = nev + 1
+  end function along
+
+  !> Brent's minimiser of f(x + a d) over a in [lo, hi], starting from the
+  !> interior point xb (f = fxb there).
+  subroutine brent(fun, x, d, nev, lo, hi, xb, fxb, xmin, fxmin)
+    class(powell_function_t), intent(inout) :: fun
+    real(dp), intent(in) :: x(:), d(:)
+    integer, intent(inout) :: nev
+    real(dp), intent(in) :: lo, hi, xb, fxb
+    real(dp), intent(out) :: xmin, fxmin
+    real(dp), parameter :: rel = 1.0e-10_dp, abs_tol = 1.0e-14_dp
+    real(dp) :: aa, bb, v, w, xx, fv, fw, fx, e, dd, u, fu, xm, tol1, tol2, p, q, r
+    integer :: it
+    aa = lo; bb = hi
+    xx = xb; w = xb; v = xb
+    fx = fxb; fw = fxb; fv = fxb
+    e = 0.0_dp
+    dd = 0.0_dp
+    do it = 1, 100
+      xm = 0.5_dp*(aa + bb)
+      tol1 = rel*abs(xx) + abs_tol
+      tol2 = 2.0_dp*tol1
+      if (abs(xx - xm) <= tol2 - 0.5_dp*(bb - aa)) exit
+      if (abs(e) > tol1) then
+        ! parabola through (v, w, x); accepted only if it falls inside the
+        ! interval and moves less than half the step before last
+        r = (xx - w)*(fx - fv)
+        q = (xx - v)*(fx - fw)
+        p = (xx - v)*q - (xx - w)*r
+        q = 2.0_dp*(q - r)
+        if (q > 0.0_dp) p = -p
+        q = abs(q)
+        if (abs(p) >= abs(0.5_dp*q*e) .or. p <= q*(aa - xx) .or. p >= q*(bb - xx)) then
           e = merge(aa - xx, bb - xx, xx >= xm)
           dd = cgold*e
-        end if
-        if (abs(dd) >= tol1) then
+        else
+          e = dd
+          dd = p/q
           u = xx + dd
-        else
-          u = xx + sign(tol1, dd)
+          if (u - aa < tol2 .or. bb - u < tol2) dd = sign(tol1, xm - xx)
         end if
-        fu = along(u)
-        if (fu <= fx) then
-          if (u >= xx) then
-            aa = xx
-          else
-            bb = xx
-          end if
+      else
+        e = merge(aa - xx, bb - xx, xx >= xm)
+        dd = cgold*e
+      end if
+      if (abs(dd) >= tol1) then
+        u = xx + dd
+      else
+        u = xx + sign(tol1, dd)
+      end if
+      fu = along(fun, x, d, u, nev)
+      if (fu <= fx) then
+        if (u >= xx) then
+          aa = xx
+        else
+          bb = xx
+        end if
+        v = w; fv = fw
+        w = xx; fw = fx
+        xx = u; fx = fu
+      else
+        if (u < xx) then
+          aa = u
+        else
+          bb = u
+        end if
+        if (fu <= fw .or. abs(w - xx) <= 0.0_dp) then
           v = w; fv = fw
-          w = xx; fw = fx
-          xx = u; fx = fu
-        else
-          if (u < xx) then
-            aa = u
-          else
-            bb = u
-          end if
-          if (fu <= fw .or. abs(w - xx) <= 0.0_dp) then
-            v = w; fv = fw
-            w = u; fw = fu
-          else if (fu <= fv .or. abs(v - xx) <= 0.0_dp .or. abs(v - w) <= 0.0_dp) then
-            v = u; fv = fu
-          end if
+          w = u; fw = fu
+        else if (fu <= fv .or. abs(v - xx) <= 0.0_dp .or. abs(v - w) <= 0.0_dp) then
+          v = u; fv = fu
         end if
-      end do
-      xmin = xx
-      fxmin = fx
-    end subroutine brent
-  end subroutine line_minimize
+      end if
+    end do
+    xmin = xx
+    fxmin = fx
+  end subroutine brent
 end module powell_minimizer

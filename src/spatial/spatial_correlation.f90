@@ -33,24 +33,21 @@ contains
   subroutine describe(self, lines)
     class(spatial_table_t), intent(in) :: self
     character(len=160), allocatable, intent(out) :: lines(:)
-    integer :: e, i, n, k
+    character(len=160) :: head(2), rows(self%n_elements)
+    integer :: e, i, k
     character(len=160) :: l
-    n = 3 + self%n_elements + (self%n_global + 3)/4
-    allocate(lines(n))
-    lines(1) = 'variable correlation table: '//str(self%n_elements)//' elements, '//str(self%n_global)// &
-               ' global unknowns, half-bandwidth '//str(self%half_bandwidth)
+    head(1) = 'variable correlation table: '//str(self%n_elements)//' elements, '//str(self%n_global)// &
+              ' global unknowns, half-bandwidth '//str(self%half_bandwidth)
     l = '  element :'
     do k = 1, 2
       do i = 1, 8
         l = trim(l)//' '//adjustr(node_dof_names(i)(1:3))//str(k)
       end do
     end do
-    lines(2) = trim(l)//'   (global unknown; 0 = held at zero; RX..RZ global or, at a spherical end, local)'
+    head(2) = trim(l)//'   (global unknown; 0 = held at zero; RX..RZ global or, at a spherical end, local)'
     do e = 1, self%n_elements
-      write(l, '(2x,i7,a,20i5)') e, ' :', self%map(:, e)
-      lines(2 + e) = l
+      write(rows(e), '(2x,i7,a,20i5)') e, ' :', self%map(:, e)
     end do
-    lines(3 + self%n_elements) = '  global unknowns:'
-    call self%list_unknowns(22, lines(4 + self%n_elements:))
+    call self%table_lines(head, rows, 22, lines)
   end subroutine describe
 end module spatial_correlation

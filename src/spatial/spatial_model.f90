@@ -57,6 +57,16 @@ module spatial_model
     integer :: first_element = 0
   end type spatial_link_t
 
+  !> The spatial table while it is numbered: the node DOFs of every link's
+  !> nodes 0..n (slots UX UY UZ RX RY RZ vxx wxx ux uxx), joined into
+  !> elements at the end (correlation_base_t%join_nodes).
+  type :: spatial_nodes_t
+    integer, allocatable :: map(:, :, :)       !< (10, 0:max elements, link) global unknown, 0 = held at zero
+    real(dp), allocatable :: coef(:, :, :)
+    integer :: ax = 0                          !< the global axis of revolute joints at B, C (0: none)
+    logical :: axial_slopes = .false.          !< consistent formulation: ux, uxx own at every node
+  end type spatial_nodes_t
+
   type, extends(ode_system_t) :: spatial_model_t
     type(spatial_fourbar_t) :: kin
     real(dp) :: omega = 0.0_dp, theta0 = 0.0_dp
@@ -194,162 +204,168 @@ contains
   end subroutine model_init
 
   !> Node rules in chain order A -> B -> C -> D (narrow band).
-  !> Length (about 155 lines, 97 its own): the contained interior, axial_slopes and joint_end number
-  !> the DOFs with the host's running counter.
   subroutine build_table(self, err)
     type(spatial_model_t), intent(inout) :: self
     type(error_t), intent(inout) :: err
-    integer :: nmax, k, j, ax
-    integer, allocatable :: nm(:, :, :)
-    real(dp), allocatable :: nc(:, :, :)
+    integer :: nmax, k, j
+    type(spatial_nodes_t) :: nodes
     integer :: b_rot(2), c_rot(2)
-    real(dp) :: a(3)
     nmax = maxval(self%links%n_elements)
-    allocate(nm(10, 0:nmax, 3), nc(10, 0:nmax, 3))
-    nm = 0
-    nc = 0.0_dp
+    allocate(nodes%map(10, 0:nmax, 3), nodes%coef(10, 0:nmax, 3))
+    nodes%map = 0
+    nodes%coef = 0.0_dp
+    nodes%axial_slopes = self%formulation == spatial_formulation_consistent
     call self%table%init(size(self%el))
-    a = self%kin%a_axis
-    ax = 0
     if (self%joint_b == spatial_joint_revolute .or. self%joint_c == spatial_joint_revolute) then
-      ! a revolute joint between moving links: planar linkage about a global axis
-      ax = maxloc(abs(a), 1)
-      if (abs(abs(a(ax)) - 1.0_dp) > 1.0e-12_dp .or. abs(abs(dot_product(a, self%kin%d_axis)) - 1.0_dp) > 1.0e-12_dp &
-          .or. abs(dot_product(a, self%pose%rot(:, 1, link_coupler))) > 1.0e-9_dp) then
-        call err%set('spatial model', 'revolute joints at B or C need a planar linkage: crank and rocker axes '// &
-                     'parallel to one global axis and the coupler normal to it (use spherical joints otherwise)')
-        err%code = 2
-        return
-      end if
+      call revolute_axis(self, nodes%ax, err)
+      if (err%failed()) return
     end if
     b_rot = 0
     c_rot = 0
     ! crank: A (clamp), interior, B
     do j = 0, self%links(link_crank)%n_elements
       if (j == 0) then
-        nm(7:8, j, 1) = [fresh(1, j, 7), fresh(1, j, 8)]
-        nc(7:8, j, 1) = 1.0_dp
-        call axial_slopes(1, j)
+        call own_dof(self%table, nodes, 1, j, 7)
+        call own_dof(self%table, nodes, 1, j, 8)
+        call axial_slopes(self%table, nodes, 1, j)
       else if (j == self%links(link_crank)%n_elements) then
-        call joint_end(1, j, self%joint_b, self%b_dofs, b_rot, 'B', .false.)
+        call joint_end(self%table, nodes, 1, j, self%joint_b, self%b_dofs, b_rot, 'B', .false.)
       else
-        call interior(1, j)
+        call interior(self%table, nodes, 1, j)
       end if
     end do
     ! coupler: B, interior, C; its twist is held at B, or at the universal joint
     do j = 0, self%links(link_coupler)%n_elements
       if (j == 0) then
-        call joint_end(2, j, self%joint_b, self%b_dofs, b_rot, 'B', self%joint_c /= spatial_joint_universal)
+        call joint_end(self%table, nodes, 2, j, self%joint_b, self%b_dofs, b_rot, 'B', &
+                       self%joint_c /= spatial_joint_universal)
       else if (j == self%links(link_coupler)%n_elements) then
-        call joint_end(2, j, self%joint_c, self%c_dofs, c_rot, 'C', self%joint_c == spatial_joint_universal)
+        call joint_end(self%table, nodes, 2, j, self%joint_c, self%c_dofs, c_rot, 'C', &
+                       self%joint_c == spatial_joint_universal)
       else
-        call interior(2, j)
+        call interior(self%table, nodes, 2, j)
       end if
     end do
     ! rocker from C down to D
     do j = self%links(link_rocker)%n_elements, 0, -1
       if (j == self%links(link_rocker)%n_elements) then
-        call joint_end(3, j, self%joint_c, self%c_dofs, c_rot, 'C', .false.)
+        call joint_end(self%table, nodes, 3, j, self%joint_c, self%c_dofs, c_rot, 'C', .false.)
       else if (j == 0) then
-        ! ground revolute about d: rotation = s d, no moment about d
-        block
-          integer :: s, i
-          s = fresh(3, j, 6)
-          self%table%label(s) = 'rocker N0 R_d'
-          do i = 1, 3
-            if (abs(self%kin%d_axis(i)) > 0.0_dp) then
-              nm(3 + i, j, 3) = s
-              nc(3 + i, j, 3) = self%kin%d_axis(i)
-            end if
-          end do
-          nm(8, j, 3) = fresh(3, j, 8)
-          nc(8, j, 3) = 1.0_dp
-          call axial_slopes(3, j)
-        end block
+        call ground_revolute(self%table, nodes, self%kin%d_axis)
       else
-        call interior(3, j)
+        call interior(self%table, nodes, 3, j)
       end if
     end do
     do k = 1, 3
-      do j = 1, self%links(k)%n_elements
-        associate (e => self%links(k)%first_element + j - 1)
-          self%table%map(1:10, e) = nm(:, j - 1, k)
-          self%table%coef(1:10, e) = nc(:, j - 1, k)
-          self%table%map(11:20, e) = nm(:, j, k)
-          self%table%coef(11:20, e) = nc(:, j, k)
-        end associate
-      end do
+      associate (n_k => self%links(k)%n_elements)
+        call self%table%join_nodes(self%links(k)%first_element, nodes%map(:, 0:n_k, k), nodes%coef(:, 0:n_k, k))
+      end associate
     end do
     call self%table%finish_band()
-
-  contains
-
-    integer function fresh(link, node, slot)
-      integer, intent(in) :: link, node, slot
-      character(len=4), parameter :: names(10) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ', &
-                                                  'ux  ', 'uxx ']
-      fresh = self%table%new_unknown(trim(link_names(link))//' N'//str(node)//' '//trim(names(slot)))
-    end function fresh
-
-    subroutine interior(link, node)
-      integer, intent(in) :: link, node
-      integer :: s
-      do s = 1, 8
-        nm(s, node, link) = fresh(link, node, s)
-      end do
-      nc(1:8, node, link) = 1.0_dp
-      call axial_slopes(link, node)
-    end subroutine interior
-
-    !> u's slope and curvature DOFs (consistent formulation): free at every
-    !> node, local to the link (axial strain and its rate are not transmitted
-    !> by a joint); held in Kear's formulation, whose u is linear.
-    subroutine axial_slopes(link, node)
-      integer, intent(in) :: link, node
-      if (self%formulation /= spatial_formulation_consistent) return
-      nm(9:10, node, link) = [fresh(link, node, 9), fresh(link, node, 10)]
-      nc(9:10, node, link) = 1.0_dp
-    end subroutine axial_slopes
-
-    !> A link end at joint B or C; trans/rot: the joint's shared unknowns
-    !> (created at the first visit).
-    subroutine joint_end(link, node, kind, trans, rot, jname, hold_twist)
-      integer, intent(in) :: link, node, kind
-      integer, intent(inout) :: trans(3), rot(2)
-      character(len=1), intent(in) :: jname
-      logical, intent(in) :: hold_twist
-      integer :: i, s, others(2)
-      if (trans(1) == 0) then
-        do i = 1, 3
-          trans(i) = self%table%new_unknown(jname//' U'//achar(iachar('X') + i - 1))
-        end do
-      end if
-      nm(1:3, node, link) = trans
-      nc(1:3, node, link) = 1.0_dp
-      call axial_slopes(link, node)
-      if (kind /= spatial_joint_revolute) then
-        ! spherical or universal: local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
-        do s = 4, 6
-          if (s == 4 .and. hold_twist) cycle
-          nm(s, node, link) = fresh(link, node, s)
-          nc(s, node, link) = 1.0_dp
-        end do
-      else
-        others = pack([1, 2, 3], [1, 2, 3] /= ax)
-        if (rot(1) == 0) then
-          do i = 1, 2
-            rot(i) = self%table%new_unknown(jname//' R'//achar(iachar('X') + others(i) - 1))
-          end do
-        end if
-        nm(3 + others, node, link) = rot
-        nc(3 + others, node, link) = 1.0_dp
-        nm(3 + ax, node, link) = fresh(link, node, 3 + ax)
-        nc(3 + ax, node, link) = 1.0_dp
-        nm(8, node, link) = fresh(link, node, 8)         ! w_xx: out-of-plane moment passes the pin
-        nc(8, node, link) = 1.0_dp
-      end if
-    end subroutine joint_end
   end subroutine build_table
+
+  !> The global axis of a planar linkage with revolute joints at B or C (an
+  !> input error if the linkage is not planar about one).
+  subroutine revolute_axis(self, ax, err)
+    type(spatial_model_t), intent(in) :: self
+    integer, intent(out) :: ax
+    type(error_t), intent(inout) :: err
+    real(dp) :: a(3)
+    a = self%kin%a_axis
+    ax = maxloc(abs(a), 1)
+    if (abs(abs(a(ax)) - 1.0_dp) > 1.0e-12_dp .or. abs(abs(dot_product(a, self%kin%d_axis)) - 1.0_dp) > 1.0e-12_dp &
+        .or. abs(dot_product(a, self%pose%rot(:, 1, link_coupler))) > 1.0e-9_dp) then
+      call err%set('spatial model', 'revolute joints at B or C need a planar linkage: crank and rocker axes '// &
+                   'parallel to one global axis and the coupler normal to it (use spherical joints otherwise)')
+      err%code = 2
+    end if
+  end subroutine revolute_axis
+
+  !> Node DOF slot of a link node as an own unknown, labelled by link, node and slot.
+  subroutine own_dof(table, nodes, link, node, slot)
+    type(spatial_table_t), intent(inout) :: table
+    type(spatial_nodes_t), intent(inout) :: nodes
+    integer, intent(in) :: link, node, slot
+    character(len=4), parameter :: names(10) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ', &
+                                                'ux  ', 'uxx ']
+    nodes%map(slot, node, link) = table%new_unknown(trim(link_names(link))//' N'//str(node)//' '//trim(names(slot)))
+    nodes%coef(slot, node, link) = 1.0_dp
+  end subroutine own_dof
+
+  subroutine interior(table, nodes, link, node)
+    type(spatial_table_t), intent(inout) :: table
+    type(spatial_nodes_t), intent(inout) :: nodes
+    integer, intent(in) :: link, node
+    integer :: s
+    do s = 1, 8
+      call own_dof(table, nodes, link, node, s)
+    end do
+    call axial_slopes(table, nodes, link, node)
+  end subroutine interior
+
+  !> u's slope and curvature DOFs (consistent formulation): free at every
+  !> node, local to the link (axial strain and its rate are not transmitted
+  !> by a joint); held in Kear's formulation, whose u is linear.
+  subroutine axial_slopes(table, nodes, link, node)
+    type(spatial_table_t), intent(inout) :: table
+    type(spatial_nodes_t), intent(inout) :: nodes
+    integer, intent(in) :: link, node
+    if (.not. nodes%axial_slopes) return
+    call own_dof(table, nodes, link, node, 9)
+    call own_dof(table, nodes, link, node, 10)
+  end subroutine axial_slopes
+
+  !> The rocker at D, a ground revolute about d: rotation = s d, no moment about d.
+  subroutine ground_revolute(table, nodes, d_axis)
+    type(spatial_table_t), intent(inout) :: table
+    type(spatial_nodes_t), intent(inout) :: nodes
+    real(dp), intent(in) :: d_axis(3)
+    integer :: s, i
+    s = table%new_unknown('rocker N0 R_d')
+    do i = 1, 3
+      if (abs(d_axis(i)) > 0.0_dp) then
+        nodes%map(3 + i, 0, 3) = s
+        nodes%coef(3 + i, 0, 3) = d_axis(i)
+      end if
+    end do
+    call own_dof(table, nodes, 3, 0, 8)
+    call axial_slopes(table, nodes, 3, 0)
+  end subroutine ground_revolute
+
+  !> A link end at joint B or C; trans/rot: the joint's shared unknowns
+  !> (created at the first visit).
+  subroutine joint_end(table, nodes, link, node, kind, trans, rot, jname, hold_twist)
+    type(spatial_table_t), intent(inout) :: table
+    type(spatial_nodes_t), intent(inout) :: nodes
+    integer, intent(in) :: link, node, kind
+    integer, intent(inout) :: trans(3), rot(2)
+    character(len=1), intent(in) :: jname
+    logical, intent(in) :: hold_twist
+    integer :: s, others(2)
+    character(len=4) :: labels(3)
+    labels = [jname//' UX', jname//' UY', jname//' UZ']
+    call table%shared_unknowns(trans, labels)
+    nodes%map(1:3, node, link) = trans
+    nodes%coef(1:3, node, link) = 1.0_dp
+    call axial_slopes(table, nodes, link, node)
+    if (kind /= spatial_joint_revolute) then
+      ! spherical or universal: local rotation triple (tx = twist, ty, tz); no moment: curvatures zero
+      do s = 4, 6
+        if (s == 4 .and. hold_twist) cycle
+        call own_dof(table, nodes, link, node, s)
+      end do
+    else
+      associate (ax => nodes%ax)
+        others = pack([1, 2, 3], [1, 2, 3] /= ax)
+        labels(1:2) = [jname//' R'//achar(iachar('X') + others(1) - 1), jname//' R'//achar(iachar('X') + others(2) - 1)]
+        call table%shared_unknowns(rot, labels(1:2))
+        nodes%map(3 + others, node, link) = rot
+        nodes%coef(3 + others, node, link) = 1.0_dp
+        call own_dof(table, nodes, link, node, 3 + ax)
+        call own_dof(table, nodes, link, node, 8)         ! w_xx: out-of-plane moment passes the pin
+      end associate
+    end if
+  end subroutine joint_end
 
   integer function state_size(self)
     class(spatial_model_t), intent(in) :: self
