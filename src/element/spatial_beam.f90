@@ -764,7 +764,9 @@ contains
     real(dp), intent(in) :: rot(3, 3), q(nd)
     logical, intent(in), optional :: local(2)
     real(dp) :: p(nd)
-    p = rotate_triples(transpose(rot), q, local)
+    real(dp) :: rot_t(3, 3)
+    rot_t = transpose(rot)              ! (a variable: an expression argument would be a temporary)
+    p = rotate_triples(rot_t, q, local)
   end function spatial_to_local
 
   !> q = T p.
