@@ -27,13 +27,16 @@ module consistent_element
   use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
-  use beam_properties, only: beam_properties_t, init_beam_properties
+  use beam_properties, only: element_effects_t, init_beam_properties
   use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
                                  translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
                                  subtract_elastic_forces, to_global_results, &
                                  add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
-  use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, stress_report_t, &
-                          stress_report, station_x_over_l
+  use planar_element, only: planar_element_t, rigid_state_t, kear_eval_info_t, is_linear_strain, &
+                            consistent_internal_force => planar_internal_force, &
+                            consistent_tangent_stiffness => planar_tangent_stiffness, &
+                            consistent_strain_energy => planar_strain_energy, &
+                            consistent_stress_recovery => planar_stress_recovery
   implicit none
   private
   public :: consistent_ndof, consistent_element_t
@@ -48,7 +51,7 @@ module consistent_element
   integer, parameter :: n_exact = 6      !< Gauss points exact for the constant integrals (degree <= 11)
 
   !> One element.  Arrays in the local DOF order p = [u1 w1 th1 m1 a1 b1 u2 w2 th2 m2 a2 b2].
-  type, extends(beam_properties_t) :: consistent_element_t
+  type, extends(planar_element_t) :: consistent_element_t
     real(dp) :: mass_trans(nd, nd) = 0.0_dp   !< int S^T S
     real(dp) :: coupling(nd, nd) = 0.0_dp     !< int S^T (J S - S J_b)
     real(dp) :: centrifugal(nd, nd) = 0.0_dp  !< int S^T (S J_b^2 - S - 2 J S J_b)
@@ -57,8 +60,11 @@ module consistent_element
     real(dp) :: k_linear(nd, nd) = 0.0_dp     !< E1 A int gu gu^T + E1 I int gww gww^T
     real(dp) :: rot_linear(nd, nd) = 0.0_dp   !< int gw gw^T
     real(dp) :: rot_load(nd) = 0.0_dp         !< int gw dx
-    real(dp), allocatable :: xg(:), wg(:)     !< stations of the nonlinear integrals
-    real(dp), allocatable :: g(:, :, :)       !< (nd, 4, n): d(u_x, w_x, w_xx, u_xx)/dp at the stations
+    real(dp), allocatable :: g(:, :, :)       !< (nd, 4, n): d(u_x, w_x, w_xx, u_xx)/dp at the stations xg
+  contains
+    procedure :: strain_terms => consistent_strain_terms
+    procedure :: linear_force => consistent_linear_force
+    procedure :: section_strains => consistent_section_strains
   end type consistent_element_t
 
   !> Strain state at a station: value and derivatives in (a, b, c, d) =
@@ -88,6 +94,7 @@ contains
     call init_beam_properties(el%beam_properties_t, 'consistent_element_init', length, width, depth, material, &
                               effects, err, n_gauss, damping_beta, objective_damping, fibre_distance)
     if (err%failed()) return
+    el%node2 = node2
 
     ! constant integrals: S^T S has degree 10, exact with 6 points
     g2 = 0.0_dp
@@ -181,53 +188,27 @@ contains
     call to_global_results(c, s, node2, fp, force, want_m, mass, kp, tangent)
   end subroutine consistent_element_eval
 
-  !> Internal force dSE/dq.
-  pure subroutine consistent_internal_force(el, q, phi, f)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi
-    real(dp), intent(out) :: f(nd)
-    real(dp) :: fint(nd), kp(nd, nd), se
-    call static_strain_terms(el, q, phi, .false., fint, kp, se)
-    f = to_global(cos(phi), sin(phi), fint, node2)
-  end subroutine consistent_internal_force
+  !> planar_element_t's strain_terms: nonlinear_strain_terms (fixed sizes).
+  pure subroutine consistent_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
+    class(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:), prel(:)
+    logical, intent(in) :: want_k, want_damp
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp), intent(out) :: fint(:), fdamp(:), kp(size(p), size(p))
+    call nonlinear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
+  end subroutine consistent_strain_terms
 
-  !> K_t = d(internal force)/dq, analytic and symmetric.
-  pure subroutine consistent_tangent_stiffness(el, q, phi, kt)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi
-    real(dp), intent(out) :: kt(nd, nd)
-    real(dp) :: fint(nd), se
-    call static_strain_terms(el, q, phi, .true., fint, kt, se)
-    call rotate_to_global(cos(phi), sin(phi), kt, node2)
-  end subroutine consistent_tangent_stiffness
-
-  pure real(dp) function consistent_strain_energy(el, q, phi) result(se)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi
-    real(dp) :: fint(nd), kp(nd, nd)
-    call static_strain_terms(el, q, phi, .false., fint, kp, se)
-  end function consistent_strain_energy
-
-  !> Internal force fint = dSE/dp (local), with want_k the tangent kp, and the
-  !> strain energy se at (q, phi), without the motion (the static terms of
-  !> consistent_internal_force, _tangent_stiffness and _strain_energy).
-  pure subroutine static_strain_terms(el, q, phi, want_k, fint, kp, se)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi
+  !> planar_element_t's linear_force: K p and K.
+  pure subroutine consistent_linear_force(el, p, want_k, fint, kp)
+    class(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:)
     logical, intent(in) :: want_k
-    real(dp), intent(out) :: fint(nd), kp(nd, nd), se
-    real(dp) :: p(nd), fdamp(nd)
-    type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q, node2)
-    if (is_linear_strain(el)) then
-      fint = matmul(el%k_linear, p)
-      se = 0.5_dp*dot_product(p, fint)
-      if (want_k) kp = el%k_linear
-    else
-      call nonlinear_strain_terms(el, p, p, want_k, .false., info, fint, fdamp, kp)
-      se = info%strain_energy
-    end if
-  end subroutine static_strain_terms
+    real(dp), intent(out) :: fint(:), kp(size(p), size(p))
+    real(dp) :: pl(nd)
+    pl = p                                   ! fixed size: matmul's sums as before
+    fint = matmul(el%k_linear, pl)
+    if (want_k) kp = el%k_linear
+  end subroutine consistent_linear_force
 
   !> Kinetic energy from the positions (K5) and the section angle (K8)
   !> directly, independent of the precomputed matrices (a check of them).
@@ -301,29 +282,16 @@ contains
     end if
   end subroutine consistent_point_load
 
-  !> Fibre strain and stress at y = +-t/2 at the ends and the stations.
-  pure function consistent_stress_recovery(el, q, phi) result(rep)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi
-    type(stress_report_t) :: rep
-    real(dp) :: p(nd), eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
-    integer :: i
-    p = to_local(cos(phi), sin(phi), q, node2)
-    do i = 0, el%n_gauss + 1
-      call consistent_section_strains(el, p, station_x_over_l(el%beam_properties_t, el%xg, i), eps_n(i), kap(i))
-    end do
-    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
-  end function consistent_stress_recovery
-
   !> Axial strain and curvature at x = e l from LOCAL nodal values p.
   pure subroutine consistent_section_strains(el, p, e, eps_n, kap)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(nd), e
+    class(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:), e
     real(dp), intent(out) :: eps_n, kap
-    real(dp) :: su(nd), sw(nd), g(nd, 4)
+    real(dp) :: pl(nd), su(nd), sw(nd), g(nd, 4)
     type(strain_point_t) :: sp
+    pl = p                                   ! fixed size: matmul's sums as before
     call consistent_shape(e, el%length, su, sw, g)
-    call strain_state(el, matmul(p, g), .false., sp)
+    call strain_state(el, matmul(pl, g), .false., sp)
     eps_n = sp%eps
     kap = sp%kap
   end subroutine consistent_section_strains
@@ -346,11 +314,6 @@ contains
   end function consistent_local_displacement
 
   ! ------------------------------------------------------------ internals
-
-  logical pure function is_linear_strain(el)
-    type(consistent_element_t), intent(in) :: el
-    is_linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
-  end function is_linear_strain
 
   pure subroutine linear_strain_peak(el, p, info)
     type(consistent_element_t), intent(in) :: el

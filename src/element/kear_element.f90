@@ -28,9 +28,13 @@ module kear_element
   use name_table, only: name_of, code_of
   use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite, linear_lagrange
-  use beam_properties, only: element_effects_t, beam_properties_t, init_beam_properties
-  use material_law, only: ramberg_osgood_t, section_resultants_t, section_response, ro_stress
-  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
+  use beam_properties, only: element_effects_t, init_beam_properties
+  use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
+  use planar_element, only: planar_element_t, rigid_state_t, kear_eval_info_t, stress_report_t, is_linear_strain, &
+                            kear_internal_force => planar_internal_force, &
+                            kear_tangent_stiffness => planar_tangent_stiffness, &
+                            kear_strain_energy => planar_strain_energy, kear_stress_recovery => planar_stress_recovery
+  use planar_beam_kernels, only: to_local, rotate_to_global, jb_times, frame_vectors, in_frame, &
                                  translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
                                  subtract_elastic_forces, to_global_results, &
                                  add_constant_integrals, rotating_frame_integrals, exact_angle_terms
@@ -41,7 +45,6 @@ module kear_element
   public :: kear_element_init, kear_element_eval, kear_internal_force, kear_tangent_stiffness
   public :: kear_strain_energy, kear_kinetic_energy, kear_stress_recovery, kear_section_strains
   public :: kear_local_dofs, kear_local_displacement
-  public :: stress_report, station_x_over_l   ! (shared with consistent_element)
   public :: formulation_from_name, formulation_name, effects_all_on, effects_summary
 
   integer, parameter :: kear_ndof = 8
@@ -51,16 +54,9 @@ module kear_element
   integer, parameter :: n_exact = 6                !< Gauss points exact for the linear integrals (degree <= 11)
   integer, parameter :: node2 = 5                  !< local DOF of node 2's u (then w)
 
-  !> Rigid-body state of the element reference line (from kinematics).
-  type :: rigid_state_t
-    real(dp) :: x1 = 0.0_dp, y1 = 0.0_dp, phi = 0.0_dp            !< end 1 and inclination
-    real(dp) :: x1_d = 0.0_dp, y1_d = 0.0_dp, phi_d = 0.0_dp      !< first time derivatives
-    real(dp) :: x1_dd = 0.0_dp, y1_dd = 0.0_dp, phi_dd = 0.0_dp   !< second time derivatives
-  end type rigid_state_t
-
   !> One element: geometry, material, switches and precomputed integrals.
   !> Arrays in the local DOF order p = [u1 w1 th1 m1 u2 w2 th2 m2].
-  type, extends(beam_properties_t) :: kear_element_t
+  type, extends(planar_element_t) :: kear_element_t
     integer :: formulation = formulation_exact
     ! constant integrals (exact rule)
     real(dp) :: mass_trans(8, 8) = 0.0_dp   !< int S^T S
@@ -72,36 +68,14 @@ module kear_element
     real(dp) :: rot_linear(8, 8) = 0.0_dp   !< int gw gw^T (rotary mass, linear angle)
     real(dp) :: rot_load(8) = 0.0_dp        !< int gw dx
     real(dp) :: gu(8) = 0.0_dp              !< d u_x / d p (constant for linear n1, n2)
-    ! nonlinear-integral stations
-    real(dp), allocatable :: xg(:), wg(:)   !< points on [0, l] and weights
+    ! at the nonlinear-integral stations (planar_element_t's xg, wg)
     real(dp), allocatable :: gw(:, :)       !< d w_x / d p at the points (8, n)
     real(dp), allocatable :: gww(:, :)      !< d w_xx / d p at the points (8, n)
-  end type kear_element_t
-
-  !> By-products of one evaluation.
-  type :: kear_eval_info_t
-    real(dp) :: strain_energy = 0.0_dp
-    real(dp) :: max_abs_strain = 0.0_dp     !< over the Gauss points and both outer fibres
-    real(dp) :: x_over_l_max_strain = 0.0_dp
-    logical :: beyond_peak = .false.        !< material on and max |eps| > eps*
-    integer :: n_nonlinear_points = 0       !< cost proxy: nonlinear integrand evaluations
   contains
-    procedure :: note_strain
-  end type kear_eval_info_t
-
-  !> Stress recovery at the element ends and the Gauss points, both fibres.
-  type :: stress_report_t
-    real(dp) :: max_abs_stress = 0.0_dp
-    real(dp) :: stress = 0.0_dp              !< signed sigma at that point
-    real(dp) :: stress_x_over_l = 0.0_dp
-    integer :: stress_fibre = 0              !< +1: y = +t/2,  -1: y = -t/2
-    real(dp) :: max_abs_strain = 0.0_dp
-    real(dp) :: strain = 0.0_dp
-    real(dp) :: strain_x_over_l = 0.0_dp
-    integer :: strain_fibre = 0
-    real(dp) :: eps_star = huge(1.0_dp)
-    logical :: beyond_peak = .false.
-  end type stress_report_t
+    procedure :: strain_terms => kear_strain_terms
+    procedure :: linear_force => kear_linear_force
+    procedure :: section_strains => kear_section_strains
+  end type kear_element_t
 
   !> Strain state at one station, derivatives with respect to (a, b, c) =
   !> (1 + u_x, w_x, w_xx).  de_used is what multiplies N in the internal
@@ -135,6 +109,7 @@ contains
     call init_beam_properties(el%beam_properties_t, 'kear_element_init', length, width, depth, material, effects, &
                               err, n_gauss, damping_beta, objective_damping, fibre_distance)
     if (err%failed()) return
+    el%node2 = node2
     if (present(formulation)) el%formulation = formulation
     if (el%formulation /= formulation_exact .and. el%formulation /= formulation_kear1987) then
       call err%set('kear_element_init', 'unknown formulation code '//str(el%formulation)); return
@@ -317,54 +292,27 @@ contains
     end if
   end subroutine linear_forces
 
-  !> Internal force dSE/dq (kear1987: the printed (K17) with (K20), (K24)).
-  pure subroutine kear_internal_force(el, q, phi, f)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), phi
-    real(dp), intent(out) :: f(8)
-    real(dp) :: fint(8), kp(8, 8), se
-    call static_strain_terms(el, q, phi, .false., fint, kp, se)
-    f = to_global(cos(phi), sin(phi), fint, node2)
-  end subroutine kear_internal_force
+  !> planar_element_t's strain_terms: nonlinear_strain_terms (fixed sizes).
+  pure subroutine kear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
+    class(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:), prel(:)
+    logical, intent(in) :: want_k, want_damp
+    type(kear_eval_info_t), intent(inout) :: info
+    real(dp), intent(out) :: fint(:), fdamp(:), kp(size(p), size(p))
+    call nonlinear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
+  end subroutine kear_strain_terms
 
-  !> K_t = d(internal force)/dq, analytic.
-  pure subroutine kear_tangent_stiffness(el, q, phi, kt)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), phi
-    real(dp), intent(out) :: kt(8, 8)
-    real(dp) :: fint(8), se
-    call static_strain_terms(el, q, phi, .true., fint, kt, se)
-    call rotate_to_global(cos(phi), sin(phi), kt, node2)
-  end subroutine kear_tangent_stiffness
-
-  !> Strain energy (K16) with the element's quadrature.
-  pure real(dp) function kear_strain_energy(el, q, phi) result(se)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), phi
-    real(dp) :: fint(8), kp(8, 8)
-    call static_strain_terms(el, q, phi, .false., fint, kp, se)
-  end function kear_strain_energy
-
-  !> Internal force fint = dSE/dp (local), with want_k the tangent kp, and the
-  !> strain energy se at (q, phi), without the motion (the static terms of
-  !> kear_internal_force, _tangent_stiffness and _strain_energy).
-  pure subroutine static_strain_terms(el, q, phi, want_k, fint, kp, se)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), phi
+  !> planar_element_t's linear_force: K p and K.
+  pure subroutine kear_linear_force(el, p, want_k, fint, kp)
+    class(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:)
     logical, intent(in) :: want_k
-    real(dp), intent(out) :: fint(8), kp(8, 8), se
-    real(dp) :: p(8), fdamp(8)
-    type(kear_eval_info_t) :: info
-    p = to_local(cos(phi), sin(phi), q, node2)
-    if (is_linear_strain(el)) then
-      fint = matmul(el%k_linear, p)
-      se = 0.5_dp*dot_product(p, fint)
-      if (want_k) kp = el%k_linear
-    else
-      call nonlinear_strain_terms(el, p, p, want_k, .false., info, fint, fdamp, kp)
-      se = info%strain_energy
-    end if
-  end subroutine static_strain_terms
+    real(dp), intent(out) :: fint(:), kp(size(p), size(p))
+    real(dp) :: pl(kear_ndof)
+    pl = p                                   ! fixed size: matmul's sums as before
+    fint = matmul(el%k_linear, pl)
+    if (want_k) kp = el%k_linear
+  end subroutine kear_linear_force
 
   !> Kinetic energy (K3) of the element, evaluated directly from the
   !> positions (K5) and section angle (K8), independent of the precomputed
@@ -418,112 +366,11 @@ contains
     end if
   end function kear_kinetic_energy
 
-  ! ------------------------------------------------------ stress recovery
-
-  !> Fibre strain and stress at y = +-t/2 at x = 0, the Gauss points and
-  !> x = l; the maxima of |sigma| and |eps| and where they occur.  The
-  !> material switch decides the law; beyond_peak needs it on.
-  pure function kear_stress_recovery(el, q, phi) result(rep)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(8), phi
-    type(stress_report_t) :: rep
-    real(dp) :: p(8), eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
-    integer :: i
-    p = to_local(cos(phi), sin(phi), q, node2)
-    do i = 0, el%n_gauss + 1
-      call kear_section_strains(el, p, station_x_over_l(el%beam_properties_t, el%xg, i), eps_n(i), kap(i))
-    end do
-    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
-  end function kear_stress_recovery
-
-  !> The stress report of the stations i = 0 .. n_gauss + 1 (station_x_over_l)
-  !> from their axial strain and curvature (both elements' recovery).
-  pure function stress_report(props, xg, eps_n, kap) result(rep)
-    type(beam_properties_t), intent(in) :: props
-    real(dp), intent(in) :: xg(:), eps_n(0:), kap(0:)
-    type(stress_report_t) :: rep
-    type(ramberg_osgood_t) :: law
-    integer :: i
-    call start_stress_report(props, law, rep)
-    do i = 0, props%n_gauss + 1
-      call add_station_fibres(law, props%fibre, eps_n(i), kap(i), station_x_over_l(props, xg, i), rep)
-    end do
-    rep%beyond_peak = props%effects%material .and. rep%max_abs_strain > props%eps_star
-  end function stress_report
-
-  !> The law of the stress recovery (E2 = 0 with the material switch off) and
-  !> an empty report (both elements' recovery).
-  pure subroutine start_stress_report(props, law, rep)
-    type(beam_properties_t), intent(in) :: props
-    type(ramberg_osgood_t), intent(out) :: law
-    type(stress_report_t), intent(out) :: rep
-    law = props%material
-    if (.not. props%effects%material) law%e2 = 0.0_dp
-    rep%eps_star = props%eps_star
-    rep%max_abs_stress = -1.0_dp
-    rep%max_abs_strain = -1.0_dp
-  end subroutine start_stress_report
-
-  !> x/l of stress station i: 0 (end 1), the Gauss points xg(1..n_gauss), 1 (end 2).
-  pure real(dp) function station_x_over_l(props, xg, i) result(eo)
-    type(beam_properties_t), intent(in) :: props
-    real(dp), intent(in) :: xg(:)
-    integer, intent(in) :: i
-    if (i == 0) then
-      eo = 0.0_dp
-    else if (i == props%n_gauss + 1) then
-      eo = 1.0_dp
-    else
-      eo = xg(i)/props%length
-    end if
-  end function station_x_over_l
-
-  !> Both outer fibres (y = +c, then -c) of the station at x/l = eo into the
-  !> report's maxima of |sigma| and |eps| (K14).
-  pure subroutine add_station_fibres(law, fibre, eps_n, kap, eo, rep)
-    type(ramberg_osgood_t), intent(in) :: law
-    real(dp), intent(in) :: fibre, eps_n, kap, eo
-    type(stress_report_t), intent(inout) :: rep
-    real(dp) :: eps, sig
-    integer :: k, fib
-    do k = 1, 2
-      fib = 3 - 2*k                                      ! +1, then -1
-      eps = eps_n - real(fib, dp)*fibre*kap              ! (K14), y = +-c
-      sig = ro_stress(law, eps)
-      call keep_larger(sig, eo, fib, rep%max_abs_stress, rep%stress, rep%stress_x_over_l, rep%stress_fibre)
-      call keep_larger(eps, eo, fib, rep%max_abs_strain, rep%strain, rep%strain_x_over_l, rep%strain_fibre)
-    end do
-  end subroutine add_station_fibres
-
-  !> A report's peak |value| and where it stands: replaced when |value| is larger.
-  pure subroutine keep_larger(value, eo, fib, peak, signed, x_over_l, fibre)
-    real(dp), intent(in) :: value, eo
-    integer, intent(in) :: fib
-    real(dp), intent(inout) :: peak, signed, x_over_l
-    integer, intent(inout) :: fibre
-    if (abs(value) > peak) then
-      peak = abs(value)
-      signed = value
-      x_over_l = eo
-      fibre = fib
-    end if
-  end subroutine keep_larger
-
-  !> An evaluation's largest strain e (> 0) and where it stands (x/l).
-  pure subroutine note_strain(info, e, x_over_l)
-    class(kear_eval_info_t), intent(inout) :: info
-    real(dp), intent(in) :: e, x_over_l
-    if (e > info%max_abs_strain) then
-      info%max_abs_strain = e
-      info%x_over_l_max_strain = x_over_l
-    end if
-  end subroutine note_strain
-
   !> Axial strain eps_n and curvature kappa at x = e l from LOCAL nodal
   !> values p (see kear_local_dofs), with the element's switches.
   pure subroutine kear_section_strains(el, p, e, eps_n, kap)
-    type(kear_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(8), e
+    class(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:), e
     real(dp), intent(out) :: eps_n, kap
     real(dp) :: h(6), hx(6), hxx(6), gw(8), gww(8)
     type(strain_point_t) :: sp
@@ -558,11 +405,6 @@ contains
   end function kear_local_displacement
 
   ! ------------------------------------------------------------ internals
-
-  logical pure function is_linear_strain(el)
-    type(kear_element_t), intent(in) :: el
-    is_linear_strain = .not. (el%effects%stretching .or. el%effects%curvature .or. el%effects%material)
-  end function is_linear_strain
 
   !> Linear model: max |eps| = |u_x| + t/2 |w_xx| at the Gauss points.
   pure subroutine linear_strain_peak(el, p, info)
@@ -624,7 +466,10 @@ contains
         if (want_damp) fdamp = fdamp + el%wg(i)*matmul(g, matmul(h3, matmul(prel, g)))
       end if
       e = abs(sp%eps) + ht*abs(sp%kap)
-      call info%note_strain(e, el%xg(i)/el%length)
+      if (e > info%max_abs_strain) then           ! info%note_strain, written here: a call to
+        info%max_abs_strain = e                   ! another module is not inlined, and this
+        info%x_over_l_max_strain = el%xg(i)/el%length   ! loop is the hot path
+      end if
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
     info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star

@@ -764,21 +764,9 @@ contains
     real(dp), intent(in) :: rot(3, 3), q(nd)
     logical, intent(in), optional :: local(2)
     real(dp) :: p(nd)
-    logical :: loc(2)
-    integer :: b, r
-    loc = .false.
-    if (present(local)) loc = local
-    p(7:10) = q(7:10)                    ! curvature and u-slope DOFs stay local
-    p(17:20) = q(17:20)
-    if (loc(1)) p(4:6) = q(4:6)
-    if (loc(2)) p(14:16) = q(14:16)
-    do b = 1, 4
-      if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
-      r = triple_first(b)
-      p(r) = rot(1, 1)*q(r) + rot(2, 1)*q(r + 1) + rot(3, 1)*q(r + 2)
-      p(r + 1) = rot(1, 2)*q(r) + rot(2, 2)*q(r + 1) + rot(3, 2)*q(r + 2)
-      p(r + 2) = rot(1, 3)*q(r) + rot(2, 3)*q(r + 1) + rot(3, 3)*q(r + 2)
-    end do
+    real(dp) :: rot_t(3, 3)
+    rot_t = transpose(rot)              ! (a variable: an expression argument would be a temporary)
+    p = rotate_triples(rot_t, q, local)
   end function spatial_to_local
 
   !> q = T p.
@@ -786,20 +774,29 @@ contains
     real(dp), intent(in) :: rot(3, 3), p(nd)
     logical, intent(in), optional :: local(2)
     real(dp) :: q(nd)
+    q = rotate_triples(rot, p, local)
+  end function spatial_to_global
+
+  !> y = x with each vector triple (but the rotation triples flagged local)
+  !> multiplied by m: T^T q with m = rot^T, T p with m = rot.
+  pure function rotate_triples(m, x, local) result(y)
+    real(dp), intent(in) :: m(3, 3), x(nd)
+    logical, intent(in), optional :: local(2)
+    real(dp) :: y(nd)
     logical :: loc(2)
     integer :: b, r
     loc = .false.
     if (present(local)) loc = local
-    q(7:10) = p(7:10)
-    q(17:20) = p(17:20)
-    if (loc(1)) q(4:6) = p(4:6)
-    if (loc(2)) q(14:16) = p(14:16)
+    y(7:10) = x(7:10)                    ! curvature and u-slope DOFs stay local
+    y(17:20) = x(17:20)
+    if (loc(1)) y(4:6) = x(4:6)
+    if (loc(2)) y(14:16) = x(14:16)
     do b = 1, 4
       if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
       r = triple_first(b)
-      q(r:r + 2) = rot(:, 1)*p(r) + rot(:, 2)*p(r + 1) + rot(:, 3)*p(r + 2)
+      y(r:r + 2) = m(:, 1)*x(r) + m(:, 2)*x(r + 1) + m(:, 3)*x(r + 2)
     end do
-  end function spatial_to_global
+  end function rotate_triples
 
   !> T A T^T, by the 3 x 3 blocks of the vector triples that rotate.
   pure function matrix_to_global(rot, a, local) result(g)
