@@ -245,20 +245,14 @@ contains
     end if
   end subroutine read_input
 
-  !> The crank angle where the run stopped, as context of its error: the
-  !> model's own failures carry their time; DLSODE's stops are at the
-  !> solver's time t_ode.
+  !> The crank angle where the run stopped, as context of its error.
   subroutine name_stop_angle(mech, model, t_ode, err)
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), intent(in) :: model
     real(dp), intent(in) :: t_ode
     type(error_t), intent(inout) :: err
     real(dp) :: theta, theta_d, theta_dd
-    if (model%err%failed()) then
-      call driver_angle(mech%driver, model%t_failed, theta, theta_d, theta_dd)
-    else
-      call driver_angle(mech%driver, t_ode, theta, theta_d, theta_dd)
-    end if
+    call driver_angle(mech%driver, model%stop_time(t_ode), theta, theta_d, theta_dd)
     call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
   end subroutine name_stop_angle
 

@@ -64,6 +64,7 @@ module lsode_solver
     procedure :: jacobian_steps
     procedure :: jacobian_contraction
     procedure :: fail
+    procedure :: stop_time
   end type ode_system_t
 
   abstract interface
@@ -225,6 +226,14 @@ contains
     call self%err%set('', message)
     self%t_failed = t
   end subroutine fail
+
+  !> Where a run that failed stopped: the model's own failure carries its
+  !> time; a stop of DLSODE's is at the solver's time t_solver.
+  pure real(dp) function stop_time(self, t_solver)
+    class(ode_system_t), intent(in) :: self
+    real(dp), intent(in) :: t_solver
+    stop_time = merge(self%t_failed, t_solver, self%err%failed())
+  end function stop_time
 
   ! ------------------------------------------------------------------ F77 shims
 

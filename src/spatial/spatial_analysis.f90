@@ -125,22 +125,14 @@ contains
     if (abs(per_rev*step_deg - 360.0_dp) > 1.0e-9_dp) per_rev = 0
   end function samples_per_revolution
 
-  !> The crank angle where the run stopped, as context of its error: the
-  !> model's own failures carry their time; DLSODE's stops are at the
-  !> solver's time t_ode.
+  !> The crank angle where the run stopped, as context of its error.
   subroutine name_stop_angle(inp, model, t_ode, err)
     type(spatial_input_t), intent(in) :: inp
     type(spatial_model_t), intent(in) :: model
     real(dp), intent(in) :: t_ode
     type(error_t), intent(inout) :: err
-    real(dp) :: t
-    if (model%err%failed()) then
-      t = model%t_failed
-    else
-      t = t_ode
-    end if
     call err%add_context('spatial analysis stopped at crank angle '// &
-                         str((inp%theta0_deg*pi/180.0_dp + inp%omega*t)*180.0_dp/pi, 7)//' deg')
+                         str((inp%theta0_deg*pi/180.0_dp + inp%omega*model%stop_time(t_ode))*180.0_dp/pi, 7)//' deg')
   end subroutine name_stop_angle
 
   !> The row of output step k at time tt (joints B, C; link ends; link roots'
