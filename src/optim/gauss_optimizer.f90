@@ -48,6 +48,7 @@ module gauss_optimizer
   public :: method_from_name, method_name, method_names
   public :: hessian_auto, hessian_gauss, hessian_exact, hessian_from_name, hessian_name
   public :: status_not_run, status_converged, status_max_iter, status_failed
+  public :: glob_none, glob_filter, globalization_from_name, globalization_name, globalization_names
   public :: set_text
 
   integer, parameter :: method_gauss = 1, method_gauss_constrained = 2, method_gnlc = 3, &
@@ -59,6 +60,13 @@ module gauss_optimizer
   character(len=*), parameter :: method_table(7) = [character(len=17) :: 'gauss', 'gauss_constrained', 'gnlc', &
     'gnlc_ns', 'gnlc_general', 'gnlc_general_ns', 'auto']
   character(len=*), parameter :: hessian_table(3) = [character(len=5) :: 'auto', 'gauss', 'exact']
+  !> step acceptance: none (the papers' methods as printed) or the filter line search (step_acceptable)
+  integer, parameter :: glob_none = 0, glob_filter = 1
+  character(len=*), parameter :: globalization_table(2) = [character(len=6) :: 'none', 'filter']
+  character(len=*), parameter :: globalization_names = "'filter', 'none'"
+  integer, parameter :: max_backtracks = 3   !< halvings of a step the filter rejects before a shifted step
+  integer, parameter :: max_shifts = 12      !< Levenberg shifts of G after rejected steps, x10 each
+  real(dp), parameter :: filter_gamma = 1.0e-5_dp, armijo_eta = 1.0e-4_dp
   integer, parameter :: status_not_run = -1, status_converged = 0, status_max_iter = 1, status_failed = 2
   integer, parameter :: max_halvings = 60    !< of a step whose trial point gives a non-finite value
   !> outcomes of next_point
@@ -86,6 +94,8 @@ module gauss_optimizer
                                           !< .false.: one B13 interpolation, feasible side kept
     logical :: projected_newton = .true.  !< bounds only: Bertsekas' projected Newton point P(x + s_B) tried
                                           !< first, accepted by Armijo's test (see projected_point)
+    integer :: globalization = glob_filter !< glob_none: every trial point accepted (the papers' methods)
+    real(dp) :: stat_tol = 1.0e-6_dp      !< first-order test (5): |grad L|_inf <= stat_tol max(1, |grad F|_inf)
   end type gauss_options_t
 
   !> One row of the iteration log: the state after iteration k.
@@ -122,6 +132,10 @@ module gauss_optimizer
     integer :: newton_solves = 0, powell_fallbacks = 0, drops = 0, additions = 0
     integer :: step_backs = 0, regularizations = 0, potter_repeats = 0, releases = 0
     integer :: restorations = 0                !< feasibility restorations (Gauss steps on the violation)
+    integer :: backtracks = 0                  !< trial points rejected by the filter (each one analysis)
+    integer :: kkt_refusals = 0                !< steps whose test passed but a first-order condition failed
+    real(dp) :: stationarity = 0.0_dp          !< |grad F + C lambda|_inf / max(1, |grad F|_inf) at the end
+    real(dp) :: min_multiplier = 0.0_dp        !< smallest scaled inequality multiplier lambda_i |c_i| / |grad F|
     ! ---- iteration log
     integer :: n_log = 0
     type(gauss_iterate_t), allocatable :: log(:)
@@ -133,6 +147,9 @@ module gauss_optimizer
     logical, private :: first_order_start = .false.  !< next B11 starts from least-squares multipliers
     logical, private :: restored_now = .false.  !< x_new is a restored point (no cycling test: it may be an iterate)
     logical, private :: off_chord = .false.     !< x_new is no fraction of s (restoration, Levenberg arc)
+    real(dp), allocatable, private :: filter(:, :)   !< (F_j, h_j) pairs the filter holds
+    integer, private :: n_filter = 0
+    real(dp), private :: h_max = 0.0_dp         !< largest violation a trial point may have
   contains
     procedure :: solve
     procedure :: method_label
@@ -165,6 +182,8 @@ module gauss_optimizer
     procedure, private :: append_log
     procedure, private :: note
     procedure, private :: projected_point
+    procedure, private :: step_acceptable
+    procedure, private :: first_order_ok
   end type gauss_optimizer_t
 
 contains
@@ -196,6 +215,22 @@ contains
       h = code_of(hessian_table, name, hessian_auto, -1)
     end if
   end function hessian_from_name
+
+  !> 'none' or 'filter'; -1 for an unknown name, a blank name is 'filter'.
+  integer function globalization_from_name(name) result(g)
+    character(len=*), intent(in) :: name
+    if (len_trim(name) == 0) then
+      g = glob_filter
+    else
+      g = code_of(globalization_table, name, glob_none, -1)
+    end if
+  end function globalization_from_name
+
+  function globalization_name(g) result(name)
+    integer, intent(in) :: g
+    character(len=:), allocatable :: name
+    name = name_of(globalization_table, g, glob_none, 'unknown')
+  end function globalization_name
 
   function hessian_name(h) result(name)
     integer, intent(in) :: h
@@ -240,10 +275,10 @@ contains
     class(opt_problem_t), intent(inout), target :: prob
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: s(:), x_new(:), g_new(:)
-    integer :: n, mt, k, hess_kind, stalls, escapes, regs, outcome
-    real(dp) :: xnorm, snorm, t
-    logical :: step_back_method, auto, exact_model
+    real(dp), allocatable :: s(:), x_new(:), g_new(:), gm_k(:, :)
+    integer :: n, mt, k, hess_kind, stalls, escapes, regs, outcome, shifts, i
+    real(dp) :: xnorm, snorm, t, mu
+    logical :: step_back_method, auto, exact_model, refused, restored
     character(len=:), allocatable :: stage
 
     call err%clear()
@@ -259,19 +294,34 @@ contains
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
     call self%start(prob, x0, step_back_method, auto, err)
     if (err%failed()) return
-    allocate(s(n), x_new(n), g_new(mt))
+    allocate(s(n), x_new(n), g_new(mt), gm_k(n, n))
 
     k = 0
     stalls = 0
     escapes = 0
+    shifts = 0
+    mu = 0.0_dp
     outcome = found_limit
     outer: do
       stage = 'iteration '//str(k + 1)
-      ! ---- derivatives and curvature at x_k
-      regs = self%regularizations
-      call self%derivatives(prob, hess_kind, k, err)
-      if (err%failed()) exit outer
-      exact_model = hess_kind /= hessian_gauss .and. self%regularizations == regs
+      if (shifts == 0) then
+        ! ---- derivatives and curvature at x_k
+        regs = self%regularizations
+        call self%derivatives(prob, hess_kind, k, err)
+        if (err%failed()) exit outer
+        exact_model = hess_kind /= hessian_gauss .and. self%regularizations == regs
+        gm_k = self%gm
+      else
+        ! ---- the filter rejected the step from x_k: G + mu I (Levenberg), mu x10 per rejection
+        mu = merge(1.0e-2_dp*max(1.0_dp, maxval([(abs(gm_k(i, i)), i=1, n)])), 10.0_dp*mu, shifts == 1)
+        self%gm = gm_k
+        do i = 1, n
+          self%gm(i, i) = self%gm(i, i) + mu
+        end do
+        self%regularizations = self%regularizations + 1
+        exact_model = .false.
+        call self%note('G + mu I after a rejected step, mu = '//str(mu, 3))
+      end if
       self%have_hess = .false.
       xnorm = maxval(abs(self%x))
 
@@ -298,9 +348,31 @@ contains
 
       ! ---- accept x_{k+1}: one analysis; a non-finite F is a failed trial,
       ! never a value: step back to the midpoint and analyse again
-      k = k + 1
-      call self%analyse_trial(prob, x_new, g_new, t, snorm, step_back_method, err)
+      call self%analyse_trial(prob, x_new, g_new, t, snorm, step_back_method, refused, err)
       if (err%failed()) exit outer
+      if (refused) then
+        shifts = shifts + 1
+        ! infeasible and no acceptable step: the restoration phase (once per run)
+        restored = .false.
+        if (shifts >= 3) restored = self%restoration(prob, .true., step_back_method, x_new, g_new, t, err)
+        if (restored) then
+          call self%analyse_trial(prob, x_new, g_new, t, snorm, step_back_method, refused, err)
+          if (err%failed()) exit outer
+          shifts = 0
+          k = k + 1
+          self%iterations = k
+          call self%append_log(prob, k, t*snorm)
+          cycle outer
+        end if
+        if (err%failed()) exit outer
+        if (shifts <= max_shifts) cycle outer
+        call err%set('filter', 'no acceptable point from x_k = '//vec_text(self%x)//': every trial point, '// &
+          'also with G + mu I up to mu = '//str(mu, 3)//', increased F without reducing the violation enough (F(x_k) = ' &
+          //str(self%f, 8)//', violation '//str(max_violation(self%g, prob%m), 3)//')')
+        exit outer
+      end if
+      shifts = 0
+      k = k + 1
       self%iterations = k
       call self%append_log(prob, k, t*snorm)
     end do outer
@@ -337,13 +409,16 @@ contains
     real(dp), intent(inout) :: snorm, x_new(:), g_new(:), t
     integer, intent(out) :: outcome
     type(error_t), intent(inout) :: err
-    integer :: mt, repeats
-    real(dp) :: b11_res, maxviol
+    integer :: mt, repeats, jdrop, i
+    real(dp) :: b11_res, maxviol, shift
+    logical :: refused(prob%m + prob%n_eq)
     logical :: solved, same_point, again
     logical, allocatable :: active_before(:), active_iter(:)
     mt = prob%m + prob%n_eq
     outcome = found_trial
     repeats = 0
+    refused = .false.
+    shift = 0.0_dp
     allocate(active_iter, source=self%active)
     do
       if (k > 0 .and. repeats == 0) then     ! a violation no Newton step can reach
@@ -357,8 +432,35 @@ contains
       snorm = maxval(abs(s))
       maxviol = max_violation(self%g, prob%m)
       if (self%kkt_converged(s, snorm, xnorm, maxviol, b11_res, mt, exact_model)) then
-        outcome = found_converged
-        return
+        ! the first-order conditions (first_order_ok) before "converged": a
+        ! negative multiplier leaves the set and the step is recomputed
+        if (self%first_order_ok(prob, jdrop)) then
+          outcome = found_converged
+          return
+        end if
+        self%kkt_refusals = self%kkt_refusals + 1
+        if (jdrop > 0 .and. repeats < 2*mt + 8) then
+          repeats = repeats + 1
+          self%active(jdrop) = .false.
+          self%drops = self%drops + 1
+          call self%note('first-order test: multiplier of '//str(jdrop)//' negative (lambda = '// &
+                         str(self%lambda(jdrop), 4)//'): dropped, step recomputed')
+          if (refused(jdrop)) then
+            ! dropped before and taken back by the step: the model is not
+            ! convex along the released direction; a Levenberg shift turns
+            ! the step towards -grad L, into the feasible side
+            shift = 10.0_dp*max(shift, 0.1_dp*max(1.0_dp, maxval([(abs(self%gm(i, i)), i=1, size(self%gm, 1))])))
+            do i = 1, size(self%gm, 1)
+              self%gm(i, i) = self%gm(i, i) + shift
+            end do
+            self%regularizations = self%regularizations + 1
+            call self%note('released constraint taken back by the step: G + mu I, mu = '//str(shift, 3))
+          end if
+          refused(jdrop) = .true.
+          cycle
+        end if
+        call self%note('first-order test failed (|grad L| / max(1, |grad F|) = '//str(self%stationarity, 3)// &
+                       ', smallest scaled multiplier '//str(self%min_multiplier, 3)//'): iteration goes on')
       end if
       if (k >= self%opts%max_iter) then
         outcome = found_limit
@@ -413,6 +515,41 @@ contains
          .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f)) &
          .and. (snorm <= self%opts%xtol*(1.0_dp + xnorm) .or. self%f_resolved(snorm, xnorm, exact_model))
   end function kkt_converged
+
+  !> The first-order conditions at x_k with the multipliers just computed
+  !> (feasibility and the B11 residual are tested by kkt_converged): (5)
+  !> stationarity |grad F + C lambda|_inf <= stat_tol max(1, |grad F|_inf),
+  !> C the gradients of every constraint (bounds included), and (6) the sign
+  !> of every active inequality and bound multiplier, lambda_i |c_i| >=
+  !> -mult_tol |grad F| (the drop rule's threshold).  jdrop: the most
+  !> negative one (0 if none).  Both measures stay in stationarity and
+  !> min_multiplier for the summary.
+  logical function first_order_ok(self, prob, jdrop) result(ok)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(out) :: jdrop
+    real(dp) :: gnorm, crit, thresh
+    integer :: i
+    gnorm = maxval(abs(self%gradf))
+    if (size(self%lambda) > 0) then
+      self%stationarity = maxval(abs(self%gradf + matmul(self%dg, self%lambda)))/max(1.0_dp, gnorm)
+    else
+      self%stationarity = gnorm/max(1.0_dp, gnorm)
+    end if
+    thresh = self%opts%mult_tol*norm2(self%gradf)
+    jdrop = 0
+    self%min_multiplier = 0.0_dp
+    do i = 1, prob%m
+      if (.not. self%active(i)) cycle
+      crit = self%lambda(i)*norm2(self%dg(:, i))
+      if (crit < self%min_multiplier) then
+        self%min_multiplier = crit
+        if (crit < -thresh) jdrop = i
+      end if
+    end do
+    self%min_multiplier = self%min_multiplier/max(1.0_dp, norm2(self%gradf))
+    ok = jdrop == 0 .and. self%stationarity <= self%opts%stat_tol
+  end function first_order_ok
 
   !> Test (3'), the alternative to the step test (3) (Gill, Murray & Wright,
   !> Practical Optimization (1981) §8.2.3, criteria U1-U3 with tau_F = ftol):
@@ -932,6 +1069,7 @@ contains
     self%active(1:m) = abs(self%g(1:m)) <= self%opts%feas_tol
     if (.not. step_back_method) self%active(1:m) = self%active(1:m) .or. violated
     self%active(m + 1:mt) = .true.
+    self%h_max = 1.0e4_dp*max(1.0_dp, max_violation(self%g, m))
 
     call prob%analyse(self%x, self%f, self%phi, err)
     if (.not. err%failed() .and. .not. (ieee_is_finite(self%f) .and. all(ieee_is_finite(self%phi)))) &
@@ -980,6 +1118,12 @@ contains
     self%regularizations = 0
     self%potter_repeats = 0
     self%restorations = 0
+    self%backtracks = 0
+    self%kkt_refusals = 0
+    self%stationarity = 0.0_dp
+    self%min_multiplier = 0.0_dp
+    self%n_filter = 0
+    self%h_max = 0.0_dp
     self%n_log = 0
     self%ev = ''
     self%last_solved = .true.
@@ -1593,23 +1737,28 @@ contains
   !> Analyse x_new and make it x_{k+1}.  While F (or phi) is not finite, or a
   !> step-back method meets a violated constraint on the way back, the step
   !> is halved towards x_k: every analysis counts in NF, none gives a value.
-  subroutine analyse_trial(self, prob, x_new, g_new, t, snorm, step_back_method, err)
+  subroutine analyse_trial(self, prob, x_new, g_new, t, snorm, step_back_method, refused, err)
     class(gauss_optimizer_t), intent(inout) :: self
     class(opt_problem_t), intent(inout) :: prob
     real(dp), intent(inout) :: x_new(:), g_new(:), t
     real(dp), intent(in) :: snorm
     logical, intent(in) :: step_back_method
+    logical, intent(out) :: refused         !< the filter rejected the step (x_k unchanged)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: phi(:)
     real(dp) :: f
-    integer :: halvings, m
-    logical :: ok
+    integer :: halvings, m, rejected
+    logical :: ok, judge
     m = prob%m
     allocate(phi(size(self%phi)))
     halvings = 0
+    rejected = 0
+    refused = .false.
+    ! a restored point is the remedy for a rejected step: it is not judged
+    judge = self%opts%globalization == glob_filter .and. .not. self%restored_now
     do
       ok = .true.
-      if (halvings > 0 .and. size(g_new) > 0) then
+      if ((halvings > 0 .or. rejected > 0) .and. size(g_new) > 0) then
         call prob%constraint_values(x_new, g_new, err)
         if (err%failed()) return
         ok = all(ieee_is_finite(g_new))
@@ -1619,6 +1768,20 @@ contains
         call prob%analyse(x_new, f, phi, err)
         if (err%failed()) return
         ok = ieee_is_finite(f) .and. all(ieee_is_finite(phi))
+        if (ok .and. judge) then
+          if (self%step_acceptable(prob, x_new, f, g_new)) exit
+          rejected = rejected + 1
+          self%backtracks = self%backtracks + 1
+          if (rejected > max_backtracks) then
+            call self%note('filter: trial point rejected '//str(rejected)//' times along the step (F = '// &
+                           str(f, 8)//'); step recomputed with a Levenberg shift of G')
+            refused = .true.
+            return
+          end if
+          t = 0.5_dp*t
+          x_new = self%x + 0.5_dp*(x_new - self%x)
+          cycle
+        end if
         if (ok) exit
       end if
       halvings = halvings + 1
@@ -1632,11 +1795,65 @@ contains
     end do
     if (halvings > 0) call self%note('objective not finite at the trial point: step halved '//str(halvings)// &
                                      ' times (t = '//str(t, 4)//', |s| = '//str(t*snorm, 3)//')')
+    if (rejected > 0) call self%note('filter: trial point rejected, step halved '//str(rejected)//' times (t = ' &
+                                     //str(t, 4)//', F = '//str(f, 8)//')')
     self%x = x_new
     self%g = g_new
     self%f = f
     self%phi = phi
   end subroutine analyse_trial
+
+  !> The filter line search's acceptance test (Fletcher & Leyffer, Math.
+  !> Program. 91 (2002) 239-269; the line-search form of Waechter & Biegler,
+  !> Math. Program. 106 (2006) 25-57), with h = max violation.  A trial
+  !> point (F+, h+) from (F, h) with d = x+ - x:
+  !>  - h+ > h_max = 1e4 max(1, h(x_0)): rejected;
+  !>  - an F-step (grad F^T d < 0 and -grad F^T d > h, the step a descent
+  !>    direction that outweighs the violation): Armijo's test
+  !>    F+ <= F + 1e-4 grad F^T d;
+  !>  - otherwise an h-step: h+ <= (1 - gamma) h or F+ <= F - gamma h, and
+  !>    (F, h) joins the filter if h > feas_tol (gamma = 1e-5);
+  !> and in both cases no filter entry (F_j, h_j) dominates the trial point:
+  !> h+ <= (1 - gamma) h_j or F+ <= F_j - gamma h_j.  A feasible x_k (h = 0)
+  !> thus accepts only points that do not increase F.  Rounding allowance on
+  !> F: 10 eps (1 + |F|).
+  logical function step_acceptable(self, prob, x_new, f_new, g_new) result(ok)
+    class(gauss_optimizer_t), intent(inout) :: self
+    class(opt_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: x_new(:), f_new, g_new(:)
+    real(dp), allocatable :: tmp(:, :)
+    real(dp) :: h0, h1, gd, slack
+    logical :: f_step
+    integer :: j
+    h0 = max_violation(self%g, prob%m)
+    h1 = max_violation(g_new, prob%m)
+    ok = h1 <= self%h_max
+    if (.not. ok) return
+    gd = dot_product(self%gradf, x_new - self%x)
+    slack = 10.0_dp*epsilon(1.0_dp)*(1.0_dp + abs(self%f))
+    f_step = gd < 0.0_dp .and. -gd > h0
+    if (f_step) then
+      ok = f_new <= self%f + armijo_eta*gd + slack
+    else if (h0 <= self%opts%feas_tol) then      ! feasible x_k: F must not increase
+      ok = f_new <= self%f + slack
+    else
+      ok = h1 <= (1.0_dp - filter_gamma)*h0 .or. f_new <= self%f - filter_gamma*h0 + slack
+    end if
+    do j = 1, self%n_filter
+      if (.not. ok) exit
+      ok = h1 <= (1.0_dp - filter_gamma)*self%filter(2, j) .or. &
+           f_new <= self%filter(1, j) - filter_gamma*self%filter(2, j) + slack
+    end do
+    if (.not. ok .or. f_step .or. h0 <= self%opts%feas_tol) return
+    if (.not. allocated(self%filter)) allocate(self%filter(2, 8))
+    if (self%n_filter == size(self%filter, 2)) then
+      allocate(tmp(2, 2*self%n_filter))
+      tmp(:, 1:self%n_filter) = self%filter(:, 1:self%n_filter)
+      call move_alloc(tmp, self%filter)
+    end if
+    self%n_filter = self%n_filter + 1
+    self%filter(:, self%n_filter) = [self%f, h0]
+  end function step_acceptable
 
   !> Does x_new repeat one of the last four iterates (within xtol (1 + |x|))?
   !> x_k itself: a stall (counted; the third in a row stops the run); an

@@ -22,9 +22,9 @@ module hs_collection
   public :: hs_problem_t, hs_numbers, create_hs
 
   !> The numbers of the problems defined here.
-  integer, parameter :: hs_numbers(42) = [1, 2, 3, 4, 5, 6, 7, 9, 10, 11, 12, 14, 16, 17, 18, 20, 22, 23, 24, 27, &
+  integer, parameter :: hs_numbers(48) = [1, 2, 3, 4, 5, 6, 7, 9, 10, 11, 12, 14, 16, 17, 18, 20, 22, 23, 24, 27, &
                                           29, 30, 31, 32, 34, 36, 37, 38, 39, 40, 42, 48, 50, 51, 52, 53, 60, 71, 76, &
-                                          77, 78, 79]
+                                          77, 78, 79, 44, 46, 57, 63, 64, 83]
   real(dp), parameter :: none = 1.0e30_dp      !< no bound
   real(dp), parameter :: s2 = 1.4142135623730951_dp, s3 = 1.7320508075688772_dp
 
@@ -212,6 +212,25 @@ contains
       call dims(5); me = 3
       x0 = [2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp]
       xs = [1.191127_dp, 1.362603_dp, 1.472818_dp, 1.635017_dp, 1.679081_dp]; fs = 0.0787768209_dp
+    case (44)
+      call dims(4); mg = 6; lo = 0.0_dp
+      x0 = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]; xs = [0.0_dp, 3.0_dp, 0.0_dp, 4.0_dp]; fs = -15.0_dp
+    case (46)
+      call dims(5); me = 2
+      x0 = [0.5_dp*s2, 1.75_dp, 0.5_dp, 2.0_dp, 2.0_dp]; xs = [1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp]; fs = 0.0_dp
+    case (57)
+      call dims(2); mg = 1; lo = [0.4_dp, -4.0_dp]
+      x0 = [0.42_dp, 5.0_dp]; xs = [0.419952675_dp, 1.284845629_dp]; fs = 0.02845966972_dp
+    case (63)
+      call dims(3); me = 2; lo = 0.0_dp
+      x0 = [2.0_dp, 2.0_dp, 2.0_dp]; xs = [3.512118414_dp, 0.2169881741_dp, 3.552174034_dp]; fs = 961.7151721_dp
+    case (64)
+      call dims(3); mg = 1; lo = 1.0e-5_dp
+      x0 = [1.0_dp, 1.0_dp, 1.0_dp]; xs = [108.7347175_dp, 85.12613942_dp, 204.3247078_dp]; fs = 6299.842428_dp
+    case (83)
+      call dims(5); mg = 6; lo = [78.0_dp, 33.0_dp, 27.0_dp, 27.0_dp, 27.0_dp]; hi = [102.0_dp, 45.0_dp, 45.0_dp, 45.0_dp, 45.0_dp]
+      x0 = [78.0_dp, 33.0_dp, 27.0_dp, 27.0_dp, 27.0_dp]; xs = [78.0_dp, 33.0_dp, 29.99526_dp, 45.0_dp, 36.77581_dp]
+      fs = -30665.53867_dp
     end select
   contains
     subroutine dims(nn)
@@ -298,6 +317,18 @@ contains
       f = x(1)*x(2)*x(3)*x(4)*x(5)
     case (79)
       f = (x(1) - 1.0_dp)**2 + (x(1) - x(2))**2 + (x(2) - x(3))**2 + (x(3) - x(4))**4 + (x(4) - x(5))**4
+    case (44)
+      f = x(1) - x(2) - x(3) - x(1)*x(3) + x(1)*x(4) + x(2)*x(3) - x(2)*x(4)
+    case (46)
+      f = (x(1) - x(2))**2 + (x(3) - 1.0_dp)**2 + (x(4) - 1.0_dp)**4 + (x(5) - 1.0_dp)**6
+    case (57)
+      f = hs57(x)
+    case (63)
+      f = 1000.0_dp - x(1)**2 - 2.0_dp*x(2)**2 - x(3)**2 - x(1)*x(2) - x(1)*x(3)
+    case (64)
+      f = 5.0_dp*x(1) + 50000.0_dp/x(1) + 20.0_dp*x(2) + 72000.0_dp/x(2) + 10.0_dp*x(3) + 144000.0_dp/x(3)
+    case (83)
+      f = 5.3578547_dp*x(3)**2 + 0.8356891_dp*x(1)*x(5) + 37.293239_dp*x(1) - 40792.141_dp
     case default
       f = 0.0_dp
     end select
@@ -380,6 +411,31 @@ contains
         c = -3.0_dp*x(1) - x(2) - 2.0_dp*x(3) + x(4) + 4.0_dp
       case (763)
         c = x(2) + 4.0_dp*x(3) - 1.5_dp
+      case (441)
+        c = 8.0_dp - x(1) - 2.0_dp*x(2)
+      case (442)
+        c = 12.0_dp - 4.0_dp*x(1) - x(2)
+      case (443)
+        c = 12.0_dp - 3.0_dp*x(1) - 4.0_dp*x(2)
+      case (444)
+        c = 8.0_dp - 2.0_dp*x(3) - x(4)
+      case (445)
+        c = 8.0_dp - x(3) - 2.0_dp*x(4)
+      case (446)
+        c = 5.0_dp - x(3) - x(4)
+      case (571)
+        c = 0.49_dp*x(2) - x(1)*x(2) - 0.09_dp
+      case (641)
+        c = 1.0_dp - 4.0_dp/x(1) - 32.0_dp/x(2) - 120.0_dp/x(3)
+      case (831, 832)
+        c = 85.334407_dp + 0.0056858_dp*x(2)*x(5) + 0.0006262_dp*x(1)*x(4) - 0.0022053_dp*x(3)*x(5)
+        if (j == 1) c = 92.0_dp - c
+      case (833, 834)
+        c = 80.51249_dp + 0.0071317_dp*x(2)*x(5) + 0.0029955_dp*x(1)*x(2) + 0.0021813_dp*x(3)**2
+        c = merge(110.0_dp - c, c - 90.0_dp, j == 3)
+      case (835, 836)
+        c = 9.300961_dp + 0.0047026_dp*x(3)*x(5) + 0.0012547_dp*x(1)*x(3) + 0.0019085_dp*x(3)*x(4)
+        c = merge(25.0_dp - c, c - 20.0_dp, j == 5)
       end select
     else
       select case (number*10 + j)
@@ -441,6 +497,14 @@ contains
         c = x(2)*x(3) - 5.0_dp*x(4)*x(5)
       case (783)
         c = x(1)**3 + x(2)**3 + 1.0_dp
+      case (461)
+        c = x(1)**2*x(4) + sin(x(4) - x(5)) - 1.0_dp
+      case (462)
+        c = x(2) + x(3)**4*x(4)**2 - 2.0_dp
+      case (631)
+        c = 8.0_dp*x(1) + 14.0_dp*x(2) + 7.0_dp*x(3) - 56.0_dp
+      case (632)
+        c = x(1)**2 + x(2)**2 + x(3)**2 - 25.0_dp
       case (791)
         c = x(1) + x(2)**2 + x(3)**3 - 2.0_dp - 3.0_dp*s2
       case (792)
@@ -450,6 +514,18 @@ contains
       end select
     end if
   end function hs_c
+
+  !> HS 57: a fit of 44 observations b_i at a_i (Hock & Schittkowski's table).
+  pure real(dp) function hs57(x) result(f)
+    real(dp), intent(in) :: x(:)
+    real(dp), parameter :: a(44) = [8, 8, 10, 10, 10, 10, 12, 12, 12, 12, 14, 14, 14, 16, 16, 16, 18, 18, 20, 20, 20, &
+      22, 22, 22, 24, 24, 24, 26, 26, 26, 28, 28, 30, 30, 30, 32, 32, 34, 36, 36, 38, 38, 40, 42]
+    real(dp), parameter :: b(44) = [0.49_dp, 0.49_dp, 0.48_dp, 0.47_dp, 0.48_dp, 0.47_dp, 0.46_dp, 0.46_dp, 0.45_dp, &
+      0.43_dp, 0.45_dp, 0.43_dp, 0.43_dp, 0.44_dp, 0.43_dp, 0.43_dp, 0.46_dp, 0.45_dp, 0.42_dp, 0.42_dp, 0.43_dp, &
+      0.41_dp, 0.41_dp, 0.40_dp, 0.42_dp, 0.40_dp, 0.40_dp, 0.41_dp, 0.40_dp, 0.41_dp, 0.41_dp, 0.40_dp, 0.40_dp, &
+      0.40_dp, 0.38_dp, 0.41_dp, 0.40_dp, 0.40_dp, 0.41_dp, 0.38_dp, 0.40_dp, 0.40_dp, 0.39_dp, 0.39_dp]
+    f = sum((b - x(1) - (0.49_dp - x(1))*exp(min(-x(2)*(a - 8.0_dp), 700.0_dp)))**2)
+  end function hs57
 
   subroutine hs_objective(self, x, f, err)
     class(hs_problem_t), intent(inout) :: self
