@@ -1558,6 +1558,7 @@ contains
     logical, allocatable :: actual(:), fixed(:), general(:)
     logical :: ok
     type(error_t) :: lerr
+    real(dp) :: mu
     integer :: i, j, l, mt, m0, v
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
@@ -1608,6 +1609,22 @@ contains
                              actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
     if (l == 0) then
       call msys%evaluate_step(lam, ok)                   ! B12 on the free variables
+      ! a vertex start or a bilinear objective: G on the free variables
+      ! singular (HS 44 from x = 0, G_ii = 0); Levenberg: G + mu I, mu x10
+      mu = 1.0e-2_dp*max(1.0_dp, maxval([(abs(self%gm(i, i)), i=1, prob%n)]))
+      do j = 1, 12
+        if (ok .or. .not. self%opts%auto_regularize) exit
+        do i = 1, prob%n
+          self%gm(i, i) = self%gm(i, i) + mu
+        end do
+        self%regularizations = self%regularizations + 1
+        call self%note('G on the free variables singular (rcond = '//str(msys%m_rcond, 3)//'): G + mu I, mu = ' &
+                       //str(mu, 3))
+        msys = multiplier_system(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), &
+                                 self%hess(:, :, idx), actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
+        call msys%evaluate_step(lam, ok)
+        mu = 10.0_dp*mu
+      end do
       if (.not. ok) call err%set('gauss_step', 'G restricted to the free variables is singular (rcond = '// &
                                  str(msys%m_rcond, 3)//')')
       if (err%failed()) return
