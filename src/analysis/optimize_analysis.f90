@@ -25,7 +25,7 @@ module optimize_analysis
   use hs_collection, only: hs_problem_t, hs_numbers, create_hs
   use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
-                             status_converged, status_max_iter, set_text
+                             status_converged, status_max_iter, set_text, globalization_from_name
   implicit none
   private
   public :: run_optimize
@@ -36,11 +36,11 @@ module optimize_analysis
   real(dp), parameter :: unset = -huge(1.0_dp)
 
   ! staging variables of the &optimize group
-  character(len=32) :: problem, method, hessian, potter_fix, step_back, singular_g
-  real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization
+  character(len=32) :: problem, method, hessian, potter_fix, step_back, singular_g, globalization
+  real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization, stat_tol
   integer :: max_iter, newton_max_iter
   namelist /optimize/ problem, method, x0, hessian, max_iter, xtol, ftol, feas_tol, mult_tol, rcond_min, &
-                      regularization, newton_max_iter, potter_fix, step_back, singular_g
+                      regularization, newton_max_iter, potter_fix, step_back, singular_g, globalization, stat_tol
 
 contains
 
@@ -60,6 +60,8 @@ contains
     potter_fix = 'repeat'
     step_back = 'farthest'
     singular_g = 'regularize'
+    globalization = 'filter'
+    stat_tol = 1.0e-6_dp
   end subroutine set_defaults
 
   subroutine read_optimize(r)
@@ -89,6 +91,7 @@ contains
     potter_fix = lower(potter_fix)
     step_back = lower(step_back)
     singular_g = lower(singular_g)
+    globalization = lower(globalization)
     call select_problem(deck, prob, info, err)
     if (err%failed()) return
     n = prob%n
@@ -108,7 +111,8 @@ contains
                      //constraint_text(prob))
     call set_options(opt)
     call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
-                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|)')
+                     ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|), ' &
+                     //'|grad L| <= stat_tol max(1, |grad F|); step acceptance: '//trim(globalization))
 
     call cpu_time(cpu0)
     call opt%solve(prob, start, run_err)
@@ -171,6 +175,7 @@ contains
     call check_choice(deck, 'optimize', 'potter_fix', potter_fix, [character(len=8) :: 'repeat', 'none'], err)
     call check_choice(deck, 'optimize', 'step_back', step_back, [character(len=8) :: 'farthest', 'b13'], err)
     call check_choice(deck, 'optimize', 'singular_g', singular_g, [character(len=12) :: 'regularize', 'stop'], err)
+    call check_choice(deck, 'optimize', 'globalization', globalization, [character(len=8) :: 'filter', 'none'], err)
     if (err%failed()) return
     ! x0: unset entries hold the sentinel -huge; the given ones must be finite
     n_given = count(.not. is_unset(x0))
@@ -195,6 +200,8 @@ contains
                     why='a reciprocal condition number')
     call check_real(deck, 'optimize', 'regularization', regularization, err, at_least=0.0_dp, at_most=1.0_dp, &
                     why='mu = regularization max G_ii; above 1 mu I would swamp G and the step become a gradient step')
+    call check_real(deck, 'optimize', 'stat_tol', stat_tol, err, above=0.0_dp, below=1.0_dp, &
+                    why='a relative tolerance on |grad F + C lambda|')
   end subroutine check_settings
 
   !> Echo the effective input (x0 only as far as the problem uses it).
@@ -211,7 +218,8 @@ contains
                     ', potter_fix = '''//trim(potter_fix)//''', step_back = '''//trim(step_back)//''','
     write(u, '(a)') ' xtol = '//str(xtol)//', ftol = '//str(ftol)//', feas_tol = '//str(feas_tol)//','
     write(u, '(a)') ' mult_tol = '//str(mult_tol)//', rcond_min = '//str(rcond_min)//', regularization = ' &
-                    //str(regularization)//', singular_g = '''//trim(singular_g)//''''
+                    //str(regularization)//', singular_g = '''//trim(singular_g)//''','
+    write(u, '(a)') ' globalization = '''//trim(globalization)//''', stat_tol = '//str(stat_tol)
     write(u, '(a)') '/'
     call out%end_echo()
   end subroutine echo_optimize
@@ -231,6 +239,8 @@ contains
     opt%opts%newton_max_iter = newton_max_iter
     opt%opts%potter_repeat = potter_fix == 'repeat'
     opt%opts%step_back_refine = step_back == 'farthest'
+    opt%opts%globalization = globalization_from_name(globalization)
+    opt%opts%stat_tol = stat_tol
   end subroutine set_options
 
   !> Status, the optimum found (or the best feasible iterate) and the known optimum.
@@ -261,6 +271,10 @@ contains
       end if
       if (opt%status == status_converged) call out%summary('KKT residual |grad F + C lambda|_inf', &
                                                            str(opt%kkt_residual, 4))
+      call out%summary('first-order test: |grad L|_inf / max(1, |grad F|_inf) (<= stat_tol)', &
+                       str(opt%stationarity, 4)//' (<= '//str(stat_tol, 3)//')')
+      call out%summary('first-order test: smallest lambda_i |c_i| / |grad F| (>= -mult_tol)', &
+                       str(opt%min_multiplier, 4)//' (>= '//str(-mult_tol, 3)//')')
     end if
     if (opt%status /= status_converged) then
       if (opt%have_best) then
@@ -302,6 +316,10 @@ contains
     call out%cost('drops / additions / releases', str(opt%drops)//' / '//str(opt%additions)//' / '//str(opt%releases))
     call out%cost('step-backs / Potter repeats', str(opt%step_backs)//' / '//str(opt%potter_repeats))
     call out%cost('regularizations of G', str(opt%regularizations))
+    call out%cost('filter: rejected trial points (each one analysis) / first-order refusals', &
+                  str(opt%backtracks)//' / '//str(opt%kkt_refusals))
+    call out%cost('all objective evaluations (NF + finite differences)', &
+                  str(prob%count%analyses + prob%count%fd_analyses))
     call out%cost('optimizer_cpu_seconds', str(cpu_seconds, 4))
   end subroutine write_cost
 

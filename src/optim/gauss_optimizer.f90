@@ -513,7 +513,23 @@ contains
     if (mt > 0) pred = pred + dot_product(matmul(self%dg, self%lambda), s)
     ok = maxviol <= self%opts%feas_tol .and. b11_res <= self%opts%feas_tol &
          .and. abs(pred) <= self%opts%ftol*(1.0_dp + abs(self%f)) &
-         .and. (snorm <= self%opts%xtol*(1.0_dp + xnorm) .or. self%f_resolved(snorm, xnorm, exact_model))
+         .and. (snorm <= self%opts%xtol*(1.0_dp + xnorm) .or. self%f_resolved(snorm, xnorm, exact_model) &
+                .or. f_settled())
+  contains
+    !> (3''), with the filter only: F has settled, the last two accepted
+    !> steps changed it by less than ftol (1 + |F|) and Gill, Murray &
+    !> Wright's U3 holds.  A minimum where G is singular (HS 46: (x4 - 1)^4,
+    !> (x5 - 1)^6) is approached linearly, the step stays far above xtol,
+    !> and G is regularized so (3') never applies.
+    logical function f_settled() result(done)
+      real(dp) :: glag
+      done = .false.
+      if (self%opts%globalization == glob_none .or. self%n_log < 3) return
+      if (abs(self%log(self%n_log - 2)%f - self%f) > self%opts%ftol*(1.0_dp + abs(self%f))) return
+      glag = maxval(abs(self%gradf))
+      if (size(self%lambda) > 0) glag = maxval(abs(self%gradf + matmul(self%dg, self%lambda)))
+      done = glag <= self%opts%ftol**(1.0_dp/3.0_dp)*(1.0_dp + abs(self%f))
+    end function f_settled
   end function kkt_converged
 
   !> The first-order conditions at x_k with the multipliers just computed
