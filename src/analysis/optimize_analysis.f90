@@ -61,7 +61,7 @@ contains
     step_back = 'farthest'
     singular_g = 'regularize'
     globalization = 'filter'
-    stat_tol = 1.0e-6_dp
+    stat_tol = 1.0e-4_dp
   end subroutine set_defaults
 
   subroutine read_optimize(r)

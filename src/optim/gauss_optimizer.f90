@@ -95,7 +95,7 @@ module gauss_optimizer
     logical :: projected_newton = .true.  !< bounds only: Bertsekas' projected Newton point P(x + s_B) tried
                                           !< first, accepted by Armijo's test (see projected_point)
     integer :: globalization = glob_filter !< glob_none: every trial point accepted (the papers' methods)
-    real(dp) :: stat_tol = 1.0e-6_dp      !< first-order test (5): |grad L|_inf <= stat_tol max(1, |grad F|_inf)
+    real(dp) :: stat_tol = 1.0e-4_dp      !< first-order test (5): |grad L|_inf <= stat_tol max(1, |grad F|_inf)
   end type gauss_options_t
 
   !> One row of the iteration log: the state after iteration k.
