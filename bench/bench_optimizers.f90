@@ -101,8 +101,8 @@ program bench_optimizers
   use strings, only: str
   use optim_problem, only: opt_problem_t
   use problem_library, only: problem_info_t, create_problem
-  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, status_converged
-  use hs_collection, only: hs_problem_t, hs_numbers, create_hs
+  use gauss_optimizer, only: gauss_optimizer_t, method_from_name, status_converged, glob_none
+  use hs_collection, only: hs_problem_t, hs_numbers, hs_holdout, create_hs
   use nlopt_glue, only: nlopt_run, alg_slsqp, alg_cobyla
   implicit none
 
@@ -190,29 +190,43 @@ contains
   !> and the violation <= 1e-6 (the test's criterion).  Writes the NF table
   !> (build/bench/hs_nf.dat) and the Dolan-More performance profile of NF
   !> (build/bench/hs_profile.dat): rho_s(tau) = share of problems that solver
-  !> s solves within tau times the fewest NF of any solver.
+  !> s solves within tau times the fewest evaluations of any solver.  The
+  !> count is every objective evaluation: NF plus those spent on finite-
+  !> difference gradients and Hessians (the collection's derivatives are
+  !> central differences, for every solver alike).
   subroutine collection_profile()
     character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
                                                     'rosen_suzuki', 'hs65']
     integer, parameter :: np = size(hs_numbers) + 6
     integer :: nf(np, 3), k, u, i, j, n_tau, length, status, ios
+    logical :: holdout(np)
+    real(dp), allocatable :: ratios(:)
     character(len=512) :: dir
     character(len=16) :: names(np)
     real(dp) :: r(np, 3), tau, best, ratio
     logical :: solved(np, 3)
     write(output_unit, '(a)') '#'
     write(output_unit, '(a)') '# Hock-Schittkowski collection, standard starts; ours with default settings (auto).'
-    write(output_unit, '(a)') '# problem      NF_gauss  NF_slsqp NF_cobyla   (-1: not solved to |f - f*| <= 1e-6 (1 + |f*|),' &
-                              //' violation <= 1e-6)'
+    write(output_unit, '(a)') '# problem      NF_gauss  NF_slsqp NF_cobyla   (all objective evaluations, NF + finite ' &
+                              //'differences; -1: not solved to |f - f*| <= 1e-6 (1 + |f*|), violation <= 1e-6; h: hold-out)'
     do k = 1, size(hs_numbers)
       names(k) = 'hs'//str(hs_numbers(k))
     end do
     names(size(hs_numbers) + 1:) = lib_names
     do k = 1, np
       call run_three(k, names(k), nf(k, :), solved(k, :))
-      write(output_unit, '(a14,3i10)') names(k), merge(nf(k, :), -1, solved(k, :))
+      holdout(k) = k <= size(hs_numbers) .and. any(hs_numbers(min(k, size(hs_numbers))) == hs_holdout)
+      write(output_unit, '(a14,3i10,a)') names(k), merge(nf(k, :), -1, solved(k, :)), merge(' h', '  ', holdout(k))
     end do
-    write(output_unit, '(a,3i4)') '# solved (gauss, slsqp, cobyla): ', count(solved, dim=1)
+    write(output_unit, '(a,3i4,a,i4)') '# solved (gauss, slsqp, cobyla): ', count(solved, dim=1), ' of ', np
+    write(output_unit, '(a,3i4,a,i4)') '#   tuning set:                   ', &
+      (count(solved(:, j) .and. .not. holdout), j=1, 3), ' of ', count(.not. holdout)
+    write(output_unit, '(a,3i4,a,i4)') '#   hold-out:                     ', &
+      (count(solved(:, j) .and. holdout), j=1, 3), ' of ', count(holdout)
+    write(output_unit, '(a,3f10.1)') '# median evaluations over the problems each solves: ', &
+      (median(real(pack(nf(:, j), solved(:, j)), dp)), j=1, 3)
+    write(output_unit, '(a,3f10.1)') '# median evaluations over the problems all three solve: ', &
+      (median(real(pack(nf(:, j), all(solved, dim=2)), dp)), j=1, 3)
     ! data files for the figure: $BENCH_DIR (default build/bench, run_bench.sh's)
     call get_environment_variable('BENCH_DIR', dir, length, status)
     if (status /= 0 .or. length == 0) dir = 'build/bench'
@@ -245,11 +259,14 @@ contains
     close(u)
     ! ratio of our NF to the best NLopt method's, on the problems both solve
     write(output_unit, '(a)') '# NF_gauss / min(NF_slsqp, NF_cobyla) on problems solved by ours and one NLopt method:'
+    ratios = [real(dp) ::]
     do k = 1, np
       if (.not. solved(k, 1) .or. .not. any(solved(k, 2:3))) cycle
       ratio = real(nf(k, 1), dp)/minval(real(nf(k, 2:3), dp), mask=solved(k, 2:3))
+      ratios = [ratios, ratio]
       write(output_unit, '(a,a14,f8.3)') '#   ', names(k), ratio
     end do
+    write(output_unit, '(a,f8.3,a,i4,a)') '# median of that ratio: ', median(ratios), ' (', size(ratios), ' problems)'
   end subroutine collection_profile
 
     !> Problem k of the collection through ours (defaults), SLSQP and COBYLA.
@@ -291,12 +308,33 @@ contains
           call nlopt_run(prob, alg, x, f, ires, err)
           solved(j) = ires > 0
         end if
-        nf(j) = prob%count%analyses
+        nf(j) = prob%count%analyses + prob%count%fd_analyses
         v = violation(prob, x)
         solved(j) = solved(j) .and. abs(f - fs) <= 1.0e-6_dp*(1.0_dp + abs(fs)) .and. v <= 1.0e-6_dp
         deallocate(prob)
       end do
     end subroutine run_three
+
+  !> Median of v (0 for an empty v).
+  real(dp) function median(v) result(med)
+    real(dp), intent(in) :: v(:)
+    real(dp) :: w(size(v)), t
+    integer :: i, j
+    med = 0.0_dp
+    if (size(v) == 0) return
+    w = v
+    do i = 2, size(w)
+      t = w(i)
+      j = i - 1
+      do while (j >= 1)
+        if (w(j) <= t) exit
+        w(j + 1) = w(j)
+        j = j - 1
+      end do
+      w(j + 1) = t
+    end do
+    med = 0.5_dp*(w((size(w) + 1)/2) + w(size(w)/2 + 1))
+  end function median
 
   real(dp) function violation(prob, x) result(v)
     class(opt_problem_t), intent(inout) :: prob
@@ -335,6 +373,7 @@ contains
         type(gauss_optimizer_t) :: opt
         call create_problem(name, prob, info, err)
         opt%opts%method = method_from_name(trim(methods(k)))
+        opt%opts%globalization = glob_none         ! the papers' methods as printed (their table)
         call err%clear()
         call opt%solve(prob, x0, err)
         if (.not. have_ref .and. opt%status == status_converged) then
