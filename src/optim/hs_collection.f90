@@ -428,9 +428,9 @@ contains
     case (61)
       f = 4.0_dp*x(1)**2 + 2.0_dp*x(2)**2 + 2.0_dp*x(3)**2 - 33.0_dp*x(1) + 16.0_dp*x(2) - 24.0_dp*x(3)
     case (62)
-      f = -32.174_dp*(255.0_dp*log((x(1) + x(2) + x(3) + 0.03_dp)/(0.09_dp*x(1) + x(2) + x(3) + 0.03_dp)) &
-          + 280.0_dp*log((x(2) + x(3) + 0.03_dp)/(0.07_dp*x(2) + x(3) + 0.03_dp)) &
-          + 290.0_dp*log((x(3) + 0.03_dp)/(0.13_dp*x(3) + 0.03_dp)))
+      f = -32.174_dp*(255.0_dp*log(pos(x(1) + x(2) + x(3) + 0.03_dp)/pos(0.09_dp*x(1) + x(2) + x(3) + 0.03_dp)) &
+          + 280.0_dp*log(pos(x(2) + x(3) + 0.03_dp)/pos(0.07_dp*x(2) + x(3) + 0.03_dp)) &
+          + 290.0_dp*log(pos(x(3) + 0.03_dp)/pos(0.13_dp*x(3) + 0.03_dp)))
     case (66)
       f = 0.2_dp*x(3) - 0.8_dp*x(1)
     case (72)
@@ -439,7 +439,7 @@ contains
       f = (x(1) - 10.0_dp)**2 + 5.0_dp*(x(2) - 12.0_dp)**2 + x(3)**4 + 3.0_dp*(x(4) - 11.0_dp)**2 + 10.0_dp*x(5)**6 &
           + 7.0_dp*x(6)**2 + x(7)**4 - 4.0_dp*x(6)*x(7) - 10.0_dp*x(6) - 8.0_dp*x(7)
     case (110)
-      f = sum(log(x - 2.0_dp)**2 + log(10.0_dp - x)**2) - product(x)**0.2_dp
+      f = sum(log(pos(x - 2.0_dp))**2 + log(pos(10.0_dp - x))**2) - pos(product(x))**0.2_dp
     case (113)
       f = x(1)**2 + x(2)**2 + x(1)*x(2) - 14.0_dp*x(1) - 16.0_dp*x(2) + (x(3) - 10.0_dp)**2 + 4.0_dp*(x(4) - 5.0_dp)**2 &
           + (x(5) - 3.0_dp)**2 + 2.0_dp*(x(6) - 1.0_dp)**2 + 5.0_dp*x(7)**2 + 7.0_dp*(x(8) - 11.0_dp)**2 &
@@ -472,7 +472,8 @@ contains
     case (63)
       f = 1000.0_dp - x(1)**2 - 2.0_dp*x(2)**2 - x(3)**2 - x(1)*x(2) - x(1)*x(3)
     case (64)
-      f = 5.0_dp*x(1) + 50000.0_dp/x(1) + 20.0_dp*x(2) + 72000.0_dp/x(2) + 10.0_dp*x(3) + 144000.0_dp/x(3)
+      f = 5.0_dp*x(1) + 50000.0_dp/pos(x(1)) + 20.0_dp*x(2) + 72000.0_dp/pos(x(2)) + 10.0_dp*x(3) &
+          + 144000.0_dp/pos(x(3))
     case (83)
       f = 5.3578547_dp*x(3)**2 + 0.8356891_dp*x(1)*x(5) + 37.293239_dp*x(1) - 40792.141_dp
     case default
@@ -570,9 +571,9 @@ contains
       case (662)
         c = x(3) - exp(min(x(2), 700.0_dp))
       case (721)
-        c = 0.0401_dp - 4.0_dp/x(1) - 2.25_dp/x(2) - 1.0_dp/x(3) - 0.25_dp/x(4)
+        c = 0.0401_dp - 4.0_dp/pos(x(1)) - 2.25_dp/pos(x(2)) - 1.0_dp/pos(x(3)) - 0.25_dp/pos(x(4))
       case (722)
-        c = 0.010085_dp - 0.16_dp/x(1) - 0.36_dp/x(2) - 0.64_dp/x(3) - 0.64_dp/x(4)
+        c = 0.010085_dp - 0.16_dp/pos(x(1)) - 0.36_dp/pos(x(2)) - 0.64_dp/pos(x(3)) - 0.64_dp/pos(x(4))
       case (1001)
         c = 127.0_dp - 2.0_dp*x(1)**2 - 3.0_dp*x(2)**4 - x(3) - 4.0_dp*x(4)**2 - 5.0_dp*x(5)
       case (1002)
@@ -618,9 +619,9 @@ contains
       case (1042)
         c = 1.0_dp - 0.0588_dp*x(6)*x(8) - 0.1_dp*x(1) - 0.1_dp*x(2)
       case (1043)
-        c = 1.0_dp - 4.0_dp*x(3)/x(5) - 2.0_dp/(x(3)**0.71_dp*x(5)) - 0.0588_dp*x(7)/x(3)**1.3_dp
+        c = 1.0_dp - 4.0_dp*x(3)/pos(x(5)) - 2.0_dp/(pos(x(3))**0.71_dp*pos(x(5))) - 0.0588_dp*x(7)/pos(x(3))**1.3_dp
       case (1044)
-        c = 1.0_dp - 4.0_dp*x(4)/x(6) - 2.0_dp/(x(4)**0.71_dp*x(6)) - 0.0588_dp*x(8)/x(4)**1.3_dp
+        c = 1.0_dp - 4.0_dp*x(4)/pos(x(6)) - 2.0_dp/(pos(x(4))**0.71_dp*pos(x(6))) - 0.0588_dp*x(8)/pos(x(4))**1.3_dp
       case (1045)
         c = hs104(x) - 1.0_dp
       case (1046)
@@ -640,7 +641,7 @@ contains
       case (571)
         c = 0.49_dp*x(2) - x(1)*x(2) - 0.09_dp
       case (641)
-        c = 1.0_dp - 4.0_dp/x(1) - 32.0_dp/x(2) - 120.0_dp/x(3)
+        c = 1.0_dp - 4.0_dp/pos(x(1)) - 32.0_dp/pos(x(2)) - 120.0_dp/pos(x(3))
       case (831, 832)
         c = 85.334407_dp + 0.0056858_dp*x(2)*x(5) + 0.0006262_dp*x(1)*x(4) - 0.0022053_dp*x(3)*x(5)
         if (j == 1) c = 92.0_dp - c
@@ -777,6 +778,16 @@ contains
     end if
   end function hs_c
 
+  !> max(v, 1e-150): trial points of the multiplier equations and of the
+  !> step may leave the bounds that keep a division, a logarithm or a power
+  !> defined (HS 62, 64, 72, 104, 110); outside them the functions are
+  !> continued with finite values (1/1e-150 = 1e150 does not overflow when
+  !> summed), never NaN.
+  elemental real(dp) function pos(v)
+    real(dp), intent(in) :: v
+    pos = max(v, 1.0e-150_dp)
+  end function pos
+
   !> HS 74 and 75 differ in the bound a on |x3 - x4| (and on x3, x4).
   pure real(dp) function hs74_a(number) result(a)
     integer, intent(in) :: number
@@ -815,7 +826,7 @@ contains
   !> HS 104's objective, also bounded in its constraints 5 and 6.
   pure real(dp) function hs104(x) result(f)
     real(dp), intent(in) :: x(:)
-    f = 0.4_dp*(x(1)/x(7))**0.67_dp + 0.4_dp*(x(2)/x(8))**0.67_dp + 10.0_dp - x(1) - x(2)
+    f = 0.4_dp*(pos(x(1))/pos(x(7)))**0.67_dp + 0.4_dp*(pos(x(2))/pos(x(8)))**0.67_dp + 10.0_dp - x(1) - x(2)
   end function hs104
 
   !> HS 57: a fit of 44 observations b_i at a_i (Hock & Schittkowski's table).

@@ -250,6 +250,7 @@ contains
     call create_problem(name, prob, info, err)
     if (err%failed()) return
     opt%opts%method = method_from_name(method)
+    opt%opts%globalization = glob_none            ! this suite checks the papers' methods as printed
     if (present(max_iter)) opt%opts%max_iter = max_iter
     if (present(regularization)) opt%opts%regularization = regularization
     if (present(potter_repeat)) opt%opts%potter_repeat = potter_repeat

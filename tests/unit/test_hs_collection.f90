@@ -136,7 +136,7 @@ contains
   subroutine test_noise()
     integer, parameter :: n_seeds = 20
     ! not solved from the standard start either (test_solve)
-    integer, parameter :: unsolved(8) = [83, 19, 33, 55, 72, 73, 93, 104]
+    integer, parameter :: unsolved(8) = [83, 19, 33, 55, 72, 73, 93, 104]   ! 104: round-off decides
     type(hs_problem_t) :: p
     type(gauss_optimizer_t) :: opt
     real(dp), allocatable :: x0(:), xs(:), u(:)
@@ -319,10 +319,11 @@ contains
   !> Every problem from its standard start with default settings.  Asserted:
   !> at least 47 of the 48 problems of the tuning set and the 6 of the
   !> library solved (HS 83 fails: a zero-length step in the step-back
-  !> variant); at least 17 of the 24 of the hold-out (HS 19, 33, 55, 72, 73,
-  !> 93 and 104 fail with the diagnoses printed; HS 33 ends on the KKT
-  !> point (0, 0, 2), F = -4, not a minimum); and no run reports
-  !> convergence at a point that fails the independent first-order check.
+  !> variant); at least 17 of the 24 of the hold-out (18 at -O0 and -O2;
+  !> HS 19, 33, 55, 72, 73 and 93 fail with the diagnoses printed, HS 33 on
+  !> the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is solved or
+  !> not by round-off, hence 17); and no run reports convergence at a point
+  !> that fails the independent first-order check.
   subroutine test_solve()
     type(hs_problem_t) :: p
     class(opt_problem_t), allocatable :: lp
