@@ -89,7 +89,7 @@ contains
     if (err%failed()) return
     allocate(qp)
     call qp%init_problem('deck', n, 0, n_ineq, n_eq=n_eq)
-    qp%q = 0.5_dp*(f_q(1:n, 1:n) + transpose(f_q(1:n, 1:n)))
+    qp%q = f_q(1:n, 1:n)                ! symmetric (check_all)
     qp%lin = f_c(1:n)
     qp%const = f_0
     do i = 1, n_ineq
@@ -132,6 +132,14 @@ contains
     call check_real(deck, g, 'f_0', f_0, err, at_least=-big, at_most=big, why=why)
     call check_family('g', g_q, g_a, g_b, n_ineq)      ! the inequalities, then the equalities
     call check_family('h', h_q, h_a, h_b, n_eq)
+    if (err%failed()) return
+    call check_symmetric('f_q', f_q(1:n, 1:n))
+    do i = 1, n_ineq
+      call check_symmetric('g_q(:,:,'//str(i)//')', g_q(1:n, 1:n, i))
+    end do
+    do i = 1, n_eq
+      call check_symmetric('h_q(:,:,'//str(i)//')', h_q(1:n, 1:n, i))
+    end do
     call check_reals(deck, g, 'lower', lower(1:n), err, at_least=-none, at_most=none, why='-1e30 means no bound')
     call check_reals(deck, g, 'upper', upper(1:n), err, at_least=-none, at_most=none, why='1e30 means no bound')
     if (err%failed()) return
@@ -149,6 +157,26 @@ contains
                                                      at_least=-big, at_most=big)
     end do
   contains
+    !> A quadratic term's matrix must be given whole and symmetric: a matrix
+    !> given in one triangle would otherwise be read as half the intended
+    !> curvature (x^T Q x counts an off-diagonal entry twice), silently.
+    subroutine check_symmetric(name, q)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: q(:, :)
+      integer :: i1, j1
+      if (err%failed()) return
+      do j1 = 1, n
+        do i1 = j1 + 1, n
+          if (abs(q(i1, j1) - q(j1, i1)) > 1.0e-12_dp*max(abs(q(i1, j1)), abs(q(j1, i1)))) then
+            call invalid_value(deck, g, name, 'entry ('//str(i1)//','//str(j1)//') = '//str(q(i1, j1))// &
+              ', entry ('//str(j1)//','//str(i1)//') = '//str(q(j1, i1)), 'the matrix must be symmetric: give ' &
+              //'both triangles (F = 1/2 x^T Q x + ..., Q(i,j) = Q(j,i) = the coefficient of x_i x_j)', err)
+            return
+          end if
+        end do
+      end do
+    end subroutine check_symmetric
+
     !> The m quadratic constraints c_q(:,:,k), c_a(k,:), c_b(k) of one family.
     subroutine check_family(c, q, a, b, m)
       character(len=1), intent(in) :: c
