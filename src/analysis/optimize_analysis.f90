@@ -18,7 +18,7 @@ module optimize_analysis
   use deck_reader, only: deck_t, invalid_value, input_error_code, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
-  use optim_problem, only: opt_problem_t, con_kind_name
+  use optim_problem, only: opt_problem_t, opt_counters_t, con_kind_name
   use problem_library, only: problem_info_t, create_problem, problem_names
   use user_problems, only: create_user_problem, user_problem_names
   use deck_problem, only: read_deck_problem
@@ -28,7 +28,7 @@ module optimize_analysis
                              status_converged, status_max_iter, set_text, globalization_from_name
   implicit none
   private
-  public :: run_optimize
+  public :: run_optimize, check_problem_derivatives
 
   integer, parameter :: max_vars = 50
   character(len=20), parameter :: method_list(7) = [character(len=20) :: 'auto', 'gauss', 'gauss_constrained', &
@@ -39,8 +39,10 @@ module optimize_analysis
   character(len=32) :: problem, method, hessian, potter_fix, step_back, singular_g, globalization
   real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization, stat_tol
   integer :: max_iter, newton_max_iter
+  logical :: check_derivatives
   namelist /optimize/ problem, method, x0, hessian, max_iter, xtol, ftol, feas_tol, mult_tol, rcond_min, &
-                      regularization, newton_max_iter, potter_fix, step_back, singular_g, globalization, stat_tol
+                      regularization, newton_max_iter, potter_fix, step_back, singular_g, globalization, stat_tol, &
+                      check_derivatives
 
 contains
 
@@ -62,6 +64,7 @@ contains
     singular_g = 'regularize'
     globalization = 'filter'
     stat_tol = 1.0e-4_dp
+    check_derivatives = .false.
   end subroutine set_defaults
 
   subroutine read_optimize(r)
@@ -81,6 +84,8 @@ contains
     integer :: n, n_given
     real(dp), allocatable :: start(:)
     real(dp) :: cpu0, cpu1
+    character(len=160), allocatable :: check_lines(:)
+    integer :: i
 
     call set_defaults()
     call deck%read_group('optimize', read_optimize, .true., found, err)
@@ -109,6 +114,16 @@ contains
     call out%comment('source: '//info%source)
     call out%comment('variables: '//str(n)//'; objective: '//objective_text(prob)//'; constraints: ' &
                      //constraint_text(prob))
+    if (check_derivatives) then
+      call check_problem_derivatives(prob, start, check_lines, err)
+      do i = 1, size(check_lines)
+        call out%comment(trim(check_lines(i)))
+      end do
+      if (err%failed()) then
+        call err%add_context('deck '''//deck%path//''', group &optimize, check_derivatives')
+        return
+      end if
+    end if
     call set_options(opt)
     call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
                      ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|), ' &
@@ -219,7 +234,8 @@ contains
     write(u, '(a)') ' xtol = '//str(xtol)//', ftol = '//str(ftol)//', feas_tol = '//str(feas_tol)//','
     write(u, '(a)') ' mult_tol = '//str(mult_tol)//', rcond_min = '//str(rcond_min)//', regularization = ' &
                     //str(regularization)//', singular_g = '''//trim(singular_g)//''','
-    write(u, '(a)') ' globalization = '''//trim(globalization)//''', stat_tol = '//str(stat_tol)
+    write(u, '(a)') ' globalization = '''//trim(globalization)//''', stat_tol = '//str(stat_tol)// &
+                    ', check_derivatives = '//trim(merge('T', 'F', check_derivatives))
     write(u, '(a)') '/'
     call out%end_echo()
   end subroutine echo_optimize
@@ -292,6 +308,137 @@ contains
       call out%summary('|F - F*|', str(abs(opt%f - info%f_star), 4))
     end if
   end subroutine write_summary
+
+  !> check_derivatives = T: the problem's derivatives at x0 against central
+  !> differences of its values (gradient and residual Jacobian against F and
+  !> phi, constraint gradients against g, Hessians against the gradients),
+  !> step h = eps^(1/3) max(1, |x_j|); one comment line per function with
+  !> the relative error max |d - d_fd| / max(1, max |d_fd|).  Above 1e-5
+  !> (first derivatives; central differences are good to about 1e-10) or
+  !> 1e-3 (Hessians: a difference Hessian, the default where the problem
+  !> gives none, is good to about sqrt(eps) |F| / h^2, 1.4e-4 on HS 63 with
+  !> |F| = 976; a wrong one is off by O(1)) the run stops with exit 2
+  !> naming every wrong derivative and its error.  The
+  !> check's evaluations are reported on its own line and left out of the
+  !> run's counts.
+  subroutine check_problem_derivatives(prob, x, lines, err)
+    class(opt_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x(:)
+    character(len=160), allocatable, intent(out) :: lines(:)   !< the table, one line per function
+    type(error_t), intent(inout) :: err
+    type(opt_counters_t) :: saved
+    real(dp), allocatable :: phi(:), grad(:), jac(:, :), g(:), dg(:, :), hess(:, :), xp(:), xm(:), fd(:, :), &
+                             gp(:), gm(:), phip(:), phim(:), dgp(:, :), dgm(:, :), jacp(:, :)
+    real(dp) :: f, fp, fm, h, rel, worst
+    character(len=:), allocatable :: worst_name
+    integer :: j, i, n, mt, evals
+    n = prob%n
+    mt = prob%n_constraints()
+    saved = prob%count
+    allocate(lines(0))
+    allocate(phi(prob%n_residuals), grad(n), jac(n, prob%n_residuals), g(mt), dg(n, mt), hess(n, n), xp(n), &
+             xm(n), phip(prob%n_residuals), phim(prob%n_residuals), gp(mt), gm(mt), fd(n, max(1, prob%n_residuals)), &
+             dgp(n, mt), dgm(n, mt), jacp(n, prob%n_residuals))
+    worst = 0.0_dp
+    worst_name = ''
+    call prob%analyse(x, f, phi, err)
+    call prob%objective_derivatives(x, f, phi, grad, jac, err)
+    if (mt > 0) call prob%constraint_values(x, g, err)
+    if (mt > 0) call prob%constraint_gradients(x, g, dg, err)
+    if (err%failed()) return
+    call add('derivative check at x0 (central differences, relative error max |d - d_fd| / max(1, |d_fd|)):')
+    ! gradient, residual Jacobian and constraint gradients against the values
+    block
+      real(dp) :: gfd(n), cfd(n, mt), jfd(n, prob%n_residuals)
+      do j = 1, n
+        call points(j)
+        call prob%analyse(xp, fp, phip, err)
+        call prob%analyse(xm, fm, phim, err)
+        gfd(j) = (fp - fm)/(2.0_dp*h)
+        if (prob%n_residuals > 0) jfd(j, :) = (phip - phim)/(2.0_dp*h)
+        if (mt > 0) then
+          call prob%constraint_values(xp, gp, err)
+          call prob%constraint_values(xm, gm, err)
+          cfd(j, :) = (gp - gm)/(2.0_dp*h)
+        end if
+        if (err%failed()) return
+      end do
+      call judge('objective gradient', grad, gfd, 1.0e-5_dp)
+      if (prob%n_residuals > 0) call judge('residual Jacobian', reshape(jac, [n*prob%n_residuals]), &
+                                           reshape(jfd, [n*prob%n_residuals]), 1.0e-5_dp)
+      do i = 1, mt
+        call judge('gradient of constraint '//str(i), dg(:, i), cfd(:, i), 1.0e-5_dp)
+      end do
+    end block
+    ! Hessians against differences of the (checked) gradients
+    if (.not. prob%is_least_squares()) then
+      call prob%objective_hessian(x, hess, err)
+      if (err%failed()) return
+      block
+        real(dp) :: hfd(n, n), gr_p(n), gr_m(n)
+        do j = 1, n
+          call points(j)
+          call prob%analyse(xp, fp, phip, err)
+          call prob%objective_derivatives(xp, fp, phip, gr_p, jacp, err)
+          call prob%analyse(xm, fm, phim, err)
+          call prob%objective_derivatives(xm, fm, phim, gr_m, jacp, err)
+          if (err%failed()) return
+          hfd(:, j) = (gr_p - gr_m)/(2.0_dp*h)
+        end do
+        call judge('objective Hessian', reshape(hess, [n*n]), reshape(hfd, [n*n]), 1.0e-3_dp)
+      end block
+    end if
+    do i = 1, mt
+      call prob%constraint_hessian(i, x, hess, err)
+      if (err%failed()) return
+      block
+        real(dp) :: hfd(n, n)
+        do j = 1, n
+          call points(j)
+          call prob%constraint_values(xp, gp, err)
+          call prob%constraint_gradients(xp, gp, dgp, err)
+          call prob%constraint_values(xm, gm, err)
+          call prob%constraint_gradients(xm, gm, dgm, err)
+          if (err%failed()) return
+          hfd(:, j) = (dgp(:, i) - dgm(:, i))/(2.0_dp*h)
+        end do
+        call judge('Hessian of constraint '//str(i), reshape(hess, [n*n]), reshape(hfd, [n*n]), 1.0e-3_dp)
+      end block
+    end do
+    evals = prob%count%analyses - saved%analyses
+    call add('derivative check: '//str(evals)//' analyses, '//str(prob%count%gradients - saved%gradients)// &
+                     ' gradient evaluations (not in the run''s counts)')
+    prob%count = saved
+    if (len(worst_name) > 0) call err%set('check_derivatives', 'derivatives at x0 that disagree with central ' &
+      //'differences of the values (relative error): '//worst_name, code=input_error_code)
+  contains
+    subroutine add(text)
+      character(len=*), intent(in) :: text
+      lines = [character(len=160) :: lines, text]
+    end subroutine add
+
+    subroutine points(jj)
+      integer, intent(in) :: jj
+      h = 6.0554544523933395e-6_dp*max(1.0_dp, abs(x(jj)))
+      xp = x
+      xm = x
+      xp(jj) = x(jj) + h
+      xm(jj) = x(jj) - h
+    end subroutine points
+
+    subroutine judge(name, d, dfd, tol)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: d(:), dfd(:), tol
+      rel = 0.0_dp
+      if (size(d) > 0) rel = maxval(abs(d - dfd))/max(1.0_dp, maxval(abs(dfd)))
+      call add('  '//name//': '//str(rel, 3)//merge(' WRONG', '      ', rel > tol))
+      if (rel > tol) then
+        worst = max(worst, rel)
+        if (len(worst_name) > 0) worst_name = worst_name//', '
+        worst_name = worst_name//name//' '//str(rel, 3)
+      end if
+    end subroutine judge
+  end subroutine check_problem_derivatives
 
   !> The cost footer: iterations, analyses and every kind of evaluation.
   subroutine write_cost(out, opt, prob, cpu_seconds)

@@ -5,12 +5,21 @@ module test_optimize_analysis_suite
   use kinds, only: dp
   use error_status, only: error_t
   use deck_runner, only: start_suite, run_text, has_line, summary_value, line_length
-  use optimize_analysis, only: run_optimize
+  use optimize_analysis, only: run_optimize, check_problem_derivatives
+  use optim_problem, only: opt_problem_t
   use assertions
   implicit none
   private
   public :: run_all
 
+  !> F = x1^2 + 3 x2^2 with a gradient that is right (wrong = .false.) or
+  !> has the factor 3 of x2 forgotten (a typical slip).
+  type, extends(opt_problem_t) :: slip_problem_t
+    logical :: wrong = .false.
+  contains
+    procedure :: objective => slip_objective
+    procedure :: gradient => slip_gradient
+  end type slip_problem_t
 
 contains
 
@@ -21,7 +30,52 @@ contains
     call run_test('gnlc_infeasible_start_is_an_input_error', test_infeasible)
     call run_test('iteration_limit_keeps_table_and_best_point', test_iteration_limit)
     call run_test('deck_posed_quadratic_problem_with_equality', test_deck_problem)
+    call run_test('check_derivatives_finds_a_wrong_gradient', test_check_derivatives)
   end subroutine run_all
+
+  subroutine slip_objective(self, x, f, err)
+    class(slip_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: f
+    type(error_t), intent(inout) :: err
+    f = x(1)**2 + 3.0_dp*x(2)**2
+    if (err%failed() .and. self%wrong) return
+  end subroutine slip_objective
+
+  subroutine slip_gradient(self, x, f, grad, err)
+    class(slip_problem_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:), f
+    real(dp), intent(out) :: grad(:)
+    type(error_t), intent(inout) :: err
+    grad = [2.0_dp*x(1), merge(2.0_dp, 6.0_dp, self%wrong)*x(2)]
+    if (err%failed() .and. f > 0.0_dp) return
+  end subroutine slip_gradient
+
+  !> check_derivatives: the right gradient passes (relative error ~1e-10),
+  !> the slipped one (2 x2 for 6 x2: error 4/6 at x = (1, 1)) is an input
+  !> error (code 2) that names the objective gradient; the check's own
+  !> evaluations leave the problem's counts as they were; and a deck with
+  !> check_derivatives = T prints the table before the run.
+  subroutine test_check_derivatives()
+    type(slip_problem_t) :: p
+    character(len=160), allocatable :: table(:)
+    character(len=line_length), allocatable :: lines(:)
+    type(error_t) :: err
+    call p%init_problem('slip', 2, 0, 0)
+    call check_problem_derivatives(p, [1.0_dp, 1.0_dp], table, err)
+    call assert_true(.not. err%failed(), 'right gradient accepted: '//err%text())
+    call assert_true(any(index(table, 'objective gradient') > 0), 'the table names the objective gradient')
+    call assert_equal(p%count%analyses, 0, 'the check leaves the counts unchanged')
+    p%wrong = .true.
+    call check_problem_derivatives(p, [1.0_dp, 1.0_dp], table, err)
+    call assert_true(err%failed() .and. err%code == 2, 'wrong gradient: input error, code 2')
+    call assert_true(index(err%text(), 'objective gradient 0.667') > 0, 'names it with its error: '//err%text())
+    call err%clear()
+    call run_text("&run analysis='optimize' /|&optimize problem='hs63', check_derivatives = T /", err, lines)
+    call assert_true(.not. err%failed(), 'HS 63 derivatives consistent: '//err%text())
+    call assert_true(has_line(lines, '# derivative check at x0'), 'table printed')
+    call assert_true(has_line(lines, '#   objective Hessian:'), 'Hessian checked')
+  end subroutine test_check_derivatives
 
   !> HS 6 posed by coefficients (issue 11): F = (1 - x1)^2 = 1/2 x^T diag(2, 0) x
   !> - 2 x1 + 1, h = 1/2 x^T diag(-20, 0) x + 10 x2 = 0 (a quadratic equality),
