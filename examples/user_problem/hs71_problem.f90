@@ -13,7 +13,16 @@
 !>     s.t. x1 x2 x3 x4 >= 25,  x1^2 + x2^2 + x3^2 + x4^2 = 40,  1 <= x <= 5,
 !>
 !> x0 = (1, 5, 5, 1), x* = (1, 4.742999643, 3.821149981, 1.379408293), f* = 17.0140173.
+!>
+!> Numbering: the general inequalities first (here g1), then the simple
+!> bounds that set_bounds adds (g2..g9: x1 >= 1, x1 <= 5, x2 >= 1, ...), then
+!> the equalities (h1 is constraint 10 in the output's columns).  The
+!> procedures below see the general inequality as i = 1; an equality given
+!> by a procedure (set_general_equality) would arrive as i = m + j, m the
+!> inequalities including the bounds: use i - self%m, never a fixed number.
+!> Check the derivatives once with `check_derivatives = T` in &optimize.
 module user_problems
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use kinds, only: dp
   use error_status, only: error_t
   use optim_problem, only: opt_problem_t
@@ -46,20 +55,16 @@ contains
     found = name == 'my_hs71'
     if (.not. found) return
     allocate(p)
-    ! 4 variables, general objective (0 residuals), 9 inequalities, 1 equality
-    call p%init_problem('my_hs71', 4, 0, 9, n_eq=1)
+    ! 4 variables, general objective (0 residuals), 1 general inequality, 1 equality
+    call p%init_problem('my_hs71', 4, 0, 1, n_eq=1)
     call p%set_general_constraint(1)                          ! 25 - x1 x2 x3 x4 <= 0
-    do i = 1, 4                                               ! 1 <= x_i <= 5
-      eye = 0.0_dp
-      eye(i, i) = 1.0_dp
-      call p%set_linear_constraint(2*i, -eye(:, i), -1.0_dp)
-      call p%set_linear_constraint(2*i + 1, eye(:, i), 5.0_dp)
-    end do
     eye = 0.0_dp
     do i = 1, 4
-      eye(i, i) = 2.0_dp
+      eye(i, i) = 2.0_dp                                      ! 1/2 x^T (2 I) x = |x|^2
     end do
     call p%set_quadratic_equality(1, eye, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], 40.0_dp)   ! |x|^2 = 40
+    ! simple bounds 1 <= x_i <= 5 (+-1e30: none); held as bounds by the optimizer
+    call p%set_bounds([1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp], [5.0_dp, 5.0_dp, 5.0_dp, 5.0_dp])
     info%title = 'HS 71: general objective and inequality, quadratic equality, bounds'
     info%source = 'Hock & Schittkowski, LNEMS 187 (1981), problem 71 (user problem example)'
     info%method = 'gnlc_general_ns'
@@ -68,7 +73,7 @@ contains
     info%x_star = [1.0_dp, 4.742999643_dp, 3.821149981_dp, 1.379408293_dp]
     info%f_star = 17.0140173_dp
     call move_alloc(p, prob)
-    if (.false.) call err%clear()
+    if (err%failed()) call err%add_context('user problem '//name)   ! an earlier error keeps its origin
   end subroutine create_user_problem
 
   function user_problem_names() result(names)
@@ -81,8 +86,9 @@ contains
     real(dp), intent(in) :: x(:)
     real(dp), intent(out) :: f
     type(error_t), intent(inout) :: err
+    ! a point where the model is undefined is reported, not evaluated
+    if (any(ieee_is_nan(x))) call err%set(self%name, 'the design is not a number')
     f = x(1)*x(4)*(x(1) + x(2) + x(3)) + x(3)
-    if (.false.) call err%set(self%name, '')
   end subroutine hs71_f
 
   subroutine hs71_grad(self, x, f, grad, err)
@@ -90,9 +96,9 @@ contains
     real(dp), intent(in) :: x(:), f
     real(dp), intent(out) :: grad(:)
     type(error_t), intent(inout) :: err
+    ! f = F(x), given for derivatives that reuse it (here none)
+    if (ieee_is_nan(f)) call err%set(self%name, 'gradient asked at a point where F is not a number')
     grad = [x(4)*(2.0_dp*x(1) + x(2) + x(3)), x(1)*x(4), x(1)*x(4) + 1.0_dp, x(1)*(x(1) + x(2) + x(3))]
-    if (.false.) grad(1) = f
-    if (.false.) call err%set(self%name, '')
   end subroutine hs71_grad
 
   subroutine hs71_hess(self, x, hess, err)
@@ -104,7 +110,7 @@ contains
                     x(4), 0.0_dp, 0.0_dp, x(1), &
                     x(4), 0.0_dp, 0.0_dp, x(1), &
                     2.0_dp*x(1) + x(2) + x(3), x(1), x(1), 0.0_dp], [4, 4])
-    if (.false.) call err%set(self%name, '')
+    if (any(ieee_is_nan(hess))) call err%set(self%name, 'Hessian not a number')
   end subroutine hs71_hess
 
   !> General constraint i (only constraint 1 is general here).
