@@ -323,7 +323,8 @@ contains
   !> HS 19, 33, 55, 72, 73 and 93 fail with the diagnoses printed, HS 33 on
   !> the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is solved or
   !> not by round-off, hence 17); and no run reports convergence at a point
-  !> that fails the independent first-order check.
+  !> that fails the independent first-order check; and no accepted iterate
+  !> increases F from a feasible one (the filter).
   subroutine test_solve()
     type(hs_problem_t) :: p
     class(opt_problem_t), allocatable :: lp
@@ -333,7 +334,8 @@ contains
     real(dp) :: fs
     type(error_t) :: err
     logical :: found
-    integer :: k, n_ok(2), n_total(2), n_false
+    integer :: k, n_ok(2), n_total(2), n_false, n_up
+    n_up = 0
     n_ok = 0
     n_total = 0
     n_false = 0
@@ -358,6 +360,7 @@ contains
                      str(n_total(1))//')')
     call assert_true(n_ok(2) >= 17, 'hold-out: at least 17 solved ('//str(n_ok(2))//' of '//str(n_total(2))//')')
     call assert_equal(n_false, 0, 'no run reports convergence at a non-KKT point')
+    call assert_equal(n_up, 0, 'no accepted point increases F from a feasible iterate (the filter)')
   contains
     subroutine report(name, prob, f_star, set)
       character(len=*), intent(in) :: name
@@ -367,6 +370,7 @@ contains
       real(dp) :: df, v
       logical :: ok
       character(len=160) :: line
+      integer :: r
       n_total(set) = n_total(set) + 1
       df = huge(1.0_dp)
       v = huge(1.0_dp)
@@ -379,6 +383,14 @@ contains
       write(line, '(3x,a12,a16,3i6,2es12.2e3,2x,a)') name, opt%method_label(), opt%iterations, prob%count%analyses, &
         prob%count%fd_analyses, df, v, merge('ok     ', 'FAILED ', ok)
       print '(a)', trim(line)//merge(' (hold-out) ', '            ', set == 2)//opt%message(1:min(90, len(opt%message)))
+      ! the filter never accepts a point with a larger F from a feasible iterate
+      do r = 2, opt%n_log
+        if (opt%log(r - 1)%max_violation > opt%opts%feas_tol) cycle
+        if (opt%log(r)%f > opt%log(r - 1)%f + 1.0e-14_dp*(1.0_dp + abs(opt%log(r - 1)%f))) then
+          n_up = n_up + 1
+          print '(a)', '      F increased from a feasible iterate: '//name//', k = '//str(opt%log(r)%k)
+        end if
+      end do
       if (opt%status == status_converged) then
         if (.not. kkt_point(prob, opt%x)) then
           n_false = n_false + 1
