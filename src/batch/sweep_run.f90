@@ -20,7 +20,7 @@ module sweep_run
   use name_table, only: name_of
   use version, only: program_name, program_version
   use deck_reader, only: deck_t
-  use run_settings, only: read_run_settings
+  use run_settings, only: read_run_settings, check_deck_groups
   use table_output, only: table_t
   use sweep_settings, only: sweep_settings_t, read_sweep_settings, echo_sweep_settings
   use point_deck, only: write_point_deck, assignment_text
@@ -55,6 +55,7 @@ contains
     call pool_start()
     call deck%open(deck_path, err)
     if (.not. err%failed()) call read_run_settings(deck, analysis, title, err)
+    if (.not. err%failed()) call check_deck_groups(deck, analysis, .true., err)
     if (.not. err%failed()) call read_sweep_settings(deck, s, err)
     if (err%failed()) then
       if (pool_is_root()) write(error_unit, '(a)') program_name//': input error: '//err%text()
