@@ -3,6 +3,9 @@ module run_settings
   use error_status, only: error_t
   use deck_reader, only: deck_t, group_read_t
   use deck_layout, only: check_deck_layout
+  use deck_checks, only: check_choice
+  use strings, only: lower
+  use unit_system, only: set_unit_system, unit_systems
   use table_output, only: table_t
   use version, only: program_name, program_version
   implicit none
@@ -22,7 +25,8 @@ module run_settings
 
   character(len=32) :: analysis
   character(len=256) :: title
-  namelist /run/ analysis, title
+  character(len=16) :: units
+  namelist /run/ analysis, title, units
 
   integer, parameter :: group_len = 20, max_groups = 6
 
@@ -79,9 +83,13 @@ contains
     logical :: found
     analysis = ''
     title = ''
+    units = 'in-lbf-s'
     call deck%read_group('run', run_group, .true., found, err)
     analysis_out = analysis
     title_out = title
+    if (err%failed()) return
+    call check_choice(deck, 'run', 'units', lower(units), unit_systems, err)
+    if (.not. err%failed()) call set_unit_system(units)
   end subroutine read_run_settings
 
   !> The first lines of every output: program, deck, title, and the &run

@@ -18,6 +18,7 @@ module table_output
   use strings, only: str
   use fast_format, only: format_es, es_width
   use deck_reader, only: group_reader, write_group
+  use unit_system, only: labelled
   implicit none
   private
   public :: table_t, column_width
@@ -98,7 +99,15 @@ contains
     is_open = self%opened
   end function is_open
 
+  !> A '#' line; its unit labels (written as in-lbf-s) in the run's system of units.
   subroutine comment(self, text)
+    class(table_t), intent(inout) :: self
+    character(len=*), intent(in) :: text
+    call verbatim_comment(self, labelled(text))
+  end subroutine comment
+
+  !> A '#' line as given (an echoed group's values are the deck's own).
+  subroutine verbatim_comment(self, text)
     class(table_t), intent(inout) :: self
     character(len=*), intent(in) :: text
     if (.not. self%opened) return
@@ -107,7 +116,7 @@ contains
     else
       write(self%unit, '(a)') '# '//trim(text)
     end if
-  end subroutine comment
+  end subroutine verbatim_comment
 
   !> Lines as comments, one '#' line each.
   subroutine comments(self, lines)
@@ -137,7 +146,7 @@ contains
     do
       read(self%echo, '(a)', iostat=ios) line
       if (ios /= 0) exit
-      call self%comment(squeeze_quoted(line))
+      call verbatim_comment(self, squeeze_quoted(line))
     end do
     close(self%echo)
     self%echoing = .false.

@@ -10,6 +10,8 @@ module linkage_deck
   use table_output, only: table_t
   use linkage, only: mechanism_input_t, input_issue_t, mechanism_t, build_mechanism, max_links, max_joints
   use kinds, only: dp
+  use reference_materials, only: default_link_material
+  use unit_system, only: unit_system_name
   implicit none
   private
   public :: read_mechanism, echo_mechanism, write_mechanism_group, check_section_rules
@@ -74,6 +76,7 @@ contains
     type(input_issue_t) :: issue
     logical :: found
     call stage_from(inp)
+    call default_material()
     call deck%read_group('mechanism', mechanism_group, required=.true., found=found, err=err)
     if (err%failed()) return
     inp = mechanism_input_t(n_joints=n_joints, joint_name=joint_name, joint_type=joint_type, joint_x=joint_x, &
@@ -116,6 +119,15 @@ contains
     call stage_from(mech%input)
     call write_group(mechanism_group, unit)
   end subroutine write_mechanism_group
+
+  !> The default link material in the run's system of units.
+  subroutine default_material()
+    real(dp) :: e1, e2, rho
+    call default_link_material(unit_system_name(), e1, e2, rho)
+    link_e1 = e1
+    link_e2 = e2
+    link_rho = rho
+  end subroutine default_material
 
   subroutine stage_from(inp)
     type(mechanism_input_t), intent(in) :: inp
