@@ -43,15 +43,14 @@ contains
     name = trim(current)
   end function unit_system_name
 
-  !> The range of the wave speed sqrt(E/rho) of engineering solids (about
-  !> 1,000 to 12,000 m/s: polymers to beryllium) in the system's speed unit;
-  !> 'none' gives the in-lbf-s range (a deck without a system is judged as in-lbf-s
-  !> and as SI by the caller).
+  !> The range of the bar wave speed sqrt(E/rho) of engineering solids
+  !> (about 1,000 to 13,000 m/s: stiff polymers to beryllium) in the system's
+  !> speed unit: m/s for 'si', in/s otherwise.
   subroutine wave_speed_range(system, lo, hi)
     character(len=*), intent(in) :: system
     real(dp), intent(out) :: lo, hi
     lo = 1000.0_dp
-    hi = 12000.0_dp
+    hi = 13000.0_dp
     if (system /= 'si') then
       lo = lo/0.0254_dp
       hi = hi/0.0254_dp

@@ -12,7 +12,8 @@ module table_output
                                          c_intptr_t
   use c_library, only: c_rename, c_getpid, c_unlink, c_signal, c_raise
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use, intrinsic :: iso_fortran_env, only: int64
+  use, intrinsic :: iso_fortran_env, only: int64, error_unit
+  use version, only: program_name
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
@@ -47,6 +48,7 @@ module table_output
     procedure :: open => table_open
     procedure :: comment
     procedure :: comments
+    procedure :: warning
     procedure :: echo_unit
     procedure :: end_echo
     procedure :: echo_group
@@ -117,6 +119,15 @@ contains
       write(self%unit, '(a)') '# '//trim(text)
     end if
   end subroutine verbatim_comment
+
+  !> A plausibility warning: a '# warning:' line and the same on stderr.  It
+  !> never changes the result; it says what to check.
+  subroutine warning(self, text)
+    class(table_t), intent(inout) :: self
+    character(len=*), intent(in) :: text
+    call self%comment('warning: '//text)
+    write(error_unit, '(a)') program_name//': warning: '//labelled(text)
+  end subroutine warning
 
   !> Lines as comments, one '#' line each.
   subroutine comments(self, lines)
