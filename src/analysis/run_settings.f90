@@ -10,7 +10,7 @@ module run_settings
   use version, only: program_name, program_version
   implicit none
   private
-  public :: read_run_settings, write_run_header, analysis_driver, check_deck_groups, analysis_groups
+  public :: read_run_settings, write_run_header, analysis_driver, check_deck_groups, analysis_groups, group_len, max_groups
 
   abstract interface
     !> An analysis driver (run_transient, run_steady, ...): the deck in, the
