@@ -5,7 +5,7 @@ module run_settings
   use deck_layout, only: check_deck_layout
   use deck_checks, only: check_choice
   use strings, only: lower
-  use unit_system, only: set_unit_system, unit_systems
+  use unit_system, only: set_unit_system, unit_systems, unit_system_name
   use table_output, only: table_t
   use version, only: program_name, program_version
   implicit none
@@ -100,6 +100,12 @@ contains
     call out%comment(program_name//' '//program_version)
     call out%comment('deck: '//deck_path)
     if (len_trim(title_text) > 0) call out%comment('title: '//trim(title_text))
+    if (unit_system_name() == 'none') then
+      call out%comment('units: none (no unit labels: the deck''s own consistent units; time in s, angles in deg)')
+    else      ! (written in in-lbf-s: table_t labels it in the run's system)
+      call out%comment('units: '//merge('SI      ', unit_system_name(), unit_system_name() == 'si')//' (lengths (in), forces (lb), stresses (psi), mass densities '// &
+                       '(lb s^2/in^4); time in s, angles in deg)')
+    end if
     call out%comment('effective input (every value, defaults included):')
     call out%echo_group(run_group)
   end subroutine write_run_header
