@@ -103,8 +103,9 @@ contains
     if (unit_system_name() == 'none') then
       call out%comment('units: none (no unit labels: the deck''s own consistent units; time in s, angles in deg)')
     else      ! (written in in-lbf-s: table_t labels it in the run's system)
-      call out%comment('units: '//merge('SI      ', unit_system_name(), unit_system_name() == 'si')//' (lengths (in), forces (lb), stresses (psi), mass densities '// &
-                       '(lb s^2/in^4); time in s, angles in deg)')
+      call out%comment('units: '//trim(merge('SI      ', unit_system_name(), unit_system_name() == 'si'))// &
+                       ' (lengths (in), forces (lb), stresses (psi), mass densities (lb s^2/in^4); time in s, '// &
+                       'angles in deg)')
     end if
     call out%comment('effective input (every value, defaults included):')
     call out%echo_group(run_group)
