@@ -97,13 +97,16 @@ contains
   subroutine write_run_header(out, deck_path, title_text)
     type(table_t), intent(inout) :: out
     character(len=*), intent(in) :: deck_path, title_text
+    character(len=:), allocatable :: system
     call out%comment(program_name//' '//program_version)
     call out%comment('deck: '//deck_path)
     if (len_trim(title_text) > 0) call out%comment('title: '//trim(title_text))
     if (unit_system_name() == 'none') then
       call out%comment('units: none (no unit labels: the deck''s own consistent units; time in s, angles in deg)')
     else      ! (written in in-lbf-s: table_t labels it in the run's system)
-      call out%comment('units: '//trim(merge('SI      ', unit_system_name(), unit_system_name() == 'si'))// &
+      system = unit_system_name()
+      if (system == 'si') system = 'SI'
+      call out%comment('units: '//system// &
                        ' (lengths (in), forces (lb), stresses (psi), mass densities (lb s^2/in^4); time in s, '// &
                        'angles in deg)')
     end if
