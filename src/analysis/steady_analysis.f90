@@ -18,6 +18,7 @@ module steady_analysis
   use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use tennant_element, only: tennant_stress_t
   use steady_model, only: steady_model_t
+  use plausibility, only: warn_materials, warn_strength
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings
   use harmonic_solver, only: harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit, shooting_diagnosis
@@ -49,6 +50,7 @@ contains
     if (err%failed()) return
     call echo_mechanism(mech, out)
     call echo_steady_settings(out)
+    call warn_materials(out, mech)
 
     call model%init_mechanism(mech, s%element, s%sections, err)
     if (err%failed()) then
@@ -178,6 +180,7 @@ contains
       if (do_s) call out%summary('element '//str(k)//' peak |stress| (exact periodic)', str(peak(k, 2), 8)// &
                                  ' psi at crank angle '//str(peak_at(k, 2), 6)//' deg')
     end do
+    call warn_strength(out, mech, max(peak(:, 1), peak(:, 2)))
     if (do_h .and. do_s) then
       call out%summary('harmonic series vs exact periodic', 'max |Q_h - Q_exact| / max |Q_exact| = '// &
                        str(maxval(abs(qh - qs))/max(maxval(abs(qs)), tiny(1.0_dp)), 4))

@@ -28,6 +28,7 @@ module transient_analysis
   use revolution_peaks, only: element_peaks_t
   use revolution_rows, only: revolution_rows_t
   use linkage, only: joint_clamp
+  use plausibility, only: warn_materials, warn_strength, crank_speed_warning
   use clearance_run, only: clearance_monitor_t
   use restart_file, only: write_restart_file, start_from_restart
   implicit none
@@ -73,6 +74,7 @@ contains
     if (err%failed()) return
 
     call echo_input(out, mech, clearance, loads_in)
+    call warn_materials(out, mech)
 
     call build_model(deck, mech, s, loads_in, model, err)
     if (err%failed()) return
@@ -94,6 +96,8 @@ contains
     call model%linear_modes(omega_n, shapes, err)
     if (err%failed()) return
     call write_frequency_header(out, mech, s, omega_n)
+    if (len(crank_speed_warning(mech%driver%omega, omega_n(1), s%damping_beta)) > 0) &
+      call out%warning(crank_speed_warning(mech%driver%omega, omega_n(1), s%damping_beta))
     call clearance%attach(model, mech, out, err)
     if (err%failed()) return
 
@@ -137,6 +141,7 @@ contains
     call rows%write_last_revolution(out, names)
     ! summary and cost
     call stress_peaks%write(out)
+    call warn_strength(out, mech, stress_peaks%peak)
     call rows%write_peaks(out, names)
     call rows%write_periodicity(out)
     c = ode%counters()

@@ -14,7 +14,7 @@ program flexmech
   use version, only: program_name
   use deck_reader, only: deck_t, invalid_value, input_error_code
   use table_output, only: table_t
-  use run_settings, only: read_run_settings, write_run_header, analysis_driver
+  use run_settings, only: read_run_settings, write_run_header, analysis_driver, check_deck_groups
   use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
   use transient_analysis, only: run_transient
@@ -54,6 +54,8 @@ program flexmech
     call fail_input(err)
   end if
   call read_run_settings(deck, analysis, title, err)
+  if (err%failed()) call fail_input(err)
+  call check_deck_groups(deck, analysis, .false., err)
   if (err%failed()) call fail_input(err)
 
   call out%open(out_path, err)

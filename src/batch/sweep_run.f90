@@ -19,8 +19,8 @@ module sweep_run
   use strings, only: str, shell_quote, file_stem, append_name
   use name_table, only: name_of
   use version, only: program_name, program_version
-  use deck_reader, only: deck_t
-  use run_settings, only: read_run_settings
+  use deck_reader, only: deck_t, invalid_value
+  use run_settings, only: read_run_settings, check_deck_groups, analysis_groups, group_len, max_groups
   use table_output, only: table_t
   use sweep_settings, only: sweep_settings_t, read_sweep_settings, echo_sweep_settings
   use point_deck, only: write_point_deck, assignment_text
@@ -55,7 +55,9 @@ contains
     call pool_start()
     call deck%open(deck_path, err)
     if (.not. err%failed()) call read_run_settings(deck, analysis, title, err)
+    if (.not. err%failed()) call check_deck_groups(deck, analysis, .true., err)
     if (.not. err%failed()) call read_sweep_settings(deck, s, err)
+    if (.not. err%failed()) call check_swept_group(deck, analysis, s%group, err)
     if (err%failed()) then
       if (pool_is_root()) write(error_unit, '(a)') program_name//': input error: '//err%text()
       call pool_stop()
@@ -93,6 +95,24 @@ contains
     call deck%close()
     call pool_stop()
   end subroutine run_sweep
+
+  !> The swept group must be one the analysis reads (else every point would
+  !> be refused for a group it does not read).
+  subroutine check_swept_group(deck, analysis, group, err)
+    type(deck_t), intent(in) :: deck
+    character(len=*), intent(in) :: analysis, group
+    type(error_t), intent(inout) :: err
+    character(len=group_len) :: reads(max_groups)
+    integer :: i
+    logical :: read_by
+    reads = analysis_groups(trim(analysis))
+    read_by = .false.
+    do i = 1, size(reads)
+      read_by = read_by .or. reads(i) == group
+    end do
+    if (.not. read_by) call invalid_value(deck, 'sweep', 'group', ''''//trim(group)//'''', &
+                                          'the '''//trim(analysis)//''' analysis does not read it', err)
+  end subroutine check_swept_group
 
   !> The shell command of one point (POINT.nml -> POINT.out, messages to POINT.log).
   pure function point_command(flexmech, point) result(c)

@@ -35,9 +35,11 @@ module deck_reader
                                            ieee_set_halting_mode, ieee_set_flag, ieee_support_halting
   use error_status, only: error_t
   use strings, only: str, lower
+  use spelling, only: nearest_name
   implicit none
   private
   public :: deck_t, group_reader, group_read_t, write_group, invalid_value, input_error_in, input_error_code, terminator_column
+  public :: scan_line, shown_line, group_variables, unknown_target
 
   integer, parameter :: input_error_code = 2
   integer, parameter :: shown_chars = 200    !< a deck line quoted in a message is cut after this
@@ -368,6 +370,7 @@ contains
     type(error_t), intent(inout) :: err
     integer :: ios, first, last, bad
     character(len=512) :: iomsg
+    character(len=:), allocatable :: unknown
     found = .false.
     call self%group_line_range(group, first, last)
     if (first == 0) then
@@ -398,6 +401,15 @@ contains
     end if
     bad = first_bad_line(self, reader, first, last)
     if (bad > 0) then
+      ! a name the group does not have, wherever the reader's message points
+      ! (after an array it blames the array: 'Bad data for ... link_joint2')
+      unknown = unknown_target(scan_line(self, bad), group_variables(reader))
+      if (len(unknown) > 0) then
+        call err%set(context(self, group), 'cannot read line '//str(bad)//': "'//shown_line(self, bad)// &
+                     '": unknown variable '''//unknown//''''//did_you_mean(unknown, group_variables(reader)), &
+                     input_error_code)
+        return
+      end if
       call err%set(context(self, group), 'cannot read line '//str(bad)//': "'//shown_line(self, bad)// &
                    '": '//explain(iomsg, ios, scan_line(self, bad)), input_error_code)
     else
@@ -644,6 +656,81 @@ contains
       end if
     end do
   end function first_bad_line
+
+  !> The variables of a group (lower case), from its namelist write: each
+  !> line of the form ' NAME=...' names one.
+  function group_variables(reader) result(names)
+    procedure(group_reader) :: reader
+    character(len=64), allocatable :: names(:)
+    integer :: u, ios, e
+    logical :: at_end
+    character(len=512) :: iomsg
+    character(len=:), allocatable :: line
+    allocate(names(0))
+    open(newunit=u, status='scratch', action='readwrite')
+    call write_group(reader, u)
+    rewind(u)
+    at_end = .false.
+    do
+      call read_line(u, line, ios, iomsg, at_end)
+      if (ios /= 0) exit
+      line = lower(line)
+      if (len(line) < 3) cycle
+      if (line(1:1) /= ' ' .or. scan(line(2:2), 'abcdefghijklmnopqrstuvwxyz') /= 1) cycle
+      e = verify(line(2:), 'abcdefghijklmnopqrstuvwxyz0123456789_') + 1
+      if (e < 3) cycle
+      if (line(e:e) == '=') names = [character(len=64) :: names, line(2:e - 1)]
+    end do
+    close(u)
+  end function group_variables
+
+  !> The first name a deck line (as scan_line gives it) assigns to that is not
+  !> in `names`; '' if every target is known.  Quoted text, numbers and
+  !> comments are skipped; a '/' ends the group.
+  pure function unknown_target(l, names) result(unknown)
+    character(len=*), intent(in) :: l
+    character(len=*), intent(in) :: names(:)
+    character(len=:), allocatable :: unknown, target, sub
+    integer :: k, j, n, longest
+    unknown = ''
+    longest = 0
+    k = 1
+    do while (k <= len(l))
+      if (l(k:k) == '!' .or. l(k:k) == '/') return
+      if (l(k:k) == '''' .or. l(k:k) == '"') then
+        call quoted_value(l, k, j, n)
+        k = j + 1
+      else if (scan(l(k:k), 'abcdefghijklmnopqrstuvwxyz_') == 1) then
+        target = ''
+        sub = ''
+        call assignment_target(l, k, j, target, sub, longest)
+        if (len(target) > 0) then
+          if (.not. any(names == target)) then
+            unknown = target
+            return
+          end if
+        end if
+        k = max(j, k + 1)
+      else if (scan(l(k:k), '0123456789.+-&') == 1) then
+        j = scan(l(k:), ' ,/*!=')       ! a number, a logical, or the '&group' word
+        if (j == 0) return
+        k = k + j - 1
+        if (l(k:k) == '*' .or. l(k:k) == '=') k = k + 1
+      else
+        k = k + 1
+      end if
+    end do
+  end function unknown_target
+
+  !> ' (did you mean ''x''?)' when a candidate is a likely misspelling of word.
+  function did_you_mean(word, candidates) result(s)
+    character(len=*), intent(in) :: word
+    character(len=*), intent(in) :: candidates(:)
+    character(len=:), allocatable :: s, near
+    near = nearest_name(word, candidates)
+    s = ''
+    if (len(near) > 0) s = ' (did you mean '''//near//'''?)'
+  end function did_you_mean
 
   !> A value that was read but breaks a rule.
   subroutine invalid_value(deck, group, variable, value_text, rule, err)

@@ -12,12 +12,14 @@ module table_output
                                          c_intptr_t
   use c_library, only: c_rename, c_getpid, c_unlink, c_signal, c_raise
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use, intrinsic :: iso_fortran_env, only: int64
+  use, intrinsic :: iso_fortran_env, only: int64, error_unit
+  use version, only: program_name
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
   use fast_format, only: format_es, es_width
   use deck_reader, only: group_reader, write_group
+  use unit_system, only: labelled
   implicit none
   private
   public :: table_t, column_width
@@ -46,6 +48,7 @@ module table_output
     procedure :: open => table_open
     procedure :: comment
     procedure :: comments
+    procedure :: warning
     procedure :: echo_unit
     procedure :: end_echo
     procedure :: echo_group
@@ -98,7 +101,15 @@ contains
     is_open = self%opened
   end function is_open
 
+  !> A '#' line; its unit labels (written as in-lbf-s) in the run's system of units.
   subroutine comment(self, text)
+    class(table_t), intent(inout) :: self
+    character(len=*), intent(in) :: text
+    call verbatim_comment(self, labelled(text))
+  end subroutine comment
+
+  !> A '#' line as given (an echoed group's values are the deck's own).
+  subroutine verbatim_comment(self, text)
     class(table_t), intent(inout) :: self
     character(len=*), intent(in) :: text
     if (.not. self%opened) return
@@ -107,7 +118,16 @@ contains
     else
       write(self%unit, '(a)') '# '//trim(text)
     end if
-  end subroutine comment
+  end subroutine verbatim_comment
+
+  !> A plausibility warning: a '# warning:' line and the same on stderr.  It
+  !> never changes the result; it says what to check.
+  subroutine warning(self, text)
+    class(table_t), intent(inout) :: self
+    character(len=*), intent(in) :: text
+    call self%comment('warning: '//text)
+    write(error_unit, '(a)') program_name//': warning: '//labelled(text)
+  end subroutine warning
 
   !> Lines as comments, one '#' line each.
   subroutine comments(self, lines)
@@ -137,7 +157,7 @@ contains
     do
       read(self%echo, '(a)', iostat=ios) line
       if (ios /= 0) exit
-      call self%comment(squeeze_quoted(line))
+      call verbatim_comment(self, squeeze_quoted(line))
     end do
     close(self%echo)
     self%echoing = .false.

@@ -85,6 +85,7 @@ module linkage
     real(dp) :: spinup_time = 0.0_dp
     character(len=8) :: branch = 'open'
     real(dp) :: toggle_rcond = 1.0e-7_dp
+    real(dp) :: link_strength(max_links) = 0.0_dp   !< allowable stress (0 = not given: no check)
   end type mechanism_input_t
 
   !> An invalid input value, in parts (variable, value as text, rule broken).
@@ -111,6 +112,7 @@ module linkage
     integer :: first_element = 0      !< global number of its first element
     real(dp) :: cw_mass = 0.0_dp      !< counterweight mass (0: none)
     real(dp) :: cw_x = 0.0_dp, cw_y = 0.0_dp   !< its position from end 1, along and across the link
+    real(dp) :: strength = 0.0_dp     !< allowable stress of its material (0: not given)
   end type link_t
 
   !> A joint: a point of the mechanism where link ends meet.
@@ -304,6 +306,11 @@ contains
       if (.not. finite_at(found, 'link_cw_mass', q, inp%link_cw_mass(q))) return
       if (.not. finite_at(found, 'link_cw_x', q, inp%link_cw_x(q))) return
       if (.not. finite_at(found, 'link_cw_y', q, inp%link_cw_y(q))) return
+      if (.not. finite_at(found, 'link_strength', q, inp%link_strength(q))) return
+      if (inp%link_strength(q) < 0.0_dp) then
+        call bad(found, idx('link_strength', q), str(inp%link_strength(q)), 'must be >= 0 (an allowable '// &
+                 'stress; 0 = not given)'); return
+      end if
     end do
     if (.not. finite_at(found, 'omega', 0, inp%omega)) return
     if (.not. finite_at(found, 'theta0_deg', 0, inp%theta0_deg)) return
@@ -495,6 +502,7 @@ contains
         lk%cw_mass = inp%link_cw_mass(i)
         lk%cw_x = inp%link_cw_x(i)
         lk%cw_y = inp%link_cw_y(i)
+        lk%strength = inp%link_strength(i)
         if (.not. (inp%link_length(i) >= 0.0_dp .and. finite(inp%link_length(i)))) then
           call bad(found, idx('link_length', i), str(inp%link_length(i)), 'must be > 0 (or 0 to take it from joint coordinates)')
           return

@@ -10,6 +10,8 @@ module linkage_deck
   use table_output, only: table_t
   use linkage, only: mechanism_input_t, input_issue_t, mechanism_t, build_mechanism, max_links, max_joints
   use kinds, only: dp
+  use reference_materials, only: default_link_material
+  use unit_system, only: unit_system_name
   implicit none
   private
   public :: read_mechanism, echo_mechanism, write_mechanism_group, check_section_rules
@@ -26,13 +28,13 @@ module linkage_deck
   character(len=12) :: link_section(max_links)
   real(dp) :: link_c(max_links), link_wall(max_links)
   real(dp) :: omega, theta0_deg, spinup_time, toggle_rcond
-  real(dp) :: link_cw_mass(max_links), link_cw_x(max_links), link_cw_y(max_links)
+  real(dp) :: link_cw_mass(max_links), link_cw_x(max_links), link_cw_y(max_links), link_strength(max_links)
   namelist /mechanism/ n_joints, joint_name, joint_type, joint_x, joint_y, joint_guide_deg, &
     joint_sliding_link, joint_branch, joint_mass, &
     n_links, link_name, link_joint1, link_joint2, link_length, link_b, link_h, &
     link_area, link_inertia, link_section, link_c, link_wall, link_e1, link_e2, link_m, link_rho, link_n_elements, &
     driver_link, omega, theta0_deg, profile, spinup_time, branch, toggle_rcond, &
-    link_cw_mass, link_cw_x, link_cw_y
+    link_cw_mass, link_cw_x, link_cw_y, link_strength
 
 contains
 
@@ -74,6 +76,7 @@ contains
     type(input_issue_t) :: issue
     logical :: found
     call stage_from(inp)
+    call default_material()
     call deck%read_group('mechanism', mechanism_group, required=.true., found=found, err=err)
     if (err%failed()) return
     inp = mechanism_input_t(n_joints=n_joints, joint_name=joint_name, joint_type=joint_type, joint_x=joint_x, &
@@ -82,7 +85,8 @@ contains
       link_joint1=link_joint1, link_joint2=link_joint2, link_length=link_length, link_b=link_b, link_h=link_h, &
       link_area=link_area, link_inertia=link_inertia, link_section=link_section, link_c=link_c, link_wall=link_wall, &
       link_e1=link_e1, link_e2=link_e2, link_m=link_m, link_rho=link_rho, link_n_elements=link_n_elements, &
-      link_cw_mass=link_cw_mass, link_cw_x=link_cw_x, link_cw_y=link_cw_y, driver_link=driver_link, omega=omega, &
+      link_cw_mass=link_cw_mass, link_cw_x=link_cw_x, link_cw_y=link_cw_y, link_strength=link_strength, &
+      driver_link=driver_link, omega=omega, &
       theta0_deg=theta0_deg, profile=profile, spinup_time=spinup_time, branch=branch, toggle_rcond=toggle_rcond)
     call build_mechanism(inp, mech, err, issue)
     if (err%failed() .and. allocated(issue%variable)) then
@@ -117,6 +121,15 @@ contains
     call write_group(mechanism_group, unit)
   end subroutine write_mechanism_group
 
+  !> The default link material in the run's system of units.
+  subroutine default_material()
+    real(dp) :: e1, e2, rho
+    call default_link_material(unit_system_name(), e1, e2, rho)
+    link_e1 = e1
+    link_e2 = e2
+    link_rho = rho
+  end subroutine default_material
+
   subroutine stage_from(inp)
     type(mechanism_input_t), intent(in) :: inp
     n_joints = inp%n_joints
@@ -148,6 +161,7 @@ contains
     link_cw_mass = inp%link_cw_mass
     link_cw_x = inp%link_cw_x
     link_cw_y = inp%link_cw_y
+    link_strength = inp%link_strength
     driver_link = inp%driver_link
     omega = inp%omega
     theta0_deg = inp%theta0_deg
