@@ -21,7 +21,7 @@ module plot_script
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, starts_with, append_name
-  use run_output, only: run_output_t, column_index
+  use run_output, only: run_output_t, column_index, column_unit, name_t, split_words
   implicit none
   private
   public :: write_plot_script, plot_palette
@@ -31,31 +31,45 @@ module plot_script
     '0072b2', 'd55e00', '009e73', 'cc79a7', 'e69f00', '56b4e9', '000000', 'f0e442']
 
   type :: series_t
-    integer :: x = 1, y = 1
+    integer :: y = 1
+    character(len=:), allocatable :: x                 !< a column number or a gnuplot expression
     character(len=:), allocatable :: title, style, filter
   end type series_t
+
+  !> The x axis of the curve figures.
+  type :: curve_axis_t
+    integer :: ix = 1                                  !< its column
+    character(len=:), allocatable :: label
+    real(dp) :: split = -huge(1.0_dp)                  !< start of the last revolution (more than one drawn)
+    logical :: last_only = .false.                     !< only the last revolution, shifted by offset
+    real(dp) :: offset = 0.0_dp                        !< whole turns subtracted from the crank angle
+  end type curve_axis_t
 
 contains
 
   !> Writes the figure script for `out`; `figures` receives the figure names
   !> (suffixes after base_), empty when the output has nothing to draw.
-  subroutine write_plot_script(out, base, script_path, figures, err)
+  subroutine write_plot_script(out, base, script_path, figures, err, whole_run)
     type(run_output_t), intent(in) :: out
     character(len=*), intent(in) :: base, script_path
     character(len=64), allocatable, intent(out) :: figures(:)
     type(error_t), intent(inout) :: err
+    logical, intent(in), optional :: whole_run   !< transient: every revolution (default: the last complete one)
     integer :: u, ios
+    logical :: whole
     allocate(figures(0))
     open(newunit=u, file=script_path, status='replace', action='write', iostat=ios)
     if (ios /= 0) then
       call err%set('plot', 'cannot write the script '''//script_path//'''', 1)
       return
     end if
+    whole = .false.
+    if (present(whole_run)) whole = whole_run
     call preamble(u, out, base)
     if (size(out%data, 1) > 0) then
       select case (out%analysis)
       case ('transient', 'steady')
-        call curve_figures(u, out, figures)
+        call curve_figures(u, out, whole, figures)
       case ('optimize', 'design')
         call history_figure(u, out, figures)
       case ('sweep')
@@ -121,7 +135,7 @@ contains
     do i = 1, size(s)
       y = str(s(i)%y)
       if (len(s(i)%filter) > 0) y = '('//s(i)%filter//' ? $'//str(s(i)%y)//' : NaN)'
-      write(u, '(a)', advance='no') merge('  plot ', '       ', i == 1)//'data u '//str(s(i)%x)//':'//y// &
+      write(u, '(a)', advance='no') merge('  plot ', '       ', i == 1)//'data u '//s(i)%x//':'//y// &
         ' '//s(i)%style//' t "'//esc(s(i)%title)//'"'
       if (i < size(s)) then
         write(u, '(a)') ', \'
@@ -134,7 +148,8 @@ contains
   !> A series_t built component by component (gfortran 12 mis-sizes a
   !> deferred-length component given another one in a structure constructor).
   function series(x, y, title, style, filter) result(item)
-    integer, intent(in) :: x, y
+    character(len=*), intent(in) :: x
+    integer, intent(in) :: y
     character(len=*), intent(in) :: title, style, filter
     type(series_t) :: item
     item%x = x
@@ -164,76 +179,152 @@ contains
     s = 'lc rgb "#'//alpha//plot_palette(mod(i - 1, size(plot_palette)) + 1)//'"'
   end function colour
 
-  !> Transient and steady runs: stress, joints, link ends against crank angle.
-  subroutine curve_figures(u, out, figures)
+  !> Transient and steady runs: stress, joints, link ends against crank angle:
+  !> the last complete revolution on a 360 deg axis, or with `whole` every
+  !> revolution (the earlier ones faint).
+  subroutine curve_figures(u, out, whole, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
+    logical, intent(in) :: whole
     character(len=64), allocatable, intent(inout) :: figures(:)
-    integer :: ix
-    real(dp) :: split
-    character(len=:), allocatable :: xlabel
+    type(curve_axis_t) :: ax
     logical :: exact
-    ix = column_index(out, 'crank_deg')
-    xlabel = 'crank angle (deg)'
-    if (ix > 0) then
-      if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 0.0_dp) ix = 0
+    integer :: j
+    type(name_t), allocatable :: links(:)
+    ax%ix = column_index(out, 'crank_deg')
+    ax%label = 'crank angle (deg)'
+    if (ax%ix > 0) then
+      if (maxval(out%data(:, ax%ix)) - minval(out%data(:, ax%ix)) <= 0.0_dp) ax%ix = 0
     end if
-    if (ix == 0) then
-      ix = column_index(out, 't')
-      xlabel = 't (s)'
+    if (ax%ix == 0) then
+      ax%ix = column_index(out, 't')
+      ax%label = 't (s)'
     end if
-    if (ix == 0) ix = 1
-    split = -huge(1.0_dp)
-    if (xlabel(1:1) == 'c') then
-      if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) > 360.0_dp + 1.0e-9_dp) &
-        split = maxval(out%data(:, ix)) - 360.0_dp
+    if (ax%ix == 0) ax%ix = 1
+    if (ax%label(1:1) == 'c') then
+      if (maxval(out%data(:, ax%ix)) - minval(out%data(:, ax%ix)) > 360.0_dp + 1.0e-9_dp) then
+        ax%split = maxval(out%data(:, ax%ix)) - 360.0_dp
+        ax%last_only = .not. whole
+        ax%offset = 360.0_dp*floor(ax%split/360.0_dp + 1.0e-9_dp)
+      end if
     end if
-    exact = any([(index(out%names(ix)%s, '_exact') > 0, ix = 1, out%n_columns())])
-    if (split > -huge(1.0_dp)) write(u, '(a)') 'split = '//str(split, 10)
-    call curve_figure(u, out, 'stress', 'largest |stress| per element', 'stress (psi)', &
-                      'sigma_max_e', '', ix, xlabel, split, exact, figures)
+    exact = any([(index(out%names(j)%s, '_exact') > 0, j = 1, out%n_columns())])
+    links = element_links(out)
+    if (ax%split > -huge(1.0_dp)) write(u, '(a)') 'split = '//str(ax%split, 10)
+    call curve_figure(u, out, 'stress', 'largest |stress| per element (outer fibre)', &
+                      'stress'//unit_of(out, 'sigma_max_e'), 'sigma_max_e', '', ax, exact, links, figures)
     call curve_figure(u, out, 'joints', 'joint elastic displacement U (global X), W (global Y)', &
-                      'displacement (in)', '', '_U _W', ix, xlabel, split, exact, figures)
+                      'displacement'//unit_of(out, '_U'), '', '_U _W', ax, exact, links, figures)
     call curve_figure(u, out, 'links', 'link end 2 deformation in the link''s rigid-body axes', &
-                      'displacement (in)', '', '_u_end _w_end', ix, xlabel, split, exact, figures)
+                      'displacement'//unit_of(out, '_u_end'), '', '_u_end _w_end', ax, exact, links, figures)
   end subroutine curve_figures
+
+  !> ' (unit)' of the columns described with `key`, '' when the header does not say.
+  function unit_of(out, key) result(s)
+    type(run_output_t), intent(in) :: out
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable :: s
+    s = column_unit(out, key)
+    if (len(s) > 0) s = ' ('//s//')'
+  end function unit_of
+
+  !> The link of every element, as a legend names it: 'crank' (a link of one
+  !> element) or 'coupler element 2' (the second of its elements), from the
+  !> header's mechanism lines 'link NAME: A-B, length L, N element(s); ...'.
+  function element_links(out) result(names)
+    type(run_output_t), intent(in) :: out
+    type(name_t), allocatable :: names(:)
+    type(name_t), allocatable :: words(:), longer(:)
+    integer :: i, n, k, ios, colon
+    character(len=:), allocatable :: link
+    allocate(names(0))
+    do i = 1, size(out%header)
+      associate (line => out%header(i)%s)
+        if (.not. starts_with(line, 'link ') .or. index(line, ' element(s)') == 0) cycle
+        colon = index(line, ':')
+        if (colon < 7) cycle
+        link = line(6:colon - 1)
+        call split_words(line(colon + 1:index(line, ' element(s)') - 1), words)
+        if (size(words) == 0) cycle
+        read(words(size(words))%s, *, iostat=ios) n
+        if (ios /= 0 .or. n < 1) cycle
+        allocate(longer(size(names) + n))
+        longer(1:size(names)) = names
+        do k = 1, n
+          longer(size(names) + k)%s = link
+          if (n > 1) longer(size(names) + k)%s = link//' element '//str(k)
+        end do
+        call move_alloc(longer, names)
+      end associate
+    end do
+  end function element_links
+
+  !> A column's legend: an element's columns (sigma_max_e3) by its link.
+  function legend(name, links) result(s)
+    character(len=*), intent(in) :: name
+    type(name_t), intent(in) :: links(:)
+    character(len=:), allocatable :: s
+    integer :: at, k, ios
+    s = name
+    at = index(name, '_e', back=.true.)
+    if (at == 0 .or. at + 2 > len(name)) return
+    if (verify(name(at + 2:), '0123456789') /= 0) return
+    read(name(at + 2:), *, iostat=ios) k
+    if (ios /= 0 .or. k < 1 .or. k > size(links)) return
+    s = links(k)%s
+  end function legend
 
   !> One curve figure: the columns whose name starts with `prefix` (when given)
   !> or ends with one of the words of `suffixes`, without the _exact twins.
-  subroutine curve_figure(u, out, name, what, ylabel, prefix, suffixes, ix, xlabel, split, exact, figures)
-    integer, intent(in) :: u, ix
+  subroutine curve_figure(u, out, name, what, ylabel, prefix, suffixes, ax, exact, links, figures)
+    integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
-    character(len=*), intent(in) :: name, what, ylabel, prefix, suffixes, xlabel
-    real(dp), intent(in) :: split
+    character(len=*), intent(in) :: name, what, ylabel, prefix, suffixes
+    type(curve_axis_t), intent(in) :: ax
     logical, intent(in) :: exact
+    type(name_t), intent(in) :: links(:)
     character(len=64), allocatable, intent(inout) :: figures(:)
     type(series_t), allocatable :: s(:)
-    integer :: j, k, je
-    character(len=:), allocatable :: sub, nm
+    integer :: j, k, je, ix
+    character(len=:), allocatable :: sub, nm, x, label
     allocate(s(0))
     k = 0
+    ix = ax%ix
+    x = str(ix)
+    if (ax%last_only) x = '($'//str(ix)//' - '//str(ax%offset, 10)//')'
     do j = 1, out%n_columns()
       nm = out%names(j)%s
       if (index(nm, '_exact') > 0) cycle
       if (.not. selected(nm, prefix, suffixes)) cycle
       k = k + 1
       je = column_index(out, nm//'_exact')
-      if (split > -huge(1.0_dp)) then
-        call add_series(s, series(ix, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'))
-        call add_series(s, series(ix, j, nm, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
+      label = legend(nm, links)
+      if (ax%last_only) then
+        call add_series(s, series(x, j, label, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
+      else if (ax%split > -huge(1.0_dp)) then
+        call add_series(s, series(x, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'))
+        call add_series(s, series(x, j, label, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
       else
-        call add_series(s, series(ix, j, nm, 'w l lw 2 '//colour(k, '00'), ''))
-        if (je > 0) s(size(s))%title = nm//' (harmonic series)'
+        call add_series(s, series(x, j, label, 'w l lw 2 '//colour(k, '00'), ''))
+        if (je > 0) s(size(s))%title = label//' (harmonic series)'
       end if
-      if (je > 0) call add_series(s, series(ix, je, nm//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), ''))
+      if (je > 0) call add_series(s, series(x, je, label//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), ''))
     end do
     if (k == 0) return
     sub = what
-    if (split > -huge(1.0_dp)) sub = sub//'; bold: the last revolution (crank angle >= '//str(nint(split))//' deg)'
+    if (ax%last_only) then
+      sub = sub//'; last complete revolution (run''s '//str(nint(ax%split))//'-'// &
+            str(nint(ax%split) + 360)//' deg)'
+    else if (ax%split > -huge(1.0_dp)) then
+      sub = sub//'; bold: the last revolution (crank angle >= '//str(nint(ax%split))//' deg)'
+    end if
     if (exact) sub = sub//'; solid: harmonic series, dashed: exact'
     call begin_figure(u, name, sub, figures)
-    if (xlabel(1:1) == 'c') then
-      if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 360.0_dp + 1.0e-9_dp) then
+    if (ax%label(1:1) == 'c') then
+      if (ax%last_only) then
+        write(u, '(a)') '  set xrange ['//str(ax%split - ax%offset, 8)//':'//str(ax%split - ax%offset + 360.0_dp, 8)//']'
+        write(u, '(a)') '  set xtics 45'
+      else if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 360.0_dp + 1.0e-9_dp) then
         write(u, '(a)') '  set xrange [0:360]'
         write(u, '(a)') '  set xtics 45'
       else
@@ -242,8 +333,8 @@ contains
         write(u, '(a)') '  set autoscale xfix'
       end if
     end if
-    write(u, '(a)') '  set xlabel "'//xlabel//'"'
-    write(u, '(a)') '  set ylabel "'//ylabel//'"'
+    write(u, '(a)') '  set xlabel "'//ax%label//'"'
+    write(u, '(a)') '  set ylabel "'//esc(ylabel)//'"'
     call plot_series(u, s)
     call end_figure(u)
   end subroutine curve_figure
@@ -299,7 +390,7 @@ contains
         cycle
       end if
       n = n + 1
-      call add_series(s, series(k, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), ''))
+      call add_series(s, series(str(k), j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), ''))
     end do
     if (n > 0) then
       write(u, '(a)') '  set title "design variables"'
@@ -406,7 +497,7 @@ contains
       if (index(out%names(j)%s, word) == 0) cycle
       if (.not. any(finite_positive(out%data(:, j), word == 'cpu'))) cycle
       n = n + 1
-      call add_series(s, series(1, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.8 '//colour(n, '00'), ''))
+      call add_series(s, series('1', j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.8 '//colour(n, '00'), ''))
     end do
     if (n == 0) return
     call begin_figure(u, name, what, figures)
