@@ -27,7 +27,7 @@ module plot_animation
   use linkage_deck, only: read_mechanism
   use kinematics, only: kinematics_t
   use run_output, only: run_output_t, column_index, column_unit
-  use plot_script, only: esc, begin_figure, end_figure
+  use plot_script, only: esc, begin_figure, end_figure, number_text
   implicit none
   private
   public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t
@@ -497,22 +497,6 @@ contains
     s = column_unit(out, key)
     if (len(s) > 0) s = '('//s//')'
   end function unit_text
-
-  !> x with 5 significant digits, without exponent when 0.01 <= |x| < 1e7.
-  function number_text(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    if (abs(x) >= 1.0e4_dp .and. abs(x) < 1.0e7_dp) then
-      write(buf, '(i0)') nint(x)
-    else if (abs(x) >= 0.01_dp .and. abs(x) < 1.0e4_dp) then
-      write(buf, '(f0.' // str(4 - floor(log10(abs(x)))) // ')') x
-    else
-      write(buf, '(es11.4)') x
-    end if
-    s = trim(adjustl(buf))
-    if (s(1:1) == '.') s = '0'//s
-  end function number_text
 
   pure function factor_text(f) result(s)
     real(dp), intent(in) :: f

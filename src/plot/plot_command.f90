@@ -263,7 +263,7 @@ contains
     type(run_output_t) :: out
     type(error_t) :: err
     character(len=:), allocatable :: base, why
-    integer :: n_frames
+    integer :: n_frames, u, ios
     status = 0
     base = figure_base(path, dir)
     call read_run_output(path, out, err)
@@ -283,7 +283,8 @@ contains
       status = 3
       return
     end if
-    call run_command('rm -f '//shell_quote(base//'_anim.log'), status, why)
+    open(newunit=u, file=base//'_anim.log', status='old', iostat=ios)
+    if (ios == 0) close(u, status='delete')
     write(output_unit, '(a,i0,a)') program_name//' plot: drew '//base//'_anim.gif (', n_frames, ' frames)'
   end subroutine animate_one
 

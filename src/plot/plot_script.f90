@@ -20,12 +20,13 @@ module plot_script
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str, starts_with, append_name
-  use run_output, only: run_output_t, column_index, column_unit, name_t, split_words
+  use strings, only: str, starts_with, append_name, lower
+  use run_output, only: run_output_t, column_index, column_unit, name_t, split_words, read_run_output
   implicit none
   private
   public :: write_plot_script, plot_palette
   public :: begin_figure, end_figure, colour, esc, selected   ! shared with plot_compare
+  public :: number_text                                       ! shared with plot_animation
 
   character(len=6), parameter :: plot_palette(8) = [character(len=6) :: &
     '0072b2', 'd55e00', '009e73', 'cc79a7', 'e69f00', '56b4e9', '000000', 'f0e442']
@@ -35,6 +36,17 @@ module plot_script
     character(len=:), allocatable :: x                 !< a column number or a gnuplot expression
     character(len=:), allocatable :: title, style, filter
   end type series_t
+
+  !> A sweep summary's columns sorted for its figures (sweep_figures).
+  type :: sweep_view_t
+    character(len=16), allocatable :: kind(:)          !< per column: stress, displacement, ..., cpu, count, ''
+    character(len=:), allocatable :: unit_stress, unit_length, unit_force, unit_moment   !< ' (psi)' or ''
+    real(dp), allocatable :: failed(:)                 !< swept values of the failed points
+    integer :: multiplier = 0                          !< column of the largest Floquet multiplier, 0: none
+    logical :: work = .false.                          !< a tolerance or mesh sweep: the work-precision figure
+    type(name_t), allocatable :: links(:)              !< the link of each element (none in a mesh sweep)
+    logical :: logx = .false.
+  end type sweep_view_t
 
   !> The x axis of the curve figures.
   type :: curve_axis_t
@@ -106,15 +118,21 @@ contains
   end function display_title
 
   !> Opens a figure block: a loop over the formats.
-  subroutine begin_figure(u, name, subtitle, figures)
+  subroutine begin_figure(u, name, subtitle, figures, height)
     integer, intent(in) :: u
     character(len=*), intent(in) :: name, subtitle
     character(len=64), allocatable, intent(inout) :: figures(:)
+    integer, intent(in), optional :: height      !< pixels (default 640)
     call append_name(figures, name)
     write(u, '(a)') ''
     write(u, '(a)') 'do for [fmt in formats] {'
     write(u, '(a)') '  reset'
-    write(u, '(a)') '  eval (fmt eq "png" ? term_png : term_svg)'
+    if (present(height)) then
+      write(u, '(a)') '  eval (fmt eq "png" ? "set terminal pngcairo size 1000,'//str(height)// &
+        ' font '',11'' noenhanced" : "set terminal svg size 1000,'//str(height)//' dynamic font '',11'' noenhanced")'
+    else
+      write(u, '(a)') '  eval (fmt eq "png" ? term_png : term_svg)'
+    end if
     write(u, '(a)') '  eval common'
     write(u, '(a)') '  set output base."_'//name//'.".fmt'
     write(u, '(a)') '  set title title."\n'//esc(subtitle)//'"'
@@ -473,43 +491,295 @@ contains
     is_numbered = verify(name(len(prefix) + 1:), '0123456789') == 0
   end function is_numbered
 
-  !> Sweep summary: peaks and cost against the swept value.
+  !> Sweep summary against the swept value: `peaks` (one panel per kind of
+  !> quantity: stresses, displacements, forces, moments, others, each with
+  !> the unit its point outputs give), `cost` (CPU seconds; counts), the
+  !> Floquet `multipliers` when the points report them, and `work` (the
+  !> relative change of the largest peak stress from the most accurate
+  !> point against CPU seconds) when the swept variable is a tolerance or a
+  !> mesh.  Log axes where the values span more than two decades; points
+  !> whose largest Floquet multiplier exceeds 1 (unbounded response) are
+  !> marked, failed points (no row) drawn as dotted vertical lines.
   subroutine sweep_figures(u, out, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
     character(len=64), allocatable, intent(inout) :: figures(:)
-    call sweep_figure(u, out, 'peaks', 'summary peaks against the swept value', 'peak', figures)
-    call sweep_figure(u, out, 'cost', 'cost of each point (log scale)', 'cpu', figures)
-    call sweep_figure(u, out, 'multipliers', 'largest Floquet multiplier moduli (above 1: parametric resonance)', &
-                      'floquet_multipliers', figures)
+    type(sweep_view_t) :: v
+    type(run_output_t) :: point
+    call sweep_view(out, v, point)
+    call panel_figure(u, out, v, 'peaks', 'summary peaks against the swept value', &
+      [character(len=16) :: 'stress', 'displacement', 'force', 'moment', 'other peak'], figures)
+    call panel_figure(u, out, v, 'cost', 'cost of each point', &
+      [character(len=16) :: 'cpu', 'count'], figures)
+    call panel_figure(u, out, v, 'multipliers', 'largest Floquet multiplier moduli (above 1: unbounded, '// &
+      'parametric resonance)', [character(len=16) :: 'multiplier'], figures)
+    if (v%work) call work_figure(u, out, v, figures)
   end subroutine sweep_figures
 
-  subroutine sweep_figure(u, out, name, what, word, figures)
+  !> What the sweep figures need beyond the table: each column's kind, the
+  !> units (from the first point's output, when it is still there), the
+  !> x axis, the unbounded test and the failed points' values.
+  subroutine sweep_view(out, v, point)
+    type(run_output_t), intent(in) :: out
+    type(sweep_view_t), intent(out) :: v
+    type(run_output_t), intent(out) :: point
+    type(error_t) :: err
+    integer :: j, i, a, b, ios
+    real(dp) :: x
+    logical :: found
+    character(len=:), allocatable :: nm, line, path
+    allocate(v%kind(out%n_columns()), v%failed(0), v%links(0))
+    v%kind = ''
+    v%unit_stress = ''
+    v%unit_length = ''
+    v%unit_force = ''
+    v%unit_moment = ''
+    path = ''
+    do i = 1, size(out%header)                 ! 'sweep: ... logs in DIR/STEM_<k>.{nml,out,log}'
+      line = out%header(i)%s
+      a = index(line, 'logs in ')
+      b = index(line, '<k>')
+      if (starts_with(line, 'sweep: ') .and. a > 0 .and. b > a + 8) path = line(a + 8:b - 1)
+      if (starts_with(line, 'point ') .and. index(line, ': exit ') > 0 .and. index(line, ' = ') > 0) then
+        a = index(line, ' = ') + 3
+        if (index(line(a:), '*') > 0 .and. index(line(a:), '*') < index(line(a:), ':')) a = a + index(line(a:), '*')
+        read(line(a:a + index(line(a:), ':') - 2), *, iostat=ios) x
+        if (ios == 0) v%failed = [v%failed, x]
+      end if
+    end do
+    if (len(path) > 0) then               ! the first point's output, numbered 1, 01, 001 ...
+      if (index(out%path, '/') > 0 .and. path(1:1) /= '/') path = out%path(1:index(out%path, '/', back=.true.))//path
+      do i = 1, 5
+        inquire(file=path//repeat('0', i - 1)//'1.out', exist=found)
+        if (.not. found) cycle
+        call read_run_output(path//repeat('0', i - 1)//'1.out', point, err)
+        exit
+      end do
+      if (found .and. .not. err%failed()) then
+        v%unit_stress = unit_of(point, 'sigma_max_e')
+        v%unit_length = unit_of(point, '_U')
+        v%unit_force = unit_of(point, '_Fx')
+        v%unit_moment = unit_of(point, 'M_e')
+        if (index(lower(out%names(1)%s), 'n_elements') == 0) v%links = element_links(point)
+      end if
+    end if
+    v%multiplier = column_index(out, 'floquet_multipliers_largest_moduli_1')
+    do j = 3, out%n_columns()
+      nm = lower(out%names(j)%s)
+      if (.not. any(finite_positive(out%data(:, j), .false.))) cycle
+      if (starts_with(nm, 'floquet_multipliers')) then
+        v%kind(j) = 'multiplier'
+      else if (starts_with(nm, 'cost_') .or. index(nm, 'cpu') > 0) then
+        v%kind(j) = 'count'
+        if (index(nm, 'cpu') > 0) v%kind(j) = 'cpu'
+        if (nm == 'cost_last_method_order') v%kind(j) = ''
+      else if (index(nm, 'peak') == 0) then
+        cycle
+      else if (index(nm, 'stress') > 0 .or. index(nm, 'sigma') > 0) then
+        v%kind(j) = 'stress'
+      else if (ends_with_any(nm, '_u _w _u_end _w_end _v_end _chord _ex _ey')) then
+        v%kind(j) = 'displacement'
+      else if (ends_with_any(nm, '_fx _fy _fz _gx _gy _gz')) then
+        v%kind(j) = 'force'
+      else if (ends_with_any(nm, '_gm') .or. index(nm, 'peak_m_e') > 0) then
+        v%kind(j) = 'moment'
+      else
+        v%kind(j) = 'other peak'
+      end if
+    end do
+    nm = lower(out%names(1)%s)
+    v%work = index(nm, 'tol') > 0 .or. index(nm, 'n_elements') > 0 .or. index(nm, 'n_harmonics') > 0 .or. &
+             index(nm, 'table_points') > 0
+    v%logx = spans_decades(out%data(:, 1))
+  end subroutine sweep_view
+
+  !> A sweep column's legend with its element named by its link:
+  !> element_2_peak_stress -> 'coupler: peak_stress', peak_sigma_max_e2 ->
+  !> 'peak_sigma_max: coupler'.
+  function sweep_legend(name, links) result(s)
+    character(len=*), intent(in) :: name
+    type(name_t), intent(in) :: links(:)
+    character(len=:), allocatable :: s
+    integer :: k, ios, b
+    s = name
+    if (starts_with(name, 'element_')) then
+      b = index(name(9:), '_') + 7
+      if (b <= 8) return
+      read(name(9:b), *, iostat=ios) k
+      if (ios /= 0 .or. k < 1 .or. k > size(links)) return
+      s = links(k)%s//': '//name(b + 2:)
+    else
+      s = legend(name, links)
+      if (s /= name) s = name(1:index(name, '_e', back=.true.) - 1)//': '//s
+    end if
+  end function sweep_legend
+
+  !> All positive and max > 100 min.
+  logical pure function spans_decades(x)
+    real(dp), intent(in) :: x(:)
+    spans_decades = .false.
+    if (size(x) == 0) return
+    if (minval(x) <= 0.0_dp) return
+    spans_decades = maxval(x) > 100.0_dp*minval(x)
+  end function spans_decades
+
+  logical pure function ends_with_any(name, suffixes)
+    character(len=*), intent(in) :: name, suffixes
+    ends_with_any = selected(name, '', suffixes)
+  end function ends_with_any
+
+  !> A multiplot of one panel per kind of column present.
+  subroutine panel_figure(u, out, v, name, what, kinds, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
-    character(len=*), intent(in) :: name, what, word
+    type(sweep_view_t), intent(in) :: v
+    character(len=*), intent(in) :: name, what
+    character(len=16), intent(in) :: kinds(:)
     character(len=64), allocatable, intent(inout) :: figures(:)
-    type(series_t), allocatable :: s(:)
-    integer :: j, n
-    allocate(s(0))
-    n = 0
-    do j = 3, out%n_columns()
-      if (index(out%names(j)%s, word) == 0) cycle
-      if (.not. any(finite_positive(out%data(:, j), word == 'cpu'))) cycle
-      n = n + 1
-      call add_series(s, series('1', j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.8 '//colour(n, '00'), ''))
-    end do
+    integer :: k, n, j, m
+    logical :: logy
+    character(len=:), allocatable :: mark, y
+    n = count([(any(v%kind == kinds(k)), k = 1, size(kinds))])
     if (n == 0) return
-    call begin_figure(u, name, what, figures)
+    call begin_figure(u, name, what, figures, height=max(640, 40 + 330*n))
+    write(u, '(a)') '  set multiplot layout '//str(n)//',1 title title."\n'//esc(what)//'"'
+    write(u, '(a)') '  unset title'
+    write(u, '(a)') '  set key outside right top'
     write(u, '(a)') '  set xlabel "'//esc(out%names(1)%s)//'"'
-    write(u, '(a)') '  set key inside left top'
-    if (word == 'cpu') then
-      write(u, '(a)') '  set logscale y'
-      write(u, '(a)') '  set ylabel "CPU seconds"'
-    end if
-    call plot_series(u, s)
+    if (v%logx) write(u, '(a)') '  set logscale x'
+    do j = 1, size(v%failed)
+      write(u, '(a)') '  set arrow '//str(j)//' from '//str(v%failed(j), 10)//', graph 0 to '// &
+        str(v%failed(j), 10)//', graph 1 nohead dt 3 lw 2 lc rgb "#d00000"'
+    end do
+    do k = 1, size(kinds)
+      if (.not. any(v%kind == kinds(k))) cycle
+      logy = .true.
+      do j = 1, out%n_columns()
+        if (v%kind(j) /= kinds(k)) cycle
+        if (any(out%data(:, j) <= 0.0_dp)) logy = .false.
+      end do
+      if (logy) logy = spans_decades(pack(out%data, spread(v%kind == kinds(k), 1, size(out%data, 1))))
+      if (kinds(k) == 'cpu') logy = .true.
+      y = axis_label(kinds(k), v)
+      if (logy) y = y//' (log scale)'
+      write(u, '(a)') '  set ylabel "'//esc(y)//'"'
+      if (logy) then
+        write(u, '(a)') '  set logscale y'
+      else
+        write(u, '(a)') '  unset logscale y'
+      end if
+      m = 0
+      do j = 1, out%n_columns()
+        if (v%kind(j) /= kinds(k)) cycle
+        m = m + 1
+        y = str(j)
+        if (logy) y = '($'//str(j)//' > 0 ? $'//str(j)//' : NaN)'
+        write(u, '(a)', advance='no') merge('  plot ', '       ', m == 1)//'data u 1:'//y// &
+          ' w lp lw 2 ps 1.1 '//series_style(m)//' t "'//esc(sweep_legend(out%names(j)%s, v%links))//'"'
+        write(u, '(a)') ', \'
+      end do
+      mark = ''
+      if (v%multiplier > 0 .and. kinds(k) /= 'multiplier') then
+        mark = '($'//str(v%multiplier)//' > 1.000001 ? $'
+        m = 0
+        do j = 1, out%n_columns()
+          if (v%kind(j) /= kinds(k)) cycle
+          m = m + 1
+          write(u, '(a)') '       data u 1:'//mark//str(j)//' : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" '// &
+            trim(merge('t "unbounded (Floquet multiplier > 1)"', 'notitle                               ', m == 1))//', \'
+        end do
+      end if
+      if (size(v%failed) > 0) then
+        write(u, '(a)') '       NaN w l dt 3 lw 2 lc rgb "#d00000" t "failed point (no row)"'
+      else
+        write(u, '(a)') '       NaN notitle'
+      end if
+    end do
+    write(u, '(a)') '  unset multiplot'
     call end_figure(u)
-  end subroutine sweep_figure
+  end subroutine panel_figure
+
+  function axis_label(kind, v) result(s)
+    character(len=*), intent(in) :: kind
+    type(sweep_view_t), intent(in) :: v
+    character(len=:), allocatable :: s
+    select case (kind)
+    case ('stress')
+      s = 'peak stress'//v%unit_stress
+    case ('displacement')
+      s = 'peak displacement'//v%unit_length
+    case ('force')
+      s = 'peak force'//v%unit_force
+    case ('moment')
+      s = 'peak moment'//v%unit_moment
+    case ('cpu')
+      s = 'CPU seconds'
+    case ('count')
+      s = 'count'
+    case ('multiplier')
+      s = 'modulus'
+    case default
+      s = 'peak'
+    end select
+  end function axis_label
+
+  !> Work-precision: the relative change of the largest peak stress of each
+  !> point from the most accurate point's (the smallest tolerance, the
+  !> largest mesh), against its CPU seconds, log-log.
+  subroutine work_figure(u, out, v, figures)
+    integer, intent(in) :: u
+    type(run_output_t), intent(in) :: out
+    type(sweep_view_t), intent(in) :: v
+    character(len=64), allocatable, intent(inout) :: figures(:)
+    integer :: jc, j, best, n
+    real(dp), allocatable :: peak(:)
+    character(len=:), allocatable :: nm
+    jc = column_index(out, 'cost_total_cpu_seconds')
+    n = size(out%data, 1)
+    if (jc == 0 .or. n < 3 .or. .not. any(v%kind == 'stress')) return
+    allocate(peak(n))
+    peak = 0.0_dp
+    do j = 1, out%n_columns()
+      if (v%kind(j) == 'stress') peak = max(peak, abs(out%data(:, j)))
+    end do
+    nm = lower(out%names(1)%s)
+    if (index(nm, 'tol') > 0) then
+      best = minloc(out%data(:, 1), dim=1)
+    else
+      best = maxloc(out%data(:, 1), dim=1)
+    end if
+    if (.not. peak(best) > 0.0_dp) return
+    write(u, '(a)') 'array werr['//str(n)//']'
+    do j = 1, n
+      write(u, '(a)') 'werr['//str(j)//'] = '//str(abs(peak(j) - peak(best))/peak(best), 6)
+    end do
+    call begin_figure(u, 'work', 'work-precision: relative change of the largest peak stress from the most '// &
+                      'accurate point ('//esc(out%names(1)%s)//' = '//number_text(out%data(best, 1))//') against CPU', figures)
+    write(u, '(a)') '  set logscale y'
+    if (spans_decades(out%data(:, jc))) then
+      write(u, '(a)') '  set logscale x'
+    else
+      write(u, '(a)') '  set offsets graph 0.05, graph 0.25, 0, 0'
+    end if
+    write(u, '(a)') '  set format y "%.0e"'
+    write(u, '(a)') '  set xlabel "CPU seconds of the point"'
+    write(u, '(a)') '  set ylabel "relative change of the largest peak stress (log scale)"'
+    write(u, '(a)') '  set key inside right top'
+    write(u, '(a)') '  plot data u '//str(jc)//':(werr[$0 + 1] > 0 ? werr[$0 + 1] : NaN) w lp lw 2 pt 7 ps 1.3 '// &
+      colour(1, '00')//' t "largest peak stress", \'
+    write(u, '(a)') '       data u '//str(jc)//':(werr[$0 + 1] > 0 ? werr[$0 + 1] : NaN):(sprintf("'// &
+      esc(out%names(1)%s)//' = %g", $1)) w labels offset 1,0.8 left font ",9" notitle'
+    call end_figure(u)
+  end subroutine work_figure
+
+  !> The style of series m: a colour, a point type and a dash pattern, so that
+  !> no two of 48 series look alike.
+  pure function series_style(m) result(s)
+    integer, intent(in) :: m
+    character(len=:), allocatable :: s
+    integer, parameter :: points(6) = [7, 5, 9, 11, 13, 1]
+    s = colour(m, '00')//' pt '//str(points(mod(m - 1, 6) + 1))//' dt '//str(mod((m - 1)/8, 6) + 1)
+  end function series_style
 
   elemental logical function finite_positive(x, need_positive)
     real(dp), intent(in) :: x
@@ -543,6 +813,22 @@ contains
     write(u, '(a)') '  unset multiplot'
     call end_figure(u)
   end subroutine columns_figure
+
+  !> x with 5 significant digits, without exponent when 0.01 <= |x| < 1e7.
+  function number_text(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if (abs(x) >= 1.0e4_dp .and. abs(x) < 1.0e7_dp) then
+      write(buf, '(i0)') nint(x)
+    else if (abs(x) >= 0.01_dp .and. abs(x) < 1.0e4_dp) then
+      write(buf, '(f0.' // str(4 - floor(log10(abs(x)))) // ')') x
+    else
+      write(buf, '(es11.4)') x
+    end if
+    s = trim(adjustl(buf))
+    if (s(1:1) == '.') s = '0'//s
+  end function number_text
 
   !> Text inside a gnuplot double-quoted string.
   pure function esc(text) result(s)
