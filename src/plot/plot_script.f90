@@ -340,7 +340,8 @@ contains
     call begin_figure(u, name, sub, figures)
     if (ax%label(1:1) == 'c') then
       if (ax%last_only) then
-        write(u, '(a)') '  set xrange ['//str(ax%split - ax%offset, 8)//':'//str(ax%split - ax%offset + 360.0_dp, 8)//']'
+        write(u, '(a)') '  set xrange ['//axis_number(ax%split - ax%offset)//':'// &
+                        axis_number(ax%split - ax%offset + 360.0_dp)//']'
         write(u, '(a)') '  set xtics 45'
       else if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 360.0_dp + 1.0e-9_dp) then
         write(u, '(a)') '  set xrange [0:360]'
@@ -648,8 +649,8 @@ contains
     write(u, '(a)') '  set xlabel "'//esc(out%names(1)%s)//'"'
     if (v%logx) write(u, '(a)') '  set logscale x'
     do j = 1, size(v%failed)
-      write(u, '(a)') '  set arrow '//str(j)//' from '//str(v%failed(j), 10)//', graph 0 to '// &
-        str(v%failed(j), 10)//', graph 1 nohead dt 3 lw 2 lc rgb "#d00000"'
+      write(u, '(a)') '  set arrow '//str(j)//' from '//axis_number(v%failed(j))//', graph 0 to '// &
+        axis_number(v%failed(j))//', graph 1 nohead dt 3 lw 2 lc rgb "#d00000"'
     end do
     do k = 1, size(kinds)
       if (.not. any(v%kind == kinds(k))) cycle
@@ -829,6 +830,19 @@ contains
     s = trim(adjustl(buf))
     if (s(1:1) == '.') s = '0'//s
   end function number_text
+
+  !> A coordinate for a gnuplot command: an integer as such, else 10 digits.
+  function axis_number(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if (abs(x) < 1.0e9_dp .and. abs(x - anint(x)) <= 1.0e-12_dp*max(1.0_dp, abs(x)) .and. (abs(x) >= 0.5_dp .or. abs(x) < tiny(1.0_dp))) then
+      write(buf, '(i0)') nint(x)
+    else
+      write(buf, '(es17.10)') x
+    end if
+    s = trim(adjustl(buf))
+  end function axis_number
 
   !> Text inside a gnuplot double-quoted string.
   pure function esc(text) result(s)
