@@ -836,7 +836,8 @@ contains
     real(dp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=32) :: buf
-    if (abs(x) < 1.0e9_dp .and. abs(x - anint(x)) <= 1.0e-12_dp*max(1.0_dp, abs(x)) .and. (abs(x) >= 0.5_dp .or. abs(x) < tiny(1.0_dp))) then
+    if (abs(x) < 1.0e9_dp .and. abs(x - anint(x)) <= 1.0e-12_dp*max(1.0_dp, abs(x)) .and. &
+        (abs(x) >= 0.5_dp .or. abs(x) < tiny(1.0_dp))) then
       write(buf, '(i0)') nint(x)
     else
       write(buf, '(es17.10)') x
