@@ -26,7 +26,7 @@ module plot_script
   private
   public :: write_plot_script, plot_palette
   public :: begin_figure, end_figure, colour, esc, selected   ! shared with plot_compare
-  public :: number_text                                       ! shared with plot_animation
+  public :: number_text, element_links, legend, unit_of      ! shared with plot_animation, plot_compare
 
   character(len=6), parameter :: plot_palette(8) = [character(len=6) :: &
     '0072b2', 'd55e00', '009e73', 'cc79a7', 'e69f00', '56b4e9', '000000', 'f0e442']

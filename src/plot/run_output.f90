@@ -84,7 +84,7 @@ contains
     type(run_output_t), intent(in) :: out
     character(len=*), intent(in) :: key
     character(len=:), allocatable :: unit
-    integer :: pass, i, a, b, depth, k, c, e
+    integer :: pass, pass_in, i, a, b, depth, k, c, e
     type(name_t), allocatable :: words(:)
     character(len=:), allocatable :: line, part
     unit = ''
@@ -111,11 +111,14 @@ contains
             if (c == k .or. c >= len(part)) exit
             e = index(part(c + 1:), ')')
             if (e == 0) e = len(part) - c + 1
-            unit = part(c + 1:c + e - 1)
-            if (index(unit, ';') > 0) unit = unit(1:index(unit, ';') - 1)
-            unit = trim(adjustl(unit))
-            call split_words(unit, words)
-            if (len(unit) > 0 .and. len(unit) <= 12 .and. size(words) <= 2 .and. index(unit, '<') == 0) return
+            do pass_in = 1, 2                  ! the text before its first ';', then after its last
+              unit = part(c + 1:c + e - 1)
+              if (pass_in == 1 .and. index(unit, ';') > 0) unit = unit(1:index(unit, ';') - 1)
+              if (pass_in == 2) unit = unit(index(unit, ';', back=.true.) + 1:)
+              unit = trim(adjustl(unit))
+              call split_words(unit, words)
+              if (len(unit) > 0 .and. len(unit) <= 12 .and. size(words) <= 2 .and. index(unit, '<') == 0) return
+            end do
             unit = ''
             k = c
           end do
