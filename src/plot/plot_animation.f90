@@ -31,6 +31,7 @@ module plot_animation
   implicit none
   private
   public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t
+  public :: last_revolution_rows, header_group_file, frame_text, factor_text, unit_text   ! shared with plot_spatial
 
   integer, parameter :: max_frames = 90
 
@@ -332,16 +333,33 @@ contains
     type(mechanism_t), intent(out) :: mech
     type(error_t), intent(inout) :: err
     type(deck_t) :: deck
+    integer :: u
+    call header_group_file(out, 'mechanism', path, err)
+    if (err%failed()) return
+    call deck%open(path, err)
+    if (.not. err%failed()) call read_mechanism(deck, mech, err)
+    call deck%close()
+    open(newunit=u, file=path, status='old')
+    close(u, status='delete')
+    if (err%failed()) call err%add_context('animate: the mechanism echoed in '//out%path)
+  end subroutine mechanism_from_header
+
+  !> Writes the group &<group> of the output's echoed input to `path` (a deck
+  !> of that one group); an error (status 3) when the header has none.
+  subroutine header_group_file(out, group, path, err)
+    type(run_output_t), intent(in) :: out
+    character(len=*), intent(in) :: group, path
+    type(error_t), intent(inout) :: err
     integer :: u, i, first
     first = 0
     do i = 1, size(out%header)
-      if (starts_with(lower(out%header(i)%s), '&mechanism')) then
+      if (lower(trim(out%header(i)%s)) == '&'//group) then
         first = i
         exit
       end if
     end do
     if (first == 0) then
-      call err%set('animate', out%path//' has no &mechanism group in its header: not a mechanism analysis', 3)
+      call err%set('animate', out%path//' has no &'//group//' group in its header: not a mechanism analysis', 3)
       return
     end if
     open(newunit=u, file=path, status='replace', action='write')
@@ -350,13 +368,7 @@ contains
       if (out%header(i)%s == '/') exit
     end do
     close(u)
-    call deck%open(path, err)
-    if (.not. err%failed()) call read_mechanism(deck, mech, err)
-    call deck%close()
-    open(newunit=u, file=path, status='old')
-    close(u, status='delete')
-    if (err%failed()) call err%add_context('animate: the mechanism echoed in '//out%path)
-  end subroutine mechanism_from_header
+  end subroutine header_group_file
 
   !> Two gnuplot data blocks per frame: the links (x_rigid y_rigid x_deformed
   !> y_deformed |stress|, a blank line after each link), then the joints

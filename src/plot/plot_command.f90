@@ -20,6 +20,7 @@ module plot_command
   use run_output, only: run_output_t, read_run_output
   use plot_script, only: write_plot_script
   use plot_animation, only: write_animation, append_shape_figure
+  use plot_spatial, only: write_spatial_animation, append_spatial_shape
   use plot_compare, only: write_compare_script
   use kinds, only: dp
   use strings, only: shell_quote, file_stem
@@ -151,6 +152,10 @@ contains
       open(newunit=u, file=script, position='append', action='write')
       call append_shape_figure(u, out, base, figures)
       close(u)
+    else if (.not. err%failed() .and. size(figures) > 0 .and. out%analysis == 'spatial') then
+      open(newunit=u, file=script, position='append', action='write')
+      call append_spatial_shape(u, out, base, figures)
+      close(u)
     end if
     if (err%failed()) then
       write(error_unit, '(a)') program_name//' plot: '//err%text()
@@ -267,7 +272,13 @@ contains
     status = 0
     base = figure_base(path, dir)
     call read_run_output(path, out, err)
-    if (.not. err%failed()) call write_animation(out, base, magnify, n_frames, err)
+    if (.not. err%failed()) then
+      if (out%analysis == 'spatial') then
+        call write_spatial_animation(out, base, magnify, n_frames, err)
+      else
+        call write_animation(out, base, magnify, n_frames, err)
+      end if
+    end if
     if (err%failed()) then
       write(error_unit, '(a)') program_name//' plot: '//err%text()
       status = 3

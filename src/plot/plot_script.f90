@@ -80,7 +80,7 @@ contains
     call preamble(u, out, base)
     if (size(out%data, 1) > 0) then
       select case (out%analysis)
-      case ('transient', 'steady')
+      case ('transient', 'steady', 'spatial')
         call curve_figures(u, out, whole, figures)
       case ('optimize', 'design')
         call history_figure(u, out, figures)
@@ -231,10 +231,10 @@ contains
     if (ax%split > -huge(1.0_dp)) write(u, '(a)') 'split = '//str(ax%split, 10)
     call curve_figure(u, out, 'stress', 'largest |stress| per element (outer fibre)', &
                       'stress'//unit_of(out, 'sigma_max_e'), 'sigma_max_e', '', ax, exact, links, figures)
-    call curve_figure(u, out, 'joints', 'joint elastic displacement U (global X), W (global Y)', &
-                      'displacement'//unit_of(out, '_U'), '', '_U _W', ax, exact, links, figures)
+    call curve_figure(u, out, 'joints', 'joint elastic displacement (global axes)', &
+                      'displacement'//unit_of(out, '_U'), '', '_U _W _UX _UY _UZ', ax, exact, links, figures)
     call curve_figure(u, out, 'links', 'link end 2 deformation in the link''s rigid-body axes', &
-                      'displacement'//unit_of(out, '_u_end'), '', '_u_end _w_end', ax, exact, links, figures)
+                      'displacement'//unit_of(out, '_end'), '', '_u_end _w_end _v_end', ax, exact, links, figures)
   end subroutine curve_figures
 
   !> ' (unit)' of the columns described with `key`, '' when the header does not say.

@@ -4,7 +4,7 @@
 # 0 and draws non-empty PNG files (PNG signature checked) and SVG files; the
 # scripts committed in doc/figures/standard/ are what `flexmech plot` writes
 # today (doc figures and user figures cannot drift apart); --animate draws
-# a GIF of at least 30 frames for a transient and a steady run.
+# a GIF of at least 30 frames for a transient, a steady and a spatial run.
 # usage: plot_figures.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 bin=$1; work=$3
@@ -30,6 +30,8 @@ check reference_outputs/fourbar_150_damped.out stress joints links shape
 check reference_outputs/beam_pinned_large.out stress links
 check reference_outputs/tennant_fig3_linear.out stress joints links shape
 check reference_outputs/tennant_fig5_exact.out stress joints links shape
+check reference_outputs/spatial_rssr_100.out stress joints links shape
+grep -q '^  splot ' "$work/spatial_rssr_100.gp" || { echo "FAIL: the spatial run is not drawn in 3D"; fail=1; }
 # the last complete revolution by default (crank angle 1440-1800 of five turns), all of it with --whole-run
 grep -q 'set xrange \[0:360\]' "$work/fourbar_150_damped.gp" && grep -q 't "crank"' "$work/fourbar_150_damped.gp" \
   || { echo "FAIL: the default run's figures are not its last revolution on 0-360 deg with link names"; fail=1; }
@@ -57,11 +59,12 @@ for s in reference_outputs/sweep_*.out; do
   [ -f "$s" ] && check "$s" peaks cost
 done
 # the animation of a transient and of a steady run: GIF files (signature GIF89a)
-for out in reference_outputs/fourbar_150_damped.out reference_outputs/tennant_fig3_linear.out; do
+for out in reference_outputs/fourbar_150_damped.out reference_outputs/tennant_fig3_linear.out \
+           reference_outputs/spatial_rssr_100.out; do
   stem=$(basename "$out" .out)
   if "$bin" plot "$out" -d "$work/anim" --png --animate > "$work/$stem.anim.log" 2>&1 &&
      [ "$(head -c 6 "$work/anim/${stem}_anim.gif")" = "GIF89a" ] &&
-     [ "$(grep -c '^# crank_deg' "$work/anim/${stem}_anim.dat")" -gt 30 ]; then
+     [ "$(grep -c '^when\[' "$work/anim/${stem}_anim.gp")" -gt 30 ]; then
     echo "ok: animation of $out"
   else
     echo "FAIL: no animation of $out"; cat "$work/$stem.anim.log"; fail=1

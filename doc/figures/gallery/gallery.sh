@@ -69,6 +69,8 @@ cmp $r/spatial_fourbar_100.out -n E_fig8_fig9_fig11 --columns B_UX,B_UY,C_UX \
     --labels 'flexmech'
 cmp $r/spatial_fourbar_100.out -n E_fig10 --columns crank_tz_end \
     -t 'E Fig. 10: angle of rotation of node 2 (crank end), 100 rad/s' --labels 'flexmech'
+one "$r/spatial_fourbar_100.out"
+rm -f "$fig"/spatial_fourbar_100_joints.png "$fig"/spatial_fourbar_100_links.png "$fig"/spatial_fourbar_100_stress.png
 cmp $r/spatial_fourbar_100.out -n E_fig12_fig14 --columns sigma_max_e1,sigma_max_e2,sigma_max_e3 \
     -t 'E Figs. 12-14: maximum absolute stress of elements 1, 2, 3, 100 rad/s' --labels 'flexmech'
 

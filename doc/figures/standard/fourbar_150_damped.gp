@@ -31,7 +31,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); last complete revolution (run's 1440-1800 deg)"
+  set title title."\njoint elastic displacement (global axes); last complete revolution (run's 1440-1800 deg)"
   set xrange [0:360]
   set xtics 45
   set xlabel "crank angle (deg)"

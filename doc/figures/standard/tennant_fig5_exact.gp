@@ -33,7 +33,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); solid: harmonic series, dashed: exact"
+  set title title."\njoint elastic displacement (global axes); solid: harmonic series, dashed: exact"
   set xrange [0:360]
   set xtics 45
   set xlabel "crank angle (deg)"
