@@ -148,14 +148,16 @@ contains
     if (.not. err%failed()) then
       call write_plot_script(out, base, script, figures, err, whole_run)
     end if
-    if (.not. err%failed() .and. size(figures) > 0 .and. (out%analysis == 'transient' .or. out%analysis == 'steady')) then
-      open(newunit=u, file=script, position='append', action='write')
-      call append_shape_figure(u, out, base, figures)
-      close(u)
-    else if (.not. err%failed() .and. size(figures) > 0 .and. out%analysis == 'spatial') then
-      open(newunit=u, file=script, position='append', action='write')
-      call append_spatial_shape(u, out, base, figures)
-      close(u)
+    if (.not. err%failed()) then        ! the still of the deformed mechanism
+      if (size(figures) > 0 .and. any(out%analysis == [character(len=9) :: 'transient', 'steady', 'spatial'])) then
+        open(newunit=u, file=script, position='append', action='write')
+        if (out%analysis == 'spatial') then
+          call append_spatial_shape(u, out, base, figures)
+        else
+          call append_shape_figure(u, out, base, figures)
+        end if
+        close(u)
+      end if
     end if
     if (err%failed()) then
       write(error_unit, '(a)') program_name//' plot: '//err%text()
