@@ -224,6 +224,8 @@ contains
         ax%split = maxval(out%data(:, ax%ix)) - 360.0_dp
         ax%last_only = .not. whole
         ax%offset = 360.0_dp*floor(ax%split/360.0_dp + 1.0e-9_dp)
+      else                                    ! one revolution (rows of the last only): shifted to 0-360
+        ax%offset = 360.0_dp*floor(minval(out%data(:, ax%ix))/360.0_dp + 1.0e-9_dp)
       end if
     end if
     exact = any([(index(out%names(j)%s, '_exact') > 0, j = 1, out%n_columns())])
@@ -231,6 +233,12 @@ contains
     if (ax%split > -huge(1.0_dp)) write(u, '(a)') 'split = '//str(ax%split, 10)
     call curve_figure(u, out, 'stress', 'largest |stress| per element (outer fibre)', &
                       'stress'//unit_of(out, 'sigma_max_e'), 'sigma_max_e', '', ax, exact, links, figures)
+    call curve_figure(u, out, 'sections', 'bending and axial stress per element (signed, largest magnitude)', &
+                      'stress'//unit_of(out, 'sigma_b_e'), 'sigma_b_e sigma_a_e', '', ax, exact, links, figures)
+    call curve_figure(u, out, 'moments', 'bending moment per element; moment of the ground at a clamp', &
+                      'moment'//unit_of(out, 'M_e'), 'M_e', '_Gm', ax, exact, links, figures)
+    call curve_figure(u, out, 'forces', 'axial force per element; joint forces on link ends and ground forces '// &
+                      '(global X, Y)', 'force'//unit_of(out, '_Fx'), 'N_e', '_Fx _Fy _Gx _Gy', ax, exact, links, figures)
     call curve_figure(u, out, 'joints', 'joint elastic displacement (global axes)', &
                       'displacement'//unit_of(out, '_U'), '', '_U _W _UX _UY _UZ', ax, exact, links, figures)
     call curve_figure(u, out, 'links', 'link end 2 deformation in the link''s rigid-body axes', &
@@ -290,6 +298,7 @@ contains
     read(name(at + 2:), *, iostat=ios) k
     if (ios /= 0 .or. k < 1 .or. k > size(links)) return
     s = links(k)%s
+    if (.not. starts_with(name, 'sigma_max_e')) s = name(1:at - 1)//' '//s     ! sigma_b crank, M coupler
   end function legend
 
   !> One curve figure: the columns whose name starts with `prefix` (when given)
@@ -304,12 +313,12 @@ contains
     character(len=64), allocatable, intent(inout) :: figures(:)
     type(series_t), allocatable :: s(:)
     integer :: j, k, je, ix
-    character(len=:), allocatable :: sub, nm, x, label
+    character(len=:), allocatable :: sub, nm, x, label, style
     allocate(s(0))
     k = 0
     ix = ax%ix
     x = str(ix)
-    if (ax%last_only) x = '($'//str(ix)//' - '//str(ax%offset, 10)//')'
+    if (ax%last_only .or. abs(ax%offset) > 0.0_dp) x = '($'//str(ix)//' - '//axis_number(ax%offset)//')'
     do j = 1, out%n_columns()
       nm = out%names(j)%s
       if (index(nm, '_exact') > 0) cycle
@@ -317,13 +326,15 @@ contains
       k = k + 1
       je = column_index(out, nm//'_exact')
       label = legend(nm, links)
+      style = colour(k, '00')
+      if (k > size(plot_palette)) style = style//' dt '//str(mod((k - 1)/size(plot_palette), 4) + 2)   ! past 8: dashed
       if (ax%last_only) then
-        call add_series(s, series(x, j, label, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
+        call add_series(s, series(x, j, label, 'w l lw 2 '//style, '$'//str(ix)//' >= split'))
       else if (ax%split > -huge(1.0_dp)) then
         call add_series(s, series(x, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'))
-        call add_series(s, series(x, j, label, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
+        call add_series(s, series(x, j, label, 'w l lw 2 '//style, '$'//str(ix)//' >= split'))
       else
-        call add_series(s, series(x, j, label, 'w l lw 2 '//colour(k, '00'), ''))
+        call add_series(s, series(x, j, label, 'w l lw 2 '//style, ''))
         if (je > 0) s(size(s))%title = label//' (harmonic series)'
       end if
       if (je > 0) call add_series(s, series(x, je, label//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), ''))
@@ -362,7 +373,12 @@ contains
     character(len=*), intent(in) :: name, prefix, suffixes
     integer :: a, b, n
     selected = .false.
-    if (len(prefix) > 0) selected = starts_with(name, prefix)
+    a = 1
+    do while (a <= len(prefix))            ! any of the prefixes (words)
+      b = index(prefix(a:)//' ', ' ') + a - 1
+      if (b > a) selected = selected .or. starts_with(name, prefix(a:b - 1))
+      a = b + 1
+    end do
     a = 1
     do while (a <= len(suffixes))
       b = index(suffixes(a:)//' ', ' ') + a - 1
@@ -611,7 +627,7 @@ contains
       s = links(k)%s//': '//name(b + 2:)
     else
       s = legend(name, links)
-      if (s /= name) s = name(1:index(name, '_e', back=.true.) - 1)//': '//s
+      if (s /= name) s = name(1:index(name, '_e', back=.true.) - 1)//': '//s(index(s, ' ', back=.true.) + 1:)
     end if
   end function sweep_legend
 

@@ -113,8 +113,8 @@ contains
             if (e == 0) e = len(part) - c + 1
             do pass_in = 1, 2                  ! the text before its first ';', then after its last
               unit = part(c + 1:c + e - 1)
-              if (pass_in == 1 .and. index(unit, ';') > 0) unit = unit(1:index(unit, ';') - 1)
-              if (pass_in == 2) unit = unit(index(unit, ';', back=.true.) + 1:)
+              if (pass_in == 1 .and. scan(unit, ';:') > 0) unit = unit(1:scan(unit, ';:') - 1)
+              if (pass_in == 2) unit = unit(scan(unit, ';:', back=.true.) + 1:)
               unit = trim(adjustl(unit))
               call split_words(unit, words)
               if (len(unit) > 0 .and. len(unit) <= 12 .and. size(words) <= 2 .and. index(unit, '<') == 0) return

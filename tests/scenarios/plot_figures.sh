@@ -31,6 +31,11 @@ check reference_outputs/beam_pinned_large.out stress links
 check reference_outputs/tennant_fig3_linear.out stress joints links shape
 check reference_outputs/tennant_fig5_exact.out stress joints links shape
 check reference_outputs/spatial_rssr_100.out stress joints links shape
+# every optional column (stress_columns = 'all', link points, reactions) of a run written over its
+# last revolution only (crank angle 1802-2160): its own axes and units, shifted onto 0-360 deg
+check reference_outputs/fourbar_150_outputs.out stress sections moments forces joints links shape
+grep -q 'ylabel "force (lb)"' "$work/fourbar_150_outputs.gp" && grep -q 'ylabel "moment (lb in)"' "$work/fourbar_150_outputs.gp" \
+  && grep -q 'u (\$2 - 1800)' "$work/fourbar_150_outputs.gp" || { echo "FAIL: forces, moments or the shifted axis"; fail=1; }
 grep -q '^  splot ' "$work/spatial_rssr_100.gp" || { echo "FAIL: the spatial run is not drawn in 3D"; fail=1; }
 # the last complete revolution by default (crank angle 1440-1800 of five turns), all of it with --whole-run
 grep -q 'set xrange \[0:360\]' "$work/fourbar_150_damped.gp" && grep -q 't "crank"' "$work/fourbar_150_damped.gp" \

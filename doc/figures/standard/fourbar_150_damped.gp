@@ -20,9 +20,9 @@ do for [fmt in formats] {
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
-  plot data u ($2 - 1440.000000):($2 >= split ? $13 : NaN) w l lw 2 lc rgb "#000072b2" t "crank", \
-       data u ($2 - 1440.000000):($2 >= split ? $14 : NaN) w l lw 2 lc rgb "#00d55e00" t "coupler", \
-       data u ($2 - 1440.000000):($2 >= split ? $15 : NaN) w l lw 2 lc rgb "#00009e73" t "rocker"
+  plot data u ($2 - 1440):($2 >= split ? $13 : NaN) w l lw 2 lc rgb "#000072b2" t "crank", \
+       data u ($2 - 1440):($2 >= split ? $14 : NaN) w l lw 2 lc rgb "#00d55e00" t "coupler", \
+       data u ($2 - 1440):($2 >= split ? $15 : NaN) w l lw 2 lc rgb "#00009e73" t "rocker"
   set output
 }
 
@@ -36,10 +36,10 @@ do for [fmt in formats] {
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
-  plot data u ($2 - 1440.000000):($2 >= split ? $3 : NaN) w l lw 2 lc rgb "#000072b2" t "B_U", \
-       data u ($2 - 1440.000000):($2 >= split ? $4 : NaN) w l lw 2 lc rgb "#00d55e00" t "B_W", \
-       data u ($2 - 1440.000000):($2 >= split ? $5 : NaN) w l lw 2 lc rgb "#00009e73" t "C_U", \
-       data u ($2 - 1440.000000):($2 >= split ? $6 : NaN) w l lw 2 lc rgb "#00cc79a7" t "C_W"
+  plot data u ($2 - 1440):($2 >= split ? $3 : NaN) w l lw 2 lc rgb "#000072b2" t "B_U", \
+       data u ($2 - 1440):($2 >= split ? $4 : NaN) w l lw 2 lc rgb "#00d55e00" t "B_W", \
+       data u ($2 - 1440):($2 >= split ? $5 : NaN) w l lw 2 lc rgb "#00009e73" t "C_U", \
+       data u ($2 - 1440):($2 >= split ? $6 : NaN) w l lw 2 lc rgb "#00cc79a7" t "C_W"
   set output
 }
 
@@ -53,12 +53,12 @@ do for [fmt in formats] {
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
-  plot data u ($2 - 1440.000000):($2 >= split ? $7 : NaN) w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
-       data u ($2 - 1440.000000):($2 >= split ? $8 : NaN) w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
-       data u ($2 - 1440.000000):($2 >= split ? $9 : NaN) w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
-       data u ($2 - 1440.000000):($2 >= split ? $10 : NaN) w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end", \
-       data u ($2 - 1440.000000):($2 >= split ? $11 : NaN) w l lw 2 lc rgb "#00e69f00" t "rocker_u_end", \
-       data u ($2 - 1440.000000):($2 >= split ? $12 : NaN) w l lw 2 lc rgb "#0056b4e9" t "rocker_w_end"
+  plot data u ($2 - 1440):($2 >= split ? $7 : NaN) w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
+       data u ($2 - 1440):($2 >= split ? $8 : NaN) w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
+       data u ($2 - 1440):($2 >= split ? $9 : NaN) w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
+       data u ($2 - 1440):($2 >= split ? $10 : NaN) w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end", \
+       data u ($2 - 1440):($2 >= split ? $11 : NaN) w l lw 2 lc rgb "#00e69f00" t "rocker_u_end", \
+       data u ($2 - 1440):($2 >= split ? $12 : NaN) w l lw 2 lc rgb "#0056b4e9" t "rocker_w_end"
   set output
 }
 

@@ -20,8 +20,8 @@ do for [fmt in formats] {
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
-  plot data u ($2 - 720.0000000):($2 >= split ? $11 : NaN) w l lw 2 lc rgb "#000072b2" t "crank", \
-       data u ($2 - 720.0000000):($2 >= split ? $12 : NaN) w l lw 2 lc rgb "#00d55e00" t "coupler"
+  plot data u ($2 - 720):($2 >= split ? $11 : NaN) w l lw 2 lc rgb "#000072b2" t "crank", \
+       data u ($2 - 720):($2 >= split ? $12 : NaN) w l lw 2 lc rgb "#00d55e00" t "coupler"
   set output
 }
 
@@ -35,10 +35,10 @@ do for [fmt in formats] {
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
-  plot data u ($2 - 720.0000000):($2 >= split ? $3 : NaN) w l lw 2 lc rgb "#000072b2" t "B_U", \
-       data u ($2 - 720.0000000):($2 >= split ? $4 : NaN) w l lw 2 lc rgb "#00d55e00" t "B_W", \
-       data u ($2 - 720.0000000):($2 >= split ? $5 : NaN) w l lw 2 lc rgb "#00009e73" t "C_U", \
-       data u ($2 - 720.0000000):($2 >= split ? $6 : NaN) w l lw 2 lc rgb "#00cc79a7" t "C_W"
+  plot data u ($2 - 720):($2 >= split ? $3 : NaN) w l lw 2 lc rgb "#000072b2" t "B_U", \
+       data u ($2 - 720):($2 >= split ? $4 : NaN) w l lw 2 lc rgb "#00d55e00" t "B_W", \
+       data u ($2 - 720):($2 >= split ? $5 : NaN) w l lw 2 lc rgb "#00009e73" t "C_U", \
+       data u ($2 - 720):($2 >= split ? $6 : NaN) w l lw 2 lc rgb "#00cc79a7" t "C_W"
   set output
 }
 
@@ -52,10 +52,10 @@ do for [fmt in formats] {
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
-  plot data u ($2 - 720.0000000):($2 >= split ? $7 : NaN) w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
-       data u ($2 - 720.0000000):($2 >= split ? $8 : NaN) w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
-       data u ($2 - 720.0000000):($2 >= split ? $9 : NaN) w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
-       data u ($2 - 720.0000000):($2 >= split ? $10 : NaN) w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end"
+  plot data u ($2 - 720):($2 >= split ? $7 : NaN) w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
+       data u ($2 - 720):($2 >= split ? $8 : NaN) w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
+       data u ($2 - 720):($2 >= split ? $9 : NaN) w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
+       data u ($2 - 720):($2 >= split ? $10 : NaN) w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end"
   set output
 }
 
