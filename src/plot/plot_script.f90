@@ -770,8 +770,8 @@ contains
     do j = 1, n
       write(u, '(a)') 'werr['//str(j)//'] = '//str(abs(peak(j) - peak(best))/peak(best), 6)
     end do
-    call begin_figure(u, 'work', 'work-precision: relative change of the largest peak stress from the most '// &
-                      'accurate point ('//esc(out%names(1)%s)//' = '//number_text(out%data(best, 1))//') against CPU', figures)
+    call begin_figure(u, 'work', 'work-precision: change of the largest peak stress from the most accurate point ('// &
+                      esc(out%names(1)%s)//' = '//number_text(out%data(best, 1))//'), against CPU', figures)
     write(u, '(a)') '  set logscale y'
     if (spans_decades(out%data(:, jc))) then
       write(u, '(a)') '  set logscale x'
@@ -836,7 +836,7 @@ contains
     real(dp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=32) :: buf
-    if (abs(x) >= 1.0e4_dp .and. abs(x) < 1.0e7_dp) then
+    if ((abs(x) >= 1.0e4_dp .and. abs(x) < 1.0e7_dp) .or. (abs(x) < 1.0e7_dp .and. abs(x - anint(x)) < 1.0e-9_dp)) then
       write(buf, '(i0)') nint(x)
     else if (abs(x) >= 0.01_dp .and. abs(x) < 1.0e4_dp) then
       write(buf, '(f0.' // str(4 - floor(log10(abs(x)))) // ')') x
