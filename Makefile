@@ -4,6 +4,7 @@
 #   make test    build (release and debug), run unit, deck-error and regression tests
 #   make bench   work-precision and cost studies (figures, not pass/fail)
 #   make plot OUT=run.out   standard figures of an output (PNG, SVG; flexmech plot)
+#   make figures            the paper gallery (doc/gallery.md, doc/figures/gallery/)
 #   make MPI=1   build/mpi/bin/flexmech: sweeps and batches shared by MPI ranks (Open MPI)
 #   make deps    install missing system packages and fetch ODEPACK (done by every target)
 #
@@ -70,7 +71,7 @@ ODEPACK_LIST  := $(BUILD_DIR)/odepack/files.txt
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
-.PHONY: all deps odepack run test test-bins bench clean distclean help plot
+.PHONY: all deps odepack run test test-bins bench clean distclean help plot figures
 .DEFAULT_GOAL := all
 
 all: $(BIN_DIR)/flexmech
@@ -161,6 +162,10 @@ run: all
 plot: all
 	@test -n "$(PLOT_OUTPUT)" || { echo "usage: make plot OUT=run.out" >&2; exit 1; }
 	$(BIN_DIR)/flexmech plot $(PLOT_OUTPUT)
+
+# the paper gallery (doc/gallery.md): the decks of the papers' figures, run and drawn
+figures: all
+	@sh doc/figures/gallery/gallery.sh $(BIN_DIR)/flexmech $(BUILD_DIR)/gallery
 
 test: deps
 	@$(MAKE) --no-print-directory BUILD=release test-bins

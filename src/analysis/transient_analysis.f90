@@ -486,7 +486,7 @@ contains
     type(transient_settings_t), intent(in) :: s
     type(responses_t), intent(inout) :: resp
     type(error_t), intent(inout) :: err
-    integer :: k, i, j, n_keep
+    integer :: k, i, j, n_keep, n_shape
     type(link_point_t) :: p
     resp%sections = s%stress_columns == 'all'
     allocate(resp%points(0), resp%point_label(0))
@@ -510,10 +510,18 @@ contains
           resp%points = [resp%points, link_point_t(link=i, s=0.5_dp)]
         end do
       end if
-      do k = 1, size(resp%points)
-        resp%point_label = [character(len=24) :: resp%point_label, point_label(mech, resp%points(k))]
-      end do
     end if
+    do i = 1, mech%n_links                 ! shape_points: the drawn shape of every link
+      n_shape = s%shape_points*mech%links(i)%n_elements
+      do k = 0, merge(n_shape, -1, n_shape > 0)
+        p = link_point_t(link=i, s=real(k, dp)/n_shape)
+        if (.not. any(resp%points(:)%link == i .and. abs(resp%points(:)%s - p%s) < 5.0e-5_dp)) &
+          resp%points = [resp%points, p]
+      end do
+    end do
+    do k = 1, size(resp%points)
+      resp%point_label = [character(len=24) :: resp%point_label, point_label(mech, resp%points(k))]
+    end do
     resp%reactions = s%reactions
     allocate(resp%react_end(0), resp%react_joint(0))
     if (.not. resp%reactions) return

@@ -16,6 +16,7 @@ module transient_settings
   public :: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, check_mode_number
 
   integer, parameter :: max_points = 20          !< link points a deck can name
+  integer, parameter :: max_shape_points = 16    !< intervals per element of the drawn shape
 
   !> The settings of a run; the defaults are those of set_defaults.
   type :: transient_settings_t
@@ -47,6 +48,7 @@ module transient_settings
     logical :: link_points               !< columns of link points (u, w, deflection from the chord)
     character(len=16) :: point_link(max_points)   !< links of the points; none named: every link's mid-span
     real(dp) :: point_at(max_points)     !< position along the link, 0 (end 1) .. 1 (end 2)
+    integer :: shape_points              !< > 0: link points every 1/shape_points of each element (drawn shapes)
     logical :: reactions                 !< columns of joint reaction forces
     real(dp) :: stop_when_periodic       !< > 0: stop when successive revolutions' peaks agree to this
     integer :: output_digits             !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
@@ -58,13 +60,13 @@ module transient_settings
   logical :: link_points, reactions
   character(len=16) :: point_link(max_points)
   real(dp) :: point_at(max_points), stop_when_periodic
-  integer :: mode_number, max_steps, table_points, max_order, output_digits
+  integer :: mode_number, max_steps, table_points, max_order, output_digits, shape_points
   character(len=256) :: restart_in, restart_out
   logical :: stretching, curvature, material, rotary_inertia, coupling
   namelist /transient/ method, rtol, atol, atol_rate, revolutions, output_step_deg, t_end, output_step_t, &
     damping_beta, initial, mode_number, mode_amplitude, restart_in, restart_out, max_steps, kinematics, &
     table_points, max_order, output_rows, stress_columns, link_points, point_link, point_at, reactions, &
-    stop_when_periodic, output_digits
+    stop_when_periodic, output_digits, shape_points
   namelist /effects/ stretching, curvature, material, rotary_inertia, coupling, formulation
 
 contains
@@ -86,7 +88,7 @@ contains
       damping_beta=damping_beta, initial=initial, mode_number=mode_number, mode_amplitude=mode_amplitude, &
       restart_in=restart_in, restart_out=restart_out, max_steps=max_steps, max_order=max_order, &
       kinematics=kinematics, table_points=table_points, output_rows=output_rows, stress_columns=stress_columns, &
-      link_points=link_points, point_link=point_link, point_at=point_at, reactions=reactions, &
+      link_points=link_points, point_link=point_link, point_at=point_at, shape_points=shape_points, reactions=reactions, &
       stop_when_periodic=stop_when_periodic, output_digits=output_digits, formulation=formulation, &
       effects=element_effects_t(stretching, curvature, material, rotary_inertia, coupling))
     call validate(deck, s, err)
@@ -122,6 +124,7 @@ contains
     link_points = .false.
     point_link = ''
     point_at = 0.5_dp
+    shape_points = 0
     reactions = .false.
     stop_when_periodic = 0.0_dp
     output_digits = 0
@@ -182,6 +185,9 @@ contains
     call check_choice(deck, g, 'stress_columns', s%stress_columns, [character(len=16) :: 'outer', 'all'], err)
     call check_reals(deck, g, 'point_at', s%point_at, err, at_least=0.0_dp, at_most=1.0_dp, &
                      why='a fraction of the link''s length from its end 1')
+    call check_integer(deck, g, 'shape_points', s%shape_points, err, at_least=0, at_most=max_shape_points, &
+                       why='intervals per element of the drawn shape (0 = none); '//str(max_shape_points)// &
+                       ' draws any curvature a quintic can take')
     call check_real(deck, g, 'stop_when_periodic', s%stop_when_periodic, err, at_least=0.0_dp, below=1.0_dp, &
                     why='a relative change of the per-revolution peaks (0 = off); 1 or more would stop at once')
     call check_integer(deck, g, 'output_digits', s%output_digits, err, at_least=0, at_most=max_digits, &

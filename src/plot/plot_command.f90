@@ -1,12 +1,13 @@
 !> `flexmech plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]
-!>                [--animate [--magnify F]]`
+!>                [--whole-run] [--animate [--magnify F]]`
 !> `flexmech plot A.out B.out ... --compare [-n NAME] [--columns c1,c2] [-t TITLE]
 !>                [--labels 'l1;l2'] [-d DIR]`
 !>
 !> For each output: writes DIR/<stem>.gp (DIR defaults to the output's own
 !> directory) and runs gnuplot on it, which draws DIR/<stem>_<figure>.png and
 !> .svg.  --png draws the PNG files only; --script-only writes the scripts and
-!> does not run gnuplot.  --animate also draws DIR/<stem>_anim.gif, the
+!> does not run gnuplot.  --whole-run draws every revolution of a transient
+!> run (default: the last complete one).  --animate also draws DIR/<stem>_anim.gif, the
 !> deformed mechanism over the last revolution (module plot_animation), with
 !> the displacements multiplied by F (default: automatic).  --compare draws
 !> the runs together in DIR/NAME_<figure> (module plot_compare; NAME defaults
@@ -18,7 +19,8 @@ module plot_command
   use version, only: program_name
   use run_output, only: run_output_t, read_run_output
   use plot_script, only: write_plot_script
-  use plot_animation, only: write_animation
+  use plot_animation, only: write_animation, append_shape_figure
+  use plot_spatial, only: write_spatial_animation, append_spatial_shape
   use plot_compare, only: write_compare_script
   use kinds, only: dp
   use strings, only: shell_quote, file_stem
@@ -35,7 +37,7 @@ contains
     integer, intent(out) :: exit_status
     character(len=:), allocatable :: dir
     character(len=1024) :: name, only, title, run_labels
-    logical :: script_only, png_only, animate, compare
+    logical :: script_only, png_only, animate, compare, whole_run
     integer :: i, status, ios
     logical :: want(size(args))
     real(dp) :: magnify
@@ -45,6 +47,7 @@ contains
     png_only = .false.
     animate = .false.
     compare = .false.
+    whole_run = .false.
     only = ''
     name = ''
     title = ''
@@ -69,6 +72,8 @@ contains
         png_only = .true.
       case ('--animate')
         animate = .true.
+      case ('--whole-run')
+        whole_run = .true.
       case ('--compare')
         compare = .true.
       case ('-n', '--columns', '-t', '--labels')
@@ -117,7 +122,7 @@ contains
     end if
     do i = 1, size(args)
       if (.not. want(i)) cycle
-      call plot_one(trim(args(i)), dir, script_only, png_only, status)
+      call plot_one(trim(args(i)), dir, script_only, png_only, whole_run, status)
       exit_status = max(exit_status, status)
       if (animate .and. status == 0) then
         call animate_one(trim(args(i)), dir, script_only, magnify, status)
@@ -126,11 +131,12 @@ contains
     end do
   end subroutine run_plot_command
 
-  subroutine plot_one(path, dir, script_only, png_only, status)
+  subroutine plot_one(path, dir, script_only, png_only, whole_run, status)
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(in) :: dir
-    logical, intent(in) :: script_only, png_only
+    logical, intent(in) :: script_only, png_only, whole_run
     integer, intent(out) :: status
+    integer :: u
     type(run_output_t) :: out
     type(error_t) :: err
     character(len=64), allocatable :: figures(:)
@@ -140,7 +146,18 @@ contains
     script = base//'.gp'
     call read_run_output(path, out, err)
     if (.not. err%failed()) then
-      call write_plot_script(out, base, script, figures, err)
+      call write_plot_script(out, base, script, figures, err, whole_run)
+    end if
+    if (.not. err%failed()) then        ! the still of the deformed mechanism
+      if (size(figures) > 0 .and. any(out%analysis == [character(len=9) :: 'transient', 'steady', 'spatial'])) then
+        open(newunit=u, file=script, position='append', action='write')
+        if (out%analysis == 'spatial') then
+          call append_spatial_shape(u, out, base, figures)
+        else
+          call append_shape_figure(u, out, base, figures)
+        end if
+        close(u)
+      end if
     end if
     if (err%failed()) then
       write(error_unit, '(a)') program_name//' plot: '//err%text()
@@ -253,11 +270,17 @@ contains
     type(run_output_t) :: out
     type(error_t) :: err
     character(len=:), allocatable :: base, why
-    integer :: n_frames
+    integer :: n_frames, u, ios
     status = 0
     base = figure_base(path, dir)
     call read_run_output(path, out, err)
-    if (.not. err%failed()) call write_animation(out, base, magnify, n_frames, err)
+    if (.not. err%failed()) then
+      if (out%analysis == 'spatial') then
+        call write_spatial_animation(out, base, magnify, n_frames, err)
+      else
+        call write_animation(out, base, magnify, n_frames, err)
+      end if
+    end if
     if (err%failed()) then
       write(error_unit, '(a)') program_name//' plot: '//err%text()
       status = 3
@@ -265,12 +288,16 @@ contains
     end if
     write(output_unit, '(a)') program_name//' plot: wrote '//base//'_anim.gp, '//base//'_anim.dat'
     if (script_only) return
-    call run_command('gnuplot '//shell_quote(base//'_anim.gp'), status, why)
+    ! gnuplot's gif terminal reports the frame count on stderr: kept in a log, shown on failure
+    call run_command('gnuplot '//shell_quote(base//'_anim.gp')//' 2> '//shell_quote(base//'_anim.log'), status, why)
     if (status /= 0) then
-      write(error_unit, '(a)') program_name//' plot: gnuplot failed on '//base//'_anim.gp '//why
+      write(error_unit, '(a)') program_name//' plot: gnuplot failed on '//base//'_anim.gp '//why// &
+        ' (its messages: '//base//'_anim.log)'
       status = 3
       return
     end if
+    open(newunit=u, file=base//'_anim.log', status='old', iostat=ios)
+    if (ios == 0) close(u, status='delete')
     write(output_unit, '(a,i0,a)') program_name//' plot: drew '//base//'_anim.gif (', n_frames, ' frames)'
   end subroutine animate_one
 
@@ -293,7 +320,7 @@ contains
     character(len=*), intent(in) :: why
     write(error_unit, '(a)') program_name//' plot: '//why
     write(error_unit, '(a)') 'usage: '//program_name//' plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]'// &
-      ' [--animate [--magnify F]]'
+      ' [--whole-run] [--animate [--magnify F]]'
     write(error_unit, '(a)') '       '//program_name//' plot A.out B.out ... --compare [-n NAME] [--columns c1,c2]'// &
       ' [-t TITLE] [--labels ''l1;l2''] [-d DIR]'
   end subroutine usage

@@ -8,7 +8,7 @@ module plot_compare
   use error_status, only: error_t
   use strings, only: str
   use run_output, only: run_output_t, column_index, name_t, append_text
-  use plot_script, only: begin_figure, end_figure, colour, esc, selected
+  use plot_script, only: begin_figure, end_figure, colour, esc, selected, element_links, legend, unit_of
   implicit none
   private
   public :: write_compare_script
@@ -23,11 +23,12 @@ contains
     character(len=64), allocatable, intent(out) :: figures(:)
     type(error_t), intent(inout) :: err
     integer :: u, ios, i
+    type(name_t), allocatable :: links(:)
     allocate(figures(0))
     do i = 1, size(outs)
-      if (outs(i)%analysis /= 'transient' .and. outs(i)%analysis /= 'steady') then
+      if (all(outs(i)%analysis /= [character(len=9) :: 'transient', 'steady', 'spatial'])) then
         call err%set('plot --compare', outs(i)%path//' is a '''//outs(i)%analysis// &
-                     ''' output; --compare overlays transient and steady runs', 3)
+                     ''' output; --compare overlays transient, steady and spatial runs', 3)
         return
       end if
     end do
@@ -51,18 +52,24 @@ contains
     else
       write(u, '(a)') 'title = "'//esc(compare_title(labels))//'"'
     end if
-    call compare_figure(u, outs, labels, only, 'stress', 'largest |stress| per element', 'stress (psi)', &
-                        'sigma_max_e', '', figures)
-    call compare_figure(u, outs, labels, only, 'joints', 'joint elastic displacement U (global X), W (global Y)', &
-                        'displacement (in)', '', '_U _W', figures)
-    call compare_figure(u, outs, labels, only, 'links', 'link end 2 deformation in the link''s rigid-body axes', &
-                        'displacement (in)', '', '_u_end _w_end', figures)
+    links = element_links(outs(1))
+    call compare_figure(u, outs, labels, links, only, 'stress', 'largest |stress| per element', &
+                        'stress'//unit_of(outs(1), 'sigma_max_e'), 'sigma_max_e', '', figures)
+    call compare_figure(u, outs, labels, links, only, 'joints', 'joint elastic displacement (global axes)', &
+                        'displacement'//unit_of(outs(1), '_U'), '', '_U _W _UX _UY _UZ', figures)
+    call compare_figure(u, outs, labels, links, only, 'links', 'link end 2 deformation in the link''s rigid-body axes', &
+                        'displacement'//unit_of(outs(1), '_end'), '', '_u_end _w_end _v_end', figures)
+    call compare_figure(u, outs, labels, links, only, 'points', 'transverse elastic displacement of link points '// &
+                        'in the link''s rigid-body axes', 'displacement'//unit_of(outs(1), '_s<x>_u'), '', '_w', figures)
+    call compare_figure(u, outs, labels, links, only, 'rotations', 'small rotation of link end 2 in the link''s '// &
+                        'rigid-body axes', 'rotation'//unit_of(outs(1), '_tx'), '', '_tx_end _ty_end _tz_end', figures)
     close(u)
   end subroutine write_compare_script
 
-  subroutine compare_figure(u, outs, labels, only, name, what, ylabel, prefix, suffixes, figures)
+  subroutine compare_figure(u, outs, labels, links, only, name, what, ylabel, prefix, suffixes, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: outs(:)
+    type(name_t), intent(in) :: links(:)
     character(len=*), intent(in) :: labels(:), only, name, what, ylabel, prefix, suffixes
     character(len=64), allocatable, intent(inout) :: figures(:)
     type(name_t), allocatable :: lines(:)
@@ -78,14 +85,15 @@ contains
         if (column_index(outs(i), nm) == 0) cycle
         ix = x_column(outs(i))
         call append_text(lines, 'data'//str(i)//' u '//str(ix)//':'//str(column_index(outs(i), nm))// &
-          ' w l lw 2 dt '//str(mod(i - 1, 5) + 1)//' '//colour(k, '00')//' t "'//esc(nm//', '//trim(labels(i)))//'"')
+          ' w l lw 2 dt '//str(mod(i - 1, 5) + 1)//' '//colour(k, '00')//' t "'//esc(legend(nm, links)//', '// &
+          trim(labels(i)))//'"')
       end do
     end do
     if (size(lines) == 0) return
     call begin_figure(u, name, what//'; line pattern: run, colour: column', figures)
     write(u, '(a)') '  set xlabel "'//merge('crank angle (deg)', 't (s)            ', &
                     outs(1)%names(x_column(outs(1)))%s == 'crank_deg')//'"'
-    write(u, '(a)') '  set ylabel "'//ylabel//'"'
+    write(u, '(a)') '  set ylabel "'//esc(ylabel)//'"'
     write(u, '(a)') '  set autoscale xfix'
     ix = x_column(outs(1))
     if (outs(1)%names(ix)%s == 'crank_deg') then

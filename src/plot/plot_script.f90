@@ -20,42 +20,68 @@ module plot_script
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str, starts_with, append_name
-  use run_output, only: run_output_t, column_index
+  use strings, only: str, starts_with, append_name, lower
+  use run_output, only: run_output_t, column_index, column_unit, name_t, split_words, read_run_output
   implicit none
   private
   public :: write_plot_script, plot_palette
   public :: begin_figure, end_figure, colour, esc, selected   ! shared with plot_compare
+  public :: number_text, element_links, legend, unit_of      ! shared with plot_animation, plot_compare
 
   character(len=6), parameter :: plot_palette(8) = [character(len=6) :: &
     '0072b2', 'd55e00', '009e73', 'cc79a7', 'e69f00', '56b4e9', '000000', 'f0e442']
 
   type :: series_t
-    integer :: x = 1, y = 1
+    integer :: y = 1
+    character(len=:), allocatable :: x                 !< a column number or a gnuplot expression
     character(len=:), allocatable :: title, style, filter
   end type series_t
+
+  !> A sweep summary's columns sorted for its figures (sweep_figures).
+  type :: sweep_view_t
+    character(len=16), allocatable :: kind(:)          !< per column: stress, displacement, ..., cpu, count, ''
+    character(len=:), allocatable :: unit_stress, unit_length, unit_force, unit_moment   !< ' (psi)' or ''
+    real(dp), allocatable :: failed(:)                 !< swept values of the failed points
+    integer :: multiplier = 0                          !< column of the largest Floquet multiplier, 0: none
+    logical :: work = .false.                          !< a tolerance or mesh sweep: the work-precision figure
+    type(name_t), allocatable :: links(:)              !< the link of each element (none in a mesh sweep)
+    logical :: logx = .false.
+  end type sweep_view_t
+
+  !> The x axis of the curve figures.
+  type :: curve_axis_t
+    integer :: ix = 1                                  !< its column
+    character(len=:), allocatable :: label
+    real(dp) :: split = -huge(1.0_dp)                  !< start of the last revolution (more than one drawn)
+    logical :: last_only = .false.                     !< only the last revolution, shifted by offset
+    real(dp) :: offset = 0.0_dp                        !< whole turns subtracted from the crank angle
+  end type curve_axis_t
 
 contains
 
   !> Writes the figure script for `out`; `figures` receives the figure names
   !> (suffixes after base_), empty when the output has nothing to draw.
-  subroutine write_plot_script(out, base, script_path, figures, err)
+  subroutine write_plot_script(out, base, script_path, figures, err, whole_run)
     type(run_output_t), intent(in) :: out
     character(len=*), intent(in) :: base, script_path
     character(len=64), allocatable, intent(out) :: figures(:)
     type(error_t), intent(inout) :: err
+    logical, intent(in), optional :: whole_run   !< transient: every revolution (default: the last complete one)
     integer :: u, ios
+    logical :: whole
     allocate(figures(0))
     open(newunit=u, file=script_path, status='replace', action='write', iostat=ios)
     if (ios /= 0) then
       call err%set('plot', 'cannot write the script '''//script_path//'''', 1)
       return
     end if
+    whole = .false.
+    if (present(whole_run)) whole = whole_run
     call preamble(u, out, base)
     if (size(out%data, 1) > 0) then
       select case (out%analysis)
-      case ('transient', 'steady')
-        call curve_figures(u, out, figures)
+      case ('transient', 'steady', 'spatial')
+        call curve_figures(u, out, whole, figures)
       case ('optimize', 'design')
         call history_figure(u, out, figures)
       case ('sweep')
@@ -92,15 +118,21 @@ contains
   end function display_title
 
   !> Opens a figure block: a loop over the formats.
-  subroutine begin_figure(u, name, subtitle, figures)
+  subroutine begin_figure(u, name, subtitle, figures, height)
     integer, intent(in) :: u
     character(len=*), intent(in) :: name, subtitle
     character(len=64), allocatable, intent(inout) :: figures(:)
+    integer, intent(in), optional :: height      !< pixels (default 640)
     call append_name(figures, name)
     write(u, '(a)') ''
     write(u, '(a)') 'do for [fmt in formats] {'
     write(u, '(a)') '  reset'
-    write(u, '(a)') '  eval (fmt eq "png" ? term_png : term_svg)'
+    if (present(height)) then
+      write(u, '(a)') '  eval (fmt eq "png" ? "set terminal pngcairo size 1000,'//str(height)// &
+        ' font '',11'' noenhanced" : "set terminal svg size 1000,'//str(height)//' dynamic font '',11'' noenhanced")'
+    else
+      write(u, '(a)') '  eval (fmt eq "png" ? term_png : term_svg)'
+    end if
     write(u, '(a)') '  eval common'
     write(u, '(a)') '  set output base."_'//name//'.".fmt'
     write(u, '(a)') '  set title title."\n'//esc(subtitle)//'"'
@@ -121,7 +153,7 @@ contains
     do i = 1, size(s)
       y = str(s(i)%y)
       if (len(s(i)%filter) > 0) y = '('//s(i)%filter//' ? $'//str(s(i)%y)//' : NaN)'
-      write(u, '(a)', advance='no') merge('  plot ', '       ', i == 1)//'data u '//str(s(i)%x)//':'//y// &
+      write(u, '(a)', advance='no') merge('  plot ', '       ', i == 1)//'data u '//s(i)%x//':'//y// &
         ' '//s(i)%style//' t "'//esc(s(i)%title)//'"'
       if (i < size(s)) then
         write(u, '(a)') ', \'
@@ -134,7 +166,8 @@ contains
   !> A series_t built component by component (gfortran 12 mis-sizes a
   !> deferred-length component given another one in a structure constructor).
   function series(x, y, title, style, filter) result(item)
-    integer, intent(in) :: x, y
+    character(len=*), intent(in) :: x
+    integer, intent(in) :: y
     character(len=*), intent(in) :: title, style, filter
     type(series_t) :: item
     item%x = x
@@ -164,76 +197,164 @@ contains
     s = 'lc rgb "#'//alpha//plot_palette(mod(i - 1, size(plot_palette)) + 1)//'"'
   end function colour
 
-  !> Transient and steady runs: stress, joints, link ends against crank angle.
-  subroutine curve_figures(u, out, figures)
+  !> Transient and steady runs: stress, joints, link ends against crank angle:
+  !> the last complete revolution on a 360 deg axis, or with `whole` every
+  !> revolution (the earlier ones faint).
+  subroutine curve_figures(u, out, whole, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
+    logical, intent(in) :: whole
     character(len=64), allocatable, intent(inout) :: figures(:)
-    integer :: ix
-    real(dp) :: split
-    character(len=:), allocatable :: xlabel
+    type(curve_axis_t) :: ax
     logical :: exact
-    ix = column_index(out, 'crank_deg')
-    xlabel = 'crank angle (deg)'
-    if (ix > 0) then
-      if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 0.0_dp) ix = 0
+    integer :: j
+    type(name_t), allocatable :: links(:)
+    ax%ix = column_index(out, 'crank_deg')
+    ax%label = 'crank angle (deg)'
+    if (ax%ix > 0) then
+      if (maxval(out%data(:, ax%ix)) - minval(out%data(:, ax%ix)) <= 0.0_dp) ax%ix = 0
     end if
-    if (ix == 0) then
-      ix = column_index(out, 't')
-      xlabel = 't (s)'
+    if (ax%ix == 0) then
+      ax%ix = column_index(out, 't')
+      ax%label = 't (s)'
     end if
-    if (ix == 0) ix = 1
-    split = -huge(1.0_dp)
-    if (xlabel(1:1) == 'c') then
-      if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) > 360.0_dp + 1.0e-9_dp) &
-        split = maxval(out%data(:, ix)) - 360.0_dp
+    if (ax%ix == 0) ax%ix = 1
+    if (ax%label(1:1) == 'c') then
+      if (maxval(out%data(:, ax%ix)) - minval(out%data(:, ax%ix)) > 360.0_dp + 1.0e-9_dp) then
+        ax%split = maxval(out%data(:, ax%ix)) - 360.0_dp
+        ax%last_only = .not. whole
+        ax%offset = 360.0_dp*floor(ax%split/360.0_dp + 1.0e-9_dp)
+      else                                    ! one revolution (rows of the last only): shifted to 0-360
+        ax%offset = 360.0_dp*floor(minval(out%data(:, ax%ix))/360.0_dp + 1.0e-9_dp)
+      end if
     end if
-    exact = any([(index(out%names(ix)%s, '_exact') > 0, ix = 1, out%n_columns())])
-    if (split > -huge(1.0_dp)) write(u, '(a)') 'split = '//str(split, 10)
-    call curve_figure(u, out, 'stress', 'largest |stress| per element', 'stress (psi)', &
-                      'sigma_max_e', '', ix, xlabel, split, exact, figures)
-    call curve_figure(u, out, 'joints', 'joint elastic displacement U (global X), W (global Y)', &
-                      'displacement (in)', '', '_U _W', ix, xlabel, split, exact, figures)
+    exact = any([(index(out%names(j)%s, '_exact') > 0, j = 1, out%n_columns())])
+    links = element_links(out)
+    if (ax%split > -huge(1.0_dp)) write(u, '(a)') 'split = '//str(ax%split, 10)
+    call curve_figure(u, out, 'stress', 'largest |stress| per element (outer fibre)', &
+                      'stress'//unit_of(out, 'sigma_max_e'), 'sigma_max_e', '', ax, exact, links, figures)
+    call curve_figure(u, out, 'sections', 'bending and axial stress per element (signed, largest magnitude)', &
+                      'stress'//unit_of(out, 'sigma_b_e'), 'sigma_b_e sigma_a_e', '', ax, exact, links, figures)
+    call curve_figure(u, out, 'moments', 'bending moment per element; moment of the ground at a clamp', &
+                      'moment'//unit_of(out, 'M_e'), 'M_e', '_Gm', ax, exact, links, figures)
+    call curve_figure(u, out, 'forces', 'axial force per element; joint forces on link ends and ground forces '// &
+                      '(global X, Y)', 'force'//unit_of(out, '_Fx'), 'N_e', '_Fx _Fy _Gx _Gy', ax, exact, links, figures)
+    call curve_figure(u, out, 'joints', 'joint elastic displacement (global axes)', &
+                      'displacement'//unit_of(out, '_U'), '', '_U _W _UX _UY _UZ', ax, exact, links, figures)
     call curve_figure(u, out, 'links', 'link end 2 deformation in the link''s rigid-body axes', &
-                      'displacement (in)', '', '_u_end _w_end', ix, xlabel, split, exact, figures)
+                      'displacement'//unit_of(out, '_end'), '', '_u_end _w_end _v_end', ax, exact, links, figures)
   end subroutine curve_figures
+
+  !> ' (unit)' of the columns described with `key`, '' when the header does not say.
+  function unit_of(out, key) result(s)
+    type(run_output_t), intent(in) :: out
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable :: s
+    s = column_unit(out, key)
+    if (len(s) > 0) s = ' ('//s//')'
+  end function unit_of
+
+  !> The link of every element, as a legend names it: 'crank' (a link of one
+  !> element) or 'coupler element 2' (the second of its elements), from the
+  !> header's mechanism lines 'link NAME: A-B, length L, N element(s); ...'.
+  function element_links(out) result(names)
+    type(run_output_t), intent(in) :: out
+    type(name_t), allocatable :: names(:)
+    type(name_t), allocatable :: words(:), longer(:)
+    integer :: i, n, k, ios, colon
+    character(len=:), allocatable :: link
+    allocate(names(0))
+    do i = 1, size(out%header)
+      associate (line => out%header(i)%s)
+        if (.not. starts_with(line, 'link ') .or. index(line, ' element(s)') == 0) cycle
+        colon = index(line, ':')
+        if (colon < 7) cycle
+        link = line(6:colon - 1)
+        call split_words(line(colon + 1:index(line, ' element(s)') - 1), words)
+        if (size(words) == 0) cycle
+        read(words(size(words))%s, *, iostat=ios) n
+        if (ios /= 0 .or. n < 1) cycle
+        allocate(longer(size(names) + n))
+        longer(1:size(names)) = names
+        do k = 1, n
+          longer(size(names) + k)%s = link
+          if (n > 1) longer(size(names) + k)%s = link//' element '//str(k)
+        end do
+        call move_alloc(longer, names)
+      end associate
+    end do
+  end function element_links
+
+  !> A column's legend: an element's columns (sigma_max_e3) by its link.
+  function legend(name, links) result(s)
+    character(len=*), intent(in) :: name
+    type(name_t), intent(in) :: links(:)
+    character(len=:), allocatable :: s
+    integer :: at, k, ios
+    s = name
+    at = index(name, '_e', back=.true.)
+    if (at == 0 .or. at + 2 > len(name)) return
+    if (verify(name(at + 2:), '0123456789') /= 0) return
+    read(name(at + 2:), *, iostat=ios) k
+    if (ios /= 0 .or. k < 1 .or. k > size(links)) return
+    s = links(k)%s
+    if (.not. starts_with(name, 'sigma_max_e')) s = name(1:at - 1)//' '//s     ! sigma_b crank, M coupler
+  end function legend
 
   !> One curve figure: the columns whose name starts with `prefix` (when given)
   !> or ends with one of the words of `suffixes`, without the _exact twins.
-  subroutine curve_figure(u, out, name, what, ylabel, prefix, suffixes, ix, xlabel, split, exact, figures)
-    integer, intent(in) :: u, ix
+  subroutine curve_figure(u, out, name, what, ylabel, prefix, suffixes, ax, exact, links, figures)
+    integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
-    character(len=*), intent(in) :: name, what, ylabel, prefix, suffixes, xlabel
-    real(dp), intent(in) :: split
+    character(len=*), intent(in) :: name, what, ylabel, prefix, suffixes
+    type(curve_axis_t), intent(in) :: ax
     logical, intent(in) :: exact
+    type(name_t), intent(in) :: links(:)
     character(len=64), allocatable, intent(inout) :: figures(:)
     type(series_t), allocatable :: s(:)
-    integer :: j, k, je
-    character(len=:), allocatable :: sub, nm
+    integer :: j, k, je, ix
+    character(len=:), allocatable :: sub, nm, x, label, style
     allocate(s(0))
     k = 0
+    ix = ax%ix
+    x = str(ix)
+    if (ax%last_only .or. abs(ax%offset) > 0.0_dp) x = '($'//str(ix)//' - '//axis_number(ax%offset)//')'
     do j = 1, out%n_columns()
       nm = out%names(j)%s
       if (index(nm, '_exact') > 0) cycle
       if (.not. selected(nm, prefix, suffixes)) cycle
       k = k + 1
       je = column_index(out, nm//'_exact')
-      if (split > -huge(1.0_dp)) then
-        call add_series(s, series(ix, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'))
-        call add_series(s, series(ix, j, nm, 'w l lw 2 '//colour(k, '00'), '$'//str(ix)//' >= split'))
+      label = legend(nm, links)
+      style = colour(k, '00')
+      if (k > size(plot_palette)) style = style//' dt '//str(mod((k - 1)/size(plot_palette), 4) + 2)   ! past 8: dashed
+      if (ax%last_only) then
+        call add_series(s, series(x, j, label, 'w l lw 2 '//style, '$'//str(ix)//' >= split'))
+      else if (ax%split > -huge(1.0_dp)) then
+        call add_series(s, series(x, j, '', 'w l lw 1 '//colour(k, 'a0'), '$'//str(ix)//' < split'))
+        call add_series(s, series(x, j, label, 'w l lw 2 '//style, '$'//str(ix)//' >= split'))
       else
-        call add_series(s, series(ix, j, nm, 'w l lw 2 '//colour(k, '00'), ''))
-        if (je > 0) s(size(s))%title = nm//' (harmonic series)'
+        call add_series(s, series(x, j, label, 'w l lw 2 '//style, ''))
+        if (je > 0) s(size(s))%title = label//' (harmonic series)'
       end if
-      if (je > 0) call add_series(s, series(ix, je, nm//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), ''))
+      if (je > 0) call add_series(s, series(x, je, label//' (exact periodic)', 'w l lw 2 dt 2 '//colour(k, '00'), ''))
     end do
     if (k == 0) return
     sub = what
-    if (split > -huge(1.0_dp)) sub = sub//'; bold: the last revolution (crank angle >= '//str(nint(split))//' deg)'
+    if (ax%last_only) then
+      sub = sub//'; last complete revolution (run''s '//str(nint(ax%split))//'-'// &
+            str(nint(ax%split) + 360)//' deg)'
+    else if (ax%split > -huge(1.0_dp)) then
+      sub = sub//'; bold: the last revolution (crank angle >= '//str(nint(ax%split))//' deg)'
+    end if
     if (exact) sub = sub//'; solid: harmonic series, dashed: exact'
     call begin_figure(u, name, sub, figures)
-    if (xlabel(1:1) == 'c') then
-      if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 360.0_dp + 1.0e-9_dp) then
+    if (ax%label(1:1) == 'c') then
+      if (ax%last_only) then
+        write(u, '(a)') '  set xrange ['//axis_number(ax%split - ax%offset)//':'// &
+                        axis_number(ax%split - ax%offset + 360.0_dp)//']'
+        write(u, '(a)') '  set xtics 45'
+      else if (maxval(out%data(:, ix)) - minval(out%data(:, ix)) <= 360.0_dp + 1.0e-9_dp) then
         write(u, '(a)') '  set xrange [0:360]'
         write(u, '(a)') '  set xtics 45'
       else
@@ -242,8 +363,8 @@ contains
         write(u, '(a)') '  set autoscale xfix'
       end if
     end if
-    write(u, '(a)') '  set xlabel "'//xlabel//'"'
-    write(u, '(a)') '  set ylabel "'//ylabel//'"'
+    write(u, '(a)') '  set xlabel "'//ax%label//'"'
+    write(u, '(a)') '  set ylabel "'//esc(ylabel)//'"'
     call plot_series(u, s)
     call end_figure(u)
   end subroutine curve_figure
@@ -252,7 +373,12 @@ contains
     character(len=*), intent(in) :: name, prefix, suffixes
     integer :: a, b, n
     selected = .false.
-    if (len(prefix) > 0) selected = starts_with(name, prefix)
+    a = 1
+    do while (a <= len(prefix))            ! any of the prefixes (words)
+      b = index(prefix(a:)//' ', ' ') + a - 1
+      if (b > a) selected = selected .or. starts_with(name, prefix(a:b - 1))
+      a = b + 1
+    end do
     a = 1
     do while (a <= len(suffixes))
       b = index(suffixes(a:)//' ', ' ') + a - 1
@@ -299,7 +425,7 @@ contains
         cycle
       end if
       n = n + 1
-      call add_series(s, series(k, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), ''))
+      call add_series(s, series(str(k), j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.6 '//colour(n, '00'), ''))
     end do
     if (n > 0) then
       write(u, '(a)') '  set title "design variables"'
@@ -382,43 +508,295 @@ contains
     is_numbered = verify(name(len(prefix) + 1:), '0123456789') == 0
   end function is_numbered
 
-  !> Sweep summary: peaks and cost against the swept value.
+  !> Sweep summary against the swept value: `peaks` (one panel per kind of
+  !> quantity: stresses, displacements, forces, moments, others, each with
+  !> the unit its point outputs give), `cost` (CPU seconds; counts), the
+  !> Floquet `multipliers` when the points report them, and `work` (the
+  !> relative change of the largest peak stress from the most accurate
+  !> point against CPU seconds) when the swept variable is a tolerance or a
+  !> mesh.  Log axes where the values span more than two decades; points
+  !> whose largest Floquet multiplier exceeds 1 (unbounded response) are
+  !> marked, failed points (no row) drawn as dotted vertical lines.
   subroutine sweep_figures(u, out, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
     character(len=64), allocatable, intent(inout) :: figures(:)
-    call sweep_figure(u, out, 'peaks', 'summary peaks against the swept value', 'peak', figures)
-    call sweep_figure(u, out, 'cost', 'cost of each point (log scale)', 'cpu', figures)
-    call sweep_figure(u, out, 'multipliers', 'largest Floquet multiplier moduli (above 1: parametric resonance)', &
-                      'floquet_multipliers', figures)
+    type(sweep_view_t) :: v
+    type(run_output_t) :: point
+    call sweep_view(out, v, point)
+    call panel_figure(u, out, v, 'peaks', 'summary peaks against the swept value', &
+      [character(len=16) :: 'stress', 'displacement', 'force', 'moment', 'other peak'], figures)
+    call panel_figure(u, out, v, 'cost', 'cost of each point', &
+      [character(len=16) :: 'cpu', 'count'], figures)
+    call panel_figure(u, out, v, 'multipliers', 'largest Floquet multiplier moduli (above 1: unbounded, '// &
+      'parametric resonance)', [character(len=16) :: 'multiplier'], figures)
+    if (v%work) call work_figure(u, out, v, figures)
   end subroutine sweep_figures
 
-  subroutine sweep_figure(u, out, name, what, word, figures)
+  !> What the sweep figures need beyond the table: each column's kind, the
+  !> units (from the first point's output, when it is still there), the
+  !> x axis, the unbounded test and the failed points' values.
+  subroutine sweep_view(out, v, point)
+    type(run_output_t), intent(in) :: out
+    type(sweep_view_t), intent(out) :: v
+    type(run_output_t), intent(out) :: point
+    type(error_t) :: err
+    integer :: j, i, a, b, ios
+    real(dp) :: x
+    logical :: found
+    character(len=:), allocatable :: nm, line, path
+    allocate(v%kind(out%n_columns()), v%failed(0), v%links(0))
+    v%kind = ''
+    v%unit_stress = ''
+    v%unit_length = ''
+    v%unit_force = ''
+    v%unit_moment = ''
+    path = ''
+    do i = 1, size(out%header)                 ! 'sweep: ... logs in DIR/STEM_<k>.{nml,out,log}'
+      line = out%header(i)%s
+      a = index(line, 'logs in ')
+      b = index(line, '<k>')
+      if (starts_with(line, 'sweep: ') .and. a > 0 .and. b > a + 8) path = line(a + 8:b - 1)
+      if (starts_with(line, 'point ') .and. index(line, ': exit ') > 0 .and. index(line, ' = ') > 0) then
+        a = index(line, ' = ') + 3
+        if (index(line(a:), '*') > 0 .and. index(line(a:), '*') < index(line(a:), ':')) a = a + index(line(a:), '*')
+        read(line(a:a + index(line(a:), ':') - 2), *, iostat=ios) x
+        if (ios == 0) v%failed = [v%failed, x]
+      end if
+    end do
+    if (len(path) > 0) then               ! the first point's output, numbered 1, 01, 001 ...
+      if (index(out%path, '/') > 0 .and. path(1:1) /= '/') path = out%path(1:index(out%path, '/', back=.true.))//path
+      do i = 1, 5
+        inquire(file=path//repeat('0', i - 1)//'1.out', exist=found)
+        if (.not. found) cycle
+        call read_run_output(path//repeat('0', i - 1)//'1.out', point, err)
+        exit
+      end do
+      if (found .and. .not. err%failed()) then
+        v%unit_stress = unit_of(point, 'sigma_max_e')
+        v%unit_length = unit_of(point, '_U')
+        v%unit_force = unit_of(point, '_Fx')
+        v%unit_moment = unit_of(point, 'M_e')
+        if (index(lower(out%names(1)%s), 'n_elements') == 0) v%links = element_links(point)
+      end if
+    end if
+    v%multiplier = column_index(out, 'floquet_multipliers_largest_moduli_1')
+    do j = 3, out%n_columns()
+      nm = lower(out%names(j)%s)
+      if (.not. any(finite_positive(out%data(:, j), .false.))) cycle
+      if (starts_with(nm, 'floquet_multipliers')) then
+        v%kind(j) = 'multiplier'
+      else if (starts_with(nm, 'cost_') .or. index(nm, 'cpu') > 0) then
+        v%kind(j) = 'count'
+        if (index(nm, 'cpu') > 0) v%kind(j) = 'cpu'
+        if (nm == 'cost_last_method_order') v%kind(j) = ''
+      else if (index(nm, 'peak') == 0) then
+        cycle
+      else if (index(nm, 'stress') > 0 .or. index(nm, 'sigma') > 0) then
+        v%kind(j) = 'stress'
+      else if (ends_with_any(nm, '_u _w _u_end _w_end _v_end _chord _ex _ey')) then
+        v%kind(j) = 'displacement'
+      else if (ends_with_any(nm, '_fx _fy _fz _gx _gy _gz')) then
+        v%kind(j) = 'force'
+      else if (ends_with_any(nm, '_gm') .or. index(nm, 'peak_m_e') > 0) then
+        v%kind(j) = 'moment'
+      else
+        v%kind(j) = 'other peak'
+      end if
+    end do
+    nm = lower(out%names(1)%s)
+    v%work = index(nm, 'tol') > 0 .or. index(nm, 'n_elements') > 0 .or. index(nm, 'n_harmonics') > 0 .or. &
+             index(nm, 'table_points') > 0
+    v%logx = spans_decades(out%data(:, 1))
+  end subroutine sweep_view
+
+  !> A sweep column's legend with its element named by its link:
+  !> element_2_peak_stress -> 'coupler: peak_stress', peak_sigma_max_e2 ->
+  !> 'peak_sigma_max: coupler'.
+  function sweep_legend(name, links) result(s)
+    character(len=*), intent(in) :: name
+    type(name_t), intent(in) :: links(:)
+    character(len=:), allocatable :: s
+    integer :: k, ios, b
+    s = name
+    if (starts_with(name, 'element_')) then
+      b = index(name(9:), '_') + 7
+      if (b <= 8) return
+      read(name(9:b), *, iostat=ios) k
+      if (ios /= 0 .or. k < 1 .or. k > size(links)) return
+      s = links(k)%s//': '//name(b + 2:)
+    else
+      s = legend(name, links)
+      if (s /= name) s = name(1:index(name, '_e', back=.true.) - 1)//': '//s(index(s, ' ', back=.true.) + 1:)
+    end if
+  end function sweep_legend
+
+  !> All positive and max > 100 min.
+  logical pure function spans_decades(x)
+    real(dp), intent(in) :: x(:)
+    spans_decades = .false.
+    if (size(x) == 0) return
+    if (minval(x) <= 0.0_dp) return
+    spans_decades = maxval(x) > 100.0_dp*minval(x)
+  end function spans_decades
+
+  logical pure function ends_with_any(name, suffixes)
+    character(len=*), intent(in) :: name, suffixes
+    ends_with_any = selected(name, '', suffixes)
+  end function ends_with_any
+
+  !> A multiplot of one panel per kind of column present.
+  subroutine panel_figure(u, out, v, name, what, kinds, figures)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
-    character(len=*), intent(in) :: name, what, word
+    type(sweep_view_t), intent(in) :: v
+    character(len=*), intent(in) :: name, what
+    character(len=16), intent(in) :: kinds(:)
     character(len=64), allocatable, intent(inout) :: figures(:)
-    type(series_t), allocatable :: s(:)
-    integer :: j, n
-    allocate(s(0))
-    n = 0
-    do j = 3, out%n_columns()
-      if (index(out%names(j)%s, word) == 0) cycle
-      if (.not. any(finite_positive(out%data(:, j), word == 'cpu'))) cycle
-      n = n + 1
-      call add_series(s, series(1, j, out%names(j)%s, 'w lp lw 2 pt 7 ps 0.8 '//colour(n, '00'), ''))
-    end do
+    integer :: k, n, j, m
+    logical :: logy
+    character(len=:), allocatable :: mark, y
+    n = count([(any(v%kind == kinds(k)), k = 1, size(kinds))])
     if (n == 0) return
-    call begin_figure(u, name, what, figures)
+    call begin_figure(u, name, what, figures, height=max(640, 40 + 330*n))
+    write(u, '(a)') '  set multiplot layout '//str(n)//',1 title title."\n'//esc(what)//'"'
+    write(u, '(a)') '  unset title'
+    write(u, '(a)') '  set key outside right top'
     write(u, '(a)') '  set xlabel "'//esc(out%names(1)%s)//'"'
-    write(u, '(a)') '  set key inside left top'
-    if (word == 'cpu') then
-      write(u, '(a)') '  set logscale y'
-      write(u, '(a)') '  set ylabel "CPU seconds"'
-    end if
-    call plot_series(u, s)
+    if (v%logx) write(u, '(a)') '  set logscale x'
+    do j = 1, size(v%failed)
+      write(u, '(a)') '  set arrow '//str(j)//' from '//axis_number(v%failed(j))//', graph 0 to '// &
+        axis_number(v%failed(j))//', graph 1 nohead dt 3 lw 2 lc rgb "#d00000"'
+    end do
+    do k = 1, size(kinds)
+      if (.not. any(v%kind == kinds(k))) cycle
+      logy = .true.
+      do j = 1, out%n_columns()
+        if (v%kind(j) /= kinds(k)) cycle
+        if (any(out%data(:, j) <= 0.0_dp)) logy = .false.
+      end do
+      if (logy) logy = spans_decades(pack(out%data, spread(v%kind == kinds(k), 1, size(out%data, 1))))
+      if (kinds(k) == 'cpu') logy = .true.
+      y = axis_label(kinds(k), v)
+      if (logy) y = y//' (log scale)'
+      write(u, '(a)') '  set ylabel "'//esc(y)//'"'
+      if (logy) then
+        write(u, '(a)') '  set logscale y'
+      else
+        write(u, '(a)') '  unset logscale y'
+      end if
+      m = 0
+      do j = 1, out%n_columns()
+        if (v%kind(j) /= kinds(k)) cycle
+        m = m + 1
+        y = str(j)
+        if (logy) y = '($'//str(j)//' > 0 ? $'//str(j)//' : NaN)'
+        write(u, '(a)', advance='no') merge('  plot ', '       ', m == 1)//'data u 1:'//y// &
+          ' w lp lw 2 ps 1.1 '//series_style(m)//' t "'//esc(sweep_legend(out%names(j)%s, v%links))//'"'
+        write(u, '(a)') ', \'
+      end do
+      mark = ''
+      if (v%multiplier > 0 .and. kinds(k) /= 'multiplier') then
+        mark = '($'//str(v%multiplier)//' > 1.000001 ? $'
+        m = 0
+        do j = 1, out%n_columns()
+          if (v%kind(j) /= kinds(k)) cycle
+          m = m + 1
+          write(u, '(a)') '       data u 1:'//mark//str(j)//' : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" '// &
+            trim(merge('t "unbounded (Floquet multiplier > 1)"', 'notitle                               ', m == 1))//', \'
+        end do
+      end if
+      if (size(v%failed) > 0) then
+        write(u, '(a)') '       NaN w l dt 3 lw 2 lc rgb "#d00000" t "failed point (no row)"'
+      else
+        write(u, '(a)') '       NaN notitle'
+      end if
+    end do
+    write(u, '(a)') '  unset multiplot'
     call end_figure(u)
-  end subroutine sweep_figure
+  end subroutine panel_figure
+
+  function axis_label(kind, v) result(s)
+    character(len=*), intent(in) :: kind
+    type(sweep_view_t), intent(in) :: v
+    character(len=:), allocatable :: s
+    select case (kind)
+    case ('stress')
+      s = 'peak stress'//v%unit_stress
+    case ('displacement')
+      s = 'peak displacement'//v%unit_length
+    case ('force')
+      s = 'peak force'//v%unit_force
+    case ('moment')
+      s = 'peak moment'//v%unit_moment
+    case ('cpu')
+      s = 'CPU seconds'
+    case ('count')
+      s = 'count'
+    case ('multiplier')
+      s = 'modulus'
+    case default
+      s = 'peak'
+    end select
+  end function axis_label
+
+  !> Work-precision: the relative change of the largest peak stress of each
+  !> point from the most accurate point's (the smallest tolerance, the
+  !> largest mesh), against its CPU seconds, log-log.
+  subroutine work_figure(u, out, v, figures)
+    integer, intent(in) :: u
+    type(run_output_t), intent(in) :: out
+    type(sweep_view_t), intent(in) :: v
+    character(len=64), allocatable, intent(inout) :: figures(:)
+    integer :: jc, j, best, n
+    real(dp), allocatable :: peak(:)
+    character(len=:), allocatable :: nm
+    jc = column_index(out, 'cost_total_cpu_seconds')
+    n = size(out%data, 1)
+    if (jc == 0 .or. n < 3 .or. .not. any(v%kind == 'stress')) return
+    allocate(peak(n))
+    peak = 0.0_dp
+    do j = 1, out%n_columns()
+      if (v%kind(j) == 'stress') peak = max(peak, abs(out%data(:, j)))
+    end do
+    nm = lower(out%names(1)%s)
+    if (index(nm, 'tol') > 0) then
+      best = minloc(out%data(:, 1), dim=1)
+    else
+      best = maxloc(out%data(:, 1), dim=1)
+    end if
+    if (.not. peak(best) > 0.0_dp) return
+    write(u, '(a)') 'array werr['//str(n)//']'
+    do j = 1, n
+      write(u, '(a)') 'werr['//str(j)//'] = '//str(abs(peak(j) - peak(best))/peak(best), 6)
+    end do
+    call begin_figure(u, 'work', 'work-precision: change of the largest peak stress from the most accurate point ('// &
+                      esc(out%names(1)%s)//' = '//number_text(out%data(best, 1))//'), against CPU', figures)
+    write(u, '(a)') '  set logscale y'
+    if (spans_decades(out%data(:, jc))) then
+      write(u, '(a)') '  set logscale x'
+    else
+      write(u, '(a)') '  set offsets graph 0.05, graph 0.25, 0, 0'
+    end if
+    write(u, '(a)') '  set format y "%.0e"'
+    write(u, '(a)') '  set xlabel "CPU seconds of the point"'
+    write(u, '(a)') '  set ylabel "relative change of the largest peak stress (log scale)"'
+    write(u, '(a)') '  set key inside right top'
+    write(u, '(a)') '  plot data u '//str(jc)//':(werr[$0 + 1] > 0 ? werr[$0 + 1] : NaN) w lp lw 2 pt 7 ps 1.3 '// &
+      colour(1, '00')//' t "largest peak stress", \'
+    write(u, '(a)') '       data u '//str(jc)//':(werr[$0 + 1] > 0 ? werr[$0 + 1] : NaN):(sprintf("'// &
+      esc(out%names(1)%s)//' = %g", $1)) w labels offset 1,0.8 left font ",9" notitle'
+    call end_figure(u)
+  end subroutine work_figure
+
+  !> The style of series m: a colour, a point type and a dash pattern, so that
+  !> no two of 48 series look alike.
+  pure function series_style(m) result(s)
+    integer, intent(in) :: m
+    character(len=:), allocatable :: s
+    integer, parameter :: points(6) = [7, 5, 9, 11, 13, 1]
+    s = colour(m, '00')//' pt '//str(points(mod(m - 1, 6) + 1))//' dt '//str(mod((m - 1)/8, 6) + 1)
+  end function series_style
 
   elemental logical function finite_positive(x, need_positive)
     real(dp), intent(in) :: x
@@ -452,6 +830,36 @@ contains
     write(u, '(a)') '  unset multiplot'
     call end_figure(u)
   end subroutine columns_figure
+
+  !> x with 5 significant digits, without exponent when 0.01 <= |x| < 1e7.
+  function number_text(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if ((abs(x) >= 1.0e4_dp .and. abs(x) < 1.0e7_dp) .or. (abs(x) < 1.0e7_dp .and. abs(x - anint(x)) < 1.0e-9_dp)) then
+      write(buf, '(i0)') nint(x)
+    else if (abs(x) >= 0.01_dp .and. abs(x) < 1.0e4_dp) then
+      write(buf, '(f0.' // str(4 - floor(log10(abs(x)))) // ')') x
+    else
+      write(buf, '(es11.4)') x
+    end if
+    s = trim(adjustl(buf))
+    if (s(1:1) == '.') s = '0'//s
+  end function number_text
+
+  !> A coordinate for a gnuplot command: an integer as such, else 10 digits.
+  function axis_number(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if (abs(x) < 1.0e9_dp .and. abs(x - anint(x)) <= 1.0e-12_dp*max(1.0_dp, abs(x)) .and. &
+        (abs(x) >= 0.5_dp .or. abs(x) < tiny(1.0_dp))) then
+      write(buf, '(i0)') nint(x)
+    else
+      write(buf, '(es17.10)') x
+    end if
+    s = trim(adjustl(buf))
+  end function axis_number
 
   !> Text inside a gnuplot double-quoted string.
   pure function esc(text) result(s)

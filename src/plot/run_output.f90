@@ -12,6 +12,7 @@ module run_output
   implicit none
   private
   public :: run_output_t, read_run_output, read_text_line, split_words, column_index, name_t, append_text
+  public :: column_unit
 
   !> One text of any length, in growing lists (column names, header and
   !> footer lines, a figure script's data lines).
@@ -71,6 +72,60 @@ contains
     end do
     j = 0
   end function column_index
+
+  !> The unit of the columns whose description in the header names `key`:
+  !> in the ';'-separated part that names it, the first parenthesised text
+  !> after the key that looks like a unit (at most two words, 12 characters,
+  !> up to a ';' inside it): 'psi' from 'sigma_max_e<k> = largest |stress|
+  !> ... (psi) (the outer-fibre stress ...)', 'in' from '<joint>_U ... (in;
+  !> T''s U~1 is B_U)', 'lb in' from 'M_e<k> = ... (lb in)'; '' when none
+  !> says.  The 'columns:' line first, then the other descriptions.
+  function column_unit(out, key) result(unit)
+    type(run_output_t), intent(in) :: out
+    character(len=*), intent(in) :: key
+    character(len=:), allocatable :: unit
+    integer :: pass, pass_in, i, a, b, depth, k, c, e
+    type(name_t), allocatable :: words(:)
+    character(len=:), allocatable :: line, part
+    unit = ''
+    do pass = 1, 2
+      do i = 1, size(out%header)
+        line = out%header(i)%s
+        if (pass == 1 .neqv. starts_with(line, 'columns:')) cycle
+        if (index(line, key) == 0 .or. index(line, ' = ') == 0) cycle
+        a = 1
+        depth = 0
+        do b = 1, len(line) + 1                  ! parts end at a ';' outside parentheses
+          if (b <= len(line)) then
+            if (line(b:b) == '(') depth = depth + 1
+            if (line(b:b) == ')') depth = max(0, depth - 1)
+            if (line(b:b) /= ';' .or. depth > 0) cycle
+          end if
+          part = line(a:b - 1)
+          a = b + 1
+          k = index(part, key)
+          if (k == 0) cycle
+          c = k
+          do                                     ! the parenthesised texts after the key
+            c = c + index(part(c + 1:), '(')
+            if (c == k .or. c >= len(part)) exit
+            e = index(part(c + 1:), ')')
+            if (e == 0) e = len(part) - c + 1
+            do pass_in = 1, 2                  ! the text before its first ';', then after its last
+              unit = part(c + 1:c + e - 1)
+              if (pass_in == 1 .and. scan(unit, ';:') > 0) unit = unit(1:scan(unit, ';:') - 1)
+              if (pass_in == 2) unit = unit(scan(unit, ';:', back=.true.) + 1:)
+              unit = trim(adjustl(unit))
+              call split_words(unit, words)
+              if (len(unit) > 0 .and. len(unit) <= 12 .and. size(words) <= 2 .and. index(unit, '<') == 0) return
+            end do
+            unit = ''
+            k = c
+          end do
+        end do
+      end do
+    end do
+  end function column_unit
 
   subroutine read_run_output(path, out, err)
     character(len=*), intent(in) :: path

@@ -4,7 +4,7 @@
 # 0 and draws non-empty PNG files (PNG signature checked) and SVG files; the
 # scripts committed in doc/figures/standard/ are what `flexmech plot` writes
 # today (doc figures and user figures cannot drift apart); --animate draws
-# a GIF of at least 30 frames for a transient and a steady run.
+# a GIF of at least 30 frames for a transient, a steady and a spatial run.
 # usage: plot_figures.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 bin=$1; work=$3
@@ -26,10 +26,23 @@ check() {  # output, figures...
   done
   echo "ok: $out -> $*"
 }
-check reference_outputs/fourbar_150_damped.out stress joints links
+check reference_outputs/fourbar_150_damped.out stress joints links shape
 check reference_outputs/beam_pinned_large.out stress links
-check reference_outputs/tennant_fig3_linear.out stress joints links
-check reference_outputs/tennant_fig5_exact.out stress joints links
+check reference_outputs/tennant_fig3_linear.out stress joints links shape
+check reference_outputs/tennant_fig5_exact.out stress joints links shape
+check reference_outputs/spatial_rssr_100.out stress joints links shape
+# every optional column (stress_columns = 'all', link points, reactions) of a run written over its
+# last revolution only (crank angle 1802-2160): its own axes and units, shifted onto 0-360 deg
+check reference_outputs/fourbar_150_outputs.out stress sections moments forces joints links shape
+grep -q 'ylabel "force (lb)"' "$work/fourbar_150_outputs.gp" && grep -q 'ylabel "moment (lb in)"' "$work/fourbar_150_outputs.gp" \
+  && grep -q 'u (\$2 - 1800)' "$work/fourbar_150_outputs.gp" || { echo "FAIL: forces, moments or the shifted axis"; fail=1; }
+grep -q '^  splot ' "$work/spatial_rssr_100.gp" || { echo "FAIL: the spatial run is not drawn in 3D"; fail=1; }
+# the last complete revolution by default (crank angle 1440-1800 of five turns), all of it with --whole-run
+grep -q 'set xrange \[0:360\]' "$work/fourbar_150_damped.gp" && grep -q 't "crank"' "$work/fourbar_150_damped.gp" \
+  || { echo "FAIL: the default run's figures are not its last revolution on 0-360 deg with link names"; fail=1; }
+"$bin" plot reference_outputs/fourbar_150_damped.out -d "$work/whole" --whole-run --script-only > /dev/null
+grep -q 'set xtics 360' "$work/whole/fourbar_150_damped.gp" || { echo "FAIL: --whole-run does not draw every revolution"; fail=1; }
+grep -q 'ylabel "stress (psi)"' "$work/fourbar_150_damped.gp" || { echo "FAIL: stress axis without its unit"; fail=1; }
 check reference_outputs/opt_rosen_suzuki_gnlc_x0_0000.out history
 check reference_outputs/lsode_kinetics.out solution
 # a design history (the column layout of src/analysis/design_analysis.f90:
@@ -51,16 +64,41 @@ for s in reference_outputs/sweep_*.out; do
   [ -f "$s" ] && check "$s" peaks cost
 done
 # the animation of a transient and of a steady run: GIF files (signature GIF89a)
-for out in reference_outputs/fourbar_150_damped.out reference_outputs/tennant_fig3_linear.out; do
+for out in reference_outputs/fourbar_150_damped.out reference_outputs/tennant_fig3_linear.out \
+           reference_outputs/spatial_rssr_100.out; do
   stem=$(basename "$out" .out)
   if "$bin" plot "$out" -d "$work/anim" --png --animate > "$work/$stem.anim.log" 2>&1 &&
      [ "$(head -c 6 "$work/anim/${stem}_anim.gif")" = "GIF89a" ] &&
-     [ "$(grep -c '^# crank_deg' "$work/anim/${stem}_anim.dat")" -gt 30 ]; then
+     [ "$(grep -c '^when\[' "$work/anim/${stem}_anim.gp")" -gt 30 ]; then
     echo "ok: animation of $out"
   else
     echo "FAIL: no animation of $out"; cat "$work/$stem.anim.log"; fail=1
   fi
 done
+# a run with shape columns (shape_points): links drawn bent, no gnuplot chatter on the terminal
+sed 's/^  damping_beta = 1.0e-5$/  damping_beta = 1.0e-5, shape_points = 6, revolutions = 1/' inputs/fourbar_150_damped.nml > "$work/shaped.nml"
+"$bin" "$work/shaped.nml" -o "$work/shaped.out" > /dev/null
+if "$bin" plot "$work/shaped.out" -d "$work/anim" --png --animate > "$work/shaped.log" 2>&1 &&
+   grep -q "bent by their elements' shape functions" "$work/anim/shaped_anim.gp" &&
+   ! grep -qi 'frames in animation' "$work/shaped.log" &&
+   grep -q 'crank angle' "$work/anim/shaped_anim.gp"; then
+  echo "ok: animation of bent links"
+else
+  echo "FAIL: animation of a run with shape columns"; cat "$work/shaped.log"; fail=1
+fi
+# a tolerance sweep (synthetic summary): log x, the work-precision figure, a failed point marked
+cat > "$work/sweep_rtol.out" <<'EOD'
+# title: rtol sweep layout
+# sweep: rtol of &transient over 4 values; point decks, outputs and logs in none/x_<k>.{nml,out,log}
+# point 4: rtol = 1e-10: exit 3 (analysis stopped), no row
+#  rtol exit_status element_1_peak_stress peak_b_u cost_steps cost_total_cpu_seconds
+  1e-4 0 80034.9 0.0354 300 0.05
+  1e-6 0 80031.97 0.03541 900 0.09
+  1e-8 0 80031.973 0.035411 2900 0.2
+EOD
+check "$work/sweep_rtol.out" peaks cost work
+grep -q 'set logscale x' "$work/sweep_rtol.gp" && grep -q 'set arrow 1 from 1.0000000000E-10' "$work/sweep_rtol.gp" \
+  || { echo "FAIL: the rtol sweep lacks its log axis or its failed point"; fail=1; }
 # an optimizer output has no mechanism: --animate is refused with exit 3
 set +e; "$bin" plot reference_outputs/opt_hs15_gnlc_ns.out -d "$work/anim" --animate > /dev/null 2>&1; st=$?; set -e
 [ $st -eq 3 ] || { echo "FAIL: --animate on an optimizer output exited $st, expected 3"; fail=1; }

@@ -19,12 +19,12 @@ do for [fmt in formats] {
   set ylabel "stress (psi)"
   set autoscale xfix
   set xtics 360
-  plot data1 u 2:13 w l lw 2 dt 1 lc rgb "#000072b2" t "sigma_max_e1, linear", \
-       data2 u 2:13 w l lw 2 dt 2 lc rgb "#000072b2" t "sigma_max_e1, geometric nonlinearities", \
-       data1 u 2:14 w l lw 2 dt 1 lc rgb "#00d55e00" t "sigma_max_e2, linear", \
-       data2 u 2:14 w l lw 2 dt 2 lc rgb "#00d55e00" t "sigma_max_e2, geometric nonlinearities", \
-       data1 u 2:15 w l lw 2 dt 1 lc rgb "#00009e73" t "sigma_max_e3, linear", \
-       data2 u 2:15 w l lw 2 dt 2 lc rgb "#00009e73" t "sigma_max_e3, geometric nonlinearities"
+  plot data1 u 2:13 w l lw 2 dt 1 lc rgb "#000072b2" t "crank, linear", \
+       data2 u 2:13 w l lw 2 dt 2 lc rgb "#000072b2" t "crank, geometric nonlinearities", \
+       data1 u 2:14 w l lw 2 dt 1 lc rgb "#00d55e00" t "coupler, linear", \
+       data2 u 2:14 w l lw 2 dt 2 lc rgb "#00d55e00" t "coupler, geometric nonlinearities", \
+       data1 u 2:15 w l lw 2 dt 1 lc rgb "#00009e73" t "rocker, linear", \
+       data2 u 2:15 w l lw 2 dt 2 lc rgb "#00009e73" t "rocker, geometric nonlinearities"
   set output
 }
 
@@ -33,7 +33,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); line pattern: run, colour: column"
+  set title title."\njoint elastic displacement (global axes); line pattern: run, colour: column"
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   set autoscale xfix

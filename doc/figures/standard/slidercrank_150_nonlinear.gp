@@ -15,16 +15,13 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_stress.".fmt
-  set title title."\nlargest |stress| per element; bold: the last revolution (crank angle >= 720 deg)"
-  set xtics 360
-  set mxtics 4
-  set autoscale xfix
+  set title title."\nlargest |stress| per element (outer fibre); last complete revolution (run's 720-1080 deg)"
+  set xrange [0:360]
+  set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
-  plot data u 2:($2 < split ? $11 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
-       data u 2:($2 >= split ? $11 : NaN) w l lw 2 lc rgb "#000072b2" t "sigma_max_e1", \
-       data u 2:($2 < split ? $12 : NaN) w l lw 1 lc rgb "#a0d55e00" t "", \
-       data u 2:($2 >= split ? $12 : NaN) w l lw 2 lc rgb "#00d55e00" t "sigma_max_e2"
+  plot data u ($2 - 720):($2 >= split ? $11 : NaN) w l lw 2 lc rgb "#000072b2" t "crank", \
+       data u ($2 - 720):($2 >= split ? $12 : NaN) w l lw 2 lc rgb "#00d55e00" t "coupler"
   set output
 }
 
@@ -33,20 +30,15 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); bold: the last revolution (crank angle >= 720 deg)"
-  set xtics 360
-  set mxtics 4
-  set autoscale xfix
+  set title title."\njoint elastic displacement (global axes); last complete revolution (run's 720-1080 deg)"
+  set xrange [0:360]
+  set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
-  plot data u 2:($2 < split ? $3 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
-       data u 2:($2 >= split ? $3 : NaN) w l lw 2 lc rgb "#000072b2" t "B_U", \
-       data u 2:($2 < split ? $4 : NaN) w l lw 1 lc rgb "#a0d55e00" t "", \
-       data u 2:($2 >= split ? $4 : NaN) w l lw 2 lc rgb "#00d55e00" t "B_W", \
-       data u 2:($2 < split ? $5 : NaN) w l lw 1 lc rgb "#a0009e73" t "", \
-       data u 2:($2 >= split ? $5 : NaN) w l lw 2 lc rgb "#00009e73" t "C_U", \
-       data u 2:($2 < split ? $6 : NaN) w l lw 1 lc rgb "#a0cc79a7" t "", \
-       data u 2:($2 >= split ? $6 : NaN) w l lw 2 lc rgb "#00cc79a7" t "C_W"
+  plot data u ($2 - 720):($2 >= split ? $3 : NaN) w l lw 2 lc rgb "#000072b2" t "B_U", \
+       data u ($2 - 720):($2 >= split ? $4 : NaN) w l lw 2 lc rgb "#00d55e00" t "B_W", \
+       data u ($2 - 720):($2 >= split ? $5 : NaN) w l lw 2 lc rgb "#00009e73" t "C_U", \
+       data u ($2 - 720):($2 >= split ? $6 : NaN) w l lw 2 lc rgb "#00cc79a7" t "C_W"
   set output
 }
 
@@ -55,19 +47,39 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_links.".fmt
-  set title title."\nlink end 2 deformation in the link's rigid-body axes; bold: the last revolution (crank angle >= 720 deg)"
-  set xtics 360
-  set mxtics 4
-  set autoscale xfix
+  set title title."\nlink end 2 deformation in the link's rigid-body axes; last complete revolution (run's 720-1080 deg)"
+  set xrange [0:360]
+  set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
-  plot data u 2:($2 < split ? $7 : NaN) w l lw 1 lc rgb "#a00072b2" t "", \
-       data u 2:($2 >= split ? $7 : NaN) w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
-       data u 2:($2 < split ? $8 : NaN) w l lw 1 lc rgb "#a0d55e00" t "", \
-       data u 2:($2 >= split ? $8 : NaN) w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
-       data u 2:($2 < split ? $9 : NaN) w l lw 1 lc rgb "#a0009e73" t "", \
-       data u 2:($2 >= split ? $9 : NaN) w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
-       data u 2:($2 < split ? $10 : NaN) w l lw 1 lc rgb "#a0cc79a7" t "", \
-       data u 2:($2 >= split ? $10 : NaN) w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end"
+  plot data u ($2 - 720):($2 >= split ? $7 : NaN) w l lw 2 lc rgb "#000072b2" t "crank_u_end", \
+       data u ($2 - 720):($2 >= split ? $8 : NaN) w l lw 2 lc rgb "#00d55e00" t "crank_w_end", \
+       data u ($2 - 720):($2 >= split ? $9 : NaN) w l lw 2 lc rgb "#00009e73" t "coupler_u_end", \
+       data u ($2 - 720):($2 >= split ? $10 : NaN) w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end"
+  set output
+}
+
+do for [fmt in formats] {
+  reset
+  eval (fmt eq "png" ? term_png : term_svg)
+  eval common
+  set output base."_shape.".fmt
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 8709.1 psi in crank"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 8709.1 psi in crank\ncrank angle 1045.0 deg, t = 1.21591E-01 s; elastic displacements x 100"
+  sdata = "doc/figures/standard/slidercrank_150_nonlinear_shape.dat"
+  set size ratio -1
+  set grid lc rgb "#e0e0e0"
+  set key outside below horizontal
+  set xrange [-0.946780:16.7264]
+  set yrange [-3.81466:0.946780]
+  set xlabel "X (in)"
+  set ylabel "Y (in)"
+  set palette defined (0 "#2c7bb6", 0.25 "#00a6ca", 0.5 "#90d743", 0.75 "#f98e09", 1 "#d7191c")
+  set cbrange [0:8709.]
+  set cblabel "|stress| (outer fibre) (psi)"
+  plot sdata index 2*(0) u 1:2 w l lw 7 lc rgb "#d8d8d8" t "rigid-body position", \
+       sdata index 2*(0)+1 u 1:2 w p pt 6 ps 1.2 lc rgb "#b0b0b0" notitle, \
+       sdata index 2*(0) u 3:4:5 w l lw 4 lc palette t "deformed, elastic displacements x 100 (links straight: no shape columns)", \
+       sdata index 2*(0)+1 u 3:4 w p pt 7 ps 1.2 lc rgb "#202020" notitle
   set output
 }

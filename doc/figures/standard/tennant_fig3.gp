@@ -15,7 +15,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); line pattern: run, colour: column"
+  set title title."\njoint elastic displacement (global axes); line pattern: run, colour: column"
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   set autoscale xfix

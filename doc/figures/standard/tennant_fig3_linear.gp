@@ -14,14 +14,14 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_stress.".fmt
-  set title title."\nlargest |stress| per element"
+  set title title."\nlargest |stress| per element (outer fibre)"
   set xrange [0:360]
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
-  plot data u 1:13 w l lw 2 lc rgb "#000072b2" t "sigma_max_e1", \
-       data u 1:14 w l lw 2 lc rgb "#00d55e00" t "sigma_max_e2", \
-       data u 1:15 w l lw 2 lc rgb "#00009e73" t "sigma_max_e3"
+  plot data u 1:13 w l lw 2 lc rgb "#000072b2" t "crank", \
+       data u 1:14 w l lw 2 lc rgb "#00d55e00" t "coupler", \
+       data u 1:15 w l lw 2 lc rgb "#00009e73" t "rocker"
   set output
 }
 
@@ -30,7 +30,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y)"
+  set title title."\njoint elastic displacement (global axes)"
   set xrange [0:360]
   set xtics 45
   set xlabel "crank angle (deg)"
@@ -58,5 +58,30 @@ do for [fmt in formats] {
        data u 1:10 w l lw 2 lc rgb "#00cc79a7" t "coupler_w_end", \
        data u 1:11 w l lw 2 lc rgb "#00e69f00" t "rocker_u_end", \
        data u 1:12 w l lw 2 lc rgb "#0056b4e9" t "rocker_w_end"
+  set output
+}
+
+do for [fmt in formats] {
+  reset
+  eval (fmt eq "png" ? term_png : term_svg)
+  eval common
+  set output base."_shape.".fmt
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 17818 psi in crank"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 17818 psi in crank\ncrank angle 8.0 deg, t = 1.39626E-03 s; elastic displacements x 20"
+  sdata = "doc/figures/standard/tennant_fig3_linear_shape.dat"
+  set size ratio -1
+  set grid lc rgb "#e0e0e0"
+  set key outside below horizontal
+  set xrange [-0.656334:11.5952]
+  set yrange [-0.656334:11.1562]
+  set xlabel "X (in)"
+  set ylabel "Y (in)"
+  set palette defined (0 "#2c7bb6", 0.25 "#00a6ca", 0.5 "#90d743", 0.75 "#f98e09", 1 "#d7191c")
+  set cbrange [0:0.1782E+05]
+  set cblabel "|stress| (outer fibre) (psi)"
+  plot sdata index 2*(0) u 1:2 w l lw 7 lc rgb "#d8d8d8" t "rigid-body position", \
+       sdata index 2*(0)+1 u 1:2 w p pt 6 ps 1.2 lc rgb "#b0b0b0" notitle, \
+       sdata index 2*(0) u 3:4:5 w l lw 4 lc palette t "deformed, elastic displacements x 20 (links straight: no shape columns)", \
+       sdata index 2*(0)+1 u 3:4 w p pt 7 ps 1.2 lc rgb "#202020" notitle
   set output
 }

@@ -14,17 +14,17 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_stress.".fmt
-  set title title."\nlargest |stress| per element; solid: harmonic series, dashed: exact"
+  set title title."\nlargest |stress| per element (outer fibre); solid: harmonic series, dashed: exact"
   set xrange [0:360]
   set xtics 45
   set xlabel "crank angle (deg)"
   set ylabel "stress (psi)"
-  plot data u 1:13 w l lw 2 lc rgb "#000072b2" t "sigma_max_e1 (harmonic series)", \
-       data u 1:26 w l lw 2 dt 2 lc rgb "#000072b2" t "sigma_max_e1 (exact periodic)", \
-       data u 1:14 w l lw 2 lc rgb "#00d55e00" t "sigma_max_e2 (harmonic series)", \
-       data u 1:27 w l lw 2 dt 2 lc rgb "#00d55e00" t "sigma_max_e2 (exact periodic)", \
-       data u 1:15 w l lw 2 lc rgb "#00009e73" t "sigma_max_e3 (harmonic series)", \
-       data u 1:28 w l lw 2 dt 2 lc rgb "#00009e73" t "sigma_max_e3 (exact periodic)"
+  plot data u 1:13 w l lw 2 lc rgb "#000072b2" t "crank (harmonic series)", \
+       data u 1:26 w l lw 2 dt 2 lc rgb "#000072b2" t "crank (exact periodic)", \
+       data u 1:14 w l lw 2 lc rgb "#00d55e00" t "coupler (harmonic series)", \
+       data u 1:27 w l lw 2 dt 2 lc rgb "#00d55e00" t "coupler (exact periodic)", \
+       data u 1:15 w l lw 2 lc rgb "#00009e73" t "rocker (harmonic series)", \
+       data u 1:28 w l lw 2 dt 2 lc rgb "#00009e73" t "rocker (exact periodic)"
   set output
 }
 
@@ -33,7 +33,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); solid: harmonic series, dashed: exact"
+  set title title."\njoint elastic displacement (global axes); solid: harmonic series, dashed: exact"
   set xrange [0:360]
   set xtics 45
   set xlabel "crank angle (deg)"
@@ -71,5 +71,30 @@ do for [fmt in formats] {
        data u 1:24 w l lw 2 dt 2 lc rgb "#00e69f00" t "rocker_u_end (exact periodic)", \
        data u 1:12 w l lw 2 lc rgb "#0056b4e9" t "rocker_w_end (harmonic series)", \
        data u 1:25 w l lw 2 dt 2 lc rgb "#0056b4e9" t "rocker_w_end (exact periodic)"
+  set output
+}
+
+do for [fmt in formats] {
+  reset
+  eval (fmt eq "png" ? term_png : term_svg)
+  eval common
+  set output base."_shape.".fmt
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 39275 psi in crank"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 39275 psi in crank\ncrank angle 8.0 deg, t = 9.30842E-04 s; elastic displacements x 10"
+  sdata = "doc/figures/standard/tennant_fig5_exact_shape.dat"
+  set size ratio -1
+  set grid lc rgb "#e0e0e0"
+  set key outside below horizontal
+  set xrange [-0.662356:11.7016]
+  set yrange [-0.662356:11.1622]
+  set xlabel "X (in)"
+  set ylabel "Y (in)"
+  set palette defined (0 "#2c7bb6", 0.25 "#00a6ca", 0.5 "#90d743", 0.75 "#f98e09", 1 "#d7191c")
+  set cbrange [0:0.3928E+05]
+  set cblabel "|stress| (outer fibre) (psi)"
+  plot sdata index 2*(0) u 1:2 w l lw 7 lc rgb "#d8d8d8" t "rigid-body position", \
+       sdata index 2*(0)+1 u 1:2 w p pt 6 ps 1.2 lc rgb "#b0b0b0" notitle, \
+       sdata index 2*(0) u 3:4:5 w l lw 4 lc palette t "deformed, elastic displacements x 10 (links straight: no shape columns)", \
+       sdata index 2*(0)+1 u 3:4 w p pt 7 ps 1.2 lc rgb "#202020" notitle
   set output
 }

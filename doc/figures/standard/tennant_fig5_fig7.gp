@@ -19,8 +19,8 @@ do for [fmt in formats] {
   set ylabel "stress (psi)"
   set autoscale xfix
   set xtics 45
-  plot data1 u 1:14 w l lw 2 dt 1 lc rgb "#000072b2" t "sigma_max_e2, linear", \
-       data2 u 1:14 w l lw 2 dt 2 lc rgb "#000072b2" t "sigma_max_e2, nonlinear (D_b = D_g = 1)"
+  plot data1 u 1:14 w l lw 2 dt 1 lc rgb "#000072b2" t "coupler, linear", \
+       data2 u 1:14 w l lw 2 dt 2 lc rgb "#000072b2" t "coupler, nonlinear (D_b = D_g = 1)"
   set output
 }
 
@@ -29,7 +29,7 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_joints.".fmt
-  set title title."\njoint elastic displacement U (global X), W (global Y); line pattern: run, colour: column"
+  set title title."\njoint elastic displacement (global axes); line pattern: run, colour: column"
   set xlabel "crank angle (deg)"
   set ylabel "displacement (in)"
   set autoscale xfix
