@@ -95,6 +95,9 @@ module design_problem
     real(dp) :: rms_shaking = 0.0_dp            !< its root mean square over the revolution
     real(dp) :: cpu_seconds = 0.0_dp
     real(dp), allocatable :: y_periodic(:, :)   !< (2 n, speed) periodic state at t = 0 (shooting evaluator)
+    !> (2 n, 2 n, speed) its monodromy matrix (shooting evaluator): the
+    !> sensitivity solve at this design starts from it
+    real(dp), allocatable :: monodromy(:, :, :)
   end type design_eval_t
 
   type, extends(opt_problem_t) :: design_problem_t
@@ -461,8 +464,10 @@ contains
         return
       end if
       if (allocated(one%y_periodic)) then
-        if (.not. allocated(ev%y_periodic)) allocate(ev%y_periodic(size(one%y_periodic, 1), ns))
+        if (.not. allocated(ev%y_periodic)) allocate(ev%y_periodic(size(one%y_periodic, 1), ns), &
+                                                     ev%monodromy(size(one%y_periodic, 1), size(one%y_periodic, 1), ns))
         ev%y_periodic(:, s) = one%y_periodic(:, 1)
+        ev%monodromy(:, :, s) = one%monodromy(:, :, 1)
       end if
       call join_speed(self, s, one, ev, n_objective, mean_square)
     end do
@@ -531,7 +536,7 @@ contains
     type(error_t) :: err
     type(harmonic_report_t) :: hrep
     type(shooting_report_t) :: srep
-    real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:)
+    real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:), mono(:, :)
     integer, allocatable :: at_sample(:), at_point(:)
     ev%ok = .false.
     ev%mass = design_mass(inp)
@@ -550,14 +555,15 @@ contains
     else if (self%evaluator == 'transient') then
       call transient_samples(self, mech, model, s, times, q, err)
     else
-      allocate(qd(model%n, size(times)))
+      allocate(qd(model%n, size(times)), mono(2*model%n, 2*model%n))
       y0 = warm_start(self, 2*model%n, s)
-      call shooting_solve(model, self%shooting, y0, srep, err)
+      call shooting_solve(model, self%shooting, y0, srep, err, monodromy=mono)
       if (.not. err%failed()) call shooting_diagnosis(self%shooting, srep, model%omega, .false., err)
       if (.not. err%failed()) call periodic_orbit(model, self%shooting, y0, times, q, qd, srep, err)
       if (.not. err%failed()) then
         self%y_warm(:, s) = y0
         ev%y_periodic = reshape(y0, [size(y0), 1])
+        ev%monodromy = reshape(mono, [size(y0), size(y0), 1])
       end if
     end if
     if (err%failed()) then
@@ -832,7 +838,7 @@ contains
       end do
     end do
     do s = 1, size(self%speeds)
-      call speed_sensitivity(self, xc, h, s, ev%y_periodic(:, s), pm, n_obj, msq, ok)
+      call speed_sensitivity(self, xc, h, s, ev%y_periodic(:, s), ev%monodromy(:, :, s), pm, n_obj, msq, ok)
       if (.not. ok) exit
     end do
     call cpu_time(cpu1)
@@ -865,12 +871,17 @@ contains
     end do
   end function clamped_x
 
-  !> derivatives_at at speed s: the orbit's sensitivities, then the results
-  !> of the perturbed designs pm(1, j) (x + h_j) and pm(2, j) (x - h_j) with
-  !> q +- h_j dq_j, joined into the speeds' results.
-  subroutine speed_sensitivity(self, xc, h, s, y0, pm, n_obj, msq, ok)
+  !> derivatives_at at speed s: the orbit's sensitivities (from the periodic
+  !> state y0 and its monodromy matrix mono, both from the design's
+  !> analysis), then the results of the perturbed designs pm(1, j) (x + h_j)
+  !> and pm(2, j) (x - h_j) with q +- h_j dq_j, joined into the speeds'
+  !> results.  A perturbed model of a variable that leaves the geometry
+  !> alone (a section, a counterweight, the coupler point) takes its
+  !> rigid-body frames from the design's model (steady_model's frames_of)
+  !> instead of solving the same kinematics again.
+  subroutine speed_sensitivity(self, xc, h, s, y0, mono, pm, n_obj, msq, ok)
     class(design_problem_t), intent(inout) :: self
-    real(dp), intent(in) :: xc(:), h(:), y0(:)
+    real(dp), intent(in) :: xc(:), h(:), y0(:), mono(:, :)
     integer, intent(in) :: s
     type(design_eval_t), intent(inout) :: pm(:, :)
     integer, intent(inout) :: n_obj(:, :)
@@ -899,9 +910,14 @@ contains
       if (.not. err%failed()) call build_design_model(self, at_speed(xs), mech_pm(2, j), minus(j), err)
     end do
     if (err%failed()) return
+    do j = 1, nv
+      if (.not. keeps_geometry(self%var(j))) cycle
+      plus(j)%frames_of => model
+      minus(j)%frames_of => model
+    end do
     call merged_times(self, model%omega, times, at_sample, at_point)
     allocate(q(model%n, size(times)), dq(model%n, size(times), nv))
-    call orbit_sensitivity(model, plus, minus, 2.0_dp*h, self%shooting, y0, times, q, dq, rep, err)
+    call orbit_sensitivity(model, plus, minus, 2.0_dp*h, self%shooting, y0, times, q, dq, rep, err, monodromy=mono)
     self%sensitivity_rhs = self%sensitivity_rhs + rep%rhs_evaluations*(1 + 2*nv)
     if (err%failed()) return
     do j = 1, nv
@@ -932,6 +948,13 @@ contains
       inp%omega = self%speeds(s)
     end function at_speed
   end subroutine speed_sensitivity
+
+  !> A variable that changes no length, joint position or crank phase: the
+  !> rigid-body motion of the linkage is the same with it changed.
+  logical pure function keeps_geometry(v)
+    type(design_variable_t), intent(in) :: v
+    keeps_geometry = any(v%kind == [var_link_b, var_link_h, var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y])
+  end function keeps_geometry
 
   !> The previous design's periodic state at speed s (the start of this
   !> design's periodic solution), zeros at the first; n2 = 2 unknowns.
