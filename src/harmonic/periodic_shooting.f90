@@ -252,10 +252,13 @@ contains
   subroutine flow_newton_solve(self, x)
     class(flow_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
+    real(dp) :: block(2*self%n)
     integer :: n2, o
     n2 = 2*self%n
     do o = 0, size(x) - n2, n2
-      call self%newton_lu%solve(x(o + 1:o + n2))
+      block = x(o + 1:o + n2)
+      call self%newton_lu%solve(block)
+      x(o + 1:o + n2) = block
     end do
   end subroutine flow_newton_solve
 

@@ -248,7 +248,7 @@ contains
   !> crank (Newton's warm start, doc/kinematics.md) or, if that fails (a far
   !> predictor can land on the other branch), again from the last solution in
   !> steps of 5 deg; states of recently visited times are reused.
-  subroutine model_set_time(self, t, err)
+  recursive subroutine model_set_time(self, t, err)
     class(steady_model_t), intent(inout) :: self
     real(dp), intent(in) :: t
     type(error_t), intent(inout) :: err
