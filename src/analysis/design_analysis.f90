@@ -709,6 +709,8 @@ contains
       end if
     end if
     if (allocated(prob%last_failure)) call out%comment('last failed analysis: '//prob%last_failure)
+    if (prob%n_past_peak > 0) call out%comment(str(prob%n_past_peak)//' designs past the Ramberg-Osgood peak '// &
+      'strain (infeasible), the last: '//prob%last_past_peak)
     call out%cost('mechanism analyses NF (every distinct design, derivatives included)', str(prob%n_analyses))
     if (prob%variational_applies()) then
       call out%cost('analyses for derivatives (sensitivity solves, one per iteration and speed, counted as one '// &

@@ -98,6 +98,9 @@ module design_problem
     !> (2 n, 2 n, speed) its monodromy matrix (shooting evaluator): the
     !> sensitivity solve at this design starts from it
     real(dp), allocatable :: monodromy(:, :, :)
+    !> the Ramberg-Osgood analysis stopped at a strain past the law's peak:
+    !> the results are the linear-material twin's (reason says where)
+    logical :: past_peak = .false.
   end type design_eval_t
 
   type, extends(opt_problem_t) :: design_problem_t
@@ -149,6 +152,8 @@ module design_problem
     integer :: n_revolutions = 0                  !< revolutions integrated by the transient evaluator
     integer :: n_sensitivity = 0                  !< sensitivity solves (each also counted as one analysis per speed)
     integer :: n_sensitivity_fallbacks = 0        !< sensitivity solves that failed: forward differences instead
+    integer :: n_past_peak = 0                    !< designs past the Ramberg-Osgood peak (infeasible, analysed linear)
+    character(len=:), allocatable :: last_past_peak
     real(dp) :: cpu_sensitivity = 0.0_dp          !< CPU of the sensitivity solves (also in cpu_analyses)
     integer :: sensitivity_rhs = 0                !< right-hand sides of the sensitivity flows (perturbed ones included)
     real(dp) :: cpu_analyses = 0.0_dp
@@ -437,6 +442,9 @@ contains
     if (.not. ev%ok) then
       self%n_failed = self%n_failed + 1
       self%last_failure = ev%reason
+    else if (ev%past_peak) then
+      self%n_past_peak = self%n_past_peak + 1
+      self%last_past_peak = ev%reason
     end if
     self%cache_x(:, self%cache_next) = x
     self%cache(self%cache_next) = ev
@@ -468,6 +476,10 @@ contains
         ev = one
         if (ns > 1) ev%reason = 'at '//str(self%speeds(s), 6)//' rad/s: '//one%reason
         return
+      end if
+      if (one%past_peak) then
+        ev%past_peak = .true.
+        ev%reason = one%reason
       end if
       if (allocated(one%y_periodic)) then
         if (.not. allocated(ev%y_periodic)) allocate(ev%y_periodic(size(one%y_periodic, 1), ns), &
@@ -531,7 +543,9 @@ contains
 
   !> One steady-state analysis at one speed (s of self%speeds): build,
   !> periodic response, stresses and frozen frequencies at `samples` crank angles.
-  subroutine analyse_speed(self, inp, x_design, s, ev)
+  !> A Ramberg-Osgood analysis that stops past the law's peak strain is not a
+  !> failed analysis but an infeasible design: past_peak_twin.
+  recursive subroutine analyse_speed(self, inp, x_design, s, ev)
     class(design_problem_t), intent(inout) :: self
     type(mechanism_input_t), intent(in) :: inp
     real(dp), intent(in) :: x_design(:)
@@ -574,10 +588,43 @@ contains
     end if
     if (err%failed()) then
       ev%reason = err%text()
+      if (abs(self%element%d_k) > 0.0_dp .and. index(ev%reason, 'peak of the Ramberg-Osgood law') > 0) &
+        call past_peak_twin(self, inp, x_design, s, ev)
       return
     end if
     call design_results(self, mech, model, x_design, times, at_sample, at_point, q, ev)
   end subroutine analyse_speed
+
+  !> A design whose material-nonlinear analysis passed the Ramberg-Osgood
+  !> peak strain (where the law's stiffness changes sign and the analysis has
+  !> no meaning) is an infeasible design, not a failed one: it is analysed
+  !> with the material linear (d_k = 0), whose stresses, E1 times strains
+  !> beyond the peak strain, exceed the law's peak stress and with it any
+  !> allowable below that peak, so the loop sees violated stress constraints
+  !> and steps back towards feasible designs.  No periodic state is kept (the
+  !> twin's orbit is not this model's): derivatives there are differences.
+  recursive subroutine past_peak_twin(self, inp, x_design, s, ev)
+    class(design_problem_t), intent(inout) :: self
+    type(mechanism_input_t), intent(in) :: inp
+    real(dp), intent(in) :: x_design(:)
+    integer, intent(in) :: s
+    type(design_eval_t), intent(inout) :: ev
+    real(dp) :: d_k
+    character(len=:), allocatable :: why
+    why = ev%reason
+    d_k = self%element%d_k
+    self%element%d_k = 0.0_dp
+    call analyse_speed(self, inp, x_design, s, ev)
+    self%element%d_k = d_k
+    if (.not. ev%ok) then
+      ev%reason = why
+      return
+    end if
+    if (allocated(ev%y_periodic)) deallocate(ev%y_periodic)
+    if (allocated(ev%monodromy)) deallocate(ev%monodromy)
+    ev%past_peak = .true.
+    ev%reason = 'infeasible (stresses of the linear-material twin): '//why
+  end subroutine past_peak_twin
 
   !> The mechanism and its steady model of a design (one speed).
   subroutine build_design_model(self, inp, mech, model, err)
@@ -854,7 +901,7 @@ contains
     allocate(dg(nv, self%n_analysis_constraints()), dr(nv, self%n_residuals_design()))
     ok = .false.
     call self%evaluate(x, ev)
-    if (.not. ev%ok .or. .not. allocated(ev%y_periodic)) return
+    if (.not. ev%ok .or. .not. allocated(ev%y_periodic) .or. ev%past_peak) return
     call cpu_time(cpu0)
     xc = clamped_x(self, x)
     h = self%variational_step*max(abs(xc), 1.0_dp)
