@@ -43,9 +43,9 @@ module design_analysis
 
   ! staging variables of the &design group
   character(len=32) :: variables(max_vars), objective
-  character(len=16) :: evaluator, hessian, derivatives
+  character(len=16) :: evaluator, hessian, derivatives, peak_stress
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
-  real(dp) :: xtol, feas_tol, move_limit
+  real(dp) :: xtol, feas_tol, move_limit, ks_rho
   integer :: max_iterations, samples
   ! the transient evaluator: its periodicity test and revolution limit
   real(dp) :: stop_when_periodic
@@ -59,7 +59,7 @@ module design_analysis
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
                     frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
                     speeds, objective_speed, stop_when_periodic, max_revolutions, &
-                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg
+                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho
 
 contains
 
@@ -72,6 +72,8 @@ contains
     evaluator = 'shooting'
     hessian = 'gauss'
     derivatives = ''
+    peak_stress = 'max'
+    ks_rho = 200.0_dp
     speeds = unset
     objective_speed = 0
     stress_allowable = 0.0_dp
@@ -163,7 +165,7 @@ contains
                             transient=periodic_transient_settings_t(tolerance=stop_when_periodic, &
                               max_revolutions=max_revolutions, rtol=s%shooting%rtol, atol=s%shooting%atol, &
                               bdf=s%shooting%bdf, max_steps=s%shooting%max_steps), &
-                            fd_rel_step=difference_step(evaluator))
+                            fd_rel_step=difference_step(evaluator), peak_stress=peak_stress, ks_rho=ks_rho)
     if (prob%is_path()) call set_path(prob)
     if (prob%is_shaking() .and. any(s%sections(1:mech%n_links)%n > 0)) then
       call invalid_value(deck, 'design', 'objective', ''''//trim(prob%objective_kind)//'''', &
@@ -243,6 +245,10 @@ contains
     call check_integer(deck, g, 'max_revolutions', max_revolutions, err, at_least=2, at_most=100000, &
                        why='revolutions the transient evaluator may take to its periodic state (two to compare)')
     call check_choice(deck, g, 'hessian', hessian, [character(len=16) :: 'gauss', 'structured'], err)
+    call check_choice(deck, g, 'peak_stress', peak_stress, [character(len=16) :: 'max', 'ks'], err)
+    call check_real(deck, g, 'ks_rho', ks_rho, err, at_least=10.0_dp, at_most=1.0e5_dp, &
+                    why='sharpness of the KS aggregate of ln(stress) over the samples: it lies above the '// &
+                    'largest by at most ln(samples)/ks_rho')
     ! the periodic orbit's sensitivities by default where they apply (the
     ! exact periodic state); the other evaluators difference their analyses
     if (len_trim(derivatives) == 0) derivatives = merge('variational', 'differences', evaluator == 'shooting')
@@ -546,6 +552,9 @@ contains
     if (prob%n_stress > 0) call out%comment('constraints g1-g'//str(prob%n_stress)//': peak |stress| of each link '// &
       'over the steady revolution: ln(stress / '//str(prob%stress_allowable, 6)//') <= 0; link l at speed s: '// &
       'g(l + (s - 1) n_links)')
+    if (prob%n_stress > 0 .and. prob%peak_stress == 'ks') call out%comment('the peak taken as the KS aggregate '// &
+      'of ln(stress) over the '//str(prob%samples)//' samples, rho = '//str(prob%ks_rho, 6)// &
+      ': above the largest sample by at most ln(samples)/rho = '//str(log(real(prob%samples, dp))/prob%ks_rho, 3))
     if (prob%i_frequency > 0) call out%comment('constraints g'//str(prob%i_frequency)//'-g'// &
       str(prob%n_analysis_constraints())//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
       'natural frequency over the revolution) <= 0, one per speed')
@@ -700,6 +709,8 @@ contains
       end if
     end if
     if (allocated(prob%last_failure)) call out%comment('last failed analysis: '//prob%last_failure)
+    if (prob%n_past_peak > 0) call out%comment(str(prob%n_past_peak)//' designs past the Ramberg-Osgood peak '// &
+      'strain (infeasible), the last: '//prob%last_past_peak)
     call out%cost('mechanism analyses NF (every distinct design, derivatives included)', str(prob%n_analyses))
     if (prob%variational_applies()) then
       call out%cost('analyses for derivatives (sensitivity solves, one per iteration and speed, counted as one '// &

@@ -49,7 +49,7 @@ module design_problem
   private
   public :: design_problem_t, design_variable_t, design_eval_t, parse_variable
   public :: var_link_b, var_link_h, var_link_length, var_joint_x, var_joint_y, var_theta0, var_path_r, &
-            var_path_angle, var_cw_mass, var_cw_x, var_cw_y, coupler_point_of
+            var_path_angle, var_cw_mass, var_cw_x, var_cw_y, coupler_point_of, ks_peak
 
   integer, parameter :: cache_size = 256
   integer, parameter :: var_link_b = 1, var_link_h = 2, var_link_length = 3, var_joint_x = 4, var_joint_y = 5
@@ -95,6 +95,12 @@ module design_problem
     real(dp) :: rms_shaking = 0.0_dp            !< its root mean square over the revolution
     real(dp) :: cpu_seconds = 0.0_dp
     real(dp), allocatable :: y_periodic(:, :)   !< (2 n, speed) periodic state at t = 0 (shooting evaluator)
+    !> (2 n, 2 n, speed) its monodromy matrix (shooting evaluator): the
+    !> sensitivity solve at this design starts from it
+    real(dp), allocatable :: monodromy(:, :, :)
+    !> the Ramberg-Osgood analysis stopped at a strain past the law's peak:
+    !> the results are the linear-material twin's (reason says where)
+    logical :: past_peak = .false.
   end type design_eval_t
 
   type, extends(opt_problem_t) :: design_problem_t
@@ -113,6 +119,12 @@ module design_problem
     type(tennant_options_t) :: element
     type(link_sections_t) :: sections(max_links)
     integer :: samples = 72                       !< crank angles per revolution for stresses and frequencies
+    !> how a link's stress constraint takes the samples: 'max' (the peak
+    !> sample) or 'ks' (the Kreisselmeier-Steinhauser aggregate of
+    !> ln(stress) with sharpness ks_rho: smooth in the design, above the
+    !> peak by at most ln(samples)/ks_rho; function ks_peak)
+    character(len=8) :: peak_stress = 'max'
+    real(dp) :: ks_rho = 200.0_dp
     real(dp) :: stress_allowable = 0.0_dp         !< 0: no stress constraints
     real(dp) :: frequency_factor = 0.0_dp         !< 0: no frequency constraint
     real(dp) :: mass0 = 1.0_dp                    !< mass of the initial design
@@ -140,6 +152,8 @@ module design_problem
     integer :: n_revolutions = 0                  !< revolutions integrated by the transient evaluator
     integer :: n_sensitivity = 0                  !< sensitivity solves (each also counted as one analysis per speed)
     integer :: n_sensitivity_fallbacks = 0        !< sensitivity solves that failed: forward differences instead
+    integer :: n_past_peak = 0                    !< designs past the Ramberg-Osgood peak (infeasible, analysed linear)
+    character(len=:), allocatable :: last_past_peak
     real(dp) :: cpu_sensitivity = 0.0_dp          !< CPU of the sensitivity solves (also in cpu_analyses)
     integer :: sensitivity_rhs = 0                !< right-hand sides of the sensitivity flows (perturbed ones included)
     real(dp) :: cpu_analyses = 0.0_dp
@@ -428,6 +442,9 @@ contains
     if (.not. ev%ok) then
       self%n_failed = self%n_failed + 1
       self%last_failure = ev%reason
+    else if (ev%past_peak) then
+      self%n_past_peak = self%n_past_peak + 1
+      self%last_past_peak = ev%reason
     end if
     self%cache_x(:, self%cache_next) = x
     self%cache(self%cache_next) = ev
@@ -460,9 +477,15 @@ contains
         if (ns > 1) ev%reason = 'at '//str(self%speeds(s), 6)//' rad/s: '//one%reason
         return
       end if
+      if (one%past_peak) then
+        ev%past_peak = .true.
+        ev%reason = one%reason
+      end if
       if (allocated(one%y_periodic)) then
-        if (.not. allocated(ev%y_periodic)) allocate(ev%y_periodic(size(one%y_periodic, 1), ns))
+        if (.not. allocated(ev%y_periodic)) allocate(ev%y_periodic(size(one%y_periodic, 1), ns), &
+                                                     ev%monodromy(size(one%y_periodic, 1), size(one%y_periodic, 1), ns))
         ev%y_periodic(:, s) = one%y_periodic(:, 1)
+        ev%monodromy(:, :, s) = one%monodromy(:, :, 1)
       end if
       call join_speed(self, s, one, ev, n_objective, mean_square)
     end do
@@ -520,7 +543,9 @@ contains
 
   !> One steady-state analysis at one speed (s of self%speeds): build,
   !> periodic response, stresses and frozen frequencies at `samples` crank angles.
-  subroutine analyse_speed(self, inp, x_design, s, ev)
+  !> A Ramberg-Osgood analysis that stops past the law's peak strain is not a
+  !> failed analysis but an infeasible design: past_peak_twin.
+  recursive subroutine analyse_speed(self, inp, x_design, s, ev)
     class(design_problem_t), intent(inout) :: self
     type(mechanism_input_t), intent(in) :: inp
     real(dp), intent(in) :: x_design(:)
@@ -531,7 +556,7 @@ contains
     type(error_t) :: err
     type(harmonic_report_t) :: hrep
     type(shooting_report_t) :: srep
-    real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:)
+    real(dp), allocatable :: times(:), q(:, :), qd(:, :), y0(:), mono(:, :)
     integer, allocatable :: at_sample(:), at_point(:)
     ev%ok = .false.
     ev%mass = design_mass(inp)
@@ -550,22 +575,56 @@ contains
     else if (self%evaluator == 'transient') then
       call transient_samples(self, mech, model, s, times, q, err)
     else
-      allocate(qd(model%n, size(times)))
+      allocate(qd(model%n, size(times)), mono(2*model%n, 2*model%n))
       y0 = warm_start(self, 2*model%n, s)
-      call shooting_solve(model, self%shooting, y0, srep, err)
+      call shooting_solve(model, self%shooting, y0, srep, err, monodromy=mono)
       if (.not. err%failed()) call shooting_diagnosis(self%shooting, srep, model%omega, .false., err)
       if (.not. err%failed()) call periodic_orbit(model, self%shooting, y0, times, q, qd, srep, err)
       if (.not. err%failed()) then
         self%y_warm(:, s) = y0
         ev%y_periodic = reshape(y0, [size(y0), 1])
+        ev%monodromy = reshape(mono, [size(y0), size(y0), 1])
       end if
     end if
     if (err%failed()) then
       ev%reason = err%text()
+      if (abs(self%element%d_k) > 0.0_dp .and. index(ev%reason, 'peak of the Ramberg-Osgood law') > 0) &
+        call past_peak_twin(self, inp, x_design, s, ev)
       return
     end if
     call design_results(self, mech, model, x_design, times, at_sample, at_point, q, ev)
   end subroutine analyse_speed
+
+  !> A design whose material-nonlinear analysis passed the Ramberg-Osgood
+  !> peak strain (where the law's stiffness changes sign and the analysis has
+  !> no meaning) is an infeasible design, not a failed one: it is analysed
+  !> with the material linear (d_k = 0), whose stresses, E1 times strains
+  !> beyond the peak strain, exceed the law's peak stress and with it any
+  !> allowable below that peak, so the loop sees violated stress constraints
+  !> and steps back towards feasible designs.  No periodic state is kept (the
+  !> twin's orbit is not this model's): derivatives there are differences.
+  recursive subroutine past_peak_twin(self, inp, x_design, s, ev)
+    class(design_problem_t), intent(inout) :: self
+    type(mechanism_input_t), intent(in) :: inp
+    real(dp), intent(in) :: x_design(:)
+    integer, intent(in) :: s
+    type(design_eval_t), intent(inout) :: ev
+    real(dp) :: d_k
+    character(len=:), allocatable :: why
+    why = ev%reason
+    d_k = self%element%d_k
+    self%element%d_k = 0.0_dp
+    call analyse_speed(self, inp, x_design, s, ev)
+    self%element%d_k = d_k
+    if (.not. ev%ok) then
+      ev%reason = why
+      return
+    end if
+    if (allocated(ev%y_periodic)) deallocate(ev%y_periodic)
+    if (allocated(ev%monodromy)) deallocate(ev%monodromy)
+    ev%past_peak = .true.
+    ev%reason = 'infeasible (stresses of the linear-material twin): '//why
+  end subroutine past_peak_twin
 
   !> The mechanism and its steady model of a design (one speed).
   subroutine build_design_model(self, inp, mech, model, err)
@@ -731,7 +790,11 @@ contains
     real(dp) :: g(self%n_analysis_constraints())
     integer :: i
     do i = 1, size(g)
-      if (i <= self%n_stress) then
+      if (i <= self%n_stress .and. self%peak_stress == 'ks') then
+        g(i) = ks_peak(log(max(ev%sample_stress(:, modulo(i - 1, self%base%n_links) + 1, &
+                                                (i - 1)/self%base%n_links + 1), tiny(1.0_dp))), self%ks_rho) &
+               - log(self%stress_allowable)
+      else if (i <= self%n_stress) then
         g(i) = log(max(ev%stress_at(modulo(i - 1, self%base%n_links) + 1, (i - 1)/self%base%n_links + 1), &
                        tiny(1.0_dp))/self%stress_allowable)
       else if (ev%frequency_at(i - self%n_stress) > 0.0_dp) then
@@ -753,6 +816,7 @@ contains
     real(dp) :: g(self%n_analysis_constraints())
     integer :: i, l, s
     g = self%constraints_of(ev)
+    if (self%peak_stress == 'ks') return          ! smooth: nothing to pin
     do i = 1, self%n_stress
       l = modulo(i - 1, self%base%n_links) + 1
       s = (i - 1)/self%base%n_links + 1
@@ -778,6 +842,22 @@ contains
     call self%evaluate(xp, evp)
     if (ev%ok .and. evp%ok) gp = self%constraints_at_peaks_of(evp, ev)
   end subroutine neighbour_constraints
+
+  !> The Kreisselmeier-Steinhauser aggregate of the values v over the samples,
+  !>     KS = max v + ln(sum_k exp(rho (v_k - max v))) / rho,
+  !> a smooth stand-in for max v (G. Kreisselmeier and R. Steinhauser,
+  !> "Systematic control design by optimizing a vector performance index",
+  !> IFAC Proc. 12 (1979) 113-117): max v <= KS <= max v + ln(N)/rho, the
+  !> upper end when all N samples are equal; a peak that stands alone is
+  !> overestimated by far less (samples within a few 1/rho of the peak count).
+  !> Applied to v = ln(stress): a constraint KS <= ln(allowable) holds the
+  !> peak stress under the allowable with a margin of at most ln(N)/rho.
+  pure real(dp) function ks_peak(v, rho) result(ks)
+    real(dp), intent(in) :: v(:), rho
+    real(dp) :: vmax
+    vmax = maxval(v)
+    ks = vmax + log(sum(exp(rho*(v - vmax))))/rho
+  end function ks_peak
 
   !> The objective's residuals of an analysed design (none for the mass).
   function residuals_of(self, ev) result(r)
@@ -821,7 +901,7 @@ contains
     allocate(dg(nv, self%n_analysis_constraints()), dr(nv, self%n_residuals_design()))
     ok = .false.
     call self%evaluate(x, ev)
-    if (.not. ev%ok .or. .not. allocated(ev%y_periodic)) return
+    if (.not. ev%ok .or. .not. allocated(ev%y_periodic) .or. ev%past_peak) return
     call cpu_time(cpu0)
     xc = clamped_x(self, x)
     h = self%variational_step*max(abs(xc), 1.0_dp)
@@ -832,7 +912,7 @@ contains
       end do
     end do
     do s = 1, size(self%speeds)
-      call speed_sensitivity(self, xc, h, s, ev%y_periodic(:, s), pm, n_obj, msq, ok)
+      call speed_sensitivity(self, xc, h, s, ev%y_periodic(:, s), ev%monodromy(:, :, s), pm, n_obj, msq, ok)
       if (.not. ok) exit
     end do
     call cpu_time(cpu1)
@@ -865,12 +945,17 @@ contains
     end do
   end function clamped_x
 
-  !> derivatives_at at speed s: the orbit's sensitivities, then the results
-  !> of the perturbed designs pm(1, j) (x + h_j) and pm(2, j) (x - h_j) with
-  !> q +- h_j dq_j, joined into the speeds' results.
-  subroutine speed_sensitivity(self, xc, h, s, y0, pm, n_obj, msq, ok)
+  !> derivatives_at at speed s: the orbit's sensitivities (from the periodic
+  !> state y0 and its monodromy matrix mono, both from the design's
+  !> analysis), then the results of the perturbed designs pm(1, j) (x + h_j)
+  !> and pm(2, j) (x - h_j) with q +- h_j dq_j, joined into the speeds'
+  !> results.  A perturbed model of a variable that leaves the geometry
+  !> alone (a section, a counterweight, the coupler point) takes its
+  !> rigid-body frames from the design's model (steady_model's frames_of)
+  !> instead of solving the same kinematics again.
+  subroutine speed_sensitivity(self, xc, h, s, y0, mono, pm, n_obj, msq, ok)
     class(design_problem_t), intent(inout) :: self
-    real(dp), intent(in) :: xc(:), h(:), y0(:)
+    real(dp), intent(in) :: xc(:), h(:), y0(:), mono(:, :)
     integer, intent(in) :: s
     type(design_eval_t), intent(inout) :: pm(:, :)
     integer, intent(inout) :: n_obj(:, :)
@@ -899,9 +984,14 @@ contains
       if (.not. err%failed()) call build_design_model(self, at_speed(xs), mech_pm(2, j), minus(j), err)
     end do
     if (err%failed()) return
+    do j = 1, nv
+      if (.not. keeps_geometry(self%var(j))) cycle
+      plus(j)%frames_of => model
+      minus(j)%frames_of => model
+    end do
     call merged_times(self, model%omega, times, at_sample, at_point)
     allocate(q(model%n, size(times)), dq(model%n, size(times), nv))
-    call orbit_sensitivity(model, plus, minus, 2.0_dp*h, self%shooting, y0, times, q, dq, rep, err)
+    call orbit_sensitivity(model, plus, minus, 2.0_dp*h, self%shooting, y0, times, q, dq, rep, err, monodromy=mono)
     self%sensitivity_rhs = self%sensitivity_rhs + rep%rhs_evaluations*(1 + 2*nv)
     if (err%failed()) return
     do j = 1, nv
@@ -932,6 +1022,13 @@ contains
       inp%omega = self%speeds(s)
     end function at_speed
   end subroutine speed_sensitivity
+
+  !> A variable that changes no length, joint position or crank phase: the
+  !> rigid-body motion of the linkage is the same with it changed.
+  logical pure function keeps_geometry(v)
+    type(design_variable_t), intent(in) :: v
+    keeps_geometry = any(v%kind == [var_link_b, var_link_h, var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y])
+  end function keeps_geometry
 
   !> The previous design's periodic state at speed s (the start of this
   !> design's periodic solution), zeros at the first; n2 = 2 unknowns.

@@ -19,7 +19,11 @@
 !> Jacobian (MF = 24): the augmented state [y, Y e_1, ..., Y e_2n] has the
 !> block-diagonal Jacobian diag(J, J, ..., J), J = [0 I; -M^-1 K_t  -M^-1 C],
 !> of half-bandwidth 2n - 1 (the coupling of Y to y through K_t(y) is left
-!> out: the corrector only needs an approximation).
+!> out: the corrector only needs an approximation).  The flow factors
+!> DLSODE's Newton matrix itself (lsode_solver's model route): one 2n x 2n
+!> block I - h el0 J, applied to each of the 1 + 2n (+ parameters) blocks,
+!> instead of a band LU of the whole augmented system (the same matrix; at
+!> n = 10 the monodromy revolution's linear algebra is about 20 times less).
 module periodic_shooting
   use kinds, only: dp
   use error_status, only: error_t
@@ -70,9 +74,13 @@ module periodic_shooting
     logical :: variational = .false.
     real(dp), allocatable :: m(:, :), c(:, :), k(:, :), f(:), fn(:), kt(:, :)
     type(dense_lu_t) :: lu
+    type(dense_lu_t) :: newton_lu          !< I - h el0 J of one block (BDF's Newton matrix)
   contains
     procedure :: rhs => flow_rhs
     procedure :: jacobian => flow_jacobian
+    procedure :: has_newton_matrix => flow_has_newton_matrix
+    procedure :: newton_factor => flow_newton_factor
+    procedure :: newton_solve => flow_newton_solve
     procedure :: setup
   end type flow_t
 
@@ -182,28 +190,24 @@ contains
     if (s%bdf) method_flag = mf_bdf_band_user
   end function method_flag
 
-  !> Block-diagonal Jacobian in DLSODE's band storage, pd(i - j + mu + 1, j).
-  subroutine flow_jacobian(self, t, y, ml, mu, pd)
+  !> The lower blocks of J = [0 I; A B] at (t, y): A = -M^-1 K_t, B = -M^-1 C.
+  subroutine jacobian_blocks(self, t, y, a, b, ok)
     class(flow_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:)
-    integer, intent(in) :: ml, mu
-    real(dp), intent(inout) :: pd(:, :)
+    real(dp), intent(out) :: a(:, :), b(:, :)
+    logical, intent(out) :: ok
     type(nonlinear_info_t) :: info
-    real(dp) :: a(self%n, self%n), b(self%n, self%n), col(self%n)
-    integer :: n, n2, nb, blk, i, j, o
-    logical :: ok
-    n = self%n
-    n2 = 2*n
-    if (.false.) o = ml
+    real(dp) :: col(self%n)
+    integer :: j
     call linear_terms_at(self, t, ok)
     if (.not. ok) return
     if (self%sys%is_nonlinear()) then
-      call self%sys%nonlinear_terms(y(1:n), self%fn, info, tangent=self%kt)
+      call self%sys%nonlinear_terms(y(1:self%n), self%fn, info, tangent=self%kt)
       self%k = self%k + self%kt
     end if
     call factor_mass(self, t, ok)
     if (.not. ok) return
-    do j = 1, n
+    do j = 1, self%n
       col = -self%k(:, j)
       call self%lu%solve(col)
       a(:, j) = col
@@ -211,6 +215,67 @@ contains
       call self%lu%solve(col)
       b(:, j) = col
     end do
+  end subroutine jacobian_blocks
+
+  !> The BDF flow factors its own Newton matrix (one block; see the header).
+  logical function flow_has_newton_matrix(self)
+    class(flow_t), intent(in) :: self
+    flow_has_newton_matrix = self%n > 0
+  end function flow_has_newton_matrix
+
+  !> P = I - hl0 J of one 2n block at (t, y), factored.
+  subroutine flow_newton_factor(self, t, y, hl0, ok)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:), hl0
+    logical, intent(out) :: ok
+    real(dp) :: a(self%n, self%n), b(self%n, self%n), p(2*self%n, 2*self%n)
+    type(error_t) :: err
+    integer :: n, i
+    n = self%n
+    call jacobian_blocks(self, t, y, a, b, ok)
+    if (.not. ok) return
+    p = 0.0_dp
+    do i = 1, n
+      p(i, i) = 1.0_dp
+      p(i, n + i) = -hl0
+    end do
+    p(n + 1:, 1:n) = -hl0*a
+    p(n + 1:, n + 1:) = -hl0*b
+    do i = n + 1, 2*n
+      p(i, i) = p(i, i) + 1.0_dp
+    end do
+    call self%newton_lu%factor(p, err)
+    ok = .not. err%failed()
+  end subroutine flow_newton_factor
+
+  !> x := P^-1 x, block by block.
+  subroutine flow_newton_solve(self, x)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(inout) :: x(:)
+    real(dp) :: block(2*self%n)
+    integer :: n2, o
+    n2 = 2*self%n
+    do o = 0, size(x) - n2, n2
+      block = x(o + 1:o + n2)
+      call self%newton_lu%solve(block)
+      x(o + 1:o + n2) = block
+    end do
+  end subroutine flow_newton_solve
+
+  !> Block-diagonal Jacobian in DLSODE's band storage, pd(i - j + mu + 1, j).
+  subroutine flow_jacobian(self, t, y, ml, mu, pd)
+    class(flow_t), intent(inout) :: self
+    real(dp), intent(in) :: t, y(:)
+    integer, intent(in) :: ml, mu
+    real(dp), intent(inout) :: pd(:, :)
+    real(dp) :: a(self%n, self%n), b(self%n, self%n)
+    integer :: n, n2, nb, blk, i, j, o
+    logical :: ok
+    n = self%n
+    n2 = 2*self%n
+    if (.false.) o = ml
+    call jacobian_blocks(self, t, y, a, b, ok)
+    if (.not. ok) return
     nb = size(y)/n2
     do blk = 0, nb - 1
       o = blk*n2
@@ -319,13 +384,18 @@ contains
   end function stiff_advice
 
   !> Newton on Phi_T(y0) = y0 from the guess y0; on return y0 is the initial
-  !> state of the periodic solution.
-  subroutine shooting_solve(sys, s, y0, rep, err)
+  !> state of the periodic solution.  monodromy, when present, receives the
+  !> last monodromy matrix Y(T): at the returned y0 itself for a nonlinear
+  !> system (the converged iteration integrates it there and takes no step),
+  !> and for a linear one, whose Y(T) does not depend on y0, the first
+  !> iteration's (orbit_sensitivity can then skip its monodromy columns).
+  subroutine shooting_solve(sys, s, y0, rep, err, monodromy)
     class(periodic_system_t), target, intent(inout) :: sys
     type(shooting_settings_t), intent(in) :: s
     real(dp), intent(inout) :: y0(:)
     type(shooting_report_t), intent(out) :: rep
     type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: monodromy(:, :)
     real(dp), allocatable :: yt(:), mono(:, :), jac(:, :), r(:), wr(:), wi(:), d(:), m(:, :), c(:, :), k(:, :), f(:)
     integer, allocatable :: ipiv(:)
     integer :: n, n2, it, j, i
@@ -404,6 +474,7 @@ contains
     rep%mult_im = wi
     rep%max_multiplier = maxval(sqrt(wr**2 + wi**2))
     rep%stable = rep%max_multiplier <= 1.0_dp + s%unit_circle_tol
+    if (present(monodromy)) monodromy = mono
   end subroutine shooting_solve
 
   !> Q (and Q_d) along the periodic orbit from y0 at increasing times in [0, T].
@@ -516,8 +587,10 @@ contains
   !> S(T) = dPhi_T/dp; the orbit's start moves by
   !> dy0/dp = (I - Phi_y)^-1 dPhi_T/dp; a second pass of [y, S] from
   !> (y0, dy0/dp) gives q and dq/dp at the times (increasing, in [0, T]).
-  !> y0 must be the periodic state (shooting_solve).
-  subroutine orbit_sensitivity(sys, plus, minus, step, s, y0, times, q, dq, rep, err)
+  !> y0 must be the periodic state (shooting_solve).  With monodromy (Y(T)
+  !> at y0, from shooting_solve) the first pass integrates [y, S] only: the
+  !> 2n monodromy columns are most of its unknowns.
+  subroutine orbit_sensitivity(sys, plus, minus, step, s, y0, times, q, dq, rep, err, monodromy)
     class(periodic_system_t), target, intent(inout) :: sys
     class(periodic_system_t), target, intent(inout) :: plus(:), minus(:)
     real(dp), intent(in) :: step(:)
@@ -526,6 +599,7 @@ contains
     real(dp), intent(out) :: q(:, :), dq(:, :, :)
     type(shooting_report_t), intent(inout) :: rep
     type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: monodromy(:, :)
     type(sensitivity_flow_t), target :: flow
     real(dp), allocatable :: y(:), a(:, :), z(:, :)
     integer, allocatable :: ipiv(:)
@@ -540,21 +614,31 @@ contains
       call flow%minus(j)%setup(minus(j), .false.)
     end do
     flow%inv_step = 1.0_dp/step
-    ! one revolution with the monodromy columns: Phi_y and dPhi_T/dp
-    flow%with_mono = .true.
-    allocate(y(n2*(1 + n2 + np)))
-    y = 0.0_dp
-    y(1:n2) = y0
-    do j = 1, n2
-      y(n2 + (j - 1)*n2 + j) = 1.0_dp
-    end do
-    call sensitivity_pass(flow, s, y, [sys%period()], rep, err)
-    if (err%failed()) return
-    a = -reshape(y(n2 + 1:n2 + n2*n2), [n2, n2])
+    ! one revolution with the monodromy columns (unless given): Phi_y and dPhi_T/dp
+    flow%with_mono = .not. present(monodromy)
+    if (present(monodromy)) then
+      allocate(y(n2*(1 + np)))
+      y = 0.0_dp
+      y(1:n2) = y0
+      call sensitivity_pass(flow, s, y, [sys%period()], rep, err)
+      if (err%failed()) return
+      a = -monodromy
+      z = reshape(y(n2 + 1:), [n2, np])
+    else
+      allocate(y(n2*(1 + n2 + np)))
+      y = 0.0_dp
+      y(1:n2) = y0
+      do j = 1, n2
+        y(n2 + (j - 1)*n2 + j) = 1.0_dp
+      end do
+      call sensitivity_pass(flow, s, y, [sys%period()], rep, err)
+      if (err%failed()) return
+      a = -reshape(y(n2 + 1:n2 + n2*n2), [n2, n2])
+      z = reshape(y(n2 + n2*n2 + 1:), [n2, np])
+    end if
     do j = 1, n2
       a(j, j) = a(j, j) + 1.0_dp
     end do
-    z = reshape(y(n2 + n2*n2 + 1:), [n2, np])
     allocate(ipiv(n2))
     call lu_factor(a, ipiv, err)
     if (.not. err%failed()) call lu_solve(a, ipiv, z, err)

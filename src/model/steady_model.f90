@@ -61,6 +61,10 @@ module steady_model
     ! about its ground pivot
     integer, allocatable :: cw_element(:)
     real(dp), allocatable :: cw_inertia(:)
+    !> a model of the same geometry, joints, driver and speed (one that
+    !> differs only in sections or masses) whose rigid-body frames this one
+    !> takes at each time instead of solving its own kinematics
+    type(steady_model_t), pointer :: frames_of => null()
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
@@ -244,7 +248,7 @@ contains
   !> crank (Newton's warm start, doc/kinematics.md) or, if that fails (a far
   !> predictor can land on the other branch), again from the last solution in
   !> steps of 5 deg; states of recently visited times are reused.
-  subroutine model_set_time(self, t, err)
+  recursive subroutine model_set_time(self, t, err)
     class(steady_model_t), intent(inout) :: self
     real(dp), intent(in) :: t
     type(error_t), intent(inout) :: err
@@ -253,6 +257,14 @@ contains
     if (.not. self%moving) return
     tol = 1.0e-12_dp*self%period()         ! times that differ by round-off are the same time
     if (abs(t - self%t_states) <= tol) return
+    if (associated(self%frames_of)) then
+      call self%frames_of%set_time(t, err)
+      if (err%failed()) return
+      self%fs = self%frames_of%fs
+      self%t_states = t
+      call refresh_maps(self)
+      return
+    end if
     do i = 1, self%cache_used
       if (abs(t - self%cache_t(i)) <= tol) then
         self%fs = self%cache_fs(:, i)

@@ -1,6 +1,7 @@
 !> Tests of the design problem's pieces (module design_problem): the coupler
 !> point of the path objectives against the closed-form four-bar of module
-!> fourbar_path (B's equations, an independent implementation).
+!> fourbar_path (B's equations, an independent implementation); the KS
+!> aggregate of the peak stress constraints (ks_peak).
 module test_design_problem_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
@@ -8,7 +9,7 @@ module test_design_problem_suite
   use tennant_element, only: tennant_options_t
   use steady_model, only: steady_model_t, link_sections_t
   use fourbar_path, only: table3_design, coupler_point
-  use design_problem, only: coupler_point_of, design_problem_t, design_eval_t
+  use design_problem, only: coupler_point_of, design_problem_t, design_eval_t, ks_peak
   use design_sequence, only: design_sequence_t
   use design_fixtures, only: load_design_text
   use deck_runner, only: scratch_path
@@ -22,7 +23,39 @@ contains
   subroutine run_all()
     call run_test('rigid_coupler_point_matches_closed_form_fourbar', test_rigid_point)
     call run_test('path_design_recovers_a_flexible_design_from_its_path', test_path_recovery)
+    call run_test('ks_aggregate_bounds_the_peak_and_is_smooth_where_the_peak_switches', test_ks_peak)
   end subroutine run_all
+
+  !> The KS aggregate of ln(stress) (design_problem's ks_peak): never below
+  !> the largest value, never more than ln(N)/rho above it, exactly that far
+  !> above for N equal values (the bound is sharp), and within (N - 1)
+  !> exp(-10) / rho of the largest when the others are 10/rho below it.  Where
+  !> the largest of two samples switches (v = (a + t, a - t) at t = 0) the
+  !> max has one-sided slopes +1 and -1; the KS function's two one-sided
+  !> differences agree to O(h) (slope 0 at the switch): a gradient method sees
+  !> a smooth constraint.
+  subroutine test_ks_peak()
+    real(dp), parameter :: rho = 200.0_dp, h = 1.0e-6_dp
+    real(dp) :: v(72), ks, right, left
+    integer :: k
+    do k = 1, size(v)
+      v(k) = 0.3_dp*sin(2.0_dp*pi*k/size(v)) + 0.05_dp*cos(6.0_dp*pi*k/size(v))
+    end do
+    ks = ks_peak(v, rho)
+    call assert_true(ks >= maxval(v), 'KS is not below the largest sample')
+    call assert_true(ks <= maxval(v) + log(real(size(v), dp))/rho, 'KS is at most ln(N)/rho above it')
+    v = 0.7_dp
+    call assert_close(ks_peak(v, rho), 0.7_dp + log(real(size(v), dp))/rho, 1.0e-12_dp, 'equal samples: the bound')
+    v = 0.7_dp - 10.0_dp/rho
+    v(5) = 0.7_dp
+    call assert_true(ks_peak(v, rho) - 0.7_dp <= (size(v) - 1)*exp(-10.0_dp)/rho*(1.0_dp + 1.0e-9_dp), &
+                     'a lone peak is overestimated by (N - 1) exp(-10) / rho at most')
+    right = (ks_peak([0.5_dp + h, 0.5_dp - h], rho) - ks_peak([0.5_dp, 0.5_dp], rho))/h
+    left = (ks_peak([0.5_dp, 0.5_dp], rho) - ks_peak([0.5_dp - h, 0.5_dp + h], rho))/h
+    call assert_true(abs(right - left) < 10.0_dp*rho*h, 'one-sided slopes at the switch agree to O(h): '// &
+                     'right and left differences')
+    call assert_true(abs(right) < 10.0_dp*rho*h, 'slope 0 at the switch of two equal peaks')
+  end subroutine test_ks_peak
 
   !> B's Table 3 four-bar as a flexmech mechanism (crank pivot A = (x10, x9),
   !> rocker pivot D = A + x1 e(x6), crank angle x8 at t = 0): the rigid-body
