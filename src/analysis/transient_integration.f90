@@ -9,14 +9,34 @@ module transient_integration
   use error_status, only: error_t
   use strings, only: str
   use table_output, only: table_t
-  use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, mf_bdf_band_fd, &
-                          mf_bdf_full_fd
+  use lsode_solver, only: lsode_t, lsode_counters_t, ode_system_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, &
+                          mf_bdf_band_fd, mf_bdf_full_fd
+  use linalg, only: sym_generalized_eig
   use transient_settings, only: transient_settings_t
   implicit none
   private
-  public :: start_integrator, write_start_frequencies, write_integration_cost
+  public :: start_integrator, write_start_frequencies, write_integration_cost, choose_solver_settings
 
   integer, parameter :: n_modes_reported = 5
+
+  ! The rule of the solver settings a deck leaves out (doc/transient.md, "Default solver settings").
+  integer, parameter :: crank_harmonics = 10         !< harmonics of the crank speed the run resolves
+  real(dp), parameter :: mode_share = 0.01_dp        !< a mode whose static share is >= this fraction is resolved
+  real(dp), parameter :: atol_fraction = 1.0e-6_dp   !< atol / the static deflection
+  real(dp), parameter :: stiff_ratio = 5.0_dp        !< highest / resolved frequency beyond which BDF is cheaper
+  real(dp), parameter :: order2_ratio = 100.0_dp     !< ... beyond which BDF 3-5 meet undamped modes in their unstable band
+  real(dp), parameter :: zeta_bdf5 = 0.62_dp         !< cos(51.8 deg): BDF5's A(alpha) sector holds modes damped beyond it
+  real(dp), parameter :: fallback_atol = 1.0e-9_dp   !< atol of a model that nothing loads or displaces
+  integer, parameter :: load_samples = 37            !< times at which the rigid-body load is sampled
+
+  !> The model's M and K at q = 0 and time t (choose_solver_settings).
+  abstract interface
+    subroutine matrices_at(t, mass, stiff)
+      import :: dp
+      real(dp), intent(in) :: t
+      real(dp), intent(out) :: mass(:, :), stiff(:, :)
+    end subroutine matrices_at
+  end interface
 
 contains
 
@@ -48,6 +68,178 @@ contains
                        str(ml)//' (the band of M and K in the interleaved state)')
     end if
   end subroutine start_integrator
+
+  !> The solver settings the deck left out (method 'auto', atol, atol_rate,
+  !> max_order < 0), chosen from the model, one header line each with why
+  !> (doc/transient.md, "Default solver settings"):
+  !>  - the static deflection q_s under the rigid-body inertia and external
+  !>    loads, sampled over the run's span, and the initial displacement:
+  !>    atol = atol_fraction * max |q_s|, atol_rate = atol * the highest
+  !>    natural frequency (choose_atol);
+  !>  - the frequencies the run must resolve: crank_harmonics harmonics of the
+  !>    crank speed and every mode that carries at least mode_share of q_s
+  !>    (the load's own content; the axial modes carry almost none);
+  !>  - the stiffness: the fastest rate of the model (the highest natural
+  !>    frequency, or beta w^2 of an overdamped mode) over the highest
+  !>    frequency the run resolves; beyond stiff_ratio Adams' stability limit, not its
+  !>    accuracy, sets its step, and BDF with the model's Newton matrix is
+  !>    cheaper;
+  !>  - BDF 3-5 amplify lightly damped modes near the imaginary axis: beyond
+  !>    order2_ratio, modes with damping ratio below zeta_bdf5 lie there at
+  !>    the run's steps, and order 2 (A-stable) is chosen with the method.
+  !> A deck's method keeps DLSODE's orders, and a deck's atol is its
+  !> atol_rate too unless it gives one: then a note says what the rule
+  !> would choose.  matrices: the model's M and K at q = 0 and a time; n:
+  !> their order; y0: the initial state; crank_omega: the crank's speed (0:
+  !> none); contact: joints with clearance (their contact stiffness is not in
+  !> K: always stiff).
+  subroutine choose_solver_settings(out, s, model, matrices, n, y0, t0, t_end, crank_omega, contact, err)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(inout) :: s
+    class(ode_system_t), intent(inout), target :: model   ! matrices may reach it by host association
+    procedure(matrices_at) :: matrices
+    integer, intent(in) :: n
+    real(dp), intent(in) :: y0(:), t0, t_end, crank_omega
+    logical, intent(in) :: contact
+    type(error_t), intent(inout) :: err
+    real(dp) :: w2(n), share(n)
+    real(dp) :: q_static, w_resolve, w_mode, w_max, w_fast, ratio, zeta_max
+    integer :: n_resolved
+    character(len=:), allocatable :: why
+    logical :: method_chosen, stiff, order2
+    method_chosen = s%method == 'auto'
+    call static_shares(model, matrices, y0, t0, t_end, q_static, w2, share, err)
+    if (err%failed()) return
+    w_max = sqrt(max(w2(n), 0.0_dp))
+    n_resolved = 0
+    if (q_static > 0.0_dp) n_resolved = count(share >= mode_share*q_static .and. w2 > 0.0_dp)
+    w_mode = 0.0_dp
+    if (n_resolved > 0) w_mode = sqrt(maxval(w2, mask=share >= mode_share*q_static .and. w2 > 0.0_dp))
+    if (w_mode <= 0.0_dp .and. crank_omega <= 0.0_dp) w_mode = sqrt(max(w2(1), 0.0_dp))
+    w_resolve = max(crank_harmonics*crank_omega, w_mode)
+    ! the fastest decay or oscillation rate: a mode damped beyond critical (zeta = beta w/2 > 1) decays at about beta w^2
+    w_fast = max(w_max, s%damping_beta*w_max**2)
+    ratio = w_fast/max(w_resolve, tiny(1.0_dp))
+    why = 'the fastest rate of the model, '//str(w_fast, 4)//' 1/s, is '//str(ratio, 3)//' times the highest '// &
+          'the run resolves, '//str(w_resolve, 4)//' rad/s (of '//str(crank_harmonics)//' crank harmonics and '// &
+          'the '//str(n_resolved)//' modes carrying '//str(nint(100*mode_share))//' % or more of the static deflection)'
+    stiff = ratio > stiff_ratio .or. contact
+    if (contact) why = why//'; joints with clearance add contact stiffness'
+    if (method_chosen) then
+      s%method = merge('bdf  ', 'adams', stiff)
+      s%mf = merge(mf_bdf_full_user, mf_adams, stiff)
+      if (stiff) then
+        call out%comment('method = ''bdf'' (chosen): '//why//': stiff, Adams would step at its stability limit')
+      else
+        call out%comment('method = ''adams'' (chosen): '//why//': not stiff')
+      end if
+    end if
+    zeta_max = 0.5_dp*s%damping_beta*w_max
+    order2 = s%mf /= mf_adams .and. ratio > order2_ratio .and. zeta_max < zeta_bdf5
+    if (s%max_order < 0) then
+      s%max_order = 0
+      if (order2 .and. method_chosen) then
+        s%max_order = 2
+        call out%comment('max_order = 2 (chosen): the natural frequencies reach '//str(ratio, 3)//' times the '// &
+                         'highest the run resolves with damping ratios below '//str(zeta_bdf5, 2)//': such modes '// &
+                         'lie near the imaginary axis at the run''s steps, where BDF 3-5 amplify them')
+      else if (order2) then
+        call out%comment('note: the natural frequencies reach '//str(ratio, 3)//' times the highest the run '// &
+                         'resolves with damping ratios below '//str(zeta_bdf5, 2)//': BDF 3-5 amplify such modes; '// &
+                         'max_order = 2 is often far cheaper')
+      end if
+    end if
+    if (s%atol < 0.0_dp) then
+      call choose_atol(out, s, q_static, w_max, w_resolve)
+    else if (abs(s%atol_rate - s%atol) <= 0.0_dp .and. stiff .and. s%atol*w_resolve > 1.0e2_dp*s%atol_rate) then
+      call out%comment('note: atol_rate = atol = '//str(s%atol_rate, 3)//' holds the rates (per second) to the '// &
+                       'displacements'' tolerance; atol times the highest frequency the run resolves ('// &
+                       str(s%atol*w_resolve, 3)//') is often far cheaper at the same peaks')
+    end if
+  end subroutine choose_solver_settings
+
+  !> atol and, unless the deck gives it, atol_rate (choose_solver_settings):
+  !> the displacements to atol_fraction of the static deflection; the rates
+  !> to atol times the highest frequency the run resolves, or, with BDF of
+  !> order 1 or 2 (A-stable: no mode can grow), times the highest natural
+  !> frequency (a vibration of the fastest mode within atol has rates within
+  !> atol_rate: the run need not resolve it).  BDF 3-5 and Adams need the
+  !> tighter rates: their error test is what holds a spurious growth of the
+  !> undamped stiff modes (measured: an undamped clamped beam from its first
+  !> mode, 11 % on a stress peak with the looser rates at order 5).
+  subroutine choose_atol(out, s, q_static, w_max, w_resolve)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(inout) :: s
+    real(dp), intent(in) :: q_static, w_max, w_resolve
+    if (q_static > 0.0_dp) then
+      s%atol = atol_fraction*q_static
+      call out%comment('atol = '//str(s%atol, 3)//' (chosen): '//str(atol_fraction, 2)//' of the static '// &
+                       'deflection under the rigid-body inertia and external loads and of the initial '// &
+                       'displacement, '//str(q_static, 4))
+    else
+      s%atol = fallback_atol
+      call out%comment('atol = '//str(s%atol, 3)//' (chosen): nothing loads or displaces the model')
+    end if
+    if (s%atol_rate >= 0.0_dp) return
+    if (s%mf /= mf_adams .and. s%max_order > 0 .and. s%max_order <= 2) then
+      s%atol_rate = s%atol*max(w_max, 1.0_dp)
+      call out%comment('atol_rate = '//str(s%atol_rate, 3)//' (chosen): atol times the highest natural '// &
+                       'frequency, '//str(w_max, 4)//' rad/s: BDF of order 2 or less cannot amplify a mode, and '// &
+                       'a vibration of the fastest mode within atol need not be resolved')
+    else
+      s%atol_rate = s%atol*max(w_resolve, 1.0_dp)
+      call out%comment('atol_rate = '//str(s%atol_rate, 3)//' (chosen): atol times the highest frequency the '// &
+                       'run resolves, '//str(w_resolve, 4)//' rad/s')
+    end if
+  end subroutine choose_atol
+
+  !> q_static: the largest static deflection max_i |K^-1 f|_i over the load
+  !> f = M a(t) at load_samples times of [t0, t_end] (a: the accelerations at
+  !> the rigid-body state; M, K at that time: the model's degrees of freedom
+  !> turn with it) and the initial displacement; w2(k): the largest square of
+  !> the k-th natural frequency met; share(k): the largest displacement mode k
+  !> carries in any of them.
+  subroutine static_shares(model, matrices, y0, t0, t_end, q_static, w2, share, err)
+    class(ode_system_t), intent(inout), target :: model   ! matrices may reach it by host association
+    procedure(matrices_at) :: matrices
+    real(dp), intent(in) :: y0(:), t0, t_end
+    real(dp), intent(out) :: q_static, w2(:), share(:)
+    type(error_t), intent(inout) :: err
+    real(dp) :: mass(size(w2), size(w2)), stiff(size(w2), size(w2)), shapes(size(w2), size(w2))
+    real(dp) :: y(size(y0)), ydot(size(y0)), modal(size(w2)), peak(size(w2)), w2_t(size(w2)), scale(size(w2)), t
+    integer :: j, k, n_samples
+    n_samples = sample_count(size(w2))
+    q_static = maxval(abs(y0(1::2)))
+    share = 0.0_dp
+    w2 = 0.0_dp
+    y = 0.0_dp
+    do j = 0, n_samples - 1
+      t = t0 + (t_end - t0)*j/real(max(n_samples - 1, 1), dp)
+      call matrices(t, mass, stiff)
+      call sym_generalized_eig(stiff, mass, w2_t, err, shapes)
+      if (err%failed()) return
+      w2 = max(w2, w2_t)
+      peak = [(maxval(abs(shapes(:, k))), k = 1, size(w2))]
+      scale = 0.0_dp
+      where (w2_t > 0.0_dp) scale = 1.0_dp/w2_t
+      if (j == 0) share = abs(matmul(matmul(y0(1::2), mass), shapes))*peak   ! the initial displacement's modes
+      call model%rhs(t, y, ydot)
+      if (model%err%failed()) then
+        call err%set('', model%err%text())
+        return
+      end if
+      modal = matmul(matmul(ydot(2::2), mass), shapes)*scale
+      share = max(share, abs(modal)*peak)
+      q_static = max(q_static, maxval(abs(matmul(shapes, modal))))
+    end do
+  end subroutine static_shares
+
+  !> The number of times the load is sampled at: load_samples, fewer for a
+  !> model whose order n makes each sample's eigenproblem (n^3) costly.
+  pure integer function sample_count(n)
+    integer, intent(in) :: n
+    sample_count = max(5, min(load_samples, int(load_samples*(60.0_dp/max(n, 1))**3)))
+  end function sample_count
 
   !> The header line of the lowest natural frequencies at the start position.
   subroutine write_start_frequencies(out, omega_n)
