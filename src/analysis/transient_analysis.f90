@@ -13,7 +13,7 @@ module transient_analysis
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams
   use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost, &
-                                   choose_solver_settings
+                                   choose_solver_settings, static_load_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, driver_angle
@@ -389,14 +389,15 @@ contains
     real(dp), intent(in) :: y(:), t0, t_end, crank_omega
     logical, intent(in) :: contact
     type(error_t), intent(inout) :: err
-    call choose_solver_settings(out, s, model, matrices, model%n, y, t0, t_end, crank_omega, contact, err)
-  contains
-    subroutine matrices(t, mass, stiff)
-      real(dp), intent(in) :: t
-      real(dp), intent(out) :: mass(:, :), stiff(:, :)
+    type(static_load_t) :: load
+    real(dp) :: mass(model%n, model%n), stiff(model%n, model%n), t
+    call load%start(model%n, y, t0, t_end)
+    do while (load%next(t) .and. .not. err%failed())
       call model%set_time(t)
       call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
-    end subroutine matrices
+      call load%add(model, t, mass, stiff, err)
+    end do
+    call choose_solver_settings(out, s, load, crank_omega, contact, err)
   end subroutine choose_settings
 
   !> Which output times are written as rows: from t_rows on (the summary's

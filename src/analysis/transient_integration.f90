@@ -27,16 +27,28 @@ module transient_integration
   real(dp), parameter :: order2_ratio = 100.0_dp     !< ... beyond which BDF 3-5 meet undamped modes in their unstable band
   real(dp), parameter :: zeta_bdf5 = 0.62_dp         !< cos(51.8 deg): BDF5's A(alpha) sector holds modes damped beyond it
   real(dp), parameter :: fallback_atol = 1.0e-9_dp   !< atol of a model that nothing loads or displaces
+  !> a mode with w^2 below this fraction of the largest is free (round-off:
+  !> a joint with clearance before contact, a sliding link)
+  real(dp), parameter :: free_mode = 1.0e-12_dp
   integer, parameter :: load_samples = 37            !< times at which the rigid-body load is sampled
 
-  !> The model's M and K at q = 0 and time t (choose_solver_settings).
-  abstract interface
-    subroutine matrices_at(t, mass, stiff)
-      import :: dp
-      real(dp), intent(in) :: t
-      real(dp), intent(out) :: mass(:, :), stiff(:, :)
-    end subroutine matrices_at
-  end interface
+  !> The model's static response to its loads over a run, sampled time by
+  !> time by the driver (it owns M and K):
+  !>     call load%start(n, y0, t0, t_end)
+  !>     do while (load%next(t)): M, K of the model at q = 0 and time t; call load%add(model, t, M, K, err)
+  !>     call choose_solver_settings(out, s, load, crank_omega, contact, err)
+  type, public :: static_load_t
+    real(dp) :: q_static = 0.0_dp               !< largest component of a static deflection or the initial displacement
+    real(dp), allocatable :: w2(:)              !< the largest square of each natural frequency met
+    real(dp), allocatable :: share(:)           !< the largest displacement each mode carries
+    real(dp), allocatable :: q0(:)              !< the initial displacement
+    real(dp) :: t0 = 0.0_dp, t_end = 0.0_dp
+    integer :: n_samples = 0, done = 0
+  contains
+    procedure :: start => start_load
+    procedure :: next => next_load_time
+    procedure :: add => add_load_sample
+  end type static_load_t
 
 contains
 
@@ -89,33 +101,32 @@ contains
   !>    the run's steps, and order 2 (A-stable) is chosen with the method.
   !> A deck's method keeps DLSODE's orders, and a deck's atol is its
   !> atol_rate too unless it gives one: then a note says what the rule
-  !> would choose.  matrices: the model's M and K at q = 0 and a time; n:
-  !> their order; y0: the initial state; crank_omega: the crank's speed (0:
-  !> none); contact: joints with clearance (their contact stiffness is not in
-  !> K: always stiff).
-  subroutine choose_solver_settings(out, s, model, matrices, n, y0, t0, t_end, crank_omega, contact, err)
+  !> would choose.  load: the model's static response over the run
+  !> (static_load_t); crank_omega: the crank's speed (0: none); contact:
+  !> joints with clearance (their contact stiffness is not in K: always
+  !> stiff).
+  subroutine choose_solver_settings(out, s, load, crank_omega, contact, err)
     type(table_t), intent(inout) :: out
     type(transient_settings_t), intent(inout) :: s
-    class(ode_system_t), intent(inout), target :: model   ! matrices may reach it by host association
-    procedure(matrices_at) :: matrices
-    integer, intent(in) :: n
-    real(dp), intent(in) :: y0(:), t0, t_end, crank_omega
+    type(static_load_t), intent(in) :: load
+    real(dp), intent(in) :: crank_omega
     logical, intent(in) :: contact
     type(error_t), intent(inout) :: err
-    real(dp) :: w2(n), share(n)
     real(dp) :: q_static, w_resolve, w_mode, w_max, w_fast, ratio, zeta_max
-    integer :: n_resolved
+    integer :: n_resolved, n
     character(len=:), allocatable :: why
     logical :: method_chosen, stiff, order2
-    method_chosen = s%method == 'auto'
-    call static_shares(model, matrices, y0, t0, t_end, q_static, w2, share, err)
     if (err%failed()) return
-    w_max = sqrt(max(w2(n), 0.0_dp))
+    method_chosen = s%method == 'auto'
+    n = size(load%w2)
+    q_static = load%q_static
+    w_max = sqrt(max(load%w2(n), 0.0_dp))
     n_resolved = 0
-    if (q_static > 0.0_dp) n_resolved = count(share >= mode_share*q_static .and. w2 > 0.0_dp)
+    if (q_static > 0.0_dp) n_resolved = count(load%share >= mode_share*q_static .and. load%w2 > free_mode*load%w2(n))
     w_mode = 0.0_dp
-    if (n_resolved > 0) w_mode = sqrt(maxval(w2, mask=share >= mode_share*q_static .and. w2 > 0.0_dp))
-    if (w_mode <= 0.0_dp .and. crank_omega <= 0.0_dp) w_mode = sqrt(max(w2(1), 0.0_dp))
+    if (n_resolved > 0) w_mode = sqrt(maxval(load%w2, mask=load%share >= mode_share*q_static .and. &
+                                             load%w2 > free_mode*load%w2(n)))
+    if (w_mode <= 0.0_dp .and. crank_omega <= 0.0_dp) w_mode = sqrt(max(load%w2(1), 0.0_dp))
     w_resolve = max(crank_harmonics*crank_omega, w_mode)
     ! the fastest decay or oscillation rate: a mode damped beyond critical (zeta = beta w/2 > 1) decays at about beta w^2
     w_fast = max(w_max, s%damping_beta*w_max**2)
@@ -193,46 +204,63 @@ contains
     end if
   end subroutine choose_atol
 
-  !> q_static: the largest static deflection max_i |K^-1 f|_i over the load
-  !> f = M a(t) at load_samples times of [t0, t_end] (a: the accelerations at
-  !> the rigid-body state; M, K at that time: the model's degrees of freedom
-  !> turn with it) and the initial displacement; w2(k): the largest square of
-  !> the k-th natural frequency met; share(k): the largest displacement mode k
-  !> carries in any of them.
-  subroutine static_shares(model, matrices, y0, t0, t_end, q_static, w2, share, err)
-    class(ode_system_t), intent(inout), target :: model   ! matrices may reach it by host association
-    procedure(matrices_at) :: matrices
+  !> n unknowns, the initial state y0 (interleaved), the run's span.
+  subroutine start_load(self, n, y0, t0, t_end)
+    class(static_load_t), intent(inout) :: self
+    integer, intent(in) :: n
     real(dp), intent(in) :: y0(:), t0, t_end
-    real(dp), intent(out) :: q_static, w2(:), share(:)
+    self%q0 = y0(1::2)
+    self%q_static = maxval(abs(self%q0))
+    allocate(self%w2(n), self%share(n))
+    self%w2 = 0.0_dp
+    self%share = 0.0_dp
+    self%t0 = t0
+    self%t_end = t_end
+    self%n_samples = sample_count(n)
+    self%done = 0
+  end subroutine start_load
+
+  !> The next sample time t (load_samples over [t0, t_end], fewer for a model
+  !> whose order makes each sample's eigenproblem costly); false when done.
+  logical function next_load_time(self, t) result(more)
+    class(static_load_t), intent(in) :: self
+    real(dp), intent(out) :: t
+    more = self%done < self%n_samples
+    t = self%t0 + (self%t_end - self%t0)*self%done/real(max(self%n_samples - 1, 1), dp)
+  end function next_load_time
+
+  !> The sample at time t: M and K of the model at q = 0 (its degrees of
+  !> freedom turn with the rigid-body motion, so M and K are the time's), the
+  !> accelerations a at the rigid-body state (rhs at y = 0); the static
+  !> deflection K^-1 M a mode by mode (free modes carry none) and each mode's
+  !> largest displacement in it (and, at the first sample, in the initial
+  !> displacement).
+  subroutine add_load_sample(self, model, t, mass, stiff, err)
+    class(static_load_t), intent(inout) :: self
+    class(ode_system_t), intent(inout) :: model
+    real(dp), intent(in) :: t, mass(:, :), stiff(:, :)
     type(error_t), intent(inout) :: err
-    real(dp) :: mass(size(w2), size(w2)), stiff(size(w2), size(w2)), shapes(size(w2), size(w2))
-    real(dp) :: y(size(y0)), ydot(size(y0)), modal(size(w2)), peak(size(w2)), w2_t(size(w2)), scale(size(w2)), t
-    integer :: j, k, n_samples
-    n_samples = sample_count(size(w2))
-    q_static = maxval(abs(y0(1::2)))
-    share = 0.0_dp
-    w2 = 0.0_dp
+    real(dp) :: shapes(size(self%w2), size(self%w2)), w2(size(self%w2)), peak(size(self%w2)), &
+                scale(size(self%w2)), modal(size(self%w2)), y(2*size(self%w2)), ydot(2*size(self%w2))
+    integer :: k
+    call sym_generalized_eig(stiff, mass, w2, err, shapes)
+    if (err%failed()) return
+    self%w2 = max(self%w2, w2)
+    peak = [(maxval(abs(shapes(:, k))), k = 1, size(w2))]
+    scale = 0.0_dp
+    where (w2 > free_mode*w2(size(w2))) scale = 1.0_dp/w2
+    if (self%done == 0) self%share = abs(matmul(matmul(self%q0, mass), shapes))*peak
     y = 0.0_dp
-    do j = 0, n_samples - 1
-      t = t0 + (t_end - t0)*j/real(max(n_samples - 1, 1), dp)
-      call matrices(t, mass, stiff)
-      call sym_generalized_eig(stiff, mass, w2_t, err, shapes)
-      if (err%failed()) return
-      w2 = max(w2, w2_t)
-      peak = [(maxval(abs(shapes(:, k))), k = 1, size(w2))]
-      scale = 0.0_dp
-      where (w2_t > 0.0_dp) scale = 1.0_dp/w2_t
-      if (j == 0) share = abs(matmul(matmul(y0(1::2), mass), shapes))*peak   ! the initial displacement's modes
-      call model%rhs(t, y, ydot)
-      if (model%err%failed()) then
-        call err%set('', model%err%text())
-        return
-      end if
-      modal = matmul(matmul(ydot(2::2), mass), shapes)*scale
-      share = max(share, abs(modal)*peak)
-      q_static = max(q_static, maxval(abs(matmul(shapes, modal))))
-    end do
-  end subroutine static_shares
+    call model%rhs(t, y, ydot)
+    if (model%err%failed()) then
+      call err%set('', model%err%text())
+      return
+    end if
+    modal = matmul(matmul(ydot(2::2), mass), shapes)*scale
+    self%share = max(self%share, abs(modal)*peak)
+    self%q_static = max(self%q_static, maxval(abs(matmul(shapes, modal))))
+    self%done = self%done + 1
+  end subroutine add_load_sample
 
   !> The number of times the load is sampled at: load_samples, fewer for a
   !> model whose order n makes each sample's eigenproblem (n^3) costly.

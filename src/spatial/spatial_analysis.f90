@@ -15,7 +15,7 @@ module spatial_analysis
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t
   use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost, &
-                                   choose_solver_settings
+                                   choose_solver_settings, static_load_t
   use kear_element, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, check_mode_number
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
@@ -55,6 +55,7 @@ contains
     integer :: k, n_out, jb, jc
     character(len=32), allocatable :: names(:)
     character(len=*), parameter :: link_name(3) = [character(len=7) :: 'crank', 'coupler', 'rocker']
+    character(len=48), allocatable :: labels(:)
 
     call read_spatial_mechanism(deck, inp, err)
     if (err%failed()) return
@@ -85,14 +86,27 @@ contains
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
     t_end = t0 + s%revolutions*two_pi/inp%omega
     n_out = max(1, nint((t_end - t0)/dt_out))
-    call choose_solver_settings(out, s, model, matrices, model%n, y, t0, t_end, inp%omega, .false., err)
+    block   ! the solver settings the deck left out, from the model's static response (transient_integration)
+      type(static_load_t) :: load
+      real(dp) :: mass(model%n, model%n), stiff(model%n, model%n)
+      call load%start(model%n, y, t0, t_end)
+      do while (load%next(t) .and. .not. err%failed())
+        call model%set_time(t)
+        call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
+        call load%add(model, t, mass, stiff, err)
+      end do
+      call choose_solver_settings(out, s, load, inp%omega, .false., err)
+    end block
     if (err%failed()) return
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
     call write_columns(out, model, names)
-    call stress_peaks%init([character(len=48) :: (trim(link_name(model%link_of(k)))//' (element '//str(k)//')', &
-                           k = 1, size(model%el))], .true., inp%theta0_deg + inp%omega*t0*180.0_dp/pi)
+    allocate(labels(size(model%el)))
+    do k = 1, size(labels)     ! the summary names elements by their links
+      labels(k) = trim(link_name(model%link_of(k)))//' (element '//str(k)//')'
+    end do
+    call stress_peaks%init(labels, .true., inp%theta0_deg + inp%omega*t0*180.0_dp/pi)
     call defect%init(n_deflections, samples_per_revolution(s%output_step_deg), n_out)
     call bar%start('spatial', t0, t_end)
     call cpu_time(cpu0)
@@ -120,15 +134,6 @@ contains
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
     end if
     call write_cost(out, s, ode, model, cpu1 - cpu0, max(0.0_dp, (ode%t - t0)*inp%omega/two_pi))
-  contains
-    !> M and K at q = 0 and time tt: the solver settings the deck left out
-    !> are chosen from them (transient_integration).
-    subroutine matrices(tt, mass, stiff)
-      real(dp), intent(in) :: tt
-      real(dp), intent(out) :: mass(:, :), stiff(:, :)
-      call model%set_time(tt)
-      call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
-    end subroutine matrices
   end subroutine run_spatial
 
   !> Output rows per revolution for the periodicity defect: the deflection
