@@ -7,9 +7,12 @@ written under the work directory and run; its peaks (largest |value| of every da
 compared with the reference output's, and its CPU time with that of the tuned deck run now.
 
 usage: python3 tools/default_settings.py [--flexmech build/bin/flexmech] [--work build/default_settings]
-                                         [--markdown] [--check PERCENT] [DECK_NAME_FILTER ...]
+                                         [--markdown] [--check PERCENT] [--cases] [DECK_NAME_FILTER ...]
   --markdown   print the table as Markdown (doc/benchmarks.md)
   --check P    exit 1 when a deck's worst peak differs by more than P % (no CPU check: tests run it)
+  --cases      instead: decks a user writes with their own solver lines, against the defaults: Tennant's
+               four-bar at 150 rad/s with the consistent element (2 per link, one revolution) and the
+               spin-up beam with 4 elements (a run is stopped after 60 s of CPU)
 Peaks: a column's difference is taken relative to the larger of its reference peak and 1 % of the
 largest reference peak among the columns of its kind (the name without its first word and digits:
 B_U and C_U are kinds of 'U', sigma_max_e1 .. e3 of 'max_e'), so that a column that hardly moves
@@ -131,15 +134,67 @@ def chosen(path):
     return ', '.join(picks)
 
 
+CASES = [
+    # (name, deck, edits of the deck: (pattern, replacement) on its text, solver lines for &transient)
+    ('four-bar 150 rad/s, consistent element, 2 per link, 1 turn', 'fourbar_150_geometric',
+     [(r"formulation = 'exact'", "formulation = 'default'"), (r'link_n_elements = 3\*1', 'link_n_elements = 3*2'),
+      (r'revolutions = 5', 'revolutions = 1')],
+     ['', 'rtol = 1.0e-8, atol = 1.0e-10', 'rtol = 1.0e-8, atol = 1.0e-10, atol_rate = 1.0e-4',
+      'rtol = 1.0e-9, atol = 1.0e-11, atol_rate = 1.0e-5, max_order = 0']),
+    ('spin-up beam Ws = 4 rad/s, 4 elements', 'spinup_ws4',
+     [(r'link_n_elements = 8', 'link_n_elements = 4')],
+     ['', 'rtol = 1.0e-8', 'rtol = 1.0e-8, method = \'bdf\'', 'rtol = 1.0e-8, method = \'bdf\', max_order = 2',
+      'rtol = 1.0e-8, method = \'bdf\', max_order = 2, atol = 1.0e-7, atol_rate = 1.0e-4']),
+]
+
+
+def run_cases(args, markdown):
+    """The decks of CASES: one run per solver line; steps, CPU, peak stresses and what was chosen."""
+    rows = []
+    for title, deck, edits, solver_lines in CASES:
+        text, _ = strip_solver_lines(open(f'inputs/{deck}.nml').read())
+        for pattern, repl in edits:
+            text, n = re.subn(pattern, repl, text)
+            if n == 0:
+                sys.exit(f'{deck}: no {pattern} to edit')
+        for k, line in enumerate(solver_lines):
+            path = f'{args.work}/case_{deck}_{k}.nml'
+            with open(path, 'w') as f:
+                f.write(text.replace('&transient\n', '&transient\n  ' + line + '\n', 1) if line else text)
+            out = path[:-4] + '.out'
+            if os.path.exists(out):
+                os.remove(out)
+            proc = subprocess.run(['sh', '-c', f'ulimit -t 60; exec {args.flexmech} {path} -o {out}'],
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            if not os.path.exists(out):
+                rows.append((title, line or '(none: the defaults)', 'stopped after 60 s CPU', '', '', ''))
+                continue
+            names, table, cost = read_table(out)
+            pk = peaks(names, table)
+            stress = max((v for n, v in pk.items() if n.startswith('sigma_max')), default=float('nan'))
+            rows.append((title, line or '(none: the defaults)', cost.get('steps', ''),
+                         cost.get('total_cpu_seconds', ''), f'{stress:.6g}', chosen(out) or ''))
+    head = ('case', 'solver lines', 'steps', 'CPU (s)', 'peak |stress| (psi or Pa)', 'chosen')
+    if markdown:
+        print('| ' + ' | '.join(head) + ' |')
+        print('|' + '---|' * len(head))
+    for r in rows:
+        print(('| ' + ' | '.join(r) + ' |') if markdown else '  '.join(r))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--flexmech', default='build/bin/flexmech')
     ap.add_argument('--work', default='build/default_settings')
     ap.add_argument('--markdown', action='store_true')
     ap.add_argument('--check', type=float, default=None)
+    ap.add_argument('--cases', action='store_true')
     ap.add_argument('filters', nargs='*')
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
+    if args.cases:
+        run_cases(args, args.markdown)
+        return 0
     lines, failures = [], 0
     for deck_name in sorted(os.listdir('inputs')):
         name, ext = os.path.splitext(deck_name)

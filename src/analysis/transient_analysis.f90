@@ -154,6 +154,21 @@ contains
     end if
   end subroutine run_transient
 
+  !> 'crank 1; coupler 2-3; rocker 4': the elements of each link (its deck name).
+  function link_elements(mech) result(text)
+    type(mechanism_t), intent(in) :: mech
+    character(len=:), allocatable :: text
+    integer :: i, e
+    text = ''
+    e = 0
+    do i = 1, mech%n_links
+      if (i > 1) text = text//'; '
+      text = text//trim(mech%links(i)%name)//' '//str(e + 1)
+      if (mech%links(i)%n_elements > 1) text = text//'-'//str(e + mech%links(i)%n_elements)
+      e = e + mech%links(i)%n_elements
+    end do
+  end function link_elements
+
   !> The summary's names of n elements: the deck's name of each element's
   !> link and the element's number, 'crank (element 1)'.
   function element_labels(mech, n) result(labels)
@@ -476,6 +491,7 @@ contains
     names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), '')]
     call out%comment('columns: t (s); crank_deg = crank angle (deg); '//response_columns_text// &
                      ' (the outer-fibre stress: axial + bending)')
+    call out%comment('elements k of the columns *_e<k> by link: '//link_elements(mech))
     ne = size(model%el)
     if (resp%sections) then
       names = [character(len=32) :: names, ('sigma_b_e'//str(e), e = 1, ne), ('sigma_a_e'//str(e), e = 1, ne), &
