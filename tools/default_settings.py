@@ -174,7 +174,7 @@ def run_cases(args, markdown):
             stress = max((v for n, v in pk.items() if n.startswith('sigma_max')), default=float('nan'))
             rows.append((title, line or '(none: the defaults)', cost.get('steps', ''),
                          cost.get('total_cpu_seconds', ''), f'{stress:.6g}', chosen(out) or ''))
-    head = ('case', 'solver lines', 'steps', 'CPU (s)', 'peak |stress| (psi or Pa)', 'chosen')
+    head = ('case', 'solver lines', 'steps', 'CPU (s)', 'largest peak stress (psi or Pa)', 'chosen')
     if markdown:
         print('| ' + ' | '.join(head) + ' |')
         print('|' + '---|' * len(head))
