@@ -86,16 +86,16 @@ contains
   !> (doc/transient.md, "Default solver settings"):
   !>  - the static deflection q_s under the rigid-body inertia and external
   !>    loads, sampled over the run's span, and the initial displacement:
-  !>    atol = atol_fraction * max |q_s|, atol_rate = atol * the highest
-  !>    natural frequency (choose_atol);
+  !>    atol = atol_fraction * max |q_s|; atol_rate = atol times a frequency
+  !>    (choose_atol);
   !>  - the frequencies the run must resolve: crank_harmonics harmonics of the
   !>    crank speed and every mode that carries at least mode_share of q_s
   !>    (the load's own content; the axial modes carry almost none);
   !>  - the stiffness: the fastest rate of the model (the highest natural
   !>    frequency, or beta w^2 of an overdamped mode) over the highest
-  !>    frequency the run resolves; beyond stiff_ratio Adams' stability limit, not its
-  !>    accuracy, sets its step, and BDF with the model's Newton matrix is
-  !>    cheaper;
+  !>    frequency the run resolves; beyond stiff_ratio Adams' stability
+  !>    limit, not its accuracy, sets its step, and BDF with the model's
+  !>    Newton matrix is cheaper;
   !>  - BDF 3-5 amplify lightly damped modes near the imaginary axis: beyond
   !>    order2_ratio, modes with damping ratio below zeta_bdf5 lie there at
   !>    the run's steps, and order 2 (A-stable) is chosen with the method.
