@@ -11,7 +11,7 @@
 !>     call rows%start()
 !>     every output time: call rows%add(out, tt, row, crank_deg)
 !>                        call rows%close_revolutions(out, theta)  (rows%periodic: stop)
-!>     at the end: call rows%write_last_revolution(out, names); call rows%write_peaks(out, names)
+!>     at the end: call rows%write_last_revolution(out, names); call rows%write_peaks(out, names, 'last', ...)
 !>
 !> revolution_defect_t (spatial): the largest change of the deflection
 !> columns over one revolution, each sample against the one a revolution
@@ -23,7 +23,7 @@ module revolution_rows
   use kinds, only: dp, pi, two_pi
   use strings, only: str
   use table_output, only: table_t
-  use revolution_peaks, only: revolution_peaks_t
+  use revolution_peaks, only: revolution_peaks_t, write_peak_lines
   implicit none
   private
   public :: revolution_rows_t, revolution_defect_t
@@ -133,25 +133,17 @@ contains
     end do
   end subroutine write_last_revolution
 
-  !> One summary line per column: its peak |value| over the last complete
-  !> revolution and over the whole run, with the crank angles.
-  subroutine write_peaks(self, out, names)
+  !> The summary lines of the columns' peaks (revolution_peaks' write_peak_lines):
+  !> which = 'last' (the last complete revolution) or 'whole' (the whole run);
+  !> columns whose names start with skip_prefix are left out (their peaks are
+  !> written elsewhere: the elements' stresses).
+  subroutine write_peaks(self, out, names, which, skip_prefix)
     class(revolution_rows_t), intent(in) :: self
     type(table_t), intent(inout) :: out
-    character(len=*), intent(in) :: names(:)
+    character(len=*), intent(in) :: names(:), which, skip_prefix
     integer :: i
-    associate (pk => self%pk)
-      do i = 1, size(pk%whole)
-        if (pk%n_complete > 0) then
-          call out%summary('peak |'//trim(names(i + 2))//'|', str(pk%last(i), 8)//' at '//str(pk%last_deg(i), 6)// &
-            ' deg in revolution '//str(pk%n_complete)//' (the last complete); whole run '//str(pk%whole(i), 8)// &
-            ' at '//str(pk%whole_deg(i), 6)//' deg')
-        else
-          call out%summary('peak |'//trim(names(i + 2))//'|', str(pk%whole(i), 8)//' at '//str(pk%whole_deg(i), 6)// &
-            ' deg (whole run; no complete revolution)')
-        end if
-      end do
-    end associate
+    call write_peak_lines(self%pk, out, names(3:), '', which, self%turning, self%theta_start*180.0_dp/pi, &
+                          skip=[(index(names(i), skip_prefix) == 1, i = 3, size(names))])
   end subroutine write_peaks
 
   !> The summary line of stop_when_periodic (none without it).

@@ -12,7 +12,8 @@ module transient_analysis
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams
-  use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost
+  use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost, &
+                                   choose_solver_settings, static_load_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, driver_angle
@@ -106,12 +107,14 @@ contains
     if (err%failed()) return
 
     call output_times(mech, s, t0, dt_out, t_end, n_out)
+    call choose_settings(out, s, model, y, t0, t_end, mech%driver%omega, clearance%active, err)
+    if (err%failed()) return
 
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
     call start_rows(out, mech, s, model, resp, clearance, t0, dt_out, names, rows)
-    call stress_peaks%init(size(model%el))
+    call stress_peaks%init(element_labels(mech, size(model%el)), mech%driver%omega > 0.0_dp, rows%theta_start*180.0_dp/pi)
 
     call bar%start('transient', t0, t_end)
     call cpu_time(cpu0)
@@ -139,10 +142,12 @@ contains
     if (err%failed()) call name_stop_angle(mech, model, ode%t, err)
 
     call rows%write_last_revolution(out, names)
-    ! summary and cost
-    call stress_peaks%write(out)
-    call warn_strength(out, mech, stress_peaks%peak)
-    call rows%write_peaks(out, names)
+    ! summary (the last complete revolution first, then the whole run) and cost
+    call stress_peaks%write(out, 'last')
+    call rows%write_peaks(out, names, 'last', 'sigma_max_e')
+    call stress_peaks%write(out, 'whole')
+    call rows%write_peaks(out, names, 'whole', 'sigma_max_e')
+    call warn_strength(out, mech, stress_peaks%pk%whole)
     call rows%write_periodicity(out)
     c = ode%counters()
     revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
@@ -153,6 +158,40 @@ contains
       if (.not. err%failed()) call out%comment('final state saved to restart file '//trim(s%restart_out))
     end if
   end subroutine run_transient
+
+  !> 'crank 1; coupler 2-3; rocker 4': the elements of each link (its deck name).
+  function link_elements(mech) result(text)
+    type(mechanism_t), intent(in) :: mech
+    character(len=:), allocatable :: text
+    integer :: i, e
+    text = ''
+    e = 0
+    do i = 1, mech%n_links
+      if (i > 1) text = text//'; '
+      text = text//trim(mech%links(i)%name)//' '//str(e + 1)
+      if (mech%links(i)%n_elements > 1) text = text//'-'//str(e + mech%links(i)%n_elements)
+      e = e + mech%links(i)%n_elements
+    end do
+  end function link_elements
+
+  !> The summary's names of n elements: the deck's name of each element's
+  !> link and the element's number, 'crank (element 1)'.
+  function element_labels(mech, n) result(labels)
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: n
+    character(len=48) :: labels(n)
+    integer :: e, i, k
+    e = 0
+    do i = 1, mech%n_links
+      do k = 1, mech%links(i)%n_elements
+        e = e + 1
+        if (e <= n) labels(e) = trim(mech%links(i)%name)//' (element '//str(e)//')'
+      end do
+    end do
+    do k = e + 1, n
+      labels(k) = 'element '//str(k)
+    end do
+  end function element_labels
 
   !> The rows' schedule, digits and columns, and the revolution rows that
   !> keep them (rows from t0; the crank angle there starts the revolutions).
@@ -361,6 +400,26 @@ contains
     end select
   end subroutine initial_state
 
+  !> The solver settings the deck left out, from the model's M, K and loads
+  !> over the run (transient_integration).
+  subroutine choose_settings(out, s, model, y, t0, t_end, crank_omega, contact, err)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(inout) :: s
+    type(mechanism_model_t), intent(inout) :: model
+    real(dp), intent(in) :: y(:), t0, t_end, crank_omega
+    logical, intent(in) :: contact
+    type(error_t), intent(inout) :: err
+    type(static_load_t) :: load
+    real(dp) :: mass(model%n, model%n), stiff(model%n, model%n), t
+    call load%start(model%n, y, t0, t_end)
+    do while (load%next(t) .and. .not. err%failed())
+      call model%set_time(t)
+      call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
+      call load%add(model, t, mass, stiff, err)
+    end do
+    call choose_solver_settings(out, s, load, crank_omega, contact, err)
+  end subroutine choose_settings
+
   !> Which output times are written as rows: from t_rows on (the summary's
   !> peaks are over every output time either way); buffer_rows: the rows of
   !> each revolution are kept until it is complete (stop_when_periodic with
@@ -437,6 +496,7 @@ contains
     names = [character(len=32) :: 't', 'crank_deg', response_column_names(mech, size(model%el), '')]
     call out%comment('columns: t (s); crank_deg = crank angle (deg); '//response_columns_text// &
                      ' (the outer-fibre stress: axial + bending)')
+    call out%comment('elements k of the columns *_e<k> by link: '//link_elements(mech))
     ne = size(model%el)
     if (resp%sections) then
       names = [character(len=32) :: names, ('sigma_b_e'//str(e), e = 1, ne), ('sigma_a_e'//str(e), e = 1, ne), &

@@ -14,7 +14,8 @@ module spatial_analysis
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t
-  use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost
+  use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost, &
+                                   choose_solver_settings, static_load_t
   use kear_element, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, check_mode_number
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
@@ -53,6 +54,8 @@ contains
     real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, ke, se
     integer :: k, n_out, jb, jc
     character(len=32), allocatable :: names(:)
+    character(len=*), parameter :: link_name(3) = [character(len=7) :: 'crank', 'coupler', 'rocker']
+    character(len=48), allocatable :: labels(:)
 
     call read_spatial_mechanism(deck, inp, err)
     if (err%failed()) return
@@ -83,11 +86,27 @@ contains
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
     t_end = t0 + s%revolutions*two_pi/inp%omega
     n_out = max(1, nint((t_end - t0)/dt_out))
+    block   ! the solver settings the deck left out, from the model's static response (transient_integration)
+      type(static_load_t) :: load
+      real(dp) :: mass(model%n, model%n), stiff(model%n, model%n)
+      call load%start(model%n, y, t0, t_end)
+      do while (load%next(t) .and. .not. err%failed())
+        call model%set_time(t)
+        call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
+        call load%add(model, t, mass, stiff, err)
+      end do
+      call choose_solver_settings(out, s, load, inp%omega, .false., err)
+    end block
+    if (err%failed()) return
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
     call write_columns(out, model, names)
-    call stress_peaks%init(size(model%el))
+    allocate(labels(size(model%el)))
+    do k = 1, size(labels)     ! the summary names elements by their links
+      labels(k) = trim(link_name(model%link_of(k)))//' (element '//str(k)//')'
+    end do
+    call stress_peaks%init(labels, .true., inp%theta0_deg + inp%omega*t0*180.0_dp/pi)
     call defect%init(n_deflections, samples_per_revolution(s%output_step_deg), n_out)
     call bar%start('spatial', t0, t_end)
     call cpu_time(cpu0)
@@ -105,7 +124,8 @@ contains
     call cpu_time(cpu1)
     if (err%failed()) call name_stop_angle(inp, model, ode%t, err)
 
-    call stress_peaks%write(out)
+    call stress_peaks%write(out, 'last')
+    call stress_peaks%write(out, 'whole')
     if (.not. err%failed()) call defect%write(out)
     call model%energies(ode%t, y(1::2), y(2::2), ke, se)
     call out%summary('final elastic strain energy', str(se, 8)//' lb in')

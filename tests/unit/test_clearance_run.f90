@@ -55,9 +55,9 @@ contains
   subroutine peaks(lines, p)
     character(len=*), intent(in) :: lines(:)
     real(dp), intent(out) :: p(3)
-    p(1) = summary_value(lines, '# summary: element 1 peak |stress| =')
-    p(2) = summary_value(lines, '# summary: element 2 peak |stress| =')
-    p(3) = summary_value(lines, '# summary: element 3 peak |stress| =')
+    p(1) = summary_value(lines, '# summary: whole run peak |stress| crank (element 1), start-up included =')
+    p(2) = summary_value(lines, '# summary: whole run peak |stress| coupler (element 2), start-up included =')
+    p(3) = summary_value(lines, '# summary: whole run peak |stress| rocker (element 3), start-up included =')
   end subroutine peaks
 
   !> One revolution (bdf, rtol 1e-7) pinned and with the &clearance group

@@ -6,7 +6,7 @@ module test_transient_outputs_suite
   use kinds, only: dp
   use error_status, only: error_t
   use transient_analysis, only: run_transient
-  use deck_runner, only: scratch_path, run_deck, has_line, count_rows, line_length
+  use deck_runner, only: scratch_path, run_deck, has_line, count_rows, line_length, summary_value
   use assertions
   use test_text, only: itoa
   implicit none
@@ -47,6 +47,7 @@ contains
     real(dp), allocatable :: rows(:, :), rows_full(:, :)
     character(len=32), allocatable :: names(:)
     integer :: r, e, i, k, c_max, c_b, c_a, stop_rev
+    character(len=*), parameter :: link(3) = [character(len=7) :: 'crank', 'coupler', 'rocker']
     real(dp) :: first, peak_rows, peak_summary, whole_summary, peak_full, smax, sa, sb
     call run_deck(run_transient, scratch, mechanism//transient//"  revolutions = 12, stop_when_periodic = 1.0e-3, "// &
                   "stress_columns = 'all', reactions = T, link_points = T|/|", err, lines)
@@ -67,8 +68,16 @@ contains
       c_a = column(names, 'sigma_a_e'//itoa(e))
       first = 360.0_dp*(stop_rev - 1)
       peak_rows = maxval(abs(rows(c_max, :)), mask=rows(2, :) > first + 1.0_dp)
-      peak_summary = summary_number(lines, '# summary: peak |sigma_max_e'//itoa(e)//'| = ', 1)
-      whole_summary = summary_number(lines, '# summary: peak |sigma_max_e'//itoa(e)//'| = ', 2)
+      peak_summary = summary_value(lines, '# summary: last revolution peak |stress| '//trim(link(e))//' (element '// &
+                                   itoa(e)//') = ')
+      whole_summary = summary_value(lines, '# summary: whole run peak |stress| '//trim(link(e))//' (element '// &
+                                    itoa(e)//'), start-up included = ')
+      call assert_true(summary_value(lines, '# summary: last revolution peak |'//trim(link(e))//'_w_end| = ') < &
+                       huge(1.0_dp), 'a column''s last-revolution peak line, link '//trim(link(e)))
+      call assert_true(summary_value(lines, '# summary: whole run peak |'//trim(link(e))//'_w_end|, start-up '// &
+                       'included = ') < huge(1.0_dp), 'a column''s whole-run peak line, link '//trim(link(e)))
+      call assert_true(.not. has_line(lines, '# summary: last revolution peak |sigma_max_e'), &
+                       'the stress columns'' peaks are the elements'' lines, once')
       call assert_rel_close(peak_summary, peak_rows, 1.0e-7_dp, 'last-revolution peak = largest row, element '//itoa(e))
       call assert_true(whole_summary >= peak_summary, 'whole-run peak >= last revolution''s, element '//itoa(e))
       peak_full = maxval(abs(rows_full(c_max, :)), mask=rows_full(2, :) > 360.0_dp*11 + 1.0_dp)
@@ -105,25 +114,6 @@ contains
       return
     end do
   end function revolution_of
-
-  !> The n-th number (1: after the key, 2: after 'whole run') of the line starting with key.
-  real(dp) function summary_number(lines, key, n) result(v)
-    character(len=*), intent(in) :: lines(:), key
-    integer, intent(in) :: n
-    integer :: i, ios, p
-    v = -1.0_dp
-    do i = 1, size(lines)
-      if (index(lines(i), key) /= 1) cycle
-      if (n == 1) then
-        read(lines(i)(len(key) + 1:), *, iostat=ios) v
-      else
-        p = index(lines(i), 'whole run ')
-        read(lines(i)(p + len('whole run '):), *, iostat=ios) v
-      end if
-      if (ios /= 0) v = -1.0_dp
-      return
-    end do
-  end function summary_number
 
   !> Column names (the last '#' line before the first row) and the rows.
   subroutine table(lines, names, rows)
