@@ -95,7 +95,8 @@ ODEPACK_LIST  := $(BUILD_DIR)/odepack/files.txt
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
-.PHONY: all deps odepack run test test-bins bench clean distclean help plot
+.PHONY: all deps odepack run test test-bins bench clean distclean help plot \
+        test-bins-release test-bins-debug mpi-if-present
 .DEFAULT_GOAL := all
 
 all: $(BIN_DIR)/flexmech
@@ -194,11 +195,15 @@ plot: all
 	@test -n "$(PLOT_OUTPUT)" || { echo "usage: make plot OUT=run.out" >&2; exit 1; }
 	$(BIN_DIR)/flexmech plot $(PLOT_OUTPUT)
 
-test: deps
-	@$(MAKE) --no-print-directory BUILD=release test-bins
-	@$(MAKE) --no-print-directory BUILD=debug test-bins
+# The flavours build side by side (one sub-make each, sharing the job slots);
+# the system packages and ODEPACK come first, once.
+test-bins-release test-bins-debug: test-bins-%: deps odepack
+	@$(MAKE) --no-print-directory BUILD=$* test-bins
+mpi-if-present: deps odepack
 	@if command -v mpif90 >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1; then \
 	  $(MAKE) --no-print-directory BUILD=release MPI=1 all; fi
+
+test: test-bins-release test-bins-debug mpi-if-present
 	@sh tests/run_tests.sh $(BUILD_DIR)
 
 bench:
@@ -212,6 +217,20 @@ clean:
 # also forgets the ODEPACK download
 distclean:
 	rm -rf $(BUILD_DIR)
+
+# ---------------------------------------------------------------- inner loop and docs
+#   make check        the fast inner loop (a few minutes on 2 cores): every unit suite
+#                     (release build) and deck-error test, the decks and scenarios of tests/check.txt
+#   make check-docs   the commands of doc/tutorial.md in a scratch directory, the numbers it
+#                     quotes, the decks every page names (tests/docs/check_docs.py)
+.PHONY: check check-docs
+
+check: test-bins-release test-bins-debug
+	@SELECTION=tests/check.txt UNIT_FLAVOUR=release sh tests/run_tests.sh $(BUILD_DIR)
+
+check-docs: all
+	@command -v python3 >/dev/null 2>&1 || sh tools/install_deps.sh python3
+	@python3 tests/docs/check_docs.py $(BUILD_DIR)
 
 # ---------------------------------------------------------------- reliability
 #   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds (FUZZ_JOBS at once)
