@@ -161,6 +161,7 @@ $(OUT)/bench/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(TLIB_OBJ) $(ODEPACK_LIB)
 	$(call step,$(COMPILING),$(FC) $(FFLAGS) -o $@ $^ $(BENCH_LIBS) $(LIBS))
 
 test-bins: $(BIN_DIR)/flexmech $(TEST_BIN) $(TOOL_BIN)
+	@:
 
 bench-bins: $(BIN_DIR)/flexmech $(BENCH_BIN)
 
