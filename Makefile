@@ -1,7 +1,9 @@
 # flexmech: nonlinear analysis and optimal design of flexible mechanisms.
 #
 #   make run     build and run the default deck (prints where the output went)
+#   make check   the fast inner loop: unit suites and a representative set of decks
 #   make test    build (release and debug), run unit, deck-error and regression tests
+#   make check-docs  run the tutorial's commands and check the numbers it quotes
 #   make bench   work-precision and cost studies (figures, not pass/fail)
 #   make plot OUT=run.out   standard figures of an output (PNG, SVG; flexmech plot)
 #   make figures            the paper gallery (doc/gallery.md, doc/figures/gallery/)
@@ -10,6 +12,20 @@
 #
 # Our own code builds with -std=f2008 -Wall -Wextra, warning-free.  ODEPACK is
 # compiled from Debian's octave source package with its own legacy flags.
+#
+# Builds and test runs use every core (make -jN overrides); each build step's
+# output goes to build/<flavour>/build.log and a failing step prints its own
+# output.  V=1 prints every command line instead.
+
+# -j for the top-level make only: sub-makes share its job slots.
+ifeq ($(MAKELEVEL),0)
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
+endif
+# one identifier per top-level make, so that a build prints its banner once
+ifndef BUILD_ID
+export BUILD_ID := $(shell date +%s%N)
+endif
+V ?=
 
 FC        ?= gfortran
 ifeq ($(origin FC),default)
@@ -47,6 +63,15 @@ override OUT := $(BUILD_DIR)/$(FLAVOUR)
 endif
 OBJ_DIR   := $(OUT)/obj
 MOD_DIR   := $(OUT)/mod
+BUILD_LOG := $(OUT)/build.log
+# $(call step,BANNER,COMMAND[,LOG]): COMMAND, quiet unless V=1, its output
+# in LOG (default BUILD_LOG; tools/build_step.sh)
+ifeq ($(V),1)
+step = $(2)
+else
+step = @sh tools/build_step.sh $(or $(3),$(BUILD_LOG)) '$(1)' $(2)
+endif
+COMPILING := flexmech: compiling the $(FLAVOUR) build in $(OUT)
 BIN_DIR   := $(if $(filter release,$(BUILD)),$(if $(filter 1,$(MPI)),$(BUILD_DIR)/mpi/bin,$(BUILD_DIR)/bin),$(OUT)/bin)
 
 LIB_SRC   := $(sort $(shell find src -name '*.f90' ! -path 'src/app/*' ! -path '$(POOL_SKIP)'))
@@ -71,7 +96,8 @@ ODEPACK_LIST  := $(BUILD_DIR)/odepack/files.txt
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
-.PHONY: all deps odepack run test test-bins bench clean distclean help plot figures
+.PHONY: all deps odepack run test test-bins bench clean distclean help plot figures \
+        test-bins-release test-bins-debug mpi-if-present
 .DEFAULT_GOAL := all
 
 all: $(BIN_DIR)/flexmech
@@ -81,7 +107,7 @@ help:
 
 # ---------------------------------------------------------------- dependencies
 deps:
-	@sh tools/install_deps.sh $(EXTRA_PKGS) $(MPI_PKGS)
+	@DEPS_LOG=$(BUILD_DIR)/deps.log sh tools/install_deps.sh $(EXTRA_PKGS) $(MPI_PKGS)
 
 $(ODEPACK_SRC)/dlsode.f: | deps
 	@sh tools/fetch_odepack.sh $(BUILD_DIR) $(ODEPACK_SRC)
@@ -93,8 +119,8 @@ $(shell mkdir -p $(BUILD_DIR)/odepack; echo '$(ODEPACK_FILES)' | cmp -s - $(ODEP
 
 $(ODEPACK_LIB): $(ODEPACK_SRC)/dlsode.f $(ODEPACK_LIST)
 	@mkdir -p $(BUILD_DIR)/odepack/obj
-	@for f in $(ODEPACK_FILES); do \
-	  $(FC) $(LEGACY_FFLAGS) -c $(ODEPACK_SRC)/$$f.f -o $(BUILD_DIR)/odepack/obj/$$f.o || exit 1; done
+	$(if $(filter 1,$(V)),,@sh tools/build_step.sh $(BUILD_DIR)/odepack/build.log 'flexmech: compiling ODEPACK') \
+	  sh -c 'for f in $(ODEPACK_FILES); do $(FC) $(LEGACY_FFLAGS) -c $(ODEPACK_SRC)/$$f.f -o $(BUILD_DIR)/odepack/obj/$$f.o || exit 1; done'
 	@rm -f $@ && ar rcs $@ $(addprefix $(BUILD_DIR)/odepack/obj/,$(addsuffix .o,$(ODEPACK_FILES)))
 	@echo "built $@ from $(ODEPACK_SRC)"
 
@@ -112,19 +138,20 @@ $(OUT)/deps.mk: $(ALL_SRC) $(SRC_LIST) tools/fortran_deps.sh | deps
 
 $(OBJ_DIR)/%.o: %.f90 | deps
 	@mkdir -p $(OBJ_DIR) $(MOD_DIR)
-	$(FC) $(FFLAGS) -J$(MOD_DIR) -I$(MOD_DIR) -c $< -o $@
+	$(call step,$(COMPILING),$(FC) $(FFLAGS) -J$(MOD_DIR) -I$(MOD_DIR) -c $< -o $@)
 
 $(BIN_DIR)/flexmech: $(call obj,$(APP_SRC)) $(LIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(BIN_DIR)
-	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+	$(call step,$(COMPILING),$(FC) $(FFLAGS) -o $@ $^ $(LIBS))
+	@echo "built $@"
 
 $(OUT)/tests/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(TLIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(OUT)/tests
-	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+	$(call step,$(COMPILING),$(FC) $(FFLAGS) -o $@ $^ $(LIBS))
 
 $(OUT)/tools/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(OUT)/tools
-	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+	$(call step,$(COMPILING),$(FC) $(FFLAGS) -o $@ $^ $(LIBS))
 
 # Benchmarks may compare with NLopt (optional; installed by `make bench`).
 BENCH_LIBS := -lnlopt
@@ -132,9 +159,10 @@ BENCH_LIBS := -lnlopt
 # Benchmarks share the tests' fixtures (tests/lib), so they measure the same cases.
 $(OUT)/bench/%: $(OBJ_DIR)/%.o $(LIB_OBJ) $(TLIB_OBJ) $(ODEPACK_LIB)
 	@mkdir -p $(OUT)/bench
-	$(FC) $(FFLAGS) -o $@ $^ $(BENCH_LIBS) $(LIBS)
+	$(call step,$(COMPILING),$(FC) $(FFLAGS) -o $@ $^ $(BENCH_LIBS) $(LIBS))
 
 test-bins: $(BIN_DIR)/flexmech $(TEST_BIN) $(TOOL_BIN)
+	@:
 
 bench-bins: $(BIN_DIR)/flexmech $(BENCH_BIN)
 
@@ -142,13 +170,19 @@ bench-bins: $(BIN_DIR)/flexmech $(BENCH_BIN)
 # make PROBLEM=path/to/my_problem.f90: that file (a module `user_problems`,
 # template examples/user_problem/hs71_problem.f90) replaces the default
 # src/optim/user_problems.f90 in build/user/flexmech; decks name its problems.
+# The stamp names the problem file (and the flags): switching to another file,
+# even an older one, rebuilds.
 ifneq ($(PROBLEM),)
 USER_DIR := $(BUILD_DIR)/user
+USER_STAMP := $(USER_DIR)/problem.txt
+USER_BANNER := flexmech: compiling $(PROBLEM) into $(USER_DIR)
+$(shell mkdir -p $(USER_DIR); echo '$(abspath $(PROBLEM)) $(FLAVOUR) $(FFLAGS)' | cmp -s - $(USER_STAMP) || \
+  echo '$(abspath $(PROBLEM)) $(FLAVOUR) $(FFLAGS)' > $(USER_STAMP))
 all: $(USER_DIR)/flexmech
-$(USER_DIR)/flexmech: $(PROBLEM) $(call obj,$(APP_SRC)) $(filter-out %/user_problems.o,$(LIB_OBJ)) $(ODEPACK_LIB)
+$(USER_DIR)/flexmech: $(PROBLEM) $(USER_STAMP) $(call obj,$(APP_SRC)) $(filter-out %/user_problems.o,$(LIB_OBJ)) $(ODEPACK_LIB)
 	@mkdir -p $(USER_DIR)/mod
-	$(FC) $(FFLAGS) -J$(USER_DIR)/mod -I$(MOD_DIR) -c $(PROBLEM) -o $(USER_DIR)/user_problems.o
-	$(FC) $(FFLAGS) -o $@ $(USER_DIR)/user_problems.o $(filter %.o %.a,$^) $(LIBS)
+	$(call step,$(USER_BANNER),$(FC) $(FFLAGS) -J$(USER_DIR)/mod -I$(MOD_DIR) -c $(PROBLEM) -o $(USER_DIR)/user_problems.o,$(USER_DIR)/build.log)
+	$(call step,$(USER_BANNER),$(FC) $(FFLAGS) -o $@ $(USER_DIR)/user_problems.o $(filter %.o %.a,$^) $(LIBS),$(USER_DIR)/build.log)
 	@echo "built $@ with the problems of $(PROBLEM)"
 endif
 
@@ -167,11 +201,15 @@ plot: all
 figures: all
 	@sh doc/figures/gallery/gallery.sh $(BIN_DIR)/flexmech $(BUILD_DIR)/gallery
 
-test: deps
-	@$(MAKE) --no-print-directory BUILD=release test-bins
-	@$(MAKE) --no-print-directory BUILD=debug test-bins
+# The flavours build side by side (one sub-make each, sharing the job slots);
+# the system packages and ODEPACK come first, once.
+test-bins-release test-bins-debug: test-bins-%: deps odepack
+	@$(MAKE) --no-print-directory BUILD=$* test-bins
+mpi-if-present: deps odepack
 	@if command -v mpif90 >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1; then \
 	  $(MAKE) --no-print-directory BUILD=release MPI=1 all; fi
+
+test: test-bins-release test-bins-debug mpi-if-present
 	@sh tests/run_tests.sh $(BUILD_DIR)
 
 bench:
@@ -185,6 +223,20 @@ clean:
 # also forgets the ODEPACK download
 distclean:
 	rm -rf $(BUILD_DIR)
+
+# ---------------------------------------------------------------- inner loop and docs
+#   make check        the fast inner loop (a few minutes on 2 cores): every unit suite
+#                     (release build) and deck-error test, the decks and scenarios of tests/check.txt
+#   make check-docs   the commands of doc/tutorial.md in a scratch directory, the numbers it
+#                     quotes, the decks every page names (tests/docs/check_docs.py)
+.PHONY: check check-docs
+
+check: test-bins-release test-bins-debug
+	@SELECTION=tests/check.txt UNIT_FLAVOUR=release sh tests/run_tests.sh $(BUILD_DIR)
+
+check-docs: all
+	@command -v python3 >/dev/null 2>&1 || sh tools/install_deps.sh python3
+	@python3 tests/docs/check_docs.py $(BUILD_DIR)
 
 # ---------------------------------------------------------------- reliability
 #   make fuzz RUNS=N SEED=S   mutation fuzz of every deck, release and debug builds (FUZZ_JOBS at once)

@@ -35,16 +35,22 @@ aptopts="-o Dir::Etc::SourceList=$apt/etc/sources.list -o Dir::Etc::SourceParts=
  -o APT::Sandbox::User=root"
 
 tarball=$(ls "$apt/src"/octave_*.orig.tar.* 2>/dev/null | head -n 1 || true)
+log="$apt/fetch.log"
 if [ -z "$tarball" ]; then
-  echo "flexmech: fetching the octave source package for ODEPACK (once; kept in $apt/src)" >&2
+  echo "flexmech: fetching the octave source package for ODEPACK (once; kept in $apt/src; log: $log)" >&2
+  # apt's own lines go to the log: it reports the Debian diff or signature it could
+  # not fetch ("E: Failed to fetch ... 404"), which is harmless, since only the
+  # upstream tarball is needed and its checksum is verified below.
   # shellcheck disable=SC2086
-  apt-get $aptopts -qq update >&2
-  # Only the upstream tarball is needed: a failure to fetch the Debian diff or the
-  # signature file is tolerated, the tarball's checksum is verified below instead.
+  apt-get $aptopts -qq update > "$log" 2>&1 || true
   # shellcheck disable=SC2086
-  (cd "$apt/src" && apt-get $aptopts -qq source --download-only octave >&2) || true
+  (cd "$apt/src" && apt-get $aptopts -qq source --download-only octave) >> "$log" 2>&1 || true
   tarball=$(ls "$apt/src"/octave_*.orig.tar.* 2>/dev/null | head -n 1 || true)
-  [ -n "$tarball" ] || { echo "flexmech: could not download the octave source package" >&2; exit 1; }
+  if [ -z "$tarball" ]; then
+    tail -n 20 "$log" >&2
+    echo "flexmech: could not download the octave source package (log: $log)" >&2
+    exit 1
+  fi
 fi
 
 # Verify the tarball against the SHA-256 in the package's .dsc.

@@ -2,6 +2,7 @@
 # Install flexmech's system dependencies from Debian/Ubuntu packages when missing.
 # gnuplot-nox draws `flexmech plot` figures (headless: PNG, SVG, GIF).
 # Does nothing when everything is present. Usage: install_deps.sh [extra-package ...]
+# DEPS_LOG names the log of apt's output (default build/deps.log).
 set -eu
 pkgs="gfortran liblapack-dev libblas-dev gnuplot-nox $*"
 missing=""
@@ -20,8 +21,14 @@ else
   echo "    apt-get update && apt-get install -y$missing" >&2
   exit 1
 fi
-echo "flexmech: installing$missing" >&2
+# apt's own lines go to a log; its tail is printed when the installation fails
+log=${DEPS_LOG:-build/deps.log}
+mkdir -p "$(dirname "$log")"
+echo "flexmech: installing$missing with apt-get (log: $log)" >&2
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq >&2
 # shellcheck disable=SC2086
-$SUDO apt-get install -y -qq --no-install-recommends $missing >&2
+if ! { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq --no-install-recommends $missing; } > "$log" 2>&1; then
+  tail -n 20 "$log" >&2
+  echo "flexmech: installing$missing failed (log: $log)" >&2
+  exit 1
+fi

@@ -4,8 +4,8 @@
 !>
 !> Element DOFs are [U1 W1 th1 m1 U2 W2 th2 m2]: global X/Y elastic
 !> translations, then slope and curvature relative to the link's reference
-!> line, at the element's start and end node.  The rules (FORMULATION.md §6,
-!> generalised; see doc/correlation_table.md):
+!> line, at the element's start and end node.  The rules (the report's
+!> four-bar assembly, generalised; see doc/correlation_table.md):
 !>  - inside a link, consecutive elements share all four DOFs of their common
 !>    node (the quintic element is C2 along a straight link);
 !>  - 'pin' joining link ends: the translations U, W are shared, each link keeps

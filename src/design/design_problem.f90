@@ -1,5 +1,5 @@
 !> Optimal design of a flexible mechanism with the nonlinear analysis in the
-!> loop (paper L, FORMULATION.md §1): an optimization problem whose every
+!> loop (paper L; doc/design.md): an optimization problem whose every
 !> function evaluation is one steady-state analysis of the mechanism.
 !>
 !> Design variables are deck values of &mechanism named as in the deck

@@ -1,4 +1,4 @@
-!> Kear's planar beam element (1986-87, FORMULATION.md section 5): exact axial
+!> Kear's planar beam element (1986-87, K1-K34; doc/element.md): exact axial
 !> stretch and curvature, Ramberg-Osgood material integrated through the
 !> depth in closed form, exact rotary inertia, K26 interpolation.
 !>

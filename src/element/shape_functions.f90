@@ -1,6 +1,6 @@
 !> Element interpolation of Tennant (T20-T21) and Kear (K27, K29): linear
 !> Lagrange n1, n2 for the axial displacement and quintic Hermite h1..h6 for
-!> the transverse displacement (FORMULATION.md section 4).
+!> the transverse displacement (T20-T21 = K27, K29; doc/element.md).
 !>
 !> With e = x/l:  h1, h4 carry the nodal value, h2, h5 the nodal slope and
 !> h3, h6 the nodal second derivative (curvature DOF), so w, w_x and w_xx are

@@ -1,5 +1,5 @@
-!> Spatial beam element for flexible mechanisms (paper E, FORMULATION.md
-!> section 7, built in the spirit of Kear's planar element; every choice the
+!> Spatial beam element for flexible mechanisms (paper E; doc/spatial.md;
+!> built in the spirit of Kear's planar element; every choice the
 !> OCR leaves open is in doc/spatial.md).  Floating frame: the element's
 !> reference line moves with its link's rigid-body motion (rotation R(t),
 !> columns = local axes in global components), elastic displacements are

@@ -9,7 +9,7 @@
 !> closed form; the E2 part by a product rule that is exact for odd integer
 !> m <= 5 (polynomial integrand of degree m+1 <= 6) and accurate to
 !> truncation otherwise.  Shear and torsion stay linear: the shear terms of
-!> paper E's strain energy are illegible (FORMULATION.md section 7).
+!> paper E's strain energy are illegible in the report's OCR (doc/spatial.md).
 module spatial_section
   use kinds, only: dp, pi
   use error_status, only: error_t

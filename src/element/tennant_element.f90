@@ -1,4 +1,4 @@
-!> Tennant's planar beam element (1985, FORMULATION.md §3): linear axial u,
+!> Tennant's planar beam element (1985, T1-T30; doc/steady_state.md): linear axial u,
 !> quintic Hermite transverse w with nodal deflection, slope and curvature
 !> (T17, T18), an optional shear angle alpha interpolated like w (T19, the
 !> 14-DOF element), the tracing constants D_k (material), D_b (curvature) and

@@ -2,10 +2,11 @@
 !>
 !>     M(q, t) q_dd = F(q, q_d, t)   ->   y' = f(t, y)
 !>
-!> about the known rigid-body motion.  One right-hand-side evaluation solves
-!> the rigid kinematics at t, evaluates every element (Kear's element) through
-!> the variable correlation table, assembles M in band storage and F, factors
-!> M by banded Cholesky (LAPACK DPBTRF: cost linear in the number of
+!> about the known rigid-body motion.  One right-hand-side evaluation takes
+!> the rigid motion at t, evaluates every element (Kear's or the consistent
+!> element, through the beam_element contract) through the variable
+!> correlation table, assembles M in band storage and F, factors M by the
+!> project's banded Cholesky (band_kernels: cost linear in the number of
 !> elements) and solves for the accelerations.
 !>
 !> The state is interleaved, y(2i-1) = q_i and y(2i) = q_d_i, so that the
@@ -133,7 +134,7 @@ module mechanism_model
     ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored,
     ! the clearance contacts as its pair dampers
     type(second_order_newton_t) :: newton
-    ! external loads (src/transient/loads.f90): gravity acceleration and point forces/moments
+    ! external loads (src/model/external_loads.f90): gravity acceleration and point forces/moments
     real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
     type(point_load_t), allocatable :: loads(:)
     real(dp) :: load_scale = 1.0_dp               !< multiplies every point load (static load stepping)
@@ -1252,7 +1253,7 @@ contains
   ! ------------------------------------------------------------------ external loads
 
   !> Gravity (global acceleration vector) and point loads (already resolved
-  !> to elements, src/transient/loads.f90).
+  !> to elements, src/model/external_loads.f90).
   subroutine set_loads(self, gravity, point_loads)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: gravity(2)

@@ -1,5 +1,5 @@
 !> Four-bar path generation with circular crank-pivot regions (Boston et
-!> al., Table 3; FORMULATION.md §10.3), as a sum-of-squares problem for the
+!> al., paper B Table 3; doc/optimization.md), as a sum-of-squares problem for the
 !> Gauss family.
 !>
 !> Variables: x1 ground link, x2 crank, x3 coupler, x4 rocker, x5 crank pin B

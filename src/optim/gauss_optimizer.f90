@@ -1,4 +1,4 @@
-!> The Gauss family of optimizers (FORMULATION.md §9) as one class.
+!> The Gauss family of optimizers (papers P and B; doc/optimization.md) as one class.
 !>
 !>   gauss              unconstrained Gauss method, no line search (B12, P2)
 !>   gauss_constrained  linear constraints, closed-form multipliers (Paradis & Willmert, P16, P17)
@@ -978,7 +978,7 @@ contains
             return
           end if
           call err%set(self%method_label(), 'step-back cycling at iteration '//str(k + 1)// &
-            ' (Potter, FORMULATION.md 9.5 item 3): backing out of violated constraint(s) ' &
+            ' (Potter, P24-P25, doc/optimization.md): backing out of violated constraint(s) ' &
             //set_text(violated .and. .not. self%active(1:m))//' entered the violated region of active ' &
             //set_text(limit)//'; the step-back returns to x_k with the same active set, so the ' &
             //'next iteration would reproduce the same design')

@@ -1,5 +1,5 @@
-!> The Lagrange-multiplier equations of the Gauss family (FORMULATION.md
-!> §9.2-§9.5) and the step they define.
+!> The Lagrange-multiplier equations of the Gauss family (P4-P25, B3-B13;
+!> doc/optimization.md) and the step they define.
 !>
 !> For an active set S (l constraints) the KKT conditions at the new point,
 !> with F quadratic through G, give the step s = x_{k+1} - x_k as a function

@@ -1,4 +1,4 @@
-!> An optimization problem for the Gauss family (FORMULATION.md §9): the type
+!> An optimization problem for the Gauss family (doc/optimization.md): the type
 !> users extend, with forward-difference defaults for every derivative and
 !> counters for the work done.
 !>

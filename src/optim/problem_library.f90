@@ -2,7 +2,7 @@
 !>
 !> Each comes with a default start and, where the literature gives one, its
 !> known optimum.  Sources: Rosen & Suzuki (CACM 8, 1965) as printed in P
-!> (FORMULATION.md §10.1); Moré, Garbow & Hillstrom, ACM TOMS 7 (1981) 17-41
+!> (Table I; doc/optimization.md); Moré, Garbow & Hillstrom, ACM TOMS 7 (1981) 17-41
 !> (MGH); Hock & Schittkowski, Test Examples for Nonlinear Programming Codes,
 !> LNEMS 187 (1981) (HS); B's four-bar (§10.3, module fourbar_path); and three
 !> small constructed problems for the bad cases of doc/optimization.md, built

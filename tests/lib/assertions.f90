@@ -41,15 +41,19 @@ contains
   subroutine run_test(name, test)
     character(len=*), intent(in) :: name
     procedure(test_procedure) :: test
+    real :: t0, t1
     current_name = name
     failures_in_current = 0
+    call cpu_time(t0)
     call test()
+    call cpu_time(t1)
+    ! the CPU time is printed to find the slow tests; nothing depends on it
     if (failures_in_current == 0) then
       n_passed = n_passed + 1
-      write(output_unit, '(a)') '  PASS '//trim(name)
+      write(output_unit, '(a,f0.2,a)') '  PASS '//trim(name)//' (', t1 - t0, ' s CPU)'
     else
       n_failed = n_failed + 1
-      write(output_unit, '(a)') '  FAIL '//trim(name)
+      write(output_unit, '(a,f0.2,a)') '  FAIL '//trim(name)//' (', t1 - t0, ' s CPU)'
     end if
     flush(output_unit)
   end subroutine run_test
