@@ -13,6 +13,8 @@
 !> so to round-off; 1e-8 relative):
 !>  - force F along X at B:  u_B = F L1^3/(3 E I), C does not move;
 !>  - moment M about Z on the crank's end B:  u_B = -M L1^2/(2 E I);
+!>  - moment T about Y (the crank's axis) on its end B, which keeps local
+!>    rotations: twist T L1/(G J), B does not move;
 !>  - force F along X at the crank's middle node (two elements a link):
 !>    u_B = 5 F L1^3/(48 E I);
 !>  - gravity g along X:  u_B = q L1^4/(8 E I) + (q L2/2) L1^3/(3 E I),
@@ -23,7 +25,7 @@ module test_spatial_loads_suite
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t
   use spatial_section, only: spatial_section_init, section_circular
-  use spatial_beam, only: spatial_formulation_kear, spatial_formulation_consistent
+  use spatial_beam, only: spatial_formulation_kear, spatial_formulation_consistent, spatial_to_local
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
   use spatial_external_loads, only: spatial_point_load_t
   use spatial_model
@@ -43,6 +45,7 @@ contains
   subroutine run_all()
     call run_test('tip_force_at_b_is_a_cantilever', test_tip_force)
     call run_test('tip_moment_on_the_crank_end', test_tip_moment)
+    call run_test('torque_on_the_crank_end_in_its_local_axes', test_tip_torque)
     call run_test('force_at_an_interior_node', test_interior_force)
     call run_test('gravity_normal_to_the_links', test_gravity)
   end subroutine run_all
@@ -113,6 +116,30 @@ contains
       call assert_true(maxval(abs(ub(2:3))) <= 1.0e-8_dp*abs(expect), 'B moves along X only')
     end do
   end subroutine test_tip_moment
+
+  !> The twist of the crank's end 2 (local tx) under a torque given in global components.
+  subroutine test_tip_torque()
+    real(dp), parameter :: m = 25.0_dp, g_alu = 10.87e6_dp/(2.0_dp*1.33_dp)
+    type(spatial_model_t) :: sm
+    type(error_t) :: err
+    real(dp), allocatable :: q(:)
+    real(dp) :: p(20), expect
+    integer :: i
+    expect = m*l1/(g_alu*pi*radius**4/2.0_dp)
+    do i = 1, 2
+      call model_at_90(1, formulations(i), sm)
+      call sm%set_loads([0.0_dp, 0.0_dp, 0.0_dp], [spatial_point_load_t(element=1, node=2, &
+                        moment=[0.0_dp, m, 0.0_dp])])
+      if (allocated(q)) deallocate(q)
+      allocate(q(sm%n))
+      q = 0.0_dp
+      call sm%static_state(0.0_dp, q, err)
+      call assert_true(.not. err%failed(), 'static state: '//err%text())
+      p = spatial_to_local(sm%rb(1)%rot, sm%table%gather(1, q), sm%el(1)%local_rotation)
+      call assert_rel_close(p(14), expect, 1.0e-8_dp, 'crank twist = T L/(G J)')
+      call assert_true(maxval(abs(q(sm%b_dofs))) <= 1.0e-8_dp*expect*l1, 'B does not move under the torque')
+    end do
+  end subroutine test_tip_torque
 
   !> Two elements a link: the crank's node 1 (its middle) is end 2 of element 1.
   subroutine test_interior_force()
