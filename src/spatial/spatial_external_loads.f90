@@ -67,6 +67,7 @@ contains
     logical, intent(out) :: found
     type(error_t), intent(inout) :: err
     integer :: k, n
+    real(dp) :: flat(3*max_spatial_loads)
     call set_defaults()
     call deck%read_group(g, spatial_loads_group, .false., found, err)
     if (err%failed()) return
@@ -85,10 +86,10 @@ contains
     n = inp%n_loads
     call check_reals(deck, g, 'load_position', inp%load_position(1:n), err, at_least=0.0_dp, at_most=1.0_dp, &
                      why='a fraction of the link length from its end 1')
-    call check_reals(deck, g, 'load_force', reshape(inp%load_force(:, 1:n), [3*n]), err, at_least=-1.0e12_dp, &
-                     at_most=1.0e12_dp)
-    call check_reals(deck, g, 'load_moment', reshape(inp%load_moment(:, 1:n), [3*n]), err, at_least=-1.0e12_dp, &
-                     at_most=1.0e12_dp)
+    flat(1:3*n) = reshape(inp%load_force(:, 1:n), [3*n])
+    call check_reals(deck, g, 'load_force', flat(1:3*n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
+    flat(1:3*n) = reshape(inp%load_moment(:, 1:n), [3*n])
+    call check_reals(deck, g, 'load_moment', flat(1:3*n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
     do k = 1, n
       if (err%failed()) return
       if (len_trim(inp%load_joint(k)) > 0) &
