@@ -57,7 +57,7 @@ contains
     type(revolution_defect_t) :: defect
     real(dp), allocatable :: y(:), omega_n(:)
     real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, ke, se
-    integer :: k, n_out, jb, jc
+    integer :: k, n_out, jb, jc, link_elements(3), link_first(3)
     character(len=32), allocatable :: names(:)
 
     call read_spatial_mechanism(deck, inp, err)
@@ -84,8 +84,9 @@ contains
       call input_error_in(deck, 'spatial_mechanism', err)
       return
     end if
-    call resolve_spatial_loads(deck, loads, model%links%n_elements, model%links%first_element, gravity, &
-                               point_loads, err)
+    link_elements = model%links%n_elements        ! (contiguous copies for the dummies)
+    link_first = model%links%first_element
+    call resolve_spatial_loads(deck, loads, link_elements, link_first, gravity, point_loads, err)
     if (err%failed()) return
     call model%set_loads(gravity, point_loads)
     call write_header(out, inp, s, model)
