@@ -26,6 +26,8 @@ module spatial_analysis
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
+  use spatial_external_loads, only: spatial_loads_input_t, spatial_point_load_t, read_spatial_loads, resolve_spatial_loads, &
+                           spatial_loads_group
   implicit none
   private
   public :: run_spatial
@@ -43,6 +45,10 @@ contains
     type(error_t), intent(inout) :: err
     type(spatial_input_t) :: inp
     type(transient_settings_t) :: s
+    type(spatial_loads_input_t) :: loads
+    type(spatial_point_load_t), allocatable :: point_loads(:)
+    real(dp) :: gravity(3)
+    logical :: has_loads
     type(spatial_fourbar_t) :: kin
     type(spatial_link_t) :: links(3)
     type(spatial_model_t), target :: model
@@ -52,7 +58,7 @@ contains
     type(revolution_defect_t) :: defect
     real(dp), allocatable :: y(:), omega_n(:)
     real(dp) :: t_end, dt_out, t, t0, cpu0, cpu1, ke, se
-    integer :: k, n_out, jb, jc
+    integer :: k, n_out, jb, jc, link_elements(3), link_first(3)
     character(len=32), allocatable :: names(:)
     character(len=*), parameter :: link_name(3) = [character(len=7) :: 'crank', 'coupler', 'rocker']
     character(len=48), allocatable :: labels(:)
@@ -61,10 +67,18 @@ contains
     if (err%failed()) return
     call read_transient_settings(deck, s, err)
     if (err%failed()) return
+    call read_spatial_loads(deck, loads, has_loads, err)
+    if (err%failed()) return
     call check_supported(deck, s, inp, err)
     if (err%failed()) return
+    if (loads%initial_static .and. s%initial /= 'rigid') then
+      call invalid_value(deck, 'spatial_loads', 'initial_static', 'T', 'the static start replaces the '// &
+                         'rigid-body start: it needs initial = ''rigid'' in &transient, not '''//trim(s%initial)//'''', err)
+      return
+    end if
     call out%echo_group(spatial_mechanism_group)
     call echo_transient_settings(out)
+    if (has_loads) call out%echo_group(spatial_loads_group)
     call build_spatial(deck, inp, kin, links, jb, jc, err)
     if (err%failed()) return
     call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err, &
@@ -73,7 +87,13 @@ contains
       call input_error_in(deck, 'spatial_mechanism', err)
       return
     end if
+    link_elements = model%links%n_elements        ! (contiguous copies for the dummies)
+    link_first = model%links%first_element
+    call resolve_spatial_loads(deck, loads, link_elements, link_first, gravity, point_loads, err)
+    if (err%failed()) return
+    call model%set_loads(gravity, point_loads)
     call write_header(out, inp, s, model)
+    call write_loads(out, gravity, point_loads)
 
     allocate(omega_n(model%n))
     call model%linear_modes(omega_n, err)
@@ -81,7 +101,7 @@ contains
     call write_frequencies(out, inp, s, omega_n)
 
     allocate(y(model%state_size()))
-    call initial_state(deck, out, s, model, t0, y, err)
+    call initial_state(deck, out, s, loads%initial_static, model, t0, y, err)
     if (err%failed()) return
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
     t_end = t0 + s%revolutions*two_pi/inp%omega
@@ -241,12 +261,13 @@ contains
 
   !> The initial state and time: the rigid-body state at t = 0, a linear
   !> mode at the start position scaled to a largest transverse displacement
-  !> (v, w in the element frames) of mode_amplitude at rest, or a restart file
-  !> (its time, so the crank angle continues).
-  subroutine initial_state(deck, out, s, model, t0, y, err)
+  !> (v, w in the element frames) of mode_amplitude at rest, a restart file
+  !> (its time, so the crank angle continues), or the static start.
+  subroutine initial_state(deck, out, s, static, model, t0, y, err)
     type(deck_t), intent(in) :: deck
     type(table_t), intent(inout) :: out
     type(transient_settings_t), intent(in) :: s
+    logical, intent(in) :: static   !< the static start of &spatial_loads instead of the rigid-body one
     type(spatial_model_t), intent(inout) :: model
     real(dp), intent(out) :: t0, y(:)
     type(error_t), intent(inout) :: err
@@ -275,9 +296,62 @@ contains
     case ('restart')
       call start_from_restart(deck%path, s%restart_in, out, t0, y, err)
     case default
-      call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+      if (static) then
+        call static_start(out, model, y, err)
+      else
+        call out%comment('initial state: rigid-body motion, zero elastic deformation and rate')
+      end if
     end select
   end subroutine initial_state
+
+  !> The start on the static elastic state under the loads at t = 0 (the
+  !> rigid motion's inertia loads, gravity, point loads), moving at the rate
+  !> of that state (central difference over 1e-3 of a revolution): the
+  !> quasi-static response, from which the rigid-body start differs by a
+  !> step load that rings every mode, the consistent element's axial modes
+  !> (~1e6 rad/s) too.  What remains is the dynamic part of the response,
+  !> of order (omega/omega_n)^2 of the static one in mode n.
+  subroutine static_start(out, model, y, err)
+    type(table_t), intent(inout) :: out
+    type(spatial_model_t), intent(inout) :: model
+    real(dp), intent(inout) :: y(:)
+    type(error_t), intent(inout) :: err
+    real(dp) :: q0(model%n), qm(model%n), qp(model%n), h
+    h = 1.0e-3_dp*two_pi/model%omega
+    q0 = 0.0_dp
+    call model%static_state(0.0_dp, q0, err)
+    if (err%failed()) return
+    qm = q0
+    call model%static_state(-h, qm, err)
+    if (err%failed()) return
+    qp = q0
+    call model%static_state(h, qp, err)
+    if (err%failed()) return
+    call model%set_time(0.0_dp)
+    y(1::2) = q0
+    y(2::2) = (qp - qm)/(2.0_dp*h)
+    call out%comment('initial state: the static elastic state under the loads at the start (inertia of the '// &
+                     'rigid motion, gravity, point loads), at its quasi-static rate; largest |q| = '// &
+                     str(maxval(abs(q0)), 6))
+  end subroutine static_start
+
+  !> The loads the deck gives (none: no line).
+  subroutine write_loads(out, gravity, point_loads)
+    type(table_t), intent(inout) :: out
+    real(dp), intent(in) :: gravity(3)
+    type(spatial_point_load_t), intent(in) :: point_loads(:)
+    integer :: k
+    if (norm2(gravity) > 0.0_dp) call out%comment('gravity (global, in/s^2): '//str(gravity(1), 6)//', '// &
+                                                   str(gravity(2), 6)//', '//str(gravity(3), 6))
+    do k = 1, size(point_loads)
+      associate (pl => point_loads(k))
+        call out%comment('point load '//str(k)//' at element '//str(pl%element)//' end '//str(pl%node)// &
+                         ': force (global, lb) '//str(pl%force(1), 6)//', '//str(pl%force(2), 6)//', '// &
+                         str(pl%force(3), 6)//'; moment (global, lb in) '//str(pl%moment(1), 6)//', '// &
+                         str(pl%moment(2), 6)//', '//str(pl%moment(3), 6))
+      end associate
+    end do
+  end subroutine write_loads
 
   !> The element formulation a deck asks for: 'default' is the consistent
   !> element with stretching on (where Kear's linear u locks), Kear's otherwise

@@ -23,7 +23,7 @@ module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: sym_generalized_eig, dense_to_lower_band, cross
+  use linalg, only: sym_generalized_eig, dense_to_lower_band, cross, solve_linear
   use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
@@ -41,6 +41,7 @@ module spatial_model
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
   use spatial_mass, only: spatial_mass_t
+  use spatial_external_loads, only: spatial_point_load_t
   implicit none
   private
   public :: spatial_model_t, spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
@@ -89,6 +90,8 @@ module spatial_model
     integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
     type(second_order_newton_t) :: newton          !< DLSODE's Newton matrix, banded (shared with the planar model's scheme)
     type(spatial_mass_t) :: cmass                  !< M(t) solves through a constant factor (spatial_mass)
+    real(dp) :: gravity(3) = 0.0_dp                !< gravity acceleration, global (in/s^2; spatial_loads)
+    type(spatial_point_load_t), allocatable :: point_loads(:)
   contains
     procedure :: init => model_init
     procedure :: rhs => model_rhs
@@ -105,6 +108,8 @@ module spatial_model
     procedure :: element_stresses
     procedure :: support_forces
     procedure :: state_size
+    procedure :: set_loads
+    procedure :: static_state
   end type spatial_model_t
 
 contains
@@ -367,6 +372,79 @@ contains
     end if
   end subroutine joint_end
 
+  !> Gravity (global, in/s^2) and point loads (spatial_loads); the rigid
+  !> states are recomputed with them at the next time asked for.
+  subroutine set_loads(self, gravity, point_loads)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: gravity(3)
+    type(spatial_point_load_t), intent(in) :: point_loads(:)
+    self%gravity = gravity
+    self%point_loads = point_loads
+    self%t_states = -huge(1.0_dp)
+    self%t_mass = -huge(1.0_dp)
+  end subroutine set_loads
+
+  !> f := f + the point loads' generalized forces: the force on the node's
+  !> translations (global), the moment on its rotations (global, or in the
+  !> element axes at an end whose rotations are local).
+  subroutine add_point_loads(self, f)
+    class(spatial_model_t), intent(in) :: self
+    real(dp), intent(inout) :: f(:)
+    real(dp) :: fe(sdofs)
+    integer :: k, base
+    if (.not. allocated(self%point_loads)) return
+    do k = 1, size(self%point_loads)
+      associate (pl => self%point_loads(k))
+        fe = 0.0_dp
+        base = 10*(pl%node - 1)
+        fe(base + 1:base + 3) = pl%force
+        if (self%el(pl%element)%local_rotation(pl%node)) then
+          fe(base + 4:base + 6) = matmul(pl%moment, self%rb(pl%element)%rot)      ! R^T m
+        else
+          fe(base + 4:base + 6) = pl%moment
+        end if
+        call self%table%scatter_add(pl%element, fe, f)
+      end associate
+    end do
+  end subroutine add_point_loads
+
+  !> The static elastic state q at time t under the loads of the rigid
+  !> motion there (its inertia loads, gravity, point loads), q_d = 0:
+  !> F(q, 0, t) = 0 by Newton's method on the elastic tangent (the inertial
+  !> stiffness is left out of the matrix, so the iteration converges
+  !> linearly, by about (omega/omega_1)^2 a step).  q holds the start guess.
+  subroutine static_state(self, t, q, err)
+    class(spatial_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    real(dp), intent(inout) :: q(:)
+    type(error_t), intent(inout) :: err
+    real(dp) :: stiff(self%n, self%n), f(self%n), zero(sdofs), me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs)
+    type(spatial_eval_info_t) :: info
+    integer :: it, e
+    real(dp) :: scale
+    call self%set_time(t)
+    zero = 0.0_dp
+    scale = 0.0_dp
+    do it = 1, 100
+      stiff = 0.0_dp
+      f = 0.0_dp
+      do e = 1, size(self%el)
+        call spatial_beam_eval(self%el(e), self%table%gather(e, q), zero, self%rb(e), me, fe, info, tangent=ke, &
+                               mass_wanted=.false.)
+        call self%table%scatter_add(e, fe, f)
+        call self%table%scatter_add_matrix(e, ke, stiff)
+      end do
+      call add_point_loads(self, f)
+      call solve_linear(stiff, f, err)
+      if (err%failed()) return
+      q = q + f
+      scale = max(scale, maxval(abs(q)))
+      if (maxval(abs(f)) <= 1.0e-12_dp*scale) return
+    end do
+    call err%set('spatial model', 'the static state at t = '//str(t)//' did not converge in 100 Newton steps '// &
+                 '(last correction '//str(maxval(abs(f)))//' of '//str(scale)//')')
+  end subroutine static_state
+
   integer function state_size(self)
     class(spatial_model_t), intent(in) :: self
     state_size = 2*self%n
@@ -396,7 +474,8 @@ contains
         rb%omega = ps%omega(:, k)
         rb%alpha = ps%alpha(:, k)
         rb%x1_d = ps%origin_d(:, k) + cross(rb%omega, r)
-        rb%x1_dd = ps%origin_dd(:, k) + cross(rb%alpha, r) + cross(rb%omega, cross(rb%omega, r))
+        ! gravity: the body force -rho A (a - g), as an acceleration -g of the frame
+        rb%x1_dd = ps%origin_dd(:, k) + cross(rb%alpha, r) + cross(rb%omega, cross(rb%omega, r)) - self%gravity
       end associate
     end do
     self%t_states = t
@@ -436,6 +515,7 @@ contains
       call self%table%scatter_add(e, fe, self%force)
       if (band_mass) call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
     end do
+    call add_point_loads(self, self%force)
     if (new_mass) then
       self%t_mass = huge(1.0_dp)                ! invalid until factored
       if (self%cmass%active) then
