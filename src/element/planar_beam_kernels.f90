@@ -15,7 +15,7 @@ module planar_beam_kernels
   public :: translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy
   public :: subtract_elastic_forces, to_global_results
   public :: add_constant_integrals, rotating_frame_integrals
-  public :: add_station_terms, exact_angle_terms
+  public :: add_station_terms, exact_angle_terms, add_rank_one
 
 contains
 
@@ -295,6 +295,19 @@ contains
       end do
     end if
   end subroutine add_station_terms
+
+  !> a := a + c x x^T (the rotary mass of one station), in place: the same
+  !> sums as a + c*outer(x, x) without its temporary.
+  pure subroutine add_rank_one(a, c, x)
+    real(dp), intent(inout) :: a(:, :)
+    real(dp), intent(in) :: c, x(:)
+    integer :: i, j
+    do j = 1, size(x)
+      do i = 1, size(x)
+        a(i, j) = a(i, j) + c*(x(i)*x(j))
+      end do
+    end do
+  end subroutine add_rank_one
 
   !> The exact section angle theta = phi + atan2(b, a) (K8), a = 1 + u_x,
   !> b = w_x, at a station with gradients gu, gw: d theta/d(a, b) = (xa, xb)
