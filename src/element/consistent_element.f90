@@ -479,7 +479,7 @@ contains
         tq = xa*gu + xb*gw
       end associate
       acc = phi_dd + dot_product(tq, pdd_nm) + quad
-      call add_rank_one(mp, rhoi*el%wg(i), tq)
+      call add_rank_one(nd, mp, rhoi*el%wg(i), tq)
       fp = fp - rhoi*el%wg(i)*acc*tq
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss

@@ -595,7 +595,7 @@ contains
       end if
       tq = xa*el%gu + xb*el%gw(:, i)             ! d theta / d p
       acc = phi_dd + dot_product(tq, pdd_nm) + quad
-      call add_rank_one(mp, rhoi*el%wg(i), tq)
+      call add_rank_one(8, mp, rhoi*el%wg(i), tq)
       fp = fp - rhoi*el%wg(i)*acc*tq
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
