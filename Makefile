@@ -8,6 +8,8 @@
 #   make plot OUT=run.out   standard figures of an output (PNG, SVG; flexmech plot)
 #   make figures            the paper gallery (doc/gallery.md, doc/figures/gallery/)
 #   make MPI=1   build/mpi/bin/flexmech: sweeps and batches shared by MPI ranks (Open MPI)
+#   make NATIVE=1  build/native/bin/flexmech: -O3 -march=native for this CPU (not portable)
+#   make bench-peers  flexmech against Exudyn (pip, in build/peers/venv): CPU at equal accuracy
 #   make deps    install missing system packages and fetch ODEPACK (done by every target)
 #
 # Our own code builds with -std=f2008 -Wall -Wextra, warning-free.  ODEPACK is
@@ -44,6 +46,13 @@ else
 POOL_SKIP := src/batch/mpi/*
 FLAVOUR   := $(BUILD)
 endif
+# NATIVE=1: -O3 -march=native for this machine's CPU (doc/benchmarks.md, "Speed
+# at equal accuracy"), objects in build/<flavour>-native, the program in
+# build/native/bin; the default build stays portable.
+NATIVE    ?=
+ifeq ($(NATIVE),1)
+FLAVOUR   := $(FLAVOUR)-native
+endif
 BUILD_DIR := build
 ODEPACK_SRC ?= $(BUILD_DIR)/odepack/src
 DECK      ?= inputs/fourbar_150_damped.nml
@@ -54,6 +63,9 @@ FFLAGS_release := -O2 -g $(WARN)
 FFLAGS_debug   := -O0 -g $(WARN) -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace
 LEGACY_FFLAGS  := -O2 -g -std=legacy -w
 
+ifeq ($(NATIVE),1)
+FFLAGS_release := -O3 -march=native -g $(WARN)
+endif
 FFLAGS    := $(FFLAGS_$(BUILD))
 OUT       := $(BUILD_DIR)/$(FLAVOUR)
 # `make plot OUT=run.out` names an output file; the build directory keeps its name.
@@ -73,6 +85,9 @@ step = @sh tools/build_step.sh $(or $(3),$(BUILD_LOG)) '$(1)' $(2)
 endif
 COMPILING := flexmech: compiling the $(FLAVOUR) build in $(OUT)
 BIN_DIR   := $(if $(filter release,$(BUILD)),$(if $(filter 1,$(MPI)),$(BUILD_DIR)/mpi/bin,$(BUILD_DIR)/bin),$(OUT)/bin)
+ifeq ($(NATIVE),1)
+BIN_DIR   := $(if $(filter release,$(BUILD)),$(BUILD_DIR)/native$(if $(filter 1,$(MPI)),-mpi)/bin,$(OUT)/bin)
+endif
 
 LIB_SRC   := $(sort $(shell find src -name '*.f90' ! -path 'src/app/*' ! -path '$(POOL_SKIP)'))
 APP_SRC   := src/app/flexmech.f90
@@ -96,14 +111,14 @@ ODEPACK_LIST  := $(BUILD_DIR)/odepack/files.txt
 
 vpath %.f90 $(sort $(dir $(ALL_SRC)))
 
-.PHONY: all deps odepack run test test-bins bench clean distclean help plot figures \
+.PHONY: all deps odepack run test test-bins bench bench-peers clean distclean help plot figures \
         test-bins-release test-bins-debug mpi-if-present
 .DEFAULT_GOAL := all
 
 all: $(BIN_DIR)/flexmech
 
 help:
-	@sed -n '3,11p' Makefile
+	@sed -n '3,13p' Makefile
 
 # ---------------------------------------------------------------- dependencies
 deps:
@@ -216,6 +231,16 @@ bench:
 	@$(MAKE) --no-print-directory deps EXTRA_PKGS=libnlopt-dev
 	@$(MAKE) --no-print-directory BUILD=release bench-bins
 	@sh bench/run_bench.sh $(BUILD_DIR)
+
+# Every bench/peers/*.py against the release build (a Python venv with the
+# peers' pip packages in build/peers/venv; not part of make test or CI).
+PEERS_VENV := $(BUILD_DIR)/peers/venv
+bench-peers: all
+	@command -v python3 >/dev/null 2>&1 || sh tools/install_deps.sh python3 python3-venv
+	@test -x $(PEERS_VENV)/bin/python || python3 -m venv $(PEERS_VENV)
+	@$(PEERS_VENV)/bin/python -m pip install -q exudyn==1.13.6 numpy
+	@for s in bench/peers/*.py; do \
+	  echo "== $$s"; $(PEERS_VENV)/bin/python $$s --flexmech $(BIN_DIR)/flexmech --work $(BUILD_DIR)/peers || exit 1; done
 
 clean:
 	rm -rf $(BUILD_DIR)/release $(BUILD_DIR)/debug $(BUILD_DIR)/bin $(BUILD_DIR)/out

@@ -23,11 +23,12 @@ module beam_element
                                 consistent_tangent_stiffness, consistent_internal_force, consistent_strain_energy, &
                                 consistent_kinetic_energy, consistent_stress_recovery, consistent_local_displacement, &
                                 consistent_point_load, consistent_local_dofs, consistent_section_strains
+  use planar_element, only: planar_station_strains
   implicit none
   private
   public :: beam_element_t, beam_element_init, beam_element_eval, beam_tangent_stiffness, beam_internal_force
   public :: beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_local_displacement
-  public :: beam_point_load, beam_section_strains, resolve_formulation, formulation_names
+  public :: beam_point_load, beam_section_strains, beam_station_strains, resolve_formulation, formulation_names
   public :: element_kind_kear, element_kind_consistent, beam_mass_constant_in_q
 
   integer, parameter :: element_kind_kear = 1, element_kind_consistent = 2
@@ -209,6 +210,19 @@ contains
       call kear_section_strains(el%kear, kear_local_dofs(phi, q), e, eps_n, kap)
     end if
   end subroutine beam_section_strains
+
+  !> Axial strain and curvature at the element's stress stations (both ends
+  !> and its Gauss points: 0 .. n_gauss + 1) for global element DOFs q.
+  pure subroutine beam_station_strains(el, q, phi, eps_n, kap)
+    type(beam_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(:), phi
+    real(dp), intent(out) :: eps_n(0:), kap(0:)
+    if (el%kind == element_kind_consistent) then
+      call planar_station_strains(el%cons, q, phi, eps_n, kap)
+    else
+      call planar_station_strains(el%kear, q, phi, eps_n, kap)
+    end if
+  end subroutine beam_station_strains
 
   !> Generalized force of a point force f (global X, Y components) and a
   !> counter-clockwise moment mz applied at x = e l of the element, and

@@ -31,12 +31,13 @@ module consistent_element
   use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
                                  translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
                                  subtract_elastic_forces, to_global_results, &
-                                 add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms
+                                 add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms, &
+                                 add_rank_one
   use planar_element, only: planar_element_t, rigid_state_t, kear_eval_info_t, is_linear_strain, &
                             consistent_internal_force => planar_internal_force, &
                             consistent_tangent_stiffness => planar_tangent_stiffness, &
                             consistent_strain_energy => planar_strain_energy, &
-                            consistent_stress_recovery => planar_stress_recovery
+                            consistent_stress_recovery => planar_stress_recovery, station_x_over_l
   implicit none
   private
   public :: consistent_ndof, consistent_element_t
@@ -65,6 +66,7 @@ module consistent_element
     procedure :: strain_terms => consistent_strain_terms
     procedure :: linear_force => consistent_linear_force
     procedure :: section_strains => consistent_section_strains
+    procedure :: station_strains => consistent_station_strains
   end type consistent_element_t
 
   !> Strain state at a station: value and derivatives in (a, b, c, d) =
@@ -111,6 +113,10 @@ contains
     call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
     do i = 1, el%n_gauss
       call consistent_shape(el%xg(i)/length, length, su, sw, el%g(:, :, i))
+    end do
+    allocate(el%gs(nd, 4, 0:el%n_gauss + 1))
+    do i = 0, el%n_gauss + 1
+      call consistent_shape(station_x_over_l(el%beam_properties_t, el%xg, i), length, su, sw, el%gs(:, :, i))
     end do
   end subroutine consistent_element_init
 
@@ -289,12 +295,27 @@ contains
     real(dp), intent(out) :: eps_n, kap
     real(dp) :: pl(nd), su(nd), sw(nd), g(nd, 4)
     type(strain_point_t) :: sp
-    pl = p                                   ! fixed size: matmul's sums as before
+    pl = p
     call consistent_shape(e, el%length, su, sw, g)
-    call strain_state(el, matmul(pl, g), .false., sp)
+    call strain_state(el, strain_variables(pl, g), .false., sp)
     eps_n = sp%eps
     kap = sp%kap
   end subroutine consistent_section_strains
+
+  !> Axial strain and curvature at stress station i from LOCAL nodal values p
+  !> (the tabulated gradients gs).
+  pure subroutine consistent_station_strains(el, p, i, eps_n, kap)
+    class(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:)
+    integer, intent(in) :: i
+    real(dp), intent(out) :: eps_n, kap
+    real(dp) :: pl(nd)
+    type(strain_point_t) :: sp
+    pl = p
+    call strain_state(el, strain_variables(pl, el%gs(:, :, i)), .false., sp)
+    eps_n = sp%eps
+    kap = sp%kap
+  end subroutine consistent_station_strains
 
   pure function consistent_local_dofs(phi, q) result(p)
     real(dp), intent(in) :: phi, q(nd)
@@ -350,7 +371,7 @@ contains
     ht = 0.5_dp*el%depth
     do i = 1, el%n_gauss
       associate (g => el%g(:, :, i))
-        call strain_state(el, matmul(p, g), .true., sp)
+        call strain_state(el, strain_variables(p, g), .true., sp)
         res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
         info%strain_energy = info%strain_energy + el%wg(i)*res%energy
         call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de, sp%de, sp%dk, sp%he, &
@@ -362,6 +383,21 @@ contains
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
     info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star
   end subroutine nonlinear_strain_terms
+
+  !> z = (u_x, w_x, w_xx, u_xx) = p^T g at a station: fixed-size loops in
+  !> matmul's order (matmul on a section of the tabulated gradients takes a
+  !> heap temporary on every call).
+  pure function strain_variables(p, g) result(z)
+    real(dp), intent(in) :: p(nd), g(nd, 4)
+    real(dp) :: z(4)
+    integer :: j, k
+    do k = 1, 4
+      z(k) = 0.0_dp
+      do j = 1, nd
+        z(k) = z(k) + p(j)*g(j, k)
+      end do
+    end do
+  end function strain_variables
 
   !> eps_n and kappa from z = (u_x, w_x, w_xx, u_xx) with derivatives in
   !> (a, b, c, d) = (1 + u_x, w_x, w_xx, u_xx):
@@ -443,7 +479,7 @@ contains
         tq = xa*gu + xb*gw
       end associate
       acc = phi_dd + dot_product(tq, pdd_nm) + quad
-      mp = mp + rhoi*el%wg(i)*outer(tq, tq)
+      call add_rank_one(nd, mp, rhoi*el%wg(i), tq)
       fp = fp - rhoi*el%wg(i)*acc*tq
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss

@@ -33,11 +33,12 @@ module kear_element
   use planar_element, only: planar_element_t, rigid_state_t, kear_eval_info_t, stress_report_t, is_linear_strain, &
                             kear_internal_force => planar_internal_force, &
                             kear_tangent_stiffness => planar_tangent_stiffness, &
-                            kear_strain_energy => planar_strain_energy, kear_stress_recovery => planar_stress_recovery
+                            kear_strain_energy => planar_strain_energy, kear_stress_recovery => planar_stress_recovery, &
+                            station_x_over_l
   use planar_beam_kernels, only: to_local, rotate_to_global, jb_times, frame_vectors, in_frame, &
                                  translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
                                  subtract_elastic_forces, to_global_results, &
-                                 add_constant_integrals, rotating_frame_integrals, exact_angle_terms
+                                 add_constant_integrals, rotating_frame_integrals, exact_angle_terms, add_rank_one
   implicit none
   private
   public :: kear_ndof, formulation_exact, formulation_kear1987
@@ -75,6 +76,7 @@ module kear_element
     procedure :: strain_terms => kear_strain_terms
     procedure :: linear_force => kear_linear_force
     procedure :: section_strains => kear_section_strains
+    procedure :: station_strains => kear_station_strains
   end type kear_element_t
 
   !> Strain state at one station, derivatives with respect to (a, b, c) =
@@ -142,6 +144,13 @@ contains
       call quintic_hermite(el%xg(i)/length, length, h, hx, hxx)
       call spread_w(hx, el%gw(:, i))
       call spread_w(hxx, el%gww(:, i))
+    end do
+    allocate(el%gs(8, 3, 0:el%n_gauss + 1))
+    do i = 0, el%n_gauss + 1
+      call quintic_hermite(station_x_over_l(el%beam_properties_t, el%xg, i), length, h, hx, hxx)
+      el%gs(:, 1, i) = el%gu
+      call spread_w(hx, el%gs(:, 2, i))
+      call spread_w(hxx, el%gs(:, 3, i))
     end do
   end subroutine kear_element_init
 
@@ -383,6 +392,20 @@ contains
     kap = sp%kap
   end subroutine kear_section_strains
 
+  !> Axial strain and curvature at stress station i from LOCAL nodal values p
+  !> (the tabulated gradients gs: u_x, w_x, w_xx).
+  pure subroutine kear_station_strains(el, p, i, eps_n, kap)
+    class(kear_element_t), intent(in) :: el
+    real(dp), intent(in) :: p(:)
+    integer, intent(in) :: i
+    real(dp), intent(out) :: eps_n, kap
+    type(strain_point_t) :: sp
+    call strain_state(el, dot_product(el%gs(:, 1, i), p), dot_product(el%gs(:, 2, i), p), &
+                      dot_product(el%gs(:, 3, i), p), .false., sp)
+    eps_n = sp%eps
+    kap = sp%kap
+  end subroutine kear_station_strains
+
   !> Local nodal values p = T(phi) q = [u1 w1 th1 m1 u2 w2 th2 m2].
   pure function kear_local_dofs(phi, q) result(p)
     real(dp), intent(in) :: phi, q(8)
@@ -572,7 +595,7 @@ contains
       end if
       tq = xa*el%gu + xb*el%gw(:, i)             ! d theta / d p
       acc = phi_dd + dot_product(tq, pdd_nm) + quad
-      mp = mp + rhoi*el%wg(i)*outer(tq, tq)
+      call add_rank_one(8, mp, rhoi*el%wg(i), tq)
       fp = fp - rhoi*el%wg(i)*acc*tq
     end do
     info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss

@@ -15,7 +15,7 @@ module planar_beam_kernels
   public :: translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy
   public :: subtract_elastic_forces, to_global_results
   public :: add_constant_integrals, rotating_frame_integrals
-  public :: add_station_terms, exact_angle_terms
+  public :: add_station_terms, exact_angle_terms, add_rank_one
 
 contains
 
@@ -214,28 +214,27 @@ contains
 
   ! ------------------------------------------------- nonlinear stations
 
-  !> One station (weight wg, G = d(strain variables)/dp) of the internal
-  !> force f = G (N de + M dk), the tangent K = G H G^T (want_k) and K prel
-  !> (want_damp).  de is what multiplies N in the force (Kear's printed (K20)
-  !> or the true gradient de_true), he its derivative; tangent = dN, dM by
-  !> (eps, kappa) from the section.
+  !> One station (weight wg, G = d(strain variables)/dp, 12 x 4: the
+  !> consistent element's DOFs and its strain variables (u_x, w_x, w_xx,
+  !> u_xx)) of the internal force f = G (N de + M dk), the tangent
+  !> K = G H G^T (want_k) and K prel (want_damp).  de is what multiplies N in
+  !> the force, de_true the true gradient, he the derivative of de; tangent =
+  !> dN, dM by (eps, kappa) from the section.
   pure subroutine add_station_terms(wg, g, axial_force, moment, tangent, de, de_true, dk, he, hk, prel, want_k, &
                                     want_damp, fint, fdamp, kp)
-    real(dp), intent(in) :: wg, g(:, :), axial_force, moment, tangent(2, 2)
-    real(dp), intent(in) :: de(:), de_true(:), dk(:), he(:, :), hk(:, :), prel(:)
+    integer, parameter :: n = 12, m = 4
+    real(dp), intent(in) :: wg, g(n, m), axial_force, moment, tangent(2, 2)
+    real(dp), intent(in) :: de(m), de_true(m), dk(m), he(m, m), hk(m, m), prel(n)
     logical, intent(in) :: want_k, want_damp
-    real(dp), intent(inout) :: fint(:), fdamp(:), kp(:, :)
+    real(dp), intent(inout) :: fint(n), fdamp(n), kp(n, n)
     ! This is the innermost loop of every planar model evaluation: the products
-    ! are written out over fixed-size work arrays, because matmul and automatic
-    ! arrays of assumed-shape operands take the heap on every call (twice the
-    ! run time of a transient deck).  Each acc runs in matmul's order.
-    integer, parameter :: max_dofs = 12, max_terms = 4
-    real(dp) :: h(max_terms, max_terms), f(max_terms), tn(max_terms), tk(max_terms)
-    real(dp) :: gh(max_dofs, max_terms), pg(max_terms), hp(max_terms), acc
-    integer :: n, m, i, j, k
-    n = size(g, 1)
-    m = size(de)
-    f(:m) = axial_force*de + moment*dk
+    ! are written out over fixed-size contiguous arrays, which the compiler
+    ! unrolls and vectorises (matmul and automatic arrays of assumed-shape
+    ! operands take the heap on every call).  Each acc runs in matmul's order.
+    real(dp) :: h(m, m), f(m), tn(m), tk(m)
+    real(dp) :: gh(n, m), pg(m), hp(m), acc
+    integer :: i, j, k
+    f = axial_force*de + moment*dk
     do i = 1, n
       acc = 0.0_dp
       do k = 1, m
@@ -244,8 +243,8 @@ contains
       fint(i) = fint(i) + wg*acc
     end do
     if (.not. (want_k .or. want_damp)) return
-    tn(:m) = tangent(1, 1)*de_true + tangent(1, 2)*dk
-    tk(:m) = tangent(2, 1)*de_true + tangent(2, 2)*dk
+    tn = tangent(1, 1)*de_true + tangent(1, 2)*dk
+    tk = tangent(2, 1)*de_true + tangent(2, 2)*dk
     do j = 1, m
       do i = 1, m
         h(i, j) = de(i)*tn(j) + dk(i)*tk(j) + axial_force*he(i, j) + moment*hk(i, j)
@@ -295,6 +294,20 @@ contains
       end do
     end if
   end subroutine add_station_terms
+
+  !> a := a + c x x^T (the rotary mass of one station, n DOFs), in place: the
+  !> same sums as a + c*outer(x, x) without its temporary.
+  pure subroutine add_rank_one(n, a, c, x)
+    integer, intent(in) :: n
+    real(dp), intent(inout) :: a(n, n)
+    real(dp), intent(in) :: c, x(n)
+    integer :: i, j
+    do j = 1, n
+      do i = 1, n
+        a(i, j) = a(i, j) + c*(x(i)*x(j))
+      end do
+    end do
+  end subroutine add_rank_one
 
   !> The exact section angle theta = phi + atan2(b, a) (K8), a = 1 + u_x,
   !> b = w_x, at a station with gradients gu, gw: d theta/d(a, b) = (xa, xb)

@@ -19,6 +19,7 @@ module planar_element
   private
   public :: planar_element_t, rigid_state_t, kear_eval_info_t, stress_report_t
   public :: planar_internal_force, planar_tangent_stiffness, planar_strain_energy, planar_stress_recovery
+  public :: planar_station_strains, station_x_over_l
   public :: is_linear_strain
 
   integer, parameter :: max_dofs = 12   !< the consistent element's; work arrays of this size stay off the heap
@@ -62,10 +63,14 @@ module planar_element
   type, abstract, extends(beam_properties_t) :: planar_element_t
     integer :: node2 = 0                               !< local DOF of node 2's u (then w)
     real(dp), allocatable :: xg(:), wg(:)              !< stations on [0, l] and weights
+    !> (DOFs, strain variables, 0:n_gauss + 1): the gradients of the strain
+    !> variables at the stress stations (station_x_over_l), tabulated once
+    real(dp), allocatable :: gs(:, :, :)
   contains
     procedure(strain_terms_i), deferred :: strain_terms
     procedure(linear_force_i), deferred :: linear_force
     procedure(section_strains_i), deferred :: section_strains
+    procedure(station_strains_i), deferred :: station_strains
   end type planar_element_t
 
   abstract interface
@@ -96,6 +101,16 @@ module planar_element
       real(dp), intent(in) :: p(:), e
       real(dp), intent(out) :: eps_n, kap
     end subroutine section_strains_i
+
+    !> Axial strain and curvature at stress station i (0 .. n_gauss + 1,
+    !> station_x_over_l) from local nodal values p, by the tabulated gs.
+    pure subroutine station_strains_i(el, p, i, eps_n, kap)
+      import :: planar_element_t, dp
+      class(planar_element_t), intent(in) :: el
+      real(dp), intent(in) :: p(:)
+      integer, intent(in) :: i
+      real(dp), intent(out) :: eps_n, kap
+    end subroutine station_strains_i
   end interface
 
 contains
@@ -165,14 +180,24 @@ contains
     class(planar_element_t), intent(in) :: el
     real(dp), intent(in) :: q(:), phi
     type(stress_report_t) :: rep
-    real(dp) :: p(max_dofs), eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
+    real(dp) :: eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
+    call planar_station_strains(el, q, phi, eps_n, kap)
+    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
+  end function planar_stress_recovery
+
+  !> Axial strain and curvature at every stress station (0 .. n_gauss + 1)
+  !> for the global element DOFs q: one rotation, the tabulated gradients.
+  pure subroutine planar_station_strains(el, q, phi, eps_n, kap)
+    class(planar_element_t), intent(in) :: el
+    real(dp), intent(in) :: q(:), phi
+    real(dp), intent(out) :: eps_n(0:), kap(0:)
+    real(dp) :: p(max_dofs)
     integer :: i
     p(:size(q)) = to_local(cos(phi), sin(phi), q, el%node2)
     do i = 0, el%n_gauss + 1
-      call el%section_strains(p(:size(q)), station_x_over_l(el%beam_properties_t, el%xg, i), eps_n(i), kap(i))
+      call el%station_strains(p(:size(q)), i, eps_n(i), kap(i))
     end do
-    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
-  end function planar_stress_recovery
+  end subroutine planar_station_strains
 
   !> The stress report of the stations i = 0 .. n_gauss + 1 (station_x_over_l)
   !> from their axial strain and curvature.

@@ -4,7 +4,8 @@
 !> to the deformed chord.  (Joint forces: src/model/joint_reactions.f90.)
 !>
 !> Section quantities at a station x of an element, from the axial strain
-!> eps_n and curvature kappa the element uses (beam_section_strains) and
+!> eps_n and curvature kappa the element uses (beam_station_strains, from
+!> the element's shape gradients tabulated at those stations) and
 !> its material law, outer fibres y = +-c (c the link's fibre distance):
 !>   N = axial force, M = bending moment (material integrated through the
 !>       depth, as in the element: material_law%section_response);
@@ -17,8 +18,10 @@
 !> stress recovery (both ends and the element's Gauss points).
 module transient_response
   use kinds, only: dp
+  use quadrature, only: max_gauss_points
   use material_law, only: ramberg_osgood_t, ro_stress, section_response, section_resultants_t
-  use beam_element, only: beam_element_t, beam_section_strains, beam_local_displacement, element_kind_consistent
+  use beam_element, only: beam_element_t, beam_section_strains, beam_station_strains, beam_local_displacement, &
+                          element_kind_consistent
   use linkage, only: mechanism_t
   use mechanism_model, only: mechanism_model_t
   implicit none
@@ -50,18 +53,20 @@ contains
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:), xi
     type(section_values_t) :: v
-    v = station(model%el(e), model%table%gather(e, q), model%rb(e)%phi, xi)
+    real(dp) :: eps_n, kap
+    call beam_section_strains(model%el(e), model%table%gather(e, q), model%rb(e)%phi, xi, eps_n, kap)
+    v = station(model%el(e), eps_n, kap)
   end function section_at
 
-  pure function station(el, qe, phi, xi) result(v)
+  !> Section quantities from the axial strain and curvature of a station.
+  pure function station(el, eps_n, kap) result(v)
     type(beam_element_t), intent(in) :: el
-    real(dp), intent(in) :: qe(:), phi, xi
+    real(dp), intent(in) :: eps_n, kap
     type(section_values_t) :: v
     type(ramberg_osgood_t) :: law
     type(section_resultants_t) :: res
-    real(dp) :: eps_n, kap, area, fibre, s_plus, s_minus
+    real(dp) :: area, fibre, s_plus, s_minus
     logical :: nonlinear
-    call beam_section_strains(el, qe, phi, xi, eps_n, kap)
     if (el%kind == element_kind_consistent) then
       law = el%cons%material
       area = el%cons%area
@@ -84,13 +89,15 @@ contains
   end function station
 
   !> Each section quantity's signed value of largest magnitude over element
-  !> e's stations (ends and Gauss points, as its stress recovery).
+  !> e's stations (ends and Gauss points, as its stress recovery): the
+  !> strains of all stations from one rotation and the tabulated gradients.
   pure function element_section_peaks(model, e, q) result(pk)
     type(mechanism_model_t), intent(in) :: model
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     type(section_values_t) :: pk
-    real(dp) :: qe(model%table%element_dofs), xi
+    integer, parameter :: max_stations = max_gauss_points + 2
+    real(dp) :: eps_n(0:max_stations - 1), kap(0:max_stations - 1)
     type(section_values_t) :: v
     integer :: i, ng
     associate (el => model%el(e))
@@ -99,18 +106,9 @@ contains
       else
         ng = size(el%kear%xg)
       end if
-      qe = model%table%gather(e, q)
+      call beam_station_strains(el, model%table%gather(e, q), model%rb(e)%phi, eps_n(:ng + 1), kap(:ng + 1))
       do i = 0, ng + 1
-        if (i == 0) then
-          xi = 0.0_dp
-        else if (i == ng + 1) then
-          xi = 1.0_dp
-        else if (el%kind == element_kind_consistent) then
-          xi = el%cons%xg(i)/el%length
-        else
-          xi = el%kear%xg(i)/el%length
-        end if
-        v = station(el, qe, model%rb(e)%phi, xi)
+        v = station(el, eps_n(i), kap(i))
         if (abs(v%axial_force) > abs(pk%axial_force)) pk%axial_force = v%axial_force
         if (abs(v%moment) > abs(pk%moment)) pk%moment = v%moment
         if (abs(v%axial_stress) > abs(pk%axial_stress)) pk%axial_stress = v%axial_stress

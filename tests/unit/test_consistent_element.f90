@@ -5,7 +5,8 @@ module test_consistent_element_suite
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
   use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, effects_all_on, effects_summary, &
-                          kear_element_t, kear_element_init, kear_section_strains
+                          kear_element_t, kear_element_init, kear_section_strains, kear_local_dofs
+  use planar_element, only: station_x_over_l
   use consistent_element
   use beam_element, only: beam_element_t, beam_element_init, beam_point_load, beam_local_displacement, &
                           element_kind_kear, element_kind_consistent, resolve_formulation
@@ -37,6 +38,7 @@ contains
     call run_test('bending_block_of_linear_model_equals_kear_element', test_linear_bending_block)
     call run_test('point_load_is_gradient_of_its_work', test_point_load)
     call run_test('default_formulation_follows_stretching_switch', test_default_formulation)
+    call run_test('tabulated_stress_stations_equal_direct_strains', test_station_strains)
   end subroutine run_all
 
   function unit_element(fx) result(el)
@@ -139,6 +141,38 @@ contains
     end do
     call assert_true(kear_eps > 0.02_dp, 'Kear element: arc strain '//trim(rtoa(kear_eps))//' (locks)')
   end subroutine test_arc_no_locking
+
+  !> The stress recovery's strains from the gradients tabulated at its
+  !> stations (both ends and the Gauss points) against the strains evaluated
+  !> from the shape functions at those positions, for both elements on a
+  !> strongly deformed state: 1e-12 relative (the same products; only the
+  !> compiler's ordering may differ).  A station table in the wrong order or
+  !> at the wrong positions would differ by the strain's variation, > 1e-3.
+  subroutine test_station_strains()
+    type(consistent_element_t) :: el
+    type(kear_element_t) :: kel
+    type(error_t) :: err
+    real(dp) :: p(12), pk(8), e1, k1, e2, k2, worst
+    integer :: i
+    el = unit_element(effects_all_on())
+    p = consistent_local_dofs(0.3_dp, q_big)
+    worst = 0.0_dp
+    do i = 0, el%n_gauss + 1
+      call el%station_strains(p, i, e1, k1)
+      call consistent_section_strains(el, p, station_x_over_l(el%beam_properties_t, el%xg, i), e2, k2)
+      worst = max(worst, abs(e1 - e2)/max(abs(e2), 1.0e-3_dp), abs(k1 - k2)/max(abs(k2), 1.0e-3_dp))
+    end do
+    call assert_true(worst <= 1.0e-12_dp, 'consistent: station strains differ by '//trim(rtoa(worst)))
+    call kear_element_init(kel, l_u, b_u, t_u, soft, effects_all_on(), err)
+    pk = kear_local_dofs(0.3_dp, [q_big(1:4), q_big(7:10)])
+    worst = 0.0_dp
+    do i = 0, kel%n_gauss + 1
+      call kel%station_strains(pk, i, e1, k1)
+      call kear_section_strains(kel, pk, station_x_over_l(kel%beam_properties_t, kel%xg, i), e2, k2)
+      worst = max(worst, abs(e1 - e2)/max(abs(e2), 1.0e-3_dp), abs(k1 - k2)/max(abs(k2), 1.0e-3_dp))
+    end do
+    call assert_true(worst <= 1.0e-12_dp, 'Kear: station strains differ by '//trim(rtoa(worst)))
+  end subroutine test_station_strains
 
   !> With all effects off the w-w block of the linear stiffness is Kear's
   !> (the same quintic w, EI int h'' h''), and the u-u block is EA int h' h'
