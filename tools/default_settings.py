@@ -250,6 +250,8 @@ def print_table(lines, markdown):
     for name, analysis, picks, worst, where, cpu_t, cpu_d, note in lines:
         if worst is None:
             cells = (name, analysis, picks, '', '', '', '', '', 'nothing to remove')
+        elif cpu_d is None:
+            cells = (name, analysis, picks, '', '', '', '', '', 'FAILS: the default run stopped')
         else:
             ratio = cpu_d / cpu_t if cpu_t and cpu_t > 0 else float('nan')
             ok = worst <= 0.01 and ratio <= 2.0

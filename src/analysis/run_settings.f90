@@ -48,7 +48,7 @@ contains
     case ('design')
       groups(1:5) = [character(len=group_len) :: 'run', 'mechanism', 'steady', 'tennant', 'design']
     case ('spatial')
-      groups(1:4) = [character(len=group_len) :: 'run', 'spatial_mechanism', 'transient', 'effects']
+      groups(1:5) = [character(len=group_len) :: 'run', 'spatial_mechanism', 'transient', 'effects', 'spatial_loads']
     case ('lsode_check')
       groups(1:2) = [character(len=group_len) :: 'run', 'lsode_check']
     end select
