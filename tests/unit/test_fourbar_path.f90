@@ -43,7 +43,7 @@ contains
       dx = x(10) + x(1)*cos(x(6))
       dy = x(9) + x(1)*sin(x(6))
       call assert_close(hypot(cx - dx, cy - dy), x(4), 1.0e-11_dp, 'rocker length |CD| = x4')
-      ! FORMULATION.md §10.3: the acos argument stays in [0.868, 0.996]
+      ! B's path synthesis (doc/optimization.md): the acos argument stays in [0.868, 0.996]
       call assert_true(arg >= 0.86_dp .and. arg <= 0.997_dp, 'assembles with margin at the Table 3 design')
     end do
   end subroutine test_loop_closure
@@ -141,6 +141,7 @@ contains
     integer :: k
     call p%setup(2, target=offset_target)
     opt%opts%method = method_gnlc
+    opt%opts%globalization = glob_none   ! B's GNLC as printed: NF = NI + 1 counts every trial point accepted
     call opt%solve(p, paper_start, err)
     call assert_true(opt%status == status_converged, 'converged: '//err%text())
     active = abs(opt%g) <= 1.0e-8_dp
