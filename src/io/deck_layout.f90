@@ -43,7 +43,7 @@ contains
         if (l(1:1) /= '&') then
           call err%set(where, 'line '//str(i)//': "'//shown_line(deck, i)//'" is outside any group: '// &
                        'every setting belongs between a group''s &name and its closing ''/'''// &
-                       after_group(current, group_first), input_error_code)
+                       group_beside(deck, i, current, group_first), input_error_code)
           return
         end if
         e = scan(l(2:), ' ,/!')          ! the name after the '&'
@@ -78,7 +78,7 @@ contains
       if (len(l) > 0) then
         if (l(1:1) /= '!') then
           call err%set(where, 'line '//str(i)//': "'//shown_line(deck, i)//'": the text after the ''/'' that '// &
-                       'closes &'//current// &
+                       'closes the group &'//current// &
                        ' is outside any group (put it before the ''/'')', input_error_code)
           return
         end if
@@ -117,12 +117,27 @@ contains
   end function not_read
 
   !> ' (after the group ending ...)' context for text outside groups.
-  function after_group(current, group_first) result(s)
+  !> Where a stray line stands: after the group opened on line group_first,
+  !> else before the first group that follows it (so the message names a group).
+  function group_beside(deck, i, current, group_first) result(s)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: i, group_first
     character(len=*), intent(in) :: current
-    integer, intent(in) :: group_first
-    character(len=:), allocatable :: s
+    character(len=:), allocatable :: s, l
+    integer :: j, e
     s = ''
-    if (group_first > 0) s = ' (it follows the group &'//current// &
-                             ' of line '//str(group_first)//')'
-  end function after_group
+    if (group_first > 0) then
+      s = ' (it follows the group &'//current//' of line '//str(group_first)//')'
+      return
+    end if
+    do j = i + 1, size(deck%lines)
+      l = trim(adjustl(scan_line(deck, j)))
+      if (len(l) < 2) cycle
+      if (l(1:1) /= '&') cycle
+      e = scan(l(2:), ' ,/!')
+      if (e == 0) e = len(l)
+      s = ' (it comes before the group &'//l(2:e)//' of line '//str(j)//')'
+      return
+    end do
+  end function group_beside
 end module deck_layout

@@ -70,9 +70,10 @@ contains
     call assert_error(err, 2, 'line 8: "n_links = 2" is outside any group', 'text after the last group', &
                       fragment2='it follows the group &mechanism of line 5')
     err = layout_error('n_links = 2|'//head)
-    call assert_error(err, 2, 'line 1: "n_links = 2" is outside any group', 'text before the first group')
+    call assert_error(err, 2, 'line 1: "n_links = 2" is outside any group', 'text before the first group', &
+                      fragment2='it comes before the group &run of line')
     err = layout_error(head//'&mechanism n_links = 1 / omega = 2.0')
-    call assert_error(err, 2, 'the text after the ''/'' that closes &mechanism is outside any group', 'after the /')
+    call assert_error(err, 2, 'the text after the ''/'' that closes the group &mechanism is outside any group', 'after the /')
     err = layout_error(head//'&mechanism|  n_links = 1')
     call assert_error(err, 2, 'group starting on line 5 is not closed', 'an open group')
   end subroutine test_refuses
