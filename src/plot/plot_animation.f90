@@ -31,7 +31,7 @@ module plot_animation
   implicit none
   private
   public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t
-  public :: last_revolution_rows, header_group_file, frame_text, factor_text, unit_text   ! shared with plot_spatial
+  public :: last_revolution_rows, header_group_file, open_animation_script, frame_text, factor_text, unit_text   ! shared with plot_spatial
 
   integer, parameter :: max_frames = 90
 
@@ -459,23 +459,12 @@ contains
     character(len=*), intent(in) :: base
     type(run_output_t), intent(in) :: out
     type(drawing_t), intent(in) :: d
-    integer :: u, f, ic, it
+    integer :: u
     character(len=:), allocatable :: how
-    ic = column_index(out, 'crank_deg')
-    it = column_index(out, 't')
     how = 'bent by their elements'' shape functions'
     if (.not. all(d%shapes(:)%bent)) how = 'links straight between their displaced joints (the output has no '// &
                                            'shape columns: deck shape_points)'
-    open(newunit=u, file=base//'_anim.gp', status='replace', action='write')
-    write(u, '(a)') '# Animation of '//out%path//', written by `flexmech plot --animate`.'
-    write(u, '(a)') '# Rerun with gnuplot from the directory it ran in.'
-    write(u, '(a)') 'set terminal gif animate delay 8 loop 0 size 960,760 font ",11" noenhanced'
-    write(u, '(a)') 'set output "'//esc(base)//'_anim.gif"'
-    write(u, '(a)') 'data = "'//esc(base)//'_anim.dat"'
-    write(u, '(a)') 'array when['//str(size(d%rows))//']'
-    do f = 1, size(d%rows)
-      write(u, '(a)') 'when['//str(f)//'] = "'//frame_text(out, d%rows(f), ic, it)//'"'
-    end do
+    call open_animation_script(base, out, d%rows, u)
     call frame_settings(u, out, d, '')
     write(u, '(a)') 'do for [i = 0:'//str(size(d%rows) - 1)//'] {'
     write(u, '(a)') '  set title "'//esc(out%title)//'\n'//esc(how)//'; elastic displacements x '// &
@@ -487,6 +476,29 @@ contains
   end subroutine write_anim_script
 
   !> 'crank angle 123.0 deg (t = 0.0123 s)' of a row.
+  !> Opens `base`_anim.gp and writes what every animation script starts with:
+  !> the GIF terminal, its data file and each frame's crank angle and time
+  !> (gnuplot array `when`, one entry per row of `rows`).
+  subroutine open_animation_script(base, out, rows, u)
+    character(len=*), intent(in) :: base
+    type(run_output_t), intent(in) :: out
+    integer, intent(in) :: rows(:)
+    integer, intent(out) :: u
+    integer :: f, ic, it
+    ic = column_index(out, 'crank_deg')
+    it = column_index(out, 't')
+    open(newunit=u, file=base//'_anim.gp', status='replace', action='write')
+    write(u, '(a)') '# Animation of '//out%path//', written by `flexmech plot --animate`.'
+    write(u, '(a)') '# Rerun with gnuplot from the directory it ran in.'
+    write(u, '(a)') 'set terminal gif animate delay 8 loop 0 size 960,760 font ",11" noenhanced'
+    write(u, '(a)') 'set output "'//esc(base)//'_anim.gif"'
+    write(u, '(a)') 'data = "'//esc(base)//'_anim.dat"'
+    write(u, '(a)') 'array when['//str(size(rows))//']'
+    do f = 1, size(rows)
+      write(u, '(a)') 'when['//str(f)//'] = "'//frame_text(out, rows(f), ic, it)//'"'
+    end do
+  end subroutine open_animation_script
+
   function frame_text(out, row, ic, it) result(s)
     type(run_output_t), intent(in) :: out
     integer, intent(in) :: row, ic, it

@@ -22,7 +22,8 @@ module plot_spatial
   use spatial_model, only: spatial_link_t
   use run_output, only: run_output_t, column_index, column_unit
   use plot_script, only: esc, begin_figure, end_figure, number_text
-  use plot_animation, only: last_revolution_rows, header_group_file, frame_text, factor_text, unit_text, nice_factor
+  use plot_animation, only: last_revolution_rows, header_group_file, open_animation_script, frame_text, &
+                            factor_text, unit_text, nice_factor
   implicit none
   private
   public :: write_spatial_animation, append_spatial_shape
@@ -52,24 +53,13 @@ contains
     integer, intent(out) :: n_frames
     type(error_t), intent(inout) :: err
     type(drawing_3d_t) :: d
-    integer :: u, f, ic, it
+    integer :: u
     n_frames = 0
     call last_revolution_rows(out, d%rows, max_frames)
     call build_3d(out, base//'_anim.nml', d, magnify, err)
     if (err%failed()) return
     call write_frames_3d(base//'_anim.dat', d)
-    ic = column_index(out, 'crank_deg')
-    it = column_index(out, 't')
-    open(newunit=u, file=base//'_anim.gp', status='replace', action='write')
-    write(u, '(a)') '# Animation of '//out%path//', written by `flexmech plot --animate`.'
-    write(u, '(a)') '# Rerun with gnuplot from the directory it ran in.'
-    write(u, '(a)') 'set terminal gif animate delay 8 loop 0 size 960,760 font ",11" noenhanced'
-    write(u, '(a)') 'set output "'//esc(base)//'_anim.gif"'
-    write(u, '(a)') 'data = "'//esc(base)//'_anim.dat"'
-    write(u, '(a)') 'array when['//str(size(d%rows))//']'
-    do f = 1, size(d%rows)
-      write(u, '(a)') 'when['//str(f)//'] = "'//frame_text(out, d%rows(f), ic, it)//'"'
-    end do
+    call open_animation_script(base, out, d%rows, u)
     call settings_3d(u, out, d, '')
     write(u, '(a)') 'do for [i = 0:'//str(size(d%rows) - 1)//'] {'
     write(u, '(a)') '  set title "'//esc(out%title)//'\nlinks straight between their displaced joints; '// &
