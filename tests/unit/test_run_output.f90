@@ -52,21 +52,25 @@ contains
   end subroutine test_optimizer
 
   !> fourbar_150_damped: 5 revolutions every 2 deg = 901 rows; crank_deg ends
-  !> at 1800; 3 peak-stress summaries in the footer.
+  !> at 1800; in the footer, the 3 links' peak stresses of the last revolution,
+  !> then of the whole run.
   subroutine test_transient()
     type(run_output_t) :: out
     type(error_t) :: err
-    integer :: i, n_peaks
+    integer :: i, n_last, n_whole
     call read_run_output('reference_outputs/fourbar_150_damped.out', out, err)
     call assert_true(.not. err%failed(), 'read')
     call assert_equal(out%analysis, 'transient', 'analysis')
     call assert_equal(size(out%data, 1), 901, 'rows')
     call assert_close(out%data(901, column_index(out, 'crank_deg')), 1800.0_dp, 1.0e-9_dp, 'last crank angle')
-    n_peaks = 0
+    n_last = 0
+    n_whole = 0
     do i = 1, size(out%footer)
-      if (index(out%footer(i)%s, 'peak |stress|') > 0) n_peaks = n_peaks + 1
+      if (index(out%footer(i)%s, 'last revolution peak |stress|') > 0) n_last = n_last + 1
+      if (index(out%footer(i)%s, 'whole run peak |stress|') > 0) n_whole = n_whole + 1
     end do
-    call assert_equal(n_peaks, 3, 'peak summaries')
+    call assert_equal(n_last, 3, 'peak summaries of the last revolution')
+    call assert_equal(n_whole, 3, 'peak summaries of the whole run')
   end subroutine test_transient
 
   subroutine test_missing()

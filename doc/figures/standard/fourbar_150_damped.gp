@@ -82,7 +82,7 @@ do for [fmt in formats] {
   set cblabel "|stress| (outer fibre) (psi)"
   plot sdata index 2*(0) u 1:2 w l lw 7 lc rgb "#d8d8d8" t "rigid-body position", \
        sdata index 2*(0)+1 u 1:2 w p pt 6 ps 1.2 lc rgb "#b0b0b0" notitle, \
-       sdata index 2*(0) u 3:4:5 w l lw 4 lc palette t "deformed, elastic displacements x 10 (links straight: no shape columns)", \
+       sdata index 2*(0) u 3:4:5 w l lw 4 lc palette t "deformed, elastic displacements x 10", \
        sdata index 2*(0)+1 u 3:4 w p pt 7 ps 1.2 lc rgb "#202020" notitle
   set output
 }
