@@ -41,7 +41,7 @@ worst() {
              printf "%.6g %s\n", w, where }' "$1" "$2"
 }
 
-for deck in fourbar_100_linear spinup_ws4 beam_clamped_mode1 spatial_fourbar_planar_100; do
+for deck in fourbar_100_linear spinup_ws4 spinup_ws4_kear beam_clamped_mode1 spatial_fourbar_planar_100; do
   # the solver lines of &transient, each on its own line in these decks
   awk '/^&/ { g = $1 } /^\// { g = "" }
        g == "&transient" && $0 ~ /^[ \t]*(method|rtol|atol|atol_rate|max_order)[ \t]*=/ { next } { print }' \
