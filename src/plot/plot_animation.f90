@@ -475,7 +475,6 @@ contains
     close(u)
   end subroutine write_anim_script
 
-  !> 'crank angle 123.0 deg (t = 0.0123 s)' of a row.
   !> Opens `base`_anim.gp and writes what every animation script starts with:
   !> the GIF terminal, its data file and each frame's crank angle and time
   !> (gnuplot array `when`, one entry per row of `rows`).
@@ -499,15 +498,25 @@ contains
     end do
   end subroutine open_animation_script
 
+  !> 'crank angle 290.0 deg of turn 5, t = 1.23E-01 s' of a row: the angle
+  !> within its turn (0-360 deg), the turn counted from 1 at crank angle 0.
   function frame_text(out, row, ic, it) result(s)
     type(run_output_t), intent(in) :: out
     integer, intent(in) :: row, ic, it
     character(len=:), allocatable :: s
     character(len=64) :: buf
+    real(dp) :: angle, within
+    integer :: turn
     s = ''
     if (ic > 0) then
-      write(buf, '(f10.1)') out%data(row, ic)
-      s = 'crank angle '//trim(adjustl(buf))//' deg, '
+      angle = out%data(row, ic)
+      within = modulo(angle, 360.0_dp)
+      if (within > 359.95_dp) within = 0.0_dp    ! 359.96 prints as 360.0: the next turn's 0.0
+      turn = nint((angle - within)/360.0_dp) + 1
+      write(buf, '(f10.1)') within
+      s = 'crank angle '//trim(adjustl(buf))//' deg'
+      if (turn /= 1) s = s//' of turn '//str(turn)
+      s = s//', '
     end if
     write(buf, '(es12.5)') out%data(row, it)
     s = s//'t = '//trim(adjustl(buf))//' s'

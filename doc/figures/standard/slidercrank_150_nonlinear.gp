@@ -65,7 +65,7 @@ do for [fmt in formats] {
   eval common
   set output base."_shape.".fmt
   set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 8709.1 psi in crank"
-  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 8709.1 psi in crank\ncrank angle 1045.0 deg, t = 1.21591E-01 s; elastic displacements x 100"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 8709.1 psi in crank\ncrank angle 325.0 deg of turn 3, t = 1.21591E-01 s; elastic displacements x 100"
   sdata = "doc/figures/standard/slidercrank_150_nonlinear_shape.dat"
   set size ratio -1
   set grid lc rgb "#e0e0e0"
