@@ -30,6 +30,9 @@ module plot_script
 
   character(len=6), parameter :: plot_palette(8) = [character(len=6) :: &
     '0072b2', 'd55e00', '009e73', 'cc79a7', 'e69f00', '56b4e9', '000000', 'f0e442']
+  !> a sweep point whose shooting matrix Phi - I has a smaller rcond is marked near a forced resonance
+  real(dp), parameter :: near_resonance_rcond = 0.01_dp
+  character(len=*), parameter :: near_resonance_text = '0.01'
 
   type :: series_t
     integer :: y = 1
@@ -43,6 +46,7 @@ module plot_script
     character(len=:), allocatable :: unit_stress, unit_length, unit_force, unit_moment   !< ' (psi)' or ''
     real(dp), allocatable :: failed(:)                 !< swept values of the failed points
     integer :: multiplier = 0                          !< column of the largest Floquet multiplier, 0: none
+    integer :: rcond = 0                               !< column of rcond(Phi - I) of periodic shooting, 0: none
     logical :: work = .false.                          !< a tolerance or mesh sweep: the work-precision figure
     type(name_t), allocatable :: links(:)              !< the link of each element (none in a mesh sweep)
     logical :: logx = .false.
@@ -582,6 +586,9 @@ contains
     end if
     v%multiplier = column_index(out, 'floquet_multipliers_largest_moduli_1')
     do j = 3, out%n_columns()
+      if (starts_with(lower(out%names(j)%s), 'rcond_of_the_newton_matrix')) v%rcond = j
+    end do
+    do j = 3, out%n_columns()
       nm = lower(out%names(j)%s)
       if (.not. any(finite_positive(out%data(:, j), .false.))) cycle
       if (starts_with(nm, 'floquet_multipliers')) then
@@ -654,15 +661,15 @@ contains
     character(len=16), intent(in) :: kinds(:)
     character(len=64), allocatable, intent(inout) :: figures(:)
     integer :: k, n, j, m
-    logical :: logy
+    logical :: logy, near
     character(len=:), allocatable :: mark, y
     n = count([(any(v%kind == kinds(k)), k = 1, size(kinds))])
     if (n == 0) return
     call begin_figure(u, name, what, figures, height=max(640, 40 + 330*n))
     write(u, '(a)') '  set multiplot layout '//str(n)//',1 title title."\n'//esc(what)//'"'
     write(u, '(a)') '  unset title'
-    write(u, '(a)') '  set key outside right top'
-    write(u, '(a)') '  set xlabel "'//esc(out%names(1)%s)//'"'
+    write(u, '(a)') '  set key below'
+    write(u, '(a)') '  set xlabel "'//esc(out%names(1)%s//swept_unit(out%names(1)%s, v))//'"'
     if (v%logx) write(u, '(a)') '  set logscale x'
     do j = 1, size(v%failed)
       write(u, '(a)') '  set arrow '//str(j)//' from '//axis_number(v%failed(j))//', graph 0 to '// &
@@ -706,6 +713,21 @@ contains
             trim(merge('t "unbounded (Floquet multiplier > 1)"', 'notitle                               ', m == 1))//', \'
         end do
       end if
+      ! a multiplier near +1 (Phi - I nearly singular): the periodic response to the crank's
+      ! forcing is amplified about as 1/rcond, a forced resonance even where every |multiplier| = 1
+      near = .false.
+      if (v%rcond > 0) near = kinds(k) /= 'multiplier' .and. any(out%data(:, max(v%rcond, 1)) < near_resonance_rcond)
+      if (near) then
+        mark = '($'//str(v%rcond)//' < '//axis_number(near_resonance_rcond)//' ? $'
+        m = 0
+        do j = 1, out%n_columns()
+          if (v%kind(j) /= kinds(k)) cycle
+          m = m + 1
+          y = 'notitle'
+          if (m == 1) y = 't "near a forced resonance (rcond of the shooting matrix < '//near_resonance_text//')"'
+          write(u, '(a)') '       data u 1:'//mark//str(j)//' : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" '//y//', \'
+        end do
+      end if
       if (size(v%failed) > 0) then
         write(u, '(a)') '       NaN w l dt 3 lw 2 lc rgb "#d00000" t "failed point (no row)"'
       else
@@ -715,6 +737,27 @@ contains
     write(u, '(a)') '  unset multiplot'
     call end_figure(u)
   end subroutine panel_figure
+
+  !> ' (rad/s)' for a sweep over the crank speed, the deck's length or stress
+  !> unit for a length or modulus, '' for a count or a tolerance ratio.
+  function swept_unit(name, v) result(s)
+    character(len=*), intent(in) :: name
+    type(sweep_view_t), intent(in) :: v
+    character(len=:), allocatable :: s
+    character(len=:), allocatable :: nm
+    nm = lower(name)
+    s = ''
+    if (nm == 'omega') then
+      s = ' (rad/s)'
+    else if (nm == 'damping_beta' .or. nm == 'spinup_time' .or. nm == 't_end') then
+      s = ' (s)'
+    else if (any(nm == [character(len=12) :: 'link_length', 'joint_x', 'joint_y', 'link_c', 'link_depth', &
+                        'link_width', 'link_radius', 'atol']) .and. allocated(v%unit_length)) then
+      s = v%unit_length
+    else if ((nm == 'link_e1' .or. nm == 'link_e2') .and. allocated(v%unit_stress)) then
+      s = v%unit_stress
+    end if
+  end function swept_unit
 
   function axis_label(kind, v) result(s)
     character(len=*), intent(in) :: kind

@@ -99,6 +99,22 @@ EOD
 check "$work/sweep_rtol.out" peaks cost work
 grep -q 'set logscale x' "$work/sweep_rtol.gp" && grep -q 'set arrow 1 from 1.0000000000E-10' "$work/sweep_rtol.gp" \
   || { echo "FAIL: the rtol sweep lacks its log axis or its failed point"; fail=1; }
+# a speed sweep of periodic shooting (synthetic summary): the x axis in rad/s, the point whose
+# shooting matrix is nearly singular (rcond 1.6e-3) circled as near a forced resonance, the
+# others (rcond 0.05, 0.13) not
+cat > "$work/sweep_speed.out" <<'EOD'
+# title: speed sweep layout
+# sweep: omega of &mechanism over 3 values; point decks, outputs and logs in none/x_<k>.{nml,out,log}
+#  omega exit_status rcond_of_the_newton_matrix_y_t_i_energy_units floquet_multipliers_largest_moduli_1 element_1_peak_stress_exact_periodic
+  293 0 1.6e-3 1.0 1.38e7
+  294 0 5.06e-2 1.0 3.88e5
+  295 0 1.29e-1 1.0018 3.63e5
+EOD
+check "$work/sweep_speed.out" peaks
+grep -q 'set xlabel "omega (rad/s)"' "$work/sweep_speed.gp" \
+  && grep -q '(\$3 < 1.0000000000E-02 ? \$5 : NaN)' "$work/sweep_speed.gp" \
+  && grep -q '(\$4 > 1.000001 ? \$5 : NaN)' "$work/sweep_speed.gp" \
+  || { echo "FAIL: the speed sweep lacks its unit or its resonance marks"; fail=1; }
 # an optimizer output has no mechanism: --animate is refused with exit 3
 set +e; "$bin" plot reference_outputs/opt_hs15_gnlc_ns.out -d "$work/anim" --animate > /dev/null 2>&1; st=$?; set -e
 [ $st -eq 3 ] || { echo "FAIL: --animate on an optimizer output exited $st, expected 3"; fail=1; }

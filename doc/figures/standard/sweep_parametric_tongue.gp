@@ -17,8 +17,8 @@ do for [fmt in formats] {
   set title title."\nsummary peaks against the swept value"
   set multiplot layout 1,1 title title."\nsummary peaks against the swept value"
   unset title
-  set key outside right top
-  set xlabel "omega"
+  set key below
+  set xlabel "omega (rad/s)"
   set ylabel "peak stress"
   unset logscale y
   plot data u 1:15 w lp lw 2 ps 1.1 lc rgb "#000072b2" pt 7 dt 1 t "element_1_peak_stress_exact_periodic", \
@@ -27,6 +27,9 @@ do for [fmt in formats] {
        data u 1:($5 > 1.000001 ? $15 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" t "unbounded (Floquet multiplier > 1)", \
        data u 1:($5 > 1.000001 ? $16 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" notitle, \
        data u 1:($5 > 1.000001 ? $17 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" notitle, \
+       data u 1:($4 < 1.0000000000E-02 ? $15 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" t "near a forced resonance (rcond of the shooting matrix < 0.01)", \
+       data u 1:($4 < 1.0000000000E-02 ? $16 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" notitle, \
+       data u 1:($4 < 1.0000000000E-02 ? $17 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" notitle, \
        NaN notitle
   unset multiplot
   set output
@@ -40,14 +43,16 @@ do for [fmt in formats] {
   set title title."\ncost of each point"
   set multiplot layout 2,1 title title."\ncost of each point"
   unset title
-  set key outside right top
-  set xlabel "omega"
+  set key below
+  set xlabel "omega (rad/s)"
   set ylabel "CPU seconds (log scale)"
   set logscale y
   plot data u 1:($14 > 0 ? $14 : NaN) w lp lw 2 ps 1.1 lc rgb "#000072b2" pt 7 dt 1 t "cost_cpu_seconds_shooting", \
        data u 1:($19 > 0 ? $19 : NaN) w lp lw 2 ps 1.1 lc rgb "#00d55e00" pt 5 dt 1 t "cost_total_cpu_seconds", \
        data u 1:($5 > 1.000001 ? $14 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" t "unbounded (Floquet multiplier > 1)", \
        data u 1:($5 > 1.000001 ? $19 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" notitle, \
+       data u 1:($4 < 1.0000000000E-02 ? $14 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" t "near a forced resonance (rcond of the shooting matrix < 0.01)", \
+       data u 1:($4 < 1.0000000000E-02 ? $19 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" notitle, \
        NaN notitle
   set ylabel "count (log scale)"
   set logscale y
@@ -59,6 +64,10 @@ do for [fmt in formats] {
        data u 1:($5 > 1.000001 ? $12 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" notitle, \
        data u 1:($5 > 1.000001 ? $13 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" notitle, \
        data u 1:($5 > 1.000001 ? $18 : NaN) w p pt 2 ps 2.5 lw 2 lc rgb "#d00000" notitle, \
+       data u 1:($4 < 1.0000000000E-02 ? $11 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" t "near a forced resonance (rcond of the shooting matrix < 0.01)", \
+       data u 1:($4 < 1.0000000000E-02 ? $12 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" notitle, \
+       data u 1:($4 < 1.0000000000E-02 ? $13 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" notitle, \
+       data u 1:($4 < 1.0000000000E-02 ? $18 : NaN) w p pt 6 ps 2.5 lw 2 lc rgb "#e07000" notitle, \
        NaN notitle
   unset multiplot
   set output
@@ -72,8 +81,8 @@ do for [fmt in formats] {
   set title title."\nlargest Floquet multiplier moduli (above 1: unbounded, parametric resonance)"
   set multiplot layout 1,1 title title."\nlargest Floquet multiplier moduli (above 1: unbounded, parametric resonance)"
   unset title
-  set key outside right top
-  set xlabel "omega"
+  set key below
+  set xlabel "omega (rad/s)"
   set ylabel "modulus"
   unset logscale y
   plot data u 1:5 w lp lw 2 ps 1.1 lc rgb "#000072b2" pt 7 dt 1 t "floquet_multipliers_largest_moduli_1", \

@@ -17,8 +17,8 @@ do for [fmt in formats] {
   set title title."\nsummary peaks against the swept value"
   set multiplot layout 1,1 title title."\nsummary peaks against the swept value"
   unset title
-  set key outside right top
-  set xlabel "omega"
+  set key below
+  set xlabel "omega (rad/s)"
   set ylabel "peak stress (log scale)"
   set logscale y
   plot data u 1:($11 > 0 ? $11 : NaN) w lp lw 2 ps 1.1 lc rgb "#000072b2" pt 7 dt 1 t "element_1_peak_stress_harmonic_series", \
@@ -37,8 +37,8 @@ do for [fmt in formats] {
   set title title."\ncost of each point"
   set multiplot layout 2,1 title title."\ncost of each point"
   unset title
-  set key outside right top
-  set xlabel "omega"
+  set key below
+  set xlabel "omega (rad/s)"
   set ylabel "CPU seconds (log scale)"
   set logscale y
   plot data u 1:($10 > 0 ? $10 : NaN) w lp lw 2 ps 1.1 lc rgb "#000072b2" pt 7 dt 1 t "cost_cpu_seconds_harmonic", \
