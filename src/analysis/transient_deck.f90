@@ -35,18 +35,20 @@ contains
     if (err%failed()) return
     call read_loads(deck, loads_in, err)
     if (err%failed()) return
-    call clearance%read(deck, mech, s%initial, err)
+    call clearance%read(deck, mech, err)
     if (err%failed()) return
-    call check_across_groups(deck, mech, s, err)
+    call check_across_groups(deck, mech, s, clearance%active, err)
   end subroutine read_transient_deck
 
-  !> The rules that join &mechanism and &transient/&effects (those of
-  !> &clearance against the joints are its reader's, which takes the
-  !> mechanism; those that need the built model, the driver's).
-  subroutine check_across_groups(deck, mech, s, err)
+  !> The rules that join &mechanism, &transient/&effects and &clearance
+  !> (those of &clearance against the joints are its reader's, which takes
+  !> the mechanism; those that need the built model, the driver's).
+  !> clearance: some joint of &clearance has a clearance.
+  subroutine check_across_groups(deck, mech, s, clearance, err)
     type(deck_t), intent(in) :: deck
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
+    logical, intent(in) :: clearance
     type(error_t), intent(inout) :: err
     integer :: k
     call check_section_rules(deck, mech, s%effects%material, .false., err)
@@ -59,6 +61,11 @@ contains
     if (s%stop_when_periodic > 0.0_dp .and. .not. mech%driver%omega > 0.0_dp) then
       call invalid_value(deck, 'transient', 'stop_when_periodic', str(s%stop_when_periodic), &
                          'needs a turning crank (omega > 0): periodicity is judged per revolution', err)
+      return
+    end if
+    if (clearance .and. s%initial == 'mode') then
+      call invalid_value(deck, 'transient', 'initial', '''mode''', 'a mode of the pinned structure is not a '// &
+                         'state of a linkage with clearance; start from ''rigid''', err)
       return
     end if
     do k = 1, size(s%point_link)
