@@ -44,7 +44,7 @@ module transient_settings
     integer :: max_order = -1            !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF); < 0: from the model
     character(len=16) :: kinematics = 'table'   !< rigid motion: 'table' (per revolution) or 'direct'
     integer :: table_points = 720        !< crank angles per revolution in the table
-    type(element_effects_t) :: effects   !< (its defaults: every effect off) the papers' tracing constants, all off = linear
+    type(element_effects_t) :: effects   !< the papers' tracing constants; its defaults: all off = linear
     character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
                                          !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
     character(len=16) :: output_rows = 'all'   !< rows written: 'all', 'last_revolution' or 'none'
