@@ -163,13 +163,10 @@ contains
     type(mechanism_t) :: mech
     type(clearance_monitor_t) :: clearance
     type(table_t) :: out
-    echo = ''
-    call err%clear()
-    call open_deck_text(suite_stem(), text, deck, err)
+    call open_text(text, deck, echo, err)
     if (.not. err%failed()) call read_transient_deck(deck, mech, s, l, clearance, err)
-    call close_deck_text(suite_stem(), deck)
+    call close_text_open_echo(deck, out, err)
     if (err%failed()) return
-    call open_echo(out, err)
     call echo_transient_deck(out, mech, l, clearance)
     call close_echo(out, echo, err)
   end subroutine transient_echo
@@ -183,14 +180,11 @@ contains
     type(error_t), intent(inout) :: err
     type(deck_t) :: deck
     type(table_t) :: out
-    echo = ''
-    call err%clear()
-    call open_deck_text(suite_stem(), text, deck, err)
+    call open_text(text, deck, echo, err)
     if (.not. err%failed()) call read_optimize_settings(deck, s, err)
     if (.not. err%failed()) call read_problem_data(deck, d, err)
-    call close_deck_text(suite_stem(), deck)
+    call close_text_open_echo(deck, out, err)
     if (err%failed()) return
-    call open_echo(out, err)
     call echo_optimize_settings(s, s%x0(1:d%n), out)
     call echo_problem_data(d, out)
     call close_echo(out, echo, err)
@@ -204,22 +198,33 @@ contains
     type(error_t), intent(inout) :: err
     type(deck_t) :: deck
     type(table_t) :: out
-    echo = ''
-    call err%clear()
-    call open_deck_text(suite_stem(), text, deck, err)
+    call open_text(text, deck, echo, err)
     if (.not. err%failed()) call read_sweep_settings(deck, s, err)
-    call close_deck_text(suite_stem(), deck)
+    call close_text_open_echo(deck, out, err)
     if (err%failed()) return
-    call open_echo(out, err)
     call echo_sweep_settings(s, out)
     call close_echo(out, echo, err)
   end subroutine sweep_echo
 
-  subroutine open_echo(out, err)
+  !> The deck text as a deck open for a reader (no error so far, no echo yet).
+  subroutine open_text(text, deck, echo, err)
+    character(len=*), intent(in) :: text
+    type(deck_t), intent(inout) :: deck
+    character(len=:), allocatable, intent(out) :: echo
+    type(error_t), intent(inout) :: err
+    echo = ''
+    call err%clear()
+    call open_deck_text(suite_stem(), text, deck, err)
+  end subroutine open_text
+
+  !> Close the deck; unless its read failed, an output for the echo.
+  subroutine close_text_open_echo(deck, out, err)
+    type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
     type(error_t), intent(inout) :: err
-    call out%open(suite_stem()//'.out', err)
-  end subroutine open_echo
+    call close_deck_text(suite_stem(), deck)
+    if (.not. err%failed()) call out%open(suite_stem()//'.out', err)
+  end subroutine close_text_open_echo
 
   !> The output's '#' lines without their '# ', joined by '|' (a deck text).
   subroutine close_echo(out, echo, err)
