@@ -20,7 +20,7 @@ module clearance_run
   use kinds, only: dp, pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value
+  use deck_reader, only: deck_t
   use table_output, only: table_t
   use lsode_solver, only: lsode_t, mf_adams
   use linkage, only: mechanism_t, joint_pin, driver_angle
@@ -59,17 +59,14 @@ module clearance_run
 contains
 
   !> Read &clearance; active when some joint has c > 0.
-  subroutine monitor_read(self, deck, mech, initial, err)
+  subroutine monitor_read(self, deck, mech, err)
     class(clearance_monitor_t), intent(inout) :: self
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(in) :: mech
-    character(len=*), intent(in) :: initial
     type(error_t), intent(inout) :: err
     call read_clearance_settings(deck, mech, self%s, err)
     if (err%failed()) return
     self%active = any(self%s%clearance > 0.0_dp)
-    if (self%active .and. initial == 'mode') call invalid_value(deck, 'transient', 'initial', '''mode''', &
-      'a mode of the pinned structure is not a state of a linkage with clearance; start from ''rigid''', err)
   end subroutine monitor_read
 
   subroutine monitor_echo(self, out)

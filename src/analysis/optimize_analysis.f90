@@ -11,17 +11,18 @@
 !> an error with the diagnosis (the table and the best feasible point stay in
 !> the output).
 module optimize_analysis
-  use, intrinsic :: iso_fortran_env, only: int64
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str, lower
-  use deck_reader, only: deck_t, invalid_value, input_error_code, group_read_t
-  use deck_checks, only: check_real, check_reals, check_integer, check_choice
+  use deck_reader, only: deck_t, invalid_value, input_error_code
   use table_output, only: table_t
   use optim_problem, only: opt_problem_t, opt_counters_t, con_kind_name
   use problem_library, only: problem_info_t, create_problem, problem_names
   use user_problems, only: create_user_problem, user_problem_names
-  use deck_problem, only: read_deck_problem
+  use deck_problem, only: problem_data_t, build_deck_problem
+  use problem_data_settings, only: read_problem_data, echo_problem_data
+  use optimize_settings, only: optimize_settings_t, read_optimize_settings, check_optimize_settings, &
+                               echo_optimize_settings
   use hs_collection, only: hs_problem_t, hs_numbers, create_hs
   use gauss_optimizer, only: gauss_optimizer_t, method_from_name, hessian_from_name, &
                              hessian_name, hessian_gauss, hessian_exact, hessian_auto, &
@@ -30,47 +31,7 @@ module optimize_analysis
   private
   public :: run_optimize, check_problem_derivatives
 
-  integer, parameter :: max_vars = 50
-  character(len=20), parameter :: method_list(7) = [character(len=20) :: 'auto', 'gauss', 'gauss_constrained', &
-                                                    'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns']
-  real(dp), parameter :: unset = -huge(1.0_dp)
-
-  ! staging variables of the &optimize group
-  character(len=32) :: problem, method, hessian, potter_fix, step_back, singular_g, globalization
-  real(dp) :: x0(max_vars), xtol, ftol, feas_tol, mult_tol, rcond_min, regularization, stat_tol
-  integer :: max_iter, newton_max_iter
-  logical :: check_derivatives
-  namelist /optimize/ problem, method, x0, hessian, max_iter, xtol, ftol, feas_tol, mult_tol, rcond_min, &
-                      regularization, newton_max_iter, potter_fix, step_back, singular_g, globalization, stat_tol, &
-                      check_derivatives
-
 contains
-
-  subroutine set_defaults()
-    problem = 'rosen_suzuki'
-    method = 'auto'
-    x0 = unset
-    hessian = 'auto'
-    max_iter = 50
-    xtol = 1.0e-8_dp
-    ftol = 1.0e-12_dp
-    feas_tol = 1.0e-8_dp
-    mult_tol = 1.0e-8_dp
-    rcond_min = 1.0e-13_dp
-    regularization = 0.0_dp
-    newton_max_iter = 30
-    potter_fix = 'repeat'
-    step_back = 'farthest'
-    singular_g = 'regularize'
-    globalization = 'filter'
-    stat_tol = 1.0e-4_dp
-    check_derivatives = .false.
-  end subroutine set_defaults
-
-  subroutine read_optimize(r)
-    type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=optimize, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_optimize
 
   subroutine run_optimize(deck, out, err)
     type(deck_t), intent(inout) :: deck
@@ -79,42 +40,35 @@ contains
     class(opt_problem_t), allocatable, target :: prob
     type(problem_info_t) :: info
     type(gauss_optimizer_t) :: opt
+    type(optimize_settings_t) :: s
+    type(problem_data_t), allocatable :: data       ! problem = 'deck': its coefficients
     type(error_t) :: run_err
-    logical :: found
     integer :: n, n_given
     real(dp), allocatable :: start(:)
     real(dp) :: cpu0, cpu1
     character(len=160), allocatable :: check_lines(:)
     integer :: i
 
-    call set_defaults()
-    call deck%read_group('optimize', read_optimize, .true., found, err)
+    call read_optimize_settings(deck, s, err)
     if (err%failed()) return
-    problem = lower(problem)
-    method = lower(method)
-    hessian = lower(hessian)
-    potter_fix = lower(potter_fix)
-    step_back = lower(step_back)
-    singular_g = lower(singular_g)
-    globalization = lower(globalization)
-    call select_problem(deck, prob, info, err)
+    call select_problem(deck, s%problem, prob, info, data, err)
     if (err%failed()) return
     n = prob%n
-    call check_settings(deck, n, n_given, err)
+    call check_optimize_settings(deck, s, n, n_given, err)
     if (err%failed()) return
     if (n_given == 0) then
       start = info%x0
-      x0(1:n) = start
     else
-      start = x0(1:n)
+      start = s%x0(1:n)
     end if
-    call echo_optimize(out, start)
+    call echo_optimize_settings(s, start, out)
+    if (allocated(data)) call echo_problem_data(data, out)
 
-    call out%comment('problem: '//trim(problem)//': '//info%title)
+    call out%comment('problem: '//trim(s%problem)//': '//info%title)
     call out%comment('source: '//info%source)
     call out%comment('variables: '//str(n)//'; objective: '//objective_text(prob)//'; constraints: ' &
                      //constraint_text(prob))
-    if (check_derivatives) then
+    if (s%check_derivatives) then
       call check_problem_derivatives(prob, start, check_lines, err)
       do i = 1, size(check_lines)
         call out%comment(trim(check_lines(i)))
@@ -124,10 +78,10 @@ contains
         return
       end if
     end if
-    call set_options(opt)
-    call out%comment('method: '//trim(method)//', G = '//g_text(opt%opts%hessian, prob)// &
+    call set_options(s, opt)
+    call out%comment('method: '//trim(s%method)//', G = '//g_text(opt%opts%hessian, prob)// &
                      ', convergence: feasible, multipliers >= 0, |s| <= xtol (1 + |x|), |dL_pred| <= ftol (1 + |F|), ' &
-                     //'|grad L| <= stat_tol max(1, |grad F|); step acceptance: '//trim(globalization))
+                     //'|grad L| <= stat_tol max(1, |grad F|); step acceptance: '//trim(s%globalization))
 
     call cpu_time(cpu0)
     call opt%solve(prob, start, run_err)
@@ -150,17 +104,21 @@ contains
   !> The problem named in the deck: one posed by coefficients in the deck; the
   !> user's problems (make PROBLEM=...); the Hock-Schittkowski collection; then
   !> the library.  An unknown name is an input error listing the choices.
-  subroutine select_problem(deck, prob, info, err)
+  subroutine select_problem(deck, problem, prob, info, data, err)
     type(deck_t), intent(inout) :: deck
+    character(len=*), intent(in) :: problem
     class(opt_problem_t), allocatable, intent(out) :: prob
     type(problem_info_t), intent(out) :: info
+    type(problem_data_t), allocatable, intent(out) :: data
     type(error_t), intent(inout) :: err
     logical :: found
     character(len=:), allocatable :: names
     found = .false.
     if (problem == 'deck') then
-      call read_deck_problem(deck, prob, info, err)
+      allocate(data)
+      call read_problem_data(deck, data, err)
       if (err%failed()) return
+      call build_deck_problem(data, prob, info)
       found = .true.
     end if
     if (.not. found) call create_user_problem(trim(problem), prob, info, found, err)
@@ -177,86 +135,24 @@ contains
     end if
   end subroutine select_problem
 
-  !> Check the method, its options and x0 (all of x0(1:n) given, or none).
-  subroutine check_settings(deck, n, n_given, err)
-    type(deck_t), intent(in) :: deck
-    integer, intent(in) :: n
-    integer, intent(out) :: n_given
-    type(error_t), intent(inout) :: err
-    n_given = 0
-    if (method == 'gnlc.ns') method = 'gnlc_ns'
-    call check_choice(deck, 'optimize', 'method', method, method_list, err)
-    call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
-    call check_choice(deck, 'optimize', 'potter_fix', potter_fix, [character(len=8) :: 'repeat', 'none'], err)
-    call check_choice(deck, 'optimize', 'step_back', step_back, [character(len=8) :: 'farthest', 'b13'], err)
-    call check_choice(deck, 'optimize', 'singular_g', singular_g, [character(len=12) :: 'regularize', 'stop'], err)
-    call check_choice(deck, 'optimize', 'globalization', globalization, [character(len=8) :: 'filter', 'none'], err)
-    if (err%failed()) return
-    ! x0: unset entries hold the sentinel -huge; the given ones must be finite
-    n_given = count(.not. is_unset(x0))
-    if (n_given /= 0 .and. (n_given /= n .or. any(is_unset(x0(1:n))))) then
-      call invalid_value(deck, 'optimize', 'x0', str(n_given)//' values', 'problem '//trim(problem)// &
-                         ' has '//str(n)//' variables: give all of x0(1:'//str(n)//') or none', err)
-      return
-    end if
-    if (n_given > 0) call check_reals(deck, 'optimize', 'x0', x0(1:n), err, at_least=-1.0e15_dp, at_most=1.0e15_dp, &
-      why='a design variable beyond 1e15 leaves residuals whose squares overflow')
-    call check_integer(deck, 'optimize', 'max_iter', max_iter, err, at_least=0, at_most=100000)
-    call check_integer(deck, 'optimize', 'newton_max_iter', newton_max_iter, err, at_least=1, at_most=1000)
-    call check_real(deck, 'optimize', 'xtol', xtol, err, above=0.0_dp, below=1.0_dp, &
-                    why='a relative step tolerance')
-    call check_real(deck, 'optimize', 'ftol', ftol, err, above=0.0_dp, below=1.0_dp, &
-                    why='a relative objective tolerance')
-    call check_real(deck, 'optimize', 'feas_tol', feas_tol, err, above=0.0_dp, below=1.0_dp, &
-                    why='an absolute constraint tolerance; 1 or more would call violated constraints satisfied')
-    call check_real(deck, 'optimize', 'mult_tol', mult_tol, err, at_least=0.0_dp, below=1.0_dp, &
-                    why='a multiplier threshold relative to |grad F|')
-    call check_real(deck, 'optimize', 'rcond_min', rcond_min, err, above=0.0_dp, below=1.0_dp, &
-                    why='a reciprocal condition number')
-    call check_real(deck, 'optimize', 'regularization', regularization, err, at_least=0.0_dp, at_most=1.0_dp, &
-                    why='mu = regularization max G_ii; above 1 mu I would swamp G and the step become a gradient step')
-    call check_real(deck, 'optimize', 'stat_tol', stat_tol, err, above=0.0_dp, below=1.0_dp, &
-                    why='a relative tolerance on |grad F + C lambda|')
-  end subroutine check_settings
-
-  !> Echo the effective input (x0 only as far as the problem uses it).
-  subroutine echo_optimize(out, start)
-    type(table_t), intent(inout) :: out
-    real(dp), intent(in) :: start(:)
-    integer :: u
-    u = out%echo_unit()
-    write(u, '(a)') '&optimize'
-    write(u, '(a)') ' problem = '''//trim(problem)//''', method = '''//trim(method)//''', hessian = ''' &
-                    //trim(hessian)//''','
-    write(u, '(a,*(g0.17,:,", "))') ' x0 = ', start
-    write(u, '(a)') ' max_iter = '//str(max_iter)//', newton_max_iter = '//str(newton_max_iter)// &
-                    ', potter_fix = '''//trim(potter_fix)//''', step_back = '''//trim(step_back)//''','
-    write(u, '(a)') ' xtol = '//str(xtol)//', ftol = '//str(ftol)//', feas_tol = '//str(feas_tol)//','
-    write(u, '(a)') ' mult_tol = '//str(mult_tol)//', rcond_min = '//str(rcond_min)//', regularization = ' &
-                    //str(regularization)//', singular_g = '''//trim(singular_g)//''','
-    write(u, '(a)') ' globalization = '''//trim(globalization)//''', stat_tol = '//str(stat_tol)// &
-                    ', check_derivatives = '//trim(merge('T', 'F', check_derivatives))
-    write(u, '(a)') '/'
-    call out%end_echo()
-  end subroutine echo_optimize
-
-  subroutine set_options(opt)
+  subroutine set_options(s, opt)
+    type(optimize_settings_t), intent(in) :: s
     type(gauss_optimizer_t), intent(inout) :: opt
-    opt%opts%method = method_from_name(method)
-    opt%opts%hessian = hessian_from_name(hessian)
-    opt%opts%max_iter = max_iter
-    opt%opts%xtol = xtol
-    opt%opts%ftol = ftol
-    opt%opts%feas_tol = feas_tol
-    opt%opts%mult_tol = mult_tol
-    opt%opts%rcond_min = rcond_min
-    opt%opts%regularization = regularization
-    opt%opts%auto_regularize = singular_g == 'regularize'
-    opt%opts%newton_max_iter = newton_max_iter
-    opt%opts%potter_repeat = potter_fix == 'repeat'
-    opt%opts%step_back_refine = step_back == 'farthest'
-    opt%opts%globalization = globalization_from_name(globalization)
-    opt%opts%stat_tol = stat_tol
+    opt%opts%method = method_from_name(s%method)
+    opt%opts%hessian = hessian_from_name(s%hessian)
+    opt%opts%max_iter = s%max_iter
+    opt%opts%xtol = s%xtol
+    opt%opts%ftol = s%ftol
+    opt%opts%feas_tol = s%feas_tol
+    opt%opts%mult_tol = s%mult_tol
+    opt%opts%rcond_min = s%rcond_min
+    opt%opts%regularization = s%regularization
+    opt%opts%auto_regularize = s%singular_g == 'regularize'
+    opt%opts%newton_max_iter = s%newton_max_iter
+    opt%opts%potter_repeat = s%potter_fix == 'repeat'
+    opt%opts%step_back_refine = s%step_back == 'farthest'
+    opt%opts%globalization = globalization_from_name(s%globalization)
+    opt%opts%stat_tol = s%stat_tol
   end subroutine set_options
 
   !> Status, the optimum found (or the best feasible iterate) and the known optimum.
@@ -279,7 +175,7 @@ contains
       call out%summary('x', vector_text(opt%x))
       if (prob%n_constraints() > 0) then
         call out%summary('g', vector_text(opt%g))
-        call out%summary('active constraints (|g| <= feas_tol)', set_text(abs(opt%g) <= feas_tol))
+        call out%summary('active constraints (|g| <= feas_tol)', set_text(abs(opt%g) <= opt%opts%feas_tol))
         call out%summary('working set', set_text(opt%active))
         call out%summary('multipliers', vector_text(opt%lambda))
         call out%summary('max violation', str(max(0.0_dp, maxval([0.0_dp, opt%g(1:prob%m)]), &
@@ -288,9 +184,9 @@ contains
       if (opt%status == status_converged) call out%summary('KKT residual |grad F + C lambda|_inf', &
                                                            str(opt%kkt_residual, 4))
       call out%summary('first-order test: |grad L|_inf / max(1, |grad F|_inf) (<= stat_tol)', &
-                       str(opt%stationarity, 4)//' (<= '//str(stat_tol, 3)//')')
+                       str(opt%stationarity, 4)//' (<= '//str(opt%opts%stat_tol, 3)//')')
       call out%summary('first-order test: smallest lambda_i |c_i| / |grad F| (>= -mult_tol)', &
-                       str(opt%min_multiplier, 4)//' (>= '//str(-mult_tol, 3)//')')
+                       str(opt%min_multiplier, 4)//' (>= '//str(-opt%opts%mult_tol, 3)//')')
     end if
     if (opt%status /= status_converged) then
       if (opt%have_best) then
@@ -503,13 +399,6 @@ contains
       s = s//str(hs_numbers(i))
     end do
   end function collection_text
-
-  !> x0 entries the deck left at the sentinel (bit comparison: no floating-point
-  !> comparison with a NaN the deck may hold).
-  elemental logical function is_unset(v)
-    real(dp), intent(in) :: v
-    is_unset = transfer(v, 0_int64) == transfer(unset, 0_int64)
-  end function is_unset
 
   !> Rows k, NF, F, max violation, step, |S|, x(1:n), lambda(1:m+n_eq),
   !> active(1:m+n_eq) (1 = in the working set); events as '#' lines.

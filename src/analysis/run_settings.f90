@@ -23,6 +23,15 @@ module run_settings
     end subroutine analysis_driver
   end interface
 
+  !> The group's values; the default initialisation is the documented
+  !> defaults (doc/decks.md).
+  type :: run_settings_t
+    character(len=32) :: analysis = ''        !< required: refused when blank or unknown (flexmech.f90)
+    character(len=256) :: title = ''
+    character(len=16) :: units = 'in-lbf-s'
+  end type run_settings_t
+
+  ! staging variables of &run
   character(len=32) :: analysis
   character(len=256) :: title
   character(len=16) :: units
@@ -80,10 +89,9 @@ contains
     type(deck_t), intent(inout) :: deck
     character(len=*), intent(out) :: analysis_out, title_out
     type(error_t), intent(inout) :: err
+    type(run_settings_t) :: defaults
     logical :: found
-    analysis = ''
-    title = ''
-    units = 'in-lbf-s'
+    call stage_from(defaults)
     call deck%read_group('run', run_group, .true., found, err)
     analysis_out = analysis
     title_out = title
@@ -113,6 +121,14 @@ contains
     call out%comment('effective input (every value, defaults included):')
     call out%echo_group(run_group)
   end subroutine write_run_header
+
+  !> The namelist variables from a settings value (the defaults before a read).
+  subroutine stage_from(s)
+    type(run_settings_t), intent(in) :: s
+    analysis = s%analysis
+    title = s%title
+    units = s%units
+  end subroutine stage_from
 
   !> The &run group's namelist read and write (deck_reader, table_t%echo_group).
   subroutine run_group(r)

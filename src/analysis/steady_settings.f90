@@ -21,10 +21,13 @@ module steady_settings
 
   integer, parameter :: ms = tennant_max_sections
 
+  !> The two groups' values; the default initialisation is the documented
+  !> defaults (doc/decks.md), those of the solvers' and the element's types.
   type :: steady_settings_t
     character(len=16) :: method = 'harmonic'      !< 'harmonic', 'shooting' or 'both'
-    type(harmonic_settings_t) :: harmonic
-    type(shooting_settings_t) :: shooting
+    character(len=16) :: integrator = 'bdf'       !< the shooting's DLSODE: 'bdf' or 'adams'
+    type(harmonic_settings_t) :: harmonic         !< the harmonic series' defaults
+    type(shooting_settings_t) :: shooting = shooting_settings_t(bdf=.true.)   !< BDF: integrator = 'bdf'
     real(dp) :: output_step_deg = 5.0_dp
     logical :: allow_resonance = .false.          !< print a steady state even near resonance
     logical :: allow_beyond_peak = .false.        !< print it even where a strain passes the R-O peak
@@ -54,50 +57,18 @@ contains
     integer, intent(in) :: n_links
     type(steady_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
+    type(steady_settings_t) :: defaults
     logical :: found
     integer :: k
 
-    method = s%method
-    n_harmonics = s%harmonic%n_harmonics
-    harmonics_kept = s%harmonic%n_kept
-    velocity_terms = s%harmonic%velocity_terms
-    outer_tol = s%harmonic%outer_tol
-    max_outer = s%harmonic%max_outer
-    resonance_ratio = s%harmonic%resonance_ratio
-    allow_resonance = s%allow_resonance
-    allow_beyond_peak = s%allow_beyond_peak
-    output_step_deg = s%output_step_deg
-    damping_beta = s%element%damping_beta
-    integrator = 'bdf'
-    rtol = s%shooting%rtol
-    atol = s%shooting%atol
-    newton_tol = s%shooting%newton_tol
-    max_newton = s%shooting%max_newton
-    max_steps = s%shooting%max_steps
-    unit_circle_tol = s%shooting%unit_circle_tol
-    singular_rcond = s%shooting%singular_rcond
+    call stage_from(defaults)
     call deck%read_group('steady', steady_group, .false., found, err)
     if (err%failed()) return
-
-    d_k = s%element%d_k
-    d_b = s%element%d_b
-    d_g = s%element%d_g
-    shear = s%element%shear
-    rotary_inertia = s%element%rotary_inertia
-    shear_inertia = s%element%shear_inertia
-    shear_modulus = s%element%shear_modulus
-    poisson = s%element%poisson
-    shear_factor = s%element%shear_factor
-    n_gauss = s%element%n_gauss
-    n_sections = 0
-    section_end = 0.0_dp
-    section_b = 0.0_dp
-    section_h = 0.0_dp
     call deck%read_group('tennant', tennant_group, .false., found, err)
     if (err%failed()) return
 
-    s = steady_settings_t(method=method, output_step_deg=output_step_deg, allow_resonance=allow_resonance, &
-      allow_beyond_peak=allow_beyond_peak, &
+    s = steady_settings_t(method=method, integrator=integrator, output_step_deg=output_step_deg, &
+      allow_resonance=allow_resonance, allow_beyond_peak=allow_beyond_peak, &
       harmonic=harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio), &
       shooting=shooting_settings_t(rtol=rtol, atol=atol, newton_tol=newton_tol, max_newton=max_newton, &
                                    max_steps=max_steps, unit_circle_tol=unit_circle_tol, singular_rcond=singular_rcond, &
@@ -135,7 +106,7 @@ contains
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, at_least=1.0e-3_dp, at_most=360.0_dp, &
                     why='below 1e-3 degrees a revolution has over 3.6e5 rows')
     call check_real(deck, g, 'damping_beta', s%element%damping_beta, err, at_least=0.0_dp, below=1.0_dp, why='seconds')
-    call check_choice(deck, g, 'integrator', integrator, [character(len=16) :: 'bdf', 'adams'], err)
+    call check_choice(deck, g, 'integrator', s%integrator, [character(len=16) :: 'bdf', 'adams'], err)
     call check_real(deck, g, 'rtol', s%shooting%rtol, err, at_least=1.0e-14_dp, below=1.0e-2_dp, &
                     why='a relative error tolerance; below 1e-14 DLSODE works at round-off')
     call check_real(deck, g, 'atol', s%shooting%atol, err, at_least=1.0e-30_dp, at_most=1.0e10_dp, &
@@ -194,6 +165,48 @@ contains
       end associate
     end do
   end subroutine validate
+
+  !> The namelist variables of both groups from a settings value (the defaults
+  !> before a read).
+  subroutine stage_from(s)
+    type(steady_settings_t), intent(in) :: s
+    integer :: k
+    method = s%method
+    n_harmonics = s%harmonic%n_harmonics
+    harmonics_kept = s%harmonic%n_kept
+    velocity_terms = s%harmonic%velocity_terms
+    outer_tol = s%harmonic%outer_tol
+    max_outer = s%harmonic%max_outer
+    resonance_ratio = s%harmonic%resonance_ratio
+    allow_resonance = s%allow_resonance
+    allow_beyond_peak = s%allow_beyond_peak
+    output_step_deg = s%output_step_deg
+    damping_beta = s%element%damping_beta
+    integrator = s%integrator
+    rtol = s%shooting%rtol
+    atol = s%shooting%atol
+    newton_tol = s%shooting%newton_tol
+    max_newton = s%shooting%max_newton
+    max_steps = s%shooting%max_steps
+    unit_circle_tol = s%shooting%unit_circle_tol
+    singular_rcond = s%shooting%singular_rcond
+    d_k = s%element%d_k
+    d_b = s%element%d_b
+    d_g = s%element%d_g
+    shear = s%element%shear
+    rotary_inertia = s%element%rotary_inertia
+    shear_inertia = s%element%shear_inertia
+    shear_modulus = s%element%shear_modulus
+    poisson = s%element%poisson
+    shear_factor = s%element%shear_factor
+    n_gauss = s%element%n_gauss
+    do k = 1, max_links
+      n_sections(k) = s%sections(k)%n
+      section_end(k, :) = s%sections(k)%f1
+      section_b(k, :) = s%sections(k)%b
+      section_h(k, :) = s%sections(k)%h
+    end do
+  end subroutine stage_from
 
   subroutine echo_steady_settings(out)
     type(table_t), intent(inout) :: out

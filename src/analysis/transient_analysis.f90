@@ -17,13 +17,12 @@ module transient_analysis
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, driver_angle
-  use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use kear_element, only: stress_report_t, effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
-  use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, loads_group
-  use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, &
-    check_mode_number
+  use external_loads, only: loads_input_t, point_load_t, resolve_loads
+  use transient_deck, only: read_transient_deck, echo_transient_deck
+  use transient_settings, only: transient_settings_t, max_points, check_mode_number
   use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
   use joint_reactions, only: joint_reactions_t
   use revolution_peaks, only: element_peaks_t
@@ -71,23 +70,17 @@ contains
     type(revolution_rows_t) :: rows
     type(element_peaks_t) :: stress_peaks
 
-    call read_input(deck, mech, s, loads_in, clearance, err)
+    call read_transient_deck(deck, mech, s, loads_in, clearance, err)
     if (err%failed()) return
 
-    call echo_input(out, mech, clearance, loads_in)
+    call echo_transient_deck(out, mech, loads_in, clearance)
     call warn_materials(out, mech)
 
     call build_model(deck, mech, s, loads_in, model, err)
     if (err%failed()) return
-    call setup_responses(deck, mech, s, resp, err)
-    if (err%failed()) return
+    call setup_responses(mech, s, resp)
     if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
     if (err%failed()) return
-    if (s%stop_when_periodic > 0.0_dp .and. .not. mech%driver%omega > 0.0_dp) then
-      call invalid_value(deck, 'transient', 'stop_when_periodic', str(s%stop_when_periodic), &
-                         'needs a turning crank (omega > 0): periodicity is judged per revolution', err)
-      return
-    end if
     call write_model_header(out, mech, s, model)
     call prepare_motion(out, mech, s, model, err)
     if (err%failed()) return
@@ -265,30 +258,6 @@ contains
     call rows%add(out, tt, row, crank_deg)
   end subroutine record_row
 
-  !> The groups of a transient deck, each checked as it is read.
-  subroutine read_input(deck, mech, s, loads_in, clearance, err)
-    type(deck_t), intent(inout) :: deck
-    type(mechanism_t), intent(out) :: mech
-    type(transient_settings_t), intent(out) :: s
-    type(loads_input_t), intent(out) :: loads_in
-    type(clearance_monitor_t), intent(inout) :: clearance
-    type(error_t), intent(inout) :: err
-    call read_mechanism(deck, mech, err)
-    if (err%failed()) return
-    call read_transient_settings(deck, s, err)
-    call check_section_rules(deck, mech, s%effects%material, .false., err)
-    if (err%failed()) return
-    call read_loads(deck, loads_in, err)
-    if (err%failed()) return
-    call clearance%read(deck, mech, s%initial, err)
-    if (err%failed()) return
-    if (mech%driver%omega <= 0.0_dp .and. (s%t_end <= 0.0_dp .or. s%output_step_t <= 0.0_dp)) then
-      call invalid_value(deck, 'transient', 't_end', str(s%t_end), &
-        'the crank does not turn (omega = 0): give t_end > 0 and output_step_t > 0 to set the time span', err)
-      return
-    end if
-  end subroutine read_input
-
   !> The crank angle where the run stopped, as context of its error.
   subroutine name_stop_angle(mech, model, t_ode, err)
     type(mechanism_t), intent(in) :: mech
@@ -360,18 +329,6 @@ contains
       call model%set_loads(gravity, point_loads)
     end block
   end subroutine build_model
-
-  !> The effective input of every group the transient analysis read.
-  subroutine echo_input(out, mech, clearance, loads_in)
-    type(table_t), intent(inout) :: out
-    type(mechanism_t), intent(in) :: mech
-    type(clearance_monitor_t), intent(in) :: clearance
-    type(loads_input_t), intent(in) :: loads_in
-    call echo_mechanism(mech, out)
-    call echo_transient_settings(out)
-    call clearance%echo(out)
-    if (loads_in%n_loads > 0 .or. loads_in%gravity_g > 0.0_dp) call out%echo_group(loads_group)
-  end subroutine echo_input
 
   !> The initial state (&transient initial): a scaled mode at rest, a restart
   !> file, or the rigid-body motion.
@@ -538,14 +495,12 @@ contains
     call out%columns(names)
   end subroutine write_columns
 
-  !> The optional response columns the deck asks for (validated: a point's
-  !> link must exist).
-  subroutine setup_responses(deck, mech, s, resp, err)
-    type(deck_t), intent(in) :: deck
+  !> The optional response columns the deck asks for (a point's link exists:
+  !> transient_deck checked it).
+  subroutine setup_responses(mech, s, resp)
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(responses_t), intent(inout) :: resp
-    type(error_t), intent(inout) :: err
     integer :: k, i, j, n_keep, n_shape
     type(link_point_t) :: p
     resp%sections = s%stress_columns == 'all'
@@ -557,11 +512,6 @@ contains
         do i = 1, mech%n_links
           if (mech%links(i)%name == s%point_link(k)) p%link = i
         end do
-        if (p%link == 0) then
-          call invalid_value(deck, 'transient', 'point_link('//str(k)//')', ''''//trim(s%point_link(k))//'''', &
-                             'is not a link of &mechanism', err)
-          return
-        end if
         p%s = s%point_at(k)
         resp%points = [resp%points, p]
       end do

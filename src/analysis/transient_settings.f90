@@ -21,41 +21,42 @@ module transient_settings
   !> the default settings promise (doc/transient.md, "Default solver settings")
   real(dp), parameter, public :: default_rtol = 1.0e-6_dp
 
-  !> The settings of a run; the defaults are those of set_defaults.
+  !> The settings of a run; the default initialisation is the documented
+  !> defaults (doc/decks.md).
   type :: transient_settings_t
-    character(len=16) :: method          !< 'auto': chosen from the model (transient_integration)
-    integer :: mf                        !< 0 while method = 'auto'
-    real(dp) :: rtol
-    real(dp) :: atol                     !< < 0: from the model (transient_integration)
-    real(dp) :: atol_rate                !< absolute tolerance of the rates; < 0: from the model, or atol
+    character(len=16) :: method = 'auto' !< 'auto': chosen from the model (transient_integration)
+    integer :: mf = 0                    !< 0 while method = 'auto'
+    real(dp) :: rtol = default_rtol
+    real(dp) :: atol = -1.0_dp           !< < 0: from the model (transient_integration)
+    real(dp) :: atol_rate = -1.0_dp      !< absolute tolerance of the rates; < 0: from the model, or atol
                                          !< when the deck gives atol
-    real(dp) :: revolutions
-    real(dp) :: output_step_deg
-    real(dp) :: t_end                    !< used when the driver does not turn (omega = 0)
-    real(dp) :: output_step_t
-    real(dp) :: damping_beta             !< stiffness-proportional damping, seconds
-    character(len=16) :: initial
-    integer :: mode_number
-    real(dp) :: mode_amplitude
-    character(len=256) :: restart_in
-    character(len=256) :: restart_out
-    integer :: max_steps
-    integer :: max_order                 !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF); < 0: from the model
-    character(len=16) :: kinematics      !< rigid motion: 'table' (per revolution) or 'direct'
-    integer :: table_points              !< crank angles per revolution in the table
-    type(element_effects_t) :: effects   !< the papers' tracing constants, all off = linear
-    character(len=16) :: formulation     !< element: 'default' (consistent with stretching on, else
+    real(dp) :: revolutions = 1.0_dp
+    real(dp) :: output_step_deg = 5.0_dp
+    real(dp) :: t_end = 0.0_dp           !< used when the driver does not turn (omega = 0)
+    real(dp) :: output_step_t = 0.0_dp
+    real(dp) :: damping_beta = 0.0_dp    !< stiffness-proportional damping, seconds
+    character(len=16) :: initial = 'rigid'
+    integer :: mode_number = 1
+    real(dp) :: mode_amplitude = 0.0_dp
+    character(len=256) :: restart_in = ''
+    character(len=256) :: restart_out = ''
+    integer :: max_steps = 200000
+    integer :: max_order = -1            !< DLSODE's MAXORD; 0: its default (12 Adams, 5 BDF); < 0: from the model
+    character(len=16) :: kinematics = 'table'   !< rigid motion: 'table' (per revolution) or 'direct'
+    integer :: table_points = 720        !< crank angles per revolution in the table
+    type(element_effects_t) :: effects   !< the papers' tracing constants; its defaults: all off = linear
+    character(len=16) :: formulation = 'default'   !< element: 'default' (consistent with stretching on, else
                                          !< exact), 'consistent', 'exact', 'kear1987' (doc/element.md)
-    character(len=16) :: output_rows     !< rows written: 'all', 'last_revolution' or 'none'
+    character(len=16) :: output_rows = 'all'   !< rows written: 'all', 'last_revolution' or 'none'
     ! optional response columns (off: not computed; doc/transient.md, "Output")
-    character(len=16) :: stress_columns  !< 'outer' (sigma_max only) or 'all' (+ bending, axial, M, N)
-    logical :: link_points               !< columns of link points (u, w, deflection from the chord)
-    character(len=16) :: point_link(max_points)   !< links of the points; none named: every link's mid-span
-    real(dp) :: point_at(max_points)     !< position along the link, 0 (end 1) .. 1 (end 2)
-    integer :: shape_points              !< > 0: link points every 1/shape_points of each element (drawn shapes)
-    logical :: reactions                 !< columns of joint reaction forces
-    real(dp) :: stop_when_periodic       !< > 0: stop when successive revolutions' peaks agree to this
-    integer :: output_digits             !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
+    character(len=16) :: stress_columns = 'outer'   !< 'outer' (sigma_max only) or 'all' (+ bending, axial, M, N)
+    logical :: link_points = .false.     !< columns of link points (u, w, deflection from the chord)
+    character(len=16) :: point_link(max_points) = ''   !< links of the points; none named: every link's mid-span
+    real(dp) :: point_at(max_points) = 0.5_dp   !< position along the link, 0 (end 1) .. 1 (end 2)
+    integer :: shape_points = 0          !< > 0: link points every 1/shape_points of each element (drawn shapes)
+    logical :: reactions = .false.       !< columns of joint reaction forces
+    real(dp) :: stop_when_periodic = 0.0_dp   !< > 0: stop when successive revolutions' peaks agree to this
+    integer :: output_digits = 0         !< significant digits of the rows: 0 = 16, or 3..12 (fast, narrow)
   end type transient_settings_t
 
   ! staging variables of the namelist groups
@@ -79,9 +80,10 @@ contains
     type(deck_t), intent(inout) :: deck
     type(transient_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
+    type(transient_settings_t) :: defaults
     logical :: found
 
-    call set_defaults()
+    call stage_from(defaults)
     call deck%read_group('transient', transient_group, .false., found, err)
     if (err%failed()) return
     call deck%read_group('effects', effects_group, .false., found, err)
@@ -103,43 +105,44 @@ contains
                        'DLSODE''s default, -1 = chosen from the model)')
   end subroutine read_transient_settings
 
-  !> The documented defaults (doc/decks.md), on the namelist variables.
-  subroutine set_defaults()
-    type(element_effects_t) :: off       ! the element's defaults: every effect off
-    method = 'auto'
-    rtol = default_rtol
-    atol = -1.0_dp
-    atol_rate = -1.0_dp
-    revolutions = 1.0_dp
-    output_step_deg = 5.0_dp
-    t_end = 0.0_dp
-    output_step_t = 0.0_dp
-    damping_beta = 0.0_dp
-    initial = 'rigid'
-    mode_number = 1
-    mode_amplitude = 0.0_dp
-    restart_in = ''
-    restart_out = ''
-    max_steps = 200000
-    kinematics = 'table'
-    table_points = 720
-    max_order = -1
-    output_rows = 'all'
-    stress_columns = 'outer'
-    link_points = .false.
-    point_link = ''
-    point_at = 0.5_dp
-    shape_points = 0
-    reactions = .false.
-    stop_when_periodic = 0.0_dp
-    output_digits = 0
-    stretching = off%stretching
-    curvature = off%curvature
-    material = off%material
-    rotary_inertia = off%rotary_inertia
-    coupling = off%coupling
-    formulation = 'default'
-  end subroutine set_defaults
+  !> The namelist variables of both groups from a settings value (the defaults
+  !> before a read).
+  subroutine stage_from(s)
+    type(transient_settings_t), intent(in) :: s
+    method = s%method
+    rtol = s%rtol
+    atol = s%atol
+    atol_rate = s%atol_rate
+    revolutions = s%revolutions
+    output_step_deg = s%output_step_deg
+    t_end = s%t_end
+    output_step_t = s%output_step_t
+    damping_beta = s%damping_beta
+    initial = s%initial
+    mode_number = s%mode_number
+    mode_amplitude = s%mode_amplitude
+    restart_in = s%restart_in
+    restart_out = s%restart_out
+    max_steps = s%max_steps
+    kinematics = s%kinematics
+    table_points = s%table_points
+    max_order = s%max_order
+    output_rows = s%output_rows
+    stress_columns = s%stress_columns
+    link_points = s%link_points
+    point_link = s%point_link
+    point_at = s%point_at
+    shape_points = s%shape_points
+    reactions = s%reactions
+    stop_when_periodic = s%stop_when_periodic
+    output_digits = s%output_digits
+    stretching = s%effects%stretching
+    curvature = s%effects%curvature
+    material = s%effects%material
+    rotary_inertia = s%effects%rotary_inertia
+    coupling = s%effects%coupling
+    formulation = s%formulation
+  end subroutine stage_from
 
   !> One line per variable: the allowed range and why (doc/decks.md).
   subroutine validate(deck, s, err)

@@ -199,7 +199,6 @@ contains
     type(error_t), intent(inout) :: err
     type(point_result_t) :: r(size(statuses))
     type(table_t) :: out
-    character(len=:), allocatable :: echo
     character(len=64), allocatable :: names(:), all_names(:)
     real(dp), allocatable :: row(:)
     real(dp) :: cpu_sum
@@ -212,8 +211,7 @@ contains
     if (len_trim(title) > 0) call out%comment('title: '//trim(title))
     call out%comment('sweep: '//trim(s%variable)//' of &'//trim(s%group)//' over '//str(size(s%values))// &
                      ' values; point decks, outputs and logs in '//dir//'/'//stem//'_<k>.{nml,out,log}')
-    call echo_sweep_settings(s, echo)
-    call out%comment(echo)
+    call echo_sweep_settings(s, out)
     call out%comment('columns: the swept value; the exit status of the point (0); every number of the '// &
                      'summary and cost footer common to all points that succeeded. A failed point has no row: '// &
                      'its exit status (2 input error, 3 analysis stopped) and diagnosis are in its point line above')

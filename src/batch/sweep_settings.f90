@@ -15,6 +15,7 @@ module sweep_settings
   use error_status, only: error_t
   use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
+  use table_output, only: table_t
   implicit none
   private
   public :: sweep_settings_t, read_sweep_settings, echo_sweep_settings, max_sweep_values, sweep_groups
@@ -25,10 +26,18 @@ module sweep_settings
   character(len=16), parameter :: sweep_groups(9) = [character(len=16) :: 'mechanism', 'transient', &
     'effects', 'steady', 'tennant', 'optimize', 'problem_data', 'design', 'lsode_check']
 
+  real(dp), parameter :: unset = huge(1.0_dp)   !< values, first, last not given
+
+  !> The group's values; the default initialisation is the documented
+  !> defaults (doc/decks.md).  The points are `values` as given, or the
+  !> range first..last of n_points; after the read `values` holds them.
   type :: sweep_settings_t
     character(len=name_len) :: group = ''
     character(len=name_len) :: variable = ''
     real(dp), allocatable :: values(:)          !< the points, in order
+    real(dp) :: first = unset
+    real(dp) :: last = unset
+    integer :: n_points = 0
     character(len=16) :: spacing = 'linear'
     character(len=256) :: points_dir = ''
   end type sweep_settings_t
@@ -41,8 +50,6 @@ module sweep_settings
   character(len=256) :: points_dir
   namelist /sweep/ group, variable, values, first, last, n_points, spacing, points_dir
 
-  real(dp), parameter :: unset = huge(1.0_dp)
-
 contains
 
   subroutine read_sweep_settings(deck, s, err)
@@ -51,20 +58,11 @@ contains
     type(error_t), intent(inout) :: err
     logical :: found
     integer :: n
-    group = ''
-    variable = ''
-    values = unset
-    first = unset
-    last = unset
-    n_points = 0
-    spacing = 'linear'
-    points_dir = ''
-    call deck%read_group('sweep', read_sweep_group, .true., found, err)
+    call stage_from(s)        ! (intent(out): the defaults)
+    call deck%read_group('sweep', sweep_group, .true., found, err)
     if (err%failed()) return
-    s%group = group
-    s%variable = variable
-    s%spacing = spacing
-    s%points_dir = points_dir
+    s = sweep_settings_t(group=group, variable=variable, first=first, last=last, n_points=n_points, &
+                         spacing=spacing, points_dir=points_dir)
     call check_choice(deck, 'sweep', 'group', group, sweep_groups, err)
     if (.not. err%failed() .and. .not. is_designator(trim(variable))) &
       call invalid_value(deck, 'sweep', 'variable', ''''//trim(variable)//'''', &
@@ -161,21 +159,37 @@ contains
 
 
 
-  subroutine echo_sweep_settings(s, lines)
+  !> Echo the group with its points as the list `values` (a range given by
+  !> first, last and n_points is echoed as the values it gave).
+  subroutine echo_sweep_settings(s, out)
     type(sweep_settings_t), intent(in) :: s
-    character(len=:), allocatable, intent(out) :: lines
-    character(len=32) :: buf
-    integer :: i
-    lines = '&sweep group = '''//trim(s%group)//''', variable = '''//trim(s%variable)//''', values ='
-    do i = 1, size(s%values)
-      write(buf, '(es24.16e3)') s%values(i)
-      lines = lines//' '//trim(adjustl(buf))
-    end do
-    lines = lines//' /'
+    type(table_t), intent(inout) :: out
+    call stage_from(sweep_settings_t(group=s%group, variable=s%variable, values=s%values, spacing=s%spacing, &
+                                     points_dir=s%points_dir))
+    call out%echo_group(sweep_group)
   end subroutine echo_sweep_settings
 
-  subroutine read_sweep_group(r)
+  !> The namelist variables from a settings value (the defaults before a read).
+  subroutine stage_from(s)
+    type(sweep_settings_t), intent(in) :: s
+    group = s%group
+    variable = s%variable
+    values = unset
+    if (allocated(s%values)) values(1:size(s%values)) = s%values
+    first = s%first
+    last = s%last
+    n_points = s%n_points
+    spacing = s%spacing
+    points_dir = s%points_dir
+  end subroutine stage_from
+
+  !> The &sweep group's namelist read and write (deck_reader, table_t%echo_group).
+  subroutine sweep_group(r)
     type(group_read_t), intent(inout) :: r
-    read(r%unit, nml=sweep, iostat=r%ios, iomsg=r%iomsg)
-  end subroutine read_sweep_group
+    if (r%writing) then
+      write(r%unit, nml=sweep, delim='apostrophe')
+    else
+      read(r%unit, nml=sweep, iostat=r%ios, iomsg=r%iomsg)
+    end if
+  end subroutine sweep_group
 end module sweep_settings

@@ -1,6 +1,8 @@
 !> External loads of the transient model: gravity and point forces and
-!> moments at joints or link points, constant or scaled by a time table
-!> (deck group &loads, doc/mechanism_deck.md).
+!> moments at joints or link points, constant or scaled by a time table.
+!> The loads as a deck gives them (loads_input_t, with their documented
+!> defaults) are read by the analysis layer (loads_settings, the group
+!> &loads, doc/decks.md) and resolved here onto the elements.
 !>
 !> A point force is dead (fixed global direction), its work f . r(x); a
 !> moment works through the section angle.  Gravity acts on the distributed
@@ -12,12 +14,10 @@ module external_loads
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, group_read_t
-  use deck_checks, only: check_real, check_reals, check_integer
   use linkage, only: mechanism_t
   implicit none
   private
-  public :: point_load_t, load_factor_at, loads_input_t, read_loads, resolve_loads, loads_group
+  public :: point_load_t, load_factor_at, loads_input_t, resolve_loads
   public :: max_loads, max_load_points
 
   integer, parameter :: max_loads = 20, max_load_points = 100
@@ -32,29 +32,22 @@ module external_loads
     real(dp), allocatable :: factors(:)    !< factor at those times
   end type point_load_t
 
-  !> The &loads group as given; the defaults are those of set_defaults.
+  !> The loads as given (the group &loads); the default initialisation is
+  !> the documented defaults (doc/decks.md): no gravity, no loads.
   type :: loads_input_t
-    real(dp) :: gravity_g
-    real(dp) :: gravity_direction(2)
-    integer :: n_loads
-    character(len=16) :: load_joint(max_loads)
-    character(len=16) :: load_link(max_loads)
-    real(dp) :: load_position(max_loads)
-    real(dp) :: load_fx(max_loads)
-    real(dp) :: load_fy(max_loads)
-    real(dp) :: load_moment(max_loads)
-    integer :: load_n_points(max_loads)
-    real(dp) :: load_time(max_load_points, max_loads)
-    real(dp) :: load_factor(max_load_points, max_loads)
+    real(dp) :: gravity_g = 0.0_dp
+    real(dp) :: gravity_direction(2) = [0.0_dp, -1.0_dp]
+    integer :: n_loads = 0
+    character(len=16) :: load_joint(max_loads) = ''
+    character(len=16) :: load_link(max_loads) = ''
+    real(dp) :: load_position(max_loads) = 1.0_dp
+    real(dp) :: load_fx(max_loads) = 0.0_dp
+    real(dp) :: load_fy(max_loads) = 0.0_dp
+    real(dp) :: load_moment(max_loads) = 0.0_dp
+    integer :: load_n_points(max_loads) = 0
+    real(dp) :: load_time(max_load_points, max_loads) = 0.0_dp
+    real(dp) :: load_factor(max_load_points, max_loads) = 0.0_dp
   end type loads_input_t
-
-  ! namelist staging variables
-  real(dp) :: gravity_g, gravity_direction(2), load_position(max_loads), load_fx(max_loads), load_fy(max_loads)
-  real(dp) :: load_moment(max_loads), load_time(max_load_points, max_loads), load_factor(max_load_points, max_loads)
-  integer :: n_loads, load_n_points(max_loads)
-  character(len=16) :: load_joint(max_loads), load_link(max_loads)
-  namelist /loads/ gravity_g, gravity_direction, n_loads, load_joint, load_link, load_position, load_fx, load_fy, &
-    load_moment, load_n_points, load_time, load_factor
 
 contains
 
@@ -81,57 +74,6 @@ contains
     end do
     f = load%factors(n)
   end function load_factor_at
-
-  !> Read and check &loads (optional group; without it: no loads).
-  subroutine read_loads(deck, inp, err)
-    type(deck_t), intent(inout) :: deck
-    type(loads_input_t), intent(out) :: inp
-    type(error_t), intent(inout) :: err
-    logical :: found
-    integer :: k, n
-    character(len=*), parameter :: g = 'loads'
-    call set_defaults()
-    call deck%read_group(g, loads_group, .false., found, err)
-    if (err%failed()) return
-    inp = loads_input_t(gravity_g, gravity_direction, n_loads, load_joint, load_link, load_position, load_fx, &
-                        load_fy, load_moment, load_n_points, load_time, load_factor)
-    call check_real(deck, g, 'gravity_g', inp%gravity_g, err, at_least=0.0_dp, at_most=1.0e6_dp, &
-                    why='the magnitude of the gravity acceleration (9.81 m/s^2, 386.09 in/s^2)')
-    call check_reals(deck, g, 'gravity_direction', inp%gravity_direction, err, at_least=-1.0e6_dp, at_most=1.0e6_dp)
-    if (.not. err%failed() .and. inp%gravity_g > 0.0_dp .and. .not. norm2(inp%gravity_direction) > 0.0_dp) &
-      call invalid_value(deck, g, 'gravity_direction', str(inp%gravity_direction(1))//', '// &
-                         str(inp%gravity_direction(2)), 'must be a nonzero vector when gravity_g > 0', err)
-    call check_integer(deck, g, 'n_loads', inp%n_loads, err, at_least=0, at_most=max_loads)
-    if (err%failed()) return
-    n = inp%n_loads
-    call check_reals(deck, g, 'load_position', inp%load_position(1:n), err, at_least=0.0_dp, at_most=1.0_dp, &
-                     why='a fraction of the link length from its end 1')
-    call check_reals(deck, g, 'load_fx', inp%load_fx(1:n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
-    call check_reals(deck, g, 'load_fy', inp%load_fy(1:n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
-    call check_reals(deck, g, 'load_moment', inp%load_moment(1:n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
-    do k = 1, n
-      call check_integer(deck, g, 'load_n_points('//str(k)//')', inp%load_n_points(k), err, at_least=0, &
-                         at_most=max_load_points, why='0 = constant load, else the points of its time table')
-      if (err%failed()) return
-      associate (m => inp%load_n_points(k))
-        call check_reals(deck, g, 'load_time(:,'//str(k)//')', inp%load_time(1:m, k), err, at_least=0.0_dp, &
-                         at_most=1.0e9_dp)
-        call check_reals(deck, g, 'load_factor(:,'//str(k)//')', inp%load_factor(1:m, k), err, &
-                         at_least=-1.0e9_dp, at_most=1.0e9_dp)
-        if (.not. err%failed() .and. m > 1) then
-          if (any(inp%load_time(2:m, k) <= inp%load_time(1:m - 1, k))) &
-            call invalid_value(deck, g, 'load_time(:,'//str(k)//')', 'not increasing', &
-                               'the times of a load table must increase strictly', err)
-        end if
-      end associate
-      if (err%failed()) return
-      if (len_trim(inp%load_joint(k)) == 0 .eqv. len_trim(inp%load_link(k)) == 0) then
-        call invalid_value(deck, g, 'load_joint('//str(k)//')', ''''//trim(inp%load_joint(k))//'''', &
-                           'give either load_joint or load_link (with load_position) for every load', err)
-        return
-      end if
-    end do
-  end subroutine read_loads
 
   !> The loads of the deck on the elements of the mechanism, and the gravity vector.
   subroutine resolve_loads(inp, mech, gravity, point_loads, err)
@@ -174,31 +116,5 @@ contains
       point_loads(k)%factors = inp%load_factor(1:m, k)
     end do
   end subroutine resolve_loads
-
-  !> The documented defaults (doc/mechanism_deck.md), on the namelist variables:
-  !> no gravity, no loads.
-  subroutine set_defaults()
-    gravity_g = 0.0_dp
-    gravity_direction = [0.0_dp, -1.0_dp]
-    n_loads = 0
-    load_joint = ''
-    load_link = ''
-    load_position = 1.0_dp
-    load_fx = 0.0_dp
-    load_fy = 0.0_dp
-    load_moment = 0.0_dp
-    load_n_points = 0
-    load_time = 0.0_dp
-    load_factor = 0.0_dp
-  end subroutine set_defaults
-
-  !> The &loads group's namelist read and write (deck_reader, table_t%echo_group).
-  subroutine loads_group(r)
-    type(group_read_t), intent(inout) :: r
-    if (r%writing) then
-      write(r%unit, nml=loads, delim='apostrophe')
-    else
-      read(r%unit, nml=loads, iostat=r%ios, iomsg=r%iomsg)
-    end if
-  end subroutine loads_group
 end module external_loads
+

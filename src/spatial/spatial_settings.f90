@@ -19,20 +19,20 @@ module spatial_settings
   private
   public :: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
 
-  !> The group as read; the defaults are those of set_defaults.
+  !> The group as read; the default initialisation is the documented defaults (doc/decks.md).
   type :: spatial_input_t
-    real(dp) :: crank_pivot(3), crank_axis(3), crank_pin(3)
-    real(dp) :: rocker_pivot(3), rocker_axis(3)
-    real(dp) :: rocker_length, coupler_length
-    integer :: branch
-    character(len=16) :: joint_b, joint_c
-    real(dp) :: universal_axis(3)   !< in the crank's (B) or rocker's (C) frame
-    real(dp) :: omega, theta0_deg
-    integer :: link_n_elements(3)
-    character(len=16) :: link_section(3)
-    real(dp) :: link_depth(3), link_width(3), link_radius(3)
-    real(dp) :: link_e1(3), link_e2(3), link_m(3)
-    real(dp) :: link_rho(3), link_poisson(3)
+    real(dp) :: crank_pivot(3) = 0.0_dp, crank_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp], crank_pin(3) = 0.0_dp
+    real(dp) :: rocker_pivot(3) = 0.0_dp, rocker_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp]
+    real(dp) :: rocker_length = 0.0_dp, coupler_length = 0.0_dp
+    integer :: branch = 1
+    character(len=16) :: joint_b = 'spherical', joint_c = 'spherical'
+    real(dp) :: universal_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp]   !< in the crank's (B) or rocker's (C) frame
+    real(dp) :: omega = 0.0_dp, theta0_deg = 0.0_dp
+    integer :: link_n_elements(3) = 1
+    character(len=16) :: link_section(3) = 'rectangular'
+    real(dp) :: link_depth(3) = 1.0_dp, link_width(3) = 0.25_dp, link_radius(3) = 0.0_dp
+    real(dp) :: link_e1(3) = tennant_aluminium_e1, link_e2(3) = tennant_aluminium_e2, link_m(3) = tennant_aluminium_m
+    real(dp) :: link_rho(3) = tennant_aluminium_rho, link_poisson(3) = 0.33_dp
   end type spatial_input_t
 
   ! staging variables of the namelist group
@@ -56,7 +56,7 @@ contains
     type(spatial_input_t), intent(out) :: s
     type(error_t), intent(inout) :: err
     logical :: found
-    call set_defaults()
+    call stage_from(s)        ! (intent(out): the defaults)
     call deck%read_group(g, spatial_mechanism_group, .true., found, err)
     if (err%failed()) return
     s = spatial_input_t(crank_pivot, crank_axis, crank_pin, rocker_pivot, rocker_axis, rocker_length, &
@@ -66,32 +66,33 @@ contains
     call validate(deck, s, err)
   end subroutine read_spatial_mechanism
 
-  !> The documented defaults (doc/spatial.md), on the namelist variables.
-  subroutine set_defaults()
-    crank_pivot = 0.0_dp
-    crank_axis = [0.0_dp, 0.0_dp, 1.0_dp]
-    crank_pin = 0.0_dp
-    rocker_pivot = 0.0_dp
-    rocker_axis = [0.0_dp, 0.0_dp, 1.0_dp]
-    rocker_length = 0.0_dp
-    coupler_length = 0.0_dp
-    branch = 1
-    joint_b = 'spherical'
-    joint_c = 'spherical'
-    universal_axis = [0.0_dp, 0.0_dp, 1.0_dp]
-    omega = 0.0_dp
-    theta0_deg = 0.0_dp
-    link_n_elements = 1
-    link_section = 'rectangular'
-    link_depth = 1.0_dp
-    link_width = 0.25_dp
-    link_radius = 0.0_dp
-    link_e1 = tennant_aluminium_e1
-    link_e2 = tennant_aluminium_e2
-    link_m = tennant_aluminium_m
-    link_rho = tennant_aluminium_rho
-    link_poisson = 0.33_dp
-  end subroutine set_defaults
+  !> The namelist variables from a value of the group (the defaults before a read).
+  subroutine stage_from(s)
+    type(spatial_input_t), intent(in) :: s
+    crank_pivot = s%crank_pivot
+    crank_axis = s%crank_axis
+    crank_pin = s%crank_pin
+    rocker_pivot = s%rocker_pivot
+    rocker_axis = s%rocker_axis
+    rocker_length = s%rocker_length
+    coupler_length = s%coupler_length
+    branch = s%branch
+    joint_b = s%joint_b
+    joint_c = s%joint_c
+    universal_axis = s%universal_axis
+    omega = s%omega
+    theta0_deg = s%theta0_deg
+    link_n_elements = s%link_n_elements
+    link_section = s%link_section
+    link_depth = s%link_depth
+    link_width = s%link_width
+    link_radius = s%link_radius
+    link_e1 = s%link_e1
+    link_e2 = s%link_e2
+    link_m = s%link_m
+    link_rho = s%link_rho
+    link_poisson = s%link_poisson
+  end subroutine stage_from
 
   !> Ranges (doc/decks.md): lengths and section sizes in [1e-8, 1e4] (a linkage,
   !> not a bridge); speeds below 1e5 rad/s; material constants positive
