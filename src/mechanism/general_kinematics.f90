@@ -418,10 +418,19 @@ contains
     ! the drivers, one by one
     call first_dependent(jac, first_bad, rank_joints, free_col)
     if (first_bad > 0) then
-      call err%set('general_mechanism', 'the mechanism is over-driven: driver '//str(-self%row_joint(first_bad))// &
-        ' (joint '''//trim(mech%joints(mech%drivers(-self%row_joint(first_bad))%joint)%name)// &
-        ''') prescribes a motion that the joints and the drivers before it already fix (the mechanism has '// &
-        str(self%mobility)//' freedoms, '//str(mech%n_drivers)//' drivers)', 2)
+      associate (k => -self%row_joint(first_bad))
+        if (mech%n_drivers > self%mobility) then
+          call err%set('general_mechanism', 'the mechanism is over-driven: it has '//str(self%mobility)// &
+            ' freedoms and '//str(mech%n_drivers)//' drivers; driver '//str(k)//' (joint '''// &
+            trim(mech%joints(mech%drivers(k)%joint)%name)//''') prescribes a motion that the joints and the '// &
+            'drivers before it already fix', 2)
+        else
+          call err%set('general_mechanism', 'driver '//str(k)//' (joint '''// &
+            trim(mech%joints(mech%drivers(k)%joint)%name)//''') cannot move the mechanism in the drawing: the '// &
+            'joints and the drivers before it fix its motion there (a dead centre: draw the mechanism away from '// &
+            'it; or two drivers prescribe the same freedom)', 2)
+        end if
+      end associate
       return
     end if
     if (mech%n_drivers < self%mobility) then
