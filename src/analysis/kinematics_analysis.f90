@@ -70,7 +70,7 @@ contains
     call echo_general_mechanism(mech, out)
     call out%echo_group(kinematics_group)
     nd = merge(3, 2, mech%spatial)
-    call out%comment('mechanism: '//merge('spatial', 'planar ', mech%spatial)//', '//str(mech%n_links)//' links, '// &
+    call out%comment('mechanism: '//trim(merge('spatial', 'planar ', mech%spatial))//', '//str(mech%n_links)//' links, '// &
       str(mech%n_joints)//' joints, '//str(mech%n_drivers)//' drivers; freedoms (Kutzbach) '//str(kin%kutzbach)// &
       ', (Jacobian rank) '//str(kin%mobility)//'; '//str(kin%n)//' coordinates, '//str(kin%m)//' constraint rows')
 

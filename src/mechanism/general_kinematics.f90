@@ -408,7 +408,7 @@ contains
     call first_dependent(jac(pack([(l, l = 1, self%m)], self%row_joint >= 0), :), first_bad, rank_joints, free_col)
     self%mobility = self%n - rank_joints
     if (first_bad > 0) then
-      call err%set('general_mechanism', 'joint '''//trim(joint_of(first_bad, self%row_joint >= 0))// &
+      call err%set('mobility', 'joint '''//trim(joint_of(first_bad, self%row_joint >= 0))// &
         ''' repeats a constraint of the joints before it (redundant constraints: the Kutzbach count gives '// &
         str(self%kutzbach)//' freedoms, the constraint Jacobian in the drawing '//str(self%mobility)// &
         '); use a joint that removes fewer freedoms (e.g. spherical or universal for revolute in a closed loop), '// &
@@ -420,12 +420,12 @@ contains
     if (first_bad > 0) then
       associate (k => -self%row_joint(first_bad))
         if (mech%n_drivers > self%mobility) then
-          call err%set('general_mechanism', 'the mechanism is over-driven: it has '//str(self%mobility)// &
+          call err%set('mobility', 'the mechanism is over-driven: it has '//str(self%mobility)// &
             ' freedoms and '//str(mech%n_drivers)//' drivers; driver '//str(k)//' (joint '''// &
             trim(mech%joints(mech%drivers(k)%joint)%name)//''') prescribes a motion that the joints and the '// &
             'drivers before it already fix', 2)
         else
-          call err%set('general_mechanism', 'driver '//str(k)//' (joint '''// &
+          call err%set('mobility', 'driver '//str(k)//' (joint '''// &
             trim(mech%joints(mech%drivers(k)%joint)%name)//''') cannot move the mechanism in the drawing: the '// &
             'joints and the drivers before it fix its motion there (a dead centre: draw the mechanism away from '// &
             'it; or two drivers prescribe the same freedom)', 2)
@@ -434,7 +434,7 @@ contains
       return
     end if
     if (mech%n_drivers < self%mobility) then
-      call err%set('general_mechanism', 'the mechanism is under-driven: it has '//str(self%mobility)// &
+      call err%set('mobility', 'the mechanism is under-driven: it has '//str(self%mobility)// &
         ' freedoms and '//str(mech%n_drivers)//' drivers; link '''// &
         trim(mech%links((free_col - 1)/self%nqb + 1)%name)// &
         ''' can still move with every driver held (add a driver or a joint in its loop or chain)', 2)
