@@ -15,8 +15,8 @@
 !>   spatial spherical 3, universal 4 (+ a_i . b_j), revolute 5 (+ f_i . h_j,
 !>   g_i . h_j), prismatic 5 (f_i . h_j, g_i . h_j, f_i . g_j, gaps on f_i
 !>   and g_i), slider 2 (gaps on f_i, g_i), weld 6; a link between two
-!>   spherical joints spins idly about its line: one row keeps its drawn
-!>   normal b = (line x Z) normal to Z.
+!>   joints that leave its rotation free (spherical, slider) spins idly about
+!>   its line: one row keeps its drawn normal b = (line x Z) normal to Z.
 !> Drivers: planar angle theta_j - theta_i = psi(t); spatial rotation
 !> cos(psi) g_i.f_j - sin(psi) f_i.f_j = 0; slide h_i.(P_j - P_i) = s(t).
 !> Positions by Newton's method on Phi(q, t) = 0 with the analytic Jacobian,
@@ -64,7 +64,7 @@ module general_kinematics
     integer :: nqb = 3, n = 0, m = 0
     integer :: n_joint_rows = 0, n_idle = 0
     integer, allocatable :: row_joint(:)    !< joint of each row; -k driver k; 0 normalization or idle spin
-    logical, allocatable :: idle(:)         !< link spinning idly between two spherical joints
+    logical, allocatable :: idle(:)         !< link spinning idly between spherical or slider joints
     real(dp), allocatable :: col_scale(:), row_scale(:)
     integer :: mobility = 0, kutzbach = 0
     real(dp), allocatable :: q(:), qd(:), qdd(:), q0(:)
@@ -261,7 +261,7 @@ contains
         end do
       end associate
     end do
-    ! the idle spin of a link between two spherical joints
+    ! the idle spin of a link between two joints that leave its rotation free
     do l = 1, self%mech%n_links
       if (.not. self%idle(l)) cycle
       associate (lk => self%mech%links(l))
@@ -389,7 +389,8 @@ contains
     self%idle = .false.
     if (mech%spatial) then
       do l = 1, nb
-        self%idle(l) = all(mech%joints(mech%links(l)%joint)%kind == gjoint_spherical)
+        self%idle(l) = all(mech%joints(mech%links(l)%joint)%kind == gjoint_spherical .or. &
+                           mech%joints(mech%links(l)%joint)%kind == gjoint_slider)
       end do
     end if
     self%n_idle = count(self%idle)

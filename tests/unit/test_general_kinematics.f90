@@ -34,6 +34,8 @@ contains
     call run_test('five_bar_two_drivers_closes_and_matches_differences', test_five_bar)
     call run_test('two_link_arm_tables_match_forward_kinematics', test_two_link_arm)
     call run_test('spatial_slider_crank_matches_closed_form', test_spatial_slider_crank)
+    call run_test('block_on_prismatic_and_welded_crank_match_planar_kinematics', test_block_and_weld)
+    call run_test('spatial_point_on_line_and_weld_match_closed_form_and_differences', test_spatial_point_on_line)
     call run_test('spline_is_c2_exact_for_lines_and_close_to_sine', test_spline)
     call run_test('under_driven_names_the_free_link', test_under_driven)
     call run_test('over_driven_names_the_driver', test_over_driven)
@@ -367,6 +369,121 @@ contains
     real(dp) :: c(3)
     c = [a(2)*b(3) - a(3)*b(2), a(3)*b(1) - a(1)*b(3), a(1)*b(2) - a(2)*b(1)]
   end function cross3
+
+  ! ------------------------------------------------------------ more joint kinds
+
+  !> The slider-crank of test (b) with the block as a body on a prismatic
+  !> joint, and the crank made of two halves welded at M: the same motion as
+  !> module kinematics' slider-crank.
+  subroutine test_block_and_weld()
+    type(general_kinematics_t) :: gk
+    type(kinematics_t) :: kin
+    type(mechanism_t) :: mech
+    type(mechanism_input_t) :: inp
+    type(error_t) :: err
+    real(dp) :: t, x(3), v(3), a(3), w
+    integer :: k
+    w = 100.0_dp
+    call make_ok("n_joints = 5|joint_name = 'A', 'M', 'B', 'C', 'P'|"// &
+      "joint_kind = 'revolute', 'weld', 'revolute', 'revolute', 'prismatic'|joint_ground = T, F, F, F, T|"// &
+      "joint_x = 0.0, 1.0, 2.0, 7.9, 7.9|joint_y = 0.0, 0.0, 0.0, 0.5, 0.5|joint_axis(:, 5) = 1.0, 0.0, 0.0|"// &
+      "n_links = 4|link_name = 'crank1', 'crank2', 'rod', 'block'|link_joint1 = 1, 2, 3, 5|"// &
+      "link_joint2 = 2, 3, 4, 4|link_length = 1.0, 1.0, 6.0, 0.0|n_drivers = 1|driver_joint = 1|driver_rate = 100.0", gk)
+    call assert_equal(gk%mobility, 1, 'block-and-weld slider-crank mobility')
+    inp = slider_crank_input(2.0_dp, 6.0_dp, 0.5_dp)
+    inp%omega = w
+    call build_mechanism(inp, mech, err)
+    call kin%init(mech, err)
+    do k = 0, 72
+      t = two_pi/w*k/72.0_dp
+      call gk%solve(t, err)
+      call kin%solve(t, err)
+      call assert_true(.not. err%failed(), 'solve: '//err%text())
+      if (err%failed()) return
+      call gk%point(4, [0.0_dp, 0.0_dp, 0.0_dp], x, v, a)
+      call assert_all_close(x(1:2), kin%joint_position(3), 0.0_dp, 1.0e-10_dp*6.0_dp, 'block position')
+      call assert_all_close(v(1:2), kin%joint_velocity(3), 0.0_dp, 1.0e-10_dp*6.0_dp*w, 'block velocity')
+      call assert_all_close(a(1:2), kin%joint_acceleration(3), 0.0_dp, 1.0e-10_dp*6.0_dp*w*w, 'block acceleration')
+      call gk%body_motion(4, v, a)
+      call assert_close(v(3), 0.0_dp, 1.0e-10_dp*w, 'the block does not turn')
+      call gk%point(2, [1.0_dp, 0.0_dp, 0.0_dp], x, v, a)
+      call assert_all_close(x(1:2), kin%joint_position(2), 0.0_dp, 1.0e-10_dp*6.0_dp, 'welded crank''s pin')
+    end do
+  end subroutine test_block_and_weld
+
+  !> The spatial slider-crank of test (f) with the rod's end on a spatial
+  !> slider joint (a point on the guide line, rotation free: the rod spins
+  !> idly between it and the spherical joint) and the crank of two halves
+  !> welded at M.  Driven by the crank: the closed form; driven by the slide
+  !> (the crank passive): loop closure and central differences.
+  subroutine test_spatial_point_on_line()
+    type(general_kinematics_t) :: gk
+    type(error_t) :: err
+    real(dp) :: u(3), p0(3), w, t, th, b(3), d(3), s, c(3), x(3), v(3), a(3), s0, h
+    real(dp) :: xb(3), vb(3), ab(3), xp(3), vp(3), ap(3), xm(3), vm(3), am(3)
+    character(len=:), allocatable :: body
+    integer :: k
+    w = 50.0_dp
+    u = [1.0_dp, 0.0_dp, 0.5_dp]/norm2([1.0_dp, 0.0_dp, 0.5_dp])
+    p0 = [0.0_dp, 0.5_dp, 2.0_dp]
+    d = p0 - [1.0_dp, 0.0_dp, 0.0_dp]
+    s0 = -dot_product(u, d) + sqrt(dot_product(u, d)**2 - dot_product(d, d) + 16.0_dp)
+    c = p0 + s0*u
+    body = "space = 'spatial'|n_joints = 4|joint_name = 'A', 'M', 'B', 'C'|"// &
+      "joint_kind = 'revolute', 'weld', 'spherical', 'slider'|joint_ground = T, F, F, T|"// &
+      "joint_x = 0.0, 0.5, 1.0, "//num(c(1))//"|joint_y = 0.0, 0.0, 0.0, "//num(c(2))// &
+      "|joint_z = 0.0, 0.0, 0.0, "//num(c(3))//"|joint_axis(:, 4) = "//vec(u)//"|"// &
+      "n_links = 3|link_name = 'crank1', 'crank2', 'rod'|link_joint1 = 1, 2, 3|link_joint2 = 2, 3, 4|n_drivers = 1|"
+    call make_ok(body//"driver_joint = 1|driver_rate = 50.0", gk)
+    call assert_equal(gk%kutzbach, 1, 'point-on-line slider-crank: Kutzbach count with the idle spin')
+    call assert_equal(gk%mobility, 1, 'point-on-line slider-crank mobility')
+    do k = 0, 36
+      t = two_pi/w*k/36.0_dp
+      th = w*t
+      b = [cos(th), sin(th), 0.0_dp]
+      d = p0 - b
+      s = -dot_product(u, d) + sqrt(dot_product(u, d)**2 - dot_product(d, d) + 16.0_dp)
+      call gk%solve(t, err)
+      call assert_true(.not. err%failed(), 'solve: '//err%text())
+      if (err%failed()) return
+      call gk%point(3, gk%mech%joints(4)%point(:, 2), x, v, a)
+      call assert_all_close(x, p0 + s*u, 0.0_dp, 1.0e-11_dp, 'rod end on the guide')
+    end do
+    ! driven by the slide at -0.5 per s for 1 s, drawn with the crank at 90 deg
+    ! (the slide's range is [1.93, 3.29], from 2.65 here): the crank follows
+    d = p0 - [0.0_dp, 1.0_dp, 0.0_dp]
+    s0 = -dot_product(u, d) + sqrt(dot_product(u, d)**2 - dot_product(d, d) + 16.0_dp)
+    c = p0 + s0*u
+    call make_ok("space = 'spatial'|n_joints = 4|joint_name = 'A', 'M', 'B', 'C'|"// &
+      "joint_kind = 'revolute', 'weld', 'spherical', 'slider'|joint_ground = T, F, F, T|"// &
+      "joint_x = 0.0, 0.0, 0.0, "//num(c(1))//"|joint_y = 0.0, 0.5, 1.0, "//num(c(2))// &
+      "|joint_z = 0.0, 0.0, 0.0, "//num(c(3))//"|joint_axis(:, 4) = "//vec(u)//"|"// &
+      "n_links = 3|link_joint1 = 1, 2, 3|link_joint2 = 2, 3, 4|n_drivers = 1|driver_joint = 4|driver_rate = -0.5", gk)
+    h = 1.0e-5_dp
+    do k = 0, 10
+      t = 0.1_dp*k
+      call gk%solve(t, err)
+      call assert_true(.not. err%failed(), 'solve: '//err%text())
+      if (err%failed()) return
+      call gk%point(3, gk%mech%joints(4)%point(:, 2), x, v, a)
+      call gk%point(3, gk%mech%joints(3)%point(:, 2), xb, vb, ab)
+      call assert_all_close(x, c - 0.5_dp*t*u, 0.0_dp, 1.0e-11_dp, 'the slide follows its driver')
+      call assert_close(norm2(x - xb), 4.0_dp, 1.0e-11_dp, 'rod length')
+      call assert_close(norm2(xb(1:2)), 1.0_dp, 1.0e-11_dp, 'crank pin on its circle')
+      call assert_close(xb(3), 0.0_dp, 1.0e-11_dp, 'crank pin in its plane')
+      ! central differences: truncation (h^2/6 of the third derivative) and
+      ! Newton's 1e-12 over 2h stay below 1e-6 of the rates here
+      call gk%solve(t + h, err)
+      call gk%point(3, gk%mech%joints(3)%point(:, 2), xp, vp, ap)
+      call gk%solve(t - h, err)
+      call gk%point(3, gk%mech%joints(3)%point(:, 2), xm, vm, am)
+      call gk%solve(t, err)
+      call assert_all_close(vb, (xp - xm)/(2.0_dp*h), 0.0_dp, 1.0e-6_dp*maxval(abs(vb)) + 1.0e-9_dp, &
+                            'crank pin velocity by differences')
+      call assert_all_close(ab, (vp - vm)/(2.0_dp*h), 0.0_dp, 1.0e-6_dp*maxval(abs(ab)) + 1.0e-8_dp, &
+                            'crank pin acceleration by differences')
+    end do
+  end subroutine test_spatial_point_on_line
 
   ! ------------------------------------------------------------ spline
 
