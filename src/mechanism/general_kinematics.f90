@@ -367,6 +367,7 @@ contains
     type(general_mechanism_t), intent(in) :: mech
     type(error_t), intent(inout) :: err
     integer :: l, b, nb, dof, first_bad, rank_joints, free_col
+    integer, allocatable :: perm(:)
     real(dp), allocatable :: phi(:), jac(:, :), phit(:), gam(:), zero(:)
     self%mech = mech
     nb = mech%n_links
@@ -416,10 +417,11 @@ contains
         'or draw the mechanism away from a dead centre', 2)
       return
     end if
-    ! the drivers, one by one
-    call first_dependent(jac, first_bad, rank_joints, free_col)
+    ! the drivers, one by one, after every other row
+    perm = [pack([(l, l = 1, self%m)], self%row_joint >= 0), pack([(l, l = 1, self%m)], self%row_joint < 0)]
+    call first_dependent(jac(perm, :), first_bad, rank_joints, free_col)
     if (first_bad > 0) then
-      associate (k => -self%row_joint(first_bad))
+      associate (k => -self%row_joint(perm(first_bad)))
         if (mech%n_drivers > self%mobility) then
           call err%set('mobility', 'the mechanism is over-driven: it has '//str(self%mobility)// &
             ' freedoms and '//str(mech%n_drivers)//' drivers; driver '//str(k)//' (joint '''// &

@@ -539,6 +539,14 @@ contains
     type(error_t) :: err
     call make(fourbar_body('n_drivers = 2|driver_joint = 1, 4|driver_rate = 1.0, 2.0'), gk, err)
     call assert_error(err, 2, 'over-driven', 'four-bar with two drivers', 'driver 2 (joint ''D'')')
+    call err%clear()
+    ! in space, where the Euler parameters' rows come after the drivers' in the set
+    call make("space = 'spatial'|n_joints = 4|joint_name = 'A', 'B', 'C', 'D'|"// &
+      "joint_kind = 'revolute', 'spherical', 'spherical', 'revolute'|joint_ground = T, F, F, T|"// &
+      "joint_x = 0.0, 6.0, 0.0, 0.0|joint_y = 0.0, 0.0, 11.0, 20.0|joint_z = 0.0, 0.0, 20.0, 12.0|"// &
+      "joint_axis(:, 4) = 1.0, 0.0, 0.0|n_links = 3|link_joint1 = 1, 2, 4|link_joint2 = 2, 3, 3|"// &
+      "link_length = 6.0, 24.0, 12.0|n_drivers = 2|driver_joint = 1, 4|driver_rate = 1.0, 1.0", gk, err)
+    call assert_error(err, 2, 'over-driven', 'RSSR with two drivers', 'driver 2 (joint ''D'')')
   end subroutine test_over_driven
 
   !> A planar four-bar drawn in space with revolute joints: the loop's
