@@ -25,6 +25,12 @@ module kinematics_analysis
 
 contains
 
+  subroutine set_defaults()
+    t_end = 1.0_dp
+    n_steps = 100
+  end subroutine set_defaults
+
+  !> The &kinematics group's namelist read and write (deck_reader, table_t%echo_group).
   subroutine kinematics_group(r)
     type(group_read_t), intent(inout) :: r
     if (r%writing) then
@@ -49,8 +55,7 @@ contains
     call cpu_time(cpu0)
     call read_general_mechanism(deck, mech, kin, err)
     if (err%failed()) return
-    t_end = 1.0_dp
-    n_steps = 100
+    call set_defaults()
     call deck%read_group('kinematics', kinematics_group, .false., found, err)
     if (err%failed()) return
     call check_real(deck, 'kinematics', 't_end', t_end, err, above=0.0_dp, at_most=1.0e9_dp, &
