@@ -42,6 +42,7 @@ contains
     call run_test('redundant_planar_loop_in_space_is_refused', test_redundant)
     call run_test('non_assembly_is_reported_with_time_and_joint', test_non_assembly)
     call run_test('toggle_is_reported_with_time_and_joints', test_toggle)
+    call run_test('toggle_passed_between_samples_is_reported', test_toggle_passed)
     call run_test('kinematics_analysis_writes_the_table', test_analysis_table)
   end subroutine run_all
 
@@ -599,6 +600,28 @@ contains
       "link_joint1 = 1, 2|link_joint2 = 2, 3|n_drivers = 1|driver_joint = 3|driver_rate = -1.0", gk, err)
     call assert_error(err, 2, 'dead centre', 'a drawing at the dead centre')
   end subroutine test_toggle
+
+  !> A parallelogram four-bar (crank 3, coupler 10, rocker 3, ground 10) is
+  !> singular where all its links line up (crank angle 180 deg): sampled from
+  !> 5 deg in steps of 7.7 deg, the sign change of the Jacobian's determinant
+  !> between 174.4 and 182.1 deg is reported as a toggle passed.
+  subroutine test_toggle_passed()
+    type(general_kinematics_t) :: gk
+    type(error_t) :: err
+    real(dp) :: c5, s5
+    integer :: k
+    c5 = 3.0_dp*cos(5.0_dp*pi/180.0_dp)
+    s5 = 3.0_dp*sin(5.0_dp*pi/180.0_dp)
+    call make_ok("n_joints = 4|joint_name = 'A', 'B', 'C', 'D'|joint_kind = 4*'revolute'|joint_ground = T, F, F, T|"// &
+      "joint_x = 0.0, "//num(c5)//", "//num(10.0_dp + c5)//", 10.0|joint_y = 0.0, "//num(s5)//", "//num(s5)//", 0.0|"// &
+      "n_links = 3|link_joint1 = 1, 2, 4|link_joint2 = 2, 3, 3|n_drivers = 1|driver_joint = 1|driver_rate = 1.0", gk)
+    do k = 0, 40
+      call gk%solve(k*7.7_dp*pi/180.0_dp, err)
+      if (err%failed()) exit
+    end do
+    call assert_equal(k, 23, 'stops at the first sample past 180 deg')
+    call assert_error(err, 3, 'passed a toggle', 'parallelogram through its flat position', 'between t = 2.9565878 and 3.0909781 s')
+  end subroutine test_toggle_passed
 
   !> The analysis: header, columns and one row per output time.
   subroutine test_analysis_table()
