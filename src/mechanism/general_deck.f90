@@ -52,6 +52,7 @@ contains
     type(general_input_t) :: inp
     logical :: found
     integer :: i
+    character(len=:), allocatable :: blame, blame_value, rule
     call stage_from(inp)
     call deck%read_group(g, general_mechanism_group, .true., found, err)
     if (err%failed()) return
@@ -72,8 +73,14 @@ contains
       driver_spinup_time=driver_spinup_time, driver_n_table=driver_n_table, driver_table_t=driver_table_t, &
       driver_table_value=driver_table_value, toggle_rcond=toggle_rcond)
     mech = build_general(inp)
-    call kin%init(mech, err)
-    if (err%failed()) call input_error_in(deck, g, err)
+    call kin%init(mech, err, blame, blame_value)
+    if (err%failed() .and. allocated(blame)) then
+      rule = err%text()
+      call err%clear()
+      call invalid_value(deck, g, blame, blame_value, rule, err)
+    else if (err%failed()) then
+      call input_error_in(deck, g, err)
+    end if
   end subroutine read_general_mechanism
 
   !> The rules of the flat input, in order; the first broken one is reported.

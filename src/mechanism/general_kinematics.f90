@@ -361,11 +361,13 @@ contains
   ! ------------------------------------------------------------ set-up and mobility
 
   !> Coordinates in the drawing, rows counted, mobility checked against the
-  !> drivers.  Errors are input errors (code 2) naming the joint, link or driver.
-  subroutine gk_init(self, mech, err)
+  !> drivers.  Errors are input errors (code 2) naming the joint, link or
+  !> driver; `blame` and `blame_value`: the deck variable to change and its value.
+  subroutine gk_init(self, mech, err, blame, blame_value)
     class(general_kinematics_t), intent(inout) :: self
     type(general_mechanism_t), intent(in) :: mech
     type(error_t), intent(inout) :: err
+    character(len=:), allocatable, intent(out), optional :: blame, blame_value
     integer :: l, b, nb, dof, first_bad, rank_joints, free_col
     integer, allocatable :: perm(:)
     real(dp), allocatable :: phi(:), jac(:, :), phit(:), gam(:), zero(:)
@@ -410,7 +412,8 @@ contains
     call first_dependent(jac(pack([(l, l = 1, self%m)], self%row_joint >= 0), :), first_bad, rank_joints, free_col)
     self%mobility = self%n - rank_joints
     if (first_bad > 0) then
-      call err%set('mobility', 'joint '''//trim(joint_of(first_bad, self%row_joint >= 0))// &
+      call blame_on('joint_kind', joint_index(first_bad, self%row_joint >= 0))
+      call err%set('', 'joint '''//trim(joint_of(first_bad, self%row_joint >= 0))// &
         ''' repeats a constraint of the joints before it (redundant constraints: the Kutzbach count gives '// &
         str(self%kutzbach)//' freedoms, the constraint Jacobian in the drawing '//str(self%mobility)// &
         '); use a joint that removes fewer freedoms (e.g. spherical or universal for revolute in a closed loop), '// &
@@ -422,13 +425,14 @@ contains
     call first_dependent(jac(perm, :), first_bad, rank_joints, free_col)
     if (first_bad > 0) then
       associate (k => -self%row_joint(perm(first_bad)))
+        call blame_on('driver_joint', k)
         if (mech%n_drivers > self%mobility) then
-          call err%set('mobility', 'the mechanism is over-driven: it has '//str(self%mobility)// &
+          call err%set('', 'the mechanism is over-driven: it has '//str(self%mobility)// &
             ' freedoms and '//str(mech%n_drivers)//' drivers; driver '//str(k)//' (joint '''// &
             trim(mech%joints(mech%drivers(k)%joint)%name)//''') prescribes a motion that the joints and the '// &
             'drivers before it already fix', 2)
         else
-          call err%set('mobility', 'driver '//str(k)//' (joint '''// &
+          call err%set('', 'driver '//str(k)//' (joint '''// &
             trim(mech%joints(mech%drivers(k)%joint)%name)//''') cannot move the mechanism in the drawing: the '// &
             'joints and the drivers before it fix its motion there (a dead centre: draw the mechanism away from '// &
             'it; or two drivers prescribe the same freedom)', 2)
@@ -437,13 +441,45 @@ contains
       return
     end if
     if (mech%n_drivers < self%mobility) then
-      call err%set('mobility', 'the mechanism is under-driven: it has '//str(self%mobility)// &
+      call blame_on('n_drivers', 0)
+      call err%set('', 'the mechanism is under-driven: it has '//str(self%mobility)// &
         ' freedoms and '//str(mech%n_drivers)//' drivers; link '''// &
         trim(mech%links((free_col - 1)/self%nqb + 1)%name)// &
         ''' can still move with every driver held (add a driver or a joint in its loop or chain)', 2)
       return
     end if
   contains
+    subroutine blame_on(variable, i)
+      character(len=*), intent(in) :: variable
+      integer, intent(in) :: i
+      if (.not. present(blame) .or. (variable == 'joint_kind' .and. i == 0)) return
+      blame = variable
+      select case (variable)
+      case ('joint_kind')
+        blame = variable//'('//str(i)//')'
+        blame_value = "'"//trim(gjoint_names(mech%joints(i)%kind))//"'"
+      case ('driver_joint')
+        blame = variable//'('//str(i)//')'
+        blame_value = str(mech%drivers(i)%joint)
+      case default
+        blame_value = str(mech%n_drivers)
+      end select
+    end subroutine blame_on
+    !> The joint owning the k-th row among the rows selected by mask (0: none).
+    integer function joint_index(k, mask)
+      integer, intent(in) :: k
+      logical, intent(in) :: mask(:)
+      integer :: r, seen
+      seen = 0
+      joint_index = 0
+      do r = 1, size(mask)
+        if (mask(r)) seen = seen + 1
+        if (seen == k) then
+          joint_index = max(self%row_joint(r), 0)
+          return
+        end if
+      end do
+    end function joint_index
     !> The joint owning the k-th row among the rows selected by mask.
     function joint_of(k, mask) result(name)
       integer, intent(in) :: k
@@ -674,6 +710,7 @@ contains
       real(dp), intent(out), optional :: rc
       integer, intent(out), optional :: sign_det
       integer :: r
+      if (present(sign_det)) sign_det = 0
       do r = 1, self%m
         a(r, :) = a(r, :)*self%row_scale(r)*self%col_scale
       end do
