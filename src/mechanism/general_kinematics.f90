@@ -1,6 +1,5 @@
 !> Rigid-body kinematics of a general mechanism (module general_mechanism)
-!> in body coordinates (Nikravesh 1988, chs. 3-4 planar, 6-7 spatial; Haug
-!> 1989, chs. 3 and 9): per link q_b = (x, y, theta) in the plane, or the
+!> in body coordinates (Nikravesh 1988; Haug 1989): per link q_b = (x, y, theta) in the plane, or the
 !> position of its frame's origin and its Euler parameters p = (e0, e) in
 !> space, with the constraint p.p - 1 = 0.  A body-fixed point s is at
 !> r + A(q_b) s.  Every joint constraint is built from three scalars of points
@@ -122,7 +121,7 @@ contains
       e = q(o + 5:o + 7)
       de0 = qd(o + 4)
       de = qd(o + 5:o + 7)
-      ! A(p) s = (2 e0^2 - 1) s + 2 e (e.s) + 2 e0 e x s   (Nikravesh eq. 6.19)
+      ! A(p) s = (2 e0^2 - 1) s + 2 e (e.s) + 2 e0 e x s   (Nikravesh 1988)
       v%val = (2.0_dp*e0*e0 - 1.0_dp)*s + 2.0_dp*e*dot_product(e, s) + 2.0_dp*e0*cross(e, s)
       v%jac(:, 4) = 4.0_dp*e0*s + 2.0_dp*cross(e, s)
       v%jac(:, 5:7) = 2.0_dp*(dot_product(e, s)*identity(3) + outer(e, s)) - 2.0_dp*e0*skew(s)
@@ -797,7 +796,7 @@ contains
 
   !> Link b's angular velocity and acceleration (global; the plane: about Z).
   !> Space: omega = 2 G p', alpha = 2 G p'' with G = [-e, e0 I + e~]
-  !> (Nikravesh eq. 6.97).
+  !> (Nikravesh 1988).
   subroutine body_motion(self, b, omega, alpha)
     class(general_kinematics_t), intent(in) :: self
     integer, intent(in) :: b

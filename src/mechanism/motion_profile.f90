@@ -2,7 +2,7 @@
 !> rate, the spin-up profile of &mechanism (module linkage, driver_angle), or
 !> a table of values against time interpolated by a natural cubic spline (C2:
 !> value, slope and curvature continuous at the knots, zero curvature at the
-!> two ends; de Boor, "A Practical Guide to Splines" (1978), ch. IV).
+!> two ends; de Boor, "A Practical Guide to Splines" (1978)).
 module motion_profile
   use kinds, only: dp
   use linkage, only: driver_t, driver_angle, profile_constant, profile_spinup
