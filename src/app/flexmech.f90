@@ -17,6 +17,7 @@ program flexmech
   use run_settings, only: read_run_settings, write_run_header, analysis_driver, check_deck_groups
   use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
+  use kinematics_analysis, only: run_kinematics
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
@@ -68,7 +69,8 @@ program flexmech
   ! the analyses, in the order the message of an unknown name lists them
   analyses = [analysis_t('transient', run_transient), analysis_t('steady', run_steady), &
               analysis_t('optimize', run_optimize), analysis_t('design', run_design), &
-              analysis_t('spatial', run_spatial), analysis_t('lsode_check', run_lsode_check)]
+              analysis_t('spatial', run_spatial), analysis_t('lsode_check', run_lsode_check), &
+              analysis_t('kinematics', run_kinematics)]
   k = position(analyses, analysis)
   if (k > 0) then
     call analyses(k)%run(deck, out, err)
