@@ -1,4 +1,6 @@
-!> The `steady` analysis (Tennant 1985): the steady-state vibration of a
+!> The steady-state analysis of a deck (Tennant 1985), shared by the `steady`
+!> driver (module steady_analysis) and the `design` driver, which analyses its
+!> initial and final designs with it: the steady-state vibration of a
 !> flexible linkage driven at constant crank speed, by the paper's
 !> harmonic-series method (T26-T28) with the outer iteration on the nonlinear
 !> stiffness, by the exact periodic solution (shooting, Floquet multipliers),
@@ -6,7 +8,7 @@
 !> displacements of the joints, local deformations of each link's end 2, and
 !> the maximum |stress| of every element.  Near resonance the analysis stops
 !> with the diagnosis instead of printing a meaningless steady state.
-module steady_analysis
+module steady_run
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
@@ -20,11 +22,12 @@ module steady_analysis
   use steady_model, only: steady_model_t
   use plausibility, only: warn_materials, warn_strength
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings
+  use run_settings, only: read_run_settings, write_run_header
   use harmonic_solver, only: harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_report_t, shooting_solve, periodic_orbit, shooting_diagnosis
   implicit none
   private
-  public :: run_steady
+  public :: analyse_steady, analyse_steady_deck
 
   integer, parameter :: n_freq_reported = 5
 
@@ -32,7 +35,7 @@ contains
 
   !> Read, build, the harmonic series and/or the exact periodic solution over
   !> one revolution, then the table of both.
-  subroutine run_steady(deck, out, err)
+  subroutine analyse_steady(deck, out, err)
     type(deck_t), intent(inout) :: deck
     type(table_t), intent(inout) :: out
     type(error_t), intent(inout) :: err
@@ -79,7 +82,34 @@ contains
     call write_table(out, mech, model, times, qh, qs, err)
     if (err%failed()) return
     call out%cost('kinematics_solutions', str(model%n_kinematics))
-  end subroutine run_steady
+  end subroutine analyse_steady
+
+  !> The steady analysis of the deck file deck_path into the output file
+  !> out_path: its &run title and header, the analysis, a 'stopped:' line if
+  !> it stopped.  why: '' when the output was written, else why the deck or the
+  !> output file could not be opened.
+  subroutine analyse_steady_deck(deck_path, out_path, why)
+    character(len=*), intent(in) :: deck_path, out_path
+    character(len=:), allocatable, intent(out) :: why
+    type(deck_t) :: deck
+    type(table_t) :: out
+    type(error_t) :: err
+    character(len=32) :: analysis
+    character(len=256) :: title
+    why = ''
+    call deck%open(deck_path, err)
+    if (.not. err%failed()) call out%open(out_path, err)
+    if (err%failed()) then
+      why = err%text()
+      return
+    end if
+    call read_run_settings(deck, analysis, title, err)
+    call write_run_header(out, deck_path, title)
+    if (.not. err%failed()) call analyse_steady(deck, out, err)
+    call deck%close()
+    if (err%failed()) call out%comment('stopped: '//err%text())
+    call out%commit(err)
+  end subroutine analyse_steady_deck
 
   !> Tennant's harmonic series (T26-T28) at the output times, qh(:, k) at
   !> times(k), with its report, cost and diagnosis.
@@ -435,4 +465,4 @@ contains
                      'suffix _exact: the exact periodic solution (shooting)')
     call out%columns(names)
   end subroutine column_names
-end module steady_analysis
+end module steady_run
