@@ -68,8 +68,7 @@ contains
     call ode%init(n, t0, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
     if (err%failed()) return
     if (s%max_order > 0) then
-      ode%max_order = s%max_order           ! DLSODE's MAXORD (optional input, IOPT = 1)
-      ode%iwork(5) = s%max_order
+      call ode%limit_order(s%max_order)     ! DLSODE's MAXORD (optional input, IOPT = 1)
       call out%comment('DLSODE order limited to '//str(s%max_order))
     end if
     if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then
