@@ -38,6 +38,7 @@ module transient_integration
   !>     do while (load%next(t)): M, K of the model at q = 0 and time t; call load%add(model, t, M, K, err)
   !>     call choose_solver_settings(out, s, load, crank_omega, contact, err)
   type, public :: static_load_t
+    private
     real(dp) :: q_static = 0.0_dp               !< largest component of a static deflection or the initial displacement
     real(dp), allocatable :: w2(:)              !< the largest square of each natural frequency met
     real(dp), allocatable :: share(:)           !< the largest displacement each mode carries
