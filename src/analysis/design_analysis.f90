@@ -24,8 +24,7 @@ module design_analysis
   use linkage, only: mechanism_t, build_mechanism, profile_constant
   use linkage_deck, only: read_mechanism, echo_mechanism, write_mechanism_group
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
-  use steady_analysis, only: run_steady
-  use run_settings, only: read_run_settings, write_run_header
+  use steady_run, only: analyse_steady_deck
   use design_problem, only: design_problem_t, design_variable_t, design_eval_t, parse_variable, var_theta0, &
                             var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y
   use shaking_force, only: shaking_supported
@@ -779,23 +778,9 @@ contains
 
     subroutine analyse_side(deck_path, out_path)
       character(len=*), intent(in) :: deck_path, out_path
-      type(deck_t) :: side_deck
-      type(table_t) :: side_out
-      type(error_t) :: side_err
-      character(len=32) :: side_analysis
-      character(len=256) :: side_title
-      call side_deck%open(deck_path, side_err)
-      if (.not. side_err%failed()) call side_out%open(out_path, side_err)
-      if (side_err%failed()) then
-        call out%comment('could not analyse '//deck_path//': '//side_err%text())
-        return
-      end if
-      call read_run_settings(side_deck, side_analysis, side_title, side_err)
-      call write_run_header(side_out, deck_path, side_title)
-      if (.not. side_err%failed()) call run_steady(side_deck, side_out, side_err)
-      call side_deck%close()
-      if (side_err%failed()) call side_out%comment('stopped: '//side_err%text())
-      call side_out%commit(side_err)
+      character(len=:), allocatable :: why
+      call analyse_steady_deck(deck_path, out_path, why)
+      if (len(why) > 0) call out%comment('could not analyse '//deck_path//': '//why)
     end subroutine analyse_side
   end subroutine write_final_design
 end module design_analysis

@@ -51,8 +51,8 @@ module revolution_rows
 
   type :: revolution_defect_t
     integer :: per_rev = 0                            !< samples per revolution (0: no defect)
-    integer :: first = 0                              !< first sample index of the last revolution
-    real(dp), allocatable :: ring(:, :)               !< the previous revolution's samples, by index mod per_rev
+    integer, private :: first = 0                     !< first sample index of the last revolution
+    real(dp), allocatable, private :: ring(:, :)      !< the previous revolution's samples, by index mod per_rev
     real(dp) :: defect = 0.0_dp, scale = 0.0_dp       !< largest change, largest value
   contains
     procedure :: init => init_defect

@@ -40,6 +40,7 @@ module transient_integration
   !>     do while (load%next(t)): M, K of the model at q = 0 and time t; call load%add(model, t, M, K, err)
   !>     call choose_solver_settings(out, s, load, crank_omega, contact, err)
   type, public :: static_load_t
+    private
     real(dp) :: q_static = 0.0_dp               !< largest component of a static deflection or the initial displacement
     real(dp), allocatable :: w2(:)              !< the largest square of each natural frequency met
     real(dp), allocatable :: share(:)           !< the largest displacement each mode carries
@@ -70,8 +71,7 @@ contains
     call ode%init(n, t0, s%mf, s%rtol, atol_vector, err, ml=ml, mu=ml, max_steps=s%max_steps)
     if (err%failed()) return
     if (s%max_order > 0) then
-      ode%max_order = s%max_order           ! DLSODE's MAXORD (optional input, IOPT = 1)
-      ode%iwork(5) = s%max_order
+      call ode%limit_order(s%max_order)     ! DLSODE's MAXORD (optional input, IOPT = 1)
       call out%comment('DLSODE order limited to '//str(s%max_order))
     end if
     if (s%mf == mf_bdf_full_user .or. s%mf == mf_bdf_band_user) then

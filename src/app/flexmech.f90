@@ -23,6 +23,7 @@ program flexmech
   use steady_analysis, only: run_steady
   use spatial_analysis, only: run_spatial
   use design_analysis, only: run_design
+  use plot_command, only: dispatch_plot
   use subcommands, only: dispatch_subcommands
   implicit none
 
@@ -43,7 +44,8 @@ program flexmech
   integer :: k
 
   call cpu_time(cpu0)
-  call dispatch_subcommands()   ! plot, sweeps, batches (src/batch); returns for a single deck
+  call dispatch_plot()          ! flexmech plot ... (src/plot); returns for any other command line
+  call dispatch_subcommands()   ! sweeps, batches (src/batch); returns for a single deck
   call parse_arguments(deck_path, out_path)
 
   call deck%open(deck_path, err)

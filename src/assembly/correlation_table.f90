@@ -58,7 +58,7 @@ module correlation_table
   !> equals coef times one global unknown, or is held at zero (map = 0); the
   !> unknowns' labels; gather, scatter and the half-bandwidth.  The planar
   !> rules below (correlation_table_t%build) and the spatial model's joint
-  !> rules (src/spatial: spatial_table_t) fill it.
+  !> rules (spatial_correlation: spatial_table_t) fill it.
   type :: correlation_base_t
     integer :: n_elements = 0
     integer :: n_global = 0

@@ -1,7 +1,7 @@
-!> The command lines that are not a single analysis, recognised before the
-!> main program reads its deck:
+!> The command lines that run several decks, recognised before the main
+!> program reads its deck (`flexmech plot` is recognised before them, by
+!> module plot_command):
 !>
-!>   flexmech plot RUN.out ...          figures of outputs (module plot_command)
 !>   flexmech SWEEP.nml [-o OUT]        a deck with a &sweep group (module sweep_run)
 !>   flexmech A.nml B.nml ...           several decks, one table of exit statuses (deck_batch)
 !>
@@ -11,8 +11,7 @@
 module subcommands
   use, intrinsic :: iso_fortran_env, only: error_unit
   use version, only: program_name
-  use command_line, only: quit
-  use plot_command, only: run_plot_command
+  use command_line, only: quit, command_words, max_word
   use command_line, only: default_output
   use error_status, only: error_t
   use deck_reader, only: deck_t
@@ -23,23 +22,14 @@ module subcommands
   private
   public :: dispatch_subcommands
 
-  integer, parameter :: max_arg = 4096
-
 contains
 
   subroutine dispatch_subcommands()
-    character(len=max_arg), allocatable :: args(:), decks(:)
+    character(len=max_word), allocatable :: args(:), decks(:)
     character(len=:), allocatable :: out_path
     integer :: i, status
-    allocate(args(command_argument_count()))
-    do i = 1, size(args)
-      call get_command_argument(i, args(i))
-    end do
+    call command_words(args)
     if (size(args) == 0) return
-    if (args(1) == 'plot') then
-      call run_plot_command(args(2:), status)
-      call quit(status)
-    end if
     do i = 1, size(args)     ! another option: the ordinary command line reports it
       if (args(i)(1:1) == '-' .and. args(i) /= '-o' .and. is_deck_argument(args, i)) return
     end do

@@ -29,7 +29,7 @@ module sweep_run
   use job_pool, only: pool_start, pool_stop, pool_is_root, pool_size, pool_run
   implicit none
   private
-  public :: run_sweep, status_meaning, point_command
+  public :: run_sweep, status_meaning
 
   type :: point_result_t
     type(metric_t), allocatable :: metrics(:)

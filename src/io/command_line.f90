@@ -8,9 +8,21 @@ module command_line
   use strings, only: shell_quote, file_stem
   implicit none
   private
-  public :: parse_arguments, quit, default_output, output_path_problem
+  public :: parse_arguments, quit, default_output, output_path_problem, command_words, max_word
+
+  integer, parameter :: max_word = 4096   !< longest command-line word the subcommands read
 
 contains
+
+  !> The command-line words, each in a max_word-long text.
+  subroutine command_words(words)
+    character(len=max_word), allocatable, intent(out) :: words(:)
+    integer :: i
+    allocate(words(command_argument_count()))
+    do i = 1, size(words)
+      call get_command_argument(i, words(i))
+    end do
+  end subroutine command_words
 
   subroutine quit(status)
     integer, intent(in) :: status

@@ -14,7 +14,7 @@ module progress
   use kinds, only: dp
   implicit none
   private
-  public :: progress_t, eta_text
+  public :: progress_t
 
   type :: progress_t
     logical :: active = .false.

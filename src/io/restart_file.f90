@@ -9,7 +9,7 @@ module restart_file
   use table_output, only: table_t
   implicit none
   private
-  public :: write_restart_file, read_restart_file, start_from_restart
+  public :: write_restart_file, start_from_restart
 
 contains
 

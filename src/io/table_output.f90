@@ -22,7 +22,7 @@ module table_output
   use unit_system, only: labelled
   implicit none
   private
-  public :: table_t, column_width
+  public :: table_t
 
   integer, parameter :: column_width = 24
   character(len=*), parameter :: row_format = '(*(1x,es23.15e3))'

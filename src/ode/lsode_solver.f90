@@ -94,19 +94,20 @@ module lsode_solver
     integer :: ml = 0, mu = 0          !< half-bandwidths for MF = 24/25
     logical :: structured = .true.     !< use the system's own Newton matrix when it has one (MF 21/24)
     logical :: model_newton = .false.  !< this integration uses it (decided at each fresh start)
-    integer :: mf_dlsode = mf_adams    !< the MF DLSODE is handed (23 for the model's Newton matrix)
+    integer, private :: mf_dlsode = mf_adams    !< the MF DLSODE is handed (23 for the model's Newton matrix)
     integer :: max_steps = 20000       !< per output interval (DLSODE's MXSTEP)
-    integer :: max_order = 0           !< DLSODE's MAXORD (0: its default); kept across work reallocations
+    integer, private :: max_order = 0  !< DLSODE's MAXORD (0: its default); kept across work reallocations
     real(dp) :: rtol = 1.0e-6_dp
     real(dp), allocatable :: atol(:)
     real(dp) :: t = 0.0_dp             !< current time
     integer :: istate = 1
-    real(dp), allocatable :: rwork(:)
-    integer, allocatable :: iwork(:)
+    real(dp), allocatable, private :: rwork(:)   !< DLSODE's work arrays, sized for mf_dlsode
+    integer, allocatable, private :: iwork(:)
     real(dp) :: cpu_seconds = 0.0_dp
-    integer :: done_before(3) = 0      !< steps, RHS and Jacobian evaluations before the last restart
+    integer, private :: done_before(3) = 0      !< steps, RHS and Jacobian evaluations before the last restart
   contains
     procedure :: init
+    procedure :: limit_order
     procedure :: integrate_to
     procedure :: counters
     procedure :: restart
@@ -351,6 +352,15 @@ contains
     self%iwork(6) = self%max_steps
     if (self%max_order > 0) self%iwork(5) = self%max_order
   end subroutine allocate_work
+
+  !> DLSODE's MAXORD (its optional input IWORK(5)) for this and every later
+  !> integration of the problem set up by init; 0 restores DLSODE's default.
+  subroutine limit_order(self, max_order)
+    class(lsode_t), intent(inout) :: self
+    integer, intent(in) :: max_order
+    self%max_order = max_order
+    if (allocated(self%iwork)) self%iwork(5) = max_order
+  end subroutine limit_order
 
   !> Start afresh from the current (t, y) on the next call, e.g. after a
   !> discontinuity in the model.  DLSODE's counters restart from zero; counters()

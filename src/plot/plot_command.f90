@@ -25,11 +25,25 @@ module plot_command
   use kinds, only: dp
   use strings, only: shell_quote, file_stem
   use process_runner, only: run_command
+  use command_line, only: quit, command_words, max_word
   implicit none
   private
-  public :: run_plot_command
+  public :: dispatch_plot
 
 contains
+
+  !> `flexmech plot ...`: when the first command-line word is 'plot', draws
+  !> the figures and ends the program with the command's exit status;
+  !> returns otherwise.
+  subroutine dispatch_plot()
+    character(len=max_word), allocatable :: args(:)
+    integer :: status
+    call command_words(args)
+    if (size(args) == 0) return
+    if (args(1) /= 'plot') return
+    call run_plot_command(args(2:), status)
+    call quit(status)
+  end subroutine dispatch_plot
 
   !> args: the command-line words after 'plot'.
   subroutine run_plot_command(args, exit_status)

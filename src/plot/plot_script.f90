@@ -24,7 +24,7 @@ module plot_script
   use run_output, only: run_output_t, column_index, column_unit, name_t, split_words, read_run_output
   implicit none
   private
-  public :: write_plot_script, plot_palette
+  public :: write_plot_script
   public :: begin_figure, end_figure, colour, esc, selected   ! shared with plot_compare
   public :: number_text, element_links, legend, unit_of      ! shared with plot_animation, plot_compare
 

@@ -319,7 +319,7 @@ contains
     real(dp) :: y(3)
     y = 1.0_dp
     call ode%init(3, 0.0_dp, mf_bdf_full_user, 1.0e-8_dp, [1.0e-12_dp], err)
-    ode%iwork(5) = 2
+    call ode%limit_order(2)
     call ode%integrate_to(sys, y, 1.0_dp, err)
     c = ode%counters()
     call assert_true(.not. err%failed() .and. c%model_newton, 'integration through the model route')

@@ -97,7 +97,7 @@ contains
     y = 0.0_dp
     atol(1::2) = 1.0e-7_dp
     atol(2::2) = 1.0e-4_dp
-    ode%max_order = 2            ! the undamped axial modes: BDF 3-5 are unstable there (doc/verification_transient.md)
+    call ode%limit_order(2)      ! the undamped axial modes: BDF 3-5 are unstable there (doc/verification_transient.md)
     call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-6_dp, atol, err, max_steps=100000)
     wmin = 0.0_dp
     off = 0.0_dp

@@ -87,8 +87,7 @@ contains
     ! crawls at h ~ 1e-5 s (measured: 1.6e6 steps instead of 3e3)
     call ode%init(size(y), 0.0_dp, mf_bdf_full_user, 1.0e-6_dp, state_atol(size(y), 1.0e-7_dp, 1.0e-4_dp), err, &
                   max_steps=500000)
-    ode%max_order = 2
-    ode%iwork(5) = 2
+    call ode%limit_order(2)
     do k = 1, nk
       call ode%integrate_to(model, y, k*dt, err)
       if (err%failed()) exit

@@ -11,7 +11,7 @@ module run_output
   use strings, only: str, lower, starts_with
   implicit none
   private
-  public :: run_output_t, read_run_output, read_text_line, split_words, column_index, name_t, append_text
+  public :: run_output_t, read_run_output, split_words, column_index, name_t, append_text
   public :: column_unit
 
   !> One text of any length, in growing lists (column names, header and

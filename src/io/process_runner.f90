@@ -9,7 +9,7 @@ module process_runner
   use strings, only: shell_quote
   implicit none
   private
-  public :: run_command, self_executable, flexmech_command, is_child
+  public :: run_command, flexmech_command, is_child
 
 contains
 
