@@ -18,7 +18,8 @@ module transient_analysis
                               response_columns_text
   use linkage, only: mechanism_t, driver_angle
   use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
-  use kear_element, only: stress_report_t, effects_summary
+  use planar_element, only: stress_report_t
+  use element_effects, only: effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: loads_input_t, point_load_t, read_loads, resolve_loads, loads_group

@@ -37,7 +37,7 @@ module spatial_beam
   use quadrature, only: gauss_legendre_interval, max_gauss_points
   use shape_functions, only: quintic_hermite, linear_lagrange
   use material_law, only: ramberg_osgood_t, validate_material, ro_stress, peak_strain
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use spatial_section, only: spatial_section_t, spatial_section_resultants, section_extreme_fibre_strain
   use linalg, only: outer, cross
   implicit none
