@@ -39,6 +39,7 @@ contains
     call run_test('point_load_is_gradient_of_its_work', test_point_load)
     call run_test('default_formulation_follows_stretching_switch', test_default_formulation)
     call run_test('tabulated_stress_stations_equal_direct_strains', test_station_strains)
+    call run_test('switches_of_the_evaluation_apply_to_both_elements', test_evaluation_switches)
   end subroutine run_all
 
   function unit_element(fx) result(el)
@@ -243,6 +244,39 @@ contains
       work = dot_product(f, r) + mz*th
     end function work
   end subroutine test_point_load
+
+  !> The evaluation's switches for both elements (one evaluation,
+  !> planar_evaluation.inc): for the linear strain model, force_wanted =
+  !> .false. (with the tangent) returns the M and K_t of the full evaluation
+  !> (to 1e-14 of their largest entry: the same constant integrals rotated;
+  !> a wrong rotation or a missing rotary term would differ by O(1));
+  !> mass_wanted = .false. leaves the force unchanged; peak_wanted = .false.
+  !> skips the informative strain peak, which is positive otherwise.
+  subroutine test_evaluation_switches()
+    character(len=10), parameter :: names(2) = [character(len=10) :: 'exact', 'consistent']
+    class(planar_element_t), allocatable :: el
+    type(element_eval_info_t) :: info
+    type(rigid_state_t) :: rb
+    real(dp), allocatable :: m1(:, :), k1(:, :), f1(:), m2(:, :), k2(:, :), f2(:)
+    integer :: k, n
+    rb = rigid_at(0.2_dp)
+    do k = 1, size(names)
+      if (allocated(el)) deallocate(el, m1, k1, f1, m2, k2, f2)
+      allocate(el, source=unit_beam(trim(names(k)), element_effects_t(rotary_inertia=.true., coupling=.true.)))
+      n = el%n_dofs()
+      allocate(m1(n, n), k1(n, n), f1(n), m2(n, n), k2(n, n), f2(n))
+      call el%eval(q_big(1:n), qd_big(1:n), rb, m1, f1, info, k1)
+      call assert_true(info%max_abs_strain > 0.0_dp, trim(names(k))//': strain peak computed')
+      call el%eval(q_big(1:n), qd_big(1:n), rb, m2, f2, info, k2, force_wanted=.false.)
+      call assert_all_close(reshape(m2, [n*n]), reshape(m1, [n*n]), 0.0_dp, 1.0e-14_dp*maxval(abs(m1)), &
+                            trim(names(k))//': M without the force')
+      call assert_all_close(reshape(k2, [n*n]), reshape(k1, [n*n]), 0.0_dp, 1.0e-14_dp*maxval(abs(k1)), &
+                            trim(names(k))//': K_t without the force')
+      call el%eval(q_big(1:n), qd_big(1:n), rb, m2, f2, info, mass_wanted=.false., peak_wanted=.false.)
+      call assert_all_close(f2, f1, 0.0_dp, 1.0e-14_dp*maxval(abs(f1)), trim(names(k))//': F without M')
+      call assert_true(info%max_abs_strain == 0.0_dp, trim(names(k))//': strain peak skipped')
+    end do
+  end subroutine test_evaluation_switches
 
   !> 'default' is the consistent element with stretching on, Kear's element
   !> (exact equations) otherwise; unknown names are an error naming them.
