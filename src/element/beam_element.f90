@@ -28,7 +28,7 @@ module beam_element
   use consistent_element, only: consistent_element_t
   implicit none
   private
-  public :: planar_element_t, resolve_formulation, formulation_names
+  public :: planar_element_t, resolve_formulation
   public :: beam_element_init, beam_element_eval, beam_tangent_stiffness, beam_internal_force
   public :: beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_local_displacement
   public :: beam_point_load, beam_section_strains, beam_station_strains, beam_mass_constant_in_q
@@ -87,11 +87,11 @@ contains
   pure subroutine beam_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, &
                                     force_wanted)
     class(planar_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(:), qd(:)
+    real(dp), intent(in), contiguous :: q(:), qd(:)
     type(rigid_state_t), intent(in) :: rb
-    real(dp), intent(out) :: mass(:, :), force(:)
+    real(dp), intent(out), contiguous :: mass(:, :), force(:)
     type(element_eval_info_t), intent(out) :: info
-    real(dp), intent(out), optional :: tangent(:, :)
+    real(dp), intent(out), optional, contiguous :: tangent(:, :)
     logical, intent(in), optional :: mass_wanted, peak_wanted, force_wanted
     call el%eval(q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, force_wanted)
   end subroutine beam_element_eval

@@ -35,7 +35,7 @@ module consistent_element
                                  exact_angle_terms, add_rank_one
   implicit none
   private
-  public :: consistent_ndof, consistent_element_t, consistent_element_init
+  public :: consistent_element_t, consistent_element_init
 
   integer, parameter :: consistent_ndof = 12
   integer, parameter :: nd = consistent_ndof

@@ -38,7 +38,7 @@ module kear_element
                                  add_rank_one
   implicit none
   private
-  public :: kear_ndof, formulation_exact, formulation_kear1987
+  public :: formulation_exact, formulation_kear1987
   public :: kear_element_t, kear_element_init
   public :: formulation_from_name, formulation_name
 

@@ -4,19 +4,17 @@
 !> elements only through this type (beam_element's procedures) and the
 !> correlation table.
 !>
-!> An element binds its interpolation (u = su.p, w = sw.p and the gradients
-!> of its strain variables at x = e l), its station loop of the nonlinear
-!> strain terms and its strain measures; this module holds the constant
-!> integrals, the evaluation of M_e, F_e and K_t (K1, K2, K17), the rotary
-!> inertia, the static terms, the kinetic energy, point loads, displacements
-!> and the stress recovery.
-!>
-!> The station loop of the nonlinear strain terms stays in each element in
-!> its fixed sizes (8 x 3 for Kear's, 12 x 4 for the consistent element):
-!> it is the transient analysis' innermost loop, and written for any size it
-!> cost 4 to 8 % of a transient deck's instructions.  An evaluation makes one
-!> dynamic call at most (to that loop); the rest runs over the element's DOFs
-!> with work arrays of max_dofs that stay off the heap.
+!> An element binds its set-up, its interpolation (u = su.p, w = sw.p and
+!> the gradients of its strain variables at x = e l), its station loop of
+!> the nonlinear strain terms (in its fixed sizes: 8 x 3 for Kear's, 12 x 4
+!> for the consistent element) and its strain measures, and its eval, whose
+!> body is planar_evaluation.inc compiled in the element's own sizes (the
+!> transient analysis' hot path: one dynamic call per element evaluation,
+!> none per Gauss point).  This module holds the constant integrals and
+!> station tables, the start and finish of the strain terms, the static
+!> terms, the kinetic energy, point loads, displacements and the stress
+!> recovery, over the element's DOFs with work arrays of max_dofs that stay
+!> off the heap.
 module planar_element
   use kinds, only: dp
   use error_status, only: error_t
@@ -115,11 +113,11 @@ module planar_element
     pure subroutine eval_i(el, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, force_wanted)
       import :: planar_element_t, rigid_state_t, element_eval_info_t, dp
       class(planar_element_t), intent(in) :: el
-      real(dp), intent(in) :: q(:), qd(:)
+      real(dp), intent(in), contiguous :: q(:), qd(:)
       type(rigid_state_t), intent(in) :: rb
-      real(dp), intent(out) :: mass(:, :), force(:)
+      real(dp), intent(out), contiguous :: mass(:, :), force(:)
       type(element_eval_info_t), intent(out) :: info
-      real(dp), intent(out), optional :: tangent(:, :)
+      real(dp), intent(out), optional, contiguous :: tangent(:, :)
       logical, intent(in), optional :: mass_wanted, peak_wanted, force_wanted
     end subroutine eval_i
 

@@ -42,12 +42,12 @@ module spatial_beam
   use linalg, only: outer, cross
   implicit none
   private
-  public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
+  public :: spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
   public :: spatial_formulation_kear, spatial_formulation_consistent
   public :: spatial_beam_init, spatial_beam_eval, spatial_beam_matrices, spatial_tangent_is_constant
   public :: spatial_internal_force, spatial_tangent_stiffness
   public :: spatial_strain_energy, spatial_kinetic_energy, spatial_to_local, spatial_to_global
-  public :: spatial_section_state, spatial_stress_recovery, spatial_local_displacement
+  public :: spatial_stress_recovery, spatial_local_displacement
 
   integer, parameter :: sb_ndof = 20
   integer, parameter :: nd = sb_ndof, no = 10   !< element DOFs, node 2's offset

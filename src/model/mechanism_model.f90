@@ -957,7 +957,7 @@ contains
     type(mechanism_model_t), intent(inout) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: me(:, :), ke(:, :)
+    real(dp), intent(out), contiguous :: me(:, :), ke(:, :)
     type(element_eval_info_t) :: info
     self%work_qde = 0.0_dp
     call gather_element(self, e, q, self%work_qe)
