@@ -274,7 +274,7 @@ contains
                             trim(names(k))//': K_t without the force')
       call el%eval(q_big(1:n), qd_big(1:n), rb, m2, f2, info, mass_wanted=.false., peak_wanted=.false.)
       call assert_all_close(f2, f1, 0.0_dp, 1.0e-14_dp*maxval(abs(f1)), trim(names(k))//': F without M')
-      call assert_true(info%max_abs_strain == 0.0_dp, trim(names(k))//': strain peak skipped')
+      call assert_true(info%max_abs_strain <= 0.0_dp, trim(names(k))//': strain peak skipped')
     end do
   end subroutine test_evaluation_switches
 
