@@ -17,7 +17,7 @@ program bench_spatial
   use kinds, only: dp, two_pi
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user
   use spatial_section, only: spatial_section_init, section_rectangular
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init

@@ -37,7 +37,8 @@ module bench_transient_cases
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
-  use kear_element, only: element_effects_t, stress_report_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: stress_report_t
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user
   implicit none
@@ -288,7 +289,7 @@ program bench_transient
   use deck_reader, only: deck_t
   use table_output, only: table_t
   use transient_analysis, only: run_transient
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use lsode_solver, only: mf_adams, mf_bdf_full_user, mf_bdf_full_fd
   use bench_transient_cases
   implicit none

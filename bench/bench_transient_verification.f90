@@ -10,7 +10,7 @@ program bench_transient_verification
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use linkage, only: mechanism_input_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_adams, mf_bdf_full_user

@@ -16,7 +16,7 @@ module spatial_analysis
   use lsode_solver, only: lsode_t, lsode_counters_t
   use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost, &
                                    choose_solver_settings, static_load_t
-  use kear_element, only: effects_summary
+  use element_effects, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings, check_mode_number
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
   use spatial_correlation, only: sdofs

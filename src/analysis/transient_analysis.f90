@@ -17,7 +17,8 @@ module transient_analysis
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
                               response_columns_text
   use linkage, only: mechanism_t, driver_angle
-  use kear_element, only: stress_report_t, effects_summary
+  use planar_element, only: stress_report_t
+  use element_effects, only: effects_summary
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: loads_input_t, point_load_t, resolve_loads

@@ -9,7 +9,7 @@ module transient_settings
   use deck_checks, only: check_real, check_reals, check_integer, check_choice
   use table_output, only: table_t
   use lsode_solver, only: max_steps_ceiling, max_steps_reason, mf_from_method, method_names
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use fast_format, only: min_digits, max_digits
   implicit none
   private

@@ -41,7 +41,7 @@ module design_problem
   use harmonic_solver, only: harmonic_settings_t, harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
                                shooting_diagnosis, orbit_sensitivity
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
   use periodic_transient, only: periodic_transient_settings_t, periodic_transient_report_t, transient_to_periodic, &
                                 matching_unknowns

@@ -8,18 +8,10 @@ module beam_properties
   use strings, only: str
   use quadrature, only: max_gauss_points
   use material_law, only: ramberg_osgood_t, validate_material, peak_strain
+  use element_effects, only: element_effects_t
   implicit none
   private
-  public :: element_effects_t, beam_properties_t, init_beam_properties
-
-  !> The papers' effects ("tracing constants").  All .false. is the linear analysis.
-  type :: element_effects_t
-    logical :: stretching = .false.      !< exact axial strain (K19); off: eps_n = u_x
-    logical :: curvature = .false.       !< exact curvature (K23) and section angle (K8); off: kappa = w_xx, theta = phi + w_x
-    logical :: material = .false.        !< Ramberg-Osgood E2 term (K13); off: linear elastic E1
-    logical :: rotary_inertia = .false.  !< rho I theta_dot^2 / 2 in (K3); off: dropped
-    logical :: coupling = .false.        !< Coriolis and Euler terms of the elastic motion; off: dropped
-  end type element_effects_t
+  public :: beam_properties_t, init_beam_properties
 
   type :: beam_properties_t
     real(dp) :: length = 0.0_dp, width = 0.0_dp, depth = 0.0_dp

@@ -18,53 +18,40 @@
 !>                            + I theta_q (theta_dd - theta_q . q_dd) ] - beta K_t pdot
 !>
 !> the same Lagrange equations as kear_element (doc/element.md sections 3-8),
-!> with S (2 x 12) in place of Kear's 2 x 8 interpolation.  All procedures
+!> with S (2 x 12) in place of Kear's 2 x 8 interpolation: this module binds
+!> the interpolation, the station loop and the strain measures to the planar
+!> element contract (planar_element), which evaluates them.  All procedures
 !> are pure.
 module consistent_element
   use kinds, only: dp
-  use linalg, only: outer
   use error_status, only: error_t
-  use quadrature, only: gauss_legendre_interval
   use shape_functions, only: quintic_hermite
   use material_law, only: ramberg_osgood_t, section_resultants_t, section_response
-  use beam_properties, only: element_effects_t, init_beam_properties
-  use planar_beam_kernels, only: to_local, to_global, rotate_to_global, jb_times, frame_vectors, in_frame, &
-                                 translational_force, frame_acceleration, add_linear_rotary, point_kinetic_energy, &
-                                 subtract_elastic_forces, to_global_results, &
-                                 add_constant_integrals, rotating_frame_integrals, add_station_terms, exact_angle_terms, &
-                                 add_rank_one
-  use planar_element, only: planar_element_t, rigid_state_t, kear_eval_info_t, is_linear_strain, &
-                            consistent_internal_force => planar_internal_force, &
-                            consistent_tangent_stiffness => planar_tangent_stiffness, &
-                            consistent_strain_energy => planar_strain_energy, &
-                            consistent_stress_recovery => planar_stress_recovery, station_x_over_l
+  use element_effects, only: element_effects_t
+  use planar_element, only: planar_element_t, rigid_state_t, element_eval_info_t, init_planar_element, &
+                            start_strain_terms, finish_strain_terms
+  use planar_beam_kernels, only: add_station_terms, rotate_to_global, frame_vectors, in_frame, translational_force, &
+                                 frame_acceleration, add_linear_rotary, subtract_elastic_forces, to_global_results, &
+                                 exact_angle_terms, add_rank_one
   implicit none
   private
-  public :: consistent_ndof, consistent_element_t
-  public :: consistent_element_init, consistent_element_eval, consistent_internal_force
-  public :: consistent_tangent_stiffness, consistent_strain_energy, consistent_kinetic_energy
-  public :: consistent_stress_recovery, consistent_section_strains, consistent_local_displacement
-  public :: consistent_local_dofs, consistent_shape, consistent_point_load
+  public :: consistent_element_t, consistent_element_init
 
   integer, parameter :: consistent_ndof = 12
   integer, parameter :: nd = consistent_ndof
-  integer, parameter :: node2 = 7        !< local DOF of node 2's u (then w)
-  integer, parameter :: n_exact = 6      !< Gauss points exact for the constant integrals (degree <= 11)
+  integer, parameter :: n_strain = 4     !< strain variables u_x, w_x, w_xx, u_xx
 
-  !> One element.  Arrays in the local DOF order p = [u1 w1 th1 m1 a1 b1 u2 w2 th2 m2 a2 b2].
+  !> One element: the planar element's properties and integrals, local DOF
+  !> order p = [u1 w1 th1 m1 a1 b1 u2 w2 th2 m2 a2 b2], strain variables
+  !> (u_x, w_x, w_xx, u_xx).
   type, extends(planar_element_t) :: consistent_element_t
-    real(dp) :: mass_trans(nd, nd) = 0.0_dp   !< int S^T S
-    real(dp) :: coupling(nd, nd) = 0.0_dp     !< int S^T (J S - S J_b)
-    real(dp) :: centrifugal(nd, nd) = 0.0_dp  !< int S^T (S J_b^2 - S - 2 J S J_b)
-    real(dp) :: load0(nd, 2) = 0.0_dp         !< int S^T dx
-    real(dp) :: load1(nd, 2) = 0.0_dp         !< int x S^T dx
-    real(dp) :: k_linear(nd, nd) = 0.0_dp     !< E1 A int gu gu^T + E1 I int gww gww^T
-    real(dp) :: rot_linear(nd, nd) = 0.0_dp   !< int gw gw^T
-    real(dp) :: rot_load(nd) = 0.0_dp         !< int gw dx
-    real(dp), allocatable :: g(:, :, :)       !< (nd, 4, n): d(u_x, w_x, w_xx, u_xx)/dp at the stations xg
   contains
+    procedure :: init => consistent_init
+    procedure :: eval => consistent_eval
+    procedure, nopass :: n_dofs => consistent_n_dofs
+    procedure, nopass :: axial_dofs => consistent_axial_dofs
+    procedure :: interpolation => consistent_interpolation
     procedure :: strain_terms => consistent_strain_terms
-    procedure :: linear_force => consistent_linear_force
     procedure :: section_strains => consistent_section_strains
     procedure :: station_strains => consistent_station_strains
   end type consistent_element_t
@@ -79,6 +66,7 @@ module consistent_element
 
 contains
 
+  !> Build an element and precompute its constant integrals.
   pure subroutine consistent_element_init(el, length, width, depth, material, effects, err, &
                                           n_gauss, damping_beta, objective_damping, fibre_distance)
     type(consistent_element_t), intent(out) :: el
@@ -90,203 +78,104 @@ contains
     real(dp), intent(in), optional :: damping_beta
     logical, intent(in), optional :: objective_damping
     real(dp), intent(in), optional :: fibre_distance   !< c of a section given by A, I, c (default t/2)
-    real(dp) :: x(n_exact), w(n_exact), su(nd), sw(nd), gs(nd, 4), g2(nd, nd)
-    integer :: i
-
-    call init_beam_properties(el%beam_properties_t, 'consistent_element_init', length, width, depth, material, &
-                              effects, err, n_gauss, damping_beta, objective_damping, fibre_distance)
-    if (err%failed()) return
-    el%node2 = node2
-
-    ! constant integrals: S^T S has degree 10, exact with 6 points
-    g2 = 0.0_dp
-    call gauss_legendre_interval(n_exact, 0.0_dp, length, x, w)
-    do i = 1, n_exact
-      call consistent_shape(x(i)/length, length, su, sw, gs)
-      call add_constant_integrals(w(i), x(i), su, sw, gs(:, 1), gs(:, 2), gs(:, 3), material%e1*el%area, &
-                                  material%e1*el%inertia, el%mass_trans, g2, el%load0, el%load1, el%k_linear, &
-                                  el%rot_linear, el%rot_load)
-    end do
-    call rotating_frame_integrals(el%mass_trans, g2, node2, el%coupling, el%centrifugal)
-
-    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%g(nd, 4, el%n_gauss))
-    call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
-    do i = 1, el%n_gauss
-      call consistent_shape(el%xg(i)/length, length, su, sw, el%g(:, :, i))
-    end do
-    allocate(el%gs(nd, 4, 0:el%n_gauss + 1))
-    do i = 0, el%n_gauss + 1
-      call consistent_shape(station_x_over_l(el%beam_properties_t, el%xg, i), length, su, sw, el%gs(:, :, i))
-    end do
+    call consistent_init(el, length, width, depth, material, effects, err, n_gauss, damping_beta, &
+                         objective_damping, fibre_distance)
   end subroutine consistent_element_init
 
-  !> Interpolation at x = e l: u = su.p, w = sw.p and the gradients
-  !> g(:, 1:4) of (u_x, w_x, w_xx, u_xx) with respect to p.
-  pure subroutine consistent_shape(e, l, su, sw, g)
-    real(dp), intent(in) :: e, l
-    real(dp), intent(out) :: su(nd), sw(nd), g(nd, 4)
+  !> planar_element_t's init.
+  pure subroutine consistent_init(el, length, width, depth, material, effects, err, n_gauss, damping_beta, &
+                                  objective_damping, fibre_distance)
+    class(consistent_element_t), intent(inout) :: el
+    real(dp), intent(in) :: length, width, depth
+    type(ramberg_osgood_t), intent(in) :: material
+    type(element_effects_t), intent(in) :: effects
+    type(error_t), intent(inout) :: err
+    integer, intent(in), optional :: n_gauss
+    real(dp), intent(in), optional :: damping_beta
+    logical, intent(in), optional :: objective_damping
+    real(dp), intent(in), optional :: fibre_distance
+    call init_planar_element(el, 'consistent_element_init', length, width, depth, material, effects, err, &
+                             n_gauss, damping_beta, objective_damping, fibre_distance)
+  end subroutine consistent_init
+
+  !> planar_element_t's eval in this element's sizes (planar_evaluation.inc).
+  pure subroutine consistent_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted, peak_wanted, force_wanted)
+    class(consistent_element_t), intent(in) :: el
+    include 'planar_evaluation.inc'
+  end subroutine consistent_eval
+
+  pure integer function consistent_n_dofs()
+    consistent_n_dofs = consistent_ndof
+  end function consistent_n_dofs
+
+  !> The nodes carry u_x and u_xx (a, b) besides u, w, w_x, w_xx.
+  pure logical function consistent_axial_dofs()
+    consistent_axial_dofs = .true.
+  end function consistent_axial_dofs
+
+  !> Interpolation at x = e l: u = su.p, w = sw.p, both quintic Hermite, and
+  !> the gradients g(:, 1:4) of (u_x, w_x, w_xx, u_xx) with respect to p.
+  pure subroutine consistent_interpolation(el, e, su, sw, g)
+    class(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: e
+    real(dp), intent(out) :: su(:), sw(:)
+    real(dp), intent(out), optional :: g(:, :)
     real(dp) :: h(6), hx(6), hxx(6)
-    call quintic_hermite(e, l, h, hx, hxx)
+    if (.not. present(g)) then
+      call quintic_hermite(e, el%length, h)
+      su = spread_u(h)
+      sw = spread_w(h)
+      return
+    end if
+    call quintic_hermite(e, el%length, h, hx, hxx)
     su = spread_u(h)
     sw = spread_w(h)
     g(:, 1) = spread_u(hx)
     g(:, 2) = spread_w(hx)
     g(:, 3) = spread_w(hxx)
     g(:, 4) = spread_u(hxx)
-  end subroutine consistent_shape
+  end subroutine consistent_interpolation
 
-  ! ---------------------------------------------------------- main routine
-
-  !> Mass matrix, force vector and optionally the tangent stiffness d^2SE/dq^2.
-  pure subroutine consistent_element_eval(el, q, qd, rb, mass, force, info, tangent, mass_wanted)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), qd(nd)
-    type(rigid_state_t), intent(in) :: rb
-    real(dp), intent(out) :: mass(nd, nd), force(nd)
-    type(kear_eval_info_t), intent(out) :: info
-    real(dp), intent(out), optional :: tangent(nd, nd)
-    logical, intent(in), optional :: mass_wanted     !< .false.: mass not computed (M depends on t only)
-    real(dp) :: c, s, p(nd), v(nd), jp(nd), jv(nd), j2p(nd), pdd_nm(nd), prel(nd)
-    real(dp) :: fp(nd), kp(nd, nd), fint(nd), fdamp(nd), acc0(2), rhoa, rhoi
-    logical :: want_k, want_m
-
-    c = cos(rb%phi)
-    s = sin(rb%phi)
-    call frame_vectors(c, s, q, qd, node2, p, v, jp, jv, j2p)
-    rhoa = el%material%rho*el%area
-    rhoi = el%material%rho*el%inertia
-
-    ! translational inertia (exact, constant matrices)
-    acc0 = in_frame(c, s, rb%x1_dd, rb%y1_dd)
-    want_m = .true.
-    if (present(mass_wanted)) want_m = mass_wanted
-    if (want_m) mass = rhoa*el%mass_trans
-    fp = translational_force(el%load0, el%load1, el%coupling, matmul(el%centrifugal, p), p, v, acc0, rb%phi_d, &
-                             rb%phi_dd, rhoa, el%effects%coupling)
-
-    ! strain energy, internal force, damping
-    want_k = present(tangent)
-    prel = v
-    if (el%objective_damping) prel = v - rb%phi_d*jp
-    if (is_linear_strain(el)) then
-      fint = matmul(el%k_linear, p)
-      info%strain_energy = 0.5_dp*dot_product(p, fint)
-      if (el%beta > 0.0_dp) fdamp = matmul(el%k_linear, prel)
-      call subtract_elastic_forces(fp, fint, fdamp, el%beta)
-      if (want_k) kp = el%k_linear
-      call linear_strain_peak(el, p, info)
-    else
-      call nonlinear_strain_terms(el, p, prel, want_k, el%beta > 0.0_dp, info, fint, fdamp, kp)
-      call subtract_elastic_forces(fp, fint, fdamp, el%beta)
-    end if
-
-    ! rotary inertia
-    if (el%effects%rotary_inertia) then
-      pdd_nm = frame_acceleration(j2p, jp, jv, rb%phi_d, rb%phi_dd, el%effects%coupling)
-      if (.not. el%effects%curvature) then
-        call add_linear_rotary(el%rot_linear, el%rot_load, rhoi, rb%phi_dd, pdd_nm, want_m, mass, fp)
-      else
-        if (.not. want_m) mass = 0.0_dp          ! (a caller's choice: this M depends on q)
-        call rotary_nonlinear(el, p, v, jp, pdd_nm, rb%phi_d, rb%phi_dd, rhoi, mass, fp, info)
-      end if
-    end if
-
-    call to_global_results(c, s, node2, fp, force, want_m, mass, kp, tangent)
-  end subroutine consistent_element_eval
-
-  !> planar_element_t's strain_terms: nonlinear_strain_terms (fixed sizes).
+  !> planar_element_t's strain_terms: the station loop in fixed sizes.
   pure subroutine consistent_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
     class(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(:), prel(:)
+    real(dp), intent(in), contiguous :: p(:), prel(:)
     logical, intent(in) :: want_k, want_damp
-    type(kear_eval_info_t), intent(inout) :: info
-    real(dp), intent(out) :: fint(:), fdamp(:), kp(size(p), size(p))
-    call nonlinear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
+    type(element_eval_info_t), intent(inout) :: info
+    real(dp), intent(out), contiguous :: fint(:), fdamp(:)
+    real(dp), intent(out) :: kp(size(p), size(p))
+    call station_loop(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
   end subroutine consistent_strain_terms
 
-  !> planar_element_t's linear_force: K p and K.
-  pure subroutine consistent_linear_force(el, p, want_k, fint, kp)
-    class(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(:)
-    logical, intent(in) :: want_k
-    real(dp), intent(out) :: fint(:), kp(size(p), size(p))
-    real(dp) :: pl(nd)
-    pl = p                                   ! fixed size: matmul's sums as before
-    fint = matmul(el%k_linear, pl)
-    if (want_k) kp = el%k_linear
-  end subroutine consistent_linear_force
-
-  !> Kinetic energy from the positions (K5) and the section angle (K8)
-  !> directly, independent of the precomputed matrices (a check of them).
-  pure real(dp) function consistent_kinetic_energy(el, q, qd, rb) result(ke)
+  !> Internal force, tangent K_pp (want_k) and K_pp prel (want_damp); the
+  !> strain energy and the largest strain added to info.  Per station f = G (N de + M dk),
+  !> K = G H G^T with G = [gu gw gww guu] (12 x 4).
+  pure subroutine station_loop(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
     type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), qd(nd)
-    type(rigid_state_t), intent(in) :: rb
-    integer, parameter :: nt = 8
-    real(dp) :: c, s, p(nd), pd(nd), x(nt), w(nt), su(nd), sw(nd), g(nd, 4)
-    real(dp) :: vloc(2), a, b, ad, bd, thd
+    real(dp), intent(in) :: p(nd), prel(nd)
+    logical, intent(in) :: want_k, want_damp
+    type(element_eval_info_t), intent(inout) :: info
+    real(dp), intent(out) :: fint(nd), fdamp(nd), kp(nd, nd)
+    real(dp) :: e, ht
+    type(strain_point_t) :: sp
+    type(section_resultants_t) :: res
     integer :: i
-    c = cos(rb%phi)
-    s = sin(rb%phi)
-    p = to_local(c, s, q, node2)
-    pd = to_local(c, s, qd, node2) - rb%phi_d*jb_times(p, node2)
-    vloc = in_frame(c, s, rb%x1_d, rb%y1_d)
-    ke = 0.0_dp
-    call gauss_legendre_interval(nt, 0.0_dp, el%length, x, w)
-    do i = 1, nt
-      call consistent_shape(x(i)/el%length, el%length, su, sw, g)
-      ke = ke + point_kinetic_energy(el%material%rho*el%area, w(i), x(i), vloc, su, sw, p, pd, rb%phi_d)
+    fint = 0.0_dp
+    fdamp = 0.0_dp
+    kp = 0.0_dp
+    ht = 0.5_dp*el%depth
+    do i = 1, el%n_gauss
+      associate (g => el%g(:, :, i))
+        call strain_state(el, strain_variables(p, g), .true., sp)
+        res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
+        info%strain_energy = info%strain_energy + el%wg(i)*res%energy
+        call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de, sp%de, sp%dk, sp%he, &
+                               sp%hk, prel, want_k, want_damp, fint, fdamp, kp)
+      end associate
+      e = abs(sp%eps) + ht*abs(sp%kap)
+      call info%note_strain(e, el%xg(i)/el%length)
     end do
-    if (el%effects%rotary_inertia) then
-      do i = 1, el%n_gauss
-        a = 1.0_dp + dot_product(el%g(:, 1, i), p)
-        b = dot_product(el%g(:, 2, i), p)
-        ad = dot_product(el%g(:, 1, i), pd)
-        bd = dot_product(el%g(:, 2, i), pd)
-        if (el%effects%curvature) then
-          thd = rb%phi_d + (bd*a - b*ad)/(a*a + b*b)
-        else
-          thd = rb%phi_d + bd
-        end if
-        ke = ke + 0.5_dp*el%material%rho*el%inertia*el%wg(i)*thd**2
-      end do
-    end if
-  end function consistent_kinetic_energy
-
-  ! ------------------------------------------------------ loads and output
-
-  !> Generalized force of a point force f (global X, Y) and a moment mz
-  !> (counter-clockwise) at x = e l, and optionally its Jacobian dQ/dq (the
-  !> moment's work mz theta depends on q through the section angle).
-  pure subroutine consistent_point_load(el, q, phi, e, f, mz, gen, dgen)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi, e, f(2), mz
-    real(dp), intent(out) :: gen(nd)
-    real(dp), intent(out), optional :: dgen(nd, nd)
-    real(dp) :: c, s, p(nd), su(nd), sw(nd), g(nd, 4), fl(2), a, b, r2, r4, hp(nd, nd)
-    c = cos(phi)
-    s = sin(phi)
-    p = to_local(c, s, q, node2)
-    call consistent_shape(e, el%length, su, sw, g)
-    fl = [c*f(1) + s*f(2), -s*f(1) + c*f(2)]
-    hp = 0.0_dp
-    if (el%effects%curvature) then
-      a = 1.0_dp + dot_product(g(:, 1), p)
-      b = dot_product(g(:, 2), p)
-      r2 = a*a + b*b
-      r4 = r2*r2
-      gen = fl(1)*su + fl(2)*sw + mz*(-b*g(:, 1) + a*g(:, 2))/r2
-      hp = mz*(2.0_dp*a*b/r4*(outer(g(:, 1), g(:, 1)) - outer(g(:, 2), g(:, 2))) &
-               + (b*b - a*a)/r4*(outer(g(:, 1), g(:, 2)) + outer(g(:, 2), g(:, 1))))
-    else
-      gen = fl(1)*su + fl(2)*sw + mz*g(:, 2)             ! theta = phi + w_x
-    end if
-    gen = to_global(c, s, gen, node2)
-    if (present(dgen)) then
-      dgen = hp
-      call rotate_to_global(c, s, dgen, node2)
-    end if
-  end subroutine consistent_point_load
+  end subroutine station_loop
 
   !> Axial strain and curvature at x = e l from LOCAL nodal values p.
   pure subroutine consistent_section_strains(el, p, e, eps_n, kap)
@@ -296,7 +185,7 @@ contains
     real(dp) :: pl(nd), su(nd), sw(nd), g(nd, 4)
     type(strain_point_t) :: sp
     pl = p
-    call consistent_shape(e, el%length, su, sw, g)
+    call consistent_interpolation(el, e, su, sw, g)
     call strain_state(el, strain_variables(pl, g), .false., sp)
     eps_n = sp%eps
     kap = sp%kap
@@ -317,72 +206,7 @@ contains
     kap = sp%kap
   end subroutine consistent_station_strains
 
-  pure function consistent_local_dofs(phi, q) result(p)
-    real(dp), intent(in) :: phi, q(nd)
-    real(dp) :: p(nd)
-    p = to_local(cos(phi), sin(phi), q, node2)
-  end function consistent_local_dofs
-
-  !> Local elastic displacements (u, w) at x = e l.
-  pure function consistent_local_displacement(el, q, phi, e) result(uw)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: q(nd), phi, e
-    real(dp) :: uw(2)
-    real(dp) :: p(nd), su(nd), sw(nd), g(nd, 4)
-    p = to_local(cos(phi), sin(phi), q, node2)
-    call consistent_shape(e, el%length, su, sw, g)
-    uw = [dot_product(su, p), dot_product(sw, p)]
-  end function consistent_local_displacement
-
   ! ------------------------------------------------------------ internals
-
-  pure subroutine linear_strain_peak(el, p, info)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(nd)
-    type(kear_eval_info_t), intent(inout) :: info
-    real(dp) :: e
-    integer :: i
-    info%max_abs_strain = 0.0_dp
-    do i = 1, el%n_gauss
-      e = abs(dot_product(el%g(:, 1, i), p)) + 0.5_dp*el%depth*abs(dot_product(el%g(:, 3, i), p))
-      call info%note_strain(e, el%xg(i)/el%length)
-    end do
-    info%beyond_peak = .false.
-  end subroutine linear_strain_peak
-
-  !> Strain energy, internal force, tangent K_pp (want_k) and K_pp prel
-  !> (want_damp).  Per station f = G (N de + M dk), K = G H G^T with
-  !> G = [gu gw gww guu] (12 x 4).
-  pure subroutine nonlinear_strain_terms(el, p, prel, want_k, want_damp, info, fint, fdamp, kp)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(nd), prel(nd)
-    logical, intent(in) :: want_k, want_damp
-    type(kear_eval_info_t), intent(inout) :: info
-    real(dp), intent(out) :: fint(nd), fdamp(nd), kp(nd, nd)
-    real(dp) :: e, ht
-    type(strain_point_t) :: sp
-    type(section_resultants_t) :: res
-    integer :: i
-    fint = 0.0_dp
-    fdamp = 0.0_dp
-    kp = 0.0_dp
-    info%strain_energy = 0.0_dp
-    info%max_abs_strain = 0.0_dp
-    ht = 0.5_dp*el%depth
-    do i = 1, el%n_gauss
-      associate (g => el%g(:, :, i))
-        call strain_state(el, strain_variables(p, g), .true., sp)
-        res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
-        info%strain_energy = info%strain_energy + el%wg(i)*res%energy
-        call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de, sp%de, sp%dk, sp%he, &
-                               sp%hk, prel, want_k, want_damp, fint, fdamp, kp)
-      end associate
-      e = abs(sp%eps) + ht*abs(sp%kap)
-      call info%note_strain(e, el%xg(i)/el%length)
-    end do
-    info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
-    info%beyond_peak = el%effects%material .and. info%max_abs_strain > el%eps_star
-  end subroutine nonlinear_strain_terms
 
   !> z = (u_x, w_x, w_xx, u_xx) = p^T g at a station: fixed-size loops in
   !> matmul's order (matmul on a section of the tabulated gradients takes a
@@ -459,31 +283,6 @@ contains
     sp%hk(3, 2) = sp%hk(2, 3)
     sp%hk(4, 2) = sp%hk(2, 4)
   end subroutine strain_state
-
-  !> Rotary inertia with the exact section angle theta = phi + atan2(w_x, 1 + u_x)
-  !> (curvature on): adds rho I int theta_q theta_q^T to mp and
-  !> -rho I int theta_q (theta_dd - theta_q.q_dd) to fp.
-  pure subroutine rotary_nonlinear(el, p, v, jp, pdd_nm, phi_d, phi_dd, rhoi, mp, fp, info)
-    type(consistent_element_t), intent(in) :: el
-    real(dp), intent(in) :: p(nd), v(nd), jp(nd), pdd_nm(nd), phi_d, phi_dd, rhoi
-    real(dp), intent(inout) :: mp(nd, nd), fp(nd)
-    type(kear_eval_info_t), intent(inout) :: info
-    real(dp) :: a, b, xa, xb, tq(nd), acc, quad, pd(nd)
-    integer :: i
-    pd = v - phi_d*jp
-    do i = 1, el%n_gauss
-      associate (gu => el%g(:, 1, i), gw => el%g(:, 2, i))
-        a = 1.0_dp + dot_product(gu, p)
-        b = dot_product(gw, p)
-        call exact_angle_terms(a, b, gu, gw, v, jp, pd, phi_d, el%effects%coupling, xa, xb, quad)
-        tq = xa*gu + xb*gw
-      end associate
-      acc = phi_dd + dot_product(tq, pdd_nm) + quad
-      call add_rank_one(nd, mp, rhoi*el%wg(i), tq)
-      fp = fp - rhoi*el%wg(i)*acc*tq
-    end do
-    info%n_nonlinear_points = info%n_nonlinear_points + el%n_gauss
-  end subroutine rotary_nonlinear
 
   !> The six Hermite functions at the u DOFs (1, 5, 6, 7, 11, 12) ...
   pure function spread_u(h) result(s)

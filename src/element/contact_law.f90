@@ -26,7 +26,7 @@ module contact_law
   implicit none
   private
   public :: contact_law_t, contact_law_init, normal_force, friction_force, impact_restitution
-  public :: law_lankarani_nikravesh, law_flores, law_calibrated, law_names
+  public :: law_names
 
   integer, parameter :: law_lankarani_nikravesh = 1, law_flores = 2, law_calibrated = 3
   character(len=20), parameter :: law_names(3) = [character(len=20) :: 'lankarani_nikravesh', 'flores', 'calibrated']

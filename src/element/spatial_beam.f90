@@ -37,17 +37,17 @@ module spatial_beam
   use quadrature, only: gauss_legendre_interval, max_gauss_points
   use shape_functions, only: quintic_hermite, linear_lagrange
   use material_law, only: ramberg_osgood_t, validate_material, ro_stress, peak_strain
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use spatial_section, only: spatial_section_t, spatial_section_resultants, section_extreme_fibre_strain
   use linalg, only: outer, cross
   implicit none
   private
-  public :: sb_ndof, spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
+  public :: spatial_rigid_t, spatial_beam_t, spatial_eval_info_t, spatial_stress_t
   public :: spatial_formulation_kear, spatial_formulation_consistent
   public :: spatial_beam_init, spatial_beam_eval, spatial_beam_matrices, spatial_tangent_is_constant
   public :: spatial_internal_force, spatial_tangent_stiffness
   public :: spatial_strain_energy, spatial_kinetic_energy, spatial_to_local, spatial_to_global
-  public :: spatial_section_state, spatial_stress_recovery, spatial_local_displacement
+  public :: spatial_stress_recovery, spatial_local_displacement
 
   integer, parameter :: sb_ndof = 20
   integer, parameter :: nd = sb_ndof, no = 10   !< element DOFs, node 2's offset

@@ -42,8 +42,7 @@ module tennant_element
   public :: tennant_stress_t
   public :: tennant_element_init, tennant_linear_terms, tennant_nonlinear_terms, tennant_internal_force
   public :: tennant_kinetic_energy, tennant_strain_energy, tennant_stress_recovery
-  public :: tennant_local_dofs, tennant_local_field, default_shear_modulus, shape_rates
-  public :: secant_section
+  public :: tennant_local_field, shape_rates
 
   integer, parameter :: tennant_max_dof = 14
   integer, parameter :: tennant_max_sections = 16

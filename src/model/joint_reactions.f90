@@ -28,7 +28,7 @@ module joint_reactions
   use kinds, only: dp
   use error_status, only: error_t
   use linkage, only: mechanism_t, joint_slider_fixed, joint_slider_link
-  use kear_element, only: rigid_state_t
+  use planar_element, only: rigid_state_t
   use mechanism_model, only: mechanism_model_t, counterweight_arm
   implicit none
   private

@@ -41,10 +41,11 @@ module mechanism_model
   use lsode_solver, only: ode_system_t
   use second_order_newton, only: second_order_newton_t
   use correlation_table, only: correlation_table_t, link_end_t
-  use kear_element, only: rigid_state_t, kear_eval_info_t, element_effects_t, stress_report_t
-  use beam_element, only: beam_element_t, beam_element_init, beam_element_eval, &
+  use element_effects, only: element_effects_t
+  use planar_element, only: rigid_state_t, element_eval_info_t, stress_report_t
+  use beam_element, only: beam_element_init, beam_element_eval, &
                           beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_point_load, &
-                          resolve_formulation, element_kind_consistent, element_kind_kear, beam_mass_constant_in_q
+                          resolve_formulation, planar_element_t, beam_linear_strain, beam_mass_constant_in_q
   use external_loads, only: point_load_t, load_factor_at
   use material_law, only: ramberg_osgood_t
   use linkage, only: mechanism_t, joint_slider_link, driver_angle
@@ -90,7 +91,7 @@ module mechanism_model
     logical :: moving = .true.                    !< rigid motion from kinematics (else fixed states)
     type(kinematics_t) :: kin
     type(correlation_table_t) :: table
-    type(beam_element_t), allocatable :: el(:)
+    class(planar_element_t), allocatable :: el(:) !< one dynamic type: resolve_formulation's mold
     character(len=16) :: formulation = ''         !< the element formulation in effect (resolved 'default')
     type(rigid_state_t), allocatable :: rb(:)     !< current rigid state of each element
     integer :: n = 0                              !< global unknowns
@@ -184,17 +185,18 @@ contains
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
     type(link_end_t) :: ends(2, mech%n_links)
-    integer :: k, e, code, kind, n_elements(mech%n_links)
+    integer :: k, e, n_elements(mech%n_links)
+    class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
     type(motion_t) :: m
 
     self%moving = .true.
     call mechanism_link_ends(mech, ends)
     n_elements = mech%links(:)%n_elements
-    call resolve_formulation(formulation, effects, kind, code, resolved, err)
+    call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
-    call self%table%build(n_elements, ends, err, reduce_band=.true., axial_dofs=kind == element_kind_consistent)
+    call self%table%build(n_elements, ends, err, reduce_band=.true., axial_dofs=mold%axial_dofs())
     if (err%failed()) return
 
     call self%kin%init(mech, err)
@@ -202,14 +204,15 @@ contains
     call self%kin%solve(0.0_dp, err)
     if (err%failed()) return
 
-    allocate(self%el(self%table%n_elements), self%rb(self%table%n_elements))
+    allocate(self%el(self%table%n_elements), source=mold)
+    allocate(self%rb(self%table%n_elements))
     do k = 1, mech%n_links
       associate (lk => mech%links(k))
         do e = lk%first_element, lk%first_element + lk%n_elements - 1
           m = self%kin%element_motion_global(e)
-          call beam_element_init(self%el(e), kind, m%length, lk%b, lk%h, &
+          call beam_element_init(self%el(e), m%length, lk%b, lk%h, &
                                  ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), effects, err, &
-                                 kear_code=code, damping_beta=beta, fibre_distance=lk%fibre)
+                                 damping_beta=beta, fibre_distance=lk%fibre)
           if (err%failed()) then
             call err%add_context('link '''//trim(lk%name)//''' element '//str(e))
             return
@@ -377,25 +380,26 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
-    integer :: e, code, kind
+    integer :: e
+    class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
     self%moving = .false.
     allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0), self%slide(0))
     allocate(self%cw_element(0), self%cw_mass(0), self%cw_inertia(0), self%cw_moment(2, 0))
-    call resolve_formulation(formulation, effects, kind, code, resolved, err)
+    call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
-    call self%table%build(n_elem, ends, err, axial_dofs=kind == element_kind_consistent)
+    call self%table%build(n_elem, ends, err, axial_dofs=mold%axial_dofs())
     if (err%failed()) return
     if (size(specs) /= self%table%n_elements .or. size(states) /= self%table%n_elements) then
       call err%set('flexible model', 'need one element spec and rigid state per element')
       return
     end if
-    allocate(self%el(self%table%n_elements))
+    allocate(self%el(self%table%n_elements), source=mold)
     self%rb = states
     do e = 1, self%table%n_elements
-      call beam_element_init(self%el(e), kind, specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
-                             effects, err, kear_code=code, damping_beta=beta)
+      call beam_element_init(self%el(e), specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
+                             effects, err, damping_beta=beta)
       if (err%failed()) return
     end do
     call allocate_work(self)
@@ -434,17 +438,14 @@ contains
     type(mechanism_model_t), intent(inout) :: self
     real(dp), dimension(8, 8) :: ml, kl
     real(dp) :: fe(8), zero(8)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     integer :: e
     logical :: symmetric
     self%frame_tables = .false.
     symmetric = .true.
     if (self%table%element_dofs /= 8 .or. .not. self%mass_constant_in_q) return
     do e = 1, size(self%el)
-      if (self%el(e)%kind /= element_kind_kear) return
-      associate(fx => self%el(e)%kear%effects)
-        if (fx%stretching .or. fx%curvature .or. fx%material) return
-      end associate
+      if (.not. beam_linear_strain(self%el(e))) return
     end do
     call start_table(self%frame_mass, self%kd + 1, self%n, size(self%el))
     call start_table(self%frame_stiff, 2*self%kd + 1, self%n, size(self%el))
@@ -729,7 +730,7 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     integer :: e, i, gi, kd, nd, info_chol
     logical :: new_mass
     call self%set_time(t)
@@ -956,8 +957,8 @@ contains
     type(mechanism_model_t), intent(inout) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: me(:, :), ke(:, :)
-    type(kear_eval_info_t) :: info
+    real(dp), intent(out), contiguous :: me(:, :), ke(:, :)
+    type(element_eval_info_t) :: info
     self%work_qde = 0.0_dp
     call gather_element(self, e, q, self%work_qe)
     call beam_element_eval(self%el(e), self%work_qe, self%work_qde, self%rb(e), me, self%work_fe, info, &
@@ -1360,7 +1361,7 @@ contains
     real(dp), intent(out) :: r(:)
     real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs), qe(size(r))
     real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     integer :: k
     qe = self%table%gather(e, q)
     call beam_element_eval(self%el(e), qe, self%table%gather(e, qd), loaded_state(self, e), me, fe, info)

@@ -22,7 +22,8 @@ module sliding_link
   use strings, only: str
   use linkage, only: mechanism_t, joint_slider_link
   use correlation_table, only: correlation_table_t, link_end_t, end_pin => joint_pin, end_sleeve => joint_sleeve
-  use kear_element, only: element_effects_t, rigid_state_t, stress_report_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: rigid_state_t, stress_report_t
   use material_law, only: ramberg_osgood_t
   use tennant_element, only: tennant_element_t, tennant_options_t, tennant_section_t, frame_state_t, tennant_info_t, &
                              tennant_stress_t, tennant_element_init, tennant_linear_terms, tennant_nonlinear_terms, &

@@ -30,7 +30,7 @@ module spatial_model
   use companion_jacobian, only: fill_companion_jacobian
   use band_assembly, only: add_to_lower_band, add_to_newton_bands
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use spatial_section, only: spatial_section_t
   use spatial_beam, only: spatial_beam_t, spatial_rigid_t, spatial_eval_info_t, spatial_stress_t, &
                           spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &

@@ -20,8 +20,7 @@ module transient_response
   use kinds, only: dp
   use quadrature, only: max_gauss_points
   use material_law, only: ramberg_osgood_t, ro_stress, section_response, section_resultants_t
-  use beam_element, only: beam_element_t, beam_section_strains, beam_station_strains, beam_local_displacement, &
-                          element_kind_consistent
+  use beam_element, only: planar_element_t, beam_section_strains, beam_station_strains, beam_local_displacement
   use linkage, only: mechanism_t
   use mechanism_model, only: mechanism_model_t
   implicit none
@@ -60,30 +59,19 @@ contains
 
   !> Section quantities from the axial strain and curvature of a station.
   pure function station(el, eps_n, kap) result(v)
-    type(beam_element_t), intent(in) :: el
+    class(planar_element_t), intent(in) :: el
     real(dp), intent(in) :: eps_n, kap
     type(section_values_t) :: v
     type(ramberg_osgood_t) :: law
     type(section_resultants_t) :: res
-    real(dp) :: area, fibre, s_plus, s_minus
-    logical :: nonlinear
-    if (el%kind == element_kind_consistent) then
-      law = el%cons%material
-      area = el%cons%area
-      fibre = el%cons%fibre
-      nonlinear = el%cons%effects%material
-    else
-      law = el%kear%material
-      area = el%kear%area
-      fibre = el%kear%fibre
-      nonlinear = el%kear%effects%material
-    end if
-    if (.not. nonlinear) law%e2 = 0.0_dp           ! as the element: off = linear, no power evaluated
-    res = section_response(law, area, el%depth, eps_n, kap, nonlinear)
+    real(dp) :: s_plus, s_minus
+    law = el%material
+    if (.not. el%effects%material) law%e2 = 0.0_dp   ! as the element: off = linear, no power evaluated
+    res = section_response(law, el%area, el%depth, eps_n, kap, el%effects%material)
     v%axial_force = res%axial_force
     v%moment = res%moment
-    s_plus = ro_stress(law, eps_n - fibre*kap)
-    s_minus = ro_stress(law, eps_n + fibre*kap)
+    s_plus = ro_stress(law, eps_n - el%fibre*kap)
+    s_minus = ro_stress(law, eps_n + el%fibre*kap)
     v%axial_stress = 0.5_dp*(s_plus + s_minus)
     v%bending_stress = 0.5_dp*(s_minus - s_plus)
   end function station
@@ -101,11 +89,7 @@ contains
     type(section_values_t) :: v
     integer :: i, ng
     associate (el => model%el(e))
-      if (el%kind == element_kind_consistent) then
-        ng = size(el%cons%xg)
-      else
-        ng = size(el%kear%xg)
-      end if
+      ng = el%n_gauss
       call beam_station_strains(el, model%table%gather(e, q), model%rb(e)%phi, eps_n(:ng + 1), kap(:ng + 1))
       do i = 0, ng + 1
         v = station(el, eps_n(i), kap(i))

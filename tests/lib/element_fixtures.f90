@@ -5,7 +5,7 @@
 module element_fixtures
   use kinds, only: dp
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: rigid_state_t
+  use planar_element, only: rigid_state_t
   implicit none
   private
   public :: soft, l_u, b_u, t_u, rigid_at

@@ -7,7 +7,7 @@ module transient_fixtures
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use joint_reactions, only: joint_reactions_t
@@ -340,7 +340,7 @@ contains
     a_g(:, 1) = 0.5_dp*a_b
     a_g(:, 2) = a_b + 0.5_dp*r3*(al3*n3 - w3**2*e3)
     a_g(:, 3) = 0.5_dp*r4*(al4*n4 - w4**2*e4)
-    m = model%el(1)%kear%material%rho*model%el(1)%kear%area*[r2, r3, r4]
+    m = model%el(1)%material%rho*model%el(1)%area*[r2, r3, r4]
     ig = m*[r2, r3, r4]**2/12.0_dp
     g2 = 0.5_dp*b
     g3 = 0.5_dp*(b + c)

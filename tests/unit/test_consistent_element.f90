@@ -4,12 +4,12 @@ module test_consistent_element_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t, rigid_state_t, kear_eval_info_t, effects_all_on, effects_summary, &
-                          kear_element_t, kear_element_init, kear_section_strains, kear_local_dofs
-  use planar_element, only: station_x_over_l
-  use consistent_element
-  use beam_element, only: beam_element_t, beam_element_init, beam_point_load, beam_local_displacement, &
-                          element_kind_kear, element_kind_consistent, resolve_formulation
+  use element_effects, only: element_effects_t, effects_all_on
+  use planar_element, only: planar_element_t, rigid_state_t, element_eval_info_t, station_x_over_l
+  use kear_element, only: kear_element_t, kear_element_init, formulation_kear1987
+  use consistent_element, only: consistent_element_t, consistent_element_init
+  use beam_element, only: beam_point_load, beam_local_displacement, beam_tangent_stiffness, beam_strain_energy, &
+                          resolve_formulation
   use assertions
   use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
   use fd_checks, only: fd_gradient, fd_jacobian
@@ -39,6 +39,7 @@ contains
     call run_test('point_load_is_gradient_of_its_work', test_point_load)
     call run_test('default_formulation_follows_stretching_switch', test_default_formulation)
     call run_test('tabulated_stress_stations_equal_direct_strains', test_station_strains)
+    call run_test('switches_of_the_evaluation_apply_to_both_elements', test_evaluation_switches)
   end subroutine run_all
 
   function unit_element(fx) result(el)
@@ -53,7 +54,7 @@ contains
   !> analytic internal force, each nonlinear effect alone and all on: 1e-8
   !> of the largest component.
   subroutine test_force_is_gradient()
-    call check_force_is_gradient(element_kind_consistent, q_big)
+    call check_force_is_gradient('consistent', q_big)
   end subroutine test_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against K_t:
@@ -63,15 +64,15 @@ contains
     type(consistent_element_t) :: el
     real(dp) :: kt(12, 12), k2(12, 12)
     real(dp) :: m(12, 12), f(12)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     type(rigid_state_t) :: rb
-    call check_tangent_is_jacobian(unit_beam(element_kind_consistent, effects_all_on()), q_big, 'all on')
+    call check_tangent_is_jacobian(unit_beam('consistent', effects_all_on()), q_big, 'all on')
     el = unit_element(effects_all_on())
     rb = rigid_at(0.0_dp)
-    call consistent_element_eval(el, q_big, qd_big, rb, m, f, info, k2)
-    call consistent_tangent_stiffness(el, q_big, rb%phi, kt)
+    call el%eval(q_big, qd_big, rb, m, f, info, k2)
+    call beam_tangent_stiffness(el, q_big, rb%phi, kt)
     call assert_all_close(reshape(k2, [144]), reshape(kt, [144]), 0.0_dp, 1.0e-13_dp*maxval(abs(kt)), &
-                          'tangent of eval = consistent_tangent_stiffness')
+                          'tangent of eval = beam_tangent_stiffness')
   end subroutine test_tangent_is_jacobian
 
   !> M qdd - F - dSE/dq of the element against d/dt dT/dqdot - dT/dq by finite
@@ -80,7 +81,7 @@ contains
   !> with phi, X1, Y1 all accelerating: 1e-7 of the largest component (FD
   !> accuracy), all effects on, the linear section angle, the linear model.
   subroutine test_lagrange_fd()
-    call check_inertia_is_lagrange(element_kind_consistent, q_big, qd_big, qdd_big)
+    call check_inertia_is_lagrange('consistent', q_big, qd_big, qdd_big)
   end subroutine test_lagrange_fd
 
   !> A straight element turned rigidly by alpha = 2.5 rad about node 1
@@ -98,7 +99,7 @@ contains
     p(8) = l_u*sin(alpha)
     p(9) = sin(alpha)
     p(11) = cos(alpha) - 1.0_dp
-    se = consistent_strain_energy(el, p, 0.0_dp)      ! phi = 0: q = p
+    se = beam_strain_energy(el, p, 0.0_dp)      ! phi = 0: q = p
     call assert_true(abs(se) <= 1.0e-20_dp*soft%e1*b_u*t_u*l_u, 'rigid rotation energy '//trim(rtoa(se)))
   end subroutine test_rigid_rotation
 
@@ -126,7 +127,7 @@ contains
     worst_kap = 0.0_dp
     do i = 0, 20
       x = i/20.0_dp
-      call consistent_section_strains(el, p, x, eps, kap)
+      call el%section_strains(p, x, eps, kap)
       worst_eps = max(worst_eps, abs(eps))
       worst_kap = max(worst_kap, abs(kap*r - 1.0_dp))
     end do
@@ -136,7 +137,7 @@ contains
     pk = [p(1), p(2), p(3), p(4), p(7), p(8), p(9), p(10)]
     kear_eps = 0.0_dp
     do i = 0, 20
-      call kear_section_strains(kel, pk, i/20.0_dp, eps, kap)
+      call kel%section_strains(pk, i/20.0_dp, eps, kap)
       kear_eps = max(kear_eps, abs(eps))
     end do
     call assert_true(kear_eps > 0.02_dp, 'Kear element: arc strain '//trim(rtoa(kear_eps))//' (locks)')
@@ -155,20 +156,20 @@ contains
     real(dp) :: p(12), pk(8), e1, k1, e2, k2, worst
     integer :: i
     el = unit_element(effects_all_on())
-    p = consistent_local_dofs(0.3_dp, q_big)
+    p = el%local_dofs(q_big, 0.3_dp)
     worst = 0.0_dp
     do i = 0, el%n_gauss + 1
       call el%station_strains(p, i, e1, k1)
-      call consistent_section_strains(el, p, station_x_over_l(el%beam_properties_t, el%xg, i), e2, k2)
+      call el%section_strains(p, station_x_over_l(el%beam_properties_t, el%xg, i), e2, k2)
       worst = max(worst, abs(e1 - e2)/max(abs(e2), 1.0e-3_dp), abs(k1 - k2)/max(abs(k2), 1.0e-3_dp))
     end do
     call assert_true(worst <= 1.0e-12_dp, 'consistent: station strains differ by '//trim(rtoa(worst)))
     call kear_element_init(kel, l_u, b_u, t_u, soft, effects_all_on(), err)
-    pk = kear_local_dofs(0.3_dp, [q_big(1:4), q_big(7:10)])
+    pk = kel%local_dofs([q_big(1:4), q_big(7:10)], 0.3_dp)
     worst = 0.0_dp
     do i = 0, kel%n_gauss + 1
       call kel%station_strains(pk, i, e1, k1)
-      call kear_section_strains(kel, pk, station_x_over_l(kel%beam_properties_t, kel%xg, i), e2, k2)
+      call kel%section_strains(pk, station_x_over_l(kel%beam_properties_t, kel%xg, i), e2, k2)
       worst = max(worst, abs(e1 - e2)/max(abs(e2), 1.0e-3_dp), abs(k1 - k2)/max(abs(k2), 1.0e-3_dp))
     end do
     call assert_true(worst <= 1.0e-12_dp, 'Kear: station strains differ by '//trim(rtoa(worst)))
@@ -193,7 +194,7 @@ contains
     p(5) = eps
     p(7) = eps*l_u
     p(11) = eps
-    call assert_rel_close(consistent_strain_energy(el, p, 0.0_dp), 0.5_dp*soft%e1*b_u*t_u*eps**2*l_u, 1.0e-12_dp, &
+    call assert_rel_close(beam_strain_energy(el, p, 0.0_dp), 0.5_dp*soft%e1*b_u*t_u*eps**2*l_u, 1.0e-12_dp, &
                           'uniform stretch energy')
   end subroutine test_linear_bending_block
 
@@ -203,17 +204,18 @@ contains
   !> atan2(w_x, 1 + u_x) with w_x, u_x by differences in x); its Jacobian
   !> the FD derivative.  Both interpolations; 1e-7 relative.
   subroutine test_point_load()
-    type(beam_element_t) :: el
-    type(error_t) :: err
+    character(len=10), parameter :: names(2) = [character(len=10) :: 'exact', 'consistent']
+    class(planar_element_t), allocatable :: el
     real(dp) :: gen(12), g(12), dgen(12, 12), gp(12), gm(12), dfd(12, 12), e(12), q(12), f(2), mz, phi, h
-    integer :: kind, n, j
+    integer :: k, n, j
     f = [0.7_dp, -1.3_dp]
     mz = 0.45_dp
     phi = 0.6_dp
     h = 1.0e-5_dp
-    do kind = element_kind_kear, element_kind_consistent
-      call beam_element_init(el, kind, l_u, b_u, t_u, soft, effects_all_on(), err)
-      n = el%ndof
+    do k = 1, size(names)
+      if (allocated(el)) deallocate(el)
+      allocate(el, source=unit_beam(trim(names(k)), effects_all_on()))
+      n = el%n_dofs()
       q(1:n) = q_big(1:n)
       call beam_point_load(el, q(1:n), phi, 0.6_dp, f, mz, gen(1:n), dgen(1:n, 1:n))
       do j = 1, n
@@ -243,21 +245,75 @@ contains
     end function work
   end subroutine test_point_load
 
+  !> The evaluation's switches for both elements (one evaluation,
+  !> planar_evaluation.inc): for the linear strain model, force_wanted =
+  !> .false. (with the tangent) returns the M and K_t of the full evaluation
+  !> (to 1e-14 of their largest entry: the same constant integrals rotated;
+  !> a wrong rotation or a missing rotary term would differ by O(1));
+  !> mass_wanted = .false. leaves the force unchanged; peak_wanted = .false.
+  !> skips the informative strain peak, which is positive otherwise.
+  subroutine test_evaluation_switches()
+    character(len=10), parameter :: names(2) = [character(len=10) :: 'exact', 'consistent']
+    class(planar_element_t), allocatable :: el
+    type(element_eval_info_t) :: info
+    type(rigid_state_t) :: rb
+    real(dp), allocatable :: m1(:, :), k1(:, :), f1(:), m2(:, :), k2(:, :), f2(:)
+    integer :: k, n
+    rb = rigid_at(0.2_dp)
+    do k = 1, size(names)
+      if (allocated(el)) deallocate(el, m1, k1, f1, m2, k2, f2)
+      allocate(el, source=unit_beam(trim(names(k)), element_effects_t(rotary_inertia=.true., coupling=.true.)))
+      n = el%n_dofs()
+      allocate(m1(n, n), k1(n, n), f1(n), m2(n, n), k2(n, n), f2(n))
+      call el%eval(q_big(1:n), qd_big(1:n), rb, m1, f1, info, k1)
+      call assert_true(info%max_abs_strain > 0.0_dp, trim(names(k))//': strain peak computed')
+      call el%eval(q_big(1:n), qd_big(1:n), rb, m2, f2, info, k2, force_wanted=.false.)
+      call assert_all_close(reshape(m2, [n*n]), reshape(m1, [n*n]), 0.0_dp, 1.0e-14_dp*maxval(abs(m1)), &
+                            trim(names(k))//': M without the force')
+      call assert_all_close(reshape(k2, [n*n]), reshape(k1, [n*n]), 0.0_dp, 1.0e-14_dp*maxval(abs(k1)), &
+                            trim(names(k))//': K_t without the force')
+      call el%eval(q_big(1:n), qd_big(1:n), rb, m2, f2, info, mass_wanted=.false., peak_wanted=.false.)
+      call assert_all_close(f2, f1, 0.0_dp, 1.0e-14_dp*maxval(abs(f1)), trim(names(k))//': F without M')
+      call assert_true(info%max_abs_strain <= 0.0_dp, trim(names(k))//': strain peak skipped')
+    end do
+  end subroutine test_evaluation_switches
+
   !> 'default' is the consistent element with stretching on, Kear's element
   !> (exact equations) otherwise; unknown names are an error naming them.
   subroutine test_default_formulation()
-    integer :: kind, code
+    class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
     type(error_t) :: err
-    call resolve_formulation('default', element_effects_t(stretching=.true.), kind, code, resolved, err)
-    call assert_true(kind == element_kind_consistent .and. resolved == 'consistent', 'stretching on: '//resolved)
-    call resolve_formulation('default', element_effects_t(curvature=.true.), kind, code, resolved, err)
-    call assert_true(kind == element_kind_kear .and. resolved == 'exact', 'stretching off: '//resolved)
-    call resolve_formulation('kear1987', element_effects_t(stretching=.true.), kind, code, resolved, err)
-    call assert_true(kind == element_kind_kear .and. code == 2, 'kear1987 stays selectable')
-    call resolve_formulation('corotational', element_effects_t(), kind, code, resolved, err)
+    call resolve_formulation('default', element_effects_t(stretching=.true.), mold, resolved, err)
+    call assert_true(is_consistent(mold) .and. resolved == 'consistent', 'stretching on: '//resolved)
+    call resolve_formulation('default', element_effects_t(curvature=.true.), mold, resolved, err)
+    call assert_true(kear_formulation(mold) == 1 .and. resolved == 'exact', 'stretching off: '//resolved)
+    call resolve_formulation('kear1987', element_effects_t(stretching=.true.), mold, resolved, err)
+    call assert_true(kear_formulation(mold) == formulation_kear1987, 'kear1987 stays selectable')
+    call resolve_formulation('corotational', element_effects_t(), mold, resolved, err)
     call assert_true(err%failed() .and. index(err%text(), 'corotational') > 0, 'unknown: '//err%text())
   end subroutine test_default_formulation
+
+  logical function is_consistent(el)
+    class(planar_element_t), intent(in) :: el
+    select type (el)
+    type is (consistent_element_t)
+      is_consistent = .true.
+    class default
+      is_consistent = .false.
+    end select
+  end function is_consistent
+
+  !> Kear's formulation code of the mold, 0 for another element.
+  integer function kear_formulation(el)
+    class(planar_element_t), intent(in) :: el
+    select type (el)
+    type is (kear_element_t)
+      kear_formulation = el%formulation
+    class default
+      kear_formulation = 0
+    end select
+  end function kear_formulation
 end module test_consistent_element_suite
 
 program test_consistent_element

@@ -8,7 +8,7 @@
 !> (which changes entries at order 1).
 module test_frame_tables_suite
   use kinds, only: dp
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
   use transient_fixtures, only: fourbar_input, make_model
   use assertions

@@ -11,7 +11,7 @@ module test_joint_clearance_suite
   use contact_law, only: contact_law_t, contact_law_init
   use joint_clearance
   use lsode_solver, only: ode_system_t, lsode_t, mf_adams
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
   use transient_fixtures, only: fourbar_input, make_model
   use assertions

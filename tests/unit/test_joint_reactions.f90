@@ -15,7 +15,7 @@
 module test_joint_reactions_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use mechanism_model, only: mechanism_model_t
   use external_loads, only: point_load_t

@@ -10,10 +10,13 @@ module test_kear_element_suite
   use material_law, only: ramberg_osgood_t, ro_stress, peak_strain, section_resultants_t, section_response
   use quadrature, only: gauss_legendre_interval
   use linalg, only: cholesky_factor
-  use kear_element
+  use element_effects, only: element_effects_t, effects_all_on
+  use planar_element, only: rigid_state_t, element_eval_info_t, stress_report_t
+  use kear_element, only: kear_element_t, kear_element_init, formulation_exact, formulation_kear1987, &
+                          formulation_from_name, formulation_name
+  use beam_element, only: beam_tangent_stiffness, beam_strain_energy, beam_internal_force, beam_stress_recovery
   use assertions
   use element_fixtures, only: soft, l_u, b_u, t_u, rigid_at
-  use beam_element, only: element_kind_kear
   use element_checks, only: unit_beam, check_force_is_gradient, check_tangent_is_jacobian, check_inertia_is_lagrange
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
@@ -140,16 +143,16 @@ contains
   subroutine test_linear_matrices()
     type(kear_element_t) :: el, elr
     real(dp) :: kt(8, 8), m(8, 8), mr(8, 8), f(8), ea, ei, ref(8, 8), refm(8, 8), refr(8, 8)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     type(rigid_state_t) :: rb
     integer :: i, j
     el = unit_element(all_off())
     elr = unit_element(element_effects_t(rotary_inertia=.true.))
     ea = soft%e1*b_u*t_u
     ei = soft%e1*b_u*t_u**3/12.0_dp
-    call kear_tangent_stiffness(el, q_big, 0.0_dp, kt)
-    call kear_element_eval(el, q_big, qd_big, rb, m, f, info)
-    call kear_element_eval(elr, q_big, qd_big, rb, mr, f, info)
+    call beam_tangent_stiffness(el, q_big, 0.0_dp, kt)
+    call el%eval(q_big, qd_big, rb, m, f, info)
+    call elr%eval(q_big, qd_big, rb, mr, f, info)
     ref = 0.0_dp
     refm = 0.0_dp
     refr = 0.0_dp
@@ -182,14 +185,14 @@ contains
     i = b_u*t_u**3/12.0_dp
     el = unit_element(all_off())
     p = [0.0_dp, 0.0_dp, 0.0_dp, kap, 0.0_dp, kap*l_u**2/2, kap*l_u, kap]
-    se = kear_strain_energy(el, to_q(phi, p), phi)
+    se = beam_strain_energy(el, to_q(phi, p), phi)
     call assert_rel_close(se, soft%e1*i*kap**2*l_u/2, 1.0e-13_dp, 'pure bending EI kappa^2 l/2')
     p = 0.0_dp
     p(5) = eps*l_u
-    se = kear_strain_energy(el, to_q(phi, p), phi)
+    se = beam_strain_energy(el, to_q(phi, p), phi)
     call assert_rel_close(se, soft%e1*a*eps**2*l_u/2, 1.0e-13_dp, 'uniform stretch EA eps^2 l/2')
     el = unit_element(element_effects_t(stretching=.true., curvature=.true., material=.true.))
-    se = kear_strain_energy(el, to_q(phi, p), phi)
+    se = beam_strain_energy(el, to_q(phi, p), phi)
     call assert_rel_close(se, a*l_u*(soft%e1*eps**2/2 - soft%e2*eps**4/4), 1.0e-13_dp, &
                           'uniform stretch, Ramberg-Osgood')
   end subroutine test_bending_stretch_energy
@@ -199,7 +202,7 @@ contains
   !> formulation with each nonlinear effect alone and all together, at the
   !> strongly deformed state: agreement to 1e-8 of the largest component.
   subroutine test_force_is_gradient()
-    call check_force_is_gradient(element_kind_kear, q_big)
+    call check_force_is_gradient('exact', q_big)
   end subroutine test_force_is_gradient
 
   !> d(internal force)/dq by 4th-order differences (h = 1e-4) against the
@@ -207,10 +210,10 @@ contains
   !> effects on, and geometric effects with linear material.  The exact K_t
   !> is symmetric (a Hessian) to round-off.
   subroutine test_tangent_is_jacobian()
-    call check_tangent_is_jacobian(unit_beam(element_kind_kear, effects_all_on()), q_big, 'exact, all on')
-    call check_tangent_is_jacobian(unit_beam(element_kind_kear, effects_all_on(), formulation_kear1987), q_big, &
+    call check_tangent_is_jacobian(unit_beam('exact', effects_all_on()), q_big, 'exact, all on')
+    call check_tangent_is_jacobian(unit_beam('kear1987', effects_all_on()), q_big, &
                                    'kear1987, all on', symmetric=.false.)
-    call check_tangent_is_jacobian(unit_beam(element_kind_kear, element_effects_t(stretching=.true., curvature=.true.)), &
+    call check_tangent_is_jacobian(unit_beam('exact', element_effects_t(stretching=.true., curvature=.true.)), &
                                    q_big, 'exact, geometric only')
   end subroutine test_tangent_is_jacobian
 
@@ -232,17 +235,17 @@ contains
       case default
         el = unit_element(all_off())
       end select
-      p = kear_local_dofs(phi, q_big)
+      p = el%local_dofs(q_big, phi)
       do k = 1, 4
         e = 0.2_dp*real(k, dp)
         do i = -2, 2
-          uw(:, i) = kear_local_displacement(el, q_big, phi, e + real(i, dp)*de)
+          uw(:, i) = el%local_displacement(q_big, phi, e + real(i, dp)*de)
         end do
         ux = (uw(1, -2) - 8*uw(1, -1) + 8*uw(1, 1) - uw(1, 2))/(12*de*l_u)
         wx = (uw(2, -2) - 8*uw(2, -1) + 8*uw(2, 1) - uw(2, 2))/(12*de*l_u)
         uxx = (-uw(1, -2) + 16*uw(1, -1) - 30*uw(1, 0) + 16*uw(1, 1) - uw(1, 2))/(12*(de*l_u)**2)
         wxx = (-uw(2, -2) + 16*uw(2, -1) - 30*uw(2, 0) + 16*uw(2, 1) - uw(2, 2))/(12*(de*l_u)**2)
-        call kear_section_strains(el, p, e, eps_n, kap)
+        call el%section_strains(p, e, eps_n, kap)
         a = 1.0_dp + ux
         r = sqrt(a*a + wx*wx)
         select case (variant)
@@ -276,22 +279,22 @@ contains
     ell = unit_element(all_off())
     p = [0.0_dp, 0.0_dp, sin(alpha), 0.0_dp, l_u*(cos(alpha) - 1), l_u*sin(alpha), sin(alpha), 0.0_dp]
     q = to_q(phi, p) + [0.3_dp, -0.2_dp, 0.0_dp, 0.0_dp, 0.3_dp, -0.2_dp, 0.0_dp, 0.0_dp]
-    p = kear_local_dofs(phi, q)
+    p = el%local_dofs(q, phi)
     do k = 0, 4
-      call kear_section_strains(el, p, 0.25_dp*k, eps_n, kap)
+      call el%section_strains(p, 0.25_dp*k, eps_n, kap)
       call assert_close(eps_n, 0.0_dp, 1.0e-15_dp, 'exact eps_n of a rigid rotation')
       call assert_close(kap, 0.0_dp, 1.0e-15_dp, 'exact kappa of a rigid rotation')
-      call kear_section_strains(ell, p, 0.25_dp*k, eps_n, kap)
+      call ell%section_strains(p, 0.25_dp*k, eps_n, kap)
       call assert_close(eps_n, cos(alpha) - 1.0_dp, 1.0e-14_dp, 'linear eps_n = cos(alpha) - 1')
     end do
-    call kear_internal_force(el, q, phi, f)
+    call beam_internal_force(el, q, phi, f)
     call assert_true(maxval(abs(f)) <= 1.0e-12_dp*soft%e1*b_u*t_u, 'no internal force')
-    call assert_close(kear_strain_energy(el, q, phi), 0.0_dp, 1.0e-24_dp*soft%e1*b_u*t_u*l_u, 'no energy')
+    call assert_close(beam_strain_energy(el, q, phi), 0.0_dp, 1.0e-24_dp*soft%e1*b_u*t_u*l_u, 'no energy')
     ! frame invariance with a deformed state
-    se1 = kear_strain_energy(el, q_big, phi)
+    se1 = beam_strain_energy(el, q_big, phi)
     beta = 0.9_dp
-    p = kear_local_dofs(phi, q_big)
-    se2 = kear_strain_energy(el, to_q(phi + beta, p), phi + beta)
+    p = el%local_dofs(q_big, phi)
+    se2 = beam_strain_energy(el, to_q(phi + beta, p), phi + beta)
     call assert_rel_close(se2, se1, 1.0e-13_dp, 'energy independent of the frame angle')
   end subroutine test_rigid_rotation
 
@@ -303,14 +306,14 @@ contains
   subroutine test_rigid_translation()
     type(kear_element_t) :: el
     real(dp) :: m0(8, 8), f0(8), m1(8, 8), f1(8), dq(8), dv(8)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     type(rigid_state_t) :: rb
     el = unit_element(effects_all_on(), beta=1.0e-3_dp)
     rb = rigid_at(0.37_dp)
     dq = [0.4_dp, -0.25_dp, 0.0_dp, 0.0_dp, 0.4_dp, -0.25_dp, 0.0_dp, 0.0_dp]
     dv = [-1.5_dp, 2.5_dp, 0.0_dp, 0.0_dp, -1.5_dp, 2.5_dp, 0.0_dp, 0.0_dp]
-    call kear_element_eval(el, q_big, qd_big, rb, m0, f0, info)
-    call kear_element_eval(el, q_big + dq, qd_big + dv, rb, m1, f1, info)
+    call el%eval(q_big, qd_big, rb, m0, f0, info)
+    call el%eval(q_big + dq, qd_big + dv, rb, m1, f1, info)
     call assert_all_close(f1, f0, 0.0_dp, 1.0e-12_dp*maxval(abs(f0)), 'F unchanged by rigid translation')
     call assert_all_close(reshape(m1, [64]), reshape(m0, [64]), 0.0_dp, 1.0e-14_dp*maxval(abs(m0)), &
                           'M unchanged by rigid translation')
@@ -322,13 +325,13 @@ contains
   subroutine test_mass_properties()
     type(kear_element_t) :: el
     real(dp) :: m(8, 8), f(8), d(8), chol(8, 8)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     type(rigid_state_t) :: rb
     type(error_t) :: err
     integer :: k
     el = unit_element(effects_all_on())
     rb = rigid_at(0.2_dp)
-    call kear_element_eval(el, q_big, qd_big, rb, m, f, info)
+    call el%eval(q_big, qd_big, rb, m, f, info)
     call assert_true(maxval(abs(m - transpose(m))) <= 1.0e-15_dp*maxval(abs(m)), 'M symmetric')
     chol = m
     call cholesky_factor(chol, err)
@@ -355,7 +358,7 @@ contains
     rb%x1_d = 1.2_dp
     rb%y1_d = -0.7_dp
     q0 = 0.0_dp
-    ke = kear_kinetic_energy(el, q0, q0, rb)
+    ke = el%kinetic_energy(q0, q0, rb)
     ra = soft%rho*b_u*t_u
     ri = soft%rho*b_u*t_u**3/12.0_dp
     vj = -sin(rb%phi)*rb%x1_d + cos(rb%phi)*rb%y1_d
@@ -371,7 +374,7 @@ contains
   !> d/dt and dT/dq: 4th-order differences (steps 1e-3 and 1e-4).
   !> Tolerance 1e-7 of the largest component.
   subroutine test_lagrange_fd()
-    call check_inertia_is_lagrange(element_kind_kear, q_big, qd_big, qdd_big)
+    call check_inertia_is_lagrange('exact', q_big, qd_big, qdd_big)
   end subroutine test_lagrange_fd
 
   !> The printed internal force (K17) with (K20) and (K24):
@@ -388,17 +391,17 @@ contains
     phi = 0.6_dp
     h = 1.0e-6_dp
     el = unit_element(effects_all_on(), formulation=formulation_kear1987)
-    call kear_internal_force(el, q_big, phi, f)
+    call beam_internal_force(el, q_big, phi, f)
     call gauss_legendre_interval(8, 0.0_dp, l_u, x, w)
     ref = 0.0_dp
     do i = 1, 8
-      call kear_section_strains(el, kear_local_dofs(phi, q_big), x(i)/l_u, en, ka)
+      call el%section_strains(el%local_dofs(q_big, phi), x(i)/l_u, en, ka)
       res = section_response(soft, b_u*t_u, t_u, en, ka, .true.)
       do j = 1, 8
         e = 0.0_dp
         e(j) = h
-        call kear_section_strains(el, kear_local_dofs(phi, q_big + e), x(i)/l_u, ep, kp)
-        call kear_section_strains(el, kear_local_dofs(phi, q_big - e), x(i)/l_u, em, km)
+        call el%section_strains(el%local_dofs(q_big + e, phi), x(i)/l_u, ep, kp)
+        call el%section_strains(el%local_dofs(q_big - e, phi), x(i)/l_u, em, km)
         ref(j) = ref(j) + w(i)*(res%axial_force*((1 + ep)**2 - (1 + em)**2)/(4*h) + res%moment*(kp - km)/(2*h))
       end do
     end do
@@ -411,23 +414,23 @@ contains
   subroutine test_mass_is_ke_hessian()
     type(kear_element_t) :: el
     type(rigid_state_t) :: rb
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     real(dp) :: m(8, 8), f(8), hes(8, 8), ei(8), ej(8)
     integer :: i, j, k
     rb = rigid_at(0.8_dp)
     do k = 1, 2
       el = unit_element(effects_all_on(), formulation=merge(formulation_exact, formulation_kear1987, k == 1))
-      call kear_element_eval(el, q_big, qd_big, rb, m, f, info)
+      call el%eval(q_big, qd_big, rb, m, f, info)
       do j = 1, 8
         ej = 0.0_dp
         ej(j) = 1.0_dp
         do i = 1, 8
           ei = 0.0_dp
           ei(i) = 1.0_dp
-          hes(i, j) = (kear_kinetic_energy(el, q_big, qd_big + ei + ej, rb) &
-                       - kear_kinetic_energy(el, q_big, qd_big + ei - ej, rb) &
-                       - kear_kinetic_energy(el, q_big, qd_big - ei + ej, rb) &
-                       + kear_kinetic_energy(el, q_big, qd_big - ei - ej, rb))/4
+          hes(i, j) = (el%kinetic_energy(q_big, qd_big + ei + ej, rb) &
+                       - el%kinetic_energy(q_big, qd_big + ei - ej, rb) &
+                       - el%kinetic_energy(q_big, qd_big - ei + ej, rb) &
+                       + el%kinetic_energy(q_big, qd_big - ei - ej, rb))/4
         end do
       end do
       call assert_all_close(reshape(m, [64]), reshape(hes, [64]), 0.0_dp, 1.0e-12_dp*maxval(abs(m)), &
@@ -446,18 +449,18 @@ contains
     type(kear_element_t) :: on, off
     type(rigid_state_t) :: rb, rb0
     real(dp) :: m(8, 8), f_off(8), f_on(8), f_a(8), f_b(8), f_c(8), z(8)
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     z = 0.0_dp
     rb = rigid_at(0.5_dp)
     rb0 = rb
     rb0%phi_dd = 0.0_dp
     on = unit_element(element_effects_t(stretching=.true., material=.true., rotary_inertia=.true., coupling=.true.))
     off = unit_element(element_effects_t(stretching=.true., material=.true., rotary_inertia=.true.))
-    call kear_element_eval(off, q_big, qd_big, rb, m, f_off, info)
-    call kear_element_eval(on, q_big, qd_big, rb, m, f_on, info)
-    call kear_element_eval(on, q_big, z, rb0, m, f_a, info)
-    call kear_element_eval(on, z, z, rb, m, f_b, info)
-    call kear_element_eval(on, z, z, rb0, m, f_c, info)
+    call off%eval(q_big, qd_big, rb, m, f_off, info)
+    call on%eval(q_big, qd_big, rb, m, f_on, info)
+    call on%eval(q_big, z, rb0, m, f_a, info)
+    call on%eval(z, z, rb, m, f_b, info)
+    call on%eval(z, z, rb0, m, f_c, info)
     call assert_all_close(f_off, f_a + f_b - f_c, 0.0_dp, 1.0e-13_dp*maxval(abs(f_off)), &
                           'coupling off = on without Euler and Coriolis terms')
     write(output_unit, '(a,es10.3,a,es10.3)') '    coupling terms ', maxval(abs(f_on - f_off)), &
@@ -469,8 +472,8 @@ contains
     on = unit_element(effects_all_on())
     off = on
     off%effects%coupling = .false.
-    call kear_element_eval(off, q_big, qd_big, rb, m, f_off, info)
-    call kear_element_eval(on, q_big, qd_big, rb, m, f_on, info)
+    call off%eval(q_big, qd_big, rb, m, f_off, info)
+    call on%eval(q_big, qd_big, rb, m, f_on, info)
     call assert_all_close(f_off, f_on, 0.0_dp, 1.0e-14_dp*maxval(abs(f_on)), 'identical without rotation')
   end subroutine test_coupling_switch
 
@@ -484,7 +487,7 @@ contains
     type(ramberg_osgood_t) :: lin
     type(error_t) :: err
     type(rigid_state_t) :: rb
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     real(dp) :: ma(8, 8), fa(8), mb(8, 8), fb(8), f0(8), f2(8), ka(8, 8), kb(8, 8), p(8), z(8)
     rb = rigid_at(0.1_dp)
     z = 0.0_dp
@@ -493,8 +496,8 @@ contains
     lin%e2 = 0.0_dp
     el_a = unit_element(element_effects_t(stretching=.true., curvature=.true., rotary_inertia=.true., coupling=.true.))
     call kear_element_init(el_b, l_u, b_u, t_u, lin, effects_all_on(), err)
-    call kear_element_eval(el_a, q_big, qd_big, rb, ma, fa, info, ka)
-    call kear_element_eval(el_b, q_big, qd_big, rb, mb, fb, info, kb)
+    call el_a%eval(q_big, qd_big, rb, ma, fa, info, ka)
+    call el_b%eval(q_big, qd_big, rb, mb, fb, info, kb)
     call assert_all_close(fa, fb, 0.0_dp, 1.0e-14_dp*maxval(abs(fa)), 'material off = E2 = 0: F')
     call assert_all_close(reshape(ka, [64]), reshape(kb, [64]), 0.0_dp, 1.0e-14_dp*maxval(abs(ka)), &
                           'material off = E2 = 0: K_t')
@@ -504,27 +507,27 @@ contains
     p(5) = 0.02_dp
     el_a = unit_element(element_effects_t(material=.true.))
     el_b = unit_element(element_effects_t(material=.true., stretching=.true.))
-    call kear_internal_force(el_a, to_q(0.3_dp, p), 0.3_dp, fa)
-    call kear_internal_force(el_b, to_q(0.3_dp, p), 0.3_dp, fb)
+    call beam_internal_force(el_a, to_q(0.3_dp, p), 0.3_dp, fa)
+    call beam_internal_force(el_b, to_q(0.3_dp, p), 0.3_dp, fb)
     call assert_all_close(fa, fb, 0.0_dp, 1.0e-14_dp*maxval(abs(fa)), 'stretching: axial state unchanged')
     ! all off: linear and cheap
     el_a = unit_element(all_off(), beta=1.0e-3_dp)
-    call kear_element_eval(el_a, z, z, rb, ma, f0, info)
-    call kear_element_eval(el_a, q_big, qd_big, rb, ma, fa, info)
+    call el_a%eval(z, z, rb, ma, f0, info)
+    call el_a%eval(q_big, qd_big, rb, ma, fa, info)
     call assert_equal(info%n_nonlinear_points, 0, 'linear model evaluates no nonlinear integrand')
-    call kear_element_eval(el_a, 2*q_big, 2*qd_big, rb, ma, f2, info)
+    call el_a%eval(2*q_big, 2*qd_big, rb, ma, f2, info)
     call assert_all_close(f2 - f0, 2*(fa - f0), 0.0_dp, 1.0e-13_dp*maxval(abs(fa - f0)), 'linear in (q, qdot)')
     el_b = unit_element(effects_all_on(), beta=1.0e-3_dp)
-    call kear_element_eval(el_b, z, z, rb, mb, f0, info)
-    call kear_element_eval(el_b, q_big, qd_big, rb, mb, fb, info)
+    call el_b%eval(z, z, rb, mb, f0, info)
+    call el_b%eval(q_big, qd_big, rb, mb, fb, info)
     call assert_equal(info%n_nonlinear_points, 2*el_b%n_gauss, 'all on: strain and rotary integrals')
-    call kear_element_eval(el_b, 2*q_big, 2*qd_big, rb, mb, f2, info)
+    call el_b%eval(2*q_big, 2*qd_big, rb, mb, f2, info)
     call assert_true(maxval(abs(f2 - f0 - 2*(fb - f0))) > 1.0e-3_dp*maxval(abs(fb - f0)), 'all on is nonlinear')
     el_a = unit_element(element_effects_t(rotary_inertia=.true., coupling=.true.))
-    call kear_element_eval(el_a, q_big, qd_big, rb, ma, fa, info)
+    call el_a%eval(q_big, qd_big, rb, ma, fa, info)
     call assert_equal(info%n_nonlinear_points, 0, 'rotary inertia with linear angle uses constant integrals')
     el_a = unit_element(element_effects_t(stretching=.true.))
-    call kear_element_eval(el_a, q_big, qd_big, rb, ma, fa, info)
+    call el_a%eval(q_big, qd_big, rb, ma, fa, info)
     call assert_equal(info%n_nonlinear_points, el_a%n_gauss, 'stretching alone: one strain loop')
   end subroutine test_reduced_models
 
@@ -541,8 +544,8 @@ contains
     el_b = unit_element(all_off())
     p = 0.0_dp
     p(5) = eps*l_u
-    call kear_tangent_stiffness(el_a, p, 0.0_dp, ka)
-    call kear_tangent_stiffness(el_b, p, 0.0_dp, kb)
+    call beam_tangent_stiffness(el_a, p, 0.0_dp, ka)
+    call beam_tangent_stiffness(el_b, p, 0.0_dp, kb)
     n = soft%e1*b_u*t_u*eps
     ref = 0.0_dp
     do j = 1, 6
@@ -565,7 +568,7 @@ contains
     real(dp) :: p(8), q(8), fe(8), fk(8), d1, d2, emax, phi, qd(8)
     real(dp) :: m(8, 8), f_on_e(8), f_off_e(8), f_on_k(8), f_off_k(8), dr
     type(stress_report_t) :: rep
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     type(rigid_state_t) :: rb
     integer :: k
     phi = 0.8_dp
@@ -575,9 +578,9 @@ contains
       ! axial strain 2.5e-4, curvature ~2e-3 /in (outer fibre ~1e-3), slopes ~1e-2
       p = real(k, dp)*[0.0_dp, 0.0_dp, 0.01_dp, 2.0e-3_dp, 2.5e-4_dp*l_x, 0.02_dp, -0.012_dp, -1.5e-3_dp]
       q = to_q(phi, p)
-      call kear_internal_force(ex, q, phi, fe)
-      call kear_internal_force(kr, q, phi, fk)
-      rep = kear_stress_recovery(ex, q, phi)
+      call beam_internal_force(ex, q, phi, fe)
+      call beam_internal_force(kr, q, phi, fk)
+      rep = beam_stress_recovery(ex, q, phi)
       if (k == 1) then
         d1 = maxval(abs(fk - fe))/maxval(abs(fe))
         emax = rep%max_abs_strain
@@ -599,12 +602,12 @@ contains
     p = [0.0_dp, 0.0_dp, 0.01_dp, 2.0e-3_dp, 2.5e-4_dp*l_x, 0.02_dp, -0.012_dp, -1.5e-3_dp]
     q = to_q(phi, p)
     qd = 150.0_dp*[0.01_dp, -0.02_dp, 0.005_dp, 1.0e-3_dp, 0.003_dp, 0.01_dp, 0.007_dp, -1.0e-3_dp]
-    call kear_element_eval(ex, q, qd, rb, m, f_on_e, info)
-    call kear_element_eval(kr, q, qd, rb, m, f_on_k, info)
+    call ex%eval(q, qd, rb, m, f_on_e, info)
+    call kr%eval(q, qd, rb, m, f_on_k, info)
     ex%effects%rotary_inertia = .false.
     kr%effects%rotary_inertia = .false.
-    call kear_element_eval(ex, q, qd, rb, m, f_off_e, info)
-    call kear_element_eval(kr, q, qd, rb, m, f_off_k, info)
+    call ex%eval(q, qd, rb, m, f_off_e, info)
+    call kr%eval(q, qd, rb, m, f_off_k, info)
     dr = maxval(abs((f_on_k - f_off_k) - (f_on_e - f_off_e)))/maxval(abs(f_on_e - f_off_e))
     write(output_unit, '(a,es10.3)') '    kear1987 vs exact rotary inertia force: rel. diff ', dr
     call assert_true(dr < 1.0e-2_dp, 'rotary inertia agrees to O(eps)')
@@ -633,14 +636,14 @@ contains
         el = example_element(fx, n_gauss=30)
         q = to_q(phi, [0.0_dp, 0.0_dp, 0.01_dp, 2.0e-3_dp, 2.5e-4_dp*l_x, 0.02_dp, -0.012_dp, -1.5e-3_dp])
       end if
-      call kear_internal_force(el, q, phi, fref)
+      call beam_internal_force(el, q, phi, fref)
       do n = 3, 12
         if (case == 1) then
           el = unit_element(fx, n_gauss=n)
         else
           el = example_element(fx, n_gauss=n)
         end if
-        call kear_internal_force(el, q, phi, f)
+        call beam_internal_force(el, q, phi, f)
         err(n) = maxval(abs(f - fref))/maxval(abs(fref))
       end do
       write(output_unit, '(a,i0,a,10es9.1)') '    case ', case, ': rel. error for n = 3..12:', err
@@ -667,14 +670,14 @@ contains
     p = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, eps0*l_x, a*l_x**3, 3*a*l_x**2, 6*a*l_x]
     eps = eps0 + eb
     el = example_element(element_effects_t(material=.true.))
-    rep = kear_stress_recovery(el, to_q(phi, p), phi)
+    rep = beam_stress_recovery(el, to_q(phi, p), phi)
     call assert_rel_close(rep%max_abs_strain, eps, 1.0e-12_dp, 'max |eps|')
     call assert_rel_close(rep%max_abs_stress, alu%e1*eps - alu%e2*eps**3, 1.0e-12_dp, 'max |sigma|')
     call assert_close(rep%stress_x_over_l, 1.0_dp, 0.0_dp, 'at x = l')
     call assert_equal(rep%stress_fibre, -1, 'bottom fibre')
     call assert_true(.not. rep%beyond_peak, 'below eps*')
     el = example_element(all_off())
-    rep = kear_stress_recovery(el, to_q(phi, -p), phi)
+    rep = beam_stress_recovery(el, to_q(phi, -p), phi)
     call assert_rel_close(rep%stress, -alu%e1*eps, 1.0e-12_dp, 'linear sigma, compressive')
     call assert_equal(rep%stress_fibre, -1, 'bottom fibre')
   end subroutine test_stress_recovery
@@ -685,7 +688,7 @@ contains
   subroutine test_peak_detection()
     type(kear_element_t) :: el
     type(stress_report_t) :: rep
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     type(rigid_state_t) :: rb
     real(dp) :: a, p(8), m(8, 8), f(8), eb
     integer :: k
@@ -694,8 +697,8 @@ contains
       a = eb/(3.0_dp*t_x*l_x)
       p = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0e-4_dp*l_x, a*l_x**3, 3*a*l_x**2, 6*a*l_x]
       el = example_element(effects_all_on())
-      rep = kear_stress_recovery(el, p, 0.0_dp)
-      call kear_element_eval(el, p, 0.0_dp*p, rb, m, f, info)
+      rep = beam_stress_recovery(el, p, 0.0_dp)
+      call el%eval(p, 0.0_dp*p, rb, m, f, info)
       if (k == 1) then
         call assert_true(rep%beyond_peak .and. rep%max_abs_strain > peak_strain(alu), 'report flags eps > eps*')
         call assert_true(info%beyond_peak .and. info%max_abs_strain > peak_strain(alu), 'evaluation flags it')
@@ -707,7 +710,7 @@ contains
     el = example_element(element_effects_t(stretching=.true., curvature=.true.))
     a = 7.5e-3_dp/(3.0_dp*t_x*l_x)
     p = [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0e-4_dp*l_x, a*l_x**3, 3*a*l_x**2, 6*a*l_x]
-    rep = kear_stress_recovery(el, p, 0.0_dp)
+    rep = beam_stress_recovery(el, p, 0.0_dp)
     call assert_true(.not. rep%beyond_peak .and. rep%max_abs_strain > peak_strain(alu), &
                      'material off: large strain not flagged')
   end subroutine test_peak_detection
@@ -721,35 +724,35 @@ contains
   subroutine test_damping()
     type(kear_element_t) :: el0, el1, el2
     type(rigid_state_t) :: rb
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     real(dp), parameter :: beta = 2.0e-3_dp
     real(dp) :: m(8, 8), f0(8), f1(8), kt(8, 8), p(8), qd(8)
     ! linear, no rotation
     el0 = unit_element(all_off())
     el1 = unit_element(all_off(), beta=beta)
-    call kear_element_eval(el0, q_big, qd_big, rb, m, f0, info)
-    call kear_element_eval(el1, q_big, qd_big, rb, m, f1, info)
-    call kear_tangent_stiffness(el0, q_big, rb%phi, kt)
+    call el0%eval(q_big, qd_big, rb, m, f0, info)
+    call el1%eval(q_big, qd_big, rb, m, f1, info)
+    call beam_tangent_stiffness(el0, q_big, rb%phi, kt)
     call assert_all_close(f1 - f0, -beta*matmul(kt, qd_big), 0.0_dp, 1.0e-13_dp*maxval(abs(f1 - f0)), &
                           'linear: -beta K qdot')
     ! nonlinear, rotating frame
     rb = rigid_at(0.3_dp)
     el0 = unit_element(effects_all_on())
     el1 = unit_element(effects_all_on(), beta=beta)
-    call kear_element_eval(el0, q_big, qd_big, rb, m, f0, info)
-    call kear_element_eval(el1, q_big, qd_big, rb, m, f1, info)
-    call kear_tangent_stiffness(el0, q_big, rb%phi, kt)
-    p = kear_local_dofs(rb%phi, q_big)
+    call el0%eval(q_big, qd_big, rb, m, f0, info)
+    call el1%eval(q_big, qd_big, rb, m, f1, info)
+    call beam_tangent_stiffness(el0, q_big, rb%phi, kt)
+    p = el0%local_dofs(q_big, rb%phi)
     call assert_all_close(f1 - f0, -beta*matmul(kt, qd_big - rb%phi_d*to_q(rb%phi, jb(p))), 0.0_dp, &
                           1.0e-12_dp*maxval(abs(f1 - f0)), 'nonlinear: -beta K_t p_dot')
     ! frozen deformation in a rotating frame: q_dot = T^T phi_d J_b p
     qd = rb%phi_d*to_q(rb%phi, jb(p))
-    call kear_element_eval(el0, q_big, qd, rb, m, f0, info)
-    call kear_element_eval(el1, q_big, qd, rb, m, f1, info)
+    call el0%eval(q_big, qd, rb, m, f0, info)
+    call el1%eval(q_big, qd, rb, m, f1, info)
     call assert_true(maxval(abs(f1 - f0)) <= 1.0e-12_dp*beta*maxval(abs(kt))*maxval(abs(q_big)), &
                      'rigidly carried deformation is not damped')
     el2 = unit_element(effects_all_on(), beta=beta, objective=.false.)
-    call kear_element_eval(el2, q_big, qd, rb, m, f1, info)
+    call el2%eval(q_big, qd, rb, m, f1, info)
     call assert_true(maxval(abs(f1 - f0)) > 1.0e-3_dp*beta*maxval(abs(kt))*maxval(abs(q_big)), &
                      'non-objective option damps it')
   end subroutine test_damping

@@ -10,7 +10,7 @@ module test_lsode_newton_suite
   use error_status, only: error_t
   use linalg, only: solve_linear
   use linkage, only: mechanism_t, build_mechanism
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_bdf_full_user, mf_bdf_band_user, ode_system_t
   use transient_fixtures, only: fourbar_input, make_model, all_effects, state_atol

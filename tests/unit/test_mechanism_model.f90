@@ -6,7 +6,8 @@ module test_mechanism_model_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use correlation_table, only: link_end_t, joint_ground_pin, joint_clamp
-  use kear_element, only: rigid_state_t, element_effects_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: rigid_state_t
   use material_law, only: ramberg_osgood_t
   use mechanism_model, only: mechanism_model_t, element_spec_t
   use lsode_solver, only: lsode_t, mf_adams

@@ -17,7 +17,7 @@ module test_periodic_shooting_suite
   use steady_model, only: steady_model_t, link_sections_t
   use harmonic_solver, only: harmonic_settings_t, harmonic_report_t, harmonic_solve
   use mechanism_model, only: mechanism_model_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use assertions
   use periodic_problems, only: oscillator_t
   use transient_fixtures, only: fourbar_input

@@ -17,7 +17,7 @@ module test_sliding_link_suite
   use steady_model, only: steady_model_t, link_sections_t
   use periodic_system, only: nonlinear_info_t
   use mechanism_model, only: mechanism_model_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use linalg, only: solve_linear
   use assertions
   use mechanism_fixtures, only: whitworth_input, ground_sleeve_input

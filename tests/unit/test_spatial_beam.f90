@@ -10,8 +10,9 @@ module test_spatial_beam_suite
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
   use linalg, only: sym_generalized_eig, solve_linear, lu_factor, lu_solve, eigenvalues_general
-  use kear_element, only: element_effects_t, effects_all_on, kear_element_t, kear_element_init, &
-                          kear_element_eval, kear_eval_info_t, rigid_state_t
+  use element_effects, only: element_effects_t, effects_all_on
+  use planar_element, only: rigid_state_t, element_eval_info_t
+  use kear_element, only: kear_element_t, kear_element_init
   use spatial_section
   use spatial_beam
   use assertions
@@ -509,7 +510,7 @@ contains
     type(element_effects_t) :: fx
     type(rigid_state_t) :: krb
     type(spatial_rigid_t) :: srb
-    type(kear_eval_info_t) :: kinfo
+    type(element_eval_info_t) :: kinfo
     type(spatial_eval_info_t) :: sinfo
     real(dp) :: qk(8), qdk(8), mk(8, 8), fk(8), q(nd), qd(nd), ms(nd, nd), fs(nd), phi
     integer :: variant
@@ -549,7 +550,7 @@ contains
       call spatial_beam_init(sel, 1.3_dp, sec, soft, 400.0_dp, fx, err, damping_beta=1.0e-3_dp, &
                              formulation=spatial_formulation_kear)
       call assert_true(.not. err%failed(), 'init: '//err%text())
-      call kear_element_eval(kel, qk, qdk, krb, mk, fk, kinfo)
+      call kel%eval(qk, qdk, krb, mk, fk, kinfo)
       call spatial_beam_eval(sel, q, qd, srb, ms, fs, sinfo)
       call assert_all_close(fs(map), fk, 0.0_dp, 1.0e-11_dp*maxval(abs(fk)), 'in-plane force = Kear')
       call assert_all_close(reshape(ms(map, map), [64]), reshape(mk, [64]), 0.0_dp, &

@@ -23,7 +23,7 @@ module test_spatial_loads_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use spatial_section, only: spatial_section_init, section_circular
   use spatial_beam, only: spatial_formulation_kear, spatial_formulation_consistent, spatial_to_local
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init

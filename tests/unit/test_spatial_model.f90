@@ -8,7 +8,8 @@ module test_spatial_model_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t, stress_report_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: stress_report_t
   use mechanism_model, only: mechanism_model_t
   use transient_fixtures, only: fourbar_input, make_model
   use lsode_solver, only: ode_system_t, lsode_t, lsode_counters_t, mf_adams, mf_bdf_full_user

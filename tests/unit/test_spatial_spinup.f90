@@ -22,7 +22,7 @@ module test_spatial_spinup_suite
   use error_status, only: error_t
   use linalg, only: lu_factor, lu_solve
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use lsode_solver, only: ode_system_t, lsode_t, mf_bdf_full_user
   use spatial_section, only: spatial_section_t, spatial_section_init, section_rectangular
   use spatial_beam

@@ -12,7 +12,7 @@ module test_steady_model_suite
   use tennant_element, only: tennant_options_t, tennant_kinetic_energy, tennant_strain_energy
   use steady_model, only: steady_model_t, link_sections_t
   use mechanism_model, only: mechanism_model_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use assertions
   use transient_fixtures, only: fourbar_input
   use mechanism_fixtures, only: slider_crank_input, whitworth_input, ground_sleeve_input

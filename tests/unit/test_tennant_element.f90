@@ -9,8 +9,9 @@ module test_tennant_element_suite
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
   use tennant_element
-  use kear_element, only: kear_element_t, rigid_state_t, element_effects_t, kear_eval_info_t, &
-                          kear_element_init, kear_element_eval, formulation_exact
+  use element_effects, only: element_effects_t
+  use planar_element, only: rigid_state_t, element_eval_info_t
+  use kear_element, only: kear_element_t, kear_element_init, formulation_exact
   use linalg, only: solve_linear
   use quadrature, only: gauss_legendre_interval
   use assertions
@@ -145,7 +146,7 @@ contains
     type(kear_element_t) :: kel
     type(error_t) :: err
     type(frame_state_t) :: fs
-    type(kear_eval_info_t) :: info
+    type(element_eval_info_t) :: info
     real(dp) :: q(8), qd(8), m(8, 8), c(8, 8), k(8, 8), f(8), mk(8, 8), fk(8), scale
     integer :: j
     opt%rotary_inertia = .true.
@@ -157,7 +158,7 @@ contains
     q = sample_q(8, 3, 1.0_dp)
     qd = 150.0_dp*sample_q(8, 4, 1.0_dp)
     call tennant_linear_terms(el, fs, m, c, k, f, .false.)
-    call kear_element_eval(kel, q, qd, rigid_state_t(fs%x1, fs%y1, fs%phi, fs%x1_d, fs%y1_d, fs%phi_d, &
+    call kel%eval(q, qd, rigid_state_t(fs%x1, fs%y1, fs%phi, fs%x1_d, fs%y1_d, fs%phi_d, &
                            fs%x1_dd, fs%y1_dd, fs%phi_dd), mk, fk, info)
     do j = 1, 8
       call assert_all_close(m(:, j), mk(:, j), 1.0e-12_dp, 1.0e-12_dp*maxval(abs(mk)), 'mass column')

@@ -12,7 +12,7 @@
 module test_transient_counterweight_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use mechanism_model, only: mechanism_model_t
   use joint_reactions, only: joint_reactions_t

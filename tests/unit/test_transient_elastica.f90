@@ -16,7 +16,8 @@ module test_transient_elastica_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use material_law, only: ramberg_osgood_t
-  use kear_element, only: element_effects_t, rigid_state_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: rigid_state_t
   use correlation_table, only: link_end_t, joint_clamp, joint_free
   use mechanism_model, only: mechanism_model_t, element_spec_t
   use external_loads, only: point_load_t, load_factor_at

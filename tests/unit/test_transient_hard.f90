@@ -11,7 +11,8 @@ module test_transient_hard_suite
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use error_status, only: error_t
   use linkage, only: mechanism_input_t
-  use kear_element, only: element_effects_t, stress_report_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: stress_report_t
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_adams, mf_bdf_full_user
   use transient_fixtures

@@ -6,7 +6,8 @@
 module test_transient_mechanism_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
-  use kear_element, only: element_effects_t, stress_report_t
+  use element_effects, only: element_effects_t
+  use planar_element, only: stress_report_t
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: lsode_t, mf_adams, mf_bdf_full_user
   use linkage, only: mechanism_input_t

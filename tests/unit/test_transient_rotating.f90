@@ -6,7 +6,7 @@
 module test_transient_rotating_suite
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
-  use kear_element, only: element_effects_t
+  use element_effects, only: element_effects_t
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
   use lsode_solver, only: mf_adams
