@@ -1426,13 +1426,17 @@ contains
     logical, intent(out) :: solved
     real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: lam_prev(:), xt(:)
-    logical, allocatable :: new_bound(:), hit(:), released(:), dropped(:)
-    real(dp) :: crit, worst, thresh
+    real(dp), allocatable :: lam_prev(:), xt(:), s_free(:), lam_free(:)
+    logical, allocatable :: new_bound(:), hit(:), released(:), dropped(:), act_free(:)
+    real(dp) :: crit, worst, thresh, res_free, t
     integer :: i, j, m0, mt, jdrop, round
+    logical :: have_free
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
     allocate(new_bound(mt), hit(mt), released(mt), dropped(mt), xt(prob%n), lam_prev(mt))
+    allocate(s_free(prob%n), lam_free(mt), act_free(mt))
+    have_free = .false.
+    res_free = 0.0_dp
     lam_prev = self%lambda
     if (self%first_order_start) call self%first_order_multipliers(prob, m0, lam_prev)
     thresh = self%opts%mult_tol*norm2(self%gradf)
@@ -1443,6 +1447,22 @@ contains
       call self%limit_violated(prob)
       call self%step_for_set(prob, lam_prev, s, solved, residual, err)
       if (err%failed()) return
+      if (.not. solved .and. have_free) then
+        ! holding the bounds the solved step crossed left B11 without a
+        ! solution (the active constraints' gradients lie in the held
+        ! variables): the solved step instead, cut where it leaves the box
+        t = box_fraction(prob, m0, self%x, s_free)
+        if (t > 0.0_dp) then
+          self%active = act_free
+          self%lambda = lam_free
+          s = t*s_free
+          solved = .true.
+          residual = res_free
+          call self%note('holding the bounds left B11 unsolved: the solved step, cut at the box (t = '// &
+                         str(t, 6)//')')
+          return
+        end if
+      end if
       ! drop rule: the most negative multiplier of an inequality leaves the set
       jdrop = 0
       worst = 0.0_dp
@@ -1475,12 +1495,33 @@ contains
       ! only a lone release: with other drops the curvature argument fails
       if (count(dropped) == 1) call self%flip_released(prob, m0, released, hit, new_bound)
       if (.not. any(hit)) cycle
+      if (solved .and. .not. have_free) then
+        have_free = .true.
+        s_free = s
+        lam_free = self%lambda
+        act_free = self%active
+        res_free = residual
+      end if
       call self%note('bound(s) '//set_text(hit)//' reached by the step: variables held there, step recomputed')
       self%additions = self%additions + count(hit)
       self%active = self%active .or. hit
       new_bound = new_bound .or. hit
     end do
   end subroutine compute_step
+
+  !> The largest t in [0, 1] with x + t s inside the box of the bounds.
+  pure real(dp) function box_fraction(prob, m0, x, s) result(t)
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: m0
+    real(dp), intent(in) :: x(:), s(:)
+    integer :: i, j
+    t = 1.0_dp
+    do i = m0 + 1, prob%m
+      j = abs(prob%bound_var(i - m0))
+      if (prob%bound_var(i - m0) < 0 .and. s(j) < 0.0_dp) t = min(t, max(0.0_dp, (prob%xl(j) - x(j))/s(j)))
+      if (prob%bound_var(i - m0) > 0 .and. s(j) > 0.0_dp) t = min(t, max(0.0_dp, (prob%xu(j) - x(j))/s(j)))
+    end do
+  end function box_fraction
 
   !> A bound released for its multiplier's sign (the model decreases into the
   !> box) whose variable the recomputed step takes back across that same

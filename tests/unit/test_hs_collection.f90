@@ -141,7 +141,7 @@ contains
   subroutine test_noise()
     integer, parameter :: n_seeds = 20
     ! not solved from the standard start either (test_solve)
-    integer, parameter :: unsolved(8) = [83, 19, 33, 55, 72, 73, 93, 104]   ! 104: round-off decides
+    integer, parameter :: unsolved(6) = [33, 55, 72, 73, 93, 104]   ! 104: round-off decides
     type(hs_problem_t) :: p
     type(gauss_optimizer_t) :: opt
     real(dp), allocatable :: x0(:), xs(:), u(:)
@@ -330,14 +330,15 @@ contains
   end function viol
 
   !> Every problem from its standard start with default settings.  Asserted:
-  !> at least 47 of the 48 problems of the tuning set and the 6 of the
-  !> library solved (HS 83 fails: a zero-length step in the step-back
-  !> variant); at least 17 of the 24 of the hold-out (18 at -O0 and -O2;
-  !> HS 19, 33, 55, 72, 73 and 93 fail with the diagnoses printed, HS 33 on
-  !> the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is solved or
-  !> not by round-off, hence 17); and no run reports convergence at a point
-  !> that fails the independent first-order check; and no accepted iterate
-  !> increases F from a feasible one (the filter).
+  !> all 54 of the tuning set (the 48 problems of the first collection, the
+  !> library's 6) solved; at least 18 of the 24 of the first hold-out (19 at
+  !> -O0 and -O2; HS 33, 55, 72, 73 and 93 fail with the diagnoses printed,
+  !> HS 33 on the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is
+  !> solved or not by round-off); at least 11 of the 25 of the second
+  !> hold-out (its failures printed; never used to change the method); no
+  !> run reports convergence at a point that fails the independent
+  !> first-order check; and no accepted iterate increases F from a feasible
+  !> one (the filter).
   subroutine test_solve()
     type(hs_problem_t) :: p
     class(opt_problem_t), allocatable :: lp
@@ -374,9 +375,9 @@ contains
                  ' of '//str(n_total(2))//'; second hold-out: '//str(n_ok(3))//' of '//str(n_total(3))// &
                  '; all: '//str(sum(n_ok))//' of '//str(sum(n_total))//'; reported converged at a non-KKT point: '// &
                  str(n_false)
-    call assert_true(n_ok(1) >= n_total(1) - 1, 'tuning set: at most one failure ('//str(n_ok(1))//' of '// &
-                     str(n_total(1))//')')
-    call assert_true(n_ok(2) >= 17, 'hold-out: at least 17 solved ('//str(n_ok(2))//' of '//str(n_total(2))//')')
+    call assert_equal(n_ok(1), n_total(1), 'tuning set: every problem solved')
+    call assert_true(n_ok(2) >= 18, 'hold-out: at least 18 solved ('//str(n_ok(2))//' of '//str(n_total(2))//')')
+    call assert_true(n_ok(3) >= 11, 'second hold-out: at least 11 solved ('//str(n_ok(3))//' of '//str(n_total(3))//')')
     call assert_equal(n_false, 0, 'no run reports convergence at a non-KKT point')
     call assert_equal(n_up, 0, 'no accepted point increases F from a feasible iterate (the filter)')
   contains
