@@ -186,7 +186,7 @@ contains
     n_given = 0
     if (method == 'gnlc.ns') method = 'gnlc_ns'
     call check_choice(deck, 'optimize', 'method', method, method_list, err)
-    call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
+    call check_choice(deck, 'optimize', 'hessian', hessian, [character(len=8) :: 'auto', 'gauss', 'exact', 'bfgs'], err)
     call check_choice(deck, 'optimize', 'potter_fix', potter_fix, [character(len=8) :: 'repeat', 'none'], err)
     call check_choice(deck, 'optimize', 'step_back', step_back, [character(len=8) :: 'farthest', 'b13'], err)
     call check_choice(deck, 'optimize', 'singular_g', singular_g, [character(len=12) :: 'regularize', 'stop'], err)
@@ -573,6 +573,8 @@ contains
     end if
     if (hk == hessian_gauss) then
       s = '2 J J^T (B5)'
+    else if (hessian_name(h) == 'bfgs') then
+      s = 'objective Hessian at x_0, then damped BFGS updates'
     else
       s = 'objective Hessian'
     end if
