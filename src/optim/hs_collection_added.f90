@@ -417,12 +417,21 @@ contains
     b = bs(j, number)
   end function hs95_b
 
+  !> HS 101-103's variables continued outside [1e-6, 1e6] (the box is [0.01,
+  !> 10]): trial points of B11 may leave it, and a posynomial of up to ten
+  !> factors with powers to 3 of a variable near 0 overflows (pos's 1e-150
+  !> is too small here).
+  elemental real(dp) function clamp101(v)
+    real(dp), intent(in) :: v
+    clamp101 = min(max(v, 1.0e-6_dp), 1.0e6_dp)
+  end function clamp101
+
   !> HS 101-103's posynomial objective (they differ in the exponent a of x7).
   pure real(dp) function hs101_f(number, xx) result(f)
     integer, intent(in) :: number
     real(dp), intent(in) :: xx(:)
     real(dp) :: x(7), a
-    x = pos(xx(1:7))
+    x = clamp101(xx(1:7))
     a = merge(-0.25_dp, merge(0.125_dp, 0.5_dp, number == 102), number == 101)
     f = 10.0_dp*x(1)*x(4)**2*x(7)**a/(x(2)*x(6)**3) + 15.0_dp*x(3)*x(4)/(x(1)*x(2)**2*x(5)*x(7)**0.5_dp) &
         + 20.0_dp*x(2)*x(6)/(x(1)**2*x(4)*x(5)**2) + 25.0_dp*x(1)**2*x(2)**2*x(5)**0.5_dp*x(7)/(x(3)*x(6)**2)
@@ -434,7 +443,7 @@ contains
     real(dp), intent(in) :: xx(:)
     real(dp) :: x(7)
     real(dp), parameter :: third = 1.0_dp/3.0_dp
-    x = pos(xx(1:7))
+    x = clamp101(xx(1:7))
     select case (j)
     case (1)
       c = 1.0_dp - 0.5_dp*x(1)**0.5_dp*x(7)/(x(3)*x(6)**2) - 0.7_dp*x(1)**3*x(2)*x(6)*x(7)**0.5_dp/x(3)**2 &

@@ -334,8 +334,9 @@ contains
   !> library's 6) solved; at least 18 of the 24 of the first hold-out (19 at
   !> -O0 and -O2; HS 33, 55, 72, 73 and 93 fail with the diagnoses printed,
   !> HS 33 on the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is
-  !> solved or not by round-off); at least 11 of the 25 of the second
-  !> hold-out (its failures printed; never used to change the method); no
+  !> solved or not by round-off); at least 12 of the 25 of the second
+  !> hold-out (13 at -O0 and -O2, HS 101 or HS 102 solved by round-off; its
+  !> failures printed; never used to change the method); no
   !> run reports convergence at a point that fails the independent
   !> first-order check; and no accepted iterate increases F from a feasible
   !> one (the filter).
@@ -377,7 +378,7 @@ contains
                  str(n_false)
     call assert_equal(n_ok(1), n_total(1), 'tuning set: every problem solved')
     call assert_true(n_ok(2) >= 18, 'hold-out: at least 18 solved ('//str(n_ok(2))//' of '//str(n_total(2))//')')
-    call assert_true(n_ok(3) >= 11, 'second hold-out: at least 11 solved ('//str(n_ok(3))//' of '//str(n_total(3))//')')
+    call assert_true(n_ok(3) >= 12, 'second hold-out: at least 12 solved ('//str(n_ok(3))//' of '//str(n_total(3))//')')
     call assert_equal(n_false, 0, 'no run reports convergence at a non-KKT point')
     call assert_equal(n_up, 0, 'no accepted point increases F from a feasible iterate (the filter)')
   contains
