@@ -6,11 +6,12 @@ set output out
 set logscale x 2
 set xrange [1:4096]
 set yrange [0:1.02]
-set xlabel 'tau (objective evaluations within tau times the fewest of the three solvers)'
-set ylabel 'share of the 78 problems solved'
+set xlabel 'tau (objective evaluations within tau times the fewest of the four runs)'
+set ylabel 'share of the 103 problems solved'
 set key bottom right
 set grid
 set title 'Hock-Schittkowski collection, standard starts: all objective evaluations (NF + finite differences)'
 plot dat using 1:2 with steps lw 2 title 'Gauss family (default settings: filter)', \
-     dat using 1:3 with steps lw 2 title 'NLopt SLSQP', \
-     dat using 1:4 with steps lw 2 title 'NLopt COBYLA'
+     dat using 1:3 with steps lw 2 title 'Gauss family, hessian = ''bfgs''', \
+     dat using 1:4 with steps lw 2 title 'NLopt SLSQP', \
+     dat using 1:5 with steps lw 2 title 'NLopt COBYLA'

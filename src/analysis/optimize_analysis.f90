@@ -462,6 +462,8 @@ contains
     end if
     if (hk == hessian_gauss) then
       s = '2 J J^T (B5)'
+    else if (hessian_name(h) == 'bfgs') then
+      s = 'objective Hessian at x_0, then damped BFGS updates'
     else
       s = 'objective Hessian'
     end if

@@ -84,7 +84,7 @@ contains
     character(len=*), parameter :: g = 'optimize'
     n_given = 0
     call check_choice(deck, g, 'method', s%method, method_list, err)
-    call check_choice(deck, g, 'hessian', s%hessian, [character(len=8) :: 'auto', 'gauss', 'exact'], err)
+    call check_choice(deck, g, 'hessian', s%hessian, [character(len=8) :: 'auto', 'gauss', 'exact', 'bfgs'], err)
     call check_choice(deck, g, 'potter_fix', s%potter_fix, [character(len=8) :: 'repeat', 'none'], err)
     call check_choice(deck, g, 'step_back', s%step_back, [character(len=8) :: 'farthest', 'b13'], err)
     call check_choice(deck, g, 'singular_g', s%singular_g, [character(len=12) :: 'regularize', 'stop'], err)

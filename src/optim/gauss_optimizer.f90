@@ -46,7 +46,7 @@ module gauss_optimizer
   public :: method_gauss, method_gauss_constrained, method_gnlc, method_gnlc_ns
   public :: method_gnlc_general, method_gnlc_general_ns, method_auto
   public :: method_from_name, method_name, method_names
-  public :: hessian_auto, hessian_gauss, hessian_exact, hessian_from_name, hessian_name
+  public :: hessian_auto, hessian_gauss, hessian_exact, hessian_bfgs, hessian_from_name, hessian_name
   public :: status_not_run, status_converged, status_max_iter, status_failed
   public :: glob_none, glob_filter, globalization_from_name, globalization_name, globalization_names
   public :: set_text
@@ -55,11 +55,11 @@ module gauss_optimizer
                         method_gnlc_ns = 4, method_gnlc_general = 5, method_gnlc_general_ns = 6, method_auto = 7
   character(len=*), parameter :: method_names = &
     "'auto', 'gauss', 'gauss_constrained', 'gnlc', 'gnlc_ns', 'gnlc_general', 'gnlc_general_ns'"
-  integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2
+  integer, parameter :: hessian_auto = 0, hessian_gauss = 1, hessian_exact = 2, hessian_bfgs = 3
   !> the names of method_gauss .. method_auto and hessian_auto .. hessian_exact
   character(len=*), parameter :: method_table(7) = [character(len=17) :: 'gauss', 'gauss_constrained', 'gnlc', &
     'gnlc_ns', 'gnlc_general', 'gnlc_general_ns', 'auto']
-  character(len=*), parameter :: hessian_table(3) = [character(len=5) :: 'auto', 'gauss', 'exact']
+  character(len=*), parameter :: hessian_table(4) = [character(len=5) :: 'auto', 'gauss', 'exact', 'bfgs']
   !> step acceptance: none (the papers' methods as printed) or the filter line search (step_acceptable)
   integer, parameter :: glob_none = 0, glob_filter = 1
   character(len=*), parameter :: globalization_table(2) = [character(len=6) :: 'none', 'filter']
@@ -75,7 +75,8 @@ module gauss_optimizer
   type :: gauss_options_t
     integer :: method = method_auto       !< auto: chosen from the problem (see check_setup); solve
                                           !< leaves the method used here
-    integer :: hessian = hessian_auto     !< auto: 2JJ^T for sums of squares, exact otherwise
+    integer :: hessian = hessian_auto     !< auto: 2JJ^T for sums of squares, exact otherwise;
+                                          !< bfgs: the exact one at x_0, then damped BFGS updates
     integer :: max_iter = 50
     real(dp) :: xtol = 1.0e-8_dp          !< step test (3)
     real(dp) :: ftol = 1.0e-12_dp         !< predicted-change test (4)
@@ -147,6 +148,9 @@ module gauss_optimizer
     logical, private :: first_order_start = .false.  !< next B11 starts from least-squares multipliers
     logical, private :: restored_now = .false.  !< x_new is a restored point (no cycling test: it may be an iterate)
     logical, private :: off_chord = .false.     !< x_new is no fraction of s (restoration, Levenberg arc)
+    logical :: quasi_newton = .false.          !< G is the damped BFGS matrix (set at the first curvature)
+    integer :: bfgs_updates = 0                !< BFGS updates of G (damped ones included)
+    real(dp), allocatable, private :: bq(:, :), xq(:), gq(:)   !< BFGS matrix, x and grad F of its last update
     real(dp), allocatable, private :: filter(:, :)   !< (F_j, h_j) pairs the filter holds
     integer, private :: n_filter = 0
     real(dp), private :: h_max = 0.0_dp         !< largest violation a trial point may have
@@ -159,6 +163,8 @@ module gauss_optimizer
     procedure, private :: add_to_active
     procedure, private :: release_satisfied
     procedure, private :: curvature
+    procedure, private :: start_bfgs
+    procedure, private :: bfgs_update
     procedure, private :: model_rcond
     procedure, private :: rank_text
     procedure, private :: make_convex
@@ -309,7 +315,7 @@ contains
         regs = self%regularizations
         call self%derivatives(prob, hess_kind, k, err)
         if (err%failed()) exit outer
-        exact_model = hess_kind /= hessian_gauss .and. self%regularizations == regs
+        exact_model = hess_kind /= hessian_gauss .and. .not. self%quasi_newton .and. self%regularizations == regs
         gm_k = self%gm
       else
         ! ---- the filter rejected the step from x_k: G + mu I (Levenberg), mu x10 per rejection
@@ -1146,6 +1152,9 @@ contains
     self%first_order_start = .false.
     self%restored_now = .false.
     self%off_chord = .false.
+    self%quasi_newton = .false.
+    self%bfgs_updates = 0
+    if (allocated(self%bq)) deallocate(self%bq)
     self%opts = opts
   end subroutine reset
 
@@ -1225,6 +1234,10 @@ contains
     if (hess_kind == hessian_gauss) then
       self%gm = 2.0_dp*matmul(self%jac, transpose(self%jac))
       what = 'G = 2 J J^T'
+    else if (self%quasi_newton) then
+      call self%bfgs_update(n)
+      self%gm = self%bq
+      what = 'the BFGS matrix G'
     else
       call prob%objective_hessian(self%x, self%gm, err)
       if (.not. err%failed() .and. .not. all(ieee_is_finite(self%gm))) &
@@ -1232,6 +1245,9 @@ contains
       if (err%failed()) return
       self%gm = 0.5_dp*(self%gm + transpose(self%gm))
       what = 'the objective Hessian G'
+      ! quasi-Newton from here on where asked for (hessian = 'bfgs'; not the
+      ! default: doc/optimization.md §8 gives what it costs and loses)
+      if (hess_kind == hessian_bfgs) call self%start_bfgs(n)
       if (self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp) call self%make_convex(n)
     end if
     rc = self%model_rcond(prob)
@@ -1240,7 +1256,8 @@ contains
     ! relative, so smaller eigenvalues are noise, and M would be too
     ! ill-conditioned for B11 to be solved to feas_tol/100 (G = 2 J J^T is
     ! positive semi-definite by construction and keeps rcond_min)
-    auto_exact = hess_kind /= hessian_gauss .and. self%opts%auto_regularize .and. self%opts%regularization <= 0.0_dp
+    auto_exact = hess_kind /= hessian_gauss .and. .not. self%quasi_newton .and. self%opts%auto_regularize &
+                 .and. self%opts%regularization <= 0.0_dp
     if (rc >= self%opts%rcond_min .and. .not. (auto_exact .and. rc < auto_rcond)) return
     if (self%opts%regularization > 0.0_dp .or. self%opts%auto_regularize) then
       gmax = maxval([(abs(self%gm(i, i)), i=1, n)])
@@ -1273,6 +1290,65 @@ contains
       //'step (B10/B12) is undefined; remove redundant variables, or set singular_g = ''regularize'' (the ' &
       //'default) or regularization > 0 in &optimize to add mu*I (Levenberg)')
   end subroutine curvature
+
+  !> The quasi-Newton start: B_0 = the (difference) Hessian just computed at
+  !> x_0, its eigenvalues raised to at least 1e-4 max(1, |lambda_max|)
+  !> (positive definite, as the BFGS update keeps it).
+  subroutine start_bfgs(self, n)
+    class(gauss_optimizer_t), intent(inout) :: self
+    integer, intent(in) :: n
+    real(dp) :: ev(n), floor
+    type(error_t) :: lerr
+    integer :: i
+    self%quasi_newton = .true.
+    self%bq = self%gm
+    call symmetric_eigenvalues(self%gm, ev, lerr)
+    floor = 1.0e-4_dp*max(1.0_dp, maxval(abs(ev)))
+    if (lerr%failed()) ev(1) = -floor
+    if (ev(1) < floor) then
+      do i = 1, n
+        self%bq(i, i) = self%bq(i, i) + floor - ev(1)
+      end do
+    end if
+    self%gm = self%bq
+    self%xq = self%x
+    self%gq = self%gradf
+    call self%note('G: damped BFGS from here on, B_0 = the difference Hessian at x_0'// &
+                   trim(merge(' shifted to positive definite', '                             ', ev(1) < floor)))
+  end subroutine start_bfgs
+
+  !> Powell's damped BFGS update of G (M. J. D. Powell, "A fast algorithm for
+  !> nonlinearly constrained optimization calculations", Numerical Analysis
+  !> Dundee 1977, LNM 630, 144-157; Nocedal & Wright, Numerical
+  !> Optimization, 2nd ed., Procedure 18.2) from the last step s = x_k -
+  !> x_q and the change of the objective gradient y = grad F(x_k) - grad
+  !> F(x_q) (the constraints' curvature enters M through their own
+  !> Hessians): r = theta y + (1 - theta) B s with theta = 1 if s^T y >=
+  !> 0.2 s^T B s, else 0.8 s^T B s / (s^T B s - s^T y); B + r r^T / s^T r -
+  !> B s s^T B / s^T B s stays positive definite.
+  subroutine bfgs_update(self, n)
+    class(gauss_optimizer_t), intent(inout) :: self
+    integer, intent(in) :: n
+    real(dp) :: sv(n), y(n), bs(n), r(n), sbs, sy, theta
+    integer :: i
+    sv = self%x - self%xq
+    y = self%gradf - self%gq
+    self%xq = self%x
+    self%gq = self%gradf
+    if (maxval(abs(sv)) <= 0.0_dp) return
+    bs = matmul(self%bq, sv)
+    sbs = dot_product(sv, bs)
+    if (.not. sbs > 0.0_dp) return
+    sy = dot_product(sv, y)
+    theta = 1.0_dp
+    if (sy < 0.2_dp*sbs) theta = 0.8_dp*sbs/(sbs - sy)
+    r = theta*y + (1.0_dp - theta)*bs
+    do i = 1, n
+      self%bq(:, i) = self%bq(:, i) - bs*bs(i)/sbs + r*r(i)/dot_product(sv, r)
+    end do
+    self%bq = 0.5_dp*(self%bq + transpose(self%bq))
+    self%bfgs_updates = self%bfgs_updates + 1
+  end subroutine bfgs_update
 
   !> The reciprocal condition number (0: singular) of the matrix curvature
   !> judges: G, or with the default settings M = G + Sum lambda_j A_j +
@@ -1426,13 +1502,17 @@ contains
     logical, intent(out) :: solved
     real(dp), intent(out) :: residual          !< max |m_i| of B11 at the returned multipliers
     type(error_t), intent(inout) :: err
-    real(dp), allocatable :: lam_prev(:), xt(:)
-    logical, allocatable :: new_bound(:), hit(:), released(:), dropped(:)
-    real(dp) :: crit, worst, thresh
+    real(dp), allocatable :: lam_prev(:), xt(:), s_free(:), lam_free(:)
+    logical, allocatable :: new_bound(:), hit(:), released(:), dropped(:), act_free(:)
+    real(dp) :: crit, worst, thresh, res_free, t
     integer :: i, j, m0, mt, jdrop, round
+    logical :: have_free
     mt = prob%m + prob%n_eq
     m0 = prob%m - merge(prob%n_bounds, 0, self%opts%hold_bounds)
     allocate(new_bound(mt), hit(mt), released(mt), dropped(mt), xt(prob%n), lam_prev(mt))
+    allocate(s_free(prob%n), lam_free(mt), act_free(mt))
+    have_free = .false.
+    res_free = 0.0_dp
     lam_prev = self%lambda
     if (self%first_order_start) call self%first_order_multipliers(prob, m0, lam_prev)
     thresh = self%opts%mult_tol*norm2(self%gradf)
@@ -1443,6 +1523,22 @@ contains
       call self%limit_violated(prob)
       call self%step_for_set(prob, lam_prev, s, solved, residual, err)
       if (err%failed()) return
+      if (.not. solved .and. have_free) then
+        ! holding the bounds the solved step crossed left B11 without a
+        ! solution (the active constraints' gradients lie in the held
+        ! variables): the solved step instead, cut where it leaves the box
+        t = box_fraction(prob, m0, self%x, s_free)
+        if (t > 0.0_dp) then
+          self%active = act_free
+          self%lambda = lam_free
+          s = t*s_free
+          solved = .true.
+          residual = res_free
+          call self%note('holding the bounds left B11 unsolved: the solved step, cut at the box (t = '// &
+                         str(t, 6)//')')
+          return
+        end if
+      end if
       ! drop rule: the most negative multiplier of an inequality leaves the set
       jdrop = 0
       worst = 0.0_dp
@@ -1475,12 +1571,33 @@ contains
       ! only a lone release: with other drops the curvature argument fails
       if (count(dropped) == 1) call self%flip_released(prob, m0, released, hit, new_bound)
       if (.not. any(hit)) cycle
+      if (solved .and. .not. have_free) then
+        have_free = .true.
+        s_free = s
+        lam_free = self%lambda
+        act_free = self%active
+        res_free = residual
+      end if
       call self%note('bound(s) '//set_text(hit)//' reached by the step: variables held there, step recomputed')
       self%additions = self%additions + count(hit)
       self%active = self%active .or. hit
       new_bound = new_bound .or. hit
     end do
   end subroutine compute_step
+
+  !> The largest t in [0, 1] with x + t s inside the box of the bounds.
+  pure real(dp) function box_fraction(prob, m0, x, s) result(t)
+    class(opt_problem_t), intent(in) :: prob
+    integer, intent(in) :: m0
+    real(dp), intent(in) :: x(:), s(:)
+    integer :: i, j
+    t = 1.0_dp
+    do i = m0 + 1, prob%m
+      j = abs(prob%bound_var(i - m0))
+      if (prob%bound_var(i - m0) < 0 .and. s(j) < 0.0_dp) t = min(t, max(0.0_dp, (prob%xl(j) - x(j))/s(j)))
+      if (prob%bound_var(i - m0) > 0 .and. s(j) > 0.0_dp) t = min(t, max(0.0_dp, (prob%xu(j) - x(j))/s(j)))
+    end do
+  end function box_fraction
 
   !> A bound released for its multiplier's sign (the model decreases into the
   !> box) whose variable the recomputed step takes back across that same

@@ -12,7 +12,8 @@ module test_hs_collection_suite
   use strings, only: str
   use optim_problem, only: opt_problem_t
   use problem_library, only: problem_info_t, create_problem, quadratic_problem_t
-  use hs_collection, only: hs_problem_t, hs_numbers, hs_holdout, create_hs
+  use hs_collection, only: hs_problem_t, hs_numbers, hs_holdout, hs_holdout2, create_hs
+  use hs_collection_added, only: xstar_digits
   use linalg, only: lu_factor, lu_solve
   use gauss_optimizer
   use assertions
@@ -20,6 +21,8 @@ module test_hs_collection_suite
   private
   public :: run_all
 
+  !> the label of a problem's set in the printed table
+  character(len=13), parameter :: set_label(3) = [character(len=13) :: ' ', ' (hold-out)', ' (hold-out 2)']
   !> library problems that are HS problems: name and HS number
   character(len=16), parameter :: lib_names(6) = [character(len=16) :: 'hs15', 'hs21', 'hs28', 'hs35', &
                                                   'rosen_suzuki', 'hs65']
@@ -133,10 +136,12 @@ contains
   !> Round-off robustness: every problem solved with defaults from its
   !> standard start is solved from x0 (1 + 1e-14 u), u uniform in [-1, 1], in
   !> each of 20 seeds (the outcome must not hang on the last bits of x0).
+  !> The second hold-out is left out (with finite differences its runs cost
+  !> minutes here); bench_optimizers hs prints its noise results.
   subroutine test_noise()
     integer, parameter :: n_seeds = 20
     ! not solved from the standard start either (test_solve)
-    integer, parameter :: unsolved(8) = [83, 19, 33, 55, 72, 73, 93, 104]   ! 104: round-off decides
+    integer, parameter :: unsolved(6) = [33, 55, 72, 73, 93, 104]   ! 104: round-off decides
     type(hs_problem_t) :: p
     type(gauss_optimizer_t) :: opt
     real(dp), allocatable :: x0(:), xs(:), u(:)
@@ -148,7 +153,7 @@ contains
     call random_seed(size=n_seed)
     allocate(put(n_seed))
     do k = 1, size(hs_numbers)
-      if (any(hs_numbers(k) == unsolved)) cycle
+      if (any(hs_numbers(k) == unsolved) .or. any(hs_numbers(k) == hs_holdout2)) cycle
       n_ok = 0
       max_nf = 0
       min_nf = huge(1)
@@ -180,14 +185,16 @@ contains
     end do
   end subroutine test_noise
 
-  !> At the published x*: f(x*) = f* to 1e-6 (1 + |f*|), and every
+  !> At the published x*: f(x*) = f* to 1e-6 (1 + |f*|) (or, for an x*
+  !> known to 6 digits only, to the first-order error below), and every
   !> constraint holds to what the printed digits of x* allow: x* is printed
   !> to about 7 significant digits, so g_i(x*) may be off by the first-order
   !> bound 1e-6 sum_j |dg_i/dx_j| max(|x*_j|, 1e-3) (HS 74: 2.5e-4 on an
-  !> equality of scale 1e3), never by less than 1e-8.
+  !> equality of scale 1e3), never by less than 1e-8; 1e-5 for the problems
+  !> whose x* is known to 6 digits only (xstar_digits).
   subroutine test_optima()
     type(hs_problem_t) :: p
-    real(dp), allocatable :: x0(:), xs(:), g(:), dg(:, :), tol(:)
+    real(dp), allocatable :: x0(:), xs(:), g(:), dg(:, :), tol(:), grad(:)
     real(dp) :: fs, f
     type(error_t) :: err
     logical :: found
@@ -196,13 +203,19 @@ contains
       call create_hs(hs_numbers(k), p, x0, xs, fs, found)
       call assert_true(found, 'HS '//str(hs_numbers(k))//' defined')
       call p%objective(xs, f, err)
-      call assert_close(f, fs, 1.0e-6_dp*(1.0_dp + abs(fs)), 'HS '//str(hs_numbers(k))//': f(x*) = f*')
+      ! the same first-order allowance for f as for g below
+      allocate(grad(p%n))
+      call p%gradient(xs, f, grad, err)
+      call assert_close(f, fs, max(1.0e-6_dp*(1.0_dp + abs(fs)), &
+                        10.0_dp**(1 - xstar_digits(hs_numbers(k)))*sum(abs(grad)*max(abs(xs), 1.0e-3_dp))), &
+                        'HS '//str(hs_numbers(k))//': f(x*) = f*')
+      deallocate(grad)
       mt = p%m + p%n_eq
       allocate(g(mt), dg(p%n, mt), tol(mt))
       call p%constraint_values(xs, g, err)
       call p%constraint_gradients(xs, g, dg, err)
       do i = 1, mt
-        tol(i) = max(1.0e-8_dp, 1.0e-6_dp*sum(abs(dg(:, i))*max(abs(xs), 1.0e-3_dp)))
+        tol(i) = max(1.0e-8_dp, 10.0_dp**(1 - xstar_digits(hs_numbers(k)))*sum(abs(dg(:, i))*max(abs(xs), 1.0e-3_dp)))
       end do
       if (p%m > 0) call assert_true(all(g(1:p%m) <= tol(1:p%m)), 'HS '//str(hs_numbers(k))// &
                                     ': x* satisfies the inequalities (max g = '//str(maxval(g(1:p%m)), 3)//')')
@@ -317,14 +330,16 @@ contains
   end function viol
 
   !> Every problem from its standard start with default settings.  Asserted:
-  !> at least 47 of the 48 problems of the tuning set and the 6 of the
-  !> library solved (HS 83 fails: a zero-length step in the step-back
-  !> variant); at least 17 of the 24 of the hold-out (18 at -O0 and -O2;
-  !> HS 19, 33, 55, 72, 73 and 93 fail with the diagnoses printed, HS 33 on
-  !> the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is solved or
-  !> not by round-off, hence 17); and no run reports convergence at a point
-  !> that fails the independent first-order check; and no accepted iterate
-  !> increases F from a feasible one (the filter).
+  !> all 54 of the tuning set (the 48 problems of the first collection, the
+  !> library's 6) solved; at least 18 of the 24 of the first hold-out (19 at
+  !> -O0 and -O2; HS 33, 55, 72, 73 and 93 fail with the diagnoses printed,
+  !> HS 33 on the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is
+  !> solved or not by round-off); at least 12 of the 25 of the second
+  !> hold-out (13 at -O0 and -O2, HS 101 or HS 102 solved by round-off; its
+  !> failures printed; never used to change the method); no
+  !> run reports convergence at a point that fails the independent
+  !> first-order check; and no accepted iterate increases F from a feasible
+  !> one (the filter).
   subroutine test_solve()
     type(hs_problem_t) :: p
     class(opt_problem_t), allocatable :: lp
@@ -334,7 +349,7 @@ contains
     real(dp) :: fs
     type(error_t) :: err
     logical :: found
-    integer :: k, n_ok(2), n_total(2), n_false, n_up
+    integer :: k, n_ok(3), n_total(3), n_false, n_up, set
     n_up = 0
     n_ok = 0
     n_total = 0
@@ -344,7 +359,10 @@ contains
       call create_hs(hs_numbers(k), p, x0, xs, fs, found)
       opt%opts = gauss_options_t()
       call opt%solve(p, x0, err)
-      call report('hs'//str(hs_numbers(k)), p, fs, merge(2, 1, any(hs_numbers(k) == hs_holdout)))
+      set = 1
+      if (any(hs_numbers(k) == hs_holdout)) set = 2
+      if (any(hs_numbers(k) == hs_holdout2)) set = 3
+      call report('hs'//str(hs_numbers(k)), p, fs, set)
     end do
     do k = 1, size(lib_names)
       call create_problem(trim(lib_names(k)), lp, info, err)
@@ -355,10 +373,12 @@ contains
       call report(trim(lib_names(k)), lp, info%f_star, 1)
     end do
     print '(a)', '   tuning set: '//str(n_ok(1))//' of '//str(n_total(1))//' solved; hold-out: '//str(n_ok(2))// &
-                 ' of '//str(n_total(2))//'; reported converged at a non-KKT point: '//str(n_false)
-    call assert_true(n_ok(1) >= n_total(1) - 1, 'tuning set: at most one failure ('//str(n_ok(1))//' of '// &
-                     str(n_total(1))//')')
-    call assert_true(n_ok(2) >= 17, 'hold-out: at least 17 solved ('//str(n_ok(2))//' of '//str(n_total(2))//')')
+                 ' of '//str(n_total(2))//'; second hold-out: '//str(n_ok(3))//' of '//str(n_total(3))// &
+                 '; all: '//str(sum(n_ok))//' of '//str(sum(n_total))//'; reported converged at a non-KKT point: '// &
+                 str(n_false)
+    call assert_equal(n_ok(1), n_total(1), 'tuning set: every problem solved')
+    call assert_true(n_ok(2) >= 18, 'hold-out: at least 18 solved ('//str(n_ok(2))//' of '//str(n_total(2))//')')
+    call assert_true(n_ok(3) >= 12, 'second hold-out: at least 12 solved ('//str(n_ok(3))//' of '//str(n_total(3))//')')
     call assert_equal(n_false, 0, 'no run reports convergence at a non-KKT point')
     call assert_equal(n_up, 0, 'no accepted point increases F from a feasible iterate (the filter)')
   contains
@@ -382,7 +402,7 @@ contains
       if (ok) n_ok(set) = n_ok(set) + 1
       write(line, '(3x,a12,a16,3i6,2es12.2e3,2x,a)') name, opt%method_label(), opt%iterations, prob%count%analyses, &
         prob%count%fd_analyses, df, v, merge('ok     ', 'FAILED ', ok)
-      print '(a)', trim(line)//merge(' (hold-out) ', '            ', set == 2)//opt%message(1:min(90, len(opt%message)))
+      print '(a)', trim(line)//set_label(set)//opt%message(1:min(90, len(opt%message)))
       ! the filter never accepts a point with a larger F from a feasible iterate
       do r = 2, opt%n_log
         if (opt%log(r - 1)%max_violation > opt%opts%feas_tol) cycle
