@@ -18,8 +18,9 @@ Exudyn: ObjectBeamGeometricallyExact, its 3D geometrically exact (Simo-Reissner)
 nodes, linear interpolation, one-point (reduced) integration; generalized-alpha with a fixed step.
 The nodes are NodeRigidBodyEP (Euler parameters): with the rotation-vector nodes
 (NodeRigidBodyRotVecLG) Newton stalls when a crank node's rotation vector reaches 2 pi k (3 or 4
-turns; the two agree to 1e-6 over the first turn).  Its section: axial EA, torsion GJ (J = 2I), bending EI, shear stiffness
-SHEAR_FACTOR x kGA (k = 0.9): stiff, so that the beam is Euler-Bernoulli's as flexmech's is;
+turns; the two agree to 1e-6 over the first turn).  Its section: axial EA, torsion GJ (J = 2I),
+bending EI, shear stiffness SHEAR_FACTOR x kGA (k = 0.9): stiff, so that the beam is
+Euler-Bernoulli's as flexmech's is;
 section inertia rho (J, I, I); no damping (generalized-alpha's numerical dissipation, spectral
 radius 0.9 at infinity, takes the axial modes' part).  The crank's first node
 is held by a generic joint to a hub whose rotation about Z is driven at omega (velocity-level
@@ -34,7 +35,7 @@ Outputs over the revolution (histories at every degree of crank angle):
   M_A, M_D     bending moment at the crank root (A) and the rocker root (D) (lb in)
   sigma_c      largest |normal stress| in the coupler, |N|/A + |M| r/I (psi)
 
-Usage: python spatial_rssr.py --flexmech build/bin/flexmech --work build/peers [--quick]
+Usage: python spatial_rssr.py --flexmech build/bin/flexmech --work build/peers [--turns N]
 It prints the table of doc/spatial.md and writes build/peers/spatial_rssr/overlay.dat for
 doc/figures/spatial_rssr_peer.gp.
 """
@@ -351,7 +352,9 @@ def main():
             continue
         ex[(n, s)] = (cpu, o)
         print('Exudyn %2d elements a link, %4d steps a turn: CPU %.1f s, hub angle error %.1e rad'
-              % (n, s, cpu, o['hub_angle_error']))
+              % (n, s, cpu, o['hub_angle_error'])
+              + ('; change from one turn to the next / peak (B, C): %s'
+                 % ', '.join('%.1e' % c for c in o['turn_change']) if o['turn_change'] else ''))
     ex_ref = ex[(64, 4000)][1]
     for key in ((16, 2000), (32, 2000), (64, 2000)):
         if key in ex:
