@@ -21,12 +21,12 @@ Usage: python fourbar_planar.py --flexmech build/bin/flexmech --work build/peers
 The Exudyn runs are child processes of this script (--exudyn-case N STEPS), so that both codes
 are measured as whole processes (user + system CPU of the child, os.wait4).
 """
-import argparse
-import json
 import math
 import os
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib'))
+from peer_run import run_child, run_timed, start  # noqa: E402
 
 L_CRANK, L_COUPLER, L_ROCKER, GROUND = 5.0, 11.0, 10.5, 10.0
 B_WIDTH, H_DEPTH = 0.25, 1.0
@@ -245,18 +245,6 @@ def flexmech_outputs(path, n):
     return {'sigma_b': sig, 'chord': chord, 'tip': tip}
 
 
-def run_timed(cmd):
-    pid = os.fork()
-    if pid == 0:                                               # child: the measured process
-        fd = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(fd, 1)
-        os.execv(cmd[0], cmd)
-    _, status, ru = os.wait4(pid, 0)
-    if os.waitstatus_to_exitcode(status) != 0:
-        return None
-    return ru.ru_utime + ru.ru_stime
-
-
 def flexmech_case(exe, work, n, rtol, omega):
     tag = 'flexmech_%g_n%d_rtol%g' % (omega, n, rtol)
     deck = os.path.join(work, tag + '.nml')
@@ -268,13 +256,8 @@ def flexmech_case(exe, work, n, rtol, omega):
 
 
 def exudyn_child(work, n, steps, omega):
-    res = os.path.join(work, 'exudyn_%g_n%d_s%d.json' % (omega, n, steps))
-    cpu = run_timed([sys.executable, os.path.abspath(__file__), '--exudyn-case', str(n), str(steps),
-                     '--omega', str(omega), '--result', res])
-    if cpu is None:
-        return None, None
-    with open(res) as f:
-        return cpu, json.load(f)
+    return run_child(__file__, os.path.join(work, 'exudyn_%g_n%d_s%d.json' % (omega, n, steps)), n, steps,
+                     ['--omega', str(omega)])
 
 
 def within(o, ref, tol):
@@ -282,21 +265,12 @@ def within(o, ref, tol):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument('--flexmech', default='build/bin/flexmech')
-    ap.add_argument('--work', default='build/peers')
-    ap.add_argument('--omega', type=float, default=150.0)
-    ap.add_argument('--exudyn-case', nargs=2, type=int)
-    ap.add_argument('--result')
-    ap.add_argument('--repeats', type=int, default=3)
-    a = ap.parse_args()
-    if a.exudyn_case:
-        r = exudyn_case(a.exudyn_case[0], a.exudyn_case[1], a.omega)
-        with open(a.result, 'w') as f:
-            json.dump(r, f)
+    def extra(ap):
+        ap.add_argument('--omega', type=float, default=150.0)
+        ap.add_argument('--repeats', type=int, default=3)
+    a, work = start(extra, lambda a, n, steps: exudyn_case(n, steps, a.omega), 'fourbar_planar')
+    if a is None:
         return
-    work = os.path.join(a.work, 'fourbar_planar')
-    os.makedirs(work, exist_ok=True)
     om = a.omega
     print('Tennant four-bar, %g rad/s, beta 1e-5 s, geometrically nonlinear; peaks over turn %d of %d'
           % (om, TURNS, TURNS))
