@@ -4,7 +4,7 @@
 module test_name_table_suite
   use name_table, only: name_of, code_of
   use gauss_optimizer, only: method_from_name, method_name, hessian_from_name, hessian_name, method_gauss, &
-                             method_gnlc_ns, method_auto, hessian_auto, hessian_exact
+                             method_gnlc_ns, method_auto, hessian_auto, hessian_exact, hessian_bfgs
   use optim_problem, only: con_kind_name, con_linear, con_general
   use sweep_run, only: status_meaning
   use lsode_solver, only: istate_sentence, mf_adams
@@ -61,7 +61,8 @@ contains
     call assert_equal(method_name(method_gauss - 1), 'unknown', 'name of no method')
     call assert_equal(hessian_from_name(' '), hessian_auto, 'blank hessian is auto')
     call assert_equal(hessian_from_name('Exact'), hessian_exact, 'hessian exact')
-    call assert_equal(hessian_from_name('bfgs'), -1, 'unknown hessian')
+    call assert_equal(hessian_from_name('newton'), -1, 'unknown hessian')
+    call assert_equal(hessian_from_name('BFGS'), hessian_bfgs, 'hessian bfgs')
     call assert_equal(hessian_name(hessian_exact), 'exact', 'name of exact')
     call assert_equal(hessian_name(7), 'auto', 'unknown hessian code reads as auto')
     call assert_equal(con_kind_name(con_linear), 'linear', 'linear constraint')
