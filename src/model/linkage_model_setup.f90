@@ -25,8 +25,10 @@ contains
     type(error_t), intent(inout) :: err
     logical, intent(in), optional :: reduce_band, axial_dofs, shear_dofs
     type(link_end_t) :: ends(2, mech%n_links)
+    integer :: n_elements(mech%n_links)
     call mechanism_link_ends(mech, ends)
-    call table%build(mech%links(:)%n_elements, ends, err, reduce_band=reduce_band, &
+    n_elements = mech%links(:)%n_elements
+    call table%build(n_elements, ends, err, reduce_band=reduce_band, &
                      axial_dofs=axial_dofs, shear_dofs=shear_dofs)
     if (err%failed()) return
     call kin%init(mech, err)

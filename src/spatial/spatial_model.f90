@@ -2,8 +2,9 @@
 !> M(q, t) q_dd = F(q, q_d, t) about the rigid-body motion of
 !> spatial_kinematics, spatial beam elements assembled through the spatial
 !> correlation table, M in band storage, banded Cholesky (cost linear in the
-!> number of elements).  State interleaved, y(2i-1) = q_i, y(2i) = q_d_i, as
-!> in the planar mechanism_model.
+!> number of elements).  A second-order model (module second_order_model,
+!> as the planar mechanism_model): state interleaving, Jacobian and Newton
+!> matrix are the parent's.
 !>
 !> Joint rules (doc/spatial.md, "Joints"):
 !>  A  clamp to the driving shaft: translations and rotations zero;
