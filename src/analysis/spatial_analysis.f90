@@ -142,7 +142,7 @@ contains
     end do
     call bar%finish()
     call cpu_time(cpu1)
-    if (err%failed()) call name_stop_angle(inp, model, ode%t, err)
+    if (err%failed()) call model%name_stop_angle('spatial analysis', ode%t, err)
 
     call stress_peaks%write(out, 'last')
     call stress_peaks%write(out, 'whole')
@@ -164,16 +164,6 @@ contains
     per_rev = nint(360.0_dp/step_deg)
     if (abs(per_rev*step_deg - 360.0_dp) > 1.0e-9_dp) per_rev = 0
   end function samples_per_revolution
-
-  !> The crank angle where the run stopped, as context of its error.
-  subroutine name_stop_angle(inp, model, t_ode, err)
-    type(spatial_input_t), intent(in) :: inp
-    type(spatial_model_t), intent(in) :: model
-    real(dp), intent(in) :: t_ode
-    type(error_t), intent(inout) :: err
-    call err%add_context('spatial analysis stopped at crank angle '// &
-                         str((inp%theta0_deg*pi/180.0_dp + inp%omega*model%stop_time(t_ode))*180.0_dp/pi, 7)//' deg')
-  end subroutine name_stop_angle
 
   !> The row of output step k at time tt (joints B, C; link ends; link roots'
   !> resultants; element stresses; support forces), written, with the element

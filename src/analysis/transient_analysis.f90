@@ -133,7 +133,7 @@ contains
     call bar%finish()
     call cpu_time(cpu1)
 
-    if (err%failed()) call name_stop_angle(mech, model, ode%t, err)
+    if (err%failed()) call model%name_stop_angle('transient analysis', ode%t, err)
 
     call rows%write_last_revolution(out, names)
     ! summary (the last complete revolution first, then the whole run) and cost
@@ -259,16 +259,6 @@ contains
     call rows%add(out, tt, row, crank_deg)
   end subroutine record_row
 
-  !> The crank angle where the run stopped, as context of its error.
-  subroutine name_stop_angle(mech, model, t_ode, err)
-    type(mechanism_t), intent(in) :: mech
-    type(mechanism_model_t), intent(in) :: model
-    real(dp), intent(in) :: t_ode
-    type(error_t), intent(inout) :: err
-    real(dp) :: theta, theta_d, theta_dd
-    call driver_angle(mech%driver, model%stop_time(t_ode), theta, theta_d, theta_dd)
-    call err%add_context('transient analysis stopped at crank angle '//str(theta*180.0_dp/pi, 7)//' deg')
-  end subroutine name_stop_angle
 
   !> Output step and end time: by crank angle and revolutions when the crank
   !> turns and no time span is given, else by time.

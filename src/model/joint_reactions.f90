@@ -106,7 +106,7 @@ contains
       self%ends(k)%force = r(base + 1:base + 2)
       self%ends(k)%moment = r(base + 3)
     end do
-    do k = 1, size(model%cw_element)
+    do k = 1, size(model%cw%element)
       call add_counterweight(self, model, k, q, qd, acc)
     end do
     ! ground or guide on joint j: G = sum of the joint's forces on its link
@@ -117,13 +117,13 @@ contains
       self%support(1:2, self%ends(k)%joint) = self%support(1:2, self%ends(k)%joint) + self%ends(k)%force
       self%support(3, self%ends(k)%joint) = self%support(3, self%ends(k)%joint) + self%ends(k)%moment
     end do
-    do k = 1, size(model%point_mass)
-      e = model%point_element(k)
-      j = joint_at(self, e, model%point_node(k))
+    do k = 1, size(model%joint_mass%mass)
+      e = model%joint_mass%element(k)
+      j = joint_at(self, e, model%joint_mass%node(k))
       if (j == 0) cycle
       if (.not. self%supported(j)) cycle
-      self%support(1:2, j) = self%support(1:2, j) + model%point_mass(k)*(node_acceleration(model, e, &
-                             model%point_node(k), acc) - model%gravity)
+      self%support(1:2, j) = self%support(1:2, j) + model%joint_mass%mass(k)*(node_acceleration(model, e, &
+                             model%joint_mass%node(k), acc) - model%gravity)
     end do
   end subroutine reactions_compute
 
@@ -138,7 +138,7 @@ contains
     real(dp), intent(in) :: q(:), qd(:), qdd(:)
     real(dp) :: c, psi, psi_d, psi_dd, arm(2), torque_g
     integer :: e, g, i
-    e = model%cw_element(k)
+    e = model%cw%element(k)
     g = model%table%map(3, e)
     psi = model%rb(e)%phi
     psi_d = model%rb(e)%phi_d
@@ -153,8 +153,8 @@ contains
     torque_g = -model%gravity(1)*arm(2) + model%gravity(2)*arm(1)
     do i = 1, size(self%ends)
       if (self%ends(i)%element /= e .or. self%ends(i)%node /= 1) cycle
-      self%ends(i)%force = self%ends(i)%force + psi_dd*[-arm(2), arm(1)] - psi_d**2*arm - model%cw_mass(k)*model%gravity
-      self%ends(i)%moment = self%ends(i)%moment + model%cw_inertia(k)*psi_dd - torque_g
+      self%ends(i)%force = self%ends(i)%force + psi_dd*[-arm(2), arm(1)] - psi_d**2*arm - model%cw%mass(k)*model%gravity
+      self%ends(i)%moment = self%ends(i)%moment + model%cw%inertia(k)*psi_dd - torque_g
     end do
   end subroutine add_counterweight
 

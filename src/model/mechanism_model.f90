@@ -1,26 +1,18 @@
-!> The flexible mechanism as a first-order system for DLSODE (K30-K34):
-!>
-!>     M(q, t) q_dd = F(q, q_d, t)   ->   y' = f(t, y)
-!>
-!> about the known rigid-body motion.  One right-hand-side evaluation takes
-!> the rigid motion at t, evaluates every element (Kear's or the consistent
-!> element, through the beam_element contract) through the variable
-!> correlation table, assembles M in band storage and F, factors M by the
-!> project's banded Cholesky (band_kernels: cost linear in the number of
-!> elements) and solves for the accelerations.
-!>
-!> The state is interleaved, y(2i-1) = q_i and y(2i) = q_d_i, so that the
-!> Jacobian of the first-order system has the band structure of M and K (for
-!> DLSODE's banded BDF options).
+!> The flexible planar mechanism M(q, t) q_dd = F(q, q_d, t) about its known
+!> rigid-body motion (K30-K34), as a second-order model for DLSODE (module
+!> second_order_model: state interleaving, Jacobian, Newton matrix).  One
+!> right-hand side takes the rigid motion at t, evaluates every element
+!> (Kear's or the consistent element, through the beam_element contract)
+!> through the variable correlation table, assembles M in band storage and
+!> F, factors M by the project's banded Cholesky (band_kernels: cost linear
+!> in the number of elements) and solves for the accelerations.
 !>
 !> The rigid-body motion depends on the crank angle only, so by default it is
-!> tabulated once over a revolution (`build_motion_table`): for every element
-!> its end-1 position and inclination P = (X1, Y1, phi) with dP/dtheta and
-!> d2P/dtheta2 at equally spaced crank angles, interpolated by quintic
-!> Hermite polynomials (error O(h^6): 1e-12 relative at 720 points) and turned
-!> into time derivatives with the driver's theta_dot, theta_ddot.  This takes
-!> the kinematic Newton solves out of the right-hand side.  A toggle or a
-!> failure to assemble is then found while tabulating, naming the crank angle.
+!> tabulated once over a revolution (`build_motion_table`, module
+!> rigid_motion_table): this takes the kinematic Newton solves out of the
+!> right-hand side.  When every element's M and K_t are constant in its frame
+!> the global ones are tabulated as functions of the element angles (module
+!> frame_band_table).
 !>
 !> A link sliding through a sleeve (slider_link) is Tennant's element with
 !> the moving integration limit and the sleeve's angle-dependent map (module
@@ -30,16 +22,14 @@
 !> A structure that does not move (beam tests) is modelled with fixed element
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
-  use companion_jacobian, only: fill_companion_jacobian
-  use band_assembly, only: add_to_lower_band, add_to_newton_bands
+  use band_assembly, only: add_element_lower_band, add_element_newton_bands
+  use frame_band_table, only: frame_table_t, frame_matrix, angle_basis
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
   use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
-  use linalg, only: lu_factor, lu_solve, &
-                    sym_generalized_eig, solve_linear
-  use lsode_solver, only: ode_system_t
-  use second_order_newton, only: second_order_newton_t
+  use linalg, only: sym_generalized_eig, solve_linear
+  use second_order_model, only: second_order_model_t
   use correlation_table, only: correlation_table_t, link_end_t
   use element_effects, only: element_effects_t
   use planar_element, only: rigid_state_t, element_eval_info_t, stress_report_t
@@ -48,13 +38,14 @@ module mechanism_model
                           resolve_formulation, planar_element_t, beam_linear_strain, beam_mass_constant_in_q
   use external_loads, only: point_load_t, load_factor_at
   use material_law, only: ramberg_osgood_t
-  use linkage, only: mechanism_t, joint_slider_link, driver_angle
+  use linkage, only: mechanism_t, driver_angle
   use kinematics, only: kinematics_t, motion_t
-  use kinds, only: two_pi
   use joint_clearance, only: clearance_joint_t, split_journal, add_contact_forces, contact_blocks, add_pair_block, &
                              pair_dofs
-  use shape_functions, only: quintic_hermite
-  use sliding_link, only: sliding_link_t, mechanism_link_ends, sliding_link_init, sliding_link_set_state, &
+  use rigid_motion_table, only: motion_table_t
+  use lumped_masses, only: joint_masses_t, counterweights_t, place_joint_masses, place_counterweights
+  use linkage_model_setup, only: start_linkage_model
+  use sliding_link, only: sliding_link_t, sliding_link_init, sliding_link_set_state, &
                           sliding_link_add, sliding_link_matrices, sliding_link_element_q, sliding_link_stress, &
                           sliding_link_energies
   use tennant_element, only: tennant_info_t
@@ -74,33 +65,15 @@ module mechanism_model
     type(ramberg_osgood_t) :: material
   end type element_spec_t
 
-  !> A band matrix assembled from element matrices constant in their frames:
-  !> band = const + sum over entries k of coef(1, k) basis(ib(k), e) +
-  !> coef(2, k) basis(ib(k) + 1, e), e = elem(k), with the basis
-  !> [cos phi, sin phi, cos 2phi, sin 2phi] of each element.
-  type :: frame_table_t
-    integer :: rows = 0                  !< rows of the band storage
-    integer :: n_varying = 0             !< entries that vary with the element angles
-    real(dp), allocatable :: const(:)    !< the constant band, column-major
-    integer, allocatable :: pos(:)       !< entry's position in the band array, column-major
-    integer, allocatable :: base(:)      !< its basis pair's position in basis(4, n_elements), minus 1
-    real(dp), allocatable :: coef(:, :)
-  end type frame_table_t
-
-  type, extends(ode_system_t) :: mechanism_model_t
+  type, extends(second_order_model_t) :: mechanism_model_t
     logical :: moving = .true.                    !< rigid motion from kinematics (else fixed states)
     type(kinematics_t) :: kin
     type(correlation_table_t) :: table
     class(planar_element_t), allocatable :: el(:) !< one dynamic type: resolve_formulation's mold
     character(len=16) :: formulation = ''         !< the element formulation in effect (resolved 'default')
     type(rigid_state_t), allocatable :: rb(:)     !< current rigid state of each element
-    integer :: n = 0                              !< global unknowns
-    integer :: kd = 0                             !< half-bandwidth of M
-    real(dp), allocatable :: mass_band(:, :)      !< (kd+1, n) lower band storage
-    real(dp), allocatable :: force(:)
-    ! work arrays of the right-hand side and the Newton solve (automatic arrays
-    ! of run-time size are heap-allocated by gfortran: 9 malloc/free per RHS)
-    real(dp), allocatable :: work_q(:), work_qd(:), work_qdd(:)
+    ! element work arrays of the right-hand side and the Newton matrix (automatic
+    ! arrays of run-time size are heap-allocated by gfortran)
     real(dp), allocatable :: work_me(:, :), work_ke(:, :), work_fe(:), work_qe(:), work_qde(:)
     ! element M and K_t constant in the element frame (Kear's element, linear strains): their global
     ! band entries are tabulated once as functions of the elements' angles (build_frame_tables)
@@ -108,33 +81,15 @@ module mechanism_model
     logical :: frame_symmetric = .false.          !< every element's frame K_t is symmetric (so every global one)
     type(frame_table_t) :: frame_mass, frame_stiff
     real(dp), allocatable :: frame_basis(:, :)   !< (4, element): cos phi, sin phi, cos 2phi, sin 2phi
-    ! cost and diagnostics
-    integer :: n_rhs = 0                          !< RHS evaluations done by this model
-    integer :: n_mass_factorizations = 0
     logical :: mass_constant_in_q = .false.       !< M depends on t only (see accelerations)
     logical :: mass_factored = .false.            !< mass_band holds the factor of M at t_mass
     real(dp) :: t_mass = 0.0_dp
-    integer :: n_nonlinear_points = 0             !< nonlinear integrand evaluations (cost proxy)
-    logical :: stop_beyond_peak = .true.          !< stop when a strain passes the R-O peak
-    real(dp) :: t_states = -huge(1.0_dp)          !< time of the rigid states held in rb
-    integer :: n_kinematics = 0                   !< rigid-body kinematics solutions
     ! tabulated rigid-body motion over one crank revolution (see build_motion_table)
     logical :: tabulated = .false.
-    integer :: n_table = 0                        !< intervals per revolution
-    real(dp) :: theta_start = 0.0_dp              !< crank angle of the first table point
-    real(dp), allocatable :: table_p(:, :, :)     !< (3, 0:n_table, element): X1, Y1, phi
-    real(dp), allocatable :: table_dp(:, :, :)    !< d/dtheta
-    real(dp), allocatable :: table_ddp(:, :, :)   !< d2/dtheta2
-    real(dp), allocatable :: phi_per_turn(:)      !< phi gained per crank revolution (0 or +-2 pi)
-    ! lumped masses at joints (slider blocks, sleeves): mass, element and node (1, 2) carrying them
-    real(dp), allocatable :: point_mass(:)
-    integer, allocatable :: point_element(:), point_node(:)
-    ! counterweights on arms clamped at ground pivots: element, J = m |c|^2, m c in the link's frame
-    integer, allocatable :: cw_element(:)
-    real(dp), allocatable :: cw_mass(:), cw_inertia(:), cw_moment(:, :)
-    ! DLSODE's Newton matrix, banded (newton_factor): M and K_t at the last factorization, S factored,
-    ! the clearance contacts as its pair dampers
-    type(second_order_newton_t) :: newton
+    type(motion_table_t) :: motion
+    type(motion_t), allocatable :: work_motion(:)  !< the elements' motion at a time, from the table
+    type(joint_masses_t) :: joint_mass           !< lumped masses at joints (slider blocks, sleeves)
+    type(counterweights_t) :: cw                  !< counterweights on arms clamped at ground pivots
     ! external loads (src/model/external_loads.f90): gravity acceleration and point forces/moments
     real(dp) :: gravity(2) = 0.0_dp               !< global (X, Y) acceleration of gravity
     type(point_load_t), allocatable :: loads(:)
@@ -147,11 +102,9 @@ module mechanism_model
   contains
     procedure :: init_mechanism
     procedure :: init_fixed
-    procedure :: rhs => model_rhs
-    procedure :: jacobian => model_jacobian
-    procedure :: has_newton_matrix => model_has_newton_matrix
     procedure :: newton_factor => model_newton_factor
-    procedure :: newton_solve => model_newton_solve
+    procedure :: damping_beta
+    procedure :: crank_angle
     procedure :: jacobian_steps => model_jacobian_steps
     procedure :: jacobian_contraction => model_jacobian_contraction
     procedure :: assemble_band
@@ -162,7 +115,6 @@ module mechanism_model
     procedure :: linear_modes
     procedure :: energies
     procedure :: element_stresses
-    procedure :: state_size
     procedure :: set_loads
     procedure :: static_equilibrium
     procedure :: element_joint_force
@@ -184,24 +136,17 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
-    type(link_end_t) :: ends(2, mech%n_links)
-    integer :: k, e, n_elements(mech%n_links)
+    integer :: k, e
     class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
     type(motion_t) :: m
 
     self%moving = .true.
-    call mechanism_link_ends(mech, ends)
-    n_elements = mech%links(:)%n_elements
     call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
-    call self%table%build(n_elements, ends, err, reduce_band=.true., axial_dofs=mold%axial_dofs())
-    if (err%failed()) return
-
-    call self%kin%init(mech, err)
-    if (err%failed()) return
-    call self%kin%solve(0.0_dp, err)
+    call start_linkage_model(mech, self%table, self%kin, err, reduce_band=.true., &
+                             axial_dofs=mold%axial_dofs())
     if (err%failed()) return
 
     allocate(self%el(self%table%n_elements), source=mold)
@@ -234,36 +179,13 @@ contains
     end do
     call allocate_work(self)
     allocate(self%loads(0))
-    call register_point_masses(self, mech)
-    call register_counterweights(self, mech, err)
+    ! joint masses ride on the elastic translation of their node: kinetic
+    ! energy m/2 |r_rigid' + (U', W')|^2 (module lumped_masses)
+    call place_joint_masses(mech, self%joint_mass)
+    call place_counterweights(mech, self%cw, err)
     if (err%failed()) return
     call self%set_time(0.0_dp)
   end subroutine init_mechanism
-
-  !> Counterweights (link_cw_mass, on an arm clamped to the link at its end 1,
-  !> a ground pivot): the point turns about the fixed pivot with the end's
-  !> angle phi + w_x, kinetic energy J (phi_d + w_x_d)^2 / 2, J = m |c|^2, as
-  !> in the steady model (doc/design.md).
-  subroutine register_counterweights(self, mech, err)
-    type(mechanism_model_t), intent(inout) :: self
-    type(mechanism_t), intent(in) :: mech
-    type(error_t), intent(inout) :: err
-    integer :: k
-    allocate(self%cw_element(0), self%cw_mass(0), self%cw_inertia(0), self%cw_moment(2, 0))
-    do k = 1, mech%n_links
-      associate (lk => mech%links(k))
-        if (.not. lk%cw_mass > 0.0_dp) cycle
-        if (lk%sliding) then
-          call err%set('counterweight', 'a counterweight on a link sliding through a sleeve is not modelled', 2)
-          return
-        end if
-        self%cw_element = [self%cw_element, lk%first_element]
-        self%cw_mass = [self%cw_mass, lk%cw_mass]
-        self%cw_inertia = [self%cw_inertia, lk%cw_mass*(lk%cw_x**2 + lk%cw_y**2)]
-        self%cw_moment = reshape([self%cw_moment, lk%cw_mass*[lk%cw_x, lk%cw_y]], [2, size(self%cw_element)])
-      end associate
-    end do
-  end subroutine register_counterweights
 
   !> The counterweights in Lagrange's equation of their link's end slope
   !> w_x: J on the mass diagonal; J (-phi_dd) and the weight's moment
@@ -276,13 +198,13 @@ contains
     integer :: k, e, g
     real(dp) :: c, arm(2)
     if (new_mass) call add_counterweight_mass(self, self%mass_band, .true.)
-    do k = 1, size(self%cw_element)
-      e = self%cw_element(k)
+    do k = 1, size(self%cw%element)
+      e = self%cw%element(k)
       g = self%table%map(3, e)
       if (g == 0) cycle
       c = self%table%coef(3, e)
       arm = counterweight_arm(self, k, self%rb(e)%phi + c*q(g))
-      self%force(g) = self%force(g) + c*(-self%cw_inertia(k)*self%rb(e)%phi_dd - self%gravity(1)*arm(2) + &
+      self%force(g) = self%force(g) + c*(-self%cw%inertia(k)*self%rb(e)%phi_dd - self%gravity(1)*arm(2) + &
                                          self%gravity(2)*arm(1))
     end do
   end subroutine add_counterweights
@@ -293,8 +215,8 @@ contains
     integer, intent(in) :: k
     real(dp), intent(in) :: psi
     real(dp) :: arm(2)
-    arm = [cos(psi)*self%cw_moment(1, k) - sin(psi)*self%cw_moment(2, k), &
-           sin(psi)*self%cw_moment(1, k) + cos(psi)*self%cw_moment(2, k)]
+    arm = [cos(psi)*self%cw%moment(1, k) - sin(psi)*self%cw%moment(2, k), &
+           sin(psi)*self%cw%moment(1, k) + cos(psi)*self%cw%moment(2, k)]
   end function counterweight_arm
 
   !> J on the slope's diagonal: dense (band = F) or lower band storage.
@@ -303,44 +225,17 @@ contains
     real(dp), intent(inout) :: mass(:, :)
     logical, intent(in) :: band
     integer :: k, e, g
-    do k = 1, size(self%cw_element)
-      e = self%cw_element(k)
+    do k = 1, size(self%cw%element)
+      e = self%cw%element(k)
       g = self%table%map(3, e)
       if (g == 0) cycle
       if (band) then
-        mass(1, g) = mass(1, g) + self%cw_inertia(k)*self%table%coef(3, e)**2
+        mass(1, g) = mass(1, g) + self%cw%inertia(k)*self%table%coef(3, e)**2
       else
-        mass(g, g) = mass(g, g) + self%cw_inertia(k)*self%table%coef(3, e)**2
+        mass(g, g) = mass(g, g) + self%cw%inertia(k)*self%table%coef(3, e)**2
       end if
     end do
   end subroutine add_counterweight_mass
-
-  !> Joint masses (slider blocks, sleeves) ride on the elastic translation of
-  !> the node where the joint's first link end sits: kinetic energy
-  !> m/2 |r_rigid' + (U', W')|^2.
-  subroutine register_point_masses(self, mech)
-    type(mechanism_model_t), intent(inout) :: self
-    type(mechanism_t), intent(in) :: mech
-    integer :: j, link, n, i
-    allocate(self%point_mass(0), self%point_element(0), self%point_node(0))
-    do j = 1, mech%n_joints
-      if (.not. mech%joints(j)%mass > 0.0_dp) cycle
-      ! a sleeve's mass rides on a link carrying it (a ground sleeve does not move)
-      i = 1
-      if (mech%joints(j)%kind == joint_slider_link .and. mech%joints(j)%link(1) == mech%joints(j)%sliding_link) i = 2
-      if (i > mech%joints(j)%n_links) cycle
-      link = mech%joints(j)%link(i)
-      if (mech%joints(j)%link_end(i) == 1) then
-        self%point_element = [self%point_element, mech%links(link)%first_element]
-        n = 1
-      else
-        self%point_element = [self%point_element, mech%links(link)%first_element + mech%links(link)%n_elements - 1]
-        n = 2
-      end if
-      self%point_node = [self%point_node, n]
-      self%point_mass = [self%point_mass, mech%joints(j)%mass]
-    end do
-  end subroutine register_point_masses
 
   !> Rigid-body acceleration of node `node` (1 = x = 0, 2 = x = l) of element e.
   pure function node_acceleration(rb, length, node) result(a)
@@ -384,8 +279,9 @@ contains
     class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
     self%moving = .false.
-    allocate(self%point_mass(0), self%point_element(0), self%point_node(0), self%loads(0), self%slide(0))
-    allocate(self%cw_element(0), self%cw_mass(0), self%cw_inertia(0), self%cw_moment(2, 0))
+    allocate(self%loads(0), self%slide(0))
+    allocate(self%joint_mass%mass(0), self%joint_mass%element(0), self%joint_mass%node(0))
+    allocate(self%cw%element(0), self%cw%mass(0), self%cw%inertia(0), self%cw%moment(2, 0))
     call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
@@ -408,14 +304,10 @@ contains
   subroutine allocate_work(self)
     type(mechanism_model_t), intent(inout) :: self
     integer :: e
-    self%n = self%table%n_global
-    self%kd = self%table%half_bandwidth
-    allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
     ! (add_clearance renumbers the unknowns and calls this again)
-    if (allocated(self%work_q)) deallocate(self%work_q, self%work_qd, self%work_qdd, self%work_me, self%work_ke, &
-                                           self%work_fe, self%work_qe, self%work_qde)
+    call self%size_state(self%table%n_global, self%table%half_bandwidth)
+    if (allocated(self%work_me)) deallocate(self%work_me, self%work_ke, self%work_fe, self%work_qe, self%work_qde)
     if (allocated(self%frame_basis)) deallocate(self%frame_basis)
-    allocate(self%work_q(self%n), self%work_qd(self%n), self%work_qdd(self%n))
     associate(nd => self%table%element_dofs)
       allocate(self%work_me(nd, nd), self%work_ke(nd, nd), self%work_fe(nd), self%work_qe(nd), self%work_qde(nd))
     end associate
@@ -425,15 +317,9 @@ contains
   end subroutine allocate_work
 
   !> When every element is Kear's with linear strains and a mass independent
-  !> of q, its M_e and K_t are constant in the element frame and the global
-  !> ones are T(phi)^T L T(phi): an entry between two node translations is
-  !> a c^2 + b cs + g s^2 = (a + g)/2 + (a - g)/2 cos 2phi + b/2 sin 2phi, one
-  !> between a translation and a slope or curvature DOF d c + e s, the others
-  !> constant (c, s = cos phi, sin phi).  Tabulate the constant band once and
-  !> the two coefficients of each varying entry (correlation coefficients
-  !> folded in): M and K_t at a new time then cost two multiply-adds per
-  !> varying entry instead of an element evaluation, two 8 x 8 rotations and a
-  !> scatter per element (doc/transient.md, "Cost of a right-hand side").
+  !> of q, its M_e and K_t are constant in the element frame: tabulate the
+  !> global M and K_t as functions of the element angles (module
+  !> frame_band_table).
   subroutine build_frame_tables(self)
     type(mechanism_model_t), intent(inout) :: self
     real(dp), dimension(8, 8) :: ml, kl
@@ -447,153 +333,38 @@ contains
     do e = 1, size(self%el)
       if (.not. beam_linear_strain(self%el(e))) return
     end do
-    call start_table(self%frame_mass, self%kd + 1, self%n, size(self%el))
-    call start_table(self%frame_stiff, 2*self%kd + 1, self%n, size(self%el))
+    call self%frame_mass%start(self%kd + 1, self%n, size(self%el))
+    call self%frame_stiff%start(2*self%kd + 1, self%n, size(self%el))
     zero = 0.0_dp
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle
       ! phi = 0: the element-frame matrices (T = I)
       call beam_element_eval(self%el(e), zero, zero, rigid_state_t(), ml, fe, info, tangent=kl, force_wanted=.false.)
-      call tabulate_element(self, e, ml, .true., self%frame_mass)
-      call tabulate_element(self, e, kl, .false., self%frame_stiff)
+      call self%frame_mass%add_element(self%table, e, ml, self%kd, .true.)
+      call self%frame_stiff%add_element(self%table, e, kl, self%kd, .false.)
       symmetric = symmetric .and. maxval(abs(kl - transpose(kl))) <= 1.0e-10_dp*maxval(abs(kl))
     end do
-    call finish_table(self%frame_mass)
-    call finish_table(self%frame_stiff)
+    call self%frame_mass%finish()
+    call self%frame_stiff%finish()
     self%frame_symmetric = symmetric        ! T^T L T is symmetric at every angle when L is
     allocate(self%frame_basis(4, size(self%el)))
     self%frame_tables = .true.
   end subroutine build_frame_tables
 
-  !> An empty table with room for every varying entry of n_elements elements
-  !> (at most two per entry of an 8 x 8 element matrix): appending one at a
-  !> time by concatenation cost O(n^2) at set-up (0.5 s at 32 elements per link).
-  subroutine start_table(ft, rows, n, n_elements)
-    type(frame_table_t), intent(out) :: ft
-    integer, intent(in) :: rows, n, n_elements
-    ft%rows = rows
-    allocate(ft%const(rows*n), ft%pos(128*n_elements), ft%base(128*n_elements), ft%coef(2, 128*n_elements))
-    ft%const = 0.0_dp
-  end subroutine start_table
-
-  !> The table cut to its n_varying entries.
-  subroutine finish_table(ft)
-    type(frame_table_t), intent(inout) :: ft
-    ft%pos = ft%pos(1:ft%n_varying)
-    ft%base = ft%base(1:ft%n_varying)
-    ft%coef = ft%coef(:, 1:ft%n_varying)
-  end subroutine finish_table
-
-  !> Element e's entries of T^T l T into table ft: lower band storage (mass)
-  !> or general band storage (stiffness).
-  subroutine tabulate_element(self, e, l, lower, ft)
-    type(mechanism_model_t), intent(in) :: self
-    integer, intent(in) :: e
-    real(dp), intent(in) :: l(8, 8)
-    logical, intent(in) :: lower
-    type(frame_table_t), intent(inout) :: ft
-    real(dp) :: f(6), cij, varying(2, 2)
-    integer :: i, j, gi, gj, r, k
-    do j = 1, 8
-      gj = self%table%map(j, e)
-      if (gj == 0) cycle
-      do i = 1, 8
-        gi = self%table%map(i, e)
-        if (gi == 0 .or. (lower .and. gi < gj)) cycle
-        r = merge(1 + gi - gj, self%kd + 1 + gi - gj, lower)
-        cij = self%table%coef(i, e)*self%table%coef(j, e)
-        f = cij*frame_form(l, i, j)                    ! [c^2, cs, s^2, c, s, 1]
-        ft%const(r + (gj - 1)*ft%rows) = ft%const(r + (gj - 1)*ft%rows) + f(6) + 0.5_dp*(f(1) + f(3))
-        varying(:, 1) = [f(4), f(5)]                   ! cos phi, sin phi
-        varying(:, 2) = [0.5_dp*(f(1) - f(3)), 0.5_dp*f(2)]   ! cos 2phi, sin 2phi
-        do k = 1, 2
-          if (.not. (abs(varying(1, k)) > 0.0_dp .or. abs(varying(2, k)) > 0.0_dp)) cycle
-          ft%n_varying = ft%n_varying + 1
-          ft%pos(ft%n_varying) = r + (gj - 1)*ft%rows
-          ft%base(ft%n_varying) = 4*(e - 1) + 2*(k - 1)
-          ft%coef(:, ft%n_varying) = varying(:, k)
-        end do
-      end do
-    end do
-  end subroutine tabulate_element
-
-  !> Entry (i, j) of T^T L T as coefficients of [c^2, cs, s^2, c, s, 1], with
-  !> T of kear_element (p = T q: p1 = c q1 + s q2, p2 = -s q1 + c q2, the
-  !> same at DOFs 5, 6; the identity elsewhere).
-  pure function frame_form(l, i, j) result(f)
-    real(dp), intent(in) :: l(8, 8)
-    integer, intent(in) :: i, j
-    real(dp) :: f(6)
-    integer :: k, m, a(3), b(3)
-    f = 0.0_dp
-    do m = 1, 8
-      b = t_entry(m, j)
-      if (all(b == 0)) cycle
-      do k = 1, 8
-        a = t_entry(k, i)
-        if (all(a == 0)) cycle
-        f = f + l(k, m)*real([a(1)*b(1), a(1)*b(2) + a(2)*b(1), a(2)*b(2), a(1)*b(3) + a(3)*b(1), &
-                              a(2)*b(3) + a(3)*b(2), a(3)*b(3)], dp)
-      end do
-    end do
-  end function frame_form
-
-  !> T(k, i) as coefficients of (c, s, 1).
-  pure function t_entry(k, i) result(w)
-    integer, intent(in) :: k, i
-    integer :: w(3)
-    w = 0
-    if (k == 1 .or. k == 2 .or. k == 5 .or. k == 6) then
-      if (i == k) then
-        w(1) = 1                                     ! c on the diagonal of each pair
-      else if ((k == 1 .and. i == 2) .or. (k == 5 .and. i == 6)) then
-        w(2) = 1                                     ! p1 = c q1 + s q2
-      else if ((k == 2 .and. i == 1) .or. (k == 6 .and. i == 5)) then
-        w(2) = -1                                    ! p2 = -s q1 + c q2
-      end if
-    else if (i == k) then
-      w(3) = 1
-    end if
-  end function t_entry
-
-  !> band = the table's matrix at the element angles of basis (arrays of
-  !> the table's shape, addressed by position).
-  pure subroutine frame_matrix(ft, basis, band)
-    type(frame_table_t), intent(in) :: ft
-    real(dp), intent(in) :: basis(*)
-    real(dp), intent(out) :: band(size(ft%const))
-    integer :: k, b, i
-    band = ft%const
-    do k = 1, size(ft%pos)
-      i = ft%pos(k)
-      b = ft%base(k)
-      band(i) = band(i) + (ft%coef(1, k)*basis(b + 1) + ft%coef(2, k)*basis(b + 2))
-    end do
-  end subroutine frame_matrix
-
   !> [cos phi, sin phi, cos 2phi, sin 2phi] of every element at the current rigid states.
   subroutine set_frame_basis(self)
     type(mechanism_model_t), intent(inout) :: self
-    real(dp) :: c, s
     integer :: e
     do e = 1, size(self%el)
-      c = cos(self%rb(e)%phi)
-      s = sin(self%rb(e)%phi)
-      self%frame_basis(:, e) = [c, s, (c - s)*(c + s), 2.0_dp*c*s]
+      self%frame_basis(:, e) = angle_basis(self%rb(e)%phi)
     end do
   end subroutine set_frame_basis
-
-  integer function state_size(self)
-    class(mechanism_model_t), intent(in) :: self
-    state_size = 2*self%n
-  end function state_size
 
   !> Rigid-body states of all elements at time t (no-op for a fixed structure).
   subroutine set_time(self, t)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t
     type(error_t) :: err
-    type(motion_t) :: m
     integer :: e
     if (.not. self%moving) return
     ! DLSODE evaluates the RHS several times at one t (corrector iterations):
@@ -612,8 +383,7 @@ contains
       return
     end if
     do e = 1, size(self%el)
-      m = self%kin%element_motion_global(e)
-      self%rb(e) = rigid_state_t(m%x1, m%y1, m%phi, m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd)
+      self%rb(e) = rigid_state(self%kin%element_motion_global(e))
     end do
     self%t_states = t
     call sliding_states(self)
@@ -645,78 +415,40 @@ contains
   end function element_q
 
   !> Tabulate the rigid-body motion of every element over one crank
-  !> revolution at n_points equally spaced crank angles.  Fails (err) where the
-  !> kinematics fails, naming the crank angle.
+  !> revolution at n_points equally spaced crank angles (module
+  !> rigid_motion_table).  Fails (err) where the kinematics fails, naming the
+  !> crank angle.
   subroutine build_motion_table(self, n_points, err)
     class(mechanism_model_t), intent(inout) :: self
     integer, intent(in) :: n_points
     type(error_t), intent(inout) :: err
-    real(dp) :: theta, theta_d, theta_dd, h
-    type(motion_t) :: m
-    integer :: k, e, ne
     if (.not. self%moving) return
-    ne = size(self%el)
-    call driver_angle(self%kin%mech%driver, 0.0_dp, theta, theta_d, theta_dd)
-    self%theta_start = theta
-    self%n_table = n_points
-    h = two_pi/n_points
-    allocate(self%table_p(3, 0:n_points, ne), self%table_dp(3, 0:n_points, ne), &
-             self%table_ddp(3, 0:n_points, ne), self%phi_per_turn(ne))
-    do k = 0, n_points
-      ! theta_d = 1, theta_dd = 0: the rates are then d/dtheta and d2/dtheta2
-      call self%kin%solve_angle(self%theta_start + k*h, 1.0_dp, 0.0_dp, err)
-      if (err%failed()) then
-        call err%add_context('tabulating the rigid-body motion over a revolution')
-        return
-      end if
-      do e = 1, ne
-        m = self%kin%element_motion_global(e)
-        self%table_p(:, k, e) = [m%x1, m%y1, m%phi]
-        self%table_dp(:, k, e) = [m%x1_d, m%y1_d, m%phi_d]
-        self%table_ddp(:, k, e) = [m%x1_dd, m%y1_dd, m%phi_dd]
-      end do
-    end do
-    do e = 1, ne
-      self%phi_per_turn(e) = two_pi*anint((self%table_p(3, n_points, e) - self%table_p(3, 0, e))/two_pi)
-    end do
+    call self%motion%build(self%kin, size(self%el), n_points, err)
+    if (err%failed()) return
+    if (allocated(self%work_motion)) deallocate(self%work_motion)
+    allocate(self%work_motion(size(self%el)))
     self%tabulated = .true.
     self%t_states = -huge(1.0_dp)
     self%mass_factored = .false.            ! the table's rigid states differ from the solved ones by round-off
   end subroutine build_motion_table
 
-  !> Rigid states at time t from the table: quintic Hermite interpolation in
-  !> the crank angle, chain rule for the time derivatives.
+  !> Rigid states at time t from the table.
   subroutine tabulated_states(self, t)
     type(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t
-    real(dp) :: theta, theta_d, theta_dd, h, x, turns, hw(6), hx(6), hxx(6), p(3), dp1(3), ddp(3)
-    integer :: k, e
-    call driver_angle(self%kin%mech%driver, t, theta, theta_d, theta_dd)
-    h = two_pi/self%n_table
-    turns = aint((theta - self%theta_start)/two_pi)
-    x = theta - self%theta_start - turns*two_pi        ! in (-2 pi, 2 pi)
-    if (x < 0.0_dp) then
-      turns = turns - 1.0_dp
-      x = x + two_pi
-    end if
-    ! the deck's ranges keep theta moderate; the clamp keeps the index in the
-    ! table whatever rounding does at the ends of a turn
-    k = max(0, min(int(x/h), self%n_table - 1))
-    x = x - k*h
-    call quintic_hermite(x/h, h, hw, hx, hxx)
+    integer :: e
+    call self%motion%motion_at(self%kin%mech%driver, t, self%work_motion)
     do e = 1, size(self%el)
-      p = hw(1)*self%table_p(:, k, e) + hw(2)*self%table_dp(:, k, e) + hw(3)*self%table_ddp(:, k, e) + &
-          hw(4)*self%table_p(:, k + 1, e) + hw(5)*self%table_dp(:, k + 1, e) + hw(6)*self%table_ddp(:, k + 1, e)
-      dp1 = hx(1)*self%table_p(:, k, e) + hx(2)*self%table_dp(:, k, e) + hx(3)*self%table_ddp(:, k, e) + &
-            hx(4)*self%table_p(:, k + 1, e) + hx(5)*self%table_dp(:, k + 1, e) + hx(6)*self%table_ddp(:, k + 1, e)
-      ddp = hxx(1)*self%table_p(:, k, e) + hxx(2)*self%table_dp(:, k, e) + hxx(3)*self%table_ddp(:, k, e) + &
-            hxx(4)*self%table_p(:, k + 1, e) + hxx(5)*self%table_dp(:, k + 1, e) + hxx(6)*self%table_ddp(:, k + 1, e)
-      p(3) = p(3) + turns*self%phi_per_turn(e)
-      self%rb(e) = rigid_state_t(p(1), p(2), p(3), dp1(1)*theta_d, dp1(2)*theta_d, dp1(3)*theta_d, &
-                                 ddp(1)*theta_d**2 + dp1(1)*theta_dd, ddp(2)*theta_d**2 + dp1(2)*theta_dd, &
-                                 ddp(3)*theta_d**2 + dp1(3)*theta_dd)
+      self%rb(e) = rigid_state(self%work_motion(e))
     end do
   end subroutine tabulated_states
+
+  !> An element's rigid state from its motion.
+  pure function rigid_state(m) result(rb)
+    type(motion_t), intent(in) :: m
+    type(rigid_state_t) :: rb
+    rb = rigid_state_t(m%x1, m%y1, m%phi, m%x1_d, m%y1_d, m%phi_d, m%x1_dd, m%y1_dd, m%phi_dd)
+  end function rigid_state
 
   ! ------------------------------------------------------------------ equations of motion
 
@@ -731,13 +463,12 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out), contiguous :: qdd(:)
     type(element_eval_info_t) :: info
-    integer :: e, i, gi, kd, nd, info_chol
+    integer :: e, kd, info_chol
     logical :: new_mass
     call self%set_time(t)
     qdd = 0.0_dp
     if (self%err%failed()) return
     kd = self%kd
-    nd = self%table%element_dofs
     ! a sliding link's mass depends on where it slides (q): M is then formed every call
     new_mass = .not. self%mass_factored .or. t < self%t_mass .or. t > self%t_mass .or. &
                .not. self%mass_constant_in_q .or. size(self%slide) > 0
@@ -746,7 +477,7 @@ contains
     associate(me => self%work_me, fe => self%work_fe, qe => self%work_qe, qde => self%work_qde)
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e)) cycle        ! (add_sliding_links)
-      call gather_element(self, e, q, qe, qd, qde)
+      call self%table%gather_pair(e, q, qd, qe, qde)
       call beam_element_eval(self%el(e), qe, qde, loaded_state(self, e), me, fe, info, &
                              mass_wanted=new_mass .and. .not. self%frame_tables, peak_wanted=.false.)
       self%n_nonlinear_points = self%n_nonlinear_points + info%n_nonlinear_points
@@ -756,12 +487,8 @@ contains
           str(self%el(e)%eps_star, 6)//': the material law has no stable meaning beyond it')
         return
       end if
-      do i = 1, nd
-        gi = self%table%map(i, e)
-        if (gi > 0) self%force(gi) = self%force(gi) + self%table%coef(i, e)*fe(i)
-      end do
-      if (new_mass .and. .not. self%frame_tables) &
-        call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
+      call self%table%scatter_add(e, fe, self%force)
+      if (new_mass .and. .not. self%frame_tables) call add_element_lower_band(self%table, e, me, self%mass_band)
     end do
     end associate
     if (new_mass .and. self%frame_tables) then       ! (nothing was added to mass_band yet)
@@ -789,39 +516,6 @@ contains
     qdd = self%force
     call band_cholesky_substitute(self%mass_band, kd, qdd)
   end subroutine accelerations
-
-  !> qe = T_e q (correlation_table%gather without its function result), and
-  !> optionally qde = T_e qd in the same pass.
-  pure subroutine gather_element(self, e, q, qe, qd, qde)
-    type(mechanism_model_t), intent(in) :: self
-    integer, intent(in) :: e
-    real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: qe(:)
-    real(dp), intent(in), optional :: qd(:)
-    real(dp), intent(out), optional :: qde(:)
-    integer :: i, g
-    if (present(qd) .and. present(qde)) then
-      do i = 1, size(qe)
-        g = self%table%map(i, e)
-        if (g > 0) then
-          qe(i) = self%table%coef(i, e)*q(g)
-          qde(i) = self%table%coef(i, e)*qd(g)
-        else
-          qe(i) = 0.0_dp
-          qde(i) = 0.0_dp
-        end if
-      end do
-      return
-    end if
-    do i = 1, size(qe)
-      g = self%table%map(i, e)
-      if (g > 0) then
-        qe(i) = self%table%coef(i, e)*q(g)
-      else
-        qe(i) = 0.0_dp
-      end if
-    end do
-  end subroutine gather_element
 
   !> The sliding links' mass and generalized forces (module sliding_link).
   subroutine add_sliding_links(self, t, q, qd)
@@ -874,11 +568,11 @@ contains
     logical, intent(in) :: new_mass
     integer :: k, i, g(2), e
     real(dp) :: c(2), a(2), m
-    do k = 1, size(self%point_mass)
-      e = self%point_element(k)
-      m = self%point_mass(k)
-      call node_translation_dofs(self, e, self%point_node(k), g, c)
-      a = node_acceleration(self%rb(e), self%el(e)%length, self%point_node(k)) - self%gravity
+    do k = 1, size(self%joint_mass%mass)
+      e = self%joint_mass%element(k)
+      m = self%joint_mass%mass(k)
+      call node_translation_dofs(self, e, self%joint_mass%node(k), g, c)
+      a = node_acceleration(self%rb(e), self%el(e)%length, self%joint_mass%node(k)) - self%gravity
       do i = 1, 2
         if (g(i) == 0) cycle
         if (new_mass) self%mass_band(1, g(i)) = self%mass_band(1, g(i)) + m*c(i)**2
@@ -887,49 +581,11 @@ contains
     end do
   end subroutine add_point_masses
 
-  subroutine model_rhs(self, t, y, ydot)
-    class(mechanism_model_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    self%n_rhs = self%n_rhs + 1
-    self%work_q = y(1::2)      ! contiguous copies: the state is interleaved
-    self%work_qd = y(2::2)
-    call self%accelerations(t, self%work_q, self%work_qd, self%work_qdd)
-    ydot(1::2) = self%work_qd
-    ydot(2::2) = self%work_qdd
-  end subroutine model_rhs
-
-  !> Approximate Jacobian for DLSODE's BDF options (MF = 21, 24):
-  !>   d(q_d)/dq_d = I,  d(q_dd)/dq = -M^-1 K_t,  d(q_dd)/dq_d = -beta M^-1 K_t
-  !> with K_t the elastic tangent stiffness (inertial stiffness and gyroscopic
-  !> terms are left out; the chord iteration only needs an approximation).
-  subroutine model_jacobian(self, t, y, ml, mu, pd)
-    class(mechanism_model_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    integer, intent(in) :: ml, mu
-    real(dp), intent(inout) :: pd(:, :)
-    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), beta, q(self%n)
-    integer :: ipiv(self%n)
-    type(error_t) :: err
-    call self%set_time(t)
-    q = y(1::2)
-    call self%assemble_dense(q, mass, stiff)
-    call lu_factor(mass, ipiv, err)
-    if (err%failed()) then
-      call self%fail(t, 'mass matrix in the Jacobian: '//err%text())
-      return
-    end if
-    call lu_solve(mass, ipiv, stiff, err)      ! stiff := M^-1 K_t
-    beta = 0.0_dp
-    if (size(self%el) > 0) beta = self%el(1)%beta
-    call fill_companion_jacobian(stiff, beta, ml, mu, pd)
-  end subroutine model_jacobian
-
   !> Dense global mass matrix at (q, current time) and elastic tangent stiffness.
   subroutine assemble_dense(self, q, mass, stiff)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: mass(:, :), stiff(:, :)
+    real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
     real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
     integer :: e, i, g(2)
     real(dp) :: c(2)
@@ -942,10 +598,10 @@ contains
       call self%table%scatter_add_matrix(e, ke, stiff)
     end do
     call add_sliding_matrices(self, q, mass, stiff, -1)
-    do e = 1, size(self%point_mass)
-      call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+    do e = 1, size(self%joint_mass%mass)
+      call node_translation_dofs(self, self%joint_mass%element(e), self%joint_mass%node(e), g, c)
       do i = 1, 2
-        if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%point_mass(e)*c(i)**2
+        if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%joint_mass%mass(e)*c(i)**2
       end do
     end do
     call add_counterweight_mass(self, mass, .false.)
@@ -960,77 +616,77 @@ contains
     real(dp), intent(out), contiguous :: me(:, :), ke(:, :)
     type(element_eval_info_t) :: info
     self%work_qde = 0.0_dp
-    call gather_element(self, e, q, self%work_qe)
+    self%work_qe = self%table%gather(e, q)
     call beam_element_eval(self%el(e), self%work_qe, self%work_qde, self%rb(e), me, self%work_fe, info, &
                            tangent=ke, force_wanted=.false.)   ! = beam_tangent_stiffness
   end subroutine element_mass_stiffness
 
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
-  !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at (q, current time): O(N).
-  subroutine assemble_band(self, q, mass_lower, stiff_band)
+  !> k(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at (q, current time): O(N).
+  subroutine assemble_band(self, q, mass, stiff)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out), contiguous :: mass_lower(:, :), stiff_band(:, :)
+    real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
     real(dp) :: c(2)
     integer :: e, i, kd, g(2)
     kd = self%kd
-    mass_lower = 0.0_dp
-    stiff_band = 0.0_dp
+    mass = 0.0_dp
+    stiff = 0.0_dp
     if (self%frame_tables) then
       call set_frame_basis(self)
-      call frame_matrix(self%frame_mass, self%frame_basis, mass_lower)
-      call frame_matrix(self%frame_stiff, self%frame_basis, stiff_band)
+      call frame_matrix(self%frame_mass, self%frame_basis, mass)
+      call frame_matrix(self%frame_stiff, self%frame_basis, stiff)
     end if
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e) .or. self%frame_tables) cycle
       call element_mass_stiffness(self, e, q, self%work_me, self%work_ke)
-      call add_to_newton_bands(mass_lower, stiff_band, kd, self%work_me, self%work_ke, self%table%map(:, e), &
-                               self%table%coef(:, e))
+      call add_element_newton_bands(self%table, e, self%work_me, self%work_ke, kd, mass, stiff)
     end do
-    call add_sliding_matrices(self, q, mass_lower, stiff_band, kd)
-    do e = 1, size(self%point_mass)
-      call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
+    call add_sliding_matrices(self, q, mass, stiff, kd)
+    do e = 1, size(self%joint_mass%mass)
+      call node_translation_dofs(self, self%joint_mass%element(e), self%joint_mass%node(e), g, c)
       do i = 1, 2
-        if (g(i) > 0) mass_lower(1, g(i)) = mass_lower(1, g(i)) + self%point_mass(e)*c(i)**2
+        if (g(i) > 0) mass(1, g(i)) = mass(1, g(i)) + self%joint_mass%mass(e)*c(i)**2
       end do
     end do
-    call add_counterweight_mass(self, mass_lower, .true.)
+    call add_counterweight_mass(self, mass, .true.)
   end subroutine assemble_band
 
   ! ------------------------------------------------------------------ Newton matrix
 
-  logical function model_has_newton_matrix(self)
-    class(mechanism_model_t), intent(in) :: self
-    model_has_newton_matrix = self%n > 0
-  end function model_has_newton_matrix
-
-  !> DLSODE's Newton matrix P = I - hl0 J for the Jacobian of model_jacobian,
-  !> J = [[0, I], [-M^-1 K_t, -beta M^-1 K_t]] (state interleaved), without
-  !> forming J: eliminating the displacement corrections leaves the N x N band
-  !> matrix (doc/transient.md)
-  !>     S = M + (hl0 beta + hl0^2) K_t,
-  !> factored by banded Cholesky when K_t is symmetric and S positive definite,
-  !> by banded LU otherwise.  O(N kd^2); ok = .false. when S is singular.
+  !> DLSODE's Newton matrix (second_order_model): M and K_t, the clearance
+  !> contacts as pair dampers (add_clearance_terms) and, from the frame
+  !> tables, the symmetry of K_t (the check costs a fifth of a factorization).
   subroutine model_newton_factor(self, t, y, hl0, ok)
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:), hl0
     logical, intent(out) :: ok
     real(dp) :: beta
-    ok = .false.
-    call self%set_time(t)
-    if (self%err%failed()) return
-    call self%newton%size_for(self%n, self%kd)
-    call self%assemble_band(y(1::2), self%newton%mass, self%newton%stiff)
-    beta = 0.0_dp
-    if (size(self%el) > 0) beta = self%el(1)%beta
+    call self%newton_fill(t, y, ok)
+    if (.not. ok) return
+    beta = self%damping_beta()
     if (self%has_clearance) call add_clearance_terms(self, y, beta)
-    ! (the frame tables know their symmetry: the check costs a fifth of a factorization)
     if (self%frame_tables .and. .not. self%has_clearance .and. size(self%slide) == 0) then
       call self%newton%factor(hl0, beta, ok, self%frame_symmetric)
     else
       call self%newton%factor(hl0, beta, ok)
     end if
   end subroutine model_newton_factor
+
+  !> The elements' stiffness-proportional damping coefficient (one for all).
+  real(dp) function damping_beta(self) result(beta)
+    class(mechanism_model_t), intent(in) :: self
+    beta = 0.0_dp
+    if (size(self%el) > 0) beta = self%el(1)%beta
+  end function damping_beta
+
+  !> The driver's crank angle (rad) at time t.
+  real(dp) function crank_angle(self, t) result(theta)
+    class(mechanism_model_t), intent(in) :: self
+    real(dp), intent(in) :: t
+    real(dp) :: theta_d, theta_dd
+    call driver_angle(self%kin%mech%driver, t, theta, theta_d, theta_dd)
+  end function crank_angle
 
   !> A moving mechanism's M and K_t turn with the links, and the chord
   !> iteration's contraction factor with a Newton matrix k steps old grows as
@@ -1064,17 +720,6 @@ contains
     if (self%moving) turning = abs(self%kin%mech%driver%omega) > 0.0_dp
   end function turning
 
-  !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
-  !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:
-  !>     S dv = M r2 - hl0 K_t r1,   dq = r1 + hl0 dv.
-  subroutine model_newton_solve(self, x)
-    class(mechanism_model_t), intent(inout) :: self
-    real(dp), intent(inout) :: x(:)
-    type(error_t) :: err
-    call self%newton%solve(x, err)
-    if (err%failed()) call self%fail(0.0_dp, err%text())
-  end subroutine model_newton_solve
-
   ! ------------------------------------------------------------------ clearance joints
 
   !> Give every joint in `joints` its clearance: the journal's translations
@@ -1104,15 +749,14 @@ contains
         where (self%clearance(m)%journal > p) self%clearance(m)%journal = self%clearance(m)%journal + 2
       end do
     end do
-    do k = 1, size(self%cw_element)
+    do k = 1, size(self%cw%element)
       ! a counterweight turns about a fixed pivot (register_counterweights)
-      if (any(self%table%map(1:2, self%cw_element(k)) > 0)) then
+      if (any(self%table%map(1:2, self%cw%element(k)) > 0)) then
         call err%set('clearance', 'a joint clearance at a counterweight''s pivot is not modelled (the '// &
                      'counterweight turns about a fixed pivot)', 2)
         return
       end if
     end do
-    deallocate(self%mass_band, self%force)
     call allocate_work(self)
     allocate(self%newton%damper(2, 2, size(joints)), self%newton%damper_dofs(4, size(joints)))
     do k = 1, size(joints)
@@ -1214,23 +858,23 @@ contains
       kinetic = kinetic + beam_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
       strain = strain + beam_strain_energy(self%el(e), qe, self%rb(e)%phi)
     end do
-    do e = 1, size(self%point_mass)
+    do e = 1, size(self%joint_mass%mass)
       block
         integer :: g(2), i
         real(dp) :: c(2), v(2), cph, sph
         type(rigid_state_t) :: r
-        call node_translation_dofs(self, self%point_element(e), self%point_node(e), g, c)
-        r = self%rb(self%point_element(e))
+        call node_translation_dofs(self, self%joint_mass%element(e), self%joint_mass%node(e), g, c)
+        r = self%rb(self%joint_mass%element(e))
         v = [r%x1_d, r%y1_d]
-        if (self%point_node(e) == 2) then
+        if (self%joint_mass%node(e) == 2) then
           cph = cos(r%phi)
           sph = sin(r%phi)
-          v = v + self%el(self%point_element(e))%length*r%phi_d*[-sph, cph]
+          v = v + self%el(self%joint_mass%element(e))%length*r%phi_d*[-sph, cph]
         end if
         do i = 1, 2
           if (g(i) > 0) v(i) = v(i) + c(i)*qd(g(i))
         end do
-        kinetic = kinetic + 0.5_dp*self%point_mass(e)*sum(v**2)
+        kinetic = kinetic + 0.5_dp*self%joint_mass%mass(e)*sum(v**2)
       end block
     end do
   end subroutine energies

@@ -2,8 +2,9 @@
 !> M(q, t) q_dd = F(q, q_d, t) about the rigid-body motion of
 !> spatial_kinematics, spatial beam elements assembled through the spatial
 !> correlation table, M in band storage, banded Cholesky (cost linear in the
-!> number of elements).  State interleaved, y(2i-1) = q_i, y(2i) = q_d_i, as
-!> in the planar mechanism_model.
+!> number of elements).  A second-order model (module second_order_model,
+!> as the planar mechanism_model): state interleaving, Jacobian and Newton
+!> matrix are the parent's.
 !>
 !> Joint rules (doc/spatial.md, "Joints"):
 !>  A  clamp to the driving shaft: translations and rotations zero;
@@ -23,12 +24,10 @@ module spatial_model
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use linalg, only: sym_generalized_eig, dense_to_lower_band, cross, solve_linear
+  use linalg, only: sym_generalized_eig, cross, solve_linear
   use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
-  use lsode_solver, only: ode_system_t
-  use second_order_newton, only: second_order_newton_t
-  use companion_jacobian, only: fill_companion_jacobian
-  use band_assembly, only: add_to_lower_band, add_to_newton_bands
+  use second_order_model, only: second_order_model_t
+  use band_assembly, only: add_element_lower_band, add_element_newton_bands
   use material_law, only: ramberg_osgood_t
   use element_effects, only: element_effects_t
   use spatial_section, only: spatial_section_t
@@ -68,7 +67,7 @@ module spatial_model
     logical :: axial_slopes = .false.          !< consistent formulation: ux, uxx own at every node
   end type spatial_nodes_t
 
-  type, extends(ode_system_t) :: spatial_model_t
+  type, extends(second_order_model_t) :: spatial_model_t
     type(spatial_fourbar_t) :: kin
     real(dp) :: omega = 0.0_dp, theta0 = 0.0_dp
     integer :: joint_b = spatial_joint_spherical, joint_c = spatial_joint_spherical
@@ -80,25 +79,16 @@ module spatial_model
     logical, allocatable :: mass_as_previous(:)   !< element e's global mass equals e-1's (same link, M_p, flags)
     logical, allocatable :: matrices_as_previous(:)   !< and its tangent too (linear, same K)
     type(spatial_table_t) :: table
-    integer :: n = 0, kd = 0
     integer :: b_dofs(3) = 0, c_dofs(3) = 0     !< global unknowns of the joint translations
-    real(dp), allocatable :: mass_band(:, :), force(:)
     type(spatial_pose_t) :: pose
-    real(dp) :: t_states = -huge(1.0_dp)
     real(dp) :: t_mass = -huge(1.0_dp)           !< time of the factored mass_band (M depends on t only)
-    logical :: stop_beyond_peak = .true.
-    integer :: n_rhs = 0, n_mass_factorizations = 0, n_nonlinear_points = 0, n_kinematics = 0
-    type(second_order_newton_t) :: newton          !< DLSODE's Newton matrix, banded (shared with the planar model's scheme)
     type(spatial_mass_t) :: cmass                  !< M(t) solves through a constant factor (spatial_mass)
     real(dp) :: gravity(3) = 0.0_dp                !< gravity acceleration, global (in/s^2; spatial_loads)
     type(spatial_point_load_t), allocatable :: point_loads(:)
   contains
     procedure :: init => model_init
-    procedure :: rhs => model_rhs
-    procedure :: jacobian => model_jacobian
-    procedure :: has_newton_matrix => model_has_newton_matrix
-    procedure :: newton_factor => model_newton_factor
-    procedure :: newton_solve => model_newton_solve
+    procedure :: damping_beta
+    procedure :: crank_angle
     procedure :: assemble_band
     procedure :: set_time
     procedure :: accelerations
@@ -107,7 +97,6 @@ module spatial_model
     procedure :: energies
     procedure :: element_stresses
     procedure :: support_forces
-    procedure :: state_size
     procedure :: set_loads
     procedure :: static_state
   end type spatial_model_t
@@ -155,7 +144,6 @@ contains
     ne = sum(self%links%n_elements)
     if (allocated(self%el)) deallocate(self%el, self%rb, self%link_of, self%index_in_link, self%mass_as_previous, &
                                        self%matrices_as_previous)
-    if (allocated(self%mass_band)) deallocate(self%mass_band, self%force)
     call self%err%clear()
     allocate(self%el(ne), self%rb(ne), self%link_of(ne), self%index_in_link(ne), self%mass_as_previous(ne), &
              self%matrices_as_previous(ne))
@@ -202,9 +190,7 @@ contains
     end if
     call build_table(self, err)
     if (err%failed()) return
-    self%n = self%table%n_global
-    self%kd = self%table%half_bandwidth
-    allocate(self%mass_band(self%kd + 1, self%n), self%force(self%n))
+    call self%size_state(self%table%n_global, self%table%half_bandwidth)
     call self%cmass%init(self%table, self%el, self%link_of, self%n, self%kd)
   end subroutine model_init
 
@@ -445,10 +431,18 @@ contains
                  '(last correction '//str(maxval(abs(f)))//' of '//str(scale)//')')
   end subroutine static_state
 
-  integer function state_size(self)
+  !> The elements' stiffness-proportional damping coefficient (one for all).
+  real(dp) function damping_beta(self) result(beta)
     class(spatial_model_t), intent(in) :: self
-    state_size = 2*self%n
-  end function state_size
+    beta = self%el(1)%beta
+  end function damping_beta
+
+  !> The crank angle (rad) at time t.
+  real(dp) function crank_angle(self, t) result(theta)
+    class(spatial_model_t), intent(in) :: self
+    real(dp), intent(in) :: t
+    theta = self%theta0 + self%omega*t
+  end function crank_angle
 
   !> Rigid states of all elements at time t (crank angle theta0 + omega t).
   subroutine set_time(self, t)
@@ -513,7 +507,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      if (band_mass) call add_to_lower_band(self%mass_band, me, self%table%map(:, e), self%table%coef(:, e))
+      if (band_mass) call add_element_lower_band(self%table, e, me, self%mass_band)
     end do
     call add_point_loads(self, self%force)
     if (new_mass) then
@@ -539,135 +533,21 @@ contains
     end if
   end subroutine accelerations
 
-  subroutine model_rhs(self, t, y, ydot)
-    class(spatial_model_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    real(dp), intent(out) :: ydot(:)
-    real(dp) :: q(self%n), qd(self%n), qdd(self%n)
-    self%n_rhs = self%n_rhs + 1
-    q = y(1::2)
-    qd = y(2::2)
-    call self%accelerations(t, q, qd, qdd)
-    ydot(1::2) = qd
-    ydot(2::2) = qdd
-  end subroutine model_rhs
-
-  !> Approximate Jacobian for DLSODE's BDF options (MF = 21, 24), as the
-  !> planar model: d(q_d)/dq_d = I, d(q_dd)/dq = -M^-1 K_t,
-  !> d(q_dd)/dq_d = -beta M^-1 K_t (inertial stiffness and gyroscopic terms
-  !> left out: the chord iteration needs an approximation only).
-  subroutine model_jacobian(self, t, y, ml, mu, pd)
-    class(spatial_model_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:)
-    integer, intent(in) :: ml, mu
-    real(dp), intent(inout) :: pd(:, :)
-    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), q(self%n), col(self%n)
-    integer :: j, kd, info
-    logical :: ok
-    call self%set_time(t)
-    q = y(1::2)
-    call self%assemble_dense(q, mass, stiff)
-    ! M is banded and positive definite: banded Cholesky, then M^-1 K column by column
-    kd = self%kd
-    self%t_mass = -huge(1.0_dp)                  ! mass_band is reused here
-    call dense_to_lower_band(mass, kd, self%mass_band)
-    call band_cholesky_inplace(self%mass_band, kd, info)
-    ok = info == 0
-    if (.not. ok) then
-      call self%fail(t, 'mass matrix in the Jacobian is not positive definite')
-      return
-    end if
-    do j = 1, self%n
-      col = stiff(:, j)
-      call band_cholesky_substitute(self%mass_band, kd, col)
-      stiff(:, j) = col                          ! stiff := M^-1 K_t
-    end do
-    call fill_companion_jacobian(stiff, self%el(1)%beta, ml, mu, pd)
-  end subroutine model_jacobian
-
-  ! ------------------------------------------------------------------ Newton matrix
-
-  logical function model_has_newton_matrix(self)
-    class(spatial_model_t), intent(in) :: self
-    model_has_newton_matrix = self%n > 0
-  end function model_has_newton_matrix
-
-  !> DLSODE's Newton matrix P = I - hl0 J for the Jacobian of model_jacobian,
-  !> without forming J: the banded S = M + (hl0 beta + hl0^2) K_t of
-  !> second_order_newton, O(N kd^2) (as the planar mechanism model).
-  subroutine model_newton_factor(self, t, y, hl0, ok)
-    class(spatial_model_t), intent(inout) :: self
-    real(dp), intent(in) :: t, y(:), hl0
-    logical, intent(out) :: ok
-    ok = .false.
-    call self%set_time(t)
-    if (self%err%failed()) return
-    call self%newton%size_for(self%n, self%kd)
-    call self%assemble_band(y(1::2), self%newton%mass, self%newton%stiff)
-    call self%newton%factor(hl0, self%el(1)%beta, ok)
-  end subroutine model_newton_factor
-
-  !> x := P^-1 x with the P of the last model_newton_factor.  P (dq, dv) =
-  !> (r1, r2) is S dv = M r2 - hl0 K_t r1, dq = r1 + hl0 dv (second_order_newton);
-  !> with S = M + c K_t, c = hl0 (beta + hl0), hl0 K_t = (S - M)/(beta + hl0), so
-  !>     dv = S^-1 M (r2 + g r1) - g r1,   g = 1/(beta + hl0):
-  !> one symmetric band product with M instead of M and the general band K_t
-  !> (the same P; r1 is of order hl0 times a rate, so g r1 is a rate and
-  !> nothing cancels).  Banded LU (K_t not symmetric): second_order_newton's solve.
-  subroutine model_newton_solve(self, x)
-    class(spatial_model_t), intent(inout) :: self
-    real(dp), intent(inout) :: x(:)
-    type(error_t) :: err
-    real(dp) :: r1(self%n), dv(self%n), g
-    if (.not. self%newton%cholesky) then
-      call self%newton%solve(x, err)
-      if (err%failed()) call self%fail(0.0_dp, err%text())
-      return
-    end if
-    g = 1.0_dp/(self%el(1)%beta + self%newton%hl0)
-    r1 = x(1::2)
-    dv = x(2::2) + g*r1
-    call symmetric_band_product(self%newton%mass, self%n, self%kd, dv)
-    call band_cholesky_substitute(self%newton%chol, self%kd, dv)
-    dv = dv - g*r1
-    x(2::2) = dv
-    x(1::2) = r1 + self%newton%hl0*dv
-  end subroutine model_newton_solve
-
-  !> a := M a, M symmetric in lower band storage m(1+i-j, j): O(N kd).
-  pure subroutine symmetric_band_product(m, n, kd, a)
-    integer, intent(in) :: n, kd
-    real(dp), intent(in) :: m(kd + 1, n)
-    real(dp), intent(inout) :: a(n)
-    real(dp) :: y(n), s
-    integer :: i, j
-    y = 0.0_dp
-    do j = 1, n
-      s = m(1, j)*a(j)
-      do i = j + 1, min(n, j + kd)
-        y(i) = y(i) + m(1 + i - j, j)*a(j)
-        s = s + m(1 + i - j, j)*a(i)
-      end do
-      y(j) = y(j) + s
-    end do
-    a = y
-  end subroutine symmetric_band_product
-
   !> M (lower band storage, kd+1 rows) and K_t (general band storage,
   !> kb(kd+1+i-j, j) = K(i, j), 2kd+1 rows) at q (current rigid states): O(N).
-  subroutine assemble_band(self, q, mass_lower, stiff_band)
+  subroutine assemble_band(self, q, mass, stiff)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: mass_lower(:, :), stiff_band(:, :)
+    real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
     real(dp) :: me(sdofs, sdofs), ke(sdofs, sdofs)
     integer :: e
-    mass_lower = 0.0_dp
-    stiff_band = 0.0_dp
+    mass = 0.0_dp
+    stiff = 0.0_dp
     do e = 1, size(self%el)
       ! consecutive linear elements of a link with equal M_p and K share the global matrices
       if (.not. self%matrices_as_previous(e)) &
         call spatial_beam_matrices(self%el(e), self%table%gather(e, q), self%rb(e), me, ke)
-      call add_to_newton_bands(mass_lower, stiff_band, self%kd, me, ke, self%table%map(:, e), self%table%coef(:, e))
+      call add_element_newton_bands(self%table, e, me, ke, self%kd, mass, stiff)
     end do
   end subroutine assemble_band
 
@@ -675,7 +555,7 @@ contains
   subroutine assemble_dense(self, q, mass, stiff)
     class(spatial_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
-    real(dp), intent(out) :: mass(:, :), stiff(:, :)
+    real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
     real(dp) :: me(sdofs, sdofs), fe(sdofs), ke(sdofs, sdofs)
     type(spatial_eval_info_t) :: info
     integer :: e, i

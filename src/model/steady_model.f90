@@ -13,14 +13,15 @@ module steady_model
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use linkage, only: mechanism_t, joint_slider_link
+  use linkage, only: mechanism_t
+  use lumped_masses, only: joint_masses_t, counterweights_t, place_joint_masses, place_counterweights
   use kinematics, only: kinematics_t, motion_t
   use material_law, only: ramberg_osgood_t
   use tennant_element, only: tennant_element_t, tennant_options_t, tennant_section_t, frame_state_t, tennant_info_t, &
                              tennant_stress_t, tennant_element_init, tennant_linear_terms, tennant_nonlinear_terms, &
                              tennant_stress_recovery, tennant_local_field, tennant_max_sections, tennant_max_dof
   use correlation_table, only: correlation_table_t, link_end_t
-  use sliding_link, only: mechanism_link_ends
+  use linkage_model_setup, only: start_linkage_model
   use periodic_system, only: periodic_system_t, nonlinear_info_t
   use linalg, only: sym_generalized_eig
   implicit none
@@ -57,10 +58,7 @@ module steady_model
     real(dp) :: cache_t(n_cache) = 0.0_dp
     type(frame_state_t), allocatable :: cache_fs(:, :)
     real(dp) :: t_kin = 0.0_dp                           !< time of the last kinematics solution
-    ! counterweights (module linkage): element carrying each, and J = m |c|^2
-    ! about its ground pivot
-    integer, allocatable :: cw_element(:)
-    real(dp), allocatable :: cw_inertia(:)
+    type(counterweights_t) :: cw                         !< counterweights (module lumped_masses)
     !> a model of the same geometry, joints, driver and speed (one that
     !> differs only in sections or masses) whose rigid-body frames this one
     !> takes at each time instead of solving its own kinematics
@@ -89,26 +87,19 @@ contains
     type(tennant_options_t), intent(in) :: opt
     type(link_sections_t), intent(in) :: sections(:)
     type(error_t), intent(inout) :: err
-    type(link_end_t), allocatable :: ends(:, :)
     type(motion_t) :: m
     type(tennant_section_t), allocatable :: es(:)
     real(dp) :: masses(2)
+    type(joint_masses_t) :: pm
     integer :: k, e, i
-    integer :: n_elem(mech%n_links)
 
     self%moving = .true.
-    allocate(ends(2, mech%n_links))
-    call mechanism_link_ends(mech, ends)
-    n_elem = mech%links(:)%n_elements
-    call self%table%build(n_elem, ends, err, shear_dofs=opt%shear)
-    if (err%failed()) return
-    call self%kin%init(mech, err)
-    if (err%failed()) return
-    call self%kin%solve(0.0_dp, err)
+    call start_linkage_model(mech, self%table, self%kin, err, shear_dofs=opt%shear)
     if (err%failed()) return
     self%omega = mech%driver%omega
 
     allocate(self%el(self%table%n_elements), self%fs(self%table%n_elements))
+    call place_joint_masses(mech, pm)
     do k = 1, mech%n_links
       associate (lk => mech%links(k))
         do i = 1, lk%n_elements
@@ -119,9 +110,8 @@ contains
             call err%add_context('link '''//trim(lk%name)//'''')
             return
           end if
-          masses = 0.0_dp
-          if (i == 1) masses(1) = joint_mass_here(mech, k, 1)
-          if (i == lk%n_elements) masses(2) = joint_mass_here(mech, k, 2)
+          masses(1) = sum(pm%mass, mask=pm%element == e .and. pm%node == 1)
+          masses(2) = sum(pm%mass, mask=pm%element == e .and. pm%node == 2)
           call tennant_element_init(self%el(e), m%length, es, ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), opt, &
                                     err, node_mass=masses, sliding=lk%sliding, fibre_ratio=lk%fibre/(0.5_dp*lk%h))
           if (err%failed()) then
@@ -134,18 +124,8 @@ contains
     call finish_init(self)
     ! a counterweight on an arm clamped to the link at its ground pivot
     ! turns with the end's angle phi + w_x: kinetic energy J (phi_d + w_x_d)^2 / 2
-    allocate(self%cw_element(0), self%cw_inertia(0))
-    do k = 1, mech%n_links
-      associate (lk => mech%links(k))
-        if (.not. lk%cw_mass > 0.0_dp) cycle
-        if (lk%sliding) then
-          call err%set('counterweight', 'a counterweight on a link sliding through a sleeve is not modelled')
-          return
-        end if
-        self%cw_element = [self%cw_element, lk%first_element]
-        self%cw_inertia = [self%cw_inertia, lk%cw_mass*(lk%cw_x**2 + lk%cw_y**2)]
-      end associate
-    end do
+    call place_counterweights(mech, self%cw, err)
+    if (err%failed()) return
     self%t_kin = 0.0_dp
     call self%set_time(0.0_dp, err)
   end subroutine init_mechanism
@@ -190,22 +170,6 @@ contains
     allocate(self%cache_fs(ne, n_cache))
   end subroutine finish_init
 
-
-  !> A lumped joint mass goes to one link end at the joint: the first one
-  !> that is not the sliding link of a sleeve (a ground sleeve does not move).
-  real(dp) function joint_mass_here(mech, k, side) result(mass)
-    type(mechanism_t), intent(in) :: mech
-    integer, intent(in) :: k, side
-    integer :: j, i
-    mass = 0.0_dp
-    j = mech%links(k)%joint(side)
-    if (.not. mech%joints(j)%mass > 0.0_dp) return
-    do i = 1, mech%joints(j)%n_links
-      if (mech%joints(j)%kind == joint_slider_link .and. mech%joints(j)%link(i) == mech%joints(j)%sliding_link) cycle
-      if (mech%joints(j)%link(i) == k .and. mech%joints(j)%link_end(i) == side) mass = mech%joints(j)%mass
-      return
-    end do
-  end function joint_mass_here
 
   !> Sections of element i of n of a link, in the element's own fractions.
   subroutine element_sections(ls, b, h, i, n, es, err)
@@ -343,7 +307,7 @@ contains
         call self%table%scatter_add(e, fe, force)
       end if
     end do
-    if (allocated(self%cw_element)) call add_counterweights(self, mass, force)
+    if (allocated(self%cw%element)) call add_counterweights(self, mass, force)
   end subroutine model_linear_terms
 
   !> Lagrange's equation of the end slope w_x of a counterweight's link gets
@@ -354,12 +318,12 @@ contains
     real(dp), intent(inout) :: mass(:, :), force(:)
     real(dp) :: me(tennant_max_dof, tennant_max_dof), fe(tennant_max_dof)
     integer :: k, e
-    do k = 1, size(self%cw_element)
-      e = self%cw_element(k)
+    do k = 1, size(self%cw%element)
+      e = self%cw%element(k)
       me = 0.0_dp
       fe = 0.0_dp
-      me(3, 3) = self%cw_inertia(k)
-      fe(3) = -self%cw_inertia(k)*self%fs(e)%phi_dd
+      me(3, 3) = self%cw%inertia(k)
+      fe(3) = -self%cw%inertia(k)*self%fs(e)%phi_dd
       call self%table%scatter_add_matrix(e, me, mass)
       call self%table%scatter_add(e, fe, force)
     end do

@@ -38,6 +38,7 @@ module second_order_newton
     integer, allocatable :: damper_dofs(:, :)  !< (4, k) their DOFs (0: ground)
     real(dp), allocatable :: r1(:), r2(:), dv(:)   !< work of solve
     real(dp) :: hl0 = 0.0_dp                !< h*el0 of the last factorization
+    real(dp) :: beta = 0.0_dp               !< beta of the last factorization
     logical :: cholesky = .true.            !< S was factored by Cholesky (else banded LU)
     integer :: n_factorizations = 0
     integer :: n_lu = 0                     !< of which by banded LU
@@ -78,6 +79,7 @@ contains
     n = self%n
     c = hl0*beta + hl0**2
     self%hl0 = hl0
+    self%beta = beta
     self%n_factorizations = self%n_factorizations + 1
     if (present(symmetric)) then
       self%cholesky = symmetric
@@ -127,24 +129,58 @@ contains
   !> x := P^-1 x.  With x = (r1, r2) (displacement and rate rows, interleaved),
   !> P (dq, dv) = (r1, r2) is dq - hl0 dv = r1, dv + hl0 M^-1 (K_t dq + beta K_t dv) = r2:
   !>     S dv = M r2 - hl0 K_t r1,   dq = r1 + hl0 dv.
+  !> With S = M + c K_t, c = hl0 (beta + hl0) and no dampers, hl0 K_t =
+  !> (S - M)/(beta + hl0), so
+  !>     dv = S^-1 M (r2 + g r1) - g r1,   g = 1/(beta + hl0):
+  !> one symmetric band product with M instead of M and the general band K_t
+  !> (the same P; r1 is of order hl0 times a rate, so g r1 is a rate and
+  !> nothing cancels).  This is taken when S was factored by Cholesky.
   subroutine solve(self, x, err)
     class(second_order_newton_t), intent(inout) :: self
     real(dp), intent(inout) :: x(:)
     type(error_t), intent(inout) :: err
+    real(dp) :: g
     associate(r1 => self%r1, r2 => self%r2, dv => self%dv)
     r1 = x(1::2)
-    r2 = x(2::2)
-    call band_combination(self%mass, self%stiff, self%kd, r2, self%hl0, r1, dv)
-    if (self%cholesky) then
+    if (self%cholesky .and. .not. allocated(self%damper)) then
+      g = 1.0_dp/(self%beta + self%hl0)
+      r2 = x(2::2) + g*r1
+      call symmetric_band_product(self%mass, self%n, self%kd, r2, dv)
       call band_cholesky_substitute(self%chol, self%kd, dv)
+      dv = dv - g*r1
     else
-      call band_lu_solve(self%lu, self%kd, self%kd, self%ipiv, dv, err)
+      r2 = x(2::2)
+      call band_combination(self%mass, self%stiff, self%kd, r2, self%hl0, r1, dv)
+      if (self%cholesky) then
+        call band_cholesky_substitute(self%chol, self%kd, dv)
+      else
+        call band_lu_solve(self%lu, self%kd, self%kd, self%ipiv, dv, err)
+      end if
+      if (err%failed()) call err%add_context('Newton matrix solve')
     end if
-    if (err%failed()) call err%add_context('Newton matrix solve')
     x(2::2) = dv
     x(1::2) = r1 + self%hl0*dv
     end associate
   end subroutine solve
+
+  !> y = M a, M symmetric in lower band storage m(1+i-j, j): O(N kd).
+  pure subroutine symmetric_band_product(m, n, kd, a, y)
+    integer, intent(in) :: n, kd
+    real(dp), intent(in) :: m(kd + 1, n)
+    real(dp), intent(in) :: a(n)
+    real(dp), intent(out) :: y(n)
+    real(dp) :: s
+    integer :: i, j
+    y = 0.0_dp
+    do j = 1, n
+      s = m(1, j)*a(j)
+      do i = j + 1, min(n, j + kd)
+        y(i) = y(i) + m(1 + i - j, j)*a(j)
+        s = s + m(1 + i - j, j)*a(i)
+      end do
+      y(j) = y(j) + s
+    end do
+  end subroutine symmetric_band_product
 
   !> Whether a band matrix in general band storage (half-bandwidth kd) is
   !> symmetric to round-off (1e-10 of its largest entry).
