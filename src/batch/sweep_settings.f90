@@ -23,8 +23,9 @@ module sweep_settings
   integer, parameter :: max_sweep_values = 1000
   integer, parameter :: name_len = 64
   !> Groups whose variables a sweep may vary.
-  character(len=16), parameter :: sweep_groups(9) = [character(len=16) :: 'mechanism', 'transient', &
-    'effects', 'steady', 'tennant', 'optimize', 'problem_data', 'design', 'lsode_check']
+  character(len=20), parameter :: sweep_groups(15) = [character(len=20) :: 'mechanism', 'transient', &
+    'effects', 'loads', 'clearance', 'steady', 'tennant', 'optimize', 'problem_data', 'design', 'lsode_check', &
+    'spatial_mechanism', 'spatial_loads', 'general_mechanism', 'kinematics']
 
   real(dp), parameter :: unset = huge(1.0_dp)   !< values, first, last not given
 

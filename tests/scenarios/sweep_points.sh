@@ -15,6 +15,7 @@
 #  2. link_n_elements(1:3) = 2 gives 6 elements (columns sigma_max_e1..e6).
 #  3. several decks on one command line: one table of exit statuses, exit 3
 #     when one of them fails.
+#  4. a group of the general mechanism (&general_mechanism driver_rate).
 # usage: sweep_points.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 flexmech=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); compare=$2; work=$3
@@ -47,6 +48,17 @@ EOD
 "$flexmech" "$work/mesh.nml" -o "$work/mesh.out" > /dev/null 2>&1 || { echo "FAIL: mesh sweep failed"; fail=1; }
 grep -q 'sigma_max_e6' "$work/mesh_points/mesh_002.out" || { echo "FAIL: link_n_elements(1:3) = 2 did not give 6 elements"; fail=1; }
 grep -q 'sigma_max_e4' "$work/mesh_points/mesh_001.out" && { echo "FAIL: 1 element per link gave more than 3 elements"; fail=1; }
+
+# 4. a group of the general mechanism: the crank rate of the rigid four-bar, each point's deck
+#    carrying its value
+cp inputs/kinematics_fourbar.nml "$work/rates.nml"
+cat >> "$work/rates.nml" <<'EOD'
+&sweep group = 'general_mechanism', variable = 'driver_rate', values = 100, 200 /
+EOD
+"$flexmech" "$work/rates.nml" -o "$work/rates.out" > /dev/null 2>&1 || { echo "FAIL: general_mechanism sweep failed"; fail=1; }
+rows=$(grep -v '^#' "$work/rates.out" | awk '{printf "%g:%d ", $1, $2}')
+[ "$rows" = "100:0 200:0 " ] || { echo "FAIL: general_mechanism sweep rows '$rows', expected '100:0 200:0 '"; fail=1; }
+grep -q 'driver_rate = 200' "$work/rates_points/rates_002.nml" || { echo "FAIL: point 2's deck lacks driver_rate = 200"; fail=1; }
 
 cp inputs/lsode_kinetics.nml "$work/good.nml"
 sed 's/rtol = .*/rtol = -1.0/' inputs/lsode_kinetics.nml > "$work/bad.nml"
