@@ -233,6 +233,10 @@ contains
     l = ''
     if (a > 0) l = deck%lines(i)%text(a:len_trim(scanned))
     if (len(l) > shown_chars) l = l(1:shown_chars)//' ... ('//str(len(l))//' characters)'
+    ! a control character (a stray byte in the file) shown as '?', not sent to the terminal
+    do a = 1, len(l)
+      if (iachar(l(a:a)) < 32 .or. iachar(l(a:a)) == 127) l(a:a) = '?'
+    end do
   end function shown_line
 
   subroutine deck_close(self)

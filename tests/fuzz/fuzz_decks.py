@@ -376,7 +376,9 @@ def classify(status, stderr, out_path, deck_path):
     if status == 2:
         if os.path.exists(out_path):
             found.append(('leftover', 'output file after exit 2'))
-        msgs = [l for l in err.splitlines() if l.startswith('flexmech:')] or ['']
+        # lines end at '\n' only: str.splitlines would also break at the bytes 0x1c-0x1e and 0x85
+        # that a mutated deck's non-ASCII text can hold (stderr is read as latin-1)
+        msgs = [l for l in err.split('\n') if l.startswith('flexmech:')] or ['']
         first = msgs[0]
         if "deck '" not in first or 'group &' not in first:
             found.append(('no_context', first[:200]))
