@@ -26,8 +26,8 @@ module spatial_analysis
   use spatial_kinematics, only: spatial_fourbar_t
   use spatial_model, only: spatial_model_t, spatial_link_t
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
-  use spatial_external_loads, only: spatial_loads_input_t, spatial_point_load_t, read_spatial_loads, resolve_spatial_loads, &
-                           spatial_loads_group
+  use spatial_external_loads, only: spatial_loads_input_t, spatial_point_load_t, resolve_spatial_loads
+  use spatial_loads_settings, only: read_spatial_loads, echo_spatial_loads
   implicit none
   private
   public :: run_spatial
@@ -78,7 +78,7 @@ contains
     end if
     call out%echo_group(spatial_mechanism_group)
     call echo_transient_settings(out)
-    if (has_loads) call out%echo_group(spatial_loads_group)
+    if (has_loads) call echo_spatial_loads(loads, out)
     call build_spatial(deck, inp, kin, links, jb, jc, err)
     if (err%failed()) return
     call model%init(kin, inp%omega, inp%theta0_deg*pi/180.0_dp, jb, jc, links, s%effects, s%damping_beta, err, &

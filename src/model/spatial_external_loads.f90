@@ -1,5 +1,5 @@
-!> External loads of the spatial analysis (deck group &spatial_loads,
-!> doc/spatial.md, "Loads"): gravity along a direction, and constant point
+!> External loads of the spatial analysis (deck group &spatial_loads, read by
+!> spatial_loads_settings; doc/spatial.md, "Loads"): gravity along a direction, and constant point
 !> forces and moments at the joints B, C and at nodes of the links; and the
 !> choice of a static start.
 !>
@@ -17,12 +17,10 @@ module spatial_external_loads
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, group_read_t
-  use deck_checks, only: check_real, check_reals, check_integer, check_choice
+  use deck_reader, only: deck_t, invalid_value
   implicit none
   private
-  public :: spatial_point_load_t, spatial_loads_input_t, read_spatial_loads, resolve_spatial_loads, &
-            spatial_loads_group, max_spatial_loads
+  public :: spatial_point_load_t, spatial_loads_input_t, resolve_spatial_loads, max_spatial_loads, load_link_names
 
   integer, parameter :: max_spatial_loads = 20
 
@@ -35,77 +33,23 @@ module spatial_external_loads
     real(dp) :: moment(3) = 0.0_dp
   end type spatial_point_load_t
 
-  !> The group as given; the defaults are those of set_defaults.
+  !> The group as given, with the documented defaults (doc/spatial.md): no
+  !> gravity, no loads, the start of &transient.  Read, checked and echoed by
+  !> src/analysis/spatial_loads_settings.f90.
   type :: spatial_loads_input_t
-    real(dp) :: gravity_g
-    real(dp) :: gravity_direction(3)
-    logical :: initial_static
-    integer :: n_loads
-    character(len=16) :: load_joint(max_spatial_loads), load_link(max_spatial_loads)
-    real(dp) :: load_position(max_spatial_loads)
-    real(dp) :: load_force(3, max_spatial_loads), load_moment(3, max_spatial_loads)
+    real(dp) :: gravity_g = 0.0_dp
+    real(dp) :: gravity_direction(3) = [0.0_dp, 0.0_dp, -1.0_dp]
+    logical :: initial_static = .false.
+    integer :: n_loads = 0
+    character(len=16) :: load_joint(max_spatial_loads) = '', load_link(max_spatial_loads) = ''
+    real(dp) :: load_position(max_spatial_loads) = 1.0_dp
+    real(dp) :: load_force(3, max_spatial_loads) = 0.0_dp, load_moment(3, max_spatial_loads) = 0.0_dp
   end type spatial_loads_input_t
 
-  ! namelist staging variables
-  real(dp) :: gravity_g, gravity_direction(3), load_position(max_spatial_loads)
-  real(dp) :: load_force(3, max_spatial_loads), load_moment(3, max_spatial_loads)
-  logical :: initial_static
-  integer :: n_loads
-  character(len=16) :: load_joint(max_spatial_loads), load_link(max_spatial_loads)
-  namelist /spatial_loads/ gravity_g, gravity_direction, initial_static, n_loads, load_joint, load_link, &
-    load_position, load_force, load_moment
-
   character(len=*), parameter :: g = 'spatial_loads'
-  character(len=16), parameter :: link_choices(3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
+  character(len=16), parameter :: load_link_names(3) = [character(len=16) :: 'crank', 'coupler', 'rocker']
 
 contains
-
-  !> Read and check &spatial_loads (optional; without it: no loads, the start of &transient).
-  subroutine read_spatial_loads(deck, inp, found, err)
-    type(deck_t), intent(inout) :: deck
-    type(spatial_loads_input_t), intent(out) :: inp
-    logical, intent(out) :: found
-    type(error_t), intent(inout) :: err
-    integer :: k, n
-    real(dp) :: flat(3*max_spatial_loads)
-    call set_defaults()
-    call deck%read_group(g, spatial_loads_group, .false., found, err)
-    if (err%failed()) return
-    inp = spatial_loads_input_t(gravity_g, gravity_direction, initial_static, n_loads, load_joint, load_link, &
-                                load_position, load_force, load_moment)
-    call check_real(deck, g, 'gravity_g', inp%gravity_g, err, at_least=0.0_dp, at_most=1.0e6_dp, &
-                    why='the magnitude of the gravity acceleration (386.09 in/s^2)')
-    call check_reals(deck, g, 'gravity_direction', inp%gravity_direction, err, at_least=-1.0e6_dp, at_most=1.0e6_dp)
-    if (.not. err%failed() .and. inp%gravity_g > 0.0_dp) then
-      if (.not. norm2(inp%gravity_direction) > 1.0e-12_dp) &
-        call invalid_value(deck, g, 'gravity_direction', str(norm2(inp%gravity_direction)), &
-                           'must be a nonzero direction when gravity_g > 0', err)
-    end if
-    call check_integer(deck, g, 'n_loads', inp%n_loads, err, at_least=0, at_most=max_spatial_loads)
-    if (err%failed()) return
-    n = inp%n_loads
-    call check_reals(deck, g, 'load_position', inp%load_position(1:n), err, at_least=0.0_dp, at_most=1.0_dp, &
-                     why='a fraction of the link length from its end 1')
-    flat(1:3*n) = reshape(inp%load_force(:, 1:n), [3*n])
-    call check_reals(deck, g, 'load_force', flat(1:3*n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
-    flat(1:3*n) = reshape(inp%load_moment(:, 1:n), [3*n])
-    call check_reals(deck, g, 'load_moment', flat(1:3*n), err, at_least=-1.0e12_dp, at_most=1.0e12_dp)
-    do k = 1, n
-      if (err%failed()) return
-      if (len_trim(inp%load_joint(k)) > 0) &
-        call check_choice(deck, g, 'load_joint', inp%load_joint(k), [character(len=16) :: 'B', 'C'], err)
-      if (len_trim(inp%load_link(k)) > 0) call check_choice(deck, g, 'load_link', inp%load_link(k), link_choices, err)
-      if (err%failed()) return
-      if (len_trim(inp%load_joint(k)) == 0 .and. len_trim(inp%load_link(k)) == 0) then
-        call invalid_value(deck, g, 'load_link('//str(k)//')', '''''', 'give load_joint (B or C) or load_link '// &
-                           '(crank, coupler or rocker, with load_position) for every load', err)
-      else if (inp%load_joint(k) == 'B' .and. inp%load_link(k) == 'rocker') then
-        call invalid_value(deck, g, 'load_link('//str(k)//')', 'rocker', 'joint B joins the crank and the coupler', err)
-      else if (inp%load_joint(k) == 'C' .and. inp%load_link(k) == 'crank') then
-        call invalid_value(deck, g, 'load_link('//str(k)//')', 'crank', 'joint C joins the coupler and the rocker', err)
-      end if
-    end do
-  end subroutine read_spatial_loads
 
   !> The loads on the elements: gravity vector (in/s^2) and point loads.
   !> n_elements(k), first_element(k): the links' elements.  A position off the
@@ -128,12 +72,12 @@ contains
       node = nint(xn)
       if (abs(xn - node) > 1.0e-9_dp) then
         call invalid_value(deck, g, 'load_position('//str(k)//')', str(s), 'is not at a node of the '// &
-                           trim(link_choices(lk))//' ('//str(n_elements(lk))//' elements): loads act at nodes; '// &
+                           trim(load_link_names(lk))//' ('//str(n_elements(lk))//' elements): loads act at nodes; '// &
                            'choose link_n_elements to place one there', err)
         return
       end if
       if (node == 0 .and. lk /= 2) then
-        call invalid_value(deck, g, 'load_position('//str(k)//')', str(s), 'is the '//trim(link_choices(lk))// &
+        call invalid_value(deck, g, 'load_position('//str(k)//')', str(s), 'is the '//trim(load_link_names(lk))// &
                            '''s support, which takes the load directly: give a position > 0', err)
         return
       end if
@@ -153,7 +97,7 @@ contains
     integer, intent(in) :: k
     integer, intent(out) :: lk
     real(dp), intent(out) :: s
-    lk = findloc(link_choices, inp%load_link(k), 1)
+    lk = findloc(load_link_names, inp%load_link(k), 1)
     s = inp%load_position(k)
     select case (trim(inp%load_joint(k)))
     case ('B')
@@ -165,26 +109,4 @@ contains
     end select
   end subroutine load_place
 
-  !> The documented defaults (doc/spatial.md): no gravity, no loads, the start of &transient.
-  subroutine set_defaults()
-    gravity_g = 0.0_dp
-    gravity_direction = [0.0_dp, 0.0_dp, -1.0_dp]
-    initial_static = .false.
-    n_loads = 0
-    load_joint = ''
-    load_link = ''
-    load_position = 1.0_dp
-    load_force = 0.0_dp
-    load_moment = 0.0_dp
-  end subroutine set_defaults
-
-  !> The &spatial_loads group's namelist read and write (deck_reader, table_t%echo_group).
-  subroutine spatial_loads_group(r)
-    type(group_read_t), intent(inout) :: r
-    if (r%writing) then
-      write(r%unit, nml=spatial_loads, delim='apostrophe')
-    else
-      read(r%unit, nml=spatial_loads, iostat=r%ios, iomsg=r%iomsg)
-    end if
-  end subroutine spatial_loads_group
 end module spatial_external_loads

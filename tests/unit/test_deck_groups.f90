@@ -19,6 +19,8 @@ module test_deck_groups_suite
   use deck_problem, only: problem_data_t
   use problem_data_settings, only: read_problem_data, echo_problem_data
   use sweep_settings, only: sweep_settings_t, read_sweep_settings, echo_sweep_settings
+  use spatial_external_loads, only: spatial_loads_input_t
+  use spatial_loads_settings, only: read_spatial_loads, echo_spatial_loads
   use assertions
   implicit none
   private
@@ -42,6 +44,7 @@ contains
     call run_test('transient_deck_echo_reads_back', test_transient_echo)
     call run_test('optimize_and_problem_data_echo_reads_back', test_optimize_echo)
     call run_test('sweep_echo_reads_back_as_values', test_sweep_echo)
+    call run_test('spatial_loads_echo_reads_back', test_spatial_loads_echo)
     call run_test('checks_across_groups_are_input_errors', test_across_groups)
   end subroutine run_all
 
@@ -189,6 +192,52 @@ contains
     call echo_problem_data(d, out)
     call close_echo(out, echo, err)
   end subroutine optimize_echo
+
+  !> &spatial_loads: its echo reads back to the same values and echo; a deck
+  !> without the group gets the documented defaults, whatever the deck before gave.
+  subroutine test_spatial_loads_echo()
+    character(len=:), allocatable :: echo1, echo2
+    type(spatial_loads_input_t) :: l
+    type(error_t) :: err
+    logical :: found
+    call spatial_loads_echo("&spatial_loads gravity_g = 386.09, gravity_direction = 0, -1, 0, initial_static = T, "// &
+                            "n_loads = 2, load_joint(1) = 'B', load_force(:,1) = 1, 2, 3, load_link(2) = 'coupler', "// &
+                            "load_position(2) = 0.5, load_moment(:,2) = 0, 0, -4 /", echo1, l, found, err)
+    call assert_true(.not. err%failed() .and. found, 'read: '//err%text())
+    call spatial_loads_echo(echo1, echo2, l, found, err)
+    call assert_true(.not. err%failed(), 'the echo reads back: '//err%text())
+    call assert_equal(echo2, echo1, 'echo of the echo')
+    call assert_true(l%initial_static .and. l%n_loads == 2, 'initial_static, n_loads')
+    call assert_all_close(l%gravity_direction, [0.0_dp, -1.0_dp, 0.0_dp], 0.0_dp, 0.0_dp, 'gravity_direction')
+    call assert_all_close(l%load_force(:, 1), [1.0_dp, 2.0_dp, 3.0_dp], 0.0_dp, 0.0_dp, 'load_force(:,1)')
+    call assert_close(l%load_moment(3, 2), -4.0_dp, 0.0_dp, 'load_moment(3,2)')
+    call assert_equal(trim(l%load_link(2)), 'coupler', 'load_link(2)')
+    call spatial_loads_echo("&spatial_loads n_loads = 0 /", echo1, l, found, err)
+    call assert_true(.not. err%failed(), 'read: '//err%text())
+    call assert_true(.not. l%initial_static .and. .not. l%gravity_g > 0.0_dp, 'initial_static, gravity_g defaults')
+    call assert_all_close(l%gravity_direction, [0.0_dp, 0.0_dp, -1.0_dp], 0.0_dp, 0.0_dp, 'gravity_direction default')
+    call assert_close(l%load_position(2) + sum(abs(l%load_force)) + sum(abs(l%load_moment)), 1.0_dp, 0.0_dp, &
+                      'position 1, no forces or moments')
+    call assert_true(len_trim(l%load_joint(1)) + len_trim(l%load_link(2)) == 0, 'load_joint, load_link defaults')
+  end subroutine test_spatial_loads_echo
+
+  !> Read &spatial_loads and echo it as a deck text.
+  subroutine spatial_loads_echo(text, echo, l, found, err)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable, intent(out) :: echo
+    type(spatial_loads_input_t), intent(out) :: l
+    logical, intent(out) :: found
+    type(error_t), intent(inout) :: err
+    type(deck_t) :: deck
+    type(table_t) :: out
+    found = .false.
+    call open_text(text, deck, echo, err)
+    if (.not. err%failed()) call read_spatial_loads(deck, l, found, err)
+    call close_text_open_echo(deck, out, err)
+    if (err%failed()) return
+    call echo_spatial_loads(l, out)
+    call close_echo(out, echo, err)
+  end subroutine spatial_loads_echo
 
   !> Read &sweep and echo it as a deck text.
   subroutine sweep_echo(text, echo, s, err)
