@@ -98,16 +98,17 @@ def kind(name):
     return '_'.join(words[1:]) if len(words) > 1 else words[0]
 
 
-def worst_peak(ref, new):
-    """(largest relative peak difference, its column) over the columns both tables have."""
+def worst_peak(ref, new, kind_of=kind):
+    """(largest relative peak difference, its column) over the columns both tables have; kind_of(name)
+    names the columns a column is scaled with."""
     largest, table_peak = {}, max(ref.values(), default=0.0)
     for name, p in ref.items():
-        largest[kind(name)] = max(largest.get(kind(name), 0.0), p)
+        largest[kind_of(name)] = max(largest.get(kind_of(name), 0.0), p)
     worst, where = 0.0, ''
     for name, p in ref.items():
         if name not in new:
             return float('inf'), name + ' missing'
-        scale = max(p, 0.01 * largest[kind(name)])
+        scale = max(p, 0.01 * largest[kind_of(name)])
         if scale <= 1.0e-10 * table_peak:     # round-off (out-of-plane columns of a planar motion)
             continue
         d = abs(new[name] - p) / scale

@@ -21,6 +21,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import default_settings  # noqa: E402
 from default_settings import read_table  # noqa: E402
 
 LINKS = ('crank', 'coupler', 'rocker')
@@ -57,21 +58,8 @@ def kind(name):
 
 
 def worst_peak(ref, new):
-    """(largest relative peak difference, its column) over the reference's columns."""
-    largest = {}
-    for name, p in ref.items():
-        largest[kind(name)] = max(largest.get(kind(name), 0.0), p)
-    worst, where = 0.0, ''
-    for name, p in ref.items():
-        if name not in new:
-            return float('inf'), name + ' missing'
-        scale = max(p, 0.01 * largest[kind(name)])
-        if scale <= 0.0:
-            continue
-        d = abs(new[name] - p) / scale
-        if d > worst:
-            worst, where = d, name
-    return worst, where
+    """(largest relative peak difference, its column): tools/default_settings.py's, with the kinds above."""
+    return default_settings.worst_peak(ref, new, kind)
 
 
 def link_peaks(path, counts, last_turn=False):

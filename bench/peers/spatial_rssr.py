@@ -81,11 +81,11 @@ def rigid_pose(theta):
     return b, c, [frame(b, zg), frame(c - b, zg), frame(c - D_PIVOT, np.array([1.0, 0.0, 0.0]))]
 
 
-def rigid_rates(theta, omega):
-    """Velocities of B, C and the links' angular velocities (global), by central differences."""
+def rigid_rates(theta, omega, pose=rigid_pose):
+    """Velocities of B, C and the links' angular velocities (global), by central differences of pose."""
     h = 1.0e-6
-    bp, cp, rp = rigid_pose(theta + h)
-    bm, cm, rm = rigid_pose(theta - h)
+    bp, cp, rp = pose(theta + h)
+    bm, cm, rm = pose(theta - h)
     vb, vc = omega * (bp - bm) / (2 * h), omega * (cp - cm) / (2 * h)
     ws = []
     for k in range(3):
@@ -97,14 +97,66 @@ def rigid_rates(theta, omega):
 
 
 # ------------------------------------------------------------------ Exudyn
+def add_link(mbs, sec, n, p, q, rot, vp, w):
+    """n beam elements from p to q in the frame rot, rigid velocity vp at p and angular velocity w."""
+    from exudyn.itemInterface import NodeRigidBodyEP, ObjectBeamGeometricallyExact
+    from exudyn.rigidBodyUtilities import RotationMatrix2EulerParameters, AngularVelocity2EulerParameters_t
+    ep = list(RotationMatrix2EulerParameters(rot))
+    epd = list(AngularVelocity2EulerParameters_t(w, ep))
+    nodes, beams = [], []
+    for k in range(n + 1):
+        x = p + (q - p) * k / n
+        v = vp + np.cross(w, x - p)
+        nodes.append(mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=list(x) + ep,
+                                                 initialVelocities=list(v) + epd)))
+    le = np.linalg.norm(q - p) / n
+    for k in range(n):
+        beams.append(mbs.AddObject(ObjectBeamGeometricallyExact(nodeNumbers=[nodes[k], nodes[k + 1]],
+                                                                length=le, sectionData=sec)))
+    return nodes, beams
+
+
+def add_driven_clamp(mbs, node, omega):
+    """The crank's shaft at the origin: a hub whose rotations x, y are held and whose rate about Z is held
+    at omega, clamped to node; (the clamp's object number, the hub's node number, a ground coordinate marker)."""
+    from exudyn.itemInterface import (NodeRigidBodyRxyz, ObjectRigidBody, MarkerNodeCoordinate, MarkerNodeRigid,
+                                      MarkerBodyRigid, ObjectJointGeneric, CoordinateConstraint, NodePointGround)
+    ground_node = mbs.AddNode(NodePointGround())
+    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
+    hub = mbs.AddNode(NodeRigidBodyRxyz(referenceCoordinates=[0.0] * 6, initialVelocities=[0, 0, 0, 0, 0, omega]))
+    hub_body = mbs.AddObject(ObjectRigidBody(nodeNumber=hub, mass=1.0, inertia=[1.0, 1.0, 1.0, 0, 0, 0]))
+    for k in range(6):
+        mbs.AddObject(CoordinateConstraint(
+            markerNumbers=[mg, mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=hub, coordinate=k))],
+            offset=omega if k == 5 else 0.0, velocityLevel=(k == 5)))
+    clamp = mbs.AddObject(ObjectJointGeneric(markerNumbers=[
+        mbs.AddMarker(MarkerBodyRigid(bodyNumber=hub_body, localPosition=[0, 0, 0])),
+        mbs.AddMarker(MarkerNodeRigid(nodeNumber=node))], constrainedAxes=[1] * 6))
+    return clamp, hub
+
+
+def solve(mbs, end_time, steps, write_period, newton_rtol):
+    """Generalized-alpha over [0, end_time] at a fixed step (its defaults, modified Newton, sparse solver)."""
+    import exudyn as exu
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime = end_time
+    ss.timeIntegration.numberOfSteps = steps
+    ss.timeIntegration.verboseMode = int(os.environ.get("EXUDYN_VERBOSE", "0"))
+    ss.timeIntegration.newton.relativeTolerance = newton_rtol
+    ss.timeIntegration.newton.useModifiedNewton = True
+    ss.linearSolver.solverType = exu.LinearSolverType.EigenSparse
+    ss.solution.file.write = False
+    ss.solution.sensors.writePeriod = write_period
+    ss.show.computationTime = False
+    ss.show.statistics = False
+    exu.SolveDynamic(mbs, ss)
+
+
 def exudyn_case(n, steps_per_turn, turns):
     import exudyn as exu
-    from exudyn.itemInterface import (NodeRigidBodyEP, NodeRigidBodyRxyz, ObjectBeamGeometricallyExact,
-                                      ObjectGround, ObjectRigidBody, MarkerNodeCoordinate, MarkerNodeRigid,
-                                      MarkerNodePosition, MarkerBodyRigid, ObjectJointGeneric,
-                                      ObjectJointRevoluteZ, ObjectJointSpherical, CoordinateConstraint,
-                                      NodePointGround, SensorNode, SensorObject, SensorBody)
-    from exudyn.rigidBodyUtilities import RotationMatrix2EulerParameters, AngularVelocity2EulerParameters_t
+    from exudyn.itemInterface import (ObjectGround, MarkerNodeRigid, MarkerNodePosition, MarkerBodyRigid,
+                                      ObjectJointRevoluteZ, ObjectJointSpherical, SensorNode, SensorObject,
+                                      SensorBody)
 
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
@@ -118,40 +170,13 @@ def exudyn_case(n, steps_per_turn, turns):
     sec.massPerLength = RHO * AREA
     sec.inertia = np.diag([RHO * 2 * INERTIA, RHO * INERTIA, RHO * INERTIA])
 
-    def link(p, q, rot, vp, w):
-        """n beam elements from p to q in the frame rot, rigid velocity vp at p and angular velocity w."""
-        ep = list(RotationMatrix2EulerParameters(rot))
-        epd = list(AngularVelocity2EulerParameters_t(w, ep))
-        nodes, beams = [], []
-        for k in range(n + 1):
-            x = p + (q - p) * k / n
-            v = vp + np.cross(w, x - p)
-            nodes.append(mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=list(x) + ep,
-                                                           initialVelocities=list(v) + epd)))
-        le = np.linalg.norm(q - p) / n
-        for k in range(n):
-            beams.append(mbs.AddObject(ObjectBeamGeometricallyExact(nodeNumbers=[nodes[k], nodes[k + 1]],
-                                                                    length=le, sectionData=sec)))
-        return nodes, beams
-
     origin = np.zeros(3)
-    crank, _ = link(origin, b, frames[0], origin, ws[0])
-    coupler, coupler_beams = link(b, c, frames[1], vb, ws[1])
-    rocker, _ = link(D_PIVOT, c, frames[2], origin, ws[2])
+    crank, _ = add_link(mbs, sec, n, origin, b, frames[0], origin, ws[0])
+    coupler, coupler_beams = add_link(mbs, sec, n, b, c, frames[1], vb, ws[1])
+    rocker, _ = add_link(mbs, sec, n, D_PIVOT, c, frames[2], origin, ws[2])
 
     ground = mbs.AddObject(ObjectGround())
-    ground_node = mbs.AddNode(NodePointGround())
-    mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground_node, coordinate=0))
-    # the crank's shaft: a hub at A, rotations x, y held, rate about Z held at omega
-    hub = mbs.AddNode(NodeRigidBodyRxyz(referenceCoordinates=[0.0] * 6, initialVelocities=[0, 0, 0, 0, 0, OMEGA]))
-    hub_body = mbs.AddObject(ObjectRigidBody(nodeNumber=hub, mass=1.0, inertia=[1.0, 1.0, 1.0, 0, 0, 0]))
-    for k in range(6):
-        mbs.AddObject(CoordinateConstraint(
-            markerNumbers=[mg, mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=hub, coordinate=k))],
-            offset=OMEGA if k == 5 else 0.0, velocityLevel=(k == 5)))
-    clamp = mbs.AddObject(ObjectJointGeneric(markerNumbers=[
-        mbs.AddMarker(MarkerBodyRigid(bodyNumber=hub_body, localPosition=[0, 0, 0])),
-        mbs.AddMarker(MarkerNodeRigid(nodeNumber=crank[0]))], constrainedAxes=[1] * 6))
+    clamp, hub = add_driven_clamp(mbs, crank[0], OMEGA)
     # the rocker's shaft: a revolute joint about X at D (the joint's z is the rocker frame's z)
     to_x = np.column_stack([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
     pivot = mbs.AddObject(ObjectJointRevoluteZ(markerNumbers=[
@@ -177,18 +202,7 @@ def exudyn_case(n, steps_per_turn, turns):
                    outputVariableType=exu.OutputVariableType.ForceLocal) for e in coupler_beams]
     mbs.Assemble()
 
-    ss = exu.SimulationSettings()
-    ss.timeIntegration.endTime = turns * period
-    ss.timeIntegration.numberOfSteps = turns * steps_per_turn
-    ss.timeIntegration.verboseMode = int(os.environ.get("EXUDYN_VERBOSE", "0"))
-    ss.timeIntegration.newton.relativeTolerance = NEWTON_RTOL
-    ss.timeIntegration.newton.useModifiedNewton = True
-    ss.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-    ss.solution.file.write = False
-    ss.solution.sensors.writePeriod = per_deg
-    ss.show.computationTime = False
-    ss.show.statistics = False
-    exu.SolveDynamic(mbs, ss)
+    solve(mbs, turns * period, turns * steps_per_turn, per_deg, NEWTON_RTOL)
 
     def data(s):
         return np.array(mbs.GetSensorStoredData(s))
@@ -260,7 +274,8 @@ DECK = """&run
 """
 
 
-def flexmech_outputs(path, mesh, turns):
+def read_flexmech(path):
+    """A flexmech output's columns (name -> index) and rows."""
     header, rows = None, []
     with open(path) as f:
         for line in f:
@@ -270,7 +285,11 @@ def flexmech_outputs(path, mesh, turns):
                 continue
             if line.strip():
                 rows.append([float(v) for v in line.split()])
-    col = {name: k for k, name in enumerate(header)}
+    return {name: k for k, name in enumerate(header)}, rows
+
+
+def flexmech_outputs(path, mesh, turns):
+    col, rows = read_flexmech(path)
     nc = mesh[1]
     coupler = [col['sigma_max_e%d' % (mesh[0] + k)] for k in range(1, nc + 1)]
     out = {k: [] for k in ('deg',) + OUTPUTS}
@@ -305,29 +324,29 @@ def exudyn_child(work, n, steps, turns):
                      ['--turns', str(turns)])
 
 
-def common(a, b):
+def common(a, b, outputs=OUTPUTS):
     """The two runs' histories at the crank angles both have."""
     ia = {d: k for k, d in enumerate(a['deg'])}
     pairs = [(ia[d], k) for k, d in enumerate(b['deg']) if d in ia]
     return {key: (np.array([a[key][i] for i, _ in pairs]), np.array([b[key][j] for _, j in pairs]))
-            for key in OUTPUTS}, [a['deg'][i] for i, _ in pairs]
+            for key in outputs}, [a['deg'][i] for i, _ in pairs]
 
 
-def compare(a, b):
+def compare(a, b, outputs=OUTPUTS):
     """Per output: peak |a|, peak |b|, peak difference (b/a - 1), RMS(b - a) / peak |a|."""
-    h, _ = common(a, b)
+    h, _ = common(a, b, outputs)
     res = {}
-    for key in OUTPUTS:
+    for key in outputs:
         x, y = h[key]
         pa, pb = float(np.max(np.abs(x))), float(np.max(np.abs(y)))
         res[key] = (pa, pb, pb / pa - 1.0, float(np.sqrt(np.mean((y - x)**2))) / pa)
     return res
 
 
-def print_compare(title, a, b, names=('flexmech', 'Exudyn')):
+def print_compare(title, a, b, names=('flexmech', 'Exudyn'), outputs=OUTPUTS):
     print('\n' + title)
     print('%-8s %13s %13s %9s %12s' % ('output', 'peak ' + names[0], 'peak ' + names[1], 'peak diff', 'RMS diff/peak'))
-    for key, (pa, pb, dp, dr) in compare(a, b).items():
+    for key, (pa, pb, dp, dr) in compare(a, b, outputs).items():
         print('%-8s %13.6g %13.6g %+8.2f%% %11.2f%%' % (key, pa, pb, 100 * dp, 100 * dr))
 
 
