@@ -31,6 +31,7 @@ module spatial_analysis
   implicit none
   private
   public :: run_spatial
+  public :: initial_state, write_cost, write_loads, spatial_formulation_of   ! (the general flexible analysis)
 
   character(len=7), parameter :: link_names(3) = ['crank  ', 'coupler', 'rocker ']
   !> the deflection columns (joints B, C and the links' ends) whose periodicity is judged
@@ -238,7 +239,7 @@ contains
     type(table_t), intent(inout) :: out
     type(transient_settings_t), intent(in) :: s
     type(lsode_t), intent(in) :: ode
-    type(spatial_model_t), intent(in) :: model
+    class(spatial_model_t), intent(in) :: model
     real(dp), intent(in) :: cpu_seconds, revolutions_done
     type(lsode_counters_t) :: c
     c = ode%counters()
@@ -258,7 +259,7 @@ contains
     type(table_t), intent(inout) :: out
     type(transient_settings_t), intent(in) :: s
     logical, intent(in) :: static   !< the static start of &spatial_loads instead of the rigid-body one
-    type(spatial_model_t), intent(inout) :: model
+    class(spatial_model_t), intent(inout) :: model
     real(dp), intent(out) :: t0, y(:)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: om(:), shapes(:, :)
@@ -303,7 +304,7 @@ contains
   !> of order (omega/omega_n)^2 of the static one in mode n.
   subroutine static_start(out, model, y, err)
     type(table_t), intent(inout) :: out
-    type(spatial_model_t), intent(inout) :: model
+    class(spatial_model_t), intent(inout) :: model
     real(dp), intent(inout) :: y(:)
     type(error_t), intent(inout) :: err
     real(dp) :: q0(model%n), qm(model%n), qp(model%n), h
