@@ -35,7 +35,7 @@ module general_transient_analysis
   use general_deck, only: read_general_mechanism, echo_general_mechanism
   use general_links_settings, only: general_links_input_t, read_general_links, echo_general_links, &
     build_general_links
-  use general_flex_model, only: general_flex_model_t
+  use general_flex_model, only: general_flex_model_t, unsupported_joint
   implicit none
   private
   public :: run_general_transient
@@ -73,6 +73,16 @@ contains
     call read_spatial_loads(deck, loads, has_loads, err)
     if (err%failed()) return
     rate = constant_rate(mech)
+    block   ! a joint the flexible model does not take: named with its line
+      integer :: j
+      character(len=:), allocatable :: why
+      call unsupported_joint(kin, j, why)
+      if (j > 0) then
+        call invalid_value(deck, 'general_mechanism', 'joint_kind('//str(j)//')', ''''// &
+                           trim(mech%input%joint_kind(j))//'''', why, err)
+        return
+      end if
+    end block
     call check_supported(deck, s, loads, rate, err)
     if (err%failed()) return
     call echo_general_mechanism(mech, out)

@@ -46,7 +46,7 @@ module general_flex_model
   use general_kinematics, only: general_kinematics_t
   implicit none
   private
-  public :: general_flex_model_t
+  public :: general_flex_model_t, unsupported_joint
 
   character(len=4), parameter :: slot_names(10) = ['UX  ', 'UY  ', 'UZ  ', 'RX  ', 'RY  ', 'RZ  ', 'vxx ', 'wxx ', &
                                                    'ux  ', 'uxx ']
@@ -147,25 +147,45 @@ contains
     type(general_flex_model_t), intent(in) :: self
     type(error_t), intent(inout) :: err
     integer :: i
-    associate (m => self%gk%mech)
-      do i = 1, m%n_joints
-        associate (jt => m%joints(i))
+    character(len=:), allocatable :: why
+    call unsupported_joint(self%gk, i, why)
+    if (i > 0) then
+      call err%set('general flexible model', why)
+      err%code = 2
+    end if
+  end subroutine check_joints
+
+  !> The first joint of the mechanism the flexible analysis does not model
+  !> (0: none) and why.
+  subroutine unsupported_joint(gk, i, why)
+    type(general_kinematics_t), intent(in) :: gk
+    integer, intent(out) :: i
+    character(len=:), allocatable, intent(out) :: why
+    integer :: k
+    logical :: driven_k
+    i = 0
+    why = ''
+    associate (m => gk%mech)
+      do k = 1, m%n_joints
+        driven_k = .false.
+        if (m%n_drivers > 0) driven_k = any(m%drivers%joint == k)
+        associate (jt => m%joints(k))
           if (all(jt%kind /= [gjoint_revolute, gjoint_spherical, gjoint_weld, gjoint_free])) then
-            call err%set('general flexible model', 'joint '''//trim(jt%name)//''' is '//trim(gjoint_names(jt%kind))// &
-              ': the flexible analysis models revolute, spherical, weld and free joints')
-          else if (jt%kind == gjoint_revolute .and. m%spatial .and. jt%member(1) /= 0 .and. .not. driven(self, i)) then
-            call err%set('general flexible model', 'joint '''//trim(jt%name)//''' is a passive revolute joint '// &
-              'between two moving links in space, whose axis turns: the flexible analysis takes it in the plane, '// &
-              'on the ground or driven (a spherical joint otherwise)')
+            why = 'joint '''//trim(jt%name)//''' is '//trim(gjoint_names(jt%kind))// &
+              ': the flexible analysis models revolute, spherical, weld and free joints'
+          else if (jt%kind == gjoint_revolute .and. m%spatial .and. jt%member(1) /= 0 .and. .not. driven_k) then
+            why = 'joint '''//trim(jt%name)//''' is a passive revolute joint between two moving links in '// &
+              'space, whose axis turns: the flexible analysis takes it in the plane, on the ground or driven '// &
+              '(a spherical joint otherwise)'
           end if
         end associate
-        if (err%failed()) then
-          err%code = 2
+        if (len(why) > 0) then
+          i = k
           return
         end if
       end do
     end associate
-  end subroutine check_joints
+  end subroutine unsupported_joint
 
   !> A passive revolute joint with the ground holds the moment about its
   !> axis through v_xx: the axis must be the element's z there.
