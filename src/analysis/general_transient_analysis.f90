@@ -26,7 +26,7 @@ module general_transient_analysis
   use spatial_model, only: spatial_link_t
   use spatial_external_loads, only: spatial_loads_input_t, spatial_point_load_t
   use spatial_loads_settings, only: read_spatial_loads, echo_spatial_loads
-  use spatial_analysis, only: initial_state, write_cost, write_loads, spatial_formulation_of
+  use spatial_run_steps, only: initial_state, write_cost, write_loads, spatial_formulation_of
   use restart_file, only: write_restart_file
   use revolution_peaks, only: element_peaks_t
   use motion_profile, only: motion_constant
