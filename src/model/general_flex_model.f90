@@ -92,6 +92,7 @@ contains
     associate (m => self%gk%mech)
       call check_joints(self, err)
       if (err%failed()) return
+      if (allocated(self%frame0)) deallocate(self%frame0)
       allocate(self%frame0(3, 3, m%n_links))
       do l = 1, m%n_links
         self%glinks(l)%length = norm2(m%links(l)%end2)
@@ -129,7 +130,7 @@ contains
         end do
       end do
     end associate
-    self%omega = 0.0_dp
+    self%omega = 0.0_dp       ! the first driver's rate: the static start's step (spatial_run_steps)
     if (self%gk%mech%n_drivers > 0) self%omega = abs(self%gk%mech%drivers(1)%motion%rate)
     self%t_states = -huge(1.0_dp)
     self%t_mass = -huge(1.0_dp)
@@ -278,7 +279,7 @@ contains
   end subroutine general_set_time
 
   !> The kinematics solved at t, marching from the last solution in steps
-  !> that turn no link by more than about 2 degrees (Newton's start is
+  !> that turn no link and move no driven joint by more than about 2 degrees (Newton's start is
   !> extrapolated from the last solution: a far jump, such as the return to
   !> the start after the solver's settings looked at the whole run, could
   !> land on the other assembly branch).
@@ -287,7 +288,7 @@ contains
     real(dp), intent(in) :: t
     type(error_t), intent(inout) :: err
     real(dp), parameter :: max_turn = 0.035_dp
-    real(dp) :: w(3), al(3), rate, t_from
+    real(dp) :: w(3), al(3), rate, t_from, v0, v1, vd, vdd
     integer :: l, k, n
     n = 1
     if (self%gk%assembled) then
@@ -297,6 +298,12 @@ contains
         rate = max(rate, norm2(w) + sqrt(norm2(al)))
       end do
       n = max(1, min(100000, ceiling(abs(t - self%gk%t)*rate/max_turn)))
+      ! and no driver moving by more than that (from rest, the rates above are zero)
+      do k = 1, self%gk%mech%n_drivers
+        call motion_value(self%gk%mech%drivers(k)%motion, t, v1, vd, vdd)
+        call motion_value(self%gk%mech%drivers(k)%motion, self%gk%t, v0, vd, vdd)
+        n = max(n, min(100000, ceiling(abs(v1 - v0)/max_turn)))
+      end do
     end if
     t_from = self%gk%t
     do k = 1, n
@@ -336,6 +343,7 @@ contains
     nodes%rot = 0
     nodes%axial_slopes = self%formulation == spatial_formulation_consistent
     call self%table%init(size(self%el))
+    if (allocated(self%joint_dofs)) deallocate(self%joint_dofs)
     allocate(self%joint_dofs(3, self%gk%mech%n_joints))
     self%joint_dofs = 0
     seen = .false.
