@@ -62,6 +62,9 @@ contains
       groups(1:2) = [character(len=group_len) :: 'run', 'lsode_check']
     case ('kinematics')
       groups(1:3) = [character(len=group_len) :: 'run', 'general_mechanism', 'kinematics']
+    case ('general_transient')
+      groups(1:6) = [character(len=group_len) :: 'run', 'general_mechanism', 'general_links', 'transient', 'effects', &
+                     'spatial_loads']
     end select
   end function analysis_groups
 
@@ -73,13 +76,13 @@ contains
     character(len=*), intent(in) :: analysis_name
     logical, intent(in) :: sweep
     type(error_t), intent(inout) :: err
-    character(len=group_len) :: known(1 + 7*max_groups), reads(max_groups)
+    character(len=group_len) :: known(1 + 8*max_groups), reads(max_groups)
     reads = analysis_groups(trim(analysis_name))
     if (len_trim(reads(1)) == 0) return   ! the name itself is refused elsewhere
     ! every group of the program, for the suggestion (repeats and blanks do no harm)
     known = [character(len=group_len) :: 'sweep', analysis_groups('transient'), analysis_groups('steady'), &
              analysis_groups('optimize'), analysis_groups('design'), analysis_groups('spatial'), &
-             analysis_groups('lsode_check'), analysis_groups('kinematics')]
+             analysis_groups('lsode_check'), analysis_groups('kinematics'), analysis_groups('general_transient')]
     if (sweep) then
       call check_deck_layout(deck, trim(analysis_name), [character(len=group_len) :: reads, 'sweep'], known, err)
     else

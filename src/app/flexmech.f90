@@ -18,6 +18,7 @@ program flexmech
   use command_line, only: parse_arguments, quit, output_path_problem
   use lsode_check_analysis, only: run_lsode_check
   use kinematics_analysis, only: run_kinematics
+  use general_transient_analysis, only: run_general_transient
   use transient_analysis, only: run_transient
   use optimize_analysis, only: run_optimize
   use steady_analysis, only: run_steady
@@ -29,7 +30,7 @@ program flexmech
 
   !> An analysis a deck can name in &run: its name and its driver.
   type :: analysis_t
-    character(len=16) :: name
+    character(len=24) :: name
     procedure(analysis_driver), pointer, nopass :: run
   end type analysis_t
 
@@ -72,7 +73,7 @@ program flexmech
   analyses = [analysis_t('transient', run_transient), analysis_t('steady', run_steady), &
               analysis_t('optimize', run_optimize), analysis_t('design', run_design), &
               analysis_t('spatial', run_spatial), analysis_t('lsode_check', run_lsode_check), &
-              analysis_t('kinematics', run_kinematics)]
+              analysis_t('kinematics', run_kinematics), analysis_t('general_transient', run_general_transient)]
   k = position(analyses, analysis)
   if (k > 0) then
     call analyses(k)%run(deck, out, err)

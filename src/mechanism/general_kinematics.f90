@@ -77,6 +77,7 @@ module general_kinematics
     procedure :: point => gk_point
     procedure :: joint_value
     procedure :: body_motion
+    procedure :: body_rotation
   end type general_kinematics_t
 
 contains
@@ -816,6 +817,27 @@ contains
     omega = 2.0_dp*matmul(gm, self%qd(o + 4:o + 7))
     alpha = 2.0_dp*matmul(gm, self%qdd(o + 4:o + 7))
   end subroutine body_motion
+
+  !> Link b's rotation matrix A (global components of its frame's axes as
+  !> columns; the identity in the drawing).  Space: A = (2 e0^2 - 1) I +
+  !> 2 (e e^T + e0 e~) (Nikravesh 1988).
+  pure function body_rotation(self, b) result(a)
+    class(general_kinematics_t), intent(in) :: self
+    integer, intent(in) :: b
+    real(dp) :: a(3, 3)
+    real(dp) :: c, s, e0, e(3)
+    integer :: o
+    o = (b - 1)*self%nqb
+    if (.not. self%mech%spatial) then
+      c = cos(self%q(o + 3))
+      s = sin(self%q(o + 3))
+      a = reshape([c, s, 0.0_dp, -s, c, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+      return
+    end if
+    e0 = self%q(o + 4)
+    e = self%q(o + 5:o + 7)
+    a = (2.0_dp*e0*e0 - 1.0_dp)*identity(3) + 2.0_dp*(outer(e, e) + e0*skew(e))
+  end function body_rotation
 
   ! ------------------------------------------------------------ small 3-vector algebra
 

@@ -1,0 +1,323 @@
+!> Tests of the flexible general mechanism (module general_flex_model, the
+!> &general_links group, the general_transient analysis): the RSSR written
+!> as a general mechanism against the spatial four-bar model (frequencies,
+!> energies of the rigid motion, static states), the energy balance of the
+!> driven undamped RSSR and of a planar two-link arm with two driven joints,
+!> the joint rules' unknowns, refused joints and bad &general_links input.
+module test_general_flex_suite
+  use kinds, only: dp, pi
+  use error_status, only: error_t
+  use deck_reader, only: deck_t
+  use material_law, only: ramberg_osgood_t
+  use element_effects, only: element_effects_t
+  use lsode_solver, only: lsode_t, mf_adams
+  use spatial_section, only: spatial_section_init, section_circular, section_rectangular
+  use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
+  use spatial_model, only: spatial_model_t, spatial_link_t, spatial_joint_spherical
+  use general_mechanism, only: general_mechanism_t
+  use general_kinematics, only: general_kinematics_t
+  use general_deck, only: read_general_mechanism
+  use general_flex_model, only: general_flex_model_t
+  use general_transient_analysis, only: run_general_transient
+  use assertions
+  use deck_runner, only: open_deck_text, close_deck_text, scratch_path, run_deck, line_length
+  implicit none
+  private
+  public :: run_all
+
+  type(ramberg_osgood_t), parameter :: alu = ramberg_osgood_t(e1=10.87e6_dp, e2=0.8387e11_dp, m=3.0_dp, &
+                                                              rho=0.0002536_dp)
+  real(dp), parameter :: g_alu = 10.87e6_dp/(2.0_dp*1.33_dp)
+  !> the RSSR of inputs/spatial_rssr_100.nml as a &general_mechanism body
+  character(len=*), parameter :: rssr_body = "space = 'spatial'|n_joints = 4|joint_name = 'A', 'B', 'C', 'D'|"// &
+    "joint_kind = 'revolute', 'spherical', 'spherical', 'revolute'|joint_ground = T, F, F, T|"// &
+    "joint_x = 0.0, 6.0, 0.0, 0.0|joint_y = 0.0, 0.0, 11.0, 20.0|joint_z = 0.0, 0.0, 20.0, 12.0|"// &
+    "joint_axis(:, 1) = 0.0, 0.0, 1.0|joint_axis(:, 4) = 1.0, 0.0, 0.0|n_links = 3|"// &
+    "link_name = 'crank', 'coupler', 'rocker'|link_joint1 = 1, 2, 4|link_joint2 = 2, 3, 3|"// &
+    "link_length = 6.0, 24.0, 12.0|n_drivers = 1|driver_joint = 1|driver_rate = 100.0"
+  !> a planar two-link arm: upper arm 10 in from the grounded shoulder S, forearm 8 in to the free tip T
+  character(len=*), parameter :: arm_body = "n_joints = 3|joint_name = 'S', 'E', 'T'|"// &
+    "joint_kind = 'revolute', 'revolute', 'free'|joint_ground = T, F, F|joint_x = 0.0, 10.0, 18.0|n_links = 2|"// &
+    "link_name = 'upper', 'fore'|link_joint1 = 1, 2|link_joint2 = 2, 3|n_drivers = 2|driver_joint = 1, 2|"// &
+    "driver_profile = 2*'spinup'|driver_rate = 20.0, -30.0|driver_spinup_time = 2*0.05"
+
+contains
+
+  subroutine run_all()
+    call run_test('rssr_general_equals_spatial_model', test_rssr_equals_spatial)
+    call run_test('rssr_joint_rules_unknowns', test_rssr_rules)
+    call run_test('driven_rssr_jacobi_energy_balance', test_rssr_balance)
+    call run_test('driven_two_link_arm_jacobi_energy_balance', test_arm_balance)
+    call run_test('unsupported_joints_refused', test_refused)
+    call run_test('bad_general_links_input_names_the_variable', test_bad_links)
+  end subroutine run_all
+
+  ! ------------------------------------------------------------ helpers
+
+  !> The kinematics of a &general_mechanism body ('|' between lines).
+  subroutine make_kinematics(body, gk, err)
+    character(len=*), intent(in) :: body
+    type(general_kinematics_t), intent(out) :: gk
+    type(error_t), intent(inout) :: err
+    type(deck_t) :: deck
+    type(general_mechanism_t) :: mech
+    character(len=:), allocatable :: stem
+    stem = scratch_path('general_flex')
+    call open_deck_text(stem, "&run|  analysis = 'general_transient'|/|&general_mechanism|"//body//"|/", deck, err)
+    if (.not. err%failed()) call read_general_mechanism(deck, mech, gk, err)
+    call close_deck_text(stem, deck)
+  end subroutine make_kinematics
+
+  !> The general model of a mechanism body, every link a circular bar of
+  !> radius r (or a rectangular 0.5 x 0.25 in bar) with n elements.
+  subroutine make_model(body, n, fx, model, err, radius)
+    character(len=*), intent(in) :: body
+    integer, intent(in) :: n
+    type(element_effects_t), intent(in) :: fx
+    type(general_flex_model_t), intent(out) :: model
+    type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: radius
+    type(general_kinematics_t) :: gk
+    type(spatial_link_t), allocatable :: links(:)
+    integer :: k
+    call make_kinematics(body, gk, err)
+    if (err%failed()) return
+    allocate(links(gk%mech%n_links))
+    do k = 1, size(links)
+      links(k)%n_elements = n
+      links(k)%material = alu
+      links(k)%shear_modulus = g_alu
+      if (present(radius)) then
+        call spatial_section_init(links(k)%sec, section_circular, [radius], alu, err)
+      else
+        call spatial_section_init(links(k)%sec, section_rectangular, [0.5_dp, 0.25_dp], alu, err)
+      end if
+    end do
+    call model%init_general(gk, links, fx, 0.0_dp, err)
+  end subroutine make_model
+
+  !> The spatial four-bar model of the same RSSR (module spatial_model).
+  subroutine make_spatial_rssr(n, fx, sm)
+    integer, intent(in) :: n
+    type(element_effects_t), intent(in) :: fx
+    type(spatial_model_t), intent(out) :: sm
+    type(spatial_fourbar_t) :: kin
+    type(spatial_link_t) :: links(3)
+    type(error_t) :: err
+    integer :: k
+    call spatial_fourbar_init(kin, [0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 1.0_dp], [6.0_dp, 0.0_dp, 0.0_dp], &
+                              [0.0_dp, 20.0_dp, 12.0_dp], [1.0_dp, 0.0_dp, 0.0_dp], 12.0_dp, 24.0_dp, 1, err)
+    do k = 1, 3
+      links(k)%n_elements = n
+      links(k)%material = alu
+      links(k)%shear_modulus = g_alu
+      call spatial_section_init(links(k)%sec, section_circular, [0.25_dp], alu, err)
+    end do
+    call sm%init(kin, 100.0_dp, 0.0_dp, spatial_joint_spherical, spatial_joint_spherical, links, fx, 0.0_dp, err)
+    call assert_true(.not. err%failed(), 'spatial rssr: '//err%text())
+  end subroutine make_spatial_rssr
+
+  ! ------------------------------------------------------------ tests
+
+  !> Same links, elements and joints: the natural frequencies at the start,
+  !> the kinetic energy of the rigid motion (q = q' = 0) and the static
+  !> elastic state under the inertia loads (its strain energy) at three
+  !> crank angles agree with the spatial four-bar model to 1e-9 relative
+  !> (round-off of two Newton solutions of the kinematics; a wrong joint
+  !> rule, frame, rate or acceleration of the rigid motion changes them by
+  !> 1e-3 or more).
+  subroutine test_rssr_equals_spatial()
+    type(general_flex_model_t) :: gm
+    type(spatial_model_t) :: sm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    real(dp), allocatable :: wg(:), ws(:), qg(:), qs(:), zg(:)
+    real(dp) :: keg, kes, seg, ses, t
+    integer :: k
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+    call make_model(rssr_body, 2, fx, gm, err, radius=0.25_dp)
+    call assert_true(.not. err%failed(), 'general rssr: '//err%text())
+    if (err%failed()) return
+    call make_spatial_rssr(2, fx, sm)
+    call assert_equal(gm%n, sm%n, 'the same number of unknowns')
+    call assert_equal(gm%kd, sm%kd, 'the same half-bandwidth')
+    if (gm%n /= sm%n) return
+    allocate(wg(gm%n), ws(sm%n), qg(gm%n), qs(sm%n), zg(gm%n))
+    call gm%linear_modes(wg, err)
+    call sm%linear_modes(ws, err)
+    do k = 1, 6
+      call assert_rel_close(wg(k), ws(k), 1.0e-9_dp, 'frequency '//str_int(k))
+    end do
+    zg = 0.0_dp
+    do k = 1, 3
+      t = 0.004_dp*k
+      call gm%energies(t, zg, zg, keg, seg)
+      call sm%energies(t, zg, zg, kes, ses)
+      call assert_rel_close(keg, kes, 1.0e-9_dp, 'kinetic energy of the rigid motion at t = '//str_int(k))
+      qg = 0.0_dp
+      qs = 0.0_dp
+      call gm%static_state(t, qg, err)
+      call sm%static_state(t, qs, err)
+      call assert_true(.not. err%failed(), 'static states: '//err%text())
+      call gm%energies(t, qg, zg, keg, seg)
+      call sm%energies(t, qs, zg, kes, ses)
+      call assert_true(ses > 1.0_dp, 'the inertia loads strain the links')
+      call assert_rel_close(seg, ses, 1.0e-9_dp, 'static strain energy at t = '//str_int(k))
+    end do
+  end subroutine test_rssr_equals_spatial
+
+  !> The unknowns of the joint rules: the crank clamped at A (driven), the
+  !> coupler's twist held at B and free at C, no moment at the spherical
+  !> joints (curvatures held), the rocker's rotation at D about the axis
+  !> only; rotations local at the spherical ends.
+  subroutine test_rssr_rules()
+    type(general_flex_model_t) :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    integer :: ec, er
+    call make_model(rssr_body, 1, fx, gm, err, radius=0.25_dp)
+    call assert_true(.not. err%failed(), 'general rssr: '//err%text())
+    if (err%failed()) return
+    ec = gm%glinks(2)%first_element
+    er = gm%glinks(3)%first_element
+    call assert_true(all(gm%table%map(1:6, 1) == 0), 'crank clamped at A')
+    call assert_true(all(gm%table%map(7:8, 1) > 0), 'moment passes at A')
+    call assert_equal(gm%table%map(4, ec), 0, 'coupler twist held at B')
+    call assert_true(gm%table%map(14, ec) > 0, 'coupler twist free at C')
+    call assert_true(all(gm%table%map([7, 8, 17, 18], ec) == 0), 'no moment at B and C')
+    call assert_true(gm%el(ec)%local_rotation(1) .and. gm%el(ec)%local_rotation(2), 'coupler rotations local')
+    call assert_true(all(gm%table%map([5, 6, 7], er) == 0) .and. gm%table%map(4, er) > 0, &
+                     'rocker at D: rotation about X only, no moment about X')
+    call assert_true(all(gm%table%map(11:13, 1) == gm%table%map(1:3, ec)), 'B translations shared')
+  end subroutine test_rssr_rules
+
+  !> The RSSR at 100 rad/s, every effect on, undamped, one element per link.
+  subroutine test_rssr_balance()
+    type(general_flex_model_t), target :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+    call make_model(rssr_body, 1, fx, gm, err, radius=0.25_dp)
+    call assert_true(.not. err%failed(), 'general rssr: '//err%text())
+    if (err%failed()) return
+    call jacobi_balance(gm, (0.05_dp*pi/180.0_dp)/100.0_dp, 400, 1.0_dp)
+  end subroutine test_rssr_balance
+
+  !> The two-link arm (circular bars of radius 0.1 in), shoulder and elbow
+  !> spun up to 20 and -30 rad/s in 0.05 s, every effect on, one element a
+  !> link, undamped, over the first 5.8 ms (largest strain energy 1.5e-5
+  !> lb in, balance residual 4e-13 lb in): the driven revolute between the
+  !> links (rotations shared) and the free tip.
+  subroutine test_arm_balance()
+    type(general_flex_model_t), target :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+    call make_model(arm_body, 1, fx, gm, err, radius=0.1_dp)
+    call assert_true(.not. err%failed(), 'arm: '//err%text())
+    if (err%failed()) return
+    call assert_true(all(gm%table%map(1:6, 1) == 0), 'upper arm clamped at the driven shoulder')
+    call assert_true(all(gm%table%map(11:16, 1) == gm%table%map(1:6, 2)), 'elbow: translations and rotations shared')
+    call jacobi_balance(gm, (0.05_dp*pi/180.0_dp)/30.0_dp, 200, 1.0e-6_dp)
+  end subroutine test_arm_balance
+
+  !> Energy balance of a driven undamped run (test_spatial_model's RSSR
+  !> balance): with L(q, q', t) = KE - SE, the Jacobi integral h = KE2 - KE0
+  !> + SE obeys dh/dt = -dL/dt|_(q,q'), the explicit time dependence being the
+  !> rigid motion.  KE2 - KE0 by polarisation, dL/dt by central differences
+  !> (1e-8 s, the kinematics re-solved), the integral by Simpson's rule over
+  !> n steps of dt.  Adams at rtol = 1e-9: bound 1e-6 of the largest strain
+  !> energy (a wrong joint rule, a rate of the rigid motion inconsistent with
+  !> its positions, or a wrong inertia term give O(1)); the links must
+  !> deform (largest strain energy above se_min).
+  subroutine jacobi_balance(gm, dt, n, se_min)
+    type(general_flex_model_t), target, intent(inout) :: gm
+    real(dp), intent(in) :: dt, se_min
+    integer, intent(in) :: n
+    type(lsode_t) :: ode
+    type(error_t) :: err
+    real(dp), allocatable :: y(:), zero(:), h(:), dldt(:)
+    real(dp) :: t, kp, km, k0, se, sdum, se_max, integral, residual
+    real(dp), parameter :: delta = 1.0e-8_dp
+    integer :: k
+    allocate(y(2*gm%n), zero(gm%n), h(0:n), dldt(0:n))
+    y = 0.0_dp
+    zero = 0.0_dp
+    se_max = 0.0_dp
+    call ode%init(size(y), 0.0_dp, mf_adams, 1.0e-9_dp, [1.0e-13_dp], err, max_steps=500000)
+    do k = 0, n
+      t = real(k, dp)*dt
+      if (k > 0) call ode%integrate_to(gm, y, t, err)
+      call assert_true(.not. err%failed(), 'integration: '//err%text())
+      if (err%failed()) return
+      call gm%energies(t, y(1::2), y(2::2), kp, se)
+      call gm%energies(t, y(1::2), -y(2::2), km, sdum)
+      call gm%energies(t, y(1::2), zero, k0, sdum)
+      h(k) = 0.5_dp*(kp + km) - 2.0_dp*k0 + se
+      se_max = max(se_max, se)
+      call gm%energies(t + delta, y(1::2), y(2::2), kp, sdum)
+      call gm%energies(t - delta, y(1::2), y(2::2), km, se)
+      dldt(k) = (kp - sdum - km + se)/(2.0_dp*delta)
+      call gm%set_time(t)
+    end do
+    integral = 0.0_dp
+    do k = 0, n - 2, 2
+      integral = integral + dt/3.0_dp*(dldt(k) + 4.0_dp*dldt(k + 1) + dldt(k + 2))
+    end do
+    residual = h(n) - h(0) + integral
+    call assert_true(se_max > se_min, 'the links deform (strain energy '//str_real(se_max)//')')
+    call assert_close(residual, 0.0_dp, 1.0e-6_dp*se_max, 'h(t1) - h(t0) + int dL/dt dt = 0')
+    print '(a,es10.3,a,es10.3)', '    Jacobi balance residual ', residual, ' lb in; max strain energy ', se_max
+  end subroutine jacobi_balance
+
+  !> Joints the flexible analysis does not model are input errors naming the joint.
+  subroutine test_refused()
+    type(general_flex_model_t) :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    call make_model("n_joints = 3|joint_name = 'A', 'B', 'C'|joint_kind = 'revolute', 'revolute', 'slider'|"// &
+      "joint_ground = T, F, T|joint_x = 0.0, 2.0, 7.9|joint_y = 0.0, 0.0, 0.5|joint_axis(:, 3) = 1.0, 0.0, 0.0|"// &
+      "n_links = 2|link_length = 2.0, 6.0|"// &
+      "link_joint1 = 1, 2|link_joint2 = 2, 3|n_drivers = 1|driver_joint = 1|driver_rate = 10.0", 1, fx, gm, err)
+    call assert_true(err%failed() .and. err%code == 2, 'slider refused')
+    call assert_true(index(err%text(), '''C'' is slider') > 0, 'names the joint: '//err%text())
+  end subroutine test_refused
+
+  !> A bad &general_links value: code 2 naming the deck, the group, the
+  !> variable with its link index, and the line.
+  subroutine test_bad_links()
+    type(error_t) :: err
+    character(len=line_length), allocatable :: lines(:)
+    call run_deck(run_general_transient, scratch_path('general_links_bad'), &
+      "&run|  analysis = 'general_transient'|/|&general_mechanism|"//arm_body//"|/|&general_links|"// &
+      "  link_section = 'circular', 'circular'|  link_radius = 0.1, -0.2|/", err, lines)
+    call assert_true(err%failed() .and. err%code == 2, 'refused with code 2')
+    call assert_true(index(err%text(), 'deck ''') > 0 .and. index(err%text(), 'group &general_links') > 0, &
+                     'names deck and group: '//err%text())
+    call assert_true(index(err%text(), 'link_radius(2)') > 0, 'names the variable: '//err%text())
+  end subroutine test_bad_links
+
+  function str_int(k) result(s)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    character(len=12) :: b
+    write(b, '(i0)') k
+    s = trim(b)
+  end function str_int
+
+  function str_real(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=16) :: b
+    write(b, '(es12.4)') x
+    s = trim(adjustl(b))
+  end function str_real
+end module test_general_flex_suite
+
+program test_general_flex
+  use test_general_flex_suite, only: run_all
+  use assertions, only: finish_suite
+  implicit none
+  call run_all()
+  call finish_suite('test_general_flex')
+end program test_general_flex
