@@ -38,6 +38,8 @@ module spatial_kinematics
   public :: link_crank, link_coupler, link_rocker
 
   integer, parameter :: link_crank = 1, link_coupler = 2, link_rocker = 3
+  !> Crank-angle distance (rad) over which the last solution still seeds Newton.
+  real(dp), parameter :: guess_reach = 0.25_dp
 
   type :: spatial_fourbar_t
     real(dp) :: a_pivot(3) = 0.0_dp, a_axis(3) = [0.0_dp, 0.0_dp, 1.0_dp], b0(3) = 0.0_dp
@@ -53,6 +55,7 @@ module spatial_kinematics
     ! state of the Newton iteration
     logical :: have_guess = .false.
     real(dp) :: psi_guess = 0.0_dp
+    real(dp) :: theta_guess = 0.0_dp               !< the crank angle psi_guess belongs to
     integer :: total_iterations = 0, n_solves = 0
   end type spatial_fourbar_t
 
@@ -195,7 +198,11 @@ contains
       end if
       return
     end if
-    if (m%have_guess) then
+    ! The previous solution is a guess on the same branch only nearby: the
+    ! integrator may sample far from its last time, and Newton from a stale
+    ! guess can converge to the other branch; there the closed form picks
+    ! the deck's branch.
+    if (m%have_guess .and. abs(theta - m%theta_guess) <= guess_reach) then
       psi = m%psi_guess
     else
       call rocker_angle_closed_form(m, theta, psi, status)
@@ -223,6 +230,7 @@ contains
       return
     end if
     m%psi_guess = psi
+    m%theta_guess = theta
     m%have_guess = .true.
 
     ! rates: g(psi(t), theta(t)) = |C - B|^2 - L^2 = 0 differentiated twice

@@ -22,6 +22,7 @@ contains
     call run_test('rssr_rates_are_derivatives_of_positions', test_rates)
     call run_test('link_frames_and_angular_rates', test_frames)
     call run_test('branch_toggle_and_non_assembly_named_by_crank_angle', test_failures)
+    call run_test('far_jumps_in_crank_angle_keep_the_branch', test_far_jumps)
     call run_test('universal_joint_coupler_frame_and_rates', test_universal)
     call run_test('universal_joint_lock_named_by_crank_angle', test_universal_lock)
   end subroutine run_all
@@ -125,6 +126,34 @@ contains
     call assert_all_close(p0%rot(:, 1, link_coupler), (p0%c - p0%b)/6.0_dp, 0.0_dp, 1.0e-14_dp, 'coupler x')
     call assert_all_close(p0%rot(:, 3, link_rocker), [1.0_dp, 0.0_dp, 0.0_dp], 0.0_dp, 1.0e-14_dp, 'rocker z = d')
   end subroutine test_frames
+
+  !> The integrator may sample far from its last time (a solver-settings pass
+  !> over a long run): a solve after a jump of many turns lands on the deck's
+  !> branch, on both branches, equal to the closed form.
+  subroutine test_far_jumps()
+    type(spatial_fourbar_t) :: m
+    type(spatial_pose_t) :: pose
+    type(error_t) :: err
+    real(dp) :: psi_cf, theta
+    integer :: k, status, br
+    do br = -1, 1, 2
+      ! Tennant's four-bar in the plane z = 0 (crank 5, coupler 11, rocker
+      ! 10.5, ground 10), whose rocker swings widely: a stale guess from far
+      ! away lies nearer the other branch's root at some angles
+      call spatial_fourbar_init(m, [0.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 1.0_dp], [5.0_dp, 0.0_dp, 0.0_dp], &
+                                [10.0_dp, 0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp, 1.0_dp], 10.5_dp, 11.0_dp, br, err)
+      call assert_true(.not. err%failed(), 'init: '//err%text())
+      do k = 1, 720
+        ! from a solve at 14 pi (the end of a seven-turn run) back to 1, 2, ... 360 deg
+        theta = merge(14.0_dp*pi, real(k/2, dp)*pi/180.0_dp, mod(k, 2) == 1)
+        call spatial_fourbar_solve(m, theta, 1.0_dp, 0.0_dp, pose, err)
+        call assert_true(.not. err%failed(), 'solve after a jump: '//err%text())
+        call err%clear()
+        call rocker_angle_closed_form(m, theta, psi_cf, status)
+        call assert_close(modulo(pose%psi - psi_cf + pi, 2.0_dp*pi) - pi, 0.0_dp, 1.0e-10_dp, 'branch kept')
+      end do
+    end do
+  end subroutine test_far_jumps
 
   !> Non-assembly: coupler 2 cannot reach (named crank angle); toggle: a
   !> coupler length at which S = R at theta = 0 exactly (the crank pin's
