@@ -387,7 +387,9 @@ contains
       class(opt_problem_t), intent(inout) :: prob
       real(dp), intent(in) :: f_star
       integer, intent(in) :: set
-      real(dp) :: df, v
+      real(dp) :: df, v, band
+      real(dp), allocatable :: g0(:), g1(:)
+      type(error_t) :: cerr
       logical :: ok
       character(len=160) :: line
       integer :: r
@@ -403,10 +405,23 @@ contains
       write(line, '(3x,a12,a16,3i6,2es12.2e3,2x,a)') name, opt%method_label(), opt%iterations, prob%count%analyses, &
         prob%count%fd_analyses, df, v, merge('ok     ', 'FAILED ', ok)
       print '(a)', trim(line)//set_label(set)//opt%message(1:min(90, len(opt%message)))
-      ! the filter never accepts a point with a larger F from a feasible iterate
+      ! the filter never accepts a point with a larger F from a feasible
+      ! iterate, beyond rounding and the cost of moving the active
+      ! constraints inside the feasibility band |g| <= feas_tol (where both
+      ! points are in it; at most 2 feas_tol Sum |lambda| and sqrt(eps) (1 + |F|)): two such points
+      ! are equally feasible, and which side of a curved active constraint a
+      ! step lands on is round-off (tolerance_band, doc/optimization.md §5a)
       do r = 2, opt%n_log
         if (opt%log(r - 1)%max_violation > opt%opts%feas_tol) cycle
-        if (opt%log(r)%f > opt%log(r - 1)%f + 1.0e-14_dp*(1.0_dp + abs(opt%log(r - 1)%f))) then
+        band = 0.0_dp
+        if (.not. allocated(g0)) allocate(g0(size(opt%g)), g1(size(opt%g)))
+        if (size(opt%g) > 0 .and. opt%log(r)%max_violation <= opt%opts%feas_tol) then
+          call prob%constraint_values(opt%log(r - 1)%x, g0, cerr)
+          call prob%constraint_values(opt%log(r)%x, g1, cerr)
+          band = min(sqrt(epsilon(1.0_dp))*(1.0_dp + abs(opt%log(r - 1)%f)), &
+                     tolerance_band(opt%log(r)%lambda, g0, g1, opt%opts%feas_tol))
+        end if
+        if (opt%log(r)%f > opt%log(r - 1)%f + 1.0e-14_dp*(1.0_dp + abs(opt%log(r - 1)%f)) + band) then
           n_up = n_up + 1
           print '(a)', '      F increased from a feasible iterate: '//name//', k = '//str(opt%log(r)%k)
         end if
