@@ -1764,6 +1764,26 @@ contains
     else
       lam = lam_prev(idx)                               ! warm start from the previous iteration
       call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
+      ! no multiplier gives a usable step: M singular on the free variables,
+      ! or a step 1e10 times |x| (a linear objective, G = 0 up to a tiny
+      ! shift: HS 95 at -O3 -march=native); Levenberg as above, G + mu I,
+      ! mu x10, which bounds the step
+      mu = 1.0e-2_dp*max(1.0_dp, maxval([(abs(self%gm(i, i)), i=1, prob%n)]))
+      do j = 1, 12
+        if (.not. (err%failed() .and. mres%no_step .and. self%opts%auto_regularize)) exit
+        call err%clear()
+        do i = 1, prob%n
+          self%gm(i, i) = self%gm(i, i) + mu
+        end do
+        self%regularizations = self%regularizations + 1
+        call self%note('B11 on '//set_text(self%active .and. general)//': no multiplier gives a usable step (rcond = ' &
+                       //str(msys%m_rcond, 3)//'): G + mu I, mu = '//str(mu, 3))
+        msys = multiplier_system(self%gm, self%gradf, self%x, idx, self%g(idx), self%dg(:, idx), &
+                                 self%hess(:, :, idx), actual, pprob, nonneg=idx <= prob%m, fixed=fixed, s_fix=s_fix)
+        lam = lam_prev(idx)
+        call msys%solve(lam, 0.01_dp*self%opts%feas_tol, self%opts%newton_max_iter, mres, err)
+        mu = 10.0_dp*mu
+      end do
       if (err%failed()) return
       self%newton_solves = self%newton_solves + 1
       solved = mres%solved

@@ -81,6 +81,8 @@ module multiplier_equations
     integer :: newton_iterations = 0
     integer :: powell_evaluations = 0
     real(dp) :: residual = 0.0_dp             !< max |m_i(lambda)|
+    logical :: no_step = .false.              !< no multiplier tried gave a usable step (M singular, or the step
+                                              !< 1e10 times |x|): the error of `solve`
   end type multiplier_result_t
 
   !> The work of one `solve`: the residual m(lambda) of the last iterate and
@@ -521,6 +523,7 @@ contains
     ok = .true.
     if (.not. kkt_done) call self%evaluate_step(lambda, ok)
     if (.not. ok) then
+      res%no_step = .true.
       call err%set('multiplier equations', 'G + Sum lambda_j A_j is singular at every multiplier tried (rcond = ' &
                    //str(self%m_rcond, 3)//'); the active set cannot define a step')
       return
