@@ -372,7 +372,8 @@ contains
     integer :: j
     do j = 1, self%l
       if (self%actual(j) .and. actual_gradients) then
-        call self%prob%general_constraint_gradient(self%idx(j), self%xk + s, r2(j), w(:, j), err)
+        call self%prob%general_constraint_gradient(self%prob%user_index(self%idx(j)), self%xk + s, r2(j), w(:, j), &
+          err)
         self%prob%count%constraint_gradients = self%prob%count%constraint_gradients + 1
         if (err%failed()) return
       else
