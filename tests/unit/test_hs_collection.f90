@@ -331,12 +331,13 @@ contains
 
   !> Every problem from its standard start with default settings.  Asserted:
   !> all 54 of the tuning set (the 48 problems of the first collection, the
-  !> library's 6) solved; at least 18 of the 24 of the first hold-out (19 at
-  !> -O0 and -O2; HS 33, 55, 72, 73 and 93 fail with the diagnoses printed,
-  !> HS 33 on the KKT point (0, 0, 2), F = -4, not a minimum; HS 104 is
-  !> solved or not by round-off); at least 12 of the 25 of the second
-  !> hold-out (13 at -O0 and -O2, HS 101 or HS 102 solved by round-off; its
-  !> failures printed; never used to change the method); no
+  !> library's 6) solved; at least 18 of the 24 of the first hold-out (20 at
+  !> -O0, -O2 and -O3 -march=native; HS 33, 55, 93 and HS 72 or 73 fail with
+  !> the diagnoses printed, HS 33 on the KKT point (0, 0, 2), F = -4, not a
+  !> minimum); at least 12 of the 25 of the second hold-out (14 at -O0, 13 at
+  !> -O2 and -O3 -march=native; HS 101, 102, 103, 111 and 117 are solved or
+  !> not by round-off, their runs long and ill-conditioned; the failures
+  !> printed); no
   !> run reports convergence at a point that fails the independent
   !> first-order check; and no accepted iterate increases F from a feasible
   !> one (the filter).
