@@ -18,8 +18,9 @@
 !> bounds that set_bounds adds (g2..g9: x1 >= 1, x1 <= 5, x2 >= 1, ...), then
 !> the equalities (h1 is constraint 10 in the output's columns).  The
 !> procedures below see the general inequality as i = 1; an equality given
-!> by a procedure (set_general_equality) would arrive as i = m + j, m the
-!> inequalities including the bounds: use i - self%m, never a fixed number.
+!> by a procedure (set_general_equality) arrives as i = m_own + j, m_own the
+!> inequalities given to init_problem (here 1): the bounds set_bounds adds do
+!> not renumber it (opt_problem_t%user_index).
 !> Check the derivatives once with `check_derivatives = T` in &optimize.
 module user_problems
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan

@@ -915,7 +915,7 @@ contains
     xm(j) = x(j) - h
   end subroutine central_points
 
-  !> Constraint i: general inequality (i <= mg: g = -c), equality (i > m).
+  !> Constraint i: general inequality (i <= mg: g = -c), equality (i > mg).
   real(dp) function constraint_of(self, i, x) result(g)
     class(hs_problem_t), intent(in) :: self
     integer, intent(in) :: i
@@ -923,7 +923,7 @@ contains
     if (i <= self%mg) then
       g = -hs_c(self%number, 1, i, x)
     else
-      g = hs_c(self%number, 2, i - self%m, x)
+      g = hs_c(self%number, 2, i - self%mg, x)       ! equality i - mg (user_index: bounds not counted)
     end if
   end function constraint_of
 
@@ -934,7 +934,7 @@ contains
     real(dp), intent(out) :: g
     type(error_t), intent(inout) :: err
     g = constraint_of(self, i, x)
-    if (i > self%mg .and. i <= self%m) call err%set(self%name, 'constraint '//str(i)//' is a bound, not general')
+    if (i > self%mg + self%n_eq) call err%set(self%name, 'no general constraint '//str(i))
   end subroutine hs_constraint
 
   subroutine hs_constraint_gradient(self, i, x, g, grad, err)

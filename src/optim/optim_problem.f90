@@ -9,7 +9,10 @@
 !> (P3), so grad F = 2 J phi (B4) and the Gauss matrix is G = 2 J J^T (B5).
 !>
 !> Constraints g_i(x) <= 0, i = 1..m, and equalities h_j(x) = 0, numbered
-!> i = m+j (j = 1..n_eq), each of one kind:
+!> i = m+j (j = 1..n_eq), each of one kind (m counts the bounds set_bounds
+!> adds; the procedures a type overrides see the user's numbering instead,
+!> user_index: its own inequalities 1..m_own, then equality j as m_own + j,
+!> whatever bounds were added):
 !>   linear     g = b^T x - d                     (set_linear_constraint; equalities:
 !>                                                 set_linear_equalities, P5)
 !>   quadratic  g = 1/2 x^T A x + b^T x - d       (set_quadratic_constraint, B3;
@@ -85,6 +88,7 @@ module optim_problem
     procedure, non_overridable :: set_linear_inequalities
     procedure, non_overridable :: set_quadratic_constraint
     procedure, non_overridable :: set_general_constraint
+    procedure, non_overridable :: user_index
     procedure, non_overridable :: set_linear_equalities
     procedure, non_overridable :: set_quadratic_equality
     procedure, non_overridable :: set_general_equality
@@ -271,7 +275,8 @@ contains
     call self%set_quadratic_constraint(self%m + j, a, b, e)
   end subroutine set_quadratic_equality
 
-  !> Equality j: h_j from `general_constraint(m + j, ...)`.
+  !> Equality j: h_j from `general_constraint(m_own + j, ...)` (user_index:
+  !> m_own the inequalities given to init_problem, bounds not counted).
   subroutine set_general_equality(self, j)
     class(opt_problem_t), intent(inout) :: self
     integer, intent(in) :: j
@@ -368,6 +373,16 @@ contains
     type(error_t), intent(inout) :: err
     call central_hessian(self, 0, x, hess, err)
   end subroutine fd_hessian
+
+  !> The number constraint i (inequalities, bounds, equalities) has for the
+  !> procedures a type overrides (general_constraint and its derivatives):
+  !> the user's own inequalities keep theirs, equality j is m_own + j with
+  !> m_own = m - n_bounds, so adding bounds does not renumber the equalities.
+  pure integer function user_index(self, i) result(k)
+    class(opt_problem_t), intent(in) :: self
+    integer, intent(in) :: i
+    k = merge(i - self%n_bounds, i, i > self%m)
+  end function user_index
 
   subroutine general_constraint_not_provided(self, i, x, g, err)
     class(opt_problem_t), intent(inout) :: self
@@ -563,7 +578,7 @@ contains
         g(i) = 0.5_dp*dot_product(x, matmul(self%con_a(:, :, i), x)) + dot_product(self%con_b(:, i), x) &
                - self%con_d(i)
       case (con_general)
-        call self%general_constraint(i, x, g(i), err)
+        call self%general_constraint(self%user_index(i), x, g(i), err)
         if (err%failed()) then
           call err%add_context('constraint '//str(i))
           return
@@ -587,7 +602,7 @@ contains
     case (con_quadratic)
       g = 0.5_dp*dot_product(x, matmul(self%con_a(:, :, i), x)) + dot_product(self%con_b(:, i), x) - self%con_d(i)
     case (con_general)
-      call self%general_constraint(i, x, g, err)
+      call self%general_constraint(self%user_index(i), x, g, err)
       if (err%failed()) call err%add_context('constraint '//str(i))
     end select
   end subroutine constraint_value
@@ -610,7 +625,7 @@ contains
         dg(:, i) = matmul(self%con_a(:, :, i), x) + self%con_b(:, i)
       case (con_general)
         any_general = .true.
-        call self%general_constraint_gradient(i, x, g(i), dg(:, i), err)
+        call self%general_constraint_gradient(self%user_index(i), x, g(i), dg(:, i), err)
         if (err%failed()) then
           call err%add_context('gradient of constraint '//str(i))
           return
@@ -634,7 +649,7 @@ contains
       hess = self%con_a(:, :, i)
     case (con_general)
       self%count%constraint_hessians = self%count%constraint_hessians + 1
-      call self%general_constraint_hessian(i, x, hess, err)
+      call self%general_constraint_hessian(self%user_index(i), x, hess, err)
       if (err%failed()) call err%add_context('Hessian of constraint '//str(i))
     end select
   end subroutine constraint_hessian

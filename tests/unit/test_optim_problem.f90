@@ -29,6 +29,15 @@ module test_optim_problem_suite
   type, extends(opt_problem_t) :: empty_t
   end type empty_t
 
+  !> One general inequality g1 = x1 + x2 - 2 (i = 1) and one general
+  !> equality h1 = x1 x2 - 0.5, which the procedure knows as i = 2 (its own
+  !> inequalities, then the equality), whatever bounds set_bounds adds.
+  type, extends(opt_problem_t) :: numbered_t
+  contains
+    procedure :: objective => oo_objective_2
+    procedure :: general_constraint => numbered_constraint
+  end type numbered_t
+
 contains
 
   subroutine run_all()
@@ -38,7 +47,68 @@ contains
     call run_test('linear_quadratic_and_equality_constraint_data', test_constraint_data)
     call run_test('analyses_and_gradients_are_counted', test_counters)
     call run_test('missing_procedures_are_reported', test_missing)
+    call run_test('equality_numbering_does_not_shift_with_bounds', test_numbering)
   end subroutine run_all
+
+  subroutine oo_objective_2(self, x, f, err)
+    class(numbered_t), intent(inout) :: self
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: f
+    type(error_t), intent(inout) :: err
+    f = sum(x**2)
+    if (.false.) call err%set(self%name, '')
+  end subroutine oo_objective_2
+
+  subroutine numbered_constraint(self, i, x, g, err)
+    class(numbered_t), intent(inout) :: self
+    integer, intent(in) :: i
+    real(dp), intent(in) :: x(:)
+    real(dp), intent(out) :: g
+    type(error_t), intent(inout) :: err
+    select case (i)
+    case (1)
+      g = x(1) + x(2) - 2.0_dp
+    case (2)
+      g = x(1)*x(2) - 0.5_dp
+    case default
+      g = 0.0_dp
+      call err%set(self%name, 'no general constraint '//itoa(i))
+    end select
+  end subroutine numbered_constraint
+
+  !> An equality given by a procedure keeps its number (m_own + j = 2 here)
+  !> when set_bounds adds four bounds before or after it is declared: the
+  !> values, the difference gradient and Hessian of the equality (internal
+  !> column m + 1 = 6) are those of h1, and no call reaches the procedure
+  !> with another number.  Before, the equality arrived as i = 6 once the
+  !> bounds were added, and a procedure written for i = 2 failed.
+  subroutine test_numbering()
+    type(numbered_t) :: p, q
+    type(error_t) :: err
+    real(dp) :: x(2), g(6), dg(2, 6), hess(2, 2)
+    x = [0.3_dp, 0.9_dp]
+    call p%init_problem('numbered', 2, 0, 1, n_eq=1)
+    call p%set_general_constraint(1)
+    call p%set_general_equality(1)
+    call p%set_bounds([0.0_dp, 0.0_dp], [1.0_dp, 1.0_dp])      ! bounds after the equality
+    call q%init_problem('numbered', 2, 0, 1, n_eq=1)
+    call q%set_bounds([0.0_dp, 0.0_dp], [1.0_dp, 1.0_dp])      ! bounds before it
+    call q%set_general_constraint(1)
+    call q%set_general_equality(1)
+    call assert_equal(p%m, 5, 'four bounds after the general inequality')
+    call p%constraint_values(x, g, err)
+    call assert_close(g(1), x(1) + x(2) - 2.0_dp, 1.0e-15_dp, 'inequality 1')
+    call assert_close(g(6), x(1)*x(2) - 0.5_dp, 1.0e-15_dp, 'equality 1 in column m + 1, from procedure number 2')
+    call p%constraint_gradients(x, g, dg, err)
+    call assert_all_close(dg(:, 6), [x(2), x(1)], 0.0_dp, 1.0e-7_dp, 'equality gradient by differences')
+    call p%constraint_hessian(6, x, hess, err)
+    call assert_all_close(reshape(hess, [4]), [0.0_dp, 1.0_dp, 1.0_dp, 0.0_dp], 0.0_dp, 1.0e-6_dp, &
+                          'equality Hessian by differences')
+    call assert_true(.not. err%failed(), 'every call numbered as the procedure expects: '//err%text())
+    call q%constraint_values(x, g, err)
+    call assert_close(g(6), x(1)*x(2) - 0.5_dp, 1.0e-15_dp, 'the same with the bounds set first')
+    call assert_true(.not. err%failed(), 'no error with the bounds set first')
+  end subroutine test_numbering
 
   subroutine ro_residuals(self, x, phi, err)
     class(residual_only_t), intent(inout) :: self
