@@ -37,6 +37,7 @@ module design_analysis
   integer, parameter :: max_vars = 20
   integer, parameter :: max_points = 72
   integer, parameter :: max_speeds = 8
+  integer, parameter :: max_deflections = 8
   real(dp), parameter :: unset = -huge(1.0_dp)
   real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
 
@@ -55,10 +56,15 @@ module design_analysis
   ! path objectives: the coupler point and its targets
   integer :: path_link
   real(dp) :: path_r, path_angle_deg, path_x(max_points), path_y(max_points), path_dgamma_deg(max_points)
+  ! deflection constraints: named link points and their limits
+  integer :: deflection_link(max_deflections)
+  real(dp) :: deflection_at(max_deflections), deflection_limit(max_deflections)
+  character(len=8) :: deflection_from(max_deflections)
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
                     frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
                     speeds, objective_speed, stop_when_periodic, max_revolutions, &
-                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho
+                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho, &
+                    deflection_link, deflection_at, deflection_limit, deflection_from
 
 contains
 
@@ -90,6 +96,10 @@ contains
     path_x = unset
     path_y = unset
     path_dgamma_deg = unset
+    deflection_link = 0
+    deflection_at = 0.5_dp
+    deflection_limit = 0.0_dp
+    deflection_from = 'chord'
   end subroutine set_defaults
 
   !> The &design group's namelist read and write (deck_reader, table_t%echo_group).
@@ -166,6 +176,7 @@ contains
                               bdf=s%shooting%bdf, max_steps=s%shooting%max_steps), &
                             fd_rel_step=difference_step(evaluator), peak_stress=peak_stress, ks_rho=ks_rho)
     if (prob%is_path()) call set_path(prob)
+    call set_deflections(prob)
     if (prob%is_shaking() .and. any(s%sections(1:mech%n_links)%n > 0)) then
       call invalid_value(deck, 'design', 'objective', ''''//trim(prob%objective_kind)//'''', &
                          'the shaking force takes uniform links (no &sections)', err)
@@ -183,6 +194,48 @@ contains
     opt = design_sequence_t(max_iterations=max_iterations, xtol=xtol, feas_tol=feas_tol, move_limit=move_limit, &
                             hessian=hessian)
   end subroutine load_design
+
+  !> The deflection constraints read (check_deflections) into the problem.
+  subroutine set_deflections(prob)
+    type(design_problem_t), intent(inout) :: prob
+    integer :: np
+    np = count(deflection_link > 0)
+    prob%deflection_link = deflection_link(1:np)
+    prob%deflection_at = deflection_at(1:np)
+    prob%deflection_limit = deflection_limit(1:np)
+    prob%deflection_chord = deflection_from(1:np) == 'chord'
+  end subroutine set_deflections
+
+  !> The named link points of the deflection constraints: given one after
+  !> another, each on a link, at a fraction of its length, with a limit.
+  subroutine check_deflections(deck, mech, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    integer :: np, k
+    np = count(deflection_link /= 0)
+    if (np == 0) return
+    if (any(deflection_link(1:np) == 0)) then
+      call invalid_value(deck, g, 'deflection_link', str(np)//' given, then a gap', 'give the deflection points '// &
+                         'one after another, deflection_link(1), deflection_link(2), ...', err)
+      return
+    end if
+    do k = 1, np
+      call check_integer(deck, g, 'deflection_link('//str(k)//')', deflection_link(k), err, at_least=1, &
+                         at_most=mech%n_links, why='the link that carries deflection point '//str(k))
+      call check_real(deck, g, 'deflection_at('//str(k)//')', deflection_at(k), err, at_least=0.0_dp, &
+                      at_most=1.0_dp, why='the point''s distance from the link''s end 1 as a fraction of its length')
+      call check_real(deck, g, 'deflection_limit('//str(k)//')', deflection_limit(k), err, &
+                      at_least=1.0e-8_dp*mech%length_scale, at_most=1.0e3_dp*mech%length_scale, &
+                      why='largest elastic deflection of the point (the constraint is ln(deflection / limit) <= 0)')
+      call check_choice(deck, g, 'deflection_from('//str(k)//')', deflection_from(k), &
+                        [character(len=8) :: 'chord', 'rigid'], err)
+      if (err%failed()) return
+    end do
+    if (count(deflection_link /= 0) /= np) call invalid_value(deck, g, 'deflection_link', 'more than '//str(np), &
+      'at most '//str(max_deflections)//' points, given one after another', err)
+  end subroutine check_deflections
 
   !> Finite-difference steps above the analysis' noise (doc/design.md).
   real(dp) function difference_step(evaluator) result(step)
@@ -222,6 +275,8 @@ contains
     call check_settings(deck, err)
     if (err%failed()) return
     call check_objective(deck, mech, n_speeds, err)
+    if (err%failed()) return
+    call check_deflections(deck, mech, err)
     if (err%failed()) return
     allocate(var(n), x0(n))
     do i = 1, n
@@ -291,9 +346,9 @@ contains
     else if (objective /= 'mass') then
       call check_path(deck, mech, err)
       if (err%failed()) return
-    else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp)) then
-      call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress or a '// &
-                         'frequency constraint (else the minimum is the lower bounds)', err)
+    else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp .or. any(deflection_link /= 0))) then
+      call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress, a '// &
+                         'frequency or a deflection constraint (else the minimum is the lower bounds)', err)
       return
     end if
     call check_speeds(deck, n_speeds, err)
@@ -519,6 +574,7 @@ contains
     type(table_t), intent(inout) :: out
     type(design_problem_t), intent(in) :: prob
     integer :: i
+    character(len=:), allocatable :: from, aggregate
     select case (prob%objective_kind)
     case ('path')
       call out%comment('design: least path error of the coupler point with the elastic deformation at the '// &
@@ -555,8 +611,18 @@ contains
       'of ln(stress) over the '//str(prob%samples)//' samples, rho = '//str(prob%ks_rho, 6)// &
       ': above the largest sample by at most ln(samples)/rho = '//str(log(real(prob%samples, dp))/prob%ks_rho, 3))
     if (prob%i_frequency > 0) call out%comment('constraints g'//str(prob%i_frequency)//'-g'// &
-      str(prob%n_analysis_constraints())//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
+      str(prob%i_frequency + size(prob%speeds) - 1)//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
       'natural frequency over the revolution) <= 0, one per speed')
+    do i = 1, prob%n_deflection_points()
+      from = 'from the rigid position'
+      if (prob%deflection_chord(i)) from = 'from the chord'
+      aggregate = ''
+      if (prob%peak_stress == 'ks') aggregate = ' (the KS aggregate)'
+      call out%comment('constraint g'//str(prob%i_deflection + i - 1)//': deflection of link '// &
+        str(prob%deflection_link(i))//' at '//str(prob%deflection_at(i), 4)//' of its length from end 1, '// &
+        from//': ln(peak'//aggregate//' / '//str(prob%deflection_limit(i), 6)//') <= 0; at speed s: g'// &
+        str(prob%i_deflection + i - 1)//' + (s - 1) x '//str(prob%n_deflection_points()))
+    end do
     call out%comment('bounds as linear constraints after them; each analysis: '//trim(evaluator_text(prob%evaluator))// &
       ' with stresses and frequencies at '//str(prob%samples)// &
       ' crank angles; '//trim(derivatives_text(prob)))
@@ -684,6 +750,10 @@ contains
           if (prob%i_frequency > 0 .and. size(prob%speeds) > 1) call out%summary('final lowest frozen frequency at '// &
             str(prob%speeds(s), 6)//' rad/s', str(ev%frequency_at(s), 8)//' rad/s = '// &
             str(ev%frequency_at(s)/prob%speeds(s), 5)//' x crank speed')
+        end do
+        do i = 1, prob%n_deflection_points()
+          call out%summary('final peak deflection point '//str(i)//' (link '//str(prob%deflection_link(i))//')', &
+                           str(maxval(ev%sample_deflection(:, i, :)), 8))
         end do
         if (prob%is_path()) then
           call out%summary('final path error (elastic)', str(ev%path_error, 8)//' (largest miss '// &

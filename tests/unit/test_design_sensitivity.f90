@@ -209,7 +209,9 @@ contains
   !> with the material, stretching and curvature terms on, at the heights
   !> 1.15, 0.53, 0.54 in the nonlinear design reaches in three iterations
   !> (below the Ramberg-Osgood peak everywhere), peak stresses as KS
-  !> aggregates with rho = 10.  The variational derivatives (the orbit's
+  !> aggregates with rho = 10, and two deflection constraints (the
+  !> coupler's middle from its chord, the rocker at 0.7 of its length from
+  !> its rigid position, KS aggregates too).  The variational derivatives (the orbit's
   !> sensitivities with the nonlinear tangent) against central differences
   !> of whole analyses at x +- 1e-4 (rtol 1e-9, Newton to 1e-10).  The step
   !> is the point: measured at steps 3e-3, 1e-3, 3e-4 and 1e-4, the
@@ -238,7 +240,9 @@ contains
               '&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-9, atol = 1.0e-14 /|'// &
               '&tennant d_k = 1, d_b = 1, d_g = 1, shear = F /|'// &
               '&design variables = ''link_h(1)'', ''link_h(2)'', ''link_h(3)'', lower = 3*0.2, upper = 3*4.0, '// &
-              'stress_allowable = 20000.0, frequency_factor = 5.0, samples = 24, peak_stress = ''ks'', ks_rho = 10 /', prob, x0)
+              'stress_allowable = 20000.0, frequency_factor = 5.0, samples = 24, peak_stress = ''ks'', ks_rho = 10, '// &
+              'deflection_link = 2, 3, deflection_at = 0.5, 0.7, deflection_from = ''chord'', ''rigid'', '// &
+              'deflection_limit = 2*0.01 /', prob, x0)
     prob%shooting%newton_tol = 1.0e-10_dp
     prob%shooting%max_newton = 30
     call prob%setup('nonlinear example 1', x0)
@@ -249,6 +253,9 @@ contains
     call prob%derivatives_at(x0, dg, dr, ok)
     call assert_true(ok, 'derivatives_at succeeds')
     if (.not. ok) return
+    call assert_equal(size(dg, 2), 6, 'three stresses, a frequency, two deflections')
+    call assert_true(minval(maxval(abs(dg(:, 5:6)), dim=1)) > 0.1_dp, 'the heights move the deflections: '// &
+                     str(dg(2, 5))//', '//str(dg(3, 6)))
     do j = 1, 3
       h = 1.0e-4_dp
       xs = x0
