@@ -60,11 +60,15 @@ module design_analysis
   integer :: deflection_link(max_deflections)
   real(dp) :: deflection_at(max_deflections), deflection_limit(max_deflections)
   character(len=8) :: deflection_from(max_deflections)
+  ! movability: the transmission angle at a joint and its least value
+  integer :: transmission_joint
+  real(dp) :: transmission_min_deg
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
                     frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
                     speeds, objective_speed, stop_when_periodic, max_revolutions, &
                     path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho, &
-                    deflection_link, deflection_at, deflection_limit, deflection_from
+                    deflection_link, deflection_at, deflection_limit, deflection_from, transmission_joint, &
+                    transmission_min_deg
 
 contains
 
@@ -100,6 +104,8 @@ contains
     deflection_at = 0.5_dp
     deflection_limit = 0.0_dp
     deflection_from = 'chord'
+    transmission_joint = 0
+    transmission_min_deg = 40.0_dp
   end subroutine set_defaults
 
   !> The &design group's namelist read and write (deck_reader, table_t%echo_group).
@@ -204,6 +210,8 @@ contains
     prob%deflection_at = deflection_at(1:np)
     prob%deflection_limit = deflection_limit(1:np)
     prob%deflection_chord = deflection_from(1:np) == 'chord'
+    prob%transmission_joint = transmission_joint
+    prob%transmission_min = transmission_min_deg*deg
   end subroutine set_deflections
 
   !> The named link points of the deflection constraints: given one after
@@ -236,6 +244,26 @@ contains
     if (count(deflection_link /= 0) /= np) call invalid_value(deck, g, 'deflection_link', 'more than '//str(np), &
       'at most '//str(max_deflections)//' points, given one after another', err)
   end subroutine check_deflections
+
+  !> The movability constraint: a joint where exactly two links meet, and
+  !> the least transmission angle there.
+  subroutine check_transmission(deck, mech, err)
+    type(deck_t), intent(inout) :: deck
+    type(mechanism_t), intent(in) :: mech
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    call check_integer(deck, g, 'transmission_joint', transmission_joint, err, at_least=0, at_most=mech%n_joints, &
+                       why='the joint where the transmission angle is taken; 0 = no movability constraint')
+    if (err%failed() .or. transmission_joint == 0) return
+    if (mech%joints(transmission_joint)%n_links /= 2) then
+      call invalid_value(deck, g, 'transmission_joint', str(transmission_joint), 'the transmission angle is '// &
+                         'the angle between the two links that meet at the joint; '// &
+                         str(mech%joints(transmission_joint)%n_links)//' meet there', err)
+      return
+    end if
+    call check_real(deck, g, 'transmission_min_deg', transmission_min_deg, err, above=0.0_dp, below=90.0_dp, &
+                    why='the least transmission angle, degrees: mu kept in [min, 180 - min]')
+  end subroutine check_transmission
 
   !> Finite-difference steps above the analysis' noise (doc/design.md).
   real(dp) function difference_step(evaluator) result(step)
@@ -277,6 +305,8 @@ contains
     call check_objective(deck, mech, n_speeds, err)
     if (err%failed()) return
     call check_deflections(deck, mech, err)
+    if (err%failed()) return
+    call check_transmission(deck, mech, err)
     if (err%failed()) return
     allocate(var(n), x0(n))
     do i = 1, n
@@ -346,7 +376,8 @@ contains
     else if (objective /= 'mass') then
       call check_path(deck, mech, err)
       if (err%failed()) return
-    else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp .or. any(deflection_link /= 0))) then
+    else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp .or. any(deflection_link /= 0) .or. &
+                    transmission_joint /= 0)) then
       call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress, a '// &
                          'frequency or a deflection constraint (else the minimum is the lower bounds)', err)
       return
@@ -613,6 +644,10 @@ contains
     if (prob%i_frequency > 0) call out%comment('constraints g'//str(prob%i_frequency)//'-g'// &
       str(prob%i_frequency + size(prob%speeds) - 1)//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
       'natural frequency over the revolution) <= 0, one per speed')
+    if (prob%i_transmission > 0) call out%comment('constraint g'//str(prob%i_transmission)//': movability, '// &
+      'ln(peak |cos mu|'//trim(merge(' (the KS aggregate)', '                   ', prob%peak_stress == 'ks'))// &
+      ' / cos '//str(prob%transmission_min/deg, 6)//' deg) <= 0, mu the transmission angle between the links at joint '// &
+      str(prob%transmission_joint)//' (rigid-body kinematics): within [min, 180 - min] at every sample')
     do i = 1, prob%n_deflection_points()
       from = 'from the rigid position'
       if (prob%deflection_chord(i)) from = 'from the chord'
@@ -751,6 +786,9 @@ contains
             str(prob%speeds(s), 6)//' rad/s', str(ev%frequency_at(s), 8)//' rad/s = '// &
             str(ev%frequency_at(s)/prob%speeds(s), 5)//' x crank speed')
         end do
+        if (prob%i_transmission > 0) call out%summary('final least transmission angle', &
+          str(acos(min(maxval(ev%sample_transmission), 1.0_dp))/deg, 6)//' deg (at joint '// &
+          str(prob%transmission_joint)//')')
         do i = 1, prob%n_deflection_points()
           call out%summary('final peak deflection point '//str(i)//' (link '//str(prob%deflection_link(i))//')', &
                            str(maxval(ev%sample_deflection(:, i, :)), 8))

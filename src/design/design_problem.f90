@@ -90,6 +90,9 @@ module design_problem
     !> (sample, point, speed) elastic deflection of each named link point
     !> (deflection constraints): from the chord or from the rigid position
     real(dp), allocatable :: sample_deflection(:, :, :)
+    !> (sample) |cos| of the transmission angle (movability constraint;
+    !> rigid-body kinematics, the same at every speed)
+    real(dp), allocatable :: sample_transmission(:)
     real(dp), allocatable :: residual(:)        !< coupler point - target, (x, y) per target point, elastic included
     real(dp), allocatable :: rigid_residual(:)  !< the same for the rigid-body coupler point
     real(dp) :: path_error = 0.0_dp             !< sum of residual^2 (B's F, with the deformation)
@@ -138,6 +141,12 @@ module design_problem
     integer, allocatable :: deflection_link(:)
     real(dp), allocatable :: deflection_at(:), deflection_limit(:)
     logical, allocatable :: deflection_chord(:)
+    !> movability: the angle mu between the two links that meet at joint
+    !> transmission_joint (the coupler and the output link of a four-bar)
+    !> kept within [transmission_min, pi - transmission_min] at every sample:
+    !> ln(peak |cos mu| / cos transmission_min) <= 0 (0: no such constraint)
+    integer :: transmission_joint = 0
+    real(dp) :: transmission_min = 0.0_dp
     real(dp) :: mass0 = 1.0_dp                    !< mass of the initial design
     !> 'mass', 'path' (elastic path error), 'path_rigid', 'shaking' (mean
     !> square shaking force) or 'shaking_peak' (its peak: minimax)
@@ -160,6 +169,7 @@ module design_problem
     integer :: n_stress = 0, i_frequency = 0
     !> deflection of point p at speed s: i_deflection + (s - 1) n_points + p - 1
     integer :: i_deflection = 0
+    integer :: i_transmission = 0                 !< the movability constraint's number (0: none)
     ! ---- bookkeeping
     integer :: n_analyses = 0, n_failed = 0
     integer :: n_revolutions = 0                  !< revolutions integrated by the transient evaluator
@@ -267,6 +277,9 @@ contains
     self%i_deflection = 0
     if (self%n_deflection_points() > 0) &
       self%i_deflection = self%n_stress + merge(size(self%speeds), 0, self%i_frequency > 0) + 1
+    self%i_transmission = 0
+    if (self%transmission_joint > 0) self%i_transmission = self%n_stress + &
+      merge(size(self%speeds), 0, self%i_frequency > 0) + self%n_deflection_points()*size(self%speeds) + 1
     call self%init_problem(name, n, 0, self%n_analysis_constraints())
     do i = 1, self%m
       call self%set_general_constraint(i)
@@ -355,7 +368,7 @@ contains
   integer pure function n_analysis_constraints(self)
     class(design_problem_t), intent(in) :: self
     n_analysis_constraints = self%n_stress + merge(size(self%speeds), 0, self%i_frequency > 0) + &
-                             self%n_deflection_points()*size(self%speeds)
+                             self%n_deflection_points()*size(self%speeds) + merge(1, 0, self%transmission_joint > 0)
   end function n_analysis_constraints
 
   !> Named link points whose deflection is constrained.
@@ -526,7 +539,9 @@ contains
     real(dp), intent(out) :: mean_square
     allocate(ev%stress_at(n_links, size(self%speeds)), ev%frequency_at(size(self%speeds)), ev%residual(0), &
              ev%rigid_residual(0), ev%sample_stress(self%samples, n_links, size(self%speeds)), &
-             ev%sample_deflection(self%samples, self%n_deflection_points(), size(self%speeds)))
+             ev%sample_deflection(self%samples, self%n_deflection_points(), size(self%speeds)), &
+             ev%sample_transmission(self%samples))
+    ev%sample_transmission = 0.0_dp
     n_objective = 0
     mean_square = 0.0_dp
   end subroutine start_join
@@ -543,6 +558,7 @@ contains
     ev%stress_at(:, s) = one%link_stress
     ev%sample_stress(:, :, s) = one%sample_stress(:, :, 1)
     ev%sample_deflection(:, :, s) = one%sample_deflection(:, :, 1)
+    if (s == 1) ev%sample_transmission = one%sample_transmission
     ev%frequency_at(s) = one%lowest_frequency
     if (self%objective_speed /= 0 .and. self%objective_speed /= s) return
     n_objective = n_objective + 1
@@ -706,7 +722,8 @@ contains
     shaking = self%is_shaking()
     if (shaking) allocate(shake(2, self%samples), moment(2, self%samples))
     allocate(ev%sample_stress(self%samples, mech%n_links, 1), &
-             ev%sample_deflection(self%samples, self%n_deflection_points(), 1))
+             ev%sample_deflection(self%samples, self%n_deflection_points(), 1), ev%sample_transmission(self%samples))
+    ev%sample_transmission = 0.0_dp
     ev%sample_stress = 0.0_dp
     do k = 1, self%samples
       call model%set_time(times(at_sample(k)), err)
@@ -725,6 +742,8 @@ contains
           mech%links(self%deflection_link(i))%n_elements, self%deflection_at(i), self%deflection_chord(i), &
           q(:, at_sample(k)))
       end do
+      if (self%transmission_joint > 0) &
+        ev%sample_transmission(k) = transmission_cosine(model, mech, self%transmission_joint)
       call model%stresses(q(:, at_sample(k)), st)
       do i = 1, mech%n_links
         do e = mech%links(i)%first_element, mech%links(i)%first_element + mech%links(i)%n_elements - 1
@@ -746,7 +765,7 @@ contains
       end if
     end if
     ev%ok = ieee_is_finite(ev%mass) .and. all(ieee_is_finite(ev%link_stress)) .and. &
-            all(ieee_is_finite(ev%sample_deflection)) .and. &
+            all(ieee_is_finite(ev%sample_deflection)) .and. all(ieee_is_finite(ev%sample_transmission)) .and. &
             ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
             ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking)
     if (.not. ev%ok) then
@@ -824,7 +843,13 @@ contains
     real(dp) :: g(self%n_analysis_constraints())
     integer :: i
     do i = 1, size(g)
-      if (self%i_deflection > 0 .and. i >= self%i_deflection) then
+      if (i == self%i_transmission) then
+        if (self%peak_stress == 'ks') then
+          g(i) = ks_peak(log(max(ev%sample_transmission, tiny(1.0_dp))), self%ks_rho) - log(cos(self%transmission_min))
+        else
+          g(i) = log(max(maxval(ev%sample_transmission), tiny(1.0_dp))/cos(self%transmission_min))
+        end if
+      else if (self%i_deflection > 0 .and. i >= self%i_deflection) then
         g(i) = deflection_constraint(self, ev, i - self%i_deflection)
       else if (i <= self%n_stress .and. self%peak_stress == 'ks') then
         g(i) = ks_peak(log(max(ev%sample_stress(:, modulo(i - 1, self%base%n_links) + 1, &
@@ -859,6 +884,8 @@ contains
       g(self%i_deflection + i) = log(max(ev%sample_deflection(maxloc(base%sample_deflection(:, l, s), dim=1), l, s), &
                                          tiny(1.0_dp))/self%deflection_limit(l))
     end do
+    if (self%i_transmission > 0) g(self%i_transmission) = &
+      log(max(ev%sample_transmission(maxloc(base%sample_transmission, dim=1)), tiny(1.0_dp))/cos(self%transmission_min))
     do i = 1, self%n_stress
       l = modulo(i - 1, self%base%n_links) + 1
       s = (i - 1)/self%base%n_links + 1
@@ -902,6 +929,17 @@ contains
       g = log(max(maxval(ev%sample_deflection(:, p, s)), tiny(1.0_dp))/self%deflection_limit(p))
     end if
   end function deflection_constraint
+
+  !> |cos mu| at the current time, mu the angle between the rigid-body lines
+  !> of the two links that meet at joint j (a four-bar's transmission angle
+  !> at the coupler-rocker pin): |cos| leaves out which way each link points.
+  real(dp) function transmission_cosine(model, mech, j) result(c)
+    type(steady_model_t), intent(in) :: model
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: j
+    c = abs(cos(model%fs(mech%links(mech%joints(j)%link(1))%first_element)%phi - &
+                model%fs(mech%links(mech%joints(j)%link(2))%first_element)%phi))
+  end function transmission_cosine
 
   !> Elastic deflection, at the current time, of the point at the fraction
   !> at of a straight link (elements first .. first + n - 1) from its end 1:

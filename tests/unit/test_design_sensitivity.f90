@@ -44,6 +44,7 @@ contains
     call run_test('orbit_sensitivity_matches_differences_of_duffing_orbits', test_duffing)
     call run_test('design_derivatives_match_central_differences_of_analyses', test_design_derivatives)
     call run_test('nonlinear_design_derivatives_match_central_differences_of_analyses', test_nonlinear_derivatives)
+    call run_test('transmission_angle_constraint_matches_closed_form', test_transmission)
     call run_test('derivatives_switch_is_checked', test_switch)
   end subroutine run_all
 
@@ -279,6 +280,58 @@ contains
     call assert_true(e3 > 50*e4 .and. e3 < 200*e4, 'the mismatch grows as h^2: '//str(e3)//' at 1e-3, '// &
                      str(e4)//' at 1e-4')
   end subroutine test_nonlinear_derivatives
+
+  !> The movability constraint on Tennant's four-bar (crank a = 5, coupler
+  !> b = 11, rocker c = 10.5, ground d = 10 in): the transmission angle mu
+  !> at the coupler-rocker pin C has cos mu = (b^2 + c^2 - BD^2) / (2 b c),
+  !> BD the distance from the crank pin to the rocker's pivot, least
+  !> (d - a) at crank angle 0, the first sample: peak |cos mu| =
+  !> 206.25 / 231 (mu = 26.8 deg).  g = ln(peak |cos mu| / cos 30 deg) and
+  !> its derivatives in x1 = ln(b / 11) and x2 = d / 10 in closed form:
+  !> b dg/db = 2 b^2 / N - 1 and 10 dg/dd = -20 (d - a) / N, N = 206.25;
+  !> the heights leave it alone.  From the variational path (one
+  !> sensitivity solve: the perturbed linkages solve their own kinematics)
+  !> to 1e-7, and x2's against a central difference of whole analyses.
+  subroutine test_transmission()
+    type(design_problem_t) :: prob
+    real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), gp(:), gm(:), rp(:), rm(:)
+    real(dp) :: xs(3), h, g_exact
+    type(design_eval_t) :: ev
+    logical :: ok
+    integer :: it
+    call load('&run analysis = ''design'' /|&mechanism n_joints = 4, joint_name = ''A'', ''B'', ''C'', ''D'', '// &
+              'joint_type = ''clamp'', ''pin'', ''pin'', ''ground_pin'', joint_x(1) = 0.0, joint_y(1) = 0.0, '// &
+              'joint_x(4) = 10.0, joint_y(4) = 0.0, n_links = 3, link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, '// &
+              'link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, link_h = 3*1.0, '// &
+              'link_n_elements = 3*1, driver_link = 1, omega = 75.0 /|'// &
+              '&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-9, atol = 1.0e-13 /|'// &
+              '&tennant d_k = 0, d_b = 0, d_g = 0, shear = F /|'// &
+              '&design variables = ''link_length(2)'', ''joint_x(4)'', ''link_h(2)'', lower = 9.0, 8.0, 0.2, '// &
+              'upper = 13.0, 12.0, 4.0, transmission_joint = 3, transmission_min_deg = 30.0, samples = 24 /', prob, x0)
+    call prob%setup('movability', x0)
+    call assert_equal(prob%n_analysis_constraints(), 1, 'the movability constraint alone')
+    call prob%evaluate(x0, ev)
+    call assert_true(ev%ok, 'the four-bar analyses: '//eval_reason(ev))
+    if (.not. ev%ok) return
+    g_exact = log(206.25_dp/231.0_dp/cos(30.0_dp*pi/180.0_dp))
+    gp = prob%constraints_of(ev)
+    call assert_close(gp(1), g_exact, 1.0e-9_dp, 'g at the start, closed form')
+    call assert_equal(maxloc(ev%sample_transmission, dim=1), 1, 'the least angle at crank angle 0')
+    call prob%derivatives_at(x0, dg, dr, ok)
+    call assert_true(ok, 'derivatives_at succeeds')
+    if (.not. ok) return
+    call assert_close(dg(1, 1), 2*121.0_dp/206.25_dp - 1.0_dp, 1.0e-7_dp, 'dg/d ln b, closed form')
+    call assert_close(dg(2, 1), -20*5.0_dp/206.25_dp, 1.0e-7_dp, 'dg/d(d/10), closed form')
+    call assert_close(dg(3, 1), 0.0_dp, 1.0e-9_dp, 'the coupler height leaves it alone')
+    h = 1.0e-3_dp
+    it = 2
+    xs = x0
+    xs(it) = x0(it) + h
+    call values(prob, xs, gp, rp)
+    xs(it) = x0(it) - h
+    call values(prob, xs, gm, rm)
+    call assert_close(dg(it, 1), (gp(1) - gm(1))/(2*h), 1.0e-5_dp, 'dg/d(d/10), differences of analyses')
+  end subroutine test_transmission
 
   subroutine values(prob, x, g, r)
     type(design_problem_t), intent(inout) :: prob
