@@ -291,7 +291,9 @@ contains
   !> b dg/db = 2 b^2 / N - 1 and 10 dg/dd = -20 (d - a) / N, N = 206.25;
   !> the heights leave it alone.  From the variational path (one
   !> sensitivity solve: the perturbed linkages solve their own kinematics)
-  !> to 1e-7, and x2's against a central difference of whole analyses.
+  !> to 1e-7, and x2's against a central difference of whole analyses.  The
+  !> constraint is rigid-body kinematics: a loose rtol and 8 samples (crank
+  !> angle 0 among them) keep the test cheap without touching its value.
   subroutine test_transmission()
     type(design_problem_t) :: prob
     real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), gp(:), gm(:), rp(:), rm(:)
@@ -304,10 +306,10 @@ contains
               'joint_x(4) = 10.0, joint_y(4) = 0.0, n_links = 3, link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, '// &
               'link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, link_h = 3*1.0, '// &
               'link_n_elements = 3*1, driver_link = 1, omega = 75.0 /|'// &
-              '&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-9, atol = 1.0e-13 /|'// &
+              '&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-6, atol = 1.0e-10 /|'// &
               '&tennant d_k = 0, d_b = 0, d_g = 0, shear = F /|'// &
               '&design variables = ''link_length(2)'', ''joint_x(4)'', ''link_h(2)'', lower = 9.0, 8.0, 0.2, '// &
-              'upper = 13.0, 12.0, 4.0, transmission_joint = 3, transmission_min_deg = 30.0, samples = 24 /', prob, x0)
+              'upper = 13.0, 12.0, 4.0, transmission_joint = 3, transmission_min_deg = 30.0, samples = 8 /', prob, x0)
     call prob%setup('movability', x0)
     call assert_equal(prob%n_analysis_constraints(), 1, 'the movability constraint alone')
     call prob%evaluate(x0, ev)
