@@ -13,94 +13,29 @@
 !> deck OUT.design.nml, and the steady-state analyses of the initial and the
 !> final design, OUT.initial.out and OUT.final.out.
 module design_analysis
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
   use version, only: program_name, program_version
-  use deck_reader, only: deck_t, invalid_value, group_read_t
-  use deck_checks, only: check_real, check_reals, check_integer, check_choice
+  use deck_reader, only: deck_t, invalid_value
+  use deck_checks, only: check_real
   use table_output, only: table_t
-  use linkage, only: mechanism_t, build_mechanism, profile_constant
+  use linkage, only: mechanism_t, build_mechanism
   use linkage_deck, only: read_mechanism, echo_mechanism, write_mechanism_group
   use steady_settings, only: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
   use steady_run, only: analyse_steady_deck
   use design_problem, only: design_problem_t, design_variable_t, design_eval_t, parse_variable, var_theta0, &
                             var_path_r, var_path_angle, var_cw_mass, var_cw_x, var_cw_y
-  use shaking_force, only: shaking_supported
   use design_sequence, only: design_sequence_t
   use periodic_transient, only: periodic_transient_settings_t
+  use design_settings, only: design_settings_t, read_design_settings, echo_design_settings, unset_value
   implicit none
   private
   public :: run_design, load_design
 
-  integer, parameter :: max_vars = 20
-  integer, parameter :: max_points = 72
-  integer, parameter :: max_speeds = 8
-  real(dp), parameter :: unset = -huge(1.0_dp)
   real(dp), parameter :: deg = atan(1.0_dp)/45.0_dp
 
-  ! staging variables of the &design group
-  character(len=32) :: variables(max_vars), objective
-  character(len=16) :: evaluator, hessian, derivatives, peak_stress
-  real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
-  real(dp) :: xtol, feas_tol, move_limit, ks_rho
-  integer :: max_iterations, samples
-  ! the transient evaluator: its periodicity test and revolution limit
-  real(dp) :: stop_when_periodic
-  integer :: max_revolutions
-  ! operating speeds: every constraint at each, the objective summed or at one
-  real(dp) :: speeds(max_speeds)
-  integer :: objective_speed
-  ! path objectives: the coupler point and its targets
-  integer :: path_link
-  real(dp) :: path_r, path_angle_deg, path_x(max_points), path_y(max_points), path_dgamma_deg(max_points)
-  namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
-                    frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
-                    speeds, objective_speed, stop_when_periodic, max_revolutions, &
-                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho
-
 contains
-
-  subroutine set_defaults()
-    variables = ''
-    lower = unset
-    upper = unset
-    scale = 0.0_dp
-    objective = 'mass'
-    evaluator = 'shooting'
-    hessian = 'gauss'
-    derivatives = ''
-    peak_stress = 'max'
-    ks_rho = 200.0_dp
-    speeds = unset
-    objective_speed = 0
-    stress_allowable = 0.0_dp
-    frequency_factor = 0.0_dp
-    max_iterations = 30
-    samples = 72
-    xtol = 1.0e-3_dp
-    feas_tol = 1.0e-3_dp
-    move_limit = 0.3_dp
-    stop_when_periodic = 1.0e-6_dp
-    max_revolutions = 200
-    path_link = 0
-    path_r = 0.0_dp
-    path_angle_deg = 0.0_dp
-    path_x = unset
-    path_y = unset
-    path_dgamma_deg = unset
-  end subroutine set_defaults
-
-  !> The &design group's namelist read and write (deck_reader, table_t%echo_group).
-  subroutine design_group(r)
-    type(group_read_t), intent(inout) :: r
-    if (r%writing) then
-      write(r%unit, nml=design, delim='apostrophe')
-    else
-      read(r%unit, nml=design, iostat=r%ios, iomsg=r%iomsg)
-    end if
-  end subroutine design_group
 
   subroutine run_design(deck, out, err)
     type(deck_t), intent(inout) :: deck
@@ -112,10 +47,11 @@ contains
     type(error_t) :: run_err
     real(dp), allocatable :: x0(:)
     real(dp) :: cpu0, cpu1
+    type(design_settings_t) :: ds
 
-    call load_design(deck, mech, prob, x0, opt, err)
+    call load_design(deck, mech, prob, x0, opt, err, ds)
     if (err%failed()) return
-    call echo_all(out, mech)
+    call echo_all(out, mech, ds)
     call cpu_time(cpu0)
     call prob%setup('design of '//trim(deck%path), x0)
     call write_design_header(out, prob)
@@ -141,48 +77,68 @@ contains
   !> &design group (the problem, not yet set up: prob%setup analyses the
   !> start of a path objective) and the design loop's settings.  Public for
   !> the benchmark that runs the same problems through other optimizers.
-  subroutine load_design(deck, mech, prob, x0, opt, err)
+  subroutine load_design(deck, mech, prob, x0, opt, err, settings)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(out) :: mech
     type(design_problem_t), intent(out) :: prob
     real(dp), allocatable, intent(out) :: x0(:)
     type(design_sequence_t), intent(out) :: opt
     type(error_t), intent(inout) :: err
-    type(steady_settings_t) :: s
+    !> the &design group as read (the echo)
+    type(design_settings_t), intent(out), optional :: settings
+    type(steady_settings_t) :: st
+    type(design_settings_t) :: ds
     type(design_variable_t), allocatable :: var(:)
-    integer :: n_speeds
     call read_mechanism(deck, mech, err)
     if (err%failed()) return
-    call read_steady_settings(deck, mech%n_links, s, err)
+    call read_steady_settings(deck, mech%n_links, st, err)
     if (err%failed()) return
-    call read_design(deck, mech, var, x0, n_speeds, err)
+    call read_design(deck, mech, ds, var, x0, err)
     if (err%failed()) return
-    prob = design_problem_t(base=mech%input, var=var, objective_kind=objective, evaluator=evaluator, &
-                            samples=samples, stress_allowable=stress_allowable, frequency_factor=frequency_factor, &
-                            speeds=speeds(1:n_speeds), objective_speed=objective_speed, element=s%element, &
-                            sections=s%sections, harmonic=s%harmonic, shooting=s%shooting, derivatives=derivatives, &
-                            transient=periodic_transient_settings_t(tolerance=stop_when_periodic, &
-                              max_revolutions=max_revolutions, rtol=s%shooting%rtol, atol=s%shooting%atol, &
-                              bdf=s%shooting%bdf, max_steps=s%shooting%max_steps), &
-                            fd_rel_step=difference_step(evaluator), peak_stress=peak_stress, ks_rho=ks_rho)
-    if (prob%is_path()) call set_path(prob)
-    if (prob%is_shaking() .and. any(s%sections(1:mech%n_links)%n > 0)) then
+    prob = design_problem_t(base=mech%input, var=var, objective_kind=ds%objective, evaluator=ds%evaluator, &
+                            samples=ds%samples, stress_allowable=ds%stress_allowable, frequency_factor=ds%frequency_factor, &
+                            speeds=ds%speeds(1:ds%n_speeds), objective_speed=ds%objective_speed, element=st%element, &
+                            sections=st%sections, harmonic=st%harmonic, shooting=st%shooting, derivatives=ds%derivatives, &
+                            transient=periodic_transient_settings_t(tolerance=ds%stop_when_periodic, &
+                              max_revolutions=ds%max_revolutions, rtol=st%shooting%rtol, atol=st%shooting%atol, &
+                              bdf=st%shooting%bdf, max_steps=st%shooting%max_steps), &
+                            fd_rel_step=difference_step(ds%evaluator), peak_stress=ds%peak_stress, ks_rho=ds%ks_rho)
+    if (prob%is_path()) call set_path(ds, prob)
+    call set_deflections(ds, prob)
+    if (prob%is_shaking() .and. any(st%sections(1:mech%n_links)%n > 0)) then
       call invalid_value(deck, 'design', 'objective', ''''//trim(prob%objective_kind)//'''', &
                          'the shaking force takes uniform links (no &sections)', err)
       return
     end if
-    if (evaluator == 'transient') call check_transient_model(deck, mech, s, err)
+    if (ds%evaluator == 'transient') call check_transient_model(deck, mech, st, err)
     if (err%failed()) return
-    if (evaluator == 'transient' .and. stop_when_periodic < 10.0_dp*s%shooting%rtol) then
+    if (ds%evaluator == 'transient' .and. ds%stop_when_periodic < 10.0_dp*st%shooting%rtol) then
       ! the change per revolution cannot fall below a few times the integration's rtol
-      call invalid_value(deck, 'design', 'stop_when_periodic', str(stop_when_periodic), 'must be at least 10 x '// &
-                         'the integration''s rtol (&steady rtol = '//str(s%shooting%rtol)//'): below it the '// &
+      call invalid_value(deck, 'design', 'stop_when_periodic', str(ds%stop_when_periodic), 'must be at least 10 x '// &
+                         'the integration''s rtol (&steady rtol = '//str(st%shooting%rtol)//'): below it the '// &
                          'change per revolution is integration noise', err)
       return
     end if
-    opt = design_sequence_t(max_iterations=max_iterations, xtol=xtol, feas_tol=feas_tol, move_limit=move_limit, &
-                            hessian=hessian)
+    if (present(settings)) settings = ds
+    opt = design_sequence_t(max_iterations=ds%max_iterations, xtol=ds%xtol, feas_tol=ds%feas_tol, move_limit=ds%move_limit, &
+                            hessian=ds%hessian)
   end subroutine load_design
+
+  !> The deflection constraints read (check_deflections) into the problem.
+  subroutine set_deflections(s, prob)
+    type(design_settings_t), intent(in) :: s
+    type(design_problem_t), intent(inout) :: prob
+    integer :: np
+    np = count(s%deflection_link > 0)
+    prob%deflection_link = s%deflection_link(1:np)
+    prob%deflection_at = s%deflection_at(1:np)
+    prob%deflection_limit = s%deflection_limit(1:np)
+    prob%deflection_chord = s%deflection_from(1:np) == 'chord'
+    prob%transmission_joint = s%transmission_joint
+    prob%transmission_min = s%transmission_min_deg*deg
+  end subroutine set_deflections
+
+
 
   !> Finite-difference steps above the analysis' noise (doc/design.md).
   real(dp) function difference_step(evaluator) result(step)
@@ -197,121 +153,34 @@ contains
     end select
   end function difference_step
 
-  !> Read and check &design: its values, what the objective needs, the
-  !> operating speeds (n_speeds given) and the design variables var with
-  !> x0 = their initial values/scale.
-  subroutine read_design(deck, mech, var, x0, n_speeds, err)
+  !> Read and check &design (design_settings) and the design variables var
+  !> with x0 = their initial values/scale.
+  subroutine read_design(deck, mech, s, var, x0, err)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(in) :: mech
+    type(design_settings_t), intent(out) :: s
     type(design_variable_t), allocatable, intent(out) :: var(:)
     real(dp), allocatable, intent(out) :: x0(:)
-    integer, intent(out) :: n_speeds
     type(error_t), intent(inout) :: err
-    logical :: found
     integer :: n, i
-    n_speeds = 0
-    call set_defaults()
-    call deck%read_group('design', design_group, .true., found, err)
+    call read_design_settings(deck, mech, s, err)
     if (err%failed()) return
-    n = count(len_trim(variables) > 0)
-    if (n == 0 .or. any(len_trim(variables(1:n)) == 0)) then
-      call invalid_value(deck, 'design', 'variables', str(n)//' given', 'name one or more design variables, '// &
-                         'one after another (e.g. ''link_h(1)'', ''link_b(2)'', ''joint_x(4)'')', err)
-      return
-    end if
-    call check_settings(deck, err)
-    if (err%failed()) return
-    call check_objective(deck, mech, n_speeds, err)
-    if (err%failed()) return
+    n = count(len_trim(s%variables) > 0)
     allocate(var(n), x0(n))
     do i = 1, n
-      call read_variable(deck, mech, i, var(i), x0(i), err)
+      call read_variable(deck, mech, s, i, var(i), x0(i), err)
       if (err%failed()) return
     end do
   end subroutine read_design
 
-  !> The one-line checks of &design's choices, tolerances and limits.
-  subroutine check_settings(deck, err)
-    type(deck_t), intent(inout) :: deck
-    type(error_t), intent(inout) :: err
-    character(len=*), parameter :: g = 'design'
-    call check_choice(deck, g, 'objective', objective, [character(len=32) :: 'mass', 'path', 'path_rigid', &
-                      'shaking', 'shaking_peak'], err)
-    call check_choice(deck, g, 'evaluator', evaluator, [character(len=16) :: 'shooting', 'harmonic', 'transient'], err)
-    call check_real(deck, g, 'stop_when_periodic', stop_when_periodic, err, at_least=1.0e-10_dp, at_most=1.0e-2_dp, &
-                    why='largest relative change of the sampled response per revolution (transient evaluator); '// &
-                    'below 1e-10 it is integration noise')
-    call check_integer(deck, g, 'max_revolutions', max_revolutions, err, at_least=2, at_most=100000, &
-                       why='revolutions the transient evaluator may take to its periodic state (two to compare)')
-    call check_choice(deck, g, 'hessian', hessian, [character(len=16) :: 'gauss', 'structured'], err)
-    call check_choice(deck, g, 'peak_stress', peak_stress, [character(len=16) :: 'max', 'ks'], err)
-    call check_real(deck, g, 'ks_rho', ks_rho, err, at_least=10.0_dp, at_most=1.0e5_dp, &
-                    why='sharpness of the KS aggregate of ln(stress) over the samples: it lies above the '// &
-                    'largest by at most ln(samples)/ks_rho')
-    ! the periodic orbit's sensitivities by default where they apply (the
-    ! exact periodic state); the other evaluators difference their analyses
-    if (len_trim(derivatives) == 0) derivatives = merge('variational', 'differences', evaluator == 'shooting')
-    call check_choice(deck, g, 'derivatives', derivatives, [character(len=16) :: 'variational', 'differences'], err)
-    if (.not. err%failed() .and. derivatives == 'variational' .and. evaluator /= 'shooting') &
-      call invalid_value(deck, g, 'derivatives', '''variational''', 'the sensitivities of the periodic orbit need '// &
-                         'evaluator = ''shooting'' (the exact periodic state); use ''differences''', err)
-    ! the constraints are logarithms of ratios to these: a subnormal one made
-    ! the ratio 0 or infinite (fuzz seed 12, case 1990: log(0) trapped)
-    call check_real(deck, g, 'stress_allowable', stress_allowable, err, at_least=1.0e-3_dp, at_most=1.0e12_dp, &
-                    why='0 = no stress constraint', or_zero=.true.)
-    call check_real(deck, g, 'frequency_factor', frequency_factor, err, at_least=1.0e-3_dp, at_most=1.0e3_dp, &
-                    why='lowest natural frequency >= factor x crank speed; 0 = no frequency constraint', or_zero=.true.)
-    call check_integer(deck, g, 'max_iterations', max_iterations, err, at_least=1, at_most=1000)
-    call check_integer(deck, g, 'samples', samples, err, at_least=8, at_most=3600, &
-                       why='crank angles per revolution where stresses and frequencies are taken')
-    call check_real(deck, g, 'xtol', xtol, err, at_least=1.0e-8_dp, below=1.0_dp, &
-                    why='design step test, relative change of sizes; below 1e-8 it is analysis noise')
-    call check_real(deck, g, 'feas_tol', feas_tol, err, at_least=1.0e-8_dp, below=1.0_dp, &
-                    why='allowed ln(stress/allowable) etc.: a relative violation')
-    call check_real(deck, g, 'move_limit', move_limit, err, at_least=1.0e-3_dp, at_most=2.0_dp, &
-                    why='initial largest change of ln(size) per design iteration; its inverse weighs the step')
-  end subroutine check_settings
 
-  !> What the objective needs (the shaking force's model, a path's targets,
-  !> a constraint for the least mass), the operating speeds (n_speeds given)
-  !> and a crank turning at constant speed.
-  subroutine check_objective(deck, mech, n_speeds, err)
-    type(deck_t), intent(inout) :: deck
-    type(mechanism_t), intent(in) :: mech
-    integer, intent(out) :: n_speeds
-    type(error_t), intent(inout) :: err
-    character(len=*), parameter :: g = 'design'
-    n_speeds = 0
-    if (objective == 'shaking' .or. objective == 'shaking_peak') then
-      if (len(shaking_supported(mech)) > 0) then
-        call invalid_value(deck, g, 'objective', ''''//trim(objective)//'''', 'the shaking force is not built when '// &
-                           shaking_supported(mech), err)
-        return
-      end if
-    else if (objective /= 'mass') then
-      call check_path(deck, mech, err)
-      if (err%failed()) return
-    else if (.not. (stress_allowable > 0.0_dp .or. frequency_factor > 0.0_dp)) then
-      call invalid_value(deck, g, 'stress_allowable', '0', 'a minimum-mass design needs a stress or a '// &
-                         'frequency constraint (else the minimum is the lower bounds)', err)
-      return
-    end if
-    call check_speeds(deck, n_speeds, err)
-    if (err%failed()) return
-    if (frequency_factor > 0.0_dp .and. .not. abs(mech%driver%omega) > 0.0_dp) then
-      call invalid_value(deck, g, 'frequency_factor', str(frequency_factor), 'needs a turning crank (omega > 0)', err)
-      return
-    end if
-    if (.not. mech%driver%omega > 0.0_dp .or. mech%driver%profile /= profile_constant) &
-      call invalid_value(deck, 'mechanism', 'omega', str(mech%driver%omega), 'a design at the steady state '// &
-                         'needs a crank turning at constant speed > 0', err)
-  end subroutine check_objective
 
   !> Design variable i: its name, index, bounds and scale; x0 its initial
   !> value over the scale.
-  subroutine read_variable(deck, mech, i, v, x0, err)
+  subroutine read_variable(deck, mech, s, i, v, x0, err)
     type(deck_t), intent(inout) :: deck
     type(mechanism_t), intent(in) :: mech
+    type(design_settings_t), intent(in) :: s
     integer, intent(in) :: i
     type(design_variable_t), intent(inout) :: v
     real(dp), intent(out) :: x0
@@ -320,15 +189,15 @@ contains
     logical :: ok
     integer :: limit
     real(dp) :: value
-    call parse_variable(variables(i), v, ok)
+    call parse_variable(s%variables(i), v, ok)
     if (.not. ok) then
-      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'must be '// &
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(s%variables(i))//'''', 'must be '// &
                          'link_b(i), link_h(i), link_length(i), joint_x(j) or joint_y(j)', err)
       return
     end if
     if ((v%kind == var_path_r .or. v%kind == var_path_angle) .and. .not. &
-        (objective == 'path' .or. objective == 'path_rigid')) then
-      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the coupler '// &
+        (s%objective == 'path' .or. s%objective == 'path_rigid')) then
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(s%variables(i))//'''', 'the coupler '// &
                          'point is a variable of the path objectives only', err)
       return
     end if
@@ -336,140 +205,69 @@ contains
     if (v%kind >= var_theta0) limit = 0
     if (v%kind >= var_cw_mass) limit = mech%n_links
     if ((v%index < 1 .and. limit > 0) .or. v%index > limit) then
-      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//'''', 'the index must '// &
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(s%variables(i))//'''', 'the index must '// &
                          'lie in 1..'//str(limit), err)
       return
     end if
-    value = initial_value(mech, v)
-    call check_real(deck, g, 'lower('//str(i)//')', lower(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
+    value = initial_value(mech, s, v)
+    call check_real(deck, g, 'lower('//str(i)//')', s%lower(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
                     why='every design variable needs bounds')
-    call check_real(deck, g, 'upper('//str(i)//')', upper(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
+    call check_real(deck, g, 'upper('//str(i)//')', s%upper(i), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
                     why='every design variable needs bounds')
-    call check_real(deck, g, 'scale('//str(i)//')', scale(i), err, at_least=1.0e-8_dp, at_most=1.0e8_dp, &
+    call check_real(deck, g, 'scale('//str(i)//')', s%scale(i), err, at_least=1.0e-8_dp, at_most=1.0e8_dp, &
                     why='0 = the initial value''s magnitude; values are divided by it', or_zero=.true.)
     if (err%failed()) return
-    if (.not. (lower(i) < upper(i))) then
-      call invalid_value(deck, g, 'upper('//str(i)//')', str(upper(i)), 'must exceed lower('//str(i)//') = '// &
-                         str(lower(i)), err)
+    if (.not. (s%lower(i) < s%upper(i))) then
+      call invalid_value(deck, g, 'upper('//str(i)//')', str(s%upper(i)), 'must exceed lower('//str(i)//') = '// &
+                         str(s%lower(i)), err)
       return
     end if
-    v%lower = lower(i)
-    v%upper = upper(i)
-    v%scale = scale(i)
-    if (.not. scale(i) > 0.0_dp) v%scale = max(abs(value), 1.0e-3_dp*(upper(i) - lower(i)))
-    if (v%logarithmic .and. .not. lower(i) > 0.0_dp) then
-      call invalid_value(deck, g, 'lower('//str(i)//')', str(lower(i)), 'a size or length must stay > 0', err)
+    v%lower = s%lower(i)
+    v%upper = s%upper(i)
+    v%scale = s%scale(i)
+    if (.not. s%scale(i) > 0.0_dp) v%scale = max(abs(value), 1.0e-3_dp*(s%upper(i) - s%lower(i)))
+    if (v%logarithmic .and. .not. s%lower(i) > 0.0_dp) then
+      call invalid_value(deck, g, 'lower('//str(i)//')', str(s%lower(i)), 'a size or length must stay > 0', err)
       return
     end if
-    if (.not. (value >= lower(i) .and. value <= upper(i))) then
-      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(variables(i))//''' = '//str(value), &
-                         'the initial design must lie within its bounds ['//str(lower(i))//', '//str(upper(i))//']', err)
+    if (.not. (value >= s%lower(i) .and. value <= s%upper(i))) then
+      call invalid_value(deck, g, 'variables('//str(i)//')', ''''//trim(s%variables(i))//''' = '//str(value), &
+                         'the initial design must lie within its bounds ['//str(s%lower(i))//', '//str(s%upper(i))//']', err)
       return
     end if
     x0 = v%to_x(value)
   end subroutine read_variable
 
-  !> The operating speeds given (n_speeds; none: the deck's omega) and the
-  !> objective's speed.
-  subroutine check_speeds(deck, n_speeds, err)
-    type(deck_t), intent(inout) :: deck
-    integer, intent(out) :: n_speeds
-    type(error_t), intent(inout) :: err
-    character(len=*), parameter :: g = 'design'
-    integer :: i
-    logical :: given(max_speeds)
-    ! given: not the sentinel (a NaN counts as given, and check_reals names it)
-    do i = 1, max_speeds
-      given(i) = .not. ieee_is_finite(speeds(i))
-      if (.not. given(i)) given(i) = speeds(i) > 0.5_dp*unset
-    end do
-    n_speeds = count(given)
-    if (n_speeds > 0) then
-      if (.not. all(given(1:n_speeds))) then
-        call invalid_value(deck, g, 'speeds', str(n_speeds)//' given, then a gap', 'give the operating speeds '// &
-                           'one after another, speeds(1), speeds(2), ...', err)
-        return
-      end if
-    end if
-    call check_reals(deck, g, 'speeds', speeds(1:n_speeds), err, at_least=1.0e-6_dp, at_most=1.0e5_dp, &
-                     why='crank speeds (rad/s) the design must satisfy; > 0: a steady state needs a turning crank')
-    call check_integer(deck, g, 'objective_speed', objective_speed, err, at_least=0, at_most=n_speeds, &
-                       why='0 = the objective summed over the speeds; i = at speeds(i) only')
-  end subroutine check_speeds
 
-  !> The coupler point and its target points (path objectives).
-  subroutine check_path(deck, mech, err)
-    type(deck_t), intent(inout) :: deck
-    type(mechanism_t), intent(in) :: mech
-    type(error_t), intent(inout) :: err
-    character(len=*), parameter :: g = 'design'
-    integer :: np, k
-    call check_integer(deck, g, 'path_link', path_link, err, at_least=1, at_most=mech%n_links, &
-                       why='the link that carries the coupler point')
-    call check_real(deck, g, 'path_r', path_r, err, at_least=0.0_dp, at_most=1.0e3_dp*mech%length_scale, &
-                    why='distance of the coupler point from the link''s end 1; within 1000 mean link lengths')
-    call check_real(deck, g, 'path_angle_deg', path_angle_deg, err, at_least=-360.0_dp, at_most=360.0_dp, &
-                    why='angle of the coupler point from the link''s line, degrees')
-    if (err%failed()) return
-    np = count(path_x > 0.5_dp*unset)
-    if (np == 0 .or. any(path_x(1:np) <= 0.5_dp*unset)) then
-      call invalid_value(deck, g, 'path_x', str(np)//' given', 'a path objective needs target points '// &
-                         'path_x(i), path_y(i), path_dgamma_deg(i), i = 1, 2, ... one after another', err)
-      return
-    end if
-    do k = 1, np
-      if (.not. path_y(k) > 0.5_dp*unset) then
-        call invalid_value(deck, g, 'path_y('//str(k)//')', 'not given', 'every target point needs path_x, '// &
-                           'path_y and path_dgamma_deg', err)
-        return
-      end if
-      if (.not. path_dgamma_deg(k) > 0.5_dp*unset) then
-        call invalid_value(deck, g, 'path_dgamma_deg('//str(k)//')', 'not given', 'every target point needs '// &
-                           'path_x, path_y and path_dgamma_deg', err)
-        return
-      end if
-      call check_real(deck, g, 'path_x('//str(k)//')', path_x(k), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
-                      why='target point coordinate')
-      call check_real(deck, g, 'path_y('//str(k)//')', path_y(k), err, at_least=-1.0e8_dp, at_most=1.0e8_dp, &
-                      why='target point coordinate')
-      call check_real(deck, g, 'path_dgamma_deg('//str(k)//')', path_dgamma_deg(k), err, at_least=-360.0_dp, &
-                      at_most=360.0_dp, why='crank angle of target point k from theta0_deg, degrees')
-      if (err%failed()) return
-    end do
-    if (any(path_x(np + 1:) > 0.5_dp*unset) .or. any(path_y(np + 1:) > 0.5_dp*unset) .or. &
-        any(path_dgamma_deg(np + 1:) > 0.5_dp*unset)) then
-      call invalid_value(deck, g, 'path_y', 'more values than path_x', 'give x, y and the crank angle of '// &
-                         'every target point', err)
-      return
-    end if
-  end subroutine check_path
 
   !> The coupler point and its targets (checked by check_path) into the
   !> problem, the angles in radians.
-  subroutine set_path(prob)
+  subroutine set_path(s, prob)
+    type(design_settings_t), intent(in) :: s
     type(design_problem_t), intent(inout) :: prob
     integer :: np
-    np = count(path_x > 0.5_dp*unset)
-    prob%path_link = path_link
-    prob%path_r = path_r
-    prob%path_angle = path_angle_deg*deg
-    prob%path_x = path_x(1:np)
-    prob%path_y = path_y(1:np)
-    prob%path_dgamma = path_dgamma_deg(1:np)*deg
+    np = count(s%path_x > 0.5_dp*unset_value)
+    prob%path_link = s%path_link
+    prob%path_r = s%path_r
+    prob%path_angle = s%path_angle_deg*deg
+    prob%path_x = s%path_x(1:np)
+    prob%path_y = s%path_y(1:np)
+    prob%path_dgamma = s%path_dgamma_deg(1:np)*deg
   end subroutine set_path
 
   !> The deck value a variable starts from (a link length from the joints
   !> when the deck gives none).
-  real(dp) function initial_value(mech, v) result(value)
+  real(dp) function initial_value(mech, s, v) result(value)
     type(mechanism_t), intent(in) :: mech
+    type(design_settings_t), intent(in) :: s
     type(design_variable_t), intent(in) :: v
     select case (v%kind)
     case (var_theta0)
       value = mech%input%theta0_deg
     case (var_path_r)
-      value = path_r
+      value = s%path_r
     case (var_path_angle)
-      value = path_angle_deg
+      value = s%path_angle_deg
     case (var_cw_mass)
       value = mech%input%link_cw_mass(v%index)
     case (var_cw_x)
@@ -507,18 +305,20 @@ contains
                                          'takes '//why, err)
   end subroutine check_transient_model
 
-  subroutine echo_all(out, mech)
+  subroutine echo_all(out, mech, ds)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
+    type(design_settings_t), intent(in) :: ds
     call echo_mechanism(mech, out)
     call echo_steady_settings(out)
-    call out%echo_group(design_group)
+    call echo_design_settings(ds, out)
   end subroutine echo_all
 
   subroutine write_design_header(out, prob)
     type(table_t), intent(inout) :: out
     type(design_problem_t), intent(in) :: prob
     integer :: i
+    character(len=:), allocatable :: from, aggregate
     select case (prob%objective_kind)
     case ('path')
       call out%comment('design: least path error of the coupler point with the elastic deformation at the '// &
@@ -555,8 +355,22 @@ contains
       'of ln(stress) over the '//str(prob%samples)//' samples, rho = '//str(prob%ks_rho, 6)// &
       ': above the largest sample by at most ln(samples)/rho = '//str(log(real(prob%samples, dp))/prob%ks_rho, 3))
     if (prob%i_frequency > 0) call out%comment('constraints g'//str(prob%i_frequency)//'-g'// &
-      str(prob%n_analysis_constraints())//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
+      str(prob%i_frequency + size(prob%speeds) - 1)//': ln('//str(prob%frequency_factor, 4)//' x crank speed / lowest frozen '// &
       'natural frequency over the revolution) <= 0, one per speed')
+    if (prob%i_transmission > 0) call out%comment('constraint g'//str(prob%i_transmission)//': movability, '// &
+      'ln(peak |cos mu|'//trim(merge(' (the KS aggregate)', '                   ', prob%peak_stress == 'ks'))// &
+      ' / cos '//str(prob%transmission_min/deg, 6)//' deg) <= 0, mu the transmission angle between the links at joint '// &
+      str(prob%transmission_joint)//' (rigid-body kinematics): within [min, 180 - min] at every sample')
+    do i = 1, prob%n_deflection_points()
+      from = 'from the rigid position'
+      if (prob%deflection_chord(i)) from = 'from the chord'
+      aggregate = ''
+      if (prob%peak_stress == 'ks') aggregate = ' (the KS aggregate)'
+      call out%comment('constraint g'//str(prob%i_deflection + i - 1)//': deflection of link '// &
+        str(prob%deflection_link(i))//' at '//str(prob%deflection_at(i), 4)//' of its length from end 1, '// &
+        from//': ln(peak'//aggregate//' / '//str(prob%deflection_limit(i), 6)//') <= 0; at speed s: g'// &
+        str(prob%i_deflection + i - 1)//' + (s - 1) x '//str(prob%n_deflection_points()))
+    end do
     call out%comment('bounds as linear constraints after them; each analysis: '//trim(evaluator_text(prob%evaluator))// &
       ' with stresses and frequencies at '//str(prob%samples)// &
       ' crank angles; '//trim(derivatives_text(prob)))
@@ -684,6 +498,13 @@ contains
           if (prob%i_frequency > 0 .and. size(prob%speeds) > 1) call out%summary('final lowest frozen frequency at '// &
             str(prob%speeds(s), 6)//' rad/s', str(ev%frequency_at(s), 8)//' rad/s = '// &
             str(ev%frequency_at(s)/prob%speeds(s), 5)//' x crank speed')
+        end do
+        if (prob%i_transmission > 0) call out%summary('final least transmission angle', &
+          str(acos(min(maxval(ev%sample_transmission), 1.0_dp))/deg, 6)//' deg (at joint '// &
+          str(prob%transmission_joint)//')')
+        do i = 1, prob%n_deflection_points()
+          call out%summary('final peak deflection point '//str(i)//' (link '//str(prob%deflection_link(i))//')', &
+                           str(maxval(ev%sample_deflection(:, i, :)), 8))
         end do
         if (prob%is_path()) then
           call out%summary('final path error (elastic)', str(ev%path_error, 8)//' (largest miss '// &

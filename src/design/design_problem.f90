@@ -87,6 +87,12 @@ module design_problem
     !> (sample, link, speed) the link's largest |stress| at each sample: stress_at is its maximum
     real(dp), allocatable :: sample_stress(:, :, :)
     real(dp), allocatable :: frequency_at(:)    !< (speed) lowest frozen natural frequency at each speed
+    !> (sample, point, speed) elastic deflection of each named link point
+    !> (deflection constraints): from the chord or from the rigid position
+    real(dp), allocatable :: sample_deflection(:, :, :)
+    !> (sample) |cos| of the transmission angle (movability constraint;
+    !> rigid-body kinematics, the same at every speed)
+    real(dp), allocatable :: sample_transmission(:)
     real(dp), allocatable :: residual(:)        !< coupler point - target, (x, y) per target point, elastic included
     real(dp), allocatable :: rigid_residual(:)  !< the same for the rigid-body coupler point
     real(dp) :: path_error = 0.0_dp             !< sum of residual^2 (B's F, with the deformation)
@@ -127,6 +133,20 @@ module design_problem
     real(dp) :: ks_rho = 200.0_dp
     real(dp) :: stress_allowable = 0.0_dp         !< 0: no stress constraints
     real(dp) :: frequency_factor = 0.0_dp         !< 0: no frequency constraint
+    !> deflection constraints: point p on link deflection_link(p) at the
+    !> fraction deflection_at(p) of its length from end 1; its elastic
+    !> deflection from the chord (the line through the deformed ends, across
+    !> it) or from the rigid position (the length of the elastic
+    !> displacement), peak over the samples <= deflection_limit(p)
+    integer, allocatable :: deflection_link(:)
+    real(dp), allocatable :: deflection_at(:), deflection_limit(:)
+    logical, allocatable :: deflection_chord(:)
+    !> movability: the angle mu between the two links that meet at joint
+    !> transmission_joint (the coupler and the output link of a four-bar)
+    !> kept within [transmission_min, pi - transmission_min] at every sample:
+    !> ln(peak |cos mu| / cos transmission_min) <= 0 (0: no such constraint)
+    integer :: transmission_joint = 0
+    real(dp) :: transmission_min = 0.0_dp
     real(dp) :: mass0 = 1.0_dp                    !< mass of the initial design
     !> 'mass', 'path' (elastic path error), 'path_rigid', 'shaking' (mean
     !> square shaking force) or 'shaking_peak' (its peak: minimax)
@@ -147,6 +167,9 @@ module design_problem
     !> constraint numbering: stress of link l at speed s is l + (s - 1)
     !> n_links (1..n_stress), then the frequency at each speed from i_frequency
     integer :: n_stress = 0, i_frequency = 0
+    !> deflection of point p at speed s: i_deflection + (s - 1) n_points + p - 1
+    integer :: i_deflection = 0
+    integer :: i_transmission = 0                 !< the movability constraint's number (0: none)
     ! ---- bookkeeping
     integer :: n_analyses = 0, n_failed = 0
     integer :: n_revolutions = 0                  !< revolutions integrated by the transient evaluator
@@ -165,6 +188,7 @@ module design_problem
   contains
     procedure :: setup
     procedure :: n_analysis_constraints
+    procedure :: n_deflection_points
     procedure :: mechanism_at
     procedure :: point_at
     procedure :: is_path
@@ -250,6 +274,12 @@ contains
     if (self%stress_allowable > 0.0_dp) self%n_stress = self%base%n_links*size(self%speeds)
     self%i_frequency = 0
     if (self%frequency_factor > 0.0_dp) self%i_frequency = self%n_stress + 1
+    self%i_deflection = 0
+    if (self%n_deflection_points() > 0) &
+      self%i_deflection = self%n_stress + merge(size(self%speeds), 0, self%i_frequency > 0) + 1
+    self%i_transmission = 0
+    if (self%transmission_joint > 0) self%i_transmission = self%n_stress + &
+      merge(size(self%speeds), 0, self%i_frequency > 0) + self%n_deflection_points()*size(self%speeds) + 1
     call self%init_problem(name, n, 0, self%n_analysis_constraints())
     do i = 1, self%m
       call self%set_general_constraint(i)
@@ -337,8 +367,16 @@ contains
 
   integer pure function n_analysis_constraints(self)
     class(design_problem_t), intent(in) :: self
-    n_analysis_constraints = self%n_stress + merge(size(self%speeds), 0, self%i_frequency > 0)
+    n_analysis_constraints = self%n_stress + merge(size(self%speeds), 0, self%i_frequency > 0) + &
+                             self%n_deflection_points()*size(self%speeds) + merge(1, 0, self%transmission_joint > 0)
   end function n_analysis_constraints
+
+  !> Named link points whose deflection is constrained.
+  integer pure function n_deflection_points(self)
+    class(design_problem_t), intent(in) :: self
+    n_deflection_points = 0
+    if (allocated(self%deflection_link)) n_deflection_points = size(self%deflection_link)
+  end function n_deflection_points
 
   !> The mechanism input with the design x put in; clamped: each value
   !> inside its bounds (a trial step past them, which the optimizer sees in
@@ -500,7 +538,10 @@ contains
     integer, intent(out) :: n_objective
     real(dp), intent(out) :: mean_square
     allocate(ev%stress_at(n_links, size(self%speeds)), ev%frequency_at(size(self%speeds)), ev%residual(0), &
-             ev%rigid_residual(0), ev%sample_stress(self%samples, n_links, size(self%speeds)))
+             ev%rigid_residual(0), ev%sample_stress(self%samples, n_links, size(self%speeds)), &
+             ev%sample_deflection(self%samples, self%n_deflection_points(), size(self%speeds)), &
+             ev%sample_transmission(self%samples))
+    ev%sample_transmission = 0.0_dp
     n_objective = 0
     mean_square = 0.0_dp
   end subroutine start_join
@@ -516,6 +557,8 @@ contains
     real(dp), intent(inout) :: mean_square
     ev%stress_at(:, s) = one%link_stress
     ev%sample_stress(:, :, s) = one%sample_stress(:, :, 1)
+    ev%sample_deflection(:, :, s) = one%sample_deflection(:, :, 1)
+    if (s == 1) ev%sample_transmission = one%sample_transmission
     ev%frequency_at(s) = one%lowest_frequency
     if (self%objective_speed /= 0 .and. self%objective_speed /= s) return
     n_objective = n_objective + 1
@@ -678,7 +721,9 @@ contains
     end if
     shaking = self%is_shaking()
     if (shaking) allocate(shake(2, self%samples), moment(2, self%samples))
-    allocate(ev%sample_stress(self%samples, mech%n_links, 1))
+    allocate(ev%sample_stress(self%samples, mech%n_links, 1), &
+             ev%sample_deflection(self%samples, self%n_deflection_points(), 1), ev%sample_transmission(self%samples))
+    ev%sample_transmission = 0.0_dp
     ev%sample_stress = 0.0_dp
     do k = 1, self%samples
       call model%set_time(times(at_sample(k)), err)
@@ -692,6 +737,13 @@ contains
         shake(:, k) = rigid_momentum_rate(model, mech)
         moment(:, k) = elastic_first_moment(model, mech, q(:, at_sample(k)))
       end if
+      do i = 1, self%n_deflection_points()
+        ev%sample_deflection(k, i, 1) = point_deflection(model, mech%links(self%deflection_link(i))%first_element, &
+          mech%links(self%deflection_link(i))%n_elements, self%deflection_at(i), self%deflection_chord(i), &
+          q(:, at_sample(k)))
+      end do
+      if (self%transmission_joint > 0) &
+        ev%sample_transmission(k) = transmission_cosine(model, mech, self%transmission_joint)
       call model%stresses(q(:, at_sample(k)), st)
       do i = 1, mech%n_links
         do e = mech%links(i)%first_element, mech%links(i)%first_element + mech%links(i)%n_elements - 1
@@ -713,6 +765,7 @@ contains
       end if
     end if
     ev%ok = ieee_is_finite(ev%mass) .and. all(ieee_is_finite(ev%link_stress)) .and. &
+            all(ieee_is_finite(ev%sample_deflection)) .and. all(ieee_is_finite(ev%sample_transmission)) .and. &
             ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
             ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking)
     if (.not. ev%ok) then
@@ -790,7 +843,15 @@ contains
     real(dp) :: g(self%n_analysis_constraints())
     integer :: i
     do i = 1, size(g)
-      if (i <= self%n_stress .and. self%peak_stress == 'ks') then
+      if (i == self%i_transmission) then
+        if (self%peak_stress == 'ks') then
+          g(i) = ks_peak(log(max(ev%sample_transmission, tiny(1.0_dp))), self%ks_rho) - log(cos(self%transmission_min))
+        else
+          g(i) = log(max(maxval(ev%sample_transmission), tiny(1.0_dp))/cos(self%transmission_min))
+        end if
+      else if (self%i_deflection > 0 .and. i >= self%i_deflection) then
+        g(i) = deflection_constraint(self, ev, i - self%i_deflection)
+      else if (i <= self%n_stress .and. self%peak_stress == 'ks') then
         g(i) = ks_peak(log(max(ev%sample_stress(:, modulo(i - 1, self%base%n_links) + 1, &
                                                 (i - 1)/self%base%n_links + 1), tiny(1.0_dp))), self%ks_rho) &
                - log(self%stress_allowable)
@@ -817,6 +878,14 @@ contains
     integer :: i, l, s
     g = self%constraints_of(ev)
     if (self%peak_stress == 'ks') return          ! smooth: nothing to pin
+    do i = 0, self%n_deflection_points()*size(self%speeds) - 1
+      l = modulo(i, self%n_deflection_points()) + 1
+      s = i/self%n_deflection_points() + 1
+      g(self%i_deflection + i) = log(max(ev%sample_deflection(maxloc(base%sample_deflection(:, l, s), dim=1), l, s), &
+                                         tiny(1.0_dp))/self%deflection_limit(l))
+    end do
+    if (self%i_transmission > 0) g(self%i_transmission) = &
+      log(max(ev%sample_transmission(maxloc(base%sample_transmission, dim=1)), tiny(1.0_dp))/cos(self%transmission_min))
     do i = 1, self%n_stress
       l = modulo(i - 1, self%base%n_links) + 1
       s = (i - 1)/self%base%n_links + 1
@@ -842,6 +911,59 @@ contains
     call self%evaluate(xp, evp)
     if (ev%ok .and. evp%ok) gp = self%constraints_at_peaks_of(evp, ev)
   end subroutine neighbour_constraints
+
+  !> Deflection constraint j (0-based: point modulo(j, n_points) + 1 at speed
+  !> j / n_points + 1): ln(peak deflection over the samples / limit), the
+  !> peak as the stresses' (the largest sample, or the KS aggregate of
+  !> ln(deflection) with ks_rho).
+  real(dp) function deflection_constraint(self, ev, j) result(g)
+    class(design_problem_t), intent(in) :: self
+    type(design_eval_t), intent(in) :: ev
+    integer, intent(in) :: j
+    integer :: p, s
+    p = modulo(j, self%n_deflection_points()) + 1
+    s = j/self%n_deflection_points() + 1
+    if (self%peak_stress == 'ks') then
+      g = ks_peak(log(max(ev%sample_deflection(:, p, s), tiny(1.0_dp))), self%ks_rho) - log(self%deflection_limit(p))
+    else
+      g = log(max(maxval(ev%sample_deflection(:, p, s)), tiny(1.0_dp))/self%deflection_limit(p))
+    end if
+  end function deflection_constraint
+
+  !> |cos mu| at the current time, mu the angle between the rigid-body lines
+  !> of the two links that meet at joint j (a four-bar's transmission angle
+  !> at the coupler-rocker pin): |cos| leaves out which way each link points.
+  real(dp) function transmission_cosine(model, mech, j) result(c)
+    type(steady_model_t), intent(in) :: model
+    type(mechanism_t), intent(in) :: mech
+    integer, intent(in) :: j
+    c = abs(cos(model%fs(mech%links(mech%joints(j)%link(1))%first_element)%phi - &
+                model%fs(mech%links(mech%joints(j)%link(2))%first_element)%phi))
+  end function transmission_cosine
+
+  !> Elastic deflection, at the current time, of the point at the fraction
+  !> at of a straight link (elements first .. first + n - 1) from its end 1:
+  !> chord, the displacement across the link from the line through its
+  !> deformed ends, |w(at) - (1 - at) w(0) - at w(1)| in the link's frame;
+  !> else from the rigid position, |(u, w)(at)|.
+  real(dp) function point_deflection(model, first, n, at, chord, q) result(d)
+    type(steady_model_t), intent(in) :: model
+    integer, intent(in) :: first, n
+    real(dp), intent(in) :: at, q(:)
+    logical, intent(in) :: chord
+    real(dp) :: uwa(3), w1(3), w2(3), along
+    integer :: e
+    along = at*n
+    e = min(int(along), n - 1)
+    uwa = model%local_field(first + e, q, along - e)
+    if (chord) then
+      w1 = model%local_field(first, q, 0.0_dp)
+      w2 = model%local_field(first + n - 1, q, 1.0_dp)
+      d = abs(uwa(2) - (1.0_dp - at)*w1(2) - at*w2(2))
+    else
+      d = hypot(uwa(1), uwa(2))
+    end if
+  end function point_deflection
 
   !> The Kreisselmeier-Steinhauser aggregate of the values v over the samples,
   !>     KS = max v + ln(sum_k exp(rho (v_k - max v))) / rho,
@@ -1131,7 +1253,8 @@ contains
     end if
   end subroutine design_objective
 
-  !> Stress constraints, then the frequency constraint (NaN when the analysis failed).
+  !> Stress constraints, the frequency constraints, then the deflection
+  !> constraints (NaN when the analysis failed).
   subroutine design_constraint(self, i, x, g, err)
     class(design_problem_t), intent(inout) :: self
     integer, intent(in) :: i

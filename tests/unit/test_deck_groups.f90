@@ -1,8 +1,8 @@
 !> Tests of the one deck idiom: every group's echo in the output header is a
 !> deck that reads back to the same values (echo, read, echo gives the same
 !> text: the staging covers every variable), for the groups of a transient
-!> deck (&mechanism, &transient, &effects, &loads), &optimize, &problem_data
-!> and &sweep; and the checks across the groups of a transient deck, named
+!> deck (&mechanism, &transient, &effects, &loads), &optimize, &problem_data,
+!> &sweep, &spatial_loads and &design; and the checks across the groups of a transient deck, named
 !> with group, variable and code 2.
 module test_deck_groups_suite
   use kinds, only: dp
@@ -21,6 +21,8 @@ module test_deck_groups_suite
   use sweep_settings, only: sweep_settings_t, read_sweep_settings, echo_sweep_settings
   use spatial_external_loads, only: spatial_loads_input_t
   use spatial_loads_settings, only: read_spatial_loads, echo_spatial_loads
+  use linkage_deck, only: read_mechanism
+  use design_settings, only: design_settings_t, read_design_settings, echo_design_settings
   use assertions
   implicit none
   private
@@ -45,6 +47,7 @@ contains
     call run_test('optimize_and_problem_data_echo_reads_back', test_optimize_echo)
     call run_test('sweep_echo_reads_back_as_values', test_sweep_echo)
     call run_test('spatial_loads_echo_reads_back', test_spatial_loads_echo)
+    call run_test('design_echo_reads_back', test_design_echo)
     call run_test('checks_across_groups_are_input_errors', test_across_groups)
   end subroutine run_all
 
@@ -220,6 +223,60 @@ contains
                       'position 1, no forces or moments')
     call assert_true(len_trim(l%load_joint(1)) + len_trim(l%load_link(2)) == 0, 'load_joint, load_link defaults')
   end subroutine test_spatial_loads_echo
+
+  !> &design: its echo reads back to the same values and echo (the
+  !> derivatives' default resolved), checked against Tennant's four-bar;
+  !> a group that names only the variables and bounds gets the defaults.
+  subroutine test_design_echo()
+    character(len=*), parameter :: fourbar = "&mechanism n_joints = 4, joint_type = 'clamp', 'pin', 'pin', "// &
+      "'ground_pin', joint_x(1) = 0.0, joint_y(1) = 0.0, joint_x(4) = 10.0, joint_y(4) = 0.0, n_links = 3, "// &
+      "link_joint1 = 1, 2, 4, link_joint2 = 2, 3, 3, link_length = 5.0, 11.0, 10.5, link_b = 3*0.25, "// &
+      "link_h = 3*1.0, driver_link = 1, omega = 150.0 /|"
+    character(len=:), allocatable :: echo1, echo2
+    type(design_settings_t) :: d
+    type(error_t) :: err
+    call design_echo(fourbar//"&design variables = 'link_h(1)', 'link_h(2)', lower = 2*0.2, upper = 2*4.0, "// &
+                     "stress_allowable = 20000.0, peak_stress = 'ks', ks_rho = 50, speeds = 100, 150, "// &
+                     "objective_speed = 2, deflection_link = 2, 3, deflection_at = 0.5, 0.25, deflection_limit = "// &
+                     "0.05, 0.1, deflection_from = 'chord', 'rigid', transmission_joint = 3, transmission_min_deg = 30 /", &
+                     echo1, d, err)
+    call assert_true(.not. err%failed(), 'read: '//err%text())
+    call design_echo(fourbar//echo1, echo2, d, err)
+    call assert_true(.not. err%failed(), 'the echo reads back: '//err%text())
+    call assert_equal(echo2, echo1, 'echo of the echo')
+    call assert_equal(trim(d%derivatives), 'variational', 'derivatives resolved for the shooting evaluator')
+    call assert_equal(d%n_speeds, 2, 'two speeds')
+    call assert_all_close(d%deflection_at(1:2), [0.5_dp, 0.25_dp], 0.0_dp, 0.0_dp, 'deflection_at')
+    call assert_equal(trim(d%deflection_from(2)), 'rigid', 'deflection_from(2)')
+    call assert_equal(d%transmission_joint, 3, 'transmission_joint')
+    call assert_close(d%ks_rho, 50.0_dp, 0.0_dp, 'ks_rho')
+    call design_echo(fourbar//"&design variables = 'link_h(1)', lower = 0.2, upper = 4.0, frequency_factor = 5 /", &
+                     echo1, d, err)
+    call assert_true(.not. err%failed(), 'read: '//err%text())
+    call assert_true(d%objective == 'mass' .and. d%evaluator == 'shooting' .and. d%peak_stress == 'max' .and. &
+                     d%samples == 72 .and. d%max_iterations == 30 .and. d%n_speeds == 0 .and. &
+                     d%transmission_joint == 0 .and. all(d%deflection_link == 0), 'defaults')
+    call assert_close(d%ks_rho + d%move_limit + d%stop_when_periodic, 200.3_dp + 1.0e-6_dp, 1.0e-12_dp, &
+                      'ks_rho, move_limit, stop_when_periodic defaults')
+  end subroutine test_design_echo
+
+  !> Read &mechanism and &design and echo &design as a deck text.
+  subroutine design_echo(text, echo, d, err)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable, intent(out) :: echo
+    type(design_settings_t), intent(out) :: d
+    type(error_t), intent(inout) :: err
+    type(deck_t) :: deck
+    type(table_t) :: out
+    type(mechanism_t) :: mech
+    call open_text(text, deck, echo, err)
+    if (.not. err%failed()) call read_mechanism(deck, mech, err)
+    if (.not. err%failed()) call read_design_settings(deck, mech, d, err)
+    call close_text_open_echo(deck, out, err)
+    if (err%failed()) return
+    call echo_design_settings(d, out)
+    call close_echo(out, echo, err)
+  end subroutine design_echo
 
   !> Read &spatial_loads and echo it as a deck text.
   subroutine spatial_loads_echo(text, echo, l, found, err)
