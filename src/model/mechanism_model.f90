@@ -22,7 +22,6 @@
 !> A structure that does not move (beam tests) is modelled with fixed element
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
-  use band_assembly, only: add_element_lower_band, add_element_newton_bands
   use frame_band_table, only: frame_table_t, frame_matrix, angle_basis
   use kinds, only: dp
   use error_status, only: error_t
@@ -200,9 +199,9 @@ contains
     if (new_mass) call add_counterweight_mass(self, self%mass_band, .true.)
     do k = 1, size(self%cw%element)
       e = self%cw%element(k)
-      g = self%table%map(3, e)
+      g = self%table%unknown(3, e)
       if (g == 0) cycle
-      c = self%table%coef(3, e)
+      c = self%table%coefficient(3, e)
       arm = counterweight_arm(self, k, self%rb(e)%phi + c*q(g))
       self%force(g) = self%force(g) + c*(-self%cw%inertia(k)*self%rb(e)%phi_dd - self%gravity(1)*arm(2) + &
                                          self%gravity(2)*arm(1))
@@ -227,12 +226,12 @@ contains
     integer :: k, e, g
     do k = 1, size(self%cw%element)
       e = self%cw%element(k)
-      g = self%table%map(3, e)
+      g = self%table%unknown(3, e)
       if (g == 0) cycle
       if (band) then
-        mass(1, g) = mass(1, g) + self%cw%inertia(k)*self%table%coef(3, e)**2
+        mass(1, g) = mass(1, g) + self%cw%inertia(k)*self%table%coefficient(3, e)**2
       else
-        mass(g, g) = mass(g, g) + self%cw%inertia(k)*self%table%coef(3, e)**2
+        mass(g, g) = mass(g, g) + self%cw%inertia(k)*self%table%coefficient(3, e)**2
       end if
     end do
   end subroutine add_counterweight_mass
@@ -259,8 +258,8 @@ contains
     real(dp), intent(out) :: c(2)
     integer :: first
     first = 1 + self%table%node_dofs*(node - 1)
-    g = self%table%map(first:first + 1, e)
-    c = self%table%coef(first:first + 1, e)
+    g = self%table%unknowns_of([first, first + 1], e)
+    c = self%table%coefficients_of([first, first + 1], e)
   end subroutine node_translation_dofs
 
   !> A structure at rest: elements with given rigid states and a table built
@@ -305,7 +304,7 @@ contains
     type(mechanism_model_t), intent(inout) :: self
     integer :: e
     ! (add_clearance renumbers the unknowns and calls this again)
-    call self%size_state(self%table%n_global, self%table%half_bandwidth)
+    call self%size_state(self%table%n_unknowns(), self%table%band())
     if (allocated(self%work_me)) deallocate(self%work_me, self%work_ke, self%work_fe, self%work_qe, self%work_qde)
     if (allocated(self%frame_basis)) deallocate(self%frame_basis)
     associate(nd => self%table%element_dofs)
@@ -488,7 +487,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      if (new_mass .and. .not. self%frame_tables) call add_element_lower_band(self%table, e, me, self%mass_band)
+      if (new_mass .and. .not. self%frame_tables) call self%table%add_lower_band(e, me, self%mass_band)
     end do
     end associate
     if (new_mass .and. self%frame_tables) then       ! (nothing was added to mass_band yet)
@@ -640,7 +639,7 @@ contains
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e) .or. self%frame_tables) cycle
       call element_mass_stiffness(self, e, q, self%work_me, self%work_ke)
-      call add_element_newton_bands(self%table, e, self%work_me, self%work_ke, kd, mass, stiff)
+      call self%table%add_newton_bands(e, self%work_me, self%work_ke, kd, mass, stiff)
     end do
     call add_sliding_matrices(self, q, mass, stiff, kd)
     do e = 1, size(self%joint_mass%mass)
@@ -751,7 +750,7 @@ contains
     end do
     do k = 1, size(self%cw%element)
       ! a counterweight turns about a fixed pivot (register_counterweights)
-      if (any(self%table%map(1:2, self%cw%element(k)) > 0)) then
+      if (any(self%table%unknowns_of([1, 2], self%cw%element(k)) > 0)) then
         call err%set('clearance', 'a joint clearance at a counterweight''s pivot is not modelled (the '// &
                      'counterweight turns about a fixed pivot)', 2)
         return

@@ -90,7 +90,8 @@ contains
     call assert_true(.not. err%failed(), 'steady model: '//err%text())
     call assert_equal(tm%n, sm%n, 'the same global unknowns')
     do i = 1, min(tm%n, sm%n)
-      call assert_true(tm%table%label(i) == sm%table%label(i), 'unknown '//trim(tm%table%label(i))//' numbered alike')
+      call assert_true(tm%table%label_of(i) == sm%table%label_of(i), &
+                       'unknown '//trim(tm%table%label_of(i))//' numbered alike')
     end do
   end subroutine build_both
 
