@@ -8,7 +8,7 @@ module transient_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, input_error_in
+  use deck_reader, only: deck_t, invalid_value, input_error_in, input_error_code
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams
@@ -31,6 +31,7 @@ module transient_analysis
   use linkage, only: joint_clamp
   use plausibility, only: warn_materials, warn_strength, crank_speed_warning
   use clearance_run, only: clearance_monitor_t
+  use joint_clearance, only: clearance_joint_t
   use restart_file, only: write_restart_file, start_from_restart
   implicit none
   private
@@ -77,24 +78,22 @@ contains
     call echo_transient_deck(out, mech, loads_in, clearance)
     call warn_materials(out, mech)
 
-    call build_model(deck, mech, s, loads_in, model, err)
-    if (err%failed()) return
-    call setup_responses(mech, s, resp)
-    if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
-    if (err%failed()) return
+    ! the model in one step, with the natural frequencies of the linearised
+    ! structure at the start position (before the clearance joints' unknowns)
+    call build_model(deck, mech, s, loads_in, clearance, model, omega_n, shapes, err)
+    if (err%failed() .and. err%code == input_error_code) return
+    if (.not. err%failed()) then
+      call setup_responses(mech, s, resp)
+      if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
+      if (err%failed()) return
+    end if
     call write_model_header(out, mech, s, model)
-    call prepare_motion(out, mech, s, model, err)
-    if (err%failed()) return
-
-    ! natural frequencies of the linearised structure at the start position
-    allocate(omega_n(model%n), shapes(model%n, model%n))
-    call model%linear_modes(omega_n, shapes, err)
-    if (err%failed()) return
+    if (err%failed()) return                  ! the rigid motion or the modes failed: the header is kept
+    call describe_motion(out, mech, s)
     call write_frequency_header(out, mech, s, omega_n)
     if (len(crank_speed_warning(mech%driver%omega, omega_n(1), s%damping_beta)) > 0) &
       call out%warning(crank_speed_warning(mech%driver%omega, omega_n(1), s%damping_beta))
-    call clearance%attach(model, mech, out, err)
-    if (err%failed()) return
+    call clearance%attach(model, mech, out)
 
     allocate(y(model%state_size()))
     call initial_state(deck, s, model, shapes, out, t0, y, err)
@@ -279,46 +278,48 @@ contains
   end subroutine output_times
 
   !> The rigid-body motion: tabulated per revolution or solved on demand.
-  subroutine prepare_motion(out, mech, s, model, err)
+  subroutine describe_motion(out, mech, s)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
-    type(mechanism_model_t), target, intent(inout) :: model
-    type(error_t), intent(inout) :: err
     if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
-      call model%build_motion_table(s%table_points, err)
-      if (err%failed()) return
       call out%comment('rigid-body motion: tabulated at '//str(s%table_points)//' crank angles per revolution, '// &
                        'quintic Hermite interpolation in the crank angle')
     else if (mech%driver%omega > 0.0_dp) then
       call out%comment('rigid-body motion: kinematics solved at every time the integrator asks for')
     end if
-  end subroutine prepare_motion
+  end subroutine describe_motion
 
-  !> The planar model of the mechanism with its loads; a refusal of the
-  !> model or the loads is an input error of their group.
-  subroutine build_model(deck, mech, s, loads_in, model, err)
+  !> The planar model of the mechanism in one step (mechanism_model's
+  !> init_mechanism): its loads, clearance joints, the rigid motion
+  !> tabulated as &transient asks, and the start modes (omega_n, shapes) of
+  !> the pinned linkage.  A refusal of the model, the loads or the clearance
+  !> joints is an input error of their group.
+  subroutine build_model(deck, mech, s, loads_in, clearance, model, omega_n, shapes, err)
     type(deck_t), intent(in) :: deck
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(loads_input_t), intent(in) :: loads_in
+    type(clearance_monitor_t), intent(in) :: clearance
     type(mechanism_model_t), target, intent(inout) :: model
+    real(dp), allocatable, intent(out) :: omega_n(:), shapes(:, :)
     type(error_t), intent(inout) :: err
-    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
+    real(dp) :: gravity(2)
+    type(point_load_t), allocatable :: point_loads(:)
+    type(clearance_joint_t), allocatable :: cj(:)
+    logical :: refused
+    allocate(point_loads(0))
+    call resolve_loads(loads_in, mech, gravity, point_loads, err)
     if (err%failed()) then
-      call input_error_in(deck, 'mechanism', err)
+      call input_error_in(deck, 'loads', err)
       return
     end if
-    block
-      real(dp) :: gravity(2)
-      type(point_load_t), allocatable :: point_loads(:)
-      call resolve_loads(loads_in, mech, gravity, point_loads, err)
-      if (err%failed()) then
-        call input_error_in(deck, 'loads', err)
-        return
-      end if
-      call model%set_loads(gravity, point_loads)
-    end block
+    call clearance%joints(mech, cj, err)
+    if (err%failed()) return
+    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err, gravity=gravity, &
+                              point_loads=point_loads, table_points=merge(s%table_points, 0, s%kinematics == 'table'), &
+                              clearance=cj, omega=omega_n, shapes=shapes, elements_refused=refused)
+    if (err%failed() .and. refused) call input_error_in(deck, 'mechanism', err)
   end subroutine build_model
 
   !> The initial state (&transient initial): a scaled mode at rest, a restart
@@ -634,7 +635,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
-    call write_mechanism_header(out, mech, model%table)
+    call write_mechanism_header(out, mech, model%linkage_table())
     call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(model%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &

@@ -96,10 +96,12 @@ module mechanism_model
     ! pin joints with radial clearance (doc/clearance.md): none unless add_clearance was called
     logical :: has_clearance = .false.
     type(clearance_joint_t), allocatable :: clearance(:)
+    type(correlation_table_t) :: pinned_table     !< the table before the clearance split (linkage_table)
     ! links sliding through a sleeve (module sliding_link): their element replaces el(e) in the equations
     type(sliding_link_t), allocatable :: slide(:)
   contains
     procedure :: init_mechanism
+    procedure :: linkage_table
     procedure :: init_fixed
     procedure :: newton_factor => model_newton_factor
     procedure :: damping_beta
@@ -126,10 +128,69 @@ contains
 
   ! ------------------------------------------------------------------ set-up
 
-  !> Build the model of a linkage: kinematics, correlation table from the
-  !> joints, one Kear element per link segment.
-  subroutine init_mechanism(self, mech, effects, formulation, beta, err)
+  !> The model of a linkage, finished in this one step: kinematics,
+  !> correlation table from the joints, one element of the formulation per
+  !> link segment, joint masses and counterweights; then, as asked, its
+  !> loads (gravity and point loads, both or neither), the rigid motion
+  !> tabulated at table_points crank angles per revolution (when the crank
+  !> turns and table_points > 0), the natural frequencies and M-normalised
+  !> mode shapes at the start position (omega, shapes: linear_modes), and
+  !> the clearance joints (add_clearance).  The start modes and the table
+  !> in the output header (linkage_table) are those of the pinned linkage:
+  !> the clearance's journal unknowns are added after them.  elements_refused:
+  !> the failure (err) is the linkage's elements' (an input error of the
+  !> mechanism), not one of the later steps.
+  subroutine init_mechanism(self, mech, effects, formulation, beta, err, gravity, point_loads, table_points, &
+                            clearance, omega, shapes, elements_refused)
     class(mechanism_model_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
+    real(dp), intent(in) :: beta
+    type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: gravity(2)
+    type(point_load_t), intent(in), optional :: point_loads(:)
+    integer, intent(in), optional :: table_points
+    type(clearance_joint_t), intent(in), optional :: clearance(:)
+    real(dp), allocatable, intent(out), optional :: omega(:), shapes(:, :)
+    logical, intent(out), optional :: elements_refused
+    if (present(elements_refused)) elements_refused = .true.
+    call init_elements(self, mech, effects, formulation, beta, err)
+    if (err%failed()) return
+    if (present(elements_refused)) elements_refused = .false.
+    if (present(gravity) .and. present(point_loads)) call self%set_loads(gravity, point_loads)
+    if (present(table_points)) then
+      if (table_points > 0 .and. mech%driver%omega > 0.0_dp) call self%build_motion_table(table_points, err)
+      if (err%failed()) return
+    end if
+    if (present(omega) .and. present(shapes)) then
+      allocate(omega(self%n), shapes(self%n, self%n))
+      call self%linear_modes(omega, shapes, err)
+      if (err%failed()) return
+    end if
+    if (present(clearance)) then
+      if (size(clearance) > 0) then
+        self%pinned_table = self%table
+        call self%add_clearance(clearance, err)
+      end if
+    end if
+  end subroutine init_mechanism
+
+  !> The table of the linkage's pinned joints: the one in the output header
+  !> (with clearance joints, the table before their journals were split).
+  function linkage_table(self) result(table)
+    class(mechanism_model_t), intent(in) :: self
+    type(correlation_table_t) :: table
+    if (self%has_clearance) then
+      table = self%pinned_table
+    else
+      table = self%table
+    end if
+  end function linkage_table
+
+  !> The elements of a linkage (init_mechanism's first step).
+  subroutine init_elements(self, mech, effects, formulation, beta, err)
+    type(mechanism_model_t), intent(inout) :: self
     type(mechanism_t), intent(in) :: mech
     type(element_effects_t), intent(in) :: effects
     character(len=*), intent(in) :: formulation
@@ -184,7 +245,7 @@ contains
     call place_counterweights(mech, self%cw, err)
     if (err%failed()) return
     call self%set_time(0.0_dp)
-  end subroutine init_mechanism
+  end subroutine init_elements
 
   !> The counterweights in Lagrange's equation of their link's end slope
   !> w_x: J on the mass diagonal; J (-phi_dd) and the weight's moment
