@@ -7,6 +7,10 @@
 !> F, factors M by the project's banded Cholesky (band_kernels: cost linear
 !> in the number of elements) and solves for the accelerations.
 !>
+!> The model of a linkage is finished in one step, `init_mechanism`
+!> (elements, joint masses and counterweights, loads, the rigid motion's
+!> table, the start modes and the clearance joints).
+!>
 !> The rigid-body motion depends on the crank angle only, so by default it is
 !> tabulated once over a revolution (`build_motion_table`, module
 !> rigid_motion_table): this takes the kinematic Newton solves out of the
@@ -110,16 +114,16 @@ module mechanism_model
     procedure :: jacobian_contraction => model_jacobian_contraction
     procedure :: assemble_band
     procedure :: set_time
-    procedure :: build_motion_table
+    procedure, private :: build_motion_table
     procedure :: accelerations
     procedure :: assemble_dense
     procedure :: linear_modes
     procedure :: energies
     procedure :: element_stresses
-    procedure :: set_loads
+    procedure, private :: set_loads
     procedure :: static_equilibrium
     procedure :: element_joint_force
-    procedure :: add_clearance
+    procedure, private :: add_clearance
     procedure :: clearance_spin
     procedure :: element_q
   end type mechanism_model_t
@@ -324,8 +328,9 @@ contains
   end subroutine node_translation_dofs
 
   !> A structure at rest: elements with given rigid states and a table built
-  !> from the given link ends (beam verification tests).
-  subroutine init_fixed(self, specs, states, n_elem, ends, effects, formulation, beta, err)
+  !> from the given link ends (beam verification tests), with its loads
+  !> (gravity and point loads, both or neither).
+  subroutine init_fixed(self, specs, states, n_elem, ends, effects, formulation, beta, err, gravity, point_loads)
     class(mechanism_model_t), intent(inout) :: self
     type(element_spec_t), intent(in) :: specs(:)
     type(rigid_state_t), intent(in) :: states(:)
@@ -335,6 +340,8 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: gravity(2)
+    type(point_load_t), intent(in), optional :: point_loads(:)
     integer :: e
     class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
@@ -359,6 +366,7 @@ contains
       if (err%failed()) return
     end do
     call allocate_work(self)
+    if (present(gravity) .and. present(point_loads)) call self%set_loads(gravity, point_loads)
   end subroutine init_fixed
 
   subroutine allocate_work(self)
@@ -784,8 +792,8 @@ contains
 
   !> Give every joint in `joints` its clearance: the journal's translations
   !> become their own unknowns (joint_clearance%split_journal) and the
-  !> contact force acts between journal and bearing.  Called after
-  !> init_mechanism; the work arrays follow the new size and band.
+  !> contact force acts between journal and bearing.  init_mechanism's last
+  !> step; the work arrays follow the new size and band.
   subroutine add_clearance(self, joints, err)
     class(mechanism_model_t), intent(inout) :: self
     type(clearance_joint_t), intent(in) :: joints(:)

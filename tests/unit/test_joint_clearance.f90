@@ -237,8 +237,6 @@ contains
     type(error_t) :: err
     logical :: ok
     real(dp), allocatable :: q(:), qd(:), qdd(:), f0(:), f1(:), want(:)
-    call make_model(fourbar_input(1, 150.0_dp, 0.0_dp), element_effects_t(), 0.0_dp, model, ok, table=.false.)
-    call assert_true(ok, 'four-bar model')
     cj%joint = 3
     cj%name = 'C'
     cj%clearance = 0.005_dp
@@ -248,8 +246,10 @@ contains
     cj%element_bearing = 2
     cj%bearing_node = 2
     call contact_law_init(cj%law, 'lankarani_nikravesh', 1.0e7_dp, 1.5_dp, 0.9_dp, 0.3_dp, 1.0e-3_dp, err)
-    call model%add_clearance([cj], err)
     call assert_true(.not. err%failed(), err%text())
+    call make_model(fourbar_input(1, 150.0_dp, 0.0_dp), element_effects_t(), 0.0_dp, model, ok, table=.false., &
+                    clearance=[cj])
+    call assert_true(ok, 'four-bar model with clearance at C')
     allocate(q(model%n), qd(model%n), qdd(model%n), want(model%n), f0(model%n), f1(model%n))
     q = 0.0_dp
     qd = 0.0_dp

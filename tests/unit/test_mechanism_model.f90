@@ -217,8 +217,7 @@ contains
     w = 150.0_dp
     call build_mechanism(profiled_fourbar(w, profile), mech, err)
     call direct%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call table%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call table%build_motion_table(720, err)
+    call table%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err, table_points=720)
     call assert_true(.not. err%failed(), 'table: '//err%text())
     if (err%failed()) return
     scale_p = 10.0_dp

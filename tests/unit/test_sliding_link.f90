@@ -81,10 +81,8 @@ contains
     call build_mechanism(inp, mech, err)
     call assert_true(.not. err%failed(), 'mechanism: '//err%text())
     call tm%init_mechanism(mech, element_effects_t(material=ro, rotary_inertia=.true., coupling=.true.), 'exact', &
-                           b, err)
+                           b, err, table_points=merge(720, 0, tabulate))
     call assert_true(.not. err%failed(), 'transient model: '//err%text())
-    if (tabulate) call tm%build_motion_table(720, err)
-    call assert_true(.not. err%failed(), 'motion table: '//err%text())
     call sm%init_mechanism(mech, tennant_options_t(d_k=merge(1.0_dp, 0.0_dp, ro), rotary_inertia=.true., &
                                                    damping_beta=b), secs, err)
     call assert_true(.not. err%failed(), 'steady model: '//err%text())
