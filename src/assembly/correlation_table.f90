@@ -36,7 +36,7 @@ module correlation_table
   use strings, only: str
   implicit none
   private
-  public :: correlation_base_t, correlation_table_t, link_end_t, dofs_per_element
+  public :: correlation_base_t, correlation_table_t, link_end_t
   public :: joint_free, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_sleeve
 
   integer, parameter :: dofs_per_element = 8
