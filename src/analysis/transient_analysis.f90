@@ -49,6 +49,16 @@ module transient_analysis
     integer, allocatable :: react_joint(:)        !< joints whose ground/guide force is written
   end type responses_t
 
+  !> What the run's rows are made of and go into: the optional responses,
+  !> the revolution rows and the element stress peaks.
+  type :: transient_record_t
+    type(responses_t) :: resp
+    type(revolution_rows_t) :: rows
+    type(element_peaks_t) :: peaks
+  contains
+    procedure :: record_row
+  end type transient_record_t
+
 contains
 
   !> Read, build, integrate row by row to the end (or to the periodic state), then the summary and cost.
@@ -68,9 +78,7 @@ contains
     real(dp) :: t0, t_end, dt_out, t, theta, cpu0, cpu1, revolutions_done
     integer :: k, n_out
     character(len=32), allocatable :: names(:)
-    type(responses_t) :: resp
-    type(revolution_rows_t) :: rows
-    type(element_peaks_t) :: stress_peaks
+    type(transient_record_t) :: rec
 
     call read_transient_deck(deck, mech, s, loads_in, clearance, err)
     if (err%failed()) return
@@ -83,8 +91,8 @@ contains
     call build_model(deck, mech, s, loads_in, clearance, model, omega_n, shapes, err)
     if (err%failed() .and. err%code == input_error_code) return
     if (.not. err%failed()) then
-      call setup_responses(mech, s, resp)
-      if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
+      call setup_responses(mech, s, rec%resp)
+      if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, rec%resp, err)
       if (err%failed()) return
     end if
     call write_model_header(out, mech, s, model)
@@ -106,12 +114,13 @@ contains
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
-    call start_rows(out, mech, s, model, resp, clearance, t0, dt_out, names, rows)
-    call stress_peaks%init(element_labels(mech, size(model%el)), mech%driver%omega > 0.0_dp, rows%theta_start*180.0_dp/pi)
+    call start_rows(out, mech, s, model, rec%resp, clearance, t0, dt_out, names, rec%rows)
+    call rec%peaks%init(element_labels(mech, size(model%el)), mech%driver%omega > 0.0_dp, &
+                        rec%rows%theta_start*180.0_dp/pi)
 
     call bar%start('transient', t0, t_end)
     call cpu_time(cpu0)
-    call record_row(out, t0, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+    call rec%record_row(out, t0, mech, model, clearance, y, theta, err)
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
@@ -121,10 +130,10 @@ contains
         call ode%integrate_to(model, y, t, err)
       end if
       if (err%failed()) exit
-      call record_row(out, t, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+      call rec%record_row(out, t, mech, model, clearance, y, theta, err)
       if (err%failed()) exit
-      call rows%close_revolutions(out, theta)
-      if (rows%periodic) exit
+      call rec%rows%close_revolutions(out, theta)
+      if (rec%rows%periodic) exit
       c = ode%counters()
       call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
                       ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
@@ -134,14 +143,14 @@ contains
 
     if (err%failed()) call model%name_stop_angle('transient analysis', ode%t, err)
 
-    call rows%write_last_revolution(out, names)
+    call rec%rows%write_last_revolution(out, names)
     ! summary (the last complete revolution first, then the whole run) and cost
-    call stress_peaks%write(out, 'last')
-    call rows%write_peaks(out, names, 'last', 'sigma_max_e')
-    call stress_peaks%write(out, 'whole')
-    call rows%write_peaks(out, names, 'whole', 'sigma_max_e')
-    call warn_strength(out, mech, stress_peaks%pk%whole)
-    call rows%write_periodicity(out)
+    call rec%peaks%write(out, 'last')
+    call rec%rows%write_peaks(out, names, 'last', 'sigma_max_e')
+    call rec%peaks%write(out, 'whole')
+    call rec%rows%write_peaks(out, names, 'whole', 'sigma_max_e')
+    call warn_strength(out, mech, rec%peaks%pk%whole)
+    call rec%rows%write_periodicity(out)
     c = ode%counters()
     revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
     call write_cost(out, s, model, c, cpu1 - cpu0, revolutions_done)
@@ -212,20 +221,18 @@ contains
   !> The row of output time tt (joints, link ends, element stresses, the
   !> optional responses, clearance columns) into the run's rows and peaks;
   !> theta: the crank angle at tt.
-  subroutine record_row(out, tt, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+  subroutine record_row(self, out, tt, mech, model, clearance, y, theta, err)
+    class(transient_record_t), intent(inout) :: self
     type(table_t), intent(inout) :: out
     real(dp), intent(in) :: tt
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), target, intent(inout) :: model
-    type(responses_t), intent(inout) :: resp
     type(clearance_monitor_t), intent(inout) :: clearance
     real(dp), intent(in) :: y(:)
-    type(revolution_rows_t), intent(inout) :: rows
-    type(element_peaks_t), intent(inout) :: stress_peaks
     real(dp), intent(out) :: theta
     type(error_t), intent(inout) :: err
     type(stress_report_t) :: stress(size(model%el))
-    real(dp) :: row(rows%n_columns), q(model%n), crank_deg, theta_d, theta_dd
+    real(dp) :: row(self%rows%n_columns), q(model%n), crank_deg, theta_d, theta_dd
     integer :: j, i, kk, ee
     call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
     call model%set_time(tt)
@@ -250,12 +257,12 @@ contains
       kk = kk + 2
     end do
     row(kk + 1:kk + size(stress)) = stress%max_abs_stress
-    call stress_peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
+    call self%peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
     kk = kk + size(stress)
-    call fill_responses(resp, model, mech, tt, y, row, kk, err)
+    call fill_responses(self%resp, model, mech, tt, y, row, kk, err)
     if (err%failed()) return
     if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
-    call rows%add(out, tt, row, crank_deg)
+    call self%rows%add(out, tt, row, crank_deg)
   end subroutine record_row
 
 
