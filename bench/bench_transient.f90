@@ -97,9 +97,7 @@ contains
     type(mechanism_t) :: mech
     call build_mechanism(fourbar(n, chain), mech, err)
     if (err%failed()) return
-    call model%init_mechanism(mech, effects, 'exact', beta, err)
-    if (err%failed()) return
-    call model%build_motion_table(720, err)
+    call model%init_mechanism(mech, effects, 'exact', beta, err, table_points=720)
   end subroutine make
 
   !> One run: n elements per link, method mf, relative tolerance rtol;

@@ -219,7 +219,7 @@ contains
     call make_model(beam_input('ground_pin', n), element_effects_t(stretching=.true.), 0.0_dp, model, okk)
     allocate(omega(model%n), shapes(model%n, model%n), y(model%state_size()))
     call model%linear_modes(omega, shapes, err)
-    mid = model%table%map(6, n/2)
+    mid = model%table%unknown(6, n/2)
     y = 0.0_dp
     y(1::2) = a_r*radius_gyration*shapes(:, 1)/shapes(mid, 1)
     p%kind = probe_modal

@@ -49,6 +49,7 @@ module clearance_run
   contains
     procedure :: read => monitor_read
     procedure :: echo => monitor_echo
+    procedure :: joints
     procedure :: attach
     procedure :: integrate_to
     procedure :: column_names
@@ -75,18 +76,16 @@ contains
     call echo_clearance_settings(self%s, out)
   end subroutine monitor_echo
 
-  !> Give the model its clearance joints (the journal: the end of the joint's
-  !> second link, or of its only link at a ground pin) and describe them.
-  subroutine attach(self, model, mech, out, err)
-    class(clearance_monitor_t), intent(inout) :: self
-    type(mechanism_model_t), intent(inout) :: model
+  !> The model's clearance joints (the journal: the end of the joint's
+  !> second link, or of its only link at a ground pin); none when inactive.
+  subroutine joints(self, mech, cj, err)
+    class(clearance_monitor_t), intent(in) :: self
     type(mechanism_t), intent(in) :: mech
-    type(table_t), intent(inout) :: out
+    type(clearance_joint_t), allocatable, intent(out) :: cj(:)
     type(error_t), intent(inout) :: err
-    type(clearance_joint_t), allocatable :: cj(:)
-    integer :: j, k, side
-    if (.not. self%active) return
+    integer :: j, side
     allocate(cj(0))
+    if (.not. self%active) return
     do j = 1, mech%n_joints
       if (.not. self%s%clearance(j) > 0.0_dp) cycle
       block
@@ -109,13 +108,22 @@ contains
         cj = [cj, c]
       end block
     end do
-    call model%add_clearance(cj, err)
-    if (err%failed()) return
-    self%n = size(cj)
+  end subroutine joints
+
+  !> Watch the model's clearance joints (the model was built with them,
+  !> joints) and describe them.
+  subroutine attach(self, model, mech, out)
+    class(clearance_monitor_t), intent(inout) :: self
+    type(mechanism_model_t), intent(in) :: model
+    type(mechanism_t), intent(in) :: mech
+    type(table_t), intent(inout) :: out
+    integer :: k
+    if (.not. self%active) return
+    self%n = size(model%clearance)
     allocate(self%name(self%n), self%in_contact(self%n), self%impact_since_row(self%n), self%n_impacts(self%n), &
              self%n_gentle(self%n), self%n_separations(self%n), self%peak_force(self%n), self%peak_angle(self%n), &
              self%peak_approach(self%n))
-    self%name = cj%name
+    self%name = model%clearance%name
     self%in_contact = .false.
     self%impact_since_row = .false.
     self%n_impacts = 0

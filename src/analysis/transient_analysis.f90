@@ -8,7 +8,7 @@ module transient_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
-  use deck_reader, only: deck_t, invalid_value, input_error_in
+  use deck_reader, only: deck_t, invalid_value, input_error_in, input_error_code
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams
@@ -31,6 +31,7 @@ module transient_analysis
   use linkage, only: joint_clamp
   use plausibility, only: warn_materials, warn_strength, crank_speed_warning
   use clearance_run, only: clearance_monitor_t
+  use joint_clearance, only: clearance_joint_t
   use restart_file, only: write_restart_file, start_from_restart
   implicit none
   private
@@ -47,6 +48,16 @@ module transient_analysis
     integer, allocatable :: react_end(:)          !< jr%ends written (force on the link end)
     integer, allocatable :: react_joint(:)        !< joints whose ground/guide force is written
   end type responses_t
+
+  !> What the run's rows are made of and go into: the optional responses,
+  !> the revolution rows and the element stress peaks.
+  type :: transient_record_t
+    type(responses_t) :: resp
+    type(revolution_rows_t) :: rows
+    type(element_peaks_t) :: peaks
+  contains
+    procedure :: record_row
+  end type transient_record_t
 
 contains
 
@@ -67,9 +78,7 @@ contains
     real(dp) :: t0, t_end, dt_out, t, theta, cpu0, cpu1, revolutions_done
     integer :: k, n_out
     character(len=32), allocatable :: names(:)
-    type(responses_t) :: resp
-    type(revolution_rows_t) :: rows
-    type(element_peaks_t) :: stress_peaks
+    type(transient_record_t) :: rec
 
     call read_transient_deck(deck, mech, s, loads_in, clearance, err)
     if (err%failed()) return
@@ -77,24 +86,22 @@ contains
     call echo_transient_deck(out, mech, loads_in, clearance)
     call warn_materials(out, mech)
 
-    call build_model(deck, mech, s, loads_in, model, err)
-    if (err%failed()) return
-    call setup_responses(mech, s, resp)
-    if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, resp, err)
-    if (err%failed()) return
+    ! the model in one step, with the natural frequencies of the linearised
+    ! structure at the start position (before the clearance joints' unknowns)
+    call build_model(deck, mech, s, loads_in, clearance, model, omega_n, shapes, err)
+    if (err%failed() .and. err%code == input_error_code) return
+    if (.not. err%failed()) then
+      call setup_responses(mech, s, rec%resp)
+      if (size(model%slide) > 0) call refuse_on_sliding_links(deck, model, rec%resp, err)
+      if (err%failed()) return
+    end if
     call write_model_header(out, mech, s, model)
-    call prepare_motion(out, mech, s, model, err)
-    if (err%failed()) return
-
-    ! natural frequencies of the linearised structure at the start position
-    allocate(omega_n(model%n), shapes(model%n, model%n))
-    call model%linear_modes(omega_n, shapes, err)
-    if (err%failed()) return
+    if (err%failed()) return                  ! the rigid motion or the modes failed: the header is kept
+    call describe_motion(out, mech, s)
     call write_frequency_header(out, mech, s, omega_n)
     if (len(crank_speed_warning(mech%driver%omega, omega_n(1), s%damping_beta)) > 0) &
       call out%warning(crank_speed_warning(mech%driver%omega, omega_n(1), s%damping_beta))
-    call clearance%attach(model, mech, out, err)
-    if (err%failed()) return
+    call clearance%attach(model, mech, out)
 
     allocate(y(model%state_size()))
     call initial_state(deck, s, model, shapes, out, t0, y, err)
@@ -107,12 +114,13 @@ contains
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
-    call start_rows(out, mech, s, model, resp, clearance, t0, dt_out, names, rows)
-    call stress_peaks%init(element_labels(mech, size(model%el)), mech%driver%omega > 0.0_dp, rows%theta_start*180.0_dp/pi)
+    call start_rows(out, mech, s, model, rec%resp, clearance, t0, dt_out, names, rec%rows)
+    call rec%peaks%init(element_labels(mech, size(model%el)), mech%driver%omega > 0.0_dp, &
+                        rec%rows%theta_start*180.0_dp/pi)
 
     call bar%start('transient', t0, t_end)
     call cpu_time(cpu0)
-    call record_row(out, t0, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+    call rec%record_row(out, t0, mech, model, clearance, y, theta, err)
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
@@ -122,10 +130,10 @@ contains
         call ode%integrate_to(model, y, t, err)
       end if
       if (err%failed()) exit
-      call record_row(out, t, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+      call rec%record_row(out, t, mech, model, clearance, y, theta, err)
       if (err%failed()) exit
-      call rows%close_revolutions(out, theta)
-      if (rows%periodic) exit
+      call rec%rows%close_revolutions(out, theta)
+      if (rec%rows%periodic) exit
       c = ode%counters()
       call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
                       ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
@@ -135,14 +143,14 @@ contains
 
     if (err%failed()) call model%name_stop_angle('transient analysis', ode%t, err)
 
-    call rows%write_last_revolution(out, names)
+    call rec%rows%write_last_revolution(out, names)
     ! summary (the last complete revolution first, then the whole run) and cost
-    call stress_peaks%write(out, 'last')
-    call rows%write_peaks(out, names, 'last', 'sigma_max_e')
-    call stress_peaks%write(out, 'whole')
-    call rows%write_peaks(out, names, 'whole', 'sigma_max_e')
-    call warn_strength(out, mech, stress_peaks%pk%whole)
-    call rows%write_periodicity(out)
+    call rec%peaks%write(out, 'last')
+    call rec%rows%write_peaks(out, names, 'last', 'sigma_max_e')
+    call rec%peaks%write(out, 'whole')
+    call rec%rows%write_peaks(out, names, 'whole', 'sigma_max_e')
+    call warn_strength(out, mech, rec%peaks%pk%whole)
+    call rec%rows%write_periodicity(out)
     c = ode%counters()
     revolutions_done = max(0.0_dp, (ode%t - t0)*max(mech%driver%omega, 0.0_dp)/two_pi)
     call write_cost(out, s, model, c, cpu1 - cpu0, revolutions_done)
@@ -213,20 +221,18 @@ contains
   !> The row of output time tt (joints, link ends, element stresses, the
   !> optional responses, clearance columns) into the run's rows and peaks;
   !> theta: the crank angle at tt.
-  subroutine record_row(out, tt, mech, model, resp, clearance, y, rows, stress_peaks, theta, err)
+  subroutine record_row(self, out, tt, mech, model, clearance, y, theta, err)
+    class(transient_record_t), intent(inout) :: self
     type(table_t), intent(inout) :: out
     real(dp), intent(in) :: tt
     type(mechanism_t), intent(in) :: mech
     type(mechanism_model_t), target, intent(inout) :: model
-    type(responses_t), intent(inout) :: resp
     type(clearance_monitor_t), intent(inout) :: clearance
     real(dp), intent(in) :: y(:)
-    type(revolution_rows_t), intent(inout) :: rows
-    type(element_peaks_t), intent(inout) :: stress_peaks
     real(dp), intent(out) :: theta
     type(error_t), intent(inout) :: err
     type(stress_report_t) :: stress(size(model%el))
-    real(dp) :: row(rows%n_columns), q(model%n), crank_deg, theta_d, theta_dd
+    real(dp) :: row(self%rows%n_columns), q(model%n), crank_deg, theta_d, theta_dd
     integer :: j, i, kk, ee
     call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
     call model%set_time(tt)
@@ -251,12 +257,12 @@ contains
       kk = kk + 2
     end do
     row(kk + 1:kk + size(stress)) = stress%max_abs_stress
-    call stress_peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
+    call self%peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
     kk = kk + size(stress)
-    call fill_responses(resp, model, mech, tt, y, row, kk, err)
+    call fill_responses(self%resp, model, mech, tt, y, row, kk, err)
     if (err%failed()) return
     if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
-    call rows%add(out, tt, row, crank_deg)
+    call self%rows%add(out, tt, row, crank_deg)
   end subroutine record_row
 
 
@@ -279,46 +285,48 @@ contains
   end subroutine output_times
 
   !> The rigid-body motion: tabulated per revolution or solved on demand.
-  subroutine prepare_motion(out, mech, s, model, err)
+  subroutine describe_motion(out, mech, s)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
-    type(mechanism_model_t), target, intent(inout) :: model
-    type(error_t), intent(inout) :: err
     if (s%kinematics == 'table' .and. mech%driver%omega > 0.0_dp) then
-      call model%build_motion_table(s%table_points, err)
-      if (err%failed()) return
       call out%comment('rigid-body motion: tabulated at '//str(s%table_points)//' crank angles per revolution, '// &
                        'quintic Hermite interpolation in the crank angle')
     else if (mech%driver%omega > 0.0_dp) then
       call out%comment('rigid-body motion: kinematics solved at every time the integrator asks for')
     end if
-  end subroutine prepare_motion
+  end subroutine describe_motion
 
-  !> The planar model of the mechanism with its loads; a refusal of the
-  !> model or the loads is an input error of their group.
-  subroutine build_model(deck, mech, s, loads_in, model, err)
+  !> The planar model of the mechanism in one step (mechanism_model's
+  !> init_mechanism): its loads, clearance joints, the rigid motion
+  !> tabulated as &transient asks, and the start modes (omega_n, shapes) of
+  !> the pinned linkage.  A refusal of the model, the loads or the clearance
+  !> joints is an input error of their group.
+  subroutine build_model(deck, mech, s, loads_in, clearance, model, omega_n, shapes, err)
     type(deck_t), intent(in) :: deck
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(loads_input_t), intent(in) :: loads_in
+    type(clearance_monitor_t), intent(in) :: clearance
     type(mechanism_model_t), target, intent(inout) :: model
+    real(dp), allocatable, intent(out) :: omega_n(:), shapes(:, :)
     type(error_t), intent(inout) :: err
-    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err)
+    real(dp) :: gravity(2)
+    type(point_load_t), allocatable :: point_loads(:)
+    type(clearance_joint_t), allocatable :: cj(:)
+    logical :: refused
+    allocate(point_loads(0))
+    call resolve_loads(loads_in, mech, gravity, point_loads, err)
     if (err%failed()) then
-      call input_error_in(deck, 'mechanism', err)
+      call input_error_in(deck, 'loads', err)
       return
     end if
-    block
-      real(dp) :: gravity(2)
-      type(point_load_t), allocatable :: point_loads(:)
-      call resolve_loads(loads_in, mech, gravity, point_loads, err)
-      if (err%failed()) then
-        call input_error_in(deck, 'loads', err)
-        return
-      end if
-      call model%set_loads(gravity, point_loads)
-    end block
+    call clearance%joints(mech, cj, err)
+    if (err%failed()) return
+    call model%init_mechanism(mech, s%effects, s%formulation, s%damping_beta, err, gravity=gravity, &
+                              point_loads=point_loads, table_points=merge(s%table_points, 0, s%kinematics == 'table'), &
+                              clearance=cj, omega=omega_n, shapes=shapes, elements_refused=refused)
+    if (err%failed() .and. refused) call input_error_in(deck, 'mechanism', err)
   end subroutine build_model
 
   !> The initial state (&transient initial): a scaled mode at rest, a restart
@@ -634,7 +642,7 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(transient_settings_t), intent(in) :: s
     type(mechanism_model_t), intent(in) :: model
-    call write_mechanism_header(out, mech, model%table)
+    call write_mechanism_header(out, mech, model%linkage_table())
     call out%comment('effects on: '//effects_summary(s%effects)//' formulation='//trim(model%formulation))
     if (.not. (s%effects%stretching .or. s%effects%curvature .or. s%effects%material .or. &
                s%effects%rotary_inertia .or. s%effects%coupling)) &

@@ -2,34 +2,16 @@
 !> element's correlation (global number map(i), 0 = not an unknown, and
 !> coefficient coef(i) of its DOF i, from the correlation table): one loop
 !> for the planar and the spatial transient models, whatever their
-!> correlation table.  (Dense global matrices: the correlation table's
+!> correlation table, whose add_lower_band and add_newton_bands call these
+!> with an element's map.  (Dense global matrices: the correlation table's
 !> scatter_add_matrix.)
 module band_assembly
   use kinds, only: dp
-  use correlation_table, only: correlation_base_t
   implicit none
   private
-  public :: add_element_lower_band, add_element_newton_bands
+  public :: add_to_lower_band, add_to_newton_bands
 
 contains
-
-  !> Element e's symmetric matrix me into the global lower band storage band.
-  pure subroutine add_element_lower_band(table, e, me, band)
-    class(correlation_base_t), intent(in) :: table
-    integer, intent(in) :: e
-    real(dp), intent(in) :: me(:, :)
-    real(dp), intent(inout) :: band(:, :)
-    call add_to_lower_band(band, me, table%map(:, e), table%coef(:, e))
-  end subroutine add_element_lower_band
-
-  !> Element e's M and K_t into the Newton matrix's bands (add_to_newton_bands).
-  pure subroutine add_element_newton_bands(table, e, me, ke, kd, mass_lower, stiff_band)
-    class(correlation_base_t), intent(in) :: table
-    integer, intent(in) :: e, kd
-    real(dp), intent(in) :: me(:, :), ke(:, :)
-    real(dp), intent(inout) :: mass_lower(:, :), stiff_band(:, :)
-    call add_to_newton_bands(mass_lower, stiff_band, kd, me, ke, table%map(:, e), table%coef(:, e))
-  end subroutine add_element_newton_bands
 
   !> band(1 + gi - gj, gj) += coef(i) me(i, j) coef(j) for gi >= gj: the
   !> lower triangle of a symmetric matrix in LAPACK's lower band storage.

@@ -31,11 +31,12 @@
 !>    with no carrier the sleeve pivots on the ground (U_s = W_s = 0).
 module correlation_table
   use kinds, only: dp
+  use band_assembly, only: add_to_lower_band, add_to_newton_bands
   use error_status, only: error_t
   use strings, only: str
   implicit none
   private
-  public :: correlation_base_t, correlation_table_t, link_end_t, dofs_per_element
+  public :: correlation_base_t, correlation_table_t, link_end_t
   public :: joint_free, joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_sleeve
 
   integer, parameter :: dofs_per_element = 8
@@ -58,21 +59,39 @@ module correlation_table
   !> equals coef times one global unknown, or is held at zero (map = 0); the
   !> unknowns' labels; gather, scatter and the half-bandwidth.  The planar
   !> rules below (correlation_table_t%build) and the spatial model's joint
-  !> rules (spatial_correlation: spatial_table_t) fill it.
+  !> rules (spatial_correlation: spatial_table_t) fill it.  The map, its
+  !> coefficients, the labels, the number of unknowns and the half-bandwidth
+  !> hold together (one label per unknown, the band of the map), so they are
+  !> private: read through unknown, coefficient, unknowns, coefficients,
+  !> label_of, n_unknowns and band, changed only by the table's own rules.
   type :: correlation_base_t
     integer :: n_elements = 0
-    integer :: n_global = 0
-    integer :: half_bandwidth = 0                  !< of assembled M and K
     integer :: element_dofs = dofs_per_element     !< 2 * node_dofs
-    integer, allocatable :: map(:, :)              !< (element_dofs, n_elements) global index, 0 = held at zero
-    real(dp), allocatable :: coef(:, :)            !< (element_dofs, n_elements) element DOF = coef * global
-    character(len=24), allocatable :: label(:)     !< (n_global) e.g. 'L2 N1 U' or 'J3 s'
+    integer, private :: n_global = 0
+    integer, private :: half_bandwidth = 0                  !< of assembled M and K
+    integer, allocatable, private :: map(:, :)              !< (element_dofs, n_elements) global index, 0 = held at zero
+    real(dp), allocatable, private :: coef(:, :)            !< (element_dofs, n_elements) element DOF = coef * global
+    character(len=24), allocatable, private :: label(:)     !< (n_global) e.g. 'L2 N1 U' or 'J3 s'
   contains
     procedure :: start_table
     procedure :: new_unknown
     procedure :: shared_unknowns
     procedure :: join_nodes
     procedure :: finish_band
+    procedure :: widen_band
+    procedure :: split_translations
+    procedure :: n_unknowns
+    procedure :: band
+    procedure :: unknown
+    procedure :: coefficient
+    procedure :: unknowns
+    procedure :: coefficients
+    procedure :: unknowns_of
+    procedure :: coefficients_of
+    procedure :: label_of
+    procedure :: labels
+    procedure :: add_lower_band
+    procedure :: add_newton_bands
     procedure :: gather
     procedure :: gather_pair
     procedure :: scatter_add
@@ -520,6 +539,146 @@ contains
     class(correlation_base_t), intent(inout) :: self
     self%half_bandwidth = bandwidth(self%map)
   end subroutine finish_band
+
+  !> The half-bandwidth at least kd (couplings between unknowns that no
+  !> element joins, such as a clearance joint's contact).
+  subroutine widen_band(self, kd)
+    class(correlation_base_t), intent(inout) :: self
+    integer, intent(in) :: kd
+    self%half_bandwidth = max(self%half_bandwidth, kd)
+  end subroutine widen_band
+
+  !> Give element DOFs first and first + 1 of element e (a node's two
+  !> translations) their own two global unknowns, labelled `labels`,
+  !> numbered after the largest of their old unknowns and the DOF first + 2
+  !> (the node's slope); every unknown numbered after that moves up by two.
+  !> old: the unknowns the DOFs had (0: held at zero), new: their own ones.
+  !> Refused when the DOFs are not plain unknowns (coefficient 1) or nothing
+  !> precedes them to number after.
+  subroutine split_translations(self, e, first, labels, old, new, err)
+    class(correlation_base_t), intent(inout) :: self
+    integer, intent(in) :: e, first
+    character(len=*), intent(in) :: labels(2)
+    integer, intent(out) :: old(2), new(2)
+    type(error_t), intent(inout) :: err
+    integer :: p
+    character(len=24), allocatable :: label(:)
+    old = self%map(first:first + 1, e)
+    new = 0
+    if (any(abs(self%coef(first:first + 1, e) - 1.0_dp) > 0.0_dp .and. old > 0)) then
+      call err%set('', 'the node''s translations are not plain unknowns')
+      return
+    end if
+    p = max(maxval(old), self%map(first + 2, e))
+    if (p <= 0) then
+      call err%set('', 'the node has no free unknown to number after')
+      return
+    end if
+    where (self%map > p) self%map = self%map + 2
+    ! the old unknowns (numbered <= p) stay as they were
+    new = [p + 1, p + 2]
+    self%map(first:first + 1, e) = new
+    self%coef(first:first + 1, e) = 1.0_dp
+    allocate(label(self%n_global + 2))
+    label(1:p) = self%label(1:p)
+    label(p + 1:p + 2) = labels
+    label(p + 3:) = self%label(p + 1:self%n_global)
+    call move_alloc(label, self%label)
+    self%n_global = self%n_global + 2
+    self%half_bandwidth = bandwidth(self%map)
+  end subroutine split_translations
+
+  !> The number of global unknowns.
+  pure integer function n_unknowns(self)
+    class(correlation_base_t), intent(in) :: self
+    n_unknowns = self%n_global
+  end function n_unknowns
+
+  !> The half-bandwidth of the assembled matrices.
+  pure integer function band(self)
+    class(correlation_base_t), intent(in) :: self
+    band = self%half_bandwidth
+  end function band
+
+  !> The global unknown of DOF i of element e (0: held at zero).
+  pure integer function unknown(self, i, e)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: i, e
+    unknown = self%map(i, e)
+  end function unknown
+
+  !> The coefficient of DOF i of element e: DOF = coefficient * unknown.
+  pure real(dp) function coefficient(self, i, e)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: i, e
+    coefficient = self%coef(i, e)
+  end function coefficient
+
+  !> The global unknowns of element e's DOFs (0: held at zero).
+  pure function unknowns(self, e) result(g)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: e
+    integer :: g(self%element_dofs)
+    g = self%map(:, e)
+  end function unknowns
+
+  !> The global unknowns of element e's DOFs dofs (0: held at zero).
+  pure function unknowns_of(self, dofs, e) result(g)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: dofs(:), e
+    integer :: g(size(dofs))
+    g = self%map(dofs, e)
+  end function unknowns_of
+
+  !> The coefficients of element e's DOFs dofs.
+  pure function coefficients_of(self, dofs, e) result(c)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: dofs(:), e
+    real(dp) :: c(size(dofs))
+    c = self%coef(dofs, e)
+  end function coefficients_of
+
+  !> The coefficients of element e's DOFs.
+  pure function coefficients(self, e) result(c)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp) :: c(self%element_dofs)
+    c = self%coef(:, e)
+  end function coefficients
+
+  !> The label of global unknown g (such as 'L2 N1 U').
+  pure character(len=24) function label_of(self, g)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: g
+    label_of = self%label(g)
+  end function label_of
+
+  !> The labels of all global unknowns, in their order.
+  pure function labels(self) result(l)
+    class(correlation_base_t), intent(in) :: self
+    character(len=24) :: l(self%n_global)
+    l = self%label
+  end function labels
+
+  !> Element e's symmetric matrix me into the global lower band storage band
+  !> (module band_assembly).
+  pure subroutine add_lower_band(self, e, me, band)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: e
+    real(dp), intent(in) :: me(:, :)
+    real(dp), intent(inout) :: band(:, :)
+    call add_to_lower_band(band, me, self%map(:, e), self%coef(:, e))
+  end subroutine add_lower_band
+
+  !> Element e's M and K_t into the Newton matrix's bands (band_assembly's
+  !> add_to_newton_bands).
+  pure subroutine add_newton_bands(self, e, me, ke, kd, mass_lower, stiff_band)
+    class(correlation_base_t), intent(in) :: self
+    integer, intent(in) :: e, kd
+    real(dp), intent(in) :: me(:, :), ke(:, :)
+    real(dp), intent(inout) :: mass_lower(:, :), stiff_band(:, :)
+    call add_to_newton_bands(mass_lower, stiff_band, kd, me, ke, self%map(:, e), self%coef(:, e))
+  end subroutine add_newton_bands
 
   !> Element DOF vector from the global vector.
   pure function gather(self, e, qg) result(qe)

@@ -24,7 +24,9 @@ module frame_band_table
   private
   public :: frame_table_t, frame_matrix, angle_basis
 
+  !> Filled by start, add_element and finish; read by frame_matrix.
   type :: frame_table_t
+    private
     integer :: rows = 0                  !< rows of the band storage
     integer :: n_varying = 0             !< entries that vary with the element angles
     real(dp), allocatable :: const(:)    !< the constant band, column-major
@@ -67,9 +69,10 @@ contains
     integer, intent(in) :: e, kd
     real(dp), intent(in) :: l(8, 8)
     logical, intent(in) :: lower
-    real(dp) :: f(6), cij, varying(2, 2)
-    integer :: i, j, gi, gj, r, k
-    associate (map => table%map(:, e), coef => table%coef(:, e))
+    real(dp) :: f(6), cij, varying(2, 2), coef(8)
+    integer :: i, j, gi, gj, r, k, map(8)
+    map = table%unknowns(e)
+    coef = table%coefficients(e)
     do j = 1, 8
       gj = map(j)
       if (gj == 0) cycle
@@ -91,7 +94,6 @@ contains
         end do
       end do
     end do
-    end associate
   end subroutine add_element
 
   !> Entry (i, j) of T^T L T as coefficients of [c^2, cs, s^2, c, s, 1].

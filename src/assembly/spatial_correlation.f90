@@ -36,8 +36,8 @@ contains
     character(len=160) :: head(2), rows(self%n_elements)
     integer :: e, i, k
     character(len=160) :: l
-    head(1) = 'variable correlation table: '//str(self%n_elements)//' elements, '//str(self%n_global)// &
-              ' global unknowns, half-bandwidth '//str(self%half_bandwidth)
+    head(1) = 'variable correlation table: '//str(self%n_elements)//' elements, '//str(self%n_unknowns())// &
+              ' global unknowns, half-bandwidth '//str(self%band())
     l = '  element :'
     do k = 1, 2
       do i = 1, 8
@@ -46,7 +46,7 @@ contains
     end do
     head(2) = trim(l)//'   (global unknown; 0 = held at zero; RX..RZ global or, at a spherical end, local)'
     do e = 1, self%n_elements
-      write(rows(e), '(2x,i7,a,20i5)') e, ' :', self%map(:, e)
+      write(rows(e), '(2x,i7,a,20i5)') e, ' :', self%unknowns(e)
     end do
     call self%table_lines(head, rows, 22, lines)
   end subroutine describe

@@ -1191,7 +1191,7 @@ contains
                                'exact', self%element%damping_beta, err)
     if (err%failed()) return
     to_steady = 0
-    if (tmodel%n == model%n) to_steady = matching_unknowns(tmodel%table%label, model%table%label)
+    if (tmodel%n == model%n) to_steady = matching_unknowns(tmodel%table%labels(), model%table%labels())
     if (any(to_steady == 0)) then
       call err%set('transient evaluator', 'the transient model''s unknowns do not match the steady model''s')
       return

@@ -16,7 +16,9 @@ module progress
   private
   public :: progress_t
 
+  !> Its state is set by start and kept by update and finish alone.
   type :: progress_t
+    private
     logical :: active = .false.
     logical :: counts = .false.          !< show 'k/n' (t0 = 0, t1 = n)
     real(dp) :: t0 = 0.0_dp, t1 = 1.0_dp

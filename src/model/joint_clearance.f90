@@ -49,48 +49,15 @@ contains
     integer, intent(in) :: e, node
     type(clearance_joint_t), intent(inout) :: cj
     type(error_t), intent(inout) :: err
-    integer :: first, p, k, i
-    character(len=24), allocatable :: label(:)
-    first = 1 + table%node_dofs*(node - 1)
-    cj%bearing = table%map(first:first + 1, e)
-    if (any(abs(table%coef(first:first + 1, e) - 1.0_dp) > 0.0_dp .and. cj%bearing > 0)) then
-      call err%set('clearance joint '//trim(cj%name), 'the journal''s translations are not plain unknowns')
+    call table%split_translations(e, 1 + table%node_dofs*(node - 1), &
+                                  ['J'//str(cj%joint)//' U journal', 'J'//str(cj%joint)//' W journal'], &
+                                  cj%bearing, cj%journal, err)
+    if (err%failed()) then
+      call err%add_context('clearance joint '//trim(cj%name))
       return
     end if
-    p = max(maxval(cj%bearing), table%map(first + 2, e))
-    if (p <= 0) then
-      call err%set('clearance joint '//trim(cj%name), 'the journal node has no free unknown to number after')
-      return
-    end if
-    do k = 1, table%n_elements
-      do i = 1, table%element_dofs
-        if (table%map(i, k) > p) table%map(i, k) = table%map(i, k) + 2
-      end do
-    end do
-    ! the bearing keeps the unknowns it had (numbered <= p, unchanged)
-    cj%journal = [p + 1, p + 2]
-    table%map(first:first + 1, e) = cj%journal
-    table%coef(first:first + 1, e) = 1.0_dp
-    allocate(label(table%n_global + 2))
-    label(1:p) = table%label(1:p)
-    label(p + 1) = 'J'//str(cj%joint)//' U journal'
-    label(p + 2) = 'J'//str(cj%joint)//' W journal'
-    label(p + 3:) = table%label(p + 1:table%n_global)
-    call move_alloc(label, table%label)
-    table%n_global = table%n_global + 2
-    table%half_bandwidth = max(band_of(table), pair_span(cj))
+    call table%widen_band(pair_span(cj))
   end subroutine split_journal
-
-  !> Half-bandwidth of the table's elements.
-  pure integer function band_of(table) result(kd)
-    type(correlation_table_t), intent(in) :: table
-    integer :: e
-    kd = 0
-    do e = 1, table%n_elements
-      if (any(table%map(:, e) > 0)) &
-        kd = max(kd, maxval(table%map(:, e)) - minval(table%map(:, e), mask=table%map(:, e) > 0))
-    end do
-  end function band_of
 
   !> Distance between the farthest unknowns the contact couples.
   pure integer function pair_span(cj) result(span)

@@ -139,12 +139,12 @@ contains
     real(dp) :: c, psi, psi_d, psi_dd, arm(2), torque_g
     integer :: e, g, i
     e = model%cw%element(k)
-    g = model%table%map(3, e)
+    g = model%table%unknown(3, e)
     psi = model%rb(e)%phi
     psi_d = model%rb(e)%phi_d
     psi_dd = model%rb(e)%phi_dd
     if (g > 0) then
-      c = model%table%coef(3, e)
+      c = model%table%coefficient(3, e)
       psi = psi + c*q(g)
       psi_d = psi_d + c*qd(g)
       psi_dd = psi_dd + c*qdd(g)

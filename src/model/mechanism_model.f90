@@ -7,6 +7,10 @@
 !> F, factors M by the project's banded Cholesky (band_kernels: cost linear
 !> in the number of elements) and solves for the accelerations.
 !>
+!> The model of a linkage is finished in one step, `init_mechanism`
+!> (elements, joint masses and counterweights, loads, the rigid motion's
+!> table, the start modes and the clearance joints).
+!>
 !> The rigid-body motion depends on the crank angle only, so by default it is
 !> tabulated once over a revolution (`build_motion_table`, module
 !> rigid_motion_table): this takes the kinematic Newton solves out of the
@@ -22,7 +26,6 @@
 !> A structure that does not move (beam tests) is modelled with fixed element
 !> rigid states instead of kinematics (`init_fixed`).
 module mechanism_model
-  use band_assembly, only: add_element_lower_band, add_element_newton_bands
   use frame_band_table, only: frame_table_t, frame_matrix, angle_basis
   use kinds, only: dp
   use error_status, only: error_t
@@ -97,10 +100,12 @@ module mechanism_model
     ! pin joints with radial clearance (doc/clearance.md): none unless add_clearance was called
     logical :: has_clearance = .false.
     type(clearance_joint_t), allocatable :: clearance(:)
+    type(correlation_table_t) :: pinned_table     !< the table before the clearance split (linkage_table)
     ! links sliding through a sleeve (module sliding_link): their element replaces el(e) in the equations
     type(sliding_link_t), allocatable :: slide(:)
   contains
     procedure :: init_mechanism
+    procedure :: linkage_table
     procedure :: init_fixed
     procedure :: newton_factor => model_newton_factor
     procedure :: damping_beta
@@ -109,16 +114,16 @@ module mechanism_model
     procedure :: jacobian_contraction => model_jacobian_contraction
     procedure :: assemble_band
     procedure :: set_time
-    procedure :: build_motion_table
+    procedure, private :: build_motion_table
     procedure :: accelerations
     procedure :: assemble_dense
     procedure :: linear_modes
     procedure :: energies
     procedure :: element_stresses
-    procedure :: set_loads
+    procedure, private :: set_loads
     procedure :: static_equilibrium
     procedure :: element_joint_force
-    procedure :: add_clearance
+    procedure, private :: add_clearance
     procedure :: clearance_spin
     procedure :: element_q
   end type mechanism_model_t
@@ -127,10 +132,69 @@ contains
 
   ! ------------------------------------------------------------------ set-up
 
-  !> Build the model of a linkage: kinematics, correlation table from the
-  !> joints, one Kear element per link segment.
-  subroutine init_mechanism(self, mech, effects, formulation, beta, err)
+  !> The model of a linkage, finished in this one step: kinematics,
+  !> correlation table from the joints, one element of the formulation per
+  !> link segment, joint masses and counterweights; then, as asked, its
+  !> loads (gravity and point loads, both or neither), the rigid motion
+  !> tabulated at table_points crank angles per revolution (when the crank
+  !> turns and table_points > 0), the natural frequencies and M-normalised
+  !> mode shapes at the start position (omega, shapes: linear_modes), and
+  !> the clearance joints (add_clearance).  The start modes and the table
+  !> in the output header (linkage_table) are those of the pinned linkage:
+  !> the clearance's journal unknowns are added after them.  elements_refused:
+  !> the failure (err) is the linkage's elements' (an input error of the
+  !> mechanism), not one of the later steps.
+  subroutine init_mechanism(self, mech, effects, formulation, beta, err, gravity, point_loads, table_points, &
+                            clearance, omega, shapes, elements_refused)
     class(mechanism_model_t), intent(inout) :: self
+    type(mechanism_t), intent(in) :: mech
+    type(element_effects_t), intent(in) :: effects
+    character(len=*), intent(in) :: formulation
+    real(dp), intent(in) :: beta
+    type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: gravity(2)
+    type(point_load_t), intent(in), optional :: point_loads(:)
+    integer, intent(in), optional :: table_points
+    type(clearance_joint_t), intent(in), optional :: clearance(:)
+    real(dp), allocatable, intent(out), optional :: omega(:), shapes(:, :)
+    logical, intent(out), optional :: elements_refused
+    if (present(elements_refused)) elements_refused = .true.
+    call init_elements(self, mech, effects, formulation, beta, err)
+    if (err%failed()) return
+    if (present(elements_refused)) elements_refused = .false.
+    if (present(gravity) .and. present(point_loads)) call self%set_loads(gravity, point_loads)
+    if (present(table_points)) then
+      if (table_points > 0 .and. mech%driver%omega > 0.0_dp) call self%build_motion_table(table_points, err)
+      if (err%failed()) return
+    end if
+    if (present(omega) .and. present(shapes)) then
+      allocate(omega(self%n), shapes(self%n, self%n))
+      call self%linear_modes(omega, shapes, err)
+      if (err%failed()) return
+    end if
+    if (present(clearance)) then
+      if (size(clearance) > 0) then
+        self%pinned_table = self%table
+        call self%add_clearance(clearance, err)
+      end if
+    end if
+  end subroutine init_mechanism
+
+  !> The table of the linkage's pinned joints: the one in the output header
+  !> (with clearance joints, the table before their journals were split).
+  function linkage_table(self) result(table)
+    class(mechanism_model_t), intent(in) :: self
+    type(correlation_table_t) :: table
+    if (self%has_clearance) then
+      table = self%pinned_table
+    else
+      table = self%table
+    end if
+  end function linkage_table
+
+  !> The elements of a linkage (init_mechanism's first step).
+  subroutine init_elements(self, mech, effects, formulation, beta, err)
+    type(mechanism_model_t), intent(inout) :: self
     type(mechanism_t), intent(in) :: mech
     type(element_effects_t), intent(in) :: effects
     character(len=*), intent(in) :: formulation
@@ -185,7 +249,7 @@ contains
     call place_counterweights(mech, self%cw, err)
     if (err%failed()) return
     call self%set_time(0.0_dp)
-  end subroutine init_mechanism
+  end subroutine init_elements
 
   !> The counterweights in Lagrange's equation of their link's end slope
   !> w_x: J on the mass diagonal; J (-phi_dd) and the weight's moment
@@ -200,9 +264,9 @@ contains
     if (new_mass) call add_counterweight_mass(self, self%mass_band, .true.)
     do k = 1, size(self%cw%element)
       e = self%cw%element(k)
-      g = self%table%map(3, e)
+      g = self%table%unknown(3, e)
       if (g == 0) cycle
-      c = self%table%coef(3, e)
+      c = self%table%coefficient(3, e)
       arm = counterweight_arm(self, k, self%rb(e)%phi + c*q(g))
       self%force(g) = self%force(g) + c*(-self%cw%inertia(k)*self%rb(e)%phi_dd - self%gravity(1)*arm(2) + &
                                          self%gravity(2)*arm(1))
@@ -227,12 +291,12 @@ contains
     integer :: k, e, g
     do k = 1, size(self%cw%element)
       e = self%cw%element(k)
-      g = self%table%map(3, e)
+      g = self%table%unknown(3, e)
       if (g == 0) cycle
       if (band) then
-        mass(1, g) = mass(1, g) + self%cw%inertia(k)*self%table%coef(3, e)**2
+        mass(1, g) = mass(1, g) + self%cw%inertia(k)*self%table%coefficient(3, e)**2
       else
-        mass(g, g) = mass(g, g) + self%cw%inertia(k)*self%table%coef(3, e)**2
+        mass(g, g) = mass(g, g) + self%cw%inertia(k)*self%table%coefficient(3, e)**2
       end if
     end do
   end subroutine add_counterweight_mass
@@ -259,13 +323,14 @@ contains
     real(dp), intent(out) :: c(2)
     integer :: first
     first = 1 + self%table%node_dofs*(node - 1)
-    g = self%table%map(first:first + 1, e)
-    c = self%table%coef(first:first + 1, e)
+    g = self%table%unknowns_of([first, first + 1], e)
+    c = self%table%coefficients_of([first, first + 1], e)
   end subroutine node_translation_dofs
 
   !> A structure at rest: elements with given rigid states and a table built
-  !> from the given link ends (beam verification tests).
-  subroutine init_fixed(self, specs, states, n_elem, ends, effects, formulation, beta, err)
+  !> from the given link ends (beam verification tests), with its loads
+  !> (gravity and point loads, both or neither).
+  subroutine init_fixed(self, specs, states, n_elem, ends, effects, formulation, beta, err, gravity, point_loads)
     class(mechanism_model_t), intent(inout) :: self
     type(element_spec_t), intent(in) :: specs(:)
     type(rigid_state_t), intent(in) :: states(:)
@@ -275,6 +340,8 @@ contains
     character(len=*), intent(in) :: formulation
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: gravity(2)
+    type(point_load_t), intent(in), optional :: point_loads(:)
     integer :: e
     class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
@@ -299,13 +366,14 @@ contains
       if (err%failed()) return
     end do
     call allocate_work(self)
+    if (present(gravity) .and. present(point_loads)) call self%set_loads(gravity, point_loads)
   end subroutine init_fixed
 
   subroutine allocate_work(self)
     type(mechanism_model_t), intent(inout) :: self
     integer :: e
     ! (add_clearance renumbers the unknowns and calls this again)
-    call self%size_state(self%table%n_global, self%table%half_bandwidth)
+    call self%size_state(self%table%n_unknowns(), self%table%band())
     if (allocated(self%work_me)) deallocate(self%work_me, self%work_ke, self%work_fe, self%work_qe, self%work_qde)
     if (allocated(self%frame_basis)) deallocate(self%frame_basis)
     associate(nd => self%table%element_dofs)
@@ -488,7 +556,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      if (new_mass .and. .not. self%frame_tables) call add_element_lower_band(self%table, e, me, self%mass_band)
+      if (new_mass .and. .not. self%frame_tables) call self%table%add_lower_band(e, me, self%mass_band)
     end do
     end associate
     if (new_mass .and. self%frame_tables) then       ! (nothing was added to mass_band yet)
@@ -640,7 +708,7 @@ contains
     do e = 1, size(self%el)
       if (self%table%is_sleeve_element(e) .or. self%frame_tables) cycle
       call element_mass_stiffness(self, e, q, self%work_me, self%work_ke)
-      call add_element_newton_bands(self%table, e, self%work_me, self%work_ke, kd, mass, stiff)
+      call self%table%add_newton_bands(e, self%work_me, self%work_ke, kd, mass, stiff)
     end do
     call add_sliding_matrices(self, q, mass, stiff, kd)
     do e = 1, size(self%joint_mass%mass)
@@ -724,8 +792,8 @@ contains
 
   !> Give every joint in `joints` its clearance: the journal's translations
   !> become their own unknowns (joint_clearance%split_journal) and the
-  !> contact force acts between journal and bearing.  Called after
-  !> init_mechanism; the work arrays follow the new size and band.
+  !> contact force acts between journal and bearing.  init_mechanism's last
+  !> step; the work arrays follow the new size and band.
   subroutine add_clearance(self, joints, err)
     class(mechanism_model_t), intent(inout) :: self
     type(clearance_joint_t), intent(in) :: joints(:)
@@ -751,7 +819,7 @@ contains
     end do
     do k = 1, size(self%cw%element)
       ! a counterweight turns about a fixed pivot (register_counterweights)
-      if (any(self%table%map(1:2, self%cw%element(k)) > 0)) then
+      if (any(self%table%unknowns_of([1, 2], self%cw%element(k)) > 0)) then
         call err%set('clearance', 'a joint clearance at a counterweight''s pivot is not modelled (the '// &
                      'counterweight turns about a fixed pivot)', 2)
         return

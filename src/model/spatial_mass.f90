@@ -93,7 +93,7 @@ contains
       rot = rotating(el(e))
       do b = 1, 4
         if (.not. rot(b)) cycle
-        associate (m => table%map(first(b):first(b) + 2, e))
+        associate (m => table%unknowns_of(first(b) + [0, 1, 2], e))
           if (all(m > 0)) then
             if (all(kind(m) == 2) .and. owner(m(1)) == 0) then
               self%ntri = self%ntri + 1
@@ -111,14 +111,14 @@ contains
     a = 0.0_dp
     do e = 1, size(el)
       do j = 1, sdofs
-        gj = table%map(j, e)
+        gj = table%unknown(j, e)
         if (gj == 0) cycle
         if (self%jpos(gj) > 0) cycle
         do i = 1, sdofs
-          gi = table%map(i, e)
+          gi = table%unknown(i, e)
           if (gi < gj) cycle
           if (self%jpos(gi) > 0) cycle
-          a(1 + gi - gj, gj) = a(1 + gi - gj, gj) + table%coef(i, e)*el(e)%mass0(i, j)*table%coef(j, e)
+          a(1 + gi - gj, gj) = a(1 + gi - gj, gj) + table%coefficient(i, e)*el(e)%mass0(i, j)*table%coefficient(j, e)
         end do
       end do
     end do
@@ -162,13 +162,13 @@ contains
     do e = 1, size(el)
       rot = rotating(el(e))
       do i = 1, sdofs
-        gi = table%map(i, e)
+        gi = table%unknown(i, e)
         if (gi == 0) cycle
         if (kind(gi) == 0) kind(gi) = 1
       end do
       do b = 1, 4
         if (.not. rot(b)) cycle
-        associate (m => table%map(first(b):first(b) + 2, e), cf => table%coef(first(b):first(b) + 2, e))
+        associate (m => table%unknowns_of(first(b) + [0, 1, 2], e), cf => table%coefficients_of(first(b) + [0, 1, 2], e))
           if (all(m > 0) .and. maxval(abs(cf - 1.0_dp)) <= 0.0_dp .and. m(1) /= m(2) .and. m(2) /= m(3) &
               .and. m(1) /= m(3)) then
             do c = 1, 3
@@ -196,7 +196,7 @@ contains
         rot = rotating(el(e))
         do b = 1, 4
           if (.not. rot(b)) cycle
-          associate (m => table%map(first(b):first(b) + 2, e))
+          associate (m => table%unknowns_of(first(b) + [0, 1, 2], e))
             do c = 1, 3
               if (m(c) == 0) cycle
               if (kind(m(c)) /= 3 .and. (any(m == 0) .or. any(kind(max(m, 1)) == 3))) then
@@ -211,7 +211,7 @@ contains
     do e = 1, size(el)
       rot = rotating(el(e))
       do i = 1, sdofs
-        gi = table%map(i, e)
+        gi = table%unknown(i, e)
         if (gi == 0) cycle
         b = triple_of(i)
         if (b == 0) then
@@ -242,7 +242,7 @@ contains
       rot = rotating(el(e))
       do b = 1, 4
         if (.not. rot(b)) cycle
-        associate (m => table%map(first(b):first(b) + 2, e))
+        associate (m => table%unknowns_of(first(b) + [0, 1, 2], e))
           if (.not. any(m > 0)) cycle
           if (self%jpos(maxval(m)) == 0) cycle
           np = np + 1
@@ -267,22 +267,22 @@ contains
       e = self%pair_el(k)
       b = first(self%pair_b(k))
       do c = 1, 3
-        gi = table%map(b + c - 1, e)
+        gi = table%unknown(b + c - 1, e)
         if (gi == 0) cycle
         self%slot_j(3*(k - 1) + c) = self%jpos(gi)
-        self%slot_d(3*(k - 1) + c) = table%coef(b + c - 1, e)
+        self%slot_d(3*(k - 1) + c) = table%coefficient(b + c - 1, e)
         if (.not. any(self%pj(1:self%pj_n(k), k) == self%jpos(gi))) then
           self%pj_n(k) = self%pj_n(k) + 1
           self%pj(self%pj_n(k), k) = self%jpos(gi)
         end if
       end do
       do i = 1, sdofs                                  ! P_p: the triple's M_p columns, non-J rows
-        gi = table%map(i, e)
+        gi = table%unknown(i, e)
         if (gi == 0) cycle
         if (self%jpos(gi) > 0) cycle
         self%p_n(k) = self%p_n(k) + 1
         self%p_idx(self%p_n(k), k) = self%pos(gi)
-        self%p_val(self%p_n(k), :, k) = table%coef(i, e)*el(e)%mass0(i, b:b + 2)
+        self%p_val(self%p_n(k), :, k) = table%coefficient(i, e)*el(e)%mass0(i, b:b + 2)
         self%w(self%pos(gi), :, k) = self%w(self%pos(gi), :, k) + self%p_val(self%p_n(k), :, k)
       end do
       do c = 1, 3

@@ -27,7 +27,6 @@ module spatial_model
   use linalg, only: sym_generalized_eig, cross, solve_linear
   use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
   use second_order_model, only: second_order_model_t
-  use band_assembly, only: add_element_lower_band, add_element_newton_bands
   use material_law, only: ramberg_osgood_t
   use element_effects, only: element_effects_t
   use spatial_section, only: spatial_section_t
@@ -190,7 +189,7 @@ contains
     end if
     call build_table(self, err)
     if (err%failed()) return
-    call self%size_state(self%table%n_global, self%table%half_bandwidth)
+    call self%size_state(self%table%n_unknowns(), self%table%band())
     call self%cmass%init(self%table, self%el, self%link_of, self%n, self%kd)
   end subroutine model_init
 
@@ -507,7 +506,7 @@ contains
         return
       end if
       call self%table%scatter_add(e, fe, self%force)
-      if (band_mass) call add_element_lower_band(self%table, e, me, self%mass_band)
+      if (band_mass) call self%table%add_lower_band(e, me, self%mass_band)
     end do
     call add_point_loads(self, self%force)
     if (new_mass) then
@@ -547,7 +546,7 @@ contains
       ! consecutive linear elements of a link with equal M_p and K share the global matrices
       if (.not. self%matrices_as_previous(e)) &
         call spatial_beam_matrices(self%el(e), self%table%gather(e, q), self%rb(e), me, ke)
-      call add_element_newton_bands(self%table, e, me, ke, self%kd, mass, stiff)
+      call self%table%add_newton_bands(e, me, ke, self%kd, mass, stiff)
     end do
   end subroutine assemble_band
 

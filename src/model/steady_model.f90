@@ -159,7 +159,7 @@ contains
   subroutine finish_init(self)
     type(steady_model_t), intent(inout) :: self
     integer :: ne
-    self%n = self%table%n_global
+    self%n = self%table%n_unknowns()
     ne = self%table%n_elements
     allocate(self%cm(mx, mx, ne), self%cmd(mx, mx, ne), self%cmdd(mx, mx, ne), self%ng(ne))
     self%cm = 0.0_dp

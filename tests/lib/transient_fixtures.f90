@@ -10,6 +10,7 @@ module transient_fixtures
   use element_effects, only: element_effects_t
   use beam_element, only: beam_local_displacement
   use mechanism_model, only: mechanism_model_t
+  use joint_clearance, only: clearance_joint_t
   use joint_reactions, only: joint_reactions_t
   use lsode_solver, only: lsode_t, mf_bdf_full_fd
   use assertions, only: assert_true
@@ -95,7 +96,7 @@ contains
     inp%theta0_deg = theta0_deg
   end function fourbar_input
 
-  subroutine make_model(inp, effects, beta, model, ok, table, formulation)
+  subroutine make_model(inp, effects, beta, model, ok, table, formulation, clearance)
     type(mechanism_input_t), intent(in) :: inp
     type(element_effects_t), intent(in) :: effects
     real(dp), intent(in) :: beta
@@ -103,22 +104,27 @@ contains
     logical, intent(out) :: ok
     logical, intent(in), optional :: table     !< tabulate a turning crank's motion (default yes)
     character(len=*), intent(in), optional :: formulation   !< default 'exact' (Kear's element)
+    type(clearance_joint_t), intent(in), optional :: clearance(:)   !< clearance joints (default none)
     type(mechanism_t) :: mech
     type(error_t) :: err
     logical :: tabulate
+    integer :: points
+    type(clearance_joint_t), allocatable :: cj(:)
     tabulate = .true.
     if (present(table)) tabulate = table
+    ! as the decks do (&transient kinematics = 'table'): the rigid motion of a
+    ! turning crank tabulated once per revolution at 720 crank angles
+    points = merge(720, 0, tabulate)
+    allocate(cj(0))
+    if (present(clearance)) cj = clearance
     call build_mechanism(inp, mech, err)
     if (.not. err%failed()) then
       if (present(formulation)) then
-        call model%init_mechanism(mech, effects, formulation, beta, err)
+        call model%init_mechanism(mech, effects, formulation, beta, err, table_points=points, clearance=cj)
       else
-        call model%init_mechanism(mech, effects, 'exact', beta, err)
+        call model%init_mechanism(mech, effects, 'exact', beta, err, table_points=points, clearance=cj)
       end if
     end if
-    ! as the decks do (&transient kinematics = 'table'): the rigid motion of a
-    ! turning crank tabulated once per revolution at 720 crank angles
-    if (.not. err%failed() .and. inp%omega > 0.0_dp .and. tabulate) call model%build_motion_table(720, err)
     call assert_true(.not. err%failed(), 'model: '//err%text())
     ok = .not. err%failed()
   end subroutine make_model

@@ -54,16 +54,21 @@ contains
     call assert_true(.not. err%failed(), err%text())
     call assert_equal(t%node_dofs, 6, 'six DOFs per node')
     call assert_equal(t%element_dofs, 12, 'twelve per element')
-    call assert_equal(t%n_global, 27, 'global unknowns')
-    call assert_true(all(t%map(1:3, 1) == 0) .and. all(t%map(4:6, 1) > 0), 'A: U = W = th = 0; m, ux, uxx free')
-    call assert_true(all(t%map(7:8, 1) == t%map(1:2, 2)), 'B translations shared')
-    call assert_true(all(t%map(10:12, 2) > 0) .and. all(t%map(4:6, 2) > 0), 'pins: m, ux, uxx free')
-    call assert_true(all(t%map(7:8, 3) == 0) .and. all(t%map(9:12, 3) > 0), 'D: U = W = 0; th, m, ux, uxx free')
+    call assert_equal(t%n_unknowns(), 27, 'global unknowns')
+    call assert_true(all(t%unknowns_of([1, 2, 3], 1) == 0) .and. all(t%unknowns_of([4, 5, 6], 1) > 0), &
+                     'A: U = W = th = 0; m, ux, uxx free')
+    call assert_true(all(t%unknowns_of([7, 8], 1) == t%unknowns_of([1, 2], 2)), 'B translations shared')
+    call assert_true(all(t%unknowns_of([10, 11, 12], 2) > 0) .and. all(t%unknowns_of([4, 5, 6], 2) > 0), &
+                     'pins: m, ux, uxx free')
+    call assert_true(all(t%unknowns_of([7, 8], 3) == 0) .and. all(t%unknowns_of([9, 10, 11, 12], 3) > 0), &
+                     'D: U = W = 0; th, m, ux, uxx free')
     call fourbar(1, k, err)
-    call assert_true(all((t%map([1, 2, 3, 7, 8, 9], :) > 0) .eqv. (k%map([1, 2, 3, 5, 6, 7], :) > 0)), &
-                     'U, W, th held where Kear''s table holds them')
+    do i = 1, 3
+      call assert_true(all((t%unknowns_of([1, 2, 3, 7, 8, 9], i) > 0) .eqv. (k%unknowns_of([1, 2, 3, 5, 6, 7], i) > 0)), &
+                       'U, W, th held where Kear''s table holds them')
+    end do
     call fourbar(2, t, err, axial=.true.)
-    call assert_equal(t%n_global, 27 + 18, 'a second element per link adds an interior node of 6')
+    call assert_equal(t%n_unknowns(), 27 + 18, 'a second element per link adds an interior node of 6')
     ! scatter is the transpose of gather: fe . (C qg) = (C^T fe) . qg
     do i = 1, 60
       qg(i) = sin(1.3_dp*i)
@@ -71,12 +76,12 @@ contains
     do i = 1, 12
       fe(i) = cos(0.7_dp*i)
     end do
-    lhs = dot_product(fe, t%gather(3, qg(1:t%n_global)))
+    lhs = dot_product(fe, t%gather(3, qg(1:t%n_unknowns())))
     block
-      real(dp) :: fg(t%n_global)
+      real(dp) :: fg(t%n_unknowns())
       fg = 0.0_dp
       call t%scatter_add(3, fe, fg)
-      rhs = dot_product(fg, qg(1:t%n_global))
+      rhs = dot_product(fg, qg(1:t%n_unknowns()))
     end block
     call assert_close(lhs, rhs, 1.0e-13_dp, 'scatter = gather^T with 12 DOFs')
   end subroutine test_axial_dofs
@@ -88,11 +93,12 @@ contains
     type(error_t) :: err
     call fourbar(1, t, err)
     call assert_true(.not. err%failed(), err%text())
-    call assert_equal(t%n_global, 10, 'global unknowns of the 3-element four-bar')
-    call assert_equal(count(t%map(:, 1) > 0), 4, 'crank: m at A, U W th at B')
-    call assert_true(all(t%map(1:3, 1) == 0) .and. t%map(4, 1) > 0, 'A is clamped: U = W = th = 0, m free')
-    call assert_true(t%map(8, 2) == 0 .and. t%map(4, 2) == 0, 'no curvature DOF at pins B, C of the coupler')
-    call assert_true(all(t%map(5:6, 3) == 0) .and. t%map(7, 3) > 0 .and. t%map(8, 3) == 0, &
+    call assert_equal(t%n_unknowns(), 10, 'global unknowns of the 3-element four-bar')
+    call assert_equal(count(t%unknowns(1) > 0), 4, 'crank: m at A, U W th at B')
+    call assert_true(all(t%unknowns_of([1, 2, 3], 1) == 0) .and. t%unknown(4, 1) > 0, &
+                     'A is clamped: U = W = th = 0, m free')
+    call assert_true(t%unknown(8, 2) == 0 .and. t%unknown(4, 2) == 0, 'no curvature DOF at pins B, C of the coupler')
+    call assert_true(all(t%unknowns_of([5, 6], 3) == 0) .and. t%unknown(7, 3) > 0 .and. t%unknown(8, 3) == 0, &
                      'D: U = W = 0, th free, m = 0')
   end subroutine test_fourbar_one_element
 
@@ -100,9 +106,11 @@ contains
     type(correlation_table_t) :: t
     type(error_t) :: err
     call fourbar(1, t, err)
-    call assert_true(all(t%map(5:6, 1) == t%map(1:2, 2)), 'B translations shared by crank and coupler')
-    call assert_true(t%map(7, 1) /= t%map(3, 2), 'slopes at B independent')
-    call assert_true(all(t%map(5:6, 2) == t%map(1:2, 3)), 'C translations shared by coupler and rocker')
+    call assert_true(all(t%unknowns_of([5, 6], 1) == t%unknowns_of([1, 2], 2)), &
+                     'B translations shared by crank and coupler')
+    call assert_true(t%unknown(7, 1) /= t%unknown(3, 2), 'slopes at B independent')
+    call assert_true(all(t%unknowns_of([5, 6], 2) == t%unknowns_of([1, 2], 3)), &
+                     'C translations shared by coupler and rocker')
   end subroutine test_fourbar_sharing
 
   !> n elements per link: each interior node adds 4 unknowns.
@@ -110,9 +118,10 @@ contains
     type(correlation_table_t) :: t
     type(error_t) :: err
     call fourbar(4, t, err)
-    call assert_equal(t%n_global, 10 + 3*3*4, 'four elements per link')
-    call assert_true(all(t%map(5:8, 1) == t%map(1:4, 2)), 'elements 1 and 2 of the crank share a node')
-    call assert_true(all(t%map(5:8, 1) > 0), 'interior node fully free')
+    call assert_equal(t%n_unknowns(), 10 + 3*3*4, 'four elements per link')
+    call assert_true(all(t%unknowns_of([5, 6, 7, 8], 1) == t%unknowns_of([1, 2, 3, 4], 2)), &
+                     'elements 1 and 2 of the crank share a node')
+    call assert_true(all(t%unknowns_of([5, 6, 7, 8], 1) > 0), 'interior node fully free')
   end subroutine test_multi_element_link
 
   !> Numbering along the chain keeps the band narrow and independent of mesh size.
@@ -121,8 +130,8 @@ contains
     type(error_t) :: err
     call fourbar(2, t2, err)
     call fourbar(16, t16, err)
-    call assert_true(t16%half_bandwidth <= 7, 'half-bandwidth of a chain stays <= 7 with 16 elements per link')
-    call assert_true(t2%half_bandwidth <= 7, 'half-bandwidth of a chain stays <= 7 with 2 elements per link')
+    call assert_true(t16%band() <= 7, 'half-bandwidth of a chain stays <= 7 with 16 elements per link')
+    call assert_true(t2%band() <= 7, 'half-bandwidth of a chain stays <= 7 with 2 elements per link')
   end subroutine test_bandwidth
 
   !> The rocker drawn from its ground pivot D to the coupler pin C (as in the
@@ -139,20 +148,21 @@ contains
     do n_each = 1, 16, 5
       call t%build([n_each, n_each, n_each], ends, err, reduce_band=.true.)
       call assert_true(.not. err%failed(), err%text())
-      call assert_true(t%half_bandwidth <= 7, 'half-bandwidth <= 7 with the rocker drawn D -> C')
-      call assert_equal(t%n_global, 10 + 3*4*(n_each - 1), 'unknowns')
-      call assert_true(all(t%map(5:6, 2*n_each) == t%map(5:6, 3*n_each)), 'C shared by coupler and rocker ends')
+      call assert_true(t%band() <= 7, 'half-bandwidth <= 7 with the rocker drawn D -> C')
+      call assert_equal(t%n_unknowns(), 10 + 3*4*(n_each - 1), 'unknowns')
+      call assert_true(all(t%unknowns_of([5, 6], 2*n_each) == t%unknowns_of([5, 6], 3*n_each)), &
+                       'C shared by coupler and rocker ends')
       seen = 0
       do e = 1, t%n_elements
         do k = 1, 8
-          if (t%map(k, e) > 0) seen(t%map(k, e)) = 1
+          if (t%unknown(k, e) > 0) seen(t%unknown(k, e)) = 1
         end do
       end do
-      call assert_equal(sum(seen), t%n_global, 'every unknown appears in the table')
+      call assert_equal(sum(seen), t%n_unknowns(), 'every unknown appears in the table')
       t = correlation_table_t()
     end do
     call t%build([16, 16, 16], ends, err)
-    call assert_true(t%half_bandwidth > 50, 'without renumbering the band spans the rocker')
+    call assert_true(t%band() > 50, 'without renumbering the band spans the rocker')
   end subroutine test_bandwidth_reversed_rocker
 
   subroutine test_scatter_transpose()
@@ -161,15 +171,15 @@ contains
     real(dp) :: qg(40), fe(8), fg(40), lhs, rhs
     integer :: e, i
     call fourbar(3, t, err)
-    do i = 1, t%n_global
+    do i = 1, t%n_unknowns()
       qg(i) = sin(1.3_dp*i)
     end do
     do e = 1, t%n_elements
       fe = [(cos(0.7_dp*i + e), i = 1, 8)]
       fg = 0.0_dp
       call t%scatter_add(e, fe, fg)
-      lhs = dot_product(fe, t%gather(e, qg(1:t%n_global)))
-      rhs = dot_product(fg(1:t%n_global), qg(1:t%n_global))
+      lhs = dot_product(fe, t%gather(e, qg(1:t%n_unknowns())))
+      rhs = dot_product(fg(1:t%n_unknowns()), qg(1:t%n_unknowns()))
       call assert_close(lhs, rhs, 1.0e-13_dp, 'fe . (T qg) = (T^T fe) . qg')
     end do
   end subroutine test_scatter_transpose
@@ -188,14 +198,13 @@ contains
     do e = 1, 7
       g(e) = t%new_unknown('u'//achar(iachar('0') + e))
     end do
-    t%map(:, 1) = [0, g(1), g(2), g(3)]
-    t%map(:, 2) = [g(2), g(3), g(4), g(5)]
-    t%map(:, 3) = [g(4), g(5), g(6), g(7)]
-    t%coef = 1.0_dp
-    t%coef(2, 2) = -1.0_dp
+    ! nodes of two DOFs [0 g1] [g2 g3] [g4 g5] [g6 g7]; element 2 takes its
+    ! start node's second DOF with coefficient -1
+    call t%join_nodes(1, reshape([0, g], [2, 4]), reshape([(1.0_dp, e = 1, 8)], [2, 4]))
+    call t%join_nodes(2, reshape(g(2:5), [2, 2]), reshape([1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp], [2, 2]))
     call t%finish_band()
-    call assert_equal(t%n_global, 7, 'seven unknowns')
-    call assert_equal(t%half_bandwidth, 3, 'band: largest index spread of one element')
+    call assert_equal(t%n_unknowns(), 7, 'seven unknowns')
+    call assert_equal(t%band(), 3, 'band: largest index spread of one element')
     q = [(sin(1.1_dp*e), e = 1, 7)]
     qd = [(cos(0.9_dp*e), e = 1, 7)]
     do e = 1, 3
@@ -224,11 +233,11 @@ contains
     call t%build([1, 1], ends, err)
     call assert_true(.not. err%failed(), err%text())
     qg = 0.0_dp
-    qg(t%map(5, 2)) = 2.0_dp
-    qe = t%gather(2, qg(1:t%n_global))
+    qg(t%unknown(5, 2)) = 2.0_dp
+    qe = t%gather(2, qg(1:t%n_unknowns()))
     call assert_close(qe(5), 2.0_dp*cos(alpha), 1.0e-15_dp, 'slider U = s cos(alpha)')
     call assert_close(qe(6), 2.0_dp*sin(alpha), 1.0e-15_dp, 'slider W = s sin(alpha)')
-    call assert_equal(t%n_global, 1 + 2 + 1 + 1 + 1 + 1, 'slider-crank unknowns')
+    call assert_equal(t%n_unknowns(), 1 + 2 + 1 + 1 + 1 + 1, 'slider-crank unknowns')
   end subroutine test_slider
 
   subroutine test_no_free_dof()
@@ -239,7 +248,7 @@ contains
     ends(2, 1) = link_end_t(joint_ground_pin, 0, 0.0_dp)
     call t%build([1], ends, err)
     call assert_true(.not. err%failed(), 'a pinned-pinned beam has its two slopes free')
-    call assert_equal(t%n_global, 2, 'pinned-pinned single element: th1, th2')
+    call assert_equal(t%n_unknowns(), 2, 'pinned-pinned single element: th1, th2')
   end subroutine test_no_free_dof
 
   !> 14-DOF four-bar: alpha follows th (0 at the clamp, own elsewhere), psi
@@ -254,16 +263,17 @@ contains
     call tt%build([1, 1, 1], ends, err, shear_dofs=.true.)
     call assert_true(.not. err%failed(), 'build')
     call assert_equal(tt%element_dofs, 14, 'element DOFs')
-    call assert_equal(tt%n_global, 22, 'unknowns')
+    call assert_equal(tt%n_unknowns(), 22, 'unknowns')
     ! node A (clamp): U W th a held; m psi lam own
-    call assert_true(all(tt%map([1, 2, 3, 5], 1) == 0) .and. all(tt%map([4, 6, 7], 1) > 0), 'clamp')
+    call assert_true(all(tt%unknowns_of([1, 2, 3, 5], 1) == 0) .and. all(tt%unknowns_of([4, 6, 7], 1) > 0), 'clamp')
     ! node B of the crank (pin): U W th a lam own; m psi held
-    call assert_true(all(tt%map([8, 9, 10, 12, 14], 1) > 0) .and. all(tt%map([11, 13], 1) == 0), 'pin')
+    call assert_true(all(tt%unknowns_of([8, 9, 10, 12, 14], 1) > 0) .and. all(tt%unknowns_of([11, 13], 1) == 0), 'pin')
     ! the coupler shares B's translations, not its slope or shear angle
-    call assert_true(all(tt%map(1:2, 2) == tt%map(8:9, 1)), 'pin shares U, W')
-    call assert_true(tt%map(3, 2) /= tt%map(10, 1) .and. tt%map(5, 2) /= tt%map(12, 1), 'own th, a')
+    call assert_true(all(tt%unknowns_of([1, 2], 2) == tt%unknowns_of([8, 9], 1)), 'pin shares U, W')
+    call assert_true(tt%unknown(3, 2) /= tt%unknown(10, 1) .and. tt%unknown(5, 2) /= tt%unknown(12, 1), 'own th, a')
     ! ground pin D: U W m psi held; th a lam own
-    call assert_true(all(tt%map([1, 2, 4, 6], 3) == 0) .and. all(tt%map([3, 5, 7], 3) > 0), 'ground pin')
+    call assert_true(all(tt%unknowns_of([1, 2, 4, 6], 3) == 0) .and. all(tt%unknowns_of([3, 5, 7], 3) > 0), &
+                     'ground pin')
   end subroutine test_alpha_rules
 
   !> Inverted slider-crank with the sleeve on the crank pin B: link 2 runs
@@ -295,7 +305,7 @@ contains
     uw = [cos(phi)*qe(5) + sin(phi)*qe(6), -sin(phi)*qe(5) + cos(phi)*qe(6)]
     call assert_close(uw(1), s, 1.0e-15_dp, 'axial = s')
     call assert_close(uw(2), -sin(phi)*us + cos(phi)*ws, 1.0e-15_dp, 'transverse = sleeve across the link')
-    call assert_equal(tt%sleeve_u(e), tt%map(5, 1), 'the sleeve moves with the crank pin')
+    call assert_equal(tt%sleeve_u(e), tt%unknown(5, 1), 'the sleeve moves with the crank pin')
   end subroutine test_sleeve_carried
 
   subroutine test_sleeve_ground()

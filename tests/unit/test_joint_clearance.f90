@@ -52,25 +52,25 @@ contains
     real(dp) :: qg(12), fe(8), lhs, rhs
     ends = fourbar_ends(.false.)
     call t%build([1, 1, 1], ends, err)
-    kd0 = t%half_bandwidth
-    old = t%map(5:6, 2)
-    call assert_true(all(t%map(1:2, 3) == old), 'pinned: rocker and coupler share C')
+    kd0 = t%band()
+    old = t%unknowns_of([5, 6], 2)
+    call assert_true(all(t%unknowns_of([1, 2], 3) == old), 'pinned: rocker and coupler share C')
     cj%joint = 2
     cj%name = 'C'
     call split_journal(t, 3, 1, cj, err)
     call assert_true(.not. err%failed(), err%text())
-    call assert_equal(t%n_global, 12, 'two more unknowns')
+    call assert_equal(t%n_unknowns(), 12, 'two more unknowns')
     call assert_true(all(cj%bearing == old), 'the bearing (coupler end) keeps its unknowns')
-    call assert_true(all(t%map(5:6, 2) == old), 'coupler map unchanged')
-    call assert_true(all(t%map(1:2, 3) == cj%journal), 'rocker C translations are the journal''s')
-    call assert_true(cj%journal(1) == max(maxval(old), t%map(3, 3)) + 1 .and. cj%journal(2) == cj%journal(1) + 1, &
+    call assert_true(all(t%unknowns_of([5, 6], 2) == old), 'coupler map unchanged')
+    call assert_true(all(t%unknowns_of([1, 2], 3) == cj%journal), 'rocker C translations are the journal''s')
+    call assert_true(cj%journal(1) == max(maxval(old), t%unknown(3, 3)) + 1 .and. cj%journal(2) == cj%journal(1) + 1, &
                      'numbered right after the bearing''s and the rocker''s unknowns at C')
     call assert_true(all(cj%journal /= old), 'journal and bearing separate')
-    call assert_true(t%half_bandwidth <= kd0 + 2, 'half-bandwidth grows by at most two')
-    call assert_true(index(t%label(cj%journal(1)), 'journal') > 0, 'labelled')
-    call assert_equal(size(t%label), 12, 'one label per unknown')
+    call assert_true(t%band() <= kd0 + 2, 'half-bandwidth grows by at most two')
+    call assert_true(index(t%label_of(cj%journal(1)), 'journal') > 0, 'labelled')
+    call assert_equal(size(t%labels()), 12, 'one label per unknown')
     do e = 1, t%n_elements       ! every unknown 1..12 used exactly where expected
-      call assert_true(maxval(t%map(:, e)) <= 12, 'map within the new size')
+      call assert_true(maxval(t%unknowns(e)) <= 12, 'map within the new size')
     end do
     call random_number(qg)
     call random_number(fe)
@@ -237,8 +237,6 @@ contains
     type(error_t) :: err
     logical :: ok
     real(dp), allocatable :: q(:), qd(:), qdd(:), f0(:), f1(:), want(:)
-    call make_model(fourbar_input(1, 150.0_dp, 0.0_dp), element_effects_t(), 0.0_dp, model, ok, table=.false.)
-    call assert_true(ok, 'four-bar model')
     cj%joint = 3
     cj%name = 'C'
     cj%clearance = 0.005_dp
@@ -248,8 +246,10 @@ contains
     cj%element_bearing = 2
     cj%bearing_node = 2
     call contact_law_init(cj%law, 'lankarani_nikravesh', 1.0e7_dp, 1.5_dp, 0.9_dp, 0.3_dp, 1.0e-3_dp, err)
-    call model%add_clearance([cj], err)
     call assert_true(.not. err%failed(), err%text())
+    call make_model(fourbar_input(1, 150.0_dp, 0.0_dp), element_effects_t(), 0.0_dp, model, ok, table=.false., &
+                    clearance=[cj])
+    call assert_true(ok, 'four-bar model with clearance at C')
     allocate(q(model%n), qd(model%n), qdd(model%n), want(model%n), f0(model%n), f1(model%n))
     q = 0.0_dp
     qd = 0.0_dp
@@ -262,8 +262,8 @@ contains
     f1 = model%force
     call assert_true(.not. model%err%failed(), model%err%text())
     want = 0.0_dp
-    want(model%table%map(7, 3)) = -0.75_dp
-    want(model%table%map(7, 2)) = 0.75_dp
+    want(model%table%unknown(7, 3)) = -0.75_dp
+    want(model%table%unknown(7, 2)) = 0.75_dp
     call assert_all_close(f1 - f0, want, 0.0_dp, 1.0e-12_dp, 'friction moments on the slopes at C only')
   end subroutine test_friction_moment
 end module test_joint_clearance_suite

@@ -42,7 +42,7 @@ contains
     call run_test('frictionless_slider_guide_pushes_only_normal_to_the_guide', test_slider_guide)
   end subroutine run_all
 
-  subroutine build(inp, effects, formulation, mech, model, ok, beta)
+  subroutine build(inp, effects, formulation, mech, model, ok, beta, point_loads)
     type(mechanism_input_t), intent(in) :: inp
     type(element_effects_t), intent(in) :: effects
     character(len=*), intent(in) :: formulation
@@ -50,12 +50,17 @@ contains
     type(mechanism_model_t), intent(out) :: model
     logical, intent(out) :: ok
     real(dp), intent(in), optional :: beta   !< stiffness-proportional damping (default none)
+    type(point_load_t), intent(in), optional :: point_loads(:)   !< without gravity (default none)
     type(error_t) :: err
     real(dp) :: b
+    type(point_load_t), allocatable :: loads(:)
     b = 0.0_dp
     if (present(beta)) b = beta
+    allocate(loads(0))
+    if (present(point_loads)) loads = point_loads
     call build_mechanism(inp, mech, err)
-    if (.not. err%failed()) call model%init_mechanism(mech, effects, formulation, b, err)
+    if (.not. err%failed()) call model%init_mechanism(mech, effects, formulation, b, err, gravity=[0.0_dp, 0.0_dp], &
+                                                      point_loads=loads)
     ok = .not. err%failed()
     call assert_true(ok, 'model: '//err%text())
   end subroutine build
@@ -73,9 +78,9 @@ contains
     type(joint_reactions_t), intent(out) :: jr
     type(error_t) :: err
     real(dp), allocatable :: zero(:)
-    call build(inp, element_effects_t(), formulation, mech, model, ok)
+    call build(inp, element_effects_t(), formulation, mech, model, ok, &
+               point_loads=[point_load_t(element=element, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
     if (.not. ok) return
-    call model%set_loads([0.0_dp, 0.0_dp], [point_load_t(element=element, x_over_l=1.0_dp, force=[0.0_dp, -p_load])])
     allocate(q(model%n), zero(model%n))
     q = 0.0_dp
     zero = 0.0_dp

@@ -217,8 +217,7 @@ contains
     w = 150.0_dp
     call build_mechanism(profiled_fourbar(w, profile), mech, err)
     call direct%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call table%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err)
-    call table%build_motion_table(720, err)
+    call table%init_mechanism(mech, element_effects_t(), 'exact', 0.0_dp, err, table_points=720)
     call assert_true(.not. err%failed(), 'table: '//err%text())
     if (err%failed()) return
     scale_p = 10.0_dp
@@ -335,8 +334,8 @@ contains
     load = model%force
     call model%assemble_dense(q, mass, stiff)
     call solve_linear(stiff, load, err)
-    associate (root => model%table%map(4, 1))     ! m at node 1 of the crank's first element
-      call assert_equal(trim(model%table%label(root)), 'L1 N1 m', 'the crank-root curvature unknown')
+    associate (root => model%table%unknown(4, 1))     ! m at node 1 of the crank's first element
+      call assert_equal(trim(model%table%label_of(root)), 'L1 N1 m', 'the crank-root curvature unknown')
       call assert_rel_close(load(root), 4.67876606e-3_dp, 1.0e-5_dp, 'crank-root curvature vs rigid-body statics')
     end associate
   end subroutine test_fourbar_statics

@@ -242,7 +242,7 @@ contains
     to_steady = 0
     do i = 1, tmodel%n
       do k = 1, model%n
-        if (tmodel%table%label(i) == model%table%label(k)) to_steady(i) = k
+        if (tmodel%table%label_of(i) == model%table%label_of(k)) to_steady(i) = k
       end do
     end do
     call assert_true(all(to_steady > 0), 'every transient unknown has a steady counterpart')

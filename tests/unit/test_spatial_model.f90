@@ -90,7 +90,7 @@ contains
     idx = 0
     do e = 1, size(pm%el)
       do i = 1, 8
-        if (pm%table%map(i, e) > 0) idx(pm%table%map(i, e)) = sm%table%map(pmap(i), e)
+        if (pm%table%unknown(i, e) > 0) idx(pm%table%unknown(i, e)) = sm%table%unknown(pmap(i), e)
       end do
     end do
   end function index_map
@@ -161,7 +161,7 @@ contains
     do k = 1, 3
       t = step_to(op, pm, yp, k, 'planar')
       call pm%set_time(t)
-      bp(:, k) = yp(2*pm%table%map(5:6, 1) - 1)            ! crank end = B (U, W)
+      bp(:, k) = yp(2*pm%table%unknowns_of([5, 6], 1) - 1)            ! crank end = B (U, W)
       call pm%element_stresses(yp(1::2), sp)
       sp_max(:, k) = sp%max_abs_stress
     end do
@@ -203,8 +203,8 @@ contains
     real(dp), allocatable :: om(:), q(:), qdd(:)
     character(len=160), allocatable :: lines(:)
     call rssr_model(2, 50.0_dp, effects(2), 0.0_dp, sm)
-    call assert_equal(sm%table%map(4, sm%links(2)%first_element), 0, 'coupler twist held at B')
-    call assert_true(all(sm%table%map([7, 8], sm%links(2)%first_element) == 0), 'no moment at spherical B')
+    call assert_equal(sm%table%unknown(4, sm%links(2)%first_element), 0, 'coupler twist held at B')
+    call assert_true(all(sm%table%unknowns_of([7, 8], sm%links(2)%first_element) == 0), 'no moment at spherical B')
     call assert_true(sm%el(sm%links(2)%first_element)%local_rotation(1), 'coupler rotations at B local')
     allocate(om(sm%n), q(sm%n), qdd(sm%n))
     call sm%linear_modes(om, err)
@@ -326,9 +326,9 @@ contains
     integer :: ec
     call rssr_model(2, 50.0_dp, effects(2), 0.0_dp, sm, universal_c=.true.)
     ec = sm%links(2)%first_element + 1
-    call assert_true(sm%table%map(4, sm%links(2)%first_element) > 0, 'coupler twist free at B')
-    call assert_equal(sm%table%map(14, ec), 0, 'coupler twist held at C')
-    call assert_true(all(sm%table%map([17, 18], ec) == 0), 'no moment at universal C')
+    call assert_true(sm%table%unknown(4, sm%links(2)%first_element) > 0, 'coupler twist free at B')
+    call assert_equal(sm%table%unknown(14, ec), 0, 'coupler twist held at C')
+    call assert_true(all(sm%table%unknowns_of([17, 18], ec) == 0), 'no moment at universal C')
     call assert_true(sm%el(ec)%local_rotation(2), 'coupler rotations at C local')
     allocate(om(sm%n))
     call sm%linear_modes(om, err)

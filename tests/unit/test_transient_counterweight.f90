@@ -133,7 +133,7 @@ contains
     if (.not. err%failed()) call shooting_solve(model0, s, y0, rep, err)
     if (.not. err%failed()) call periodic_orbit(model0, s, y0, times, q0, qd, rep, err)
     call assert_true(.not. err%failed(), 'shooting: '//err%text())
-    to_steady = matching_unknowns(tmodel%table%label, model%table%label)
+    to_steady = matching_unknowns(tmodel%table%labels(), model%table%labels())
     call assert_true(all(to_steady > 0), 'every transient unknown has a steady counterpart')
     if (any(to_steady == 0) .or. err%failed()) return
     ts = periodic_transient_settings_t(tolerance=1.0e-7_dp, max_revolutions=400, rtol=1.0e-9_dp, atol=1.0e-13_dp)

@@ -123,9 +123,9 @@ contains
     if (present(effects)) fx = effects
     g = 0.0_dp
     if (present(gravity)) g = gravity
-    call model%init_fixed(specs, states, [n], ends, fx, formulation, 0.0_dp, err)
+    call model%init_fixed(specs, states, [n], ends, fx, formulation, 0.0_dp, err, gravity=g, &
+                          point_loads=[point_load_t(element=n, x_over_l=1.0_dp, force=f, moment=m)])
     call assert_true(.not. err%failed(), 'model: '//err%text())
-    call model%set_loads(g, [point_load_t(element=n, x_over_l=1.0_dp, force=f, moment=m)])
     allocate(q(model%n))
     q = 0.0_dp
     call model%static_equilibrium(0.0_dp, q, n_steps, err)

@@ -10,7 +10,7 @@ module test_transient_hard_suite
   use kinds, only: dp, pi, two_pi
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use error_status, only: error_t
-  use linkage, only: mechanism_input_t
+  use linkage, only: mechanism_input_t, mechanism_t, build_mechanism
   use element_effects, only: element_effects_t
   use planar_element, only: stress_report_t
   use mechanism_model, only: mechanism_model_t
@@ -148,6 +148,7 @@ contains
   !> at the crank angle the integrator reached, between 98.12 and 98.2 deg.
   subroutine test_no_assembly()
     type(mechanism_input_t) :: inp
+    type(mechanism_t) :: mech
     type(mechanism_model_t), target :: model
     type(lsode_t) :: ode
     type(error_t) :: err
@@ -158,9 +159,9 @@ contains
     inp = fourbar_input(1, 50.0_dp, 0.0_dp)
     inp%joint_x(4) = 9.0_dp
     inp%link_length(1:3) = [6.0_dp, 4.5_dp, 7.0_dp]
-    call make_model(inp, element_effects_t(), 1.0e-5_dp, model, ok, table=.false.)
-    if (.not. ok) return
-    call model%build_motion_table(720, err)
+    call build_mechanism(inp, mech, err)
+    call assert_true(.not. err%failed(), err%text())
+    call model%init_mechanism(mech, element_effects_t(), 'exact', 1.0e-5_dp, err, table_points=720)
     call assert_true(err%failed(), 'tabulation stops')
     call assert_true(index(err%text(), 'cannot be assembled at crank angle 98.50') > 0, err%text())
     ! direct kinematics: the integrator meets the limit

@@ -71,8 +71,7 @@ contains
     t_min = 0.0_dp
     call build_mechanism(spinup_input(n, ws), mech, err)
     if (.not. err%failed()) call model%init_mechanism(mech, element_effects_t(stretching=.true., curvature=.true., &
-                                                      coupling=.true.), formulation, 0.0_dp, err)
-    if (.not. err%failed()) call model%build_motion_table(720, err)
+                                                      coupling=.true.), formulation, 0.0_dp, err, table_points=720)
     ok = .not. err%failed()
     call assert_true(ok, 'model: '//err%text())
     if (.not. ok) return
