@@ -140,7 +140,7 @@ contains
       return
     end if
     call build_table(self)
-    call self%size_state(self%table%n_global, self%table%half_bandwidth)
+    call self%size_state(self%table%n_unknowns(), self%table%band())
   end subroutine init_general
 
   !> The joints the flexible analysis models (the rules above); code 2 otherwise.
