@@ -31,7 +31,8 @@ module plot_animation
   implicit none
   private
   public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t
-  public :: last_revolution_rows, header_group_file, open_animation_script, frame_text, factor_text, unit_text   ! shared with plot_spatial
+  public :: last_revolution_rows, header_group_file, open_animation_script, frame_text, factor_text, unit_text, &
+            sorted   ! shared with plot_spatial
 
   integer, parameter :: max_frames = 90
 

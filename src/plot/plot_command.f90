@@ -166,7 +166,7 @@ contains
       if (size(figures) > 0 .and. any(out%analysis == [character(len=9) :: 'transient', 'steady', 'spatial'])) then
         open(newunit=u, file=script, position='append', action='write')
         if (out%analysis == 'spatial') then
-          call append_spatial_shape(u, out, base, figures)
+          call append_spatial_shape(u, out, base, figures, 0.0_dp)
         else
           call append_shape_figure(u, out, base, figures)
         end if
