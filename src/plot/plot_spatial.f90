@@ -18,7 +18,7 @@
 module plot_spatial
   use kinds, only: dp
   use error_status, only: error_t
-  use strings, only: str, starts_with
+  use strings, only: str, starts_with, lower
   use deck_reader, only: deck_t
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, build_spatial
@@ -301,14 +301,14 @@ contains
     type(drawing_3d_t), intent(in) :: d
     integer :: u, f, k, j, i
     real(dp) :: half
-    half = 0.35_dp*d%scale
+    half = axis_half(d)
     open(newunit=u, file=path, status='replace', action='write')
     write(u, '(a)') '# block 0: joint axes; per frame: links (x y z rigid, x y z deformed, |stress|; a blank line '// &
       'after each link), then joints (rigid, deformed); elastic displacements x '//factor_text(d%factor)
-    write(u, '(6es16.7)') d%input%crank_pivot - half*unit(d%input%crank_axis), &
-                          d%input%crank_pivot + half*unit(d%input%crank_axis)
-    write(u, '(6es16.7)') d%input%rocker_pivot - half*unit(d%input%rocker_axis), &
-                          d%input%rocker_pivot + half*unit(d%input%rocker_axis)
+    write(u, '(6es16.7)') d%input%crank_pivot - half*unit_vector(d%input%crank_axis), &
+                          d%input%crank_pivot + half*unit_vector(d%input%crank_axis)
+    write(u, '(6es16.7)') d%input%rocker_pivot - half*unit_vector(d%input%rocker_axis), &
+                          d%input%rocker_pivot + half*unit_vector(d%input%rocker_axis)
     write(u, '(a)') ''
     write(u, '(a)') ''
     do f = 1, size(d%rows)
@@ -327,21 +327,40 @@ contains
       write(u, '(a)') ''
     end do
     close(u)
-  contains
-    pure function unit(v) result(w)
-      real(dp), intent(in) :: v(3)
-      real(dp) :: w(3)
-      w = v/norm2(v)
-    end function unit
   end subroutine write_frames_3d
+
+  !> Half the drawn length of a joint axis.
+  pure real(dp) function axis_half(d)
+    type(drawing_3d_t), intent(in) :: d
+    axis_half = 0.35_dp*d%scale
+  end function axis_half
+
+  pure function unit_vector(v) result(w)
+    real(dp), intent(in) :: v(3)
+    real(dp) :: w(3)
+    w = v/norm2(v)
+  end function unit_vector
 
   subroutine settings_3d(u, out, d, indent)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
     type(drawing_3d_t), intent(in) :: d
     character(len=*), intent(in) :: indent
-    real(dp) :: smax
+    real(dp) :: smax, lo(3), hi(3), pad
     character(len=:), allocatable :: lunit, what
+    integer :: k
+    do k = 1, 3         ! ranges fixed over the frames: the animation does not jump
+      lo(k) = min(minval(d%rigid(k, :, :, :)), minval(d%rigid(k, :, :, :) + d%factor*d%disp(k, :, :, :)))
+      hi(k) = max(maxval(d%rigid(k, :, :, :)), maxval(d%rigid(k, :, :, :) + d%factor*d%disp(k, :, :, :)))
+    end do
+    associate (ends => reshape([d%input%crank_pivot - axis_half(d)*unit_vector(d%input%crank_axis), &
+                                d%input%crank_pivot + axis_half(d)*unit_vector(d%input%crank_axis), &
+                                d%input%rocker_pivot - axis_half(d)*unit_vector(d%input%rocker_axis), &
+                                d%input%rocker_pivot + axis_half(d)*unit_vector(d%input%rocker_axis)], [3, 4]))
+      lo = min(lo, minval(ends, dim=2))     ! the joint axes inside too
+      hi = max(hi, maxval(ends, dim=2))
+    end associate
+    pad = 0.05_dp*maxval(hi - lo)
     smax = maxval(d%sigma)
     if (.not. smax > 0.0_dp) smax = 1.0_dp
     lunit = unit_text(out, '_U')
@@ -351,6 +370,9 @@ contains
     write(u, '(a)') indent//'set view 62, 32'
     write(u, '(a)') indent//'set xyplane 0'
     write(u, '(a)') indent//'set key at screen 0.02, 0.86 left top vertical Left reverse'
+    do k = 1, 3
+      write(u, '(a)') indent//'set '//lower(axis(k))//'range ['//str(lo(k) - pad, 6)//':'//str(hi(k) + pad, 6)//']'
+    end do
     write(u, '(a)') indent//'set xlabel "X '//lunit//'"'
     write(u, '(a)') indent//'set ylabel "Y '//lunit//'"'
     write(u, '(a)') indent//'set zlabel "Z '//lunit//'" rotate parallel'
