@@ -113,7 +113,8 @@ contains
         end if
       end do
     end do
-    what = 'the largest '//d%stress_label//' of the last revolution, '//number_text(smax)
+    what = 'the largest '//d%stress_label//' of the '//trim(merge('steady', 'last  ', out%analysis == 'steady'))// &
+           ' revolution, '//number_text(smax)
     if (len(unit_text(out, 'sigma_max_e')) > 0) what = what//' '//column_unit(out, 'sigma_max_e')
     what = what//' in '//trim(d%mech%links(at)%name)
     c = column_index(out, 'crank_deg')
@@ -126,7 +127,7 @@ contains
     call write_frames(base//'_shape.dat', out, d)
     call begin_figure(u, 'shape', 'deformed shape at '//what, figures)
     write(u, '(a)') '  set title title."\n'//esc('deformed shape at '//what)//'\n'// &
-      esc(frame_text(out, d%rows(1), c, j))//'; elastic displacements x '//factor_text(d%factor)//'"'
+      esc(frame_text(out, d%rows(1), c, j))//'; elastic displacements x '//factor_text(d%factor)//solution_text(out)//'"'
     write(u, '(a)') '  sdata = "'//esc(base)//'_shape.dat"'
     call frame_settings(u, out, d, '  ')
     call plot_frame(u, d, 'sdata', '0', '  ')
@@ -469,7 +470,7 @@ contains
     call frame_settings(u, out, d, '')
     write(u, '(a)') 'do for [i = 0:'//str(size(d%rows) - 1)//'] {'
     write(u, '(a)') '  set title "'//esc(out%title)//'\n'//esc(how)//'; elastic displacements x '// &
-      factor_text(d%factor)//'\n".when[i + 1]'
+      factor_text(d%factor)//'\n".when[i + 1]."'//solution_text(out)//'"'
     call plot_frame(u, d, 'data', 'i', '  ')
     write(u, '(a)') '}'
     write(u, '(a)') 'set output'
@@ -522,6 +523,16 @@ contains
     write(buf, '(es12.5)') out%data(row, it)
     s = s//'t = '//trim(adjustl(buf))//' s'
   end function frame_text
+
+  !> Which solution a steady run's drawing shows when its output holds two
+  !> (method = 'both': the columns without a suffix are the harmonic series').
+  function solution_text(out) result(s)
+    type(run_output_t), intent(in) :: out
+    character(len=:), allocatable :: s
+    s = ''
+    if (column_index(out, 'sigma_max_e1_exact') > 0) s = '\ndrawn: the harmonic series (columns _exact: the exact '// &
+                                                         'periodic solution)'
+  end function solution_text
 
   !> '(unit)' of the columns whose description names `key`, '' when unknown.
   function unit_text(out, key) result(s)
