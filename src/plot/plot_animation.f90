@@ -30,7 +30,7 @@ module plot_animation
   use plot_script, only: esc, begin_figure, end_figure, number_text
   implicit none
   private
-  public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t
+  public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t, drawn_frame
   public :: last_revolution_rows, header_group_file, open_animation_script, frame_text, factor_text, unit_text, &
             sorted   ! shared with plot_spatial
 
@@ -133,6 +133,23 @@ contains
     call plot_frame(u, d, 'sdata', '0', '  ')
     call end_figure(u)
   end subroutine append_shape_figure
+
+  !> The drawn links of output row `row` (x y, point, link; a link's last
+  !> point repeated up to the longest link's count): rigid + magnify x elastic.
+  subroutine drawn_frame(out, row, magnify, drawn, err)
+    type(run_output_t), intent(in) :: out
+    integer, intent(in) :: row
+    real(dp), intent(in) :: magnify
+    real(dp), allocatable, intent(out) :: drawn(:, :, :)
+    type(error_t), intent(inout) :: err
+    type(drawing_t) :: d
+    call mechanism_from_header(out, 'drawn_frame.nml', d%mech, err)
+    if (err%failed()) return
+    d%rows = [row]
+    call build_drawing(out, d, magnify, err)
+    if (err%failed()) return
+    drawn = d%rigid(:, :, :, 1) + d%factor*d%disp(:, :, :, 1)
+  end subroutine drawn_frame
 
   !> Shapes, rigid positions, displacements, stresses and the factor of the
   !> rows d%rows.

@@ -236,7 +236,7 @@ contains
       call err%add_context('animate: the spatial mechanism echoed in '//out%path)
       return
     end if
-    call spatial_link_shapes(out, links%n_elements, d%shapes)
+    call spatial_link_shapes(out, [(links(k)%n_elements, k = 1, 3)], d%shapes)
     if (all([(all(d%shapes(k)%cols == 0), k = 1, 3)])) then
       call err%set('animate', out%path//' has no joint translation columns (B_UX ... C_UZ)', 3)
       return
