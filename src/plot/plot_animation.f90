@@ -93,7 +93,7 @@ contains
     integer, allocatable :: rows(:)
     integer :: peak, f, c, j, i, at
     real(dp) :: smax
-    character(len=:), allocatable :: what
+    character(len=:), allocatable :: what, how
     if (column_index(out, 't') == 0) return
     call mechanism_from_header(out, base//'_shape.nml', d%mech, err)
     if (err%failed()) return
@@ -125,9 +125,12 @@ contains
     d%sigma = d%sigma(:, :, peak:peak)
     d%joints = d%joints(:, :, peak:peak)
     call write_frames(base//'_shape.dat', out, d)
+    how = ''                                      ! (straight links: the legend says so)
+    if (all(d%shapes(:)%bent)) how = '; links bent by their elements'' shape functions'
     call begin_figure(u, 'shape', 'deformed shape at '//what, figures)
     write(u, '(a)') '  set title title."\n'//esc('deformed shape at '//what)//'\n'// &
-      esc(frame_text(out, d%rows(1), c, j))//'; elastic displacements x '//factor_text(d%factor)//solution_text(out)//'"'
+      esc(frame_text(out, d%rows(1), c, j))//how//'; elastic displacements x '//factor_text(d%factor)// &
+      solution_text(out)//'"'
     write(u, '(a)') '  sdata = "'//esc(base)//'_shape.dat"'
     call frame_settings(u, out, d, '  ')
     call plot_frame(u, d, 'sdata', '0', '  ')

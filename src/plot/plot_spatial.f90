@@ -293,8 +293,10 @@ contains
   end subroutine build_3d
 
   !> Block 0: the joint axes through A and D (segments: x y z of both ends);
-  !> per frame, block 1 + 2f: the links, one curve each (x y z rigid, x y z
-  !> deformed, |stress| of each point), block 2 + 2f: the joints (x y z
+  !> per frame, block 1 + 2f: the links' segments between consecutive points
+  !> (x y z rigid of both ends, x y z deformed of both ends, |stress| of the
+  !> element of the segment; segments, not curves: gnuplot would join curves
+  !> of equal length into a surface grid), block 2 + 2f: the joints (x y z
   !> rigid, x y z deformed).
   subroutine write_frames_3d(path, d)
     character(len=*), intent(in) :: path
@@ -303,8 +305,8 @@ contains
     real(dp) :: half
     half = axis_half(d)
     open(newunit=u, file=path, status='replace', action='write')
-    write(u, '(a)') '# block 0: joint axes; per frame: links (x y z rigid, x y z deformed, |stress|; a blank line '// &
-      'after each link), then joints (rigid, deformed); elastic displacements x '//factor_text(d%factor)
+    write(u, '(a)') '# block 0: joint axes; per frame: the links'' segments (rigid end 1, end 2, deformed end 1, '// &
+      'end 2, |stress|), then joints (rigid, deformed); elastic displacements x '//factor_text(d%factor)
     write(u, '(6es16.7)') d%input%crank_pivot - half*unit_vector(d%input%crank_axis), &
                           d%input%crank_pivot + half*unit_vector(d%input%crank_axis)
     write(u, '(6es16.7)') d%input%rocker_pivot - half*unit_vector(d%input%rocker_axis), &
@@ -313,10 +315,11 @@ contains
     write(u, '(a)') ''
     do f = 1, size(d%rows)
       do k = 1, 3
-        do i = 1, size(d%shapes(k)%s)
-          write(u, '(7es16.7)') d%rigid(:, i, k, f), d%rigid(:, i, k, f) + d%factor*d%disp(:, i, k, f), d%sigma(i, k, f)
+        do i = 2, size(d%shapes(k)%s)
+          write(u, '(13es16.7)') d%rigid(:, i - 1, k, f), d%rigid(:, i, k, f), &
+            d%rigid(:, i - 1, k, f) + d%factor*d%disp(:, i - 1, k, f), d%rigid(:, i, k, f) + d%factor*d%disp(:, i, k, f), &
+            d%sigma(i, k, f)
         end do
-        write(u, '(a)') ''
       end do
       write(u, '(a)') ''
       write(u, '(a)') ''
@@ -388,11 +391,12 @@ contains
     character(len=:), allocatable :: links, joints
     links = var//' index 1+2*('//index//')'
     joints = var//' index 2+2*('//index//')'
-    write(u, '(a)') indent//'splot '//links//' u 1:2:3 w l lw 7 lc rgb "#d8d8d8" t "rigid-body position", \'
+    write(u, '(a)') indent//'splot '//links//' u 1:2:3:($4-$1):($5-$2):($6-$3) w vectors nohead lw 7 '// &
+      'lc rgb "#d8d8d8" t "rigid-body position", \'
     write(u, '(a)') indent//'      '//var//' index 0 u 1:2:3:($4-$1):($5-$2):($6-$3) w vectors nohead lw 2 dt 2 '// &
       'lc rgb "#606060" t "joint axes: crank (A), rocker (D)", \'
     write(u, '(a)') indent//'      '//joints//' u 1:2:3 w p pt 6 ps 1.2 lc rgb "#b0b0b0" notitle, \'
-    write(u, '(a)') indent//'      '//links//' u 4:5:6:7 w l lw 4 lc palette '// &
+    write(u, '(a)') indent//'      '//links//' u 7:8:9:($10-$7):($11-$8):($12-$9):13 w vectors nohead lw 4 lc palette '// &
       't "deformed, elastic displacements x '//factor_text(d%factor)//'", \'
     write(u, '(a)') indent//'      '//joints//' u 4:5:6 w p pt 7 ps 1.2 lc rgb "#202020" notitle'
   end subroutine splot_frame
