@@ -83,11 +83,12 @@ contains
   !> The still: appends the figure `shape` to the open standard script (unit
   !> u) and writes its data, base_shape.dat.  Nothing when the output has no
   !> mechanism to draw (no &mechanism group, no joint columns).
-  subroutine append_shape_figure(u, out, base, figures)
+  subroutine append_shape_figure(u, out, base, figures, magnify)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
     character(len=*), intent(in) :: base
     character(len=64), allocatable, intent(inout) :: figures(:)
+    real(dp), intent(in) :: magnify      !< <= 0: automatic
     type(drawing_t) :: d
     type(error_t) :: err
     integer, allocatable :: rows(:)
@@ -99,7 +100,7 @@ contains
     if (err%failed()) return
     call last_revolution_rows(out, rows, huge(1))
     d%rows = rows
-    call build_drawing(out, d, 0.0_dp, err)
+    call build_drawing(out, d, magnify, err)
     if (err%failed()) return
     peak = 1                                      ! the frame and link of the largest stress
     at = 1
