@@ -74,7 +74,7 @@ cmp $r/spatial_fourbar_100.out -n E_fig12_fig14 --columns sigma_max_e1,sigma_max
 
 # The deformed mechanism (what the project's graphics work showed): the default four-bar with
 # its links' shapes written (shape_points), at the largest stress of its last revolution
-sed 's/^  damping_beta = 1.0e-5$/  damping_beta = 1.0e-5, shape_points = 8/' inputs/fourbar_150_damped.nml \
+sed 's/^  shape_points = 4$/  shape_points = 8/' inputs/fourbar_150_damped.nml \
   > "$run/fourbar_150_shapes.nml"
 "$bin" "$run/fourbar_150_shapes.nml" -o "$run/fourbar_150_shapes.out" > /dev/null
 one "$run/fourbar_150_shapes.out"
