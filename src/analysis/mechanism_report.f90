@@ -3,6 +3,7 @@
 !> joints move elastically, where a joint's displacement is read, and the
 !> names of the response columns (joints, link ends, element stresses).
 module mechanism_report
+  use kinds, only: dp
   use strings, only: str
   use table_output, only: table_t
   use linkage, only: mechanism_t, joint_pin, joint_slider_fixed, joint_free, joint_slider_link
@@ -11,6 +12,7 @@ module mechanism_report
   implicit none
   private
   public :: write_mechanism_header, joint_moves, joint_carrier, response_column_names, response_columns_text
+  public :: link_point_name
 
   !> Meaning of the response columns, for the '# columns:' line.
   character(len=*), parameter :: response_columns_text = &
@@ -93,4 +95,21 @@ contains
       names = [character(len=32) :: names, 'sigma_max_e'//str(e)//suffix]
     end do
   end function response_column_names
+
+  !> '<link>_s<position>': the name of the point at `s` times a link's length
+  !> (at most 4 decimals, no trailing zeros), the stem of its columns.
+  function link_point_name(link, s) result(label)
+    character(len=*), intent(in) :: link
+    real(dp), intent(in) :: s
+    character(len=:), allocatable :: label
+    character(len=16) :: num
+    integer :: i
+    write(num, '(f6.4)') s
+    i = len_trim(num)
+    do while (num(i:i) == '0')
+      i = i - 1
+    end do
+    if (num(i:i) == '.') i = i - 1
+    label = trim(link)//'_s'//trim(adjustl(num(1:i)))
+  end function link_point_name
 end module mechanism_report

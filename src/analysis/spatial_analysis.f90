@@ -5,11 +5,15 @@
 !> analysis.  Output rows at equal crank-angle increments: elastic
 !> translations of joints B and C (global), local deflections and rotations
 !> of each link's end 2, end-1 resultants of each link (N, M_y, M_z, T) and
-!> every element's maximum |stress|.  doc/spatial.md.
+!> every element's maximum |stress|, the support forces; with &transient
+!> shape_points = k, the elastic displacement (global) of k + 1 points per
+!> element of every link, from the element's own shape functions (the drawn
+!> shapes of `flexmech plot`).  doc/spatial.md.
 module spatial_analysis
   use kinds, only: dp, pi, two_pi
   use error_status, only: error_t
   use strings, only: str
+  use mechanism_report, only: link_point_name
   use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use progress, only: progress_t
@@ -121,7 +125,7 @@ contains
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return
 
-    call write_columns(out, model, names)
+    call write_columns(out, model, s%shape_points, names)
     allocate(labels(size(model%el)))
     do k = 1, size(labels)     ! the summary names elements by their links
       labels(k) = trim(link_name(model%link_of(k)))//' (element '//str(k)//')'
@@ -130,13 +134,13 @@ contains
     call defect%init(n_deflections, samples_per_revolution(s%output_step_deg), n_out)
     call bar%start('spatial', t0, t_end)
     call cpu_time(cpu0)
-    call record_row(out, inp, model, 0, t0, y, stress_peaks, defect, size(names), err)
+    call record_row(out, inp, model, 0, t0, y, stress_peaks, defect, s%shape_points, size(names), err)
     do k = 1, n_out
       t = t0 + k*dt_out
       if (k == n_out) t = max(t, t_end)
       call ode%integrate_to(model, y, t, err)
       if (err%failed()) exit
-      call record_row(out, inp, model, k, t, y, stress_peaks, defect, size(names), err)
+      call record_row(out, inp, model, k, t, y, stress_peaks, defect, s%shape_points, size(names), err)
       if (err%failed()) exit
       call bar%update(t)
     end do
@@ -166,10 +170,11 @@ contains
   end function samples_per_revolution
 
   !> The row of output step k at time tt (joints B, C; link ends; link roots'
-  !> resultants; element stresses; support forces), written, with the element
+  !> resultants; element stresses; support forces; the links' shape points),
+  !> written, with the element
   !> peaks and the deflection columns' periodicity defect (k counts the output
   !> steps of this run: 0 at its start time, after a restart too).
-  subroutine record_row(out, inp, model, k, tt, y, stress_peaks, defect, n_columns, err)
+  subroutine record_row(out, inp, model, k, tt, y, stress_peaks, defect, shape_points, n_columns, err)
     type(table_t), intent(inout) :: out
     type(spatial_input_t), intent(in) :: inp
     type(spatial_model_t), target, intent(inout) :: model
@@ -177,11 +182,12 @@ contains
     real(dp), intent(in) :: tt, y(:)
     type(element_peaks_t), intent(inout) :: stress_peaks
     type(revolution_defect_t), intent(inout) :: defect
+    integer, intent(in) :: shape_points   !< intervals per element of the links' shape points (0: none)
     integer, intent(in) :: n_columns
     type(error_t), intent(inout) :: err
     type(spatial_stress_t) :: stress(size(model%el))
     real(dp) :: row(n_columns), q(model%n), p(sdofs), crank_deg
-    integer :: kk, i, ee
+    integer :: kk, i, ee, j, n_shape
     call model%set_time(tt)
     if (model%err%failed()) then
       call err%set('', model%err%text())
@@ -215,6 +221,14 @@ contains
       call err%set('', model%err%text())
       return
     end if
+    kk = kk + 6
+    do i = 1, merge(3, 0, shape_points > 0)
+      n_shape = shape_points*model%links(i)%n_elements
+      do j = 0, n_shape
+        row(kk + 1:kk + 3) = model%link_point_displacement(q, i, real(j, dp)/n_shape)
+        kk = kk + 3
+      end do
+    end do
     call out%row(row)
     call defect%add(k, row(3:2 + n_deflections))
   end subroutine record_row
@@ -272,11 +286,13 @@ contains
     call out%comments(lines)
   end subroutine write_header
 
-  subroutine write_columns(out, model, names)
+  subroutine write_columns(out, model, shape_points, names)
     type(table_t), intent(inout) :: out
     type(spatial_model_t), intent(in) :: model
+    integer, intent(in) :: shape_points
     character(len=32), allocatable, intent(out) :: names(:)
-    integer :: i, e
+    integer :: i, e, n_shape
+    character(len=:), allocatable :: point
     character(len=3), parameter :: local(6) = ['u  ', 'v  ', 'w  ', 'tx ', 'ty ', 'tz ']
     character(len=3), parameter :: res(4) = ['N  ', 'My ', 'Mz ', 'T  ']
     names = [character(len=32) :: 't', 'crank_deg', 'B_UX', 'B_UY', 'B_UZ', 'C_UX', 'C_UY', 'C_UZ']
@@ -300,6 +316,16 @@ contains
       '= axial force (lb), bending moments (lb in) and St. Venant torque (lb in) at the link''s end 1; '// &
       'sigma_max_e<k> = largest |normal stress| in element k over its extreme fibres (psi); A_F*, D_F* = force '// &
       'the crank shaft A and the rocker pivot D exert on the links, global X, Y, Z (lb)')
+    do i = 1, merge(3, 0, shape_points > 0)
+      n_shape = shape_points*model%links(i)%n_elements
+      do e = 0, n_shape
+        point = link_point_name(link_names(i), real(e, dp)/n_shape)
+        names = [character(len=32) :: names, point//'_UX', point//'_UY', point//'_UZ']
+      end do
+    end do
+    if (shape_points > 0) call out%comment('shape columns: <link>_s<x>_UX, _UY, _UZ = elastic translation of '// &
+      'the link''s point at x times its length from its end 1, along global X, Y, Z (in), by the element''s own '// &
+      'shape functions; '//str(shape_points + 0)//' intervals per element (shape_points)')
     call out%columns(names)
   end subroutine write_columns
 end module spatial_analysis

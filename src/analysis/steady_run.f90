@@ -5,8 +5,9 @@
 !> harmonic-series method (T26-T28) with the outer iteration on the nonlinear
 !> stiffness, by the exact periodic solution (shooting, Floquet multipliers),
 !> or both side by side.  Output rows over one crank revolution: elastic
-!> displacements of the joints, local deformations of each link's end 2, and
-!> the maximum |stress| of every element.  Near resonance the analysis stops
+!> displacements of the joints, local deformations of each link's end 2, the
+!> maximum |stress| of every element, and with shape_points = k the local
+!> displacements of k + 1 points per element of every link (drawn shapes).  Near resonance the analysis stops
 !> with the diagnosis instead of printing a meaningless steady state.
 module steady_run
   use kinds, only: dp, pi, two_pi
@@ -15,7 +16,7 @@ module steady_run
   use deck_reader, only: deck_t, invalid_value, input_error_in
   use table_output, only: table_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
-                              response_columns_text
+                              response_columns_text, link_point_name
   use linkage, only: mechanism_t, profile_constant
   use linkage_deck, only: read_mechanism, check_section_rules, echo_mechanism
   use tennant_element, only: tennant_stress_t
@@ -79,7 +80,7 @@ contains
       call solve_shooting(out, model, s, times, qh, qs, err)
       if (err%failed()) return
     end if
-    call write_table(out, mech, model, times, qh, qs, err)
+    call write_table(out, mech, model, times, qh, qs, s%shape_points, err)
     if (err%failed()) return
     call out%cost('kinematics_solutions', str(model%n_kinematics))
   end subroutine analyse_steady
@@ -175,13 +176,15 @@ contains
 
   !> The rows over the revolution of the solutions there are (qh: harmonic
   !> series, qs: exact periodic), each element's peak stress in each and
-  !> how far apart the two are.
-  subroutine write_table(out, mech, model, times, qh, qs, err)
+  !> how far apart the two are (shape_points: intervals per element of the
+  !> links' shape columns, 0: none).
+  subroutine write_table(out, mech, model, times, qh, qs, shape_points, err)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(steady_model_t), target, intent(inout) :: model
     real(dp), intent(in) :: times(:)
     real(dp), allocatable, intent(in) :: qh(:, :), qs(:, :)
+    integer, intent(in) :: shape_points
     type(error_t), intent(inout) :: err
     character(len=32), allocatable :: names(:)
     real(dp), allocatable :: row(:)
@@ -190,7 +193,7 @@ contains
     logical :: do_h, do_s
     do_h = allocated(qh)
     do_s = allocated(qs)
-    call column_names(out, mech, model, do_h, do_s, names)
+    call column_names(out, mech, model, do_h, do_s, shape_points, names)
     allocate(row(size(names)))
     peak = 0.0_dp
     peak_at = 0.0_dp
@@ -199,9 +202,9 @@ contains
       if (err%failed()) return
       row(1) = times(k)*model%omega*180.0_dp/pi + mech%driver%theta0*180.0_dp/pi
       row(2) = times(k)
-      if (do_h) call fill_solution(mech, model, qh(:, k), row, 2, peak(:, 1), peak_at(:, 1))
-      if (do_s) call fill_solution(mech, model, qs(:, k), row, merge(2 + (size(row) - 2)/2, 2, do_h), peak(:, 2), &
-                                   peak_at(:, 2))
+      if (do_h) call fill_solution(mech, model, qh(:, k), shape_points, row, 2, peak(:, 1), peak_at(:, 1))
+      if (do_s) call fill_solution(mech, model, qs(:, k), shape_points, row, merge(2 + (size(row) - 2)/2, 2, do_h), &
+                                   peak(:, 2), peak_at(:, 2))
       call out%row(row)
     end do
     do k = 1, size(model%el)
@@ -218,17 +221,19 @@ contains
   end subroutine write_table
 
   !> One solution's columns of a row, from row(c + 1) on: joints, link ends,
-  !> element stresses (their peaks noted at the row's crank angle row(1)).
-  subroutine fill_solution(mech, model, q, row, c, peak, peak_at)
+  !> element stresses (their peaks noted at the row's crank angle row(1)),
+  !> the links' shape points.
+  subroutine fill_solution(mech, model, q, shape_points, row, c, peak, peak_at)
     type(mechanism_t), intent(in) :: mech
     type(steady_model_t), intent(in) :: model
     real(dp), intent(in) :: q(:)
+    integer, intent(in) :: shape_points
     real(dp), intent(inout) :: row(:)
     integer, intent(in) :: c
     real(dp), intent(inout) :: peak(:), peak_at(:)
     type(tennant_stress_t) :: st(size(model%el))
     real(dp) :: uwa(3)
-    integer :: j, i, e, k
+    integer :: j, i, e, k, ne, p
     k = c
     do j = 1, mech%n_joints
       if (.not. joint_moves(mech, j)) cycle
@@ -248,6 +253,16 @@ contains
         peak(e) = st(e)%max_abs_stress
         peak_at(e) = row(1)
       end if
+    end do
+    k = k + size(st)
+    do i = 1, merge(mech%n_links, 0, shape_points > 0)   ! the point at s = p/(shape_points ne) of the link
+      ne = mech%links(i)%n_elements
+      do p = 0, shape_points*ne
+        e = min(ne - 1, max(0, (p - 1)/shape_points))   ! (an interior element end: the element before)
+        uwa = model%local_field(mech%links(i)%first_element + e, q, real(p - e*shape_points, dp)/shape_points)
+        row(k + 1:k + 2) = uwa(1:2)
+        k = k + 2
+      end do
     end do
   end subroutine fill_solution
 
@@ -450,19 +465,39 @@ contains
     uw = qe(first:first + 1)
   end function joint_displacement
 
-  subroutine column_names(out, mech, model, do_h, do_s, names)
+  subroutine column_names(out, mech, model, do_h, do_s, shape_points, names)
     type(table_t), intent(inout) :: out
     type(mechanism_t), intent(in) :: mech
     type(steady_model_t), intent(in) :: model
     logical, intent(in) :: do_h, do_s
+    integer, intent(in) :: shape_points
     character(len=32), allocatable, intent(out) :: names(:)
     names = [character(len=32) :: 'crank_deg', 't']
-    if (do_h) names = [character(len=32) :: names, response_column_names(mech, size(model%el), '')]
+    if (do_h) names = [character(len=32) :: names, response_column_names(mech, size(model%el), ''), shape_names('')]
     if (do_s) names = [character(len=32) :: names, response_column_names(mech, size(model%el), &
-                                                                          trim(merge('_exact', '      ', do_h)))]
+                                                                          trim(merge('_exact', '      ', do_h))), &
+                       shape_names(trim(merge('_exact', '      ', do_h)))]
     call out%comment('columns: crank_deg = crank angle (deg); t (s) from crank angle theta0; '// &
                      response_columns_text//'; T''s U~1 is B_U, U~2 is C_U for the four-bar; '// &
                      'suffix _exact: the exact periodic solution (shooting)')
+    if (shape_points > 0) call out%comment('shape columns: <link>_s<x>_u, _w = axial and transverse elastic '// &
+      'displacement of the link''s point at x times its length from its end 1, in the link''s rigid-body axes (in), '// &
+      'by the element''s own shape functions; '//str(shape_points)//' intervals per element (shape_points)')
     call out%columns(names)
+  contains
+    function shape_names(suffix) result(list)
+      character(len=*), intent(in) :: suffix
+      character(len=32), allocatable :: list(:)
+      integer :: i, p, n
+      character(len=:), allocatable :: point
+      allocate(list(0))
+      do i = 1, merge(mech%n_links, 0, shape_points > 0)
+        n = shape_points*mech%links(i)%n_elements
+        do p = 0, n
+          point = link_point_name(mech%links(i)%name, real(p, dp)/n)
+          list = [character(len=32) :: list, point//'_u'//suffix, point//'_w'//suffix]
+        end do
+      end do
+    end function shape_names
   end subroutine column_names
 end module steady_run

@@ -15,6 +15,7 @@ module steady_settings
   use harmonic_solver, only: harmonic_settings_t, max_outer_limit
   use lsode_solver, only: max_steps_ceiling, max_steps_reason
   use periodic_shooting, only: shooting_settings_t, max_newton_limit
+  use transient_settings, only: max_shape_points
   implicit none
   private
   public :: steady_settings_t, read_steady_settings, echo_steady_settings, write_steady_groups
@@ -29,6 +30,7 @@ module steady_settings
     type(harmonic_settings_t) :: harmonic         !< the harmonic series' defaults
     type(shooting_settings_t) :: shooting = shooting_settings_t(bdf=.true.)   !< BDF: integrator = 'bdf'
     real(dp) :: output_step_deg = 5.0_dp
+    integer :: shape_points = 0                   !< > 0: link points every 1/shape_points of each element (drawn shapes)
     logical :: allow_resonance = .false.          !< print a steady state even near resonance
     logical :: allow_beyond_peak = .false.        !< print it even where a strain passes the R-O peak
     type(tennant_options_t) :: element
@@ -37,7 +39,7 @@ module steady_settings
 
   ! staging variables of the namelist groups
   character(len=16) :: method, integrator
-  integer :: n_harmonics, harmonics_kept, max_outer, max_newton, max_steps, n_gauss
+  integer :: n_harmonics, harmonics_kept, max_outer, max_newton, max_steps, n_gauss, shape_points
   logical :: velocity_terms, allow_resonance, allow_beyond_peak, shear, rotary_inertia, shear_inertia
   real(dp) :: outer_tol, resonance_ratio, output_step_deg, damping_beta, rtol, atol, newton_tol, &
               unit_circle_tol, singular_rcond
@@ -46,7 +48,7 @@ module steady_settings
   real(dp) :: section_end(max_links, ms), section_b(max_links, ms), section_h(max_links, ms)
   namelist /steady/ method, n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio, &
     allow_resonance, allow_beyond_peak, output_step_deg, damping_beta, integrator, rtol, atol, newton_tol, max_newton, max_steps, &
-    unit_circle_tol, singular_rcond
+    unit_circle_tol, singular_rcond, shape_points
   namelist /tennant/ d_k, d_b, d_g, shear, rotary_inertia, shear_inertia, shear_modulus, poisson, shear_factor, &
     n_gauss, n_sections, section_end, section_b, section_h
 
@@ -67,7 +69,7 @@ contains
     call deck%read_group('tennant', tennant_group, .false., found, err)
     if (err%failed()) return
 
-    s = steady_settings_t(method=method, integrator=integrator, output_step_deg=output_step_deg, &
+    s = steady_settings_t(method=method, integrator=integrator, output_step_deg=output_step_deg, shape_points=shape_points, &
       allow_resonance=allow_resonance, allow_beyond_peak=allow_beyond_peak, &
       harmonic=harmonic_settings_t(n_harmonics, harmonics_kept, velocity_terms, outer_tol, max_outer, resonance_ratio), &
       shooting=shooting_settings_t(rtol=rtol, atol=atol, newton_tol=newton_tol, max_newton=max_newton, &
@@ -105,6 +107,8 @@ contains
     call check_real(deck, g, 'resonance_ratio', s%harmonic%resonance_ratio, err, at_least=0.0_dp, below=1.0_dp)
     call check_real(deck, g, 'output_step_deg', s%output_step_deg, err, at_least=1.0e-3_dp, at_most=360.0_dp, &
                     why='below 1e-3 degrees a revolution has over 3.6e5 rows')
+    call check_integer(deck, g, 'shape_points', s%shape_points, err, at_least=0, at_most=max_shape_points, &
+                       why='intervals per element of the drawn shape (0 = none)')
     call check_real(deck, g, 'damping_beta', s%element%damping_beta, err, at_least=0.0_dp, below=1.0_dp, why='seconds')
     call check_choice(deck, g, 'integrator', s%integrator, [character(len=16) :: 'bdf', 'adams'], err)
     call check_real(deck, g, 'rtol', s%shooting%rtol, err, at_least=1.0e-14_dp, below=1.0e-2_dp, &
@@ -181,6 +185,7 @@ contains
     allow_resonance = s%allow_resonance
     allow_beyond_peak = s%allow_beyond_peak
     output_step_deg = s%output_step_deg
+    shape_points = s%shape_points
     damping_beta = s%element%damping_beta
     integrator = s%integrator
     rtol = s%shooting%rtol

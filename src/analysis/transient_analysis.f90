@@ -15,7 +15,7 @@ module transient_analysis
   use transient_integration, only: start_integrator, write_start_frequencies, write_integration_cost, &
                                    choose_solver_settings, static_load_t
   use mechanism_report, only: write_mechanism_header, joint_moves, joint_carrier, response_column_names, &
-                              response_columns_text
+                              response_columns_text, link_point_name
   use linkage, only: mechanism_t, driver_angle
   use planar_element, only: stress_report_t
   use element_effects, only: effects_summary
@@ -576,20 +576,12 @@ contains
     end do
   end subroutine refuse_on_sliding_links
 
-  !> '<link>_s<position>', the position with at most 4 decimals, no trailing zeros.
+  !> '<link>_s<position>' (mechanism_report's link_point_name).
   function point_label(mech, p) result(label)
     type(mechanism_t), intent(in) :: mech
     type(link_point_t), intent(in) :: p
     character(len=24) :: label
-    character(len=16) :: num
-    integer :: i
-    write(num, '(f6.4)') p%s
-    i = len_trim(num)
-    do while (num(i:i) == '0')
-      i = i - 1
-    end do
-    if (num(i:i) == '.') i = i - 1
-    label = trim(mech%links(p%link)%name)//'_s'//trim(adjustl(num(1:i)))
+    label = link_point_name(mech%links(p%link)%name, p%s)
   end function point_label
 
   !> The optional columns at time tt from the state y, into row(kk+1:).

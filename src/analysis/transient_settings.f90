@@ -16,7 +16,7 @@ module transient_settings
   public :: transient_settings_t, read_transient_settings, echo_transient_settings, max_points, check_mode_number
 
   integer, parameter :: max_points = 20          !< link points a deck can name
-  integer, parameter :: max_shape_points = 16    !< intervals per element of the drawn shape
+  integer, parameter, public :: max_shape_points = 16    !< intervals per element of the drawn shape
   !> rtol when a deck leaves it out: peaks to about 0.1 %, well inside the 1 %
   !> the default settings promise (doc/transient.md, "Default solver settings")
   real(dp), parameter, public :: default_rtol = 1.0e-6_dp

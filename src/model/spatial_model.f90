@@ -34,7 +34,7 @@ module spatial_model
                           spatial_beam_init, spatial_beam_eval, spatial_tangent_stiffness, spatial_strain_energy, &
                           spatial_beam_matrices, spatial_tangent_is_constant, &
                           spatial_kinetic_energy, spatial_stress_recovery, spatial_to_local, &
-                          spatial_formulation_consistent
+                          spatial_local_displacement, spatial_formulation_consistent
   use spatial_kinematics, only: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_solve, &
                                 link_crank, link_coupler, link_rocker
   use spatial_correlation, only: spatial_table_t, sdofs
@@ -95,6 +95,7 @@ module spatial_model
     procedure :: linear_modes
     procedure :: energies
     procedure :: element_stresses
+    procedure :: link_point_displacement
     procedure :: support_forces
     procedure :: set_loads
     procedure :: static_state
@@ -640,4 +641,25 @@ contains
       reports(e) = spatial_stress_recovery(self%el(e), self%table%gather(e, q), self%rb(e)%rot)
     end do
   end subroutine element_stresses
+
+  !> Elastic displacement (global X, Y, Z) of the point at s times the length
+  !> of link `link` (s in [0, 1] from its end 1), by the shape functions of the
+  !> element that holds it (an interior element end: the element before).
+  !> Rigid states must be current.
+  function link_point_displacement(self, q, link, s) result(d)
+    class(spatial_model_t), intent(in) :: self
+    real(dp), intent(in) :: q(:), s
+    integer, intent(in) :: link
+    real(dp) :: d(3)
+    integer :: n, k, e
+    real(dp) :: xi, rot(3, 3), p(sdofs), local(3)
+    n = self%links(link)%n_elements
+    k = min(n - 1, max(0, ceiling(s*n - 1.0e-9_dp) - 1))
+    xi = min(1.0_dp, max(0.0_dp, s*n - k))
+    e = self%links(link)%first_element + k
+    rot = self%rb(e)%rot
+    p = spatial_to_local(rot, self%table%gather(e, q), self%el(e)%local_rotation)
+    local = spatial_local_displacement(self%el(e), p, xi)
+    d = matmul(rot, local)
+  end function link_point_displacement
 end module spatial_model

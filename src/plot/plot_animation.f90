@@ -30,8 +30,9 @@ module plot_animation
   use plot_script, only: esc, begin_figure, end_figure, number_text
   implicit none
   private
-  public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t
-  public :: last_revolution_rows, header_group_file, open_animation_script, frame_text, factor_text, unit_text   ! shared with plot_spatial
+  public :: write_animation, append_shape_figure, nice_factor, link_shapes, link_shape_t, drawn_frame
+  public :: last_revolution_rows, header_group_file, open_animation_script, frame_text, factor_text, unit_text, &
+            sorted   ! shared with plot_spatial
 
   integer, parameter :: max_frames = 90
 
@@ -82,23 +83,24 @@ contains
   !> The still: appends the figure `shape` to the open standard script (unit
   !> u) and writes its data, base_shape.dat.  Nothing when the output has no
   !> mechanism to draw (no &mechanism group, no joint columns).
-  subroutine append_shape_figure(u, out, base, figures)
+  subroutine append_shape_figure(u, out, base, figures, magnify)
     integer, intent(in) :: u
     type(run_output_t), intent(in) :: out
     character(len=*), intent(in) :: base
     character(len=64), allocatable, intent(inout) :: figures(:)
+    real(dp), intent(in) :: magnify      !< <= 0: automatic
     type(drawing_t) :: d
     type(error_t) :: err
     integer, allocatable :: rows(:)
     integer :: peak, f, c, j, i, at
     real(dp) :: smax
-    character(len=:), allocatable :: what
+    character(len=:), allocatable :: what, how
     if (column_index(out, 't') == 0) return
     call mechanism_from_header(out, base//'_shape.nml', d%mech, err)
     if (err%failed()) return
     call last_revolution_rows(out, rows, huge(1))
     d%rows = rows
-    call build_drawing(out, d, 0.0_dp, err)
+    call build_drawing(out, d, magnify, err)
     if (err%failed()) return
     peak = 1                                      ! the frame and link of the largest stress
     at = 1
@@ -112,7 +114,8 @@ contains
         end if
       end do
     end do
-    what = 'the largest '//d%stress_label//' of the last revolution, '//number_text(smax)
+    what = 'the largest '//d%stress_label//' of the '//trim(merge('steady', 'last  ', out%analysis == 'steady'))// &
+           ' revolution, '//number_text(smax)
     if (len(unit_text(out, 'sigma_max_e')) > 0) what = what//' '//column_unit(out, 'sigma_max_e')
     what = what//' in '//trim(d%mech%links(at)%name)
     c = column_index(out, 'crank_deg')
@@ -123,14 +126,34 @@ contains
     d%sigma = d%sigma(:, :, peak:peak)
     d%joints = d%joints(:, :, peak:peak)
     call write_frames(base//'_shape.dat', out, d)
+    how = ''                                      ! (straight links: the legend says so)
+    if (all(d%shapes(:)%bent)) how = '; links bent by their elements'' shape functions'
     call begin_figure(u, 'shape', 'deformed shape at '//what, figures)
     write(u, '(a)') '  set title title."\n'//esc('deformed shape at '//what)//'\n'// &
-      esc(frame_text(out, d%rows(1), c, j))//'; elastic displacements x '//factor_text(d%factor)//'"'
+      esc(frame_text(out, d%rows(1), c, j))//how//'; elastic displacements x '//factor_text(d%factor)// &
+      solution_text(out)//'"'
     write(u, '(a)') '  sdata = "'//esc(base)//'_shape.dat"'
     call frame_settings(u, out, d, '  ')
     call plot_frame(u, d, 'sdata', '0', '  ')
     call end_figure(u)
   end subroutine append_shape_figure
+
+  !> The drawn links of output row `row` (x y, point, link; a link's last
+  !> point repeated up to the longest link's count): rigid + magnify x elastic.
+  subroutine drawn_frame(out, row, magnify, drawn, err)
+    type(run_output_t), intent(in) :: out
+    integer, intent(in) :: row
+    real(dp), intent(in) :: magnify
+    real(dp), allocatable, intent(out) :: drawn(:, :, :)
+    type(error_t), intent(inout) :: err
+    type(drawing_t) :: d
+    call mechanism_from_header(out, 'drawn_frame.nml', d%mech, err)
+    if (err%failed()) return
+    d%rows = [row]
+    call build_drawing(out, d, magnify, err)
+    if (err%failed()) return
+    drawn = d%rigid(:, :, :, 1) + d%factor*d%disp(:, :, :, 1)
+  end subroutine drawn_frame
 
   !> Shapes, rigid positions, displacements, stresses and the factor of the
   !> rows d%rows.
@@ -468,7 +491,7 @@ contains
     call frame_settings(u, out, d, '')
     write(u, '(a)') 'do for [i = 0:'//str(size(d%rows) - 1)//'] {'
     write(u, '(a)') '  set title "'//esc(out%title)//'\n'//esc(how)//'; elastic displacements x '// &
-      factor_text(d%factor)//'\n".when[i + 1]'
+      factor_text(d%factor)//'\n".when[i + 1]."'//solution_text(out)//'"'
     call plot_frame(u, d, 'data', 'i', '  ')
     write(u, '(a)') '}'
     write(u, '(a)') 'set output'
@@ -521,6 +544,16 @@ contains
     write(buf, '(es12.5)') out%data(row, it)
     s = s//'t = '//trim(adjustl(buf))//' s'
   end function frame_text
+
+  !> Which solution a steady run's drawing shows when its output holds two
+  !> (method = 'both': the columns without a suffix are the harmonic series').
+  function solution_text(out) result(s)
+    type(run_output_t), intent(in) :: out
+    character(len=:), allocatable :: s
+    s = ''
+    if (column_index(out, 'sigma_max_e1_exact') > 0) s = '\ndrawn: the harmonic series (columns _exact: the exact '// &
+                                                         'periodic solution)'
+  end function solution_text
 
   !> '(unit)' of the columns whose description names `key`, '' when unknown.
   function unit_text(out, key) result(s)

@@ -1,5 +1,5 @@
 !> `flexmech plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]
-!>                [--whole-run] [--animate [--magnify F]]`
+!>                [--whole-run] [--animate] [--magnify F]`
 !> `flexmech plot A.out B.out ... --compare [-n NAME] [--columns c1,c2] [-t TITLE]
 !>                [--labels 'l1;l2'] [-d DIR]`
 !>
@@ -8,8 +8,9 @@
 !> .svg.  --png draws the PNG files only; --script-only writes the scripts and
 !> does not run gnuplot.  --whole-run draws every revolution of a transient
 !> run (default: the last complete one).  --animate also draws DIR/<stem>_anim.gif, the
-!> deformed mechanism over the last revolution (module plot_animation), with
-!> the displacements multiplied by F (default: automatic).  --compare draws
+!> deformed mechanism over the last revolution (module plot_animation); the
+!> deformed mechanism's still and animation multiply the elastic displacements
+!> by F (default: automatic).  --compare draws
 !> the runs together in DIR/NAME_<figure> (module plot_compare; NAME defaults
 !> to the first stem followed by _compare).  Exit status 0 when every figure was drawn, 1 on a
 !> usage error, 3 when an output could not be read or gnuplot failed.
@@ -136,7 +137,7 @@ contains
     end if
     do i = 1, size(args)
       if (.not. want(i)) cycle
-      call plot_one(trim(args(i)), dir, script_only, png_only, whole_run, status)
+      call plot_one(trim(args(i)), dir, script_only, png_only, whole_run, magnify, status)
       exit_status = max(exit_status, status)
       if (animate .and. status == 0) then
         call animate_one(trim(args(i)), dir, script_only, magnify, status)
@@ -145,10 +146,11 @@ contains
     end do
   end subroutine run_plot_command
 
-  subroutine plot_one(path, dir, script_only, png_only, whole_run, status)
+  subroutine plot_one(path, dir, script_only, png_only, whole_run, magnify, status)
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(in) :: dir
     logical, intent(in) :: script_only, png_only, whole_run
+    real(dp), intent(in) :: magnify     !< of the deformed shape's still; <= 0: automatic
     integer, intent(out) :: status
     integer :: u
     type(run_output_t) :: out
@@ -166,9 +168,9 @@ contains
       if (size(figures) > 0 .and. any(out%analysis == [character(len=9) :: 'transient', 'steady', 'spatial'])) then
         open(newunit=u, file=script, position='append', action='write')
         if (out%analysis == 'spatial') then
-          call append_spatial_shape(u, out, base, figures)
+          call append_spatial_shape(u, out, base, figures, magnify)
         else
-          call append_shape_figure(u, out, base, figures)
+          call append_shape_figure(u, out, base, figures, magnify)
         end if
         close(u)
       end if
@@ -334,7 +336,7 @@ contains
     character(len=*), intent(in) :: why
     write(error_unit, '(a)') program_name//' plot: '//why
     write(error_unit, '(a)') 'usage: '//program_name//' plot RUN.out [MORE.out ...] [-d DIR] [--png] [--script-only]'// &
-      ' [--whole-run] [--animate [--magnify F]]'
+      ' [--whole-run] [--animate] [--magnify F]'
     write(error_unit, '(a)') '       '//program_name//' plot A.out B.out ... --compare [-n NAME] [--columns c1,c2]'// &
       ' [-t TITLE] [--labels ''l1;l2''] [-d DIR]'
   end subroutine usage

@@ -326,7 +326,7 @@ contains
     do j = 1, out%n_columns()
       nm = out%names(j)%s
       if (index(nm, '_exact') > 0) cycle
-      if (.not. selected(nm, prefix, suffixes)) cycle
+      if (.not. selected(nm, prefix, suffixes) .or. shape_column(nm)) cycle
       k = k + 1
       je = column_index(out, nm//'_exact')
       label = legend(nm, links)
@@ -372,6 +372,17 @@ contains
     call plot_series(u, s)
     call end_figure(u)
   end subroutine curve_figure
+
+  !> A link shape column, <link>_s<x>_<component> (drawn in the shape
+  !> figure, not among the joints or link ends).
+  logical pure function shape_column(name)
+    character(len=*), intent(in) :: name
+    integer :: at
+    shape_column = .false.
+    at = index(name, '_s', back=.true.)
+    if (at == 0 .or. at + 2 > len(name)) return
+    shape_column = verify(name(at + 2:at + 2), '0123456789') == 0 .and. index(name(at + 2:), '_') > 0
+  end function shape_column
 
   logical pure function selected(name, prefix, suffixes)
     character(len=*), intent(in) :: name, prefix, suffixes

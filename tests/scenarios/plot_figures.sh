@@ -4,7 +4,8 @@
 # 0 and draws non-empty PNG files (PNG signature checked) and SVG files; the
 # scripts committed in doc/figures/standard/ are what `flexmech plot` writes
 # today (doc figures and user figures cannot drift apart); --animate draws
-# a GIF of at least 30 frames for a transient, a steady and a spatial run.
+# a GIF of at least 30 frames for a transient, a steady and a spatial run;
+# with shape columns (shape_points) the links of all three are drawn bent.
 # usage: plot_figures.sh FLEXMECH COMPARE_TABLES WORKDIR
 set -eu
 bin=$1; work=$3
@@ -86,6 +87,22 @@ if "$bin" plot "$work/shaped.out" -d "$work/anim" --png --animate > "$work/shape
 else
   echo "FAIL: animation of a run with shape columns"; cat "$work/shaped.log"; fail=1
 fi
+# the steady and the spatial analysis with shape columns: their links drawn bent too
+sed 's/^  output_step_deg = 2.0$/  output_step_deg = 4.0, shape_points = 6/' inputs/tennant_fig3_linear.nml > "$work/steady_shaped.nml"
+sed -e 's/^  revolutions = 1$/  revolutions = 0.5/' -e 's/^  output_step_deg = 5.0$/  output_step_deg = 10.0, shape_points = 4/' \
+  inputs/spatial_rssr_100.nml > "$work/spatial_shaped.nml"
+for stem in steady_shaped spatial_shaped; do
+  "$bin" "$work/$stem.nml" -o "$work/$stem.out" > /dev/null
+  if grep -q '_s0.5_' "$work/$stem.out" &&
+     "$bin" plot "$work/$stem.out" -d "$work/anim" --png --animate > "$work/$stem.log" 2>&1 &&
+     grep -q "bent by their elements' shape functions" "$work/anim/${stem}_anim.gp" &&
+     grep -q "bent by their elements' shape functions" "$work/anim/$stem.gp" &&
+     png_ok "$work/anim/${stem}_shape.png" && [ "$(head -c 6 "$work/anim/${stem}_anim.gif")" = "GIF89a" ]; then
+    echo "ok: $stem drawn with bent links"
+  else
+    echo "FAIL: $stem not drawn with bent links"; cat "$work/$stem.log"; fail=1
+  fi
+done
 # a tolerance sweep (synthetic summary): log x, the work-precision figure, a failed point marked
 cat > "$work/sweep_rtol.out" <<'EOD'
 # title: rtol sweep layout

@@ -180,15 +180,16 @@ contains
     if (err%failed()) return
     ec = gm%glinks(2)%first_element
     er = gm%glinks(3)%first_element
-    call assert_true(all(gm%table%map(1:6, 1) == 0), 'crank clamped at A')
-    call assert_true(all(gm%table%map(7:8, 1) > 0), 'moment passes at A')
-    call assert_equal(gm%table%map(4, ec), 0, 'coupler twist held at B')
-    call assert_true(gm%table%map(14, ec) > 0, 'coupler twist free at C')
-    call assert_true(all(gm%table%map([7, 8, 17, 18], ec) == 0), 'no moment at B and C')
+    call assert_true(all(gm%table%unknowns_of([1, 2, 3, 4, 5, 6], 1) == 0), 'crank clamped at A')
+    call assert_true(all(gm%table%unknowns_of([7, 8], 1) > 0), 'moment passes at A')
+    call assert_equal(gm%table%unknown(4, ec), 0, 'coupler twist held at B')
+    call assert_true(gm%table%unknown(14, ec) > 0, 'coupler twist free at C')
+    call assert_true(all(gm%table%unknowns_of([7, 8, 17, 18], ec) == 0), 'no moment at B and C')
     call assert_true(gm%el(ec)%local_rotation(1) .and. gm%el(ec)%local_rotation(2), 'coupler rotations local')
-    call assert_true(all(gm%table%map([5, 6, 7], er) == 0) .and. gm%table%map(4, er) > 0, &
+    call assert_true(all(gm%table%unknowns_of([5, 6, 7], er) == 0) .and. gm%table%unknown(4, er) > 0, &
                      'rocker at D: rotation about X only, no moment about X')
-    call assert_true(all(gm%table%map(11:13, 1) == gm%table%map(1:3, ec)), 'B translations shared')
+    call assert_true(all(gm%table%unknowns_of([11, 12, 13], 1) == gm%table%unknowns_of([1, 2, 3], ec)), &
+                     'B translations shared')
   end subroutine test_rssr_rules
 
   !> The RSSR at 100 rad/s, every effect on, undamped, one element per link.
@@ -216,8 +217,9 @@ contains
     call make_model(arm_body, 1, fx, gm, err, radius=0.1_dp)
     call assert_true(.not. err%failed(), 'arm: '//err%text())
     if (err%failed()) return
-    call assert_true(all(gm%table%map(1:6, 1) == 0), 'upper arm clamped at the driven shoulder')
-    call assert_true(all(gm%table%map(11:16, 1) == gm%table%map(1:6, 2)), 'elbow: translations and rotations shared')
+    call assert_true(all(gm%table%unknowns_of([1, 2, 3, 4, 5, 6], 1) == 0), 'upper arm clamped at the driven shoulder')
+    call assert_true(all(gm%table%unknowns_of([11, 12, 13, 14, 15, 16], 1) == &
+                         gm%table%unknowns_of([1, 2, 3, 4, 5, 6], 2)), 'elbow: translations and rotations shared')
     call jacobi_balance(gm, (0.05_dp*pi/180.0_dp)/30.0_dp, 200, 1.0e-6_dp)
   end subroutine test_arm_balance
 

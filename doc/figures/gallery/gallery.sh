@@ -69,18 +69,27 @@ cmp $r/spatial_fourbar_100.out -n E_fig8_fig9_fig11 --columns B_UX,B_UY,C_UX \
     --labels 'flexmech'
 cmp $r/spatial_fourbar_100.out -n E_fig10 --columns crank_tz_end \
     -t 'E Fig. 10: angle of rotation of node 2 (crank end), 100 rad/s' --labels 'flexmech'
-one "$r/spatial_fourbar_100.out"
-rm -f "$fig"/spatial_fourbar_100_joints.png "$fig"/spatial_fourbar_100_links.png "$fig"/spatial_fourbar_100_stress.png
 cmp $r/spatial_fourbar_100.out -n E_fig12_fig14 --columns sigma_max_e1,sigma_max_e3,sigma_max_e5 \
     -t 'E Figs. 12-14: maximum absolute stress of crank, coupler, rocker (elements 1, 3, 5: the first of each link), 100 rad/s' --labels 'flexmech'
 
 # The deformed mechanism (what the project's graphics work showed): the default four-bar with
 # its links' shapes written (shape_points), at the largest stress of its last revolution
-sed 's/^  damping_beta = 1.0e-5$/  damping_beta = 1.0e-5, shape_points = 8/' inputs/fourbar_150_damped.nml \
+sed 's/^  shape_points = 4$/  shape_points = 8/' inputs/fourbar_150_damped.nml \
   > "$run/fourbar_150_shapes.nml"
 "$bin" "$run/fourbar_150_shapes.nml" -o "$run/fourbar_150_shapes.out" > /dev/null
 one "$run/fourbar_150_shapes.out"
 rm -f "$fig"/fourbar_150_shapes_joints.png "$fig"/fourbar_150_shapes_links.png "$fig"/fourbar_150_shapes_stress.png
+# the steady revolution of T Figs. 5-8 (harmonic series and exact periodic solution) and the spatial
+# four-bar of E and the RSSR four-bar, their links' shapes written, in 2D and in 3D
+shapes() {  # shapes NAME SED: run inputs/NAME.nml edited by SED into RUN/NAME_shapes.out, draw its still
+  sed "$2" "inputs/$1.nml" > "$run/$1_shapes.nml"
+  "$bin" "$run/$1_shapes.nml" -o "$run/$1_shapes.out" > /dev/null
+  one "$run/$1_shapes.out"
+  rm -f "$fig/$1_shapes_joints.png" "$fig/$1_shapes_links.png" "$fig/$1_shapes_stress.png"
+}
+shapes tennant_fig5_exact 's/^  output_step_deg = 2.0$/  output_step_deg = 2.0, shape_points = 8/'
+shapes spatial_fourbar_100 's/^  damping_beta = 1.0e-6$/  damping_beta = 1.0e-6, shape_points = 8/'
+shapes spatial_rssr_100 's/^  output_step_deg = 5.0$/  output_step_deg = 5.0, shape_points = 8/'
 
 # Path synthesis (B, P): the Table 3 design recovered from its own coupler path
 deck opt_fourbar_path

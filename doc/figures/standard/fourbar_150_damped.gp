@@ -68,7 +68,7 @@ do for [fmt in formats] {
   eval common
   set output base."_shape.".fmt
   set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 72007 psi in crank"
-  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 72007 psi in crank\ncrank angle 10.0 deg of turn 5, t = 1.68715E-01 s; elastic displacements x 10"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 72007 psi in crank\ncrank angle 10.0 deg of turn 5, t = 1.68715E-01 s; links bent by their elements' shape functions; elastic displacements x 10"
   sdata = "doc/figures/standard/fourbar_150_damped_shape.dat"
   set size ratio -1
   set grid lc rgb "#e0e0e0"

@@ -66,8 +66,8 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_shape.".fmt
-  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 17818 psi in crank"
-  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 17818 psi in crank\ncrank angle 8.0 deg, t = 1.39626E-03 s; elastic displacements x 20"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the steady revolution, 17818 psi in crank"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the steady revolution, 17818 psi in crank\ncrank angle 8.0 deg, t = 1.39626E-03 s; elastic displacements x 20"
   sdata = "doc/figures/standard/tennant_fig3_linear_shape.dat"
   set size ratio -1
   set grid lc rgb "#e0e0e0"

@@ -66,8 +66,8 @@ do for [fmt in formats] {
   eval (fmt eq "png" ? term_png : term_svg)
   eval common
   set output base."_shape.".fmt
-  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 37309 psi in crank"
-  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the last revolution, 37309 psi in crank\ncrank angle 8.0 deg, t = 9.30842E-04 s; elastic displacements x 10"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the steady revolution, 37309 psi in crank"
+  set title title."\ndeformed shape at the largest |stress| (outer fibre) of the steady revolution, 37309 psi in crank\ncrank angle 8.0 deg, t = 9.30842E-04 s; elastic displacements x 10"
   sdata = "doc/figures/standard/tennant_fig6_material_shape.dat"
   set size ratio -1
   set grid lc rgb "#e0e0e0"
