@@ -126,6 +126,7 @@ contains
       if (err%failed()) exit
       call rows%close_revolutions(out, theta)
       if (rows%periodic) exit
+      if (.not. bar%active) cycle              ! no terminal: the detail text is not built
       c = ode%counters()
       call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
                       ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')

@@ -228,20 +228,21 @@ contains
     logical, intent(in) :: want_k, want_damp
     real(dp), intent(inout) :: fint(n), fdamp(n), kp(n, n)
     ! This is the innermost loop of every planar model evaluation: the products
-    ! are written out over fixed-size contiguous arrays, which the compiler
-    ! unrolls and vectorises (matmul and automatic arrays of assumed-shape
-    ! operands take the heap on every call).  Each acc runs in matmul's order.
+    ! are written out over fixed-size contiguous arrays (matmul and automatic
+    ! arrays of assumed-shape operands take the heap on every call).  Every
+    ! sum runs in matmul's order, k = 1, 2, ..., for each output entry; the
+    ! loops keep the output index i innermost, so that the compiler computes
+    ! several independent entries per instruction (the sums over k of one
+    ! entry cannot be reordered without changing the result's last bits).
     real(dp) :: h(m, m), f(m), tn(m), tk(m)
-    real(dp) :: gh(n, m), pg(m), hp(m), acc
+    real(dp) :: gh(n, m), pg(m), hp(m), acc(n)
     integer :: i, j, k
     f = axial_force*de + moment*dk
-    do i = 1, n
-      acc = 0.0_dp
-      do k = 1, m
-        acc = acc + g(i, k)*f(k)
-      end do
-      fint(i) = fint(i) + wg*acc
+    acc = 0.0_dp
+    do k = 1, m
+      acc = acc + g(:, k)*f(k)
     end do
+    fint = fint + wg*acc
     if (.not. (want_k .or. want_damp)) return
     tn = tangent(1, 1)*de_true + tangent(1, 2)*dk
     tk = tangent(2, 1)*de_true + tangent(2, 2)*dk
@@ -252,46 +253,36 @@ contains
     end do
     if (want_k) then
       do j = 1, m
-        do i = 1, n
-          acc = 0.0_dp
-          do k = 1, m
-            acc = acc + g(i, k)*h(k, j)
-          end do
-          gh(i, j) = wg*acc
+        acc = 0.0_dp
+        do k = 1, m
+          acc = acc + g(:, k)*h(k, j)
         end do
+        gh(:, j) = wg*acc
       end do
       do j = 1, n
-        do i = 1, n
-          acc = 0.0_dp
-          do k = 1, m
-            acc = acc + gh(i, k)*g(j, k)
-          end do
-          kp(i, j) = kp(i, j) + acc
+        acc = 0.0_dp
+        do k = 1, m
+          acc = acc + gh(:, k)*g(j, k)
         end do
+        kp(:, j) = kp(:, j) + acc
       end do
     end if
     if (want_damp) then
-      do j = 1, m
-        acc = 0.0_dp
-        do k = 1, n
-          acc = acc + prel(k)*g(k, j)
-        end do
-        pg(j) = acc
+      pg = 0.0_dp
+      do k = 1, n
+        pg = pg + prel(k)*g(k, :)
       end do
       do i = 1, m
-        acc = 0.0_dp
+        hp(i) = 0.0_dp
         do k = 1, m
-          acc = acc + h(i, k)*pg(k)
+          hp(i) = hp(i) + h(i, k)*pg(k)
         end do
-        hp(i) = acc
       end do
-      do i = 1, n
-        acc = 0.0_dp
-        do k = 1, m
-          acc = acc + g(i, k)*hp(k)
-        end do
-        fdamp(i) = fdamp(i) + wg*acc
+      acc = 0.0_dp
+      do k = 1, m
+        acc = acc + g(:, k)*hp(k)
       end do
+      fdamp = fdamp + wg*acc
     end if
   end subroutine add_station_terms
 
