@@ -35,6 +35,9 @@ module fast_format
   integer, parameter :: i16 = selected_int_kind(38)
   !> The largest k of 5^k in the exact conversion (5^27 < 2^63: M 5^k < 2^116).
   integer, parameter :: max_k = 27
+  integer :: k_
+  !> 5^k, k = 0 .. max_k.
+  integer(i16), parameter :: pow5(0:max_k) = [(5_i16**k_, k_ = 0, max_k)]
 
 contains
 
@@ -104,7 +107,7 @@ contains
     if (.not. (a >= tiny(1.0_dp) .and. a <= huge(1.0_dp))) return
     mant = int(scale(fraction(a), digits(a)), int64)     ! a = mant 2^b exactly
     b = exponent(a) - digits(a)
-    top = 10_i16**d
+    top = shiftl(pow5(d), d)                   ! 10^d
     e = floor(log10(a))
     do tries = 1, 3
       call scaled_exact(mant, b, d - 1 - e, n, ok)
@@ -151,7 +154,7 @@ contains
     ok = .false.
     n = 0
     if (k < 0 .or. k > max_k) return
-    x = int(mant, i16)*5_i16**k                ! < 2^53 5^27 < 2^116
+    x = int(mant, i16)*pow5(k)                 ! < 2^53 5^27 < 2^116
     sh = b + k                                 ! n = x 2^sh
     if (sh >= 0) then
       if (sh > 10) return                      ! far above any d-digit integer
