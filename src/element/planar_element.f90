@@ -28,7 +28,8 @@ module planar_element
   private
   public :: planar_element_t, rigid_state_t, element_eval_info_t, stress_report_t
   public :: init_planar_element, start_strain_terms, finish_strain_terms
-  public :: planar_internal_force, planar_tangent_stiffness, planar_strain_energy, planar_stress_recovery
+  public :: planar_internal_force, planar_tangent_stiffness, planar_strain_energy, planar_stress_recovery, &
+            planar_stress_report
   public :: planar_station_strains, station_x_over_l
 
   integer, parameter :: max_dofs = 12   !< the consistent element's; work arrays of this size stay off the heap
@@ -488,8 +489,17 @@ contains
     type(stress_report_t) :: rep
     real(dp) :: eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
     call planar_station_strains(el, q, phi, eps_n, kap)
-    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
+    rep = planar_stress_report(el, eps_n, kap)
   end function planar_stress_recovery
+
+  !> planar_stress_recovery from the strains of the stations
+  !> (planar_station_strains), for a caller that needs them for more.
+  pure function planar_stress_report(el, eps_n, kap) result(rep)
+    class(planar_element_t), intent(in) :: el
+    real(dp), intent(in) :: eps_n(0:), kap(0:)
+    type(stress_report_t) :: rep
+    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
+  end function planar_stress_report
 
   !> Axial strain and curvature at every stress station (0 .. n_gauss + 1)
   !> for the global element DOFs q: one rotation, the tabulated gradients.
