@@ -53,7 +53,7 @@ contains
     integer, intent(in) :: d
     character(len=*), intent(inout) :: s
     integer(int64) :: m, top
-    integer :: e, i, k, ae
+    integer :: e
     real(dp) :: a
     a = abs(v)
     top = 10_int64**d
@@ -75,19 +75,32 @@ contains
       e = 0
       m = 0
     end if
-    s(1:1) = merge('-', ' ', v < 0.0_dp)
+    call write_es(v < 0.0_dp, m, e, d, s)
+  end subroutine format_es
+
+  !> The string of the d-digit mantissa m (10^(d-1) <= m < 10^d, or 0) and
+  !> decimal exponent e, with a minus sign if negative, into s(1:d+7).
+  pure subroutine write_es(negative, m, e, d, s)
+    logical, intent(in) :: negative
+    integer(int64), intent(in) :: m
+    integer, intent(in) :: e, d
+    character(len=*), intent(inout) :: s
+    integer(int64) :: r
+    integer :: i, ae
+    s(1:1) = merge('-', ' ', negative)
+    r = m
     do i = d + 2, 4, -1                        ! the d - 1 digits after the point, right to left
-      s(i:i) = achar(48 + int(mod(m, 10_int64)))
-      m = m/10
+      s(i:i) = achar(48 + int(mod(r, 10_int64)))
+      r = r/10
     end do
-    s(2:3) = achar(48 + int(m))//'.'
+    s(2:3) = achar(48 + int(r))//'.'
     s(d + 3:d + 4) = 'E'//merge('-', '+', e < 0)
     ae = abs(e)
-    do k = d + 7, d + 5, -1
-      s(k:k) = achar(48 + mod(ae, 10))
+    do i = d + 7, d + 5, -1
+      s(i:i) = achar(48 + mod(ae, 10))
       ae = ae/10
     end do
-  end subroutine format_es
+  end subroutine write_es
 
   !> v with d significant digits (d <= 17) into s(1:d+7), correctly
   !> rounded (ties to even); done = .false. (s untouched) where the exact
@@ -97,9 +110,9 @@ contains
     integer, intent(in) :: d
     character(len=*), intent(inout) :: s
     logical, intent(out) :: done
-    integer(int64) :: mant, m
+    integer(int64) :: mant
     integer(i16) :: top, n
-    integer :: e, b, i, ae, tries
+    integer :: e, b, tries
     real(dp) :: a
     logical :: ok
     done = .false.
@@ -126,19 +139,7 @@ contains
       end if
     end do
     if (n >= top .or. n < top/10) return
-    m = int(n, int64)
-    s(1:1) = merge('-', ' ', v < 0.0_dp)
-    do i = d + 2, 4, -1                        ! the d - 1 digits after the point, right to left
-      s(i:i) = achar(48 + int(mod(m, 10_int64)))
-      m = m/10
-    end do
-    s(2:3) = achar(48 + int(m))//'.'
-    s(d + 3:d + 4) = 'E'//merge('-', '+', e < 0)
-    ae = abs(e)
-    do i = d + 7, d + 5, -1
-      s(i:i) = achar(48 + mod(ae, 10))
-      ae = ae/10
-    end do
+    call write_es(v < 0.0_dp, int(n, int64), e, d, s)
     done = .true.
   end subroutine format_es_exact
 

@@ -27,15 +27,11 @@ contains
     integer, parameter :: n = 200000, ds(4) = [3, 6, 8, 12]
     real(dp) :: r(2), v, back, ref_back, unit_last
     character(len=40) :: fast, ref, fmt
-    integer :: k, i, d, n_diff, n_bad, n_seed
-    integer, allocatable :: seed(:)
-    call random_seed(size=n_seed)
-    allocate(seed(n_seed))
-    seed = [(7919*i + 17, i = 1, n_seed)]
-    call random_seed(put=seed)
+    integer :: k, i, d, n_diff, n_bad
+    call seed_random(7919, 17)
     do k = 1, size(ds)
       d = ds(k)
-      write(fmt, '(a,i0,a,i0,a)') '(es', d + 7, '.', d - 1, 'e3)'
+      fmt = es_format(d)
       n_diff = 0
       n_bad = 0
       do i = 1, n
@@ -79,16 +75,12 @@ contains
       1.0e-12_dp, 9.999999999999999e15_dp, 1440.25_dp, 0.1_dp, 1.0_dp, 5.0e-5_dp, 123456789.0_dp]
     real(dp) :: r(2), v
     character(len=40) :: fast, ref, fmt
-    integer :: k, i, d, n_diff, n_left, n_seed
-    integer, allocatable :: seed(:)
+    integer :: k, i, d, n_diff, n_left
     logical :: done
-    call random_seed(size=n_seed)
-    allocate(seed(n_seed))
-    seed = [(104729*i + 3, i = 1, n_seed)]
-    call random_seed(put=seed)
+    call seed_random(104729, 3)
     do k = 1, size(ds)
       d = ds(k)
-      write(fmt, '(a,i0,a,i0,a)') '(es', d + 7, '.', d - 1, 'e3)'
+      fmt = es_format(d)
       n_diff = 0
       n_left = 0
       do i = 1, n + size(fixed)
@@ -113,6 +105,24 @@ contains
       call assert_equal(n_left, 0, 'every value in 10^(d-28)..10^d converted, d = '//trim(adjustl(fmt)))
     end do
   end subroutine test_exact
+
+  !> A fixed seed of the random numbers: a i + b, i = 1 .. its size.
+  subroutine seed_random(a, b)
+    integer, intent(in) :: a, b
+    integer :: n_seed, i
+    integer, allocatable :: seed(:)
+    call random_seed(size=n_seed)
+    allocate(seed(n_seed))
+    seed = [(a*i + b, i = 1, n_seed)]
+    call random_seed(put=seed)
+  end subroutine seed_random
+
+  !> '(es<d+7>.<d-1>e3)': Fortran's format of d significant digits.
+  function es_format(d) result(fmt)
+    integer, intent(in) :: d
+    character(len=40) :: fmt
+    write(fmt, '(a,i0,a,i0,a)') '(es', d + 7, '.', d - 1, 'e3)'
+  end function es_format
 
   subroutine test_edges()
     call check(0.0_dp, 8, ' 0.0000000E+000')
