@@ -24,7 +24,7 @@ module transient_analysis
   use external_loads, only: loads_input_t, point_load_t, resolve_loads
   use transient_deck, only: read_transient_deck, echo_transient_deck
   use transient_settings, only: transient_settings_t, max_points, check_mode_number
-  use transient_response, only: link_point_t, link_point_response, section_values_t, element_section_peaks
+  use transient_response, only: link_point_t, link_point_response, section_values_t, element_stresses_and_sections
   use joint_reactions, only: joint_reactions_t
   use revolution_peaks, only: element_peaks_t
   use revolution_rows, only: revolution_rows_t
@@ -134,6 +134,7 @@ contains
       if (err%failed()) exit
       call rec%rows%close_revolutions(out, theta)
       if (rec%rows%periodic) exit
+      if (.not. bar%shown()) cycle             ! no terminal: the detail text is not built
       c = ode%counters()
       call bar%update(t, 'revolution '//str(max(1, ceiling(abs(theta)/(2.0_dp*pi) - 1.0e-9_dp)))// &
                       ', crank angle '//str(nint(theta*180.0_dp/pi))//' deg, '//str(c%steps)//' steps')
@@ -232,6 +233,7 @@ contains
     real(dp), intent(out) :: theta
     type(error_t), intent(inout) :: err
     type(stress_report_t) :: stress(size(model%el))
+    type(section_values_t) :: sections(size(model%el))
     real(dp) :: row(self%rows%n_columns), q(model%n), crank_deg, theta_d, theta_dd
     integer :: j, i, kk, ee
     call driver_angle(mech%driver, tt, theta, theta_d, theta_dd)
@@ -242,7 +244,11 @@ contains
     end if
     q = y(1::2)
     crank_deg = theta*180.0_dp/pi
-    call model%element_stresses(q, stress)
+    if (self%resp%sections) then            ! one evaluation of the station strains for both
+      call element_stresses_and_sections(model, q, stress, sections)
+    else
+      call model%element_stresses(q, stress)
+    end if
     row(1) = tt
     row(2) = crank_deg
     kk = 2
@@ -259,7 +265,7 @@ contains
     row(kk + 1:kk + size(stress)) = stress%max_abs_stress
     call self%peaks%note(row(kk + 1:kk + size(stress)), crank_deg)   ! (a contiguous copy of the stresses)
     kk = kk + size(stress)
-    call fill_responses(self%resp, model, mech, tt, y, row, kk, err)
+    call fill_responses(self%resp, model, mech, tt, y, sections, row, kk, err)
     if (err%failed()) return
     if (clearance%active) row(kk + 1:) = clearance%row_values(model, y)
     call self%rows%add(out, tt, row, crank_deg)
@@ -585,24 +591,23 @@ contains
   end function point_label
 
   !> The optional columns at time tt from the state y, into row(kk+1:).
-  subroutine fill_responses(resp, model, mech, tt, y, row, kk, err)
+  subroutine fill_responses(resp, model, mech, tt, y, sections, row, kk, err)
     type(responses_t), intent(inout) :: resp
     type(mechanism_model_t), intent(inout) :: model
     type(mechanism_t), intent(in) :: mech
     real(dp), intent(in) :: tt, y(:)
+    type(section_values_t), intent(in) :: sections(:)     !< with resp%sections: each element's peaks
     real(dp), intent(inout) :: row(:)
     integer, intent(inout) :: kk
     type(error_t), intent(inout) :: err
     integer :: e, ne, k, j
-    type(section_values_t) :: v
     ne = size(model%el)
     if (resp%sections) then
       do e = 1, ne
-        v = element_section_peaks(model, e, y(1::2))
-        row(kk + e) = v%bending_stress
-        row(kk + ne + e) = v%axial_stress
-        row(kk + 2*ne + e) = v%moment
-        row(kk + 3*ne + e) = v%axial_force
+        row(kk + e) = sections(e)%bending_stress
+        row(kk + ne + e) = sections(e)%axial_stress
+        row(kk + 2*ne + e) = sections(e)%moment
+        row(kk + 3*ne + e) = sections(e)%axial_force
       end do
       kk = kk + 4*ne
     end if

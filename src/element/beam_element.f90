@@ -23,6 +23,7 @@ module beam_element
                             beam_internal_force => planar_internal_force, &
                             beam_strain_energy => planar_strain_energy, &
                             beam_stress_recovery => planar_stress_recovery, &
+                            beam_stress_report => planar_stress_report, &
                             beam_station_strains => planar_station_strains
   use kear_element, only: kear_element_t, formulation_from_name
   use consistent_element, only: consistent_element_t
@@ -30,7 +31,7 @@ module beam_element
   private
   public :: planar_element_t, resolve_formulation
   public :: beam_element_init, beam_element_eval, beam_tangent_stiffness, beam_internal_force
-  public :: beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_local_displacement
+  public :: beam_strain_energy, beam_kinetic_energy, beam_stress_recovery, beam_stress_report, beam_local_displacement
   public :: beam_point_load, beam_section_strains, beam_station_strains, beam_mass_constant_in_q
   public :: beam_linear_strain
 

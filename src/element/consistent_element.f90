@@ -166,10 +166,10 @@ contains
     ht = 0.5_dp*el%depth
     do i = 1, el%n_gauss
       associate (g => el%g(:, :, i))
-        call strain_state(el, strain_variables(p, g), .true., sp)
+        call strain_state(el, strain_variables(p, el%gt(:, :, i)), sp)
         res = section_response(el%material, el%area, el%depth, sp%eps, sp%kap, el%effects%material)
         info%strain_energy = info%strain_energy + el%wg(i)*res%energy
-        call add_station_terms(el%wg(i), g, res%axial_force, res%moment, res%tangent, sp%de, sp%de, sp%dk, sp%he, &
+        call add_station_terms(el%wg(i), g, el%gt(:, :, i), res%axial_force, res%moment, res%tangent, sp%de, sp%de, sp%dk, sp%he, &
                                sp%hk, prel, want_k, want_damp, fint, fdamp, kp)
       end associate
       e = abs(sp%eps) + ht*abs(sp%kap)
@@ -183,56 +183,73 @@ contains
     real(dp), intent(in) :: p(:), e
     real(dp), intent(out) :: eps_n, kap
     real(dp) :: pl(nd), su(nd), sw(nd), g(nd, 4)
-    type(strain_point_t) :: sp
     pl = p
     call consistent_interpolation(el, e, su, sw, g)
-    call strain_state(el, strain_variables(pl, g), .false., sp)
-    eps_n = sp%eps
-    kap = sp%kap
+    call strain_values(el, strain_variables(pl, transpose(g)), eps_n, kap)
   end subroutine consistent_section_strains
 
-  !> Axial strain and curvature at stress station i from LOCAL nodal values p
-  !> (the tabulated gradients gs).
-  pure subroutine consistent_station_strains(el, p, i, eps_n, kap)
+  !> Axial strain and curvature at every stress station from LOCAL nodal
+  !> values p (the tabulated gradients gst).
+  pure subroutine consistent_station_strains(el, p, eps_n, kap)
     class(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: p(:)
-    integer, intent(in) :: i
-    real(dp), intent(out) :: eps_n, kap
+    real(dp), intent(out) :: eps_n(0:), kap(0:)
     real(dp) :: pl(nd)
-    type(strain_point_t) :: sp
+    integer :: i
     pl = p
-    call strain_state(el, strain_variables(pl, el%gs(:, :, i)), .false., sp)
-    eps_n = sp%eps
-    kap = sp%kap
+    do i = 0, el%n_gauss + 1
+      call strain_values(el, strain_variables(pl, el%gst(:, :, i)), eps_n(i), kap(i))
+    end do
   end subroutine consistent_station_strains
 
   ! ------------------------------------------------------------ internals
 
-  !> z = (u_x, w_x, w_xx, u_xx) = p^T g at a station: fixed-size loops in
-  !> matmul's order (matmul on a section of the tabulated gradients takes a
-  !> heap temporary on every call).
-  pure function strain_variables(p, g) result(z)
-    real(dp), intent(in) :: p(nd), g(nd, 4)
+  !> z = (u_x, w_x, w_xx, u_xx) = p^T g at a station from the transposed
+  !> gradients gt = g^T (4 x 12): each z(k) summed in matmul's order
+  !> j = 1, 2, ..., the four at once (matmul on a section of the tabulated
+  !> gradients takes a heap temporary on every call).
+  pure function strain_variables(p, gt) result(z)
+    real(dp), intent(in) :: p(nd), gt(4, nd)
     real(dp) :: z(4)
-    integer :: j, k
-    do k = 1, 4
-      z(k) = 0.0_dp
-      do j = 1, nd
-        z(k) = z(k) + p(j)*g(j, k)
-      end do
+    integer :: j
+    z = 0.0_dp
+    do j = 1, nd
+      z = z + p(j)*gt(:, j)
     end do
   end function strain_variables
 
-  !> eps_n and kappa from z = (u_x, w_x, w_xx, u_xx) with derivatives in
-  !> (a, b, c, d) = (1 + u_x, w_x, w_xx, u_xx):
+  !> eps_n and kappa from z = (u_x, w_x, w_xx, u_xx), (a, b, c, d) =
+  !> (1 + u_x, w_x, w_xx, u_xx):
   !>   eps_n = sqrt(a^2 + b^2) - 1          (stretching on; off: u_x)
   !>   kappa = (c a - b d)/(a^2 + b^2)^1.5  (curvature on; off: w_xx)
-  pure subroutine strain_state(el, z, derivs, sp)
+  pure subroutine strain_values(el, z, eps, kap)
     type(consistent_element_t), intent(in) :: el
     real(dp), intent(in) :: z(4)
-    logical, intent(in) :: derivs
+    real(dp), intent(out) :: eps, kap
+    real(dp) :: a, b, r2, r
+    a = 1.0_dp + z(1)
+    b = z(2)
+    r2 = a*a + b*b
+    r = sqrt(r2)
+    if (el%effects%stretching) then
+      eps = (z(1)*(2.0_dp + z(1)) + b*b)/(r + 1.0_dp)      ! r - 1 without cancellation
+    else
+      eps = z(1)
+    end if
+    if (el%effects%curvature) then
+      kap = (z(3)*a - b*z(4))*(1.0_dp/(r2*r))
+    else
+      kap = z(3)
+    end if
+  end subroutine strain_values
+
+  !> strain_values' eps_n and kappa with their derivatives in (a, b, c, d).
+  pure subroutine strain_state(el, z, sp)
+    type(consistent_element_t), intent(in) :: el
+    real(dp), intent(in) :: z(4)
     type(strain_point_t), intent(out) :: sp
     real(dp) :: a, b, c, d, r2, r, r3, f, fa, fb, faa, fab, fbb, n, r5, r7
+    call strain_values(el, z, sp%eps, sp%kap)
     a = 1.0_dp + z(1)
     b = z(2)
     c = z(3)
@@ -241,27 +258,20 @@ contains
     r = sqrt(r2)
     r3 = r2*r
     if (el%effects%stretching) then
-      sp%eps = (z(1)*(2.0_dp + z(1)) + b*b)/(r + 1.0_dp)      ! r - 1 without cancellation
-      if (derivs) then
-        sp%de = [a/r, b/r, 0.0_dp, 0.0_dp]
-        sp%he(1, 1) = b*b/r3
-        sp%he(1, 2) = -a*b/r3
-        sp%he(2, 1) = -a*b/r3
-        sp%he(2, 2) = a*a/r3
-      end if
+      sp%de = [a/r, b/r, 0.0_dp, 0.0_dp]
+      sp%he(1, 1) = b*b/r3
+      sp%he(1, 2) = -a*b/r3
+      sp%he(2, 1) = -a*b/r3
+      sp%he(2, 2) = a*a/r3
     else
-      sp%eps = z(1)
-      if (derivs) sp%de = [1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
+      sp%de = [1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp]
     end if
     if (.not. el%effects%curvature) then
-      sp%kap = c
-      if (derivs) sp%dk = [0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp]
+      sp%dk = [0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp]
       return
     end if
     n = c*a - b*d
     f = 1.0_dp/r3
-    sp%kap = n*f
-    if (.not. derivs) return
     r5 = r3*r2
     r7 = r5*r2
     fa = -3.0_dp*a/r5

@@ -250,18 +250,20 @@ contains
     kap = sp%kap
   end subroutine kear_section_strains
 
-  !> Axial strain and curvature at stress station i from LOCAL nodal values p
-  !> (the tabulated gradients gs: u_x, w_x, w_xx).
-  pure subroutine kear_station_strains(el, p, i, eps_n, kap)
+  !> Axial strain and curvature at every stress station from LOCAL nodal
+  !> values p (the tabulated gradients gst: u_x, w_x, w_xx).
+  pure subroutine kear_station_strains(el, p, eps_n, kap)
     class(kear_element_t), intent(in) :: el
     real(dp), intent(in) :: p(:)
-    integer, intent(in) :: i
-    real(dp), intent(out) :: eps_n, kap
+    real(dp), intent(out) :: eps_n(0:), kap(0:)
     type(strain_point_t) :: sp
-    call strain_state(el, dot_product(el%gs(:, 1, i), p), dot_product(el%gs(:, 2, i), p), &
-                      dot_product(el%gs(:, 3, i), p), .false., sp)
-    eps_n = sp%eps
-    kap = sp%kap
+    integer :: i
+    do i = 0, el%n_gauss + 1
+      call strain_state(el, dot_product(el%gst(1, :, i), p), dot_product(el%gst(2, :, i), p), &
+                        dot_product(el%gst(3, :, i), p), .false., sp)
+      eps_n(i) = sp%eps
+      kap(i) = sp%kap
+    end do
   end subroutine kear_station_strains
 
   ! ------------------------------------------------------------ internals

@@ -216,32 +216,30 @@ contains
 
   !> One station (weight wg, G = d(strain variables)/dp, 12 x 4: the
   !> consistent element's DOFs and its strain variables (u_x, w_x, w_xx,
-  !> u_xx)) of the internal force f = G (N de + M dk), the tangent
+  !> u_xx); gt = g^T, tabulated) of the internal force f = G (N de + M dk), the tangent
   !> K = G H G^T (want_k) and K prel (want_damp).  de is what multiplies N in
   !> the force, de_true the true gradient, he the derivative of de; tangent =
   !> dN, dM by (eps, kappa) from the section.
-  pure subroutine add_station_terms(wg, g, axial_force, moment, tangent, de, de_true, dk, he, hk, prel, want_k, &
+  pure subroutine add_station_terms(wg, g, gt, axial_force, moment, tangent, de, de_true, dk, he, hk, prel, want_k, &
                                     want_damp, fint, fdamp, kp)
     integer, parameter :: n = 12, m = 4
-    real(dp), intent(in) :: wg, g(n, m), axial_force, moment, tangent(2, 2)
+    real(dp), intent(in) :: wg, g(n, m), gt(m, n), axial_force, moment, tangent(2, 2)
     real(dp), intent(in) :: de(m), de_true(m), dk(m), he(m, m), hk(m, m), prel(n)
     logical, intent(in) :: want_k, want_damp
     real(dp), intent(inout) :: fint(n), fdamp(n), kp(n, n)
     ! This is the innermost loop of every planar model evaluation: the products
-    ! are written out over fixed-size contiguous arrays, which the compiler
-    ! unrolls and vectorises (matmul and automatic arrays of assumed-shape
-    ! operands take the heap on every call).  Each acc runs in matmul's order.
+    ! are written out over fixed-size contiguous arrays (matmul and automatic
+    ! arrays of assumed-shape operands take the heap on every call).  Every
+    ! sum over k = 1 .. m runs in matmul's order, ((t1 + t2) + t3) + t4, for
+    ! each output entry, written out over the whole column so that the
+    ! compiler computes several independent entries per instruction and keeps
+    ! the partial sums in registers (the sums over k of one entry cannot be
+    ! reordered without changing the result's last bits).
     real(dp) :: h(m, m), f(m), tn(m), tk(m)
-    real(dp) :: gh(n, m), pg(m), hp(m), acc
+    real(dp) :: gh(n, m), pg(m), hp(m)
     integer :: i, j, k
     f = axial_force*de + moment*dk
-    do i = 1, n
-      acc = 0.0_dp
-      do k = 1, m
-        acc = acc + g(i, k)*f(k)
-      end do
-      fint(i) = fint(i) + wg*acc
-    end do
+    fint = fint + wg*(((g(:, 1)*f(1) + g(:, 2)*f(2)) + g(:, 3)*f(3)) + g(:, 4)*f(4))
     if (.not. (want_k .or. want_damp)) return
     tn = tangent(1, 1)*de_true + tangent(1, 2)*dk
     tk = tangent(2, 1)*de_true + tangent(2, 2)*dk
@@ -252,46 +250,19 @@ contains
     end do
     if (want_k) then
       do j = 1, m
-        do i = 1, n
-          acc = 0.0_dp
-          do k = 1, m
-            acc = acc + g(i, k)*h(k, j)
-          end do
-          gh(i, j) = wg*acc
-        end do
+        gh(:, j) = wg*(((g(:, 1)*h(1, j) + g(:, 2)*h(2, j)) + g(:, 3)*h(3, j)) + g(:, 4)*h(4, j))
       end do
       do j = 1, n
-        do i = 1, n
-          acc = 0.0_dp
-          do k = 1, m
-            acc = acc + gh(i, k)*g(j, k)
-          end do
-          kp(i, j) = kp(i, j) + acc
-        end do
+        kp(:, j) = kp(:, j) + (((gh(:, 1)*g(j, 1) + gh(:, 2)*g(j, 2)) + gh(:, 3)*g(j, 3)) + gh(:, 4)*g(j, 4))
       end do
     end if
     if (want_damp) then
-      do j = 1, m
-        acc = 0.0_dp
-        do k = 1, n
-          acc = acc + prel(k)*g(k, j)
-        end do
-        pg(j) = acc
+      pg = 0.0_dp
+      do k = 1, n
+        pg = pg + prel(k)*gt(:, k)
       end do
-      do i = 1, m
-        acc = 0.0_dp
-        do k = 1, m
-          acc = acc + h(i, k)*pg(k)
-        end do
-        hp(i) = acc
-      end do
-      do i = 1, n
-        acc = 0.0_dp
-        do k = 1, m
-          acc = acc + g(i, k)*hp(k)
-        end do
-        fdamp(i) = fdamp(i) + wg*acc
-      end do
+      hp = ((h(:, 1)*pg(1) + h(:, 2)*pg(2)) + h(:, 3)*pg(3)) + h(:, 4)*pg(4)
+      fdamp = fdamp + wg*(((g(:, 1)*hp(1) + g(:, 2)*hp(2)) + g(:, 3)*hp(3)) + g(:, 4)*hp(4))
     end if
   end subroutine add_station_terms
 

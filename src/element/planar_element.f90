@@ -28,7 +28,8 @@ module planar_element
   private
   public :: planar_element_t, rigid_state_t, element_eval_info_t, stress_report_t
   public :: init_planar_element, start_strain_terms, finish_strain_terms
-  public :: planar_internal_force, planar_tangent_stiffness, planar_strain_energy, planar_stress_recovery
+  public :: planar_internal_force, planar_tangent_stiffness, planar_strain_energy, planar_stress_recovery, &
+            planar_stress_report
   public :: planar_station_strains, station_x_over_l
 
   integer, parameter :: max_dofs = 12   !< the consistent element's; work arrays of this size stay off the heap
@@ -78,9 +79,12 @@ module planar_element
     logical :: printed_angle = .false.
     real(dp), allocatable :: xg(:), wg(:)              !< stations on [0, l] and weights
     real(dp), allocatable :: g(:, :, :)                !< (DOFs, strain variables, n_gauss): gradients at xg
-    !> (DOFs, strain variables, 0:n_gauss + 1): the gradients at the stress
-    !> stations (station_x_over_l)
-    real(dp), allocatable :: gs(:, :, :)
+    !> (strain variables, DOFs, n_gauss): the same, transposed, so that the
+    !> strain variables p^T g of a station are one short contiguous vector
+    real(dp), allocatable :: gt(:, :, :)
+    !> (strain variables, DOFs, 0:n_gauss + 1): the gradients at the stress
+    !> stations (station_x_over_l), transposed as gt
+    real(dp), allocatable :: gst(:, :, :)
     ! constant integrals (exact rule)
     real(dp), allocatable :: mass_trans(:, :)          !< int S^T S
     real(dp), allocatable :: coupling(:, :)            !< int S^T (J S - S J_b)
@@ -177,14 +181,13 @@ module planar_element
       real(dp), intent(out) :: eps_n, kap
     end subroutine section_strains_i
 
-    !> Axial strain and curvature at stress station i (0 .. n_gauss + 1,
-    !> station_x_over_l) from local nodal values p, by the tabulated gs.
-    pure subroutine station_strains_i(el, p, i, eps_n, kap)
+    !> Axial strain and curvature at every stress station i = 0 .. n_gauss + 1
+    !> (station_x_over_l) from local nodal values p, by the tabulated gst.
+    pure subroutine station_strains_i(el, p, eps_n, kap)
       import :: planar_element_t, dp
       class(planar_element_t), intent(in) :: el
       real(dp), intent(in) :: p(:)
-      integer, intent(in) :: i
-      real(dp), intent(out) :: eps_n, kap
+      real(dp), intent(out) :: eps_n(0:), kap(0:)
     end subroutine station_strains_i
   end interface
 
@@ -236,13 +239,16 @@ contains
     end do
     call rotating_frame_integrals(el%mass_trans, g2, el%node2, el%coupling, el%centrifugal)
 
-    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%g(nd, nv, el%n_gauss), el%gs(nd, nv, 0:el%n_gauss + 1))
+    allocate(el%xg(el%n_gauss), el%wg(el%n_gauss), el%g(nd, nv, el%n_gauss), el%gt(nv, nd, el%n_gauss), &
+             el%gst(nv, nd, 0:el%n_gauss + 1))
     call gauss_legendre_interval(el%n_gauss, 0.0_dp, length, el%xg, el%wg)
     do i = 1, el%n_gauss
       call el%interpolation(el%xg(i)/length, su(:nd), sw(:nd), el%g(:, :, i))
+      el%gt(:, :, i) = transpose(el%g(:, :, i))
     end do
     do i = 0, el%n_gauss + 1
-      call el%interpolation(station_x_over_l(el%beam_properties_t, el%xg, i), su(:nd), sw(:nd), el%gs(:, :, i))
+      call el%interpolation(station_x_over_l(el%beam_properties_t, el%xg, i), su(:nd), sw(:nd), gp(:nd, :nv))
+      el%gst(:, :, i) = transpose(gp(:nd, :nv))
     end do
   end subroutine init_planar_element
 
@@ -483,8 +489,17 @@ contains
     type(stress_report_t) :: rep
     real(dp) :: eps_n(0:el%n_gauss + 1), kap(0:el%n_gauss + 1)
     call planar_station_strains(el, q, phi, eps_n, kap)
-    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
+    rep = planar_stress_report(el, eps_n, kap)
   end function planar_stress_recovery
+
+  !> planar_stress_recovery from the strains of the stations
+  !> (planar_station_strains), for a caller that needs them for more.
+  pure function planar_stress_report(el, eps_n, kap) result(rep)
+    class(planar_element_t), intent(in) :: el
+    real(dp), intent(in) :: eps_n(0:), kap(0:)
+    type(stress_report_t) :: rep
+    rep = stress_report(el%beam_properties_t, el%xg, eps_n, kap)
+  end function planar_stress_report
 
   !> Axial strain and curvature at every stress station (0 .. n_gauss + 1)
   !> for the global element DOFs q: one rotation, the tabulated gradients.
@@ -493,11 +508,8 @@ contains
     real(dp), intent(in) :: q(:), phi
     real(dp), intent(out) :: eps_n(0:), kap(0:)
     real(dp) :: p(max_dofs)
-    integer :: i
     p(:size(q)) = to_local(cos(phi), sin(phi), q, el%node2)
-    do i = 0, el%n_gauss + 1
-      call el%station_strains(p(:size(q)), i, eps_n(i), kap(i))
-    end do
+    call el%station_strains(p(:size(q)), eps_n, kap)
   end subroutine planar_station_strains
 
   !> The stress report of the stations i = 0 .. n_gauss + 1 (station_x_over_l)

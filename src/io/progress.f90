@@ -29,9 +29,17 @@ module progress
     procedure :: start
     procedure :: update
     procedure :: finish
+    procedure :: shown
   end type progress_t
 
 contains
+
+  !> Whether the bar is drawn (a terminal on stderr): callers skip building
+  !> detail text nobody sees.
+  pure logical function shown(self)
+    class(progress_t), intent(in) :: self
+    shown = self%active
+  end function shown
 
   subroutine start(self, label, t0, t1, counts)
     class(progress_t), intent(inout) :: self

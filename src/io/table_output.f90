@@ -17,7 +17,7 @@ module table_output
   use kinds, only: dp
   use error_status, only: error_t
   use strings, only: str
-  use fast_format, only: format_es, es_width
+  use fast_format, only: format_es, format_es_exact, es_width
   use deck_reader, only: group_reader, write_group
   use unit_system, only: labelled
   implicit none
@@ -25,7 +25,8 @@ module table_output
   public :: table_t
 
   integer, parameter :: column_width = 24
-  character(len=*), parameter :: row_format = '(*(1x,es23.15e3))'
+  character(len=*), parameter :: value_format = '(es23.15e3)'
+  integer, parameter :: default_digits = 16       !< of value_format
 
   type :: table_t
     character(len=:), allocatable :: path, tmp_path
@@ -217,7 +218,7 @@ contains
     if (self%digits > 0) then
       call write_fast(self, values)
     else
-      write(self%unit, row_format) values
+      call write_exact(self, values)
     end if
     self%n_rows = self%n_rows + 1
     call flush_now_and_then(self)
@@ -248,6 +249,23 @@ contains
     end do
     write(self%unit, '(a)') line
   end subroutine write_fast
+
+  !> A row as WRITE with (*(1x,es23.15e3)) writes it, character for
+  !> character: the exact formatter, WRITE for the values it leaves.
+  subroutine write_exact(self, values)
+    class(table_t), intent(inout) :: self
+    real(dp), intent(in) :: values(:)
+    character(len=(es_width(default_digits) + 1)*size(values)) :: line
+    integer :: i, w
+    logical :: done
+    w = es_width(default_digits) + 1
+    do i = 1, size(values)
+      line((i - 1)*w + 1:(i - 1)*w + 1) = ' '
+      call format_es_exact(values(i), default_digits, line((i - 1)*w + 2:i*w), done)
+      if (.not. done) write(line((i - 1)*w + 2:i*w), value_format) values(i)
+    end do
+    write(self%unit, '(a)') line
+  end subroutine write_exact
 
   !> Rows with d significant digits (3..12, the fast formatter) or 0 (16, the default).
   subroutine set_digits(self, d)

@@ -20,13 +20,17 @@ module transient_response
   use kinds, only: dp
   use quadrature, only: max_gauss_points
   use material_law, only: ramberg_osgood_t, ro_stress, section_response, section_resultants_t
-  use beam_element, only: planar_element_t, beam_section_strains, beam_station_strains, beam_local_displacement
+  use beam_element, only: planar_element_t, beam_section_strains, beam_station_strains, beam_local_displacement, &
+                          beam_stress_report
+  use planar_element, only: stress_report_t
   use linkage, only: mechanism_t
   use mechanism_model, only: mechanism_model_t
   implicit none
   private
-  public :: section_values_t, section_at, element_section_peaks
+  public :: section_values_t, section_at, element_section_peaks, element_stresses_and_sections
   public :: link_point_t, link_point_response
+
+  integer, parameter :: max_stations = max_gauss_points + 2   !< ends and Gauss points of an element
 
   !> Section quantities at one station, or an element's peaks (signed).
   type :: section_values_t
@@ -84,22 +88,52 @@ contains
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
     type(section_values_t) :: pk
-    integer, parameter :: max_stations = max_gauss_points + 2
     real(dp) :: eps_n(0:max_stations - 1), kap(0:max_stations - 1)
-    type(section_values_t) :: v
-    integer :: i, ng
+    integer :: ng
     associate (el => model%el(e))
       ng = el%n_gauss
       call beam_station_strains(el, model%table%gather(e, q), model%rb(e)%phi, eps_n(:ng + 1), kap(:ng + 1))
-      do i = 0, ng + 1
-        v = station(el, eps_n(i), kap(i))
-        if (abs(v%axial_force) > abs(pk%axial_force)) pk%axial_force = v%axial_force
-        if (abs(v%moment) > abs(pk%moment)) pk%moment = v%moment
-        if (abs(v%axial_stress) > abs(pk%axial_stress)) pk%axial_stress = v%axial_stress
-        if (abs(v%bending_stress) > abs(pk%bending_stress)) pk%bending_stress = v%bending_stress
-      end do
+      pk = section_peaks(el, eps_n(:ng + 1), kap(:ng + 1))
     end associate
   end function element_section_peaks
+
+  !> Every element's stress report (the model's element_stresses) and section
+  !> peaks (element_section_peaks) from one evaluation of its station
+  !> strains; for a model without links sliding through sleeves (those have
+  !> no section columns).
+  pure subroutine element_stresses_and_sections(model, q, reports, sections)
+    type(mechanism_model_t), intent(in) :: model
+    real(dp), intent(in) :: q(:)
+    type(stress_report_t), intent(out) :: reports(:)
+    type(section_values_t), intent(out) :: sections(:)
+    real(dp) :: eps_n(0:max_stations - 1), kap(0:max_stations - 1)
+    integer :: e, ng
+    do e = 1, size(model%el)
+      associate (el => model%el(e))
+        ng = el%n_gauss
+        call beam_station_strains(el, model%table%gather(e, q), model%rb(e)%phi, eps_n(:ng + 1), kap(:ng + 1))
+        reports(e) = beam_stress_report(el, eps_n(:ng + 1), kap(:ng + 1))
+        sections(e) = section_peaks(el, eps_n(:ng + 1), kap(:ng + 1))
+      end associate
+    end do
+  end subroutine element_stresses_and_sections
+
+  !> Each section quantity's signed value of largest magnitude over the
+  !> stations 0 .. n_gauss + 1 of element el with the strains eps_n, kap.
+  pure function section_peaks(el, eps_n, kap) result(pk)
+    class(planar_element_t), intent(in) :: el
+    real(dp), intent(in) :: eps_n(0:), kap(0:)
+    type(section_values_t) :: pk
+    type(section_values_t) :: v
+    integer :: i
+    do i = 0, size(eps_n) - 1
+      v = station(el, eps_n(i), kap(i))
+      if (abs(v%axial_force) > abs(pk%axial_force)) pk%axial_force = v%axial_force
+      if (abs(v%moment) > abs(pk%moment)) pk%moment = v%moment
+      if (abs(v%axial_stress) > abs(pk%axial_stress)) pk%axial_stress = v%axial_stress
+      if (abs(v%bending_stress) > abs(pk%bending_stress)) pk%bending_stress = v%bending_stress
+    end do
+  end function section_peaks
 
   !> Elastic displacement (u, w) of point p (p%link, p%s) in the link's
   !> rigid-body axes and its transverse distance from the deformed chord:
