@@ -1,7 +1,8 @@
 #!/bin/sh
 # The paper gallery (doc/gallery.md): runs the shipped decks that reproduce
 # the papers' figures and tables and draws each figure with `flexmech plot`
-# into doc/figures/gallery/ (PNG); prints the reproduced table rows.
+# into doc/figures/gallery/ (PNG), or with its own script doc/figures/NAME.gp
+# into doc/figures/; prints the reproduced table rows.
 # Run from the repository root after `make`:  make figures
 # usage: gallery.sh [FLEXMECH [RUN_DIR]]
 set -eu
@@ -103,5 +104,16 @@ for d in opt_rosen_suzuki_gnlc_ns_x0_0000 opt_rosen_suzuki_gnlc_ns_x0_1111 opt_r
   deck $d
   echo "  $d $(sed -n 's/^# summary: NI = //p' "$run/$d.out") $(sed -n 's/^# summary: NF = //p' "$run/$d.out")"
 done
+# Paper figures drawn by their own gnuplot scripts (doc/figures/NAME.gp read the reference
+# outputs; here they read fresh runs of the same decks)
+paper_gp() {  # NAME DECK...: run the decks into RUN, then doc/figures/NAME.gp on those outputs
+  s=$1; shift
+  for d in "$@"; do deck "$d"; done
+  sed "s|reference_outputs/|$run/|g" "doc/figures/$s.gp" | gnuplot
+}
+paper_gp cantilever_paper_e cantilever_rotating_paper_e_100 cantilever_rotating_paper_e_300 \
+    cantilever_rotating_paper_e_500                                 # E Figs. 2-7
+paper_gp spatial_fourbar_100 spatial_fourbar_100                    # E Figs. 8-14 (overview)
+paper_gp spatial_fourbar_150 spatial_fourbar_150 spatial_fourbar_150_damped   # E Figs. 15-21
 rm -f "$fig"/*.gp "$fig"/*.dat
 echo "gallery: figures in $fig"
