@@ -1,7 +1,7 @@
 # RSSR four-bar at 100 rad/s, damped (inputs/spatial_rssr_100_damped.nml):
 # elastic translation of the spherical joints B and C over eight turns from the
 # rigid-body state into the periodic steady state, on the consistent element at
-# 1, 2, 1 elements (doc/spatial.md, "RSSR").  Run from the repository root.
+# 1, 4, 2 elements (doc/spatial.md, "RSSR").  Run from the repository root.
 set terminal pngcairo size 1000,600 font ',10'
 set output 'doc/figures/spatial_rssr_damped.png'
 f = 'reference_outputs/spatial_rssr_100_damped.out'
