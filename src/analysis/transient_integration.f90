@@ -11,7 +11,7 @@ module transient_integration
   use table_output, only: table_t
   use lsode_solver, only: lsode_t, lsode_counters_t, ode_system_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, &
                           mf_bdf_band_fd, mf_bdf_full_fd
-  use linalg, only: sym_generalized_eig
+  use linalg, only: sym_generalized_eig, band_generalized_eig
   use transient_settings, only: transient_settings_t
   implicit none
   private
@@ -36,7 +36,7 @@ module transient_integration
 
   !> The model's static response to its loads over a run, sampled time by
   !> time by the driver (it owns M and K):
-  !>     call load%start(n, y0, t0, t_end)
+  !>     call load%start(n, y0, t0, t_end[, kd])
   !>     do while (load%next(t)): M, K of the model at q = 0 and time t; call load%add(model, t, M, K, err)
   !>     call choose_solver_settings(out, s, load, crank_omega, contact, err)
   type, public :: static_load_t
@@ -47,6 +47,7 @@ module transient_integration
     real(dp), allocatable :: q0(:)              !< the initial displacement
     real(dp) :: t0 = 0.0_dp, t_end = 0.0_dp
     integer :: n_samples = 0, done = 0
+    integer :: kd = -1                          !< half-bandwidth of M and K (< 0: dense)
   contains
     procedure :: start => start_load
     procedure :: next => next_load_time
@@ -216,11 +217,16 @@ contains
     end if
   end subroutine choose_atol
 
-  !> n unknowns, the initial state y0 (interleaved), the run's span.
-  subroutine start_load(self, n, y0, t0, t_end)
+  !> n unknowns, the initial state y0 (interleaved), the run's span; kd: the
+  !> half-bandwidth of M and K, whose modes are then found by the banded
+  !> solver (band_generalized_eig: O(n^2 kd) instead of O(n^3)).
+  subroutine start_load(self, n, y0, t0, t_end, kd)
     class(static_load_t), intent(inout) :: self
     integer, intent(in) :: n
     real(dp), intent(in) :: y0(:), t0, t_end
+    integer, intent(in), optional :: kd
+    self%kd = -1
+    if (present(kd)) self%kd = kd
     self%q0 = y0(1::2)
     self%q_static = maxval(abs(self%q0))
     allocate(self%w2(n), self%share(n))
@@ -255,7 +261,11 @@ contains
     real(dp) :: shapes(size(self%w2), size(self%w2)), w2(size(self%w2)), peak(size(self%w2)), &
                 scale(size(self%w2)), modal(size(self%w2)), y(2*size(self%w2)), ydot(2*size(self%w2))
     integer :: k
-    call sym_generalized_eig(stiff, mass, w2, err, shapes)
+    if (self%kd >= 0 .and. self%kd < size(w2) - 1) then
+      call band_generalized_eig(stiff, mass, self%kd, w2, err, shapes)
+    else
+      call sym_generalized_eig(stiff, mass, w2, err, shapes)
+    end if
     if (err%failed()) return
     self%w2 = max(self%w2, w2)
     peak = [(maxval(abs(shapes(:, k))), k = 1, size(w2))]

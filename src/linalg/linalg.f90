@@ -16,7 +16,7 @@ module linalg
   public :: cholesky_factor, cholesky_solve
   public :: band_cholesky_factor, band_cholesky_solve
   public :: band_lu_factor, band_lu_solve
-  public :: sym_generalized_eig, symmetric_eigenvalues, identity, eigenvalues_general
+  public :: sym_generalized_eig, band_generalized_eig, symmetric_eigenvalues, identity, eigenvalues_general
   public :: dense_to_lower_band, outer, cross
 
   interface
@@ -102,6 +102,14 @@ module linalg
       real(dp), intent(out) :: w(*), work(*)
       integer, intent(out) :: info
     end subroutine dsygv
+    subroutine dsbgv(jobz, uplo, n, ka, kb, ab, ldab, bb, ldbb, w, z, ldz, work, info)
+      import :: dp
+      character(len=1), intent(in) :: jobz, uplo
+      integer, intent(in) :: n, ka, kb, ldab, ldbb, ldz
+      real(dp), intent(inout) :: ab(ldab, *), bb(ldbb, *)
+      real(dp), intent(out) :: w(*), z(ldz, *), work(*)
+      integer, intent(out) :: info
+    end subroutine dsbgv
     subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
       import :: dp
       character(len=1), intent(in) :: jobvl, jobvr
@@ -338,6 +346,89 @@ contains
     end if
     if (present(vectors) .and. .not. err%failed()) vectors = a
   end subroutine sym_generalized_eig
+
+  !> The generalized eigenproblem K x = w M x of a banded K and M (half-
+  !> bandwidth kd, given dense): eigenvalues ascending in `w` by LAPACK's
+  !> banded reduction (DSBGV without vectors, about 12 n^2 kd operations
+  !> instead of DSYGV's 9 n^3 or more); with `vectors`, M-orthonormal
+  !> eigenvectors by inverse iteration on the banded K - sigma M (two
+  !> O(n kd^2) solves each from sigma just below the eigenvalue), modes of
+  !> a cluster M-orthogonalized against each other.  Same results as
+  !> sym_generalized_eig (eigenvectors up to sign, and up to a rotation
+  !> inside a cluster of equal eigenvalues).
+  subroutine band_generalized_eig(k, m, kd, w, err, vectors)
+    real(dp), intent(in) :: k(:, :), m(:, :)
+    integer, intent(in) :: kd
+    real(dp), intent(out) :: w(:)
+    type(error_t), intent(inout) :: err
+    real(dp), intent(out), optional :: vectors(:, :)
+    real(dp), parameter :: cluster = 1.0e-8_dp    !< relative gap below which two eigenvalues are one cluster
+    real(dp) :: kb(kd + 1, size(k, 1)), mb(kd + 1, size(k, 1)), z(1, 1), work(3*size(k, 1))
+    real(dp) :: shifted(3*kd + 1, size(k, 1)), x(size(k, 1)), mx(size(k, 1)), sigma, scale, norm
+    integer :: ipiv(size(k, 1)), n, info, mode, i, j, it, first
+    n = size(k, 1)
+    call dense_to_lower_band(k, kd, kb)
+    call dense_to_lower_band(m, kd, mb)
+    call dsbgv('N', 'L', n, kd, kd, kb, kd + 1, mb, kd + 1, w, z, 1, work, info)
+    if (info < 0) then
+      call err%set('band_generalized_eig', 'DSBGV: argument '//str(-info)//' has an illegal value')
+    else if (info > 0 .and. info <= n) then
+      call err%set('band_generalized_eig', 'DSBGV: '//str(info)//' off-diagonal elements failed to converge')
+    else if (info > n) then
+      call err%set('band_generalized_eig', 'DSBGV: mass matrix is not positive definite (leading minor of order ' &
+                   //str(info - n)//')')
+    end if
+    if (err%failed() .or. .not. present(vectors)) return
+    scale = maxval(abs(w))
+    first = 1
+    do mode = 1, n
+      if (w(mode) - w(first) > cluster*scale) first = mode
+      sigma = w(mode) - cluster*scale
+      shifted = 0.0_dp
+      do j = 1, n
+        do i = max(1, j - kd), min(n, j + kd)
+          shifted(2*kd + 1 + i - j, j) = k(i, j) - sigma*m(i, j)
+        end do
+      end do
+      call band_lu_factor(shifted, kd, kd, ipiv, err)
+      if (err%failed()) return
+      x = [(1.0_dp + 0.01_dp*modulo(37*i + 11*mode, 101), i = 1, n)]   ! a start of its own: one a cluster's earlier modes lack
+      mx = band_m(x)
+      do it = 1, 2
+        x = mx
+        call band_lu_solve(shifted, kd, kd, ipiv, x, err)
+        if (err%failed()) return
+        if (first < mode) call m_orthogonalize(x, first, mode)
+        mx = band_m(x)
+        norm = sqrt(max(dot_product(x, mx), tiny(1.0_dp)))
+        x = x/norm
+        mx = mx/norm
+      end do
+      vectors(:, mode) = x
+    end do
+  contains
+    !> x M-orthogonal to the cluster's modes found before this one
+    subroutine m_orthogonalize(x, first, mode)
+      real(dp), intent(inout) :: x(:)
+      integer, intent(in) :: first, mode
+      integer :: p
+      do p = first, mode - 1
+        x = x - dot_product(vectors(:, p), band_m(x))*vectors(:, p)
+      end do
+    end subroutine m_orthogonalize
+    !> M x within the band: O(n kd)
+    pure function band_m(x) result(y)
+      real(dp), intent(in) :: x(:)
+      real(dp) :: y(size(x))
+      integer :: r, c
+      y = 0.0_dp
+      do c = 1, n
+        do r = max(1, c - kd), min(n, c + kd)
+          y(r) = y(r) + m(r, c)*x(c)
+        end do
+      end do
+    end function band_m
+  end subroutine band_generalized_eig
 
   !> Eigenvalues (ascending) of a symmetric matrix: the generalized
   !> eigensolver with M = I (the inertia and convexity tests of the models,
