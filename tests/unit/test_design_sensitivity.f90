@@ -286,7 +286,8 @@ contains
   !> the largest sample's parabola in ln) on the nonlinear example 1 at the
   !> heights its deflection-constrained design reached with 72 plain samples
   !> (1.0494, 0.4984, 0.4058 in; the crank's stress peaks between samples
-  !> there).  (1) Against a fine sampling of the same analysis (720
+  !> there; no frequency constraint: the frozen frequencies at 720 samples
+  !> would be most of the test's cost).  (1) Against a fine sampling of the same analysis (720
   !> samples, 0.5 deg apart, no interpolation): the 72 samples read by
   !> their parabolas give the stress and deflection peaks no more than
   !> 0.2 % below the fine ones and at most 0.5 % above (the ln-constraints:
@@ -305,7 +306,7 @@ contains
       '&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-9, atol = 1.0e-14 /|'// &
       '&tennant d_k = 1, d_b = 1, d_g = 1, shear = F /|'// &
       '&design variables = ''link_h(1)'', ''link_h(2)'', ''link_h(3)'', lower = 3*0.2, upper = 3*4.0, '// &
-      'stress_allowable = 20000.0, frequency_factor = 5.0, deflection_link = 2, deflection_at = 0.5, '// &
+      'stress_allowable = 20000.0, deflection_link = 2, deflection_at = 0.5, '// &
       'deflection_limit = 0.05, '
     type(design_problem_t) :: prob, fine
     real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), gp(:), gm(:), rp(:), rm(:), g(:), g_fine(:), g_bare(:)
@@ -332,14 +333,14 @@ contains
     prob%peak_interpolation = 'none'
     g_bare = prob%constraints_of(ev)
     prob%peak_interpolation = 'parabola'
-    call assert_equal(size(g), 5, 'three stresses, a frequency, a deflection')
+    call assert_equal(size(g), 4, 'three stresses and a deflection')
     call assert_true(g_fine(1) - g_bare(1) > 0.03_dp, 'the bare samples miss the crank''s peak: '// &
                      str(g_bare(1))//' against '//str(g_fine(1))//' at 720 samples')
-    call assert_true(all(g([1, 2, 3, 5]) - g_fine([1, 2, 3, 5]) > -2.0e-3_dp) .and. &
-                     all(g([1, 2, 3, 5]) - g_fine([1, 2, 3, 5]) < 5.0e-3_dp), &
+    call assert_true(all(g - g_fine > -2.0e-3_dp) .and. &
+                     all(g - g_fine < 5.0e-3_dp), &
                      'the parabolas read the fine sampling''s peaks to -0.2 % .. +0.5 %: '// &
                      str(g(1) - g_fine(1))//', '//str(g(2) - g_fine(2))//', '//str(g(3) - g_fine(3))//', '// &
-                     str(g(5) - g_fine(5)))
+                     str(g(4) - g_fine(4)))
     call prob%derivatives_at(x0, dg, dr, ok)
     call assert_true(ok, 'derivatives_at succeeds')
     if (.not. ok) return
