@@ -102,7 +102,8 @@ contains
                             transient=periodic_transient_settings_t(tolerance=ds%stop_when_periodic, &
                               max_revolutions=ds%max_revolutions, rtol=st%shooting%rtol, atol=st%shooting%atol, &
                               bdf=st%shooting%bdf, max_steps=st%shooting%max_steps), &
-                            fd_rel_step=difference_step(ds%evaluator), peak_stress=ds%peak_stress, ks_rho=ds%ks_rho)
+                            fd_rel_step=difference_step(ds%evaluator), peak_stress=ds%peak_stress, ks_rho=ds%ks_rho, &
+                            peak_interpolation=ds%peak_interpolation)
     if (prob%is_path()) call set_path(ds, prob)
     call set_deflections(ds, prob)
     if (prob%is_shaking() .and. any(st%sections(1:mech%n_links)%n > 0)) then

@@ -37,6 +37,8 @@ module design_settings
     !> '' before the check: 'variational' with the shooting evaluator, else 'differences'
     character(len=16) :: derivatives = ''
     character(len=16) :: peak_stress = 'max'
+    !> 'none': the peaks at the samples; 'parabola': read between them
+    character(len=16) :: peak_interpolation = 'none'
     real(dp) :: ks_rho = 200.0_dp
     real(dp) :: stress_allowable = 0.0_dp, frequency_factor = 0.0_dp   !< 0: off
     real(dp) :: xtol = 1.0e-3_dp, feas_tol = 1.0e-3_dp, move_limit = 0.3_dp
@@ -63,7 +65,7 @@ module design_settings
 
   ! staging variables of &design
   character(len=32) :: variables(max_vars), objective
-  character(len=16) :: evaluator, hessian, derivatives, peak_stress
+  character(len=16) :: evaluator, hessian, derivatives, peak_stress, peak_interpolation
   real(dp) :: lower(max_vars), upper(max_vars), scale(max_vars), stress_allowable, frequency_factor
   real(dp) :: xtol, feas_tol, move_limit, ks_rho
   integer :: max_iterations, samples
@@ -81,7 +83,7 @@ module design_settings
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
                     frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
                     speeds, objective_speed, stop_when_periodic, max_revolutions, &
-                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho, &
+                    path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho, peak_interpolation, &
                     deflection_link, deflection_at, deflection_limit, deflection_from, transmission_joint, &
                     transmission_min_deg
 
@@ -138,6 +140,7 @@ contains
     hessian = s%hessian
     derivatives = s%derivatives
     peak_stress = s%peak_stress
+    peak_interpolation = s%peak_interpolation
     ks_rho = s%ks_rho
     stress_allowable = s%stress_allowable
     frequency_factor = s%frequency_factor
@@ -176,6 +179,7 @@ contains
     s%hessian = hessian
     s%derivatives = derivatives
     s%peak_stress = peak_stress
+    s%peak_interpolation = peak_interpolation
     s%ks_rho = ks_rho
     s%stress_allowable = stress_allowable
     s%frequency_factor = frequency_factor
@@ -227,6 +231,8 @@ contains
                        why='revolutions the transient evaluator may take to its periodic state (two to compare)')
     call check_choice(deck, g, 'hessian', s%hessian, [character(len=16) :: 'gauss', 'structured'], err)
     call check_choice(deck, g, 'peak_stress', s%peak_stress, [character(len=16) :: 'max', 'ks'], err)
+    call check_choice(deck, g, 'peak_interpolation', s%peak_interpolation, &
+                      [character(len=16) :: 'none', 'parabola'], err)
     call check_real(deck, g, 'ks_rho', s%ks_rho, err, at_least=10.0_dp, at_most=1.0e5_dp, &
                     why='sharpness of the KS aggregate of ln(stress) over the samples: it lies above the '// &
                     'largest by at most ln(samples)/ks_rho')

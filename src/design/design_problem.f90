@@ -49,7 +49,7 @@ module design_problem
   private
   public :: design_problem_t, design_variable_t, design_eval_t, parse_variable
   public :: var_link_b, var_link_h, var_link_length, var_joint_x, var_joint_y, var_theta0, var_path_r, &
-            var_path_angle, var_cw_mass, var_cw_x, var_cw_y, coupler_point_of, ks_peak
+            var_path_angle, var_cw_mass, var_cw_x, var_cw_y, coupler_point_of, ks_peak, sample_peaks
 
   integer, parameter :: cache_size = 256
   integer, parameter :: var_link_b = 1, var_link_h = 2, var_link_length = 3, var_joint_x = 4, var_joint_y = 5
@@ -131,6 +131,12 @@ module design_problem
     !> peak by at most ln(samples)/ks_rho; function ks_peak)
     character(len=8) :: peak_stress = 'max'
     real(dp) :: ks_rho = 200.0_dp
+    !> how the peaks (stress, deflection, transmission) read the samples:
+    !> 'none' (at the samples only) or 'parabola' (between them too: the
+    !> largest of each sample's parabola through it and its two periodic
+    !> neighbours over half a sample spacing either side; function
+    !> sample_peaks)
+    character(len=8) :: peak_interpolation = 'none'
     real(dp) :: stress_allowable = 0.0_dp         !< 0: no stress constraints
     real(dp) :: frequency_factor = 0.0_dp         !< 0: no frequency constraint
     !> deflection constraints: point p on link deflection_link(p) at the
@@ -841,57 +847,58 @@ contains
     class(design_problem_t), intent(in) :: self
     type(design_eval_t), intent(in) :: ev
     real(dp) :: g(self%n_analysis_constraints())
-    integer :: i
+    g = self%constraints_at_peaks_of(ev, ev, pinned=.false.)
+  end function constraints_of
+
+  !> The analysis constraints of design ev.  pinned (the default): each
+  !> peak (stress, deflection, transmission; peak_stress 'max' only) taken
+  !> about the sample where base's is largest (at base itself: its peak): a
+  !> forward difference from base then gives the derivative at base's
+  !> largest sample, the one the variational derivative takes, not a chord
+  !> across a switch of the largest sample.  Else the peaks of ev itself.
+  !> Frequencies are the lowest over the samples either way.
+  function constraints_at_peaks_of(self, ev, base, pinned) result(g)
+    class(design_problem_t), intent(in) :: self
+    type(design_eval_t), intent(in) :: ev, base
+    logical, intent(in), optional :: pinned
+    real(dp) :: g(self%n_analysis_constraints())
+    logical :: pin
+    integer :: i, l, s
+    pin = self%peak_stress /= 'ks'              ! the KS aggregate is smooth: nothing to pin
+    if (present(pinned)) pin = pin .and. pinned
     do i = 1, size(g)
       if (i == self%i_transmission) then
-        if (self%peak_stress == 'ks') then
-          g(i) = ks_peak(log(max(ev%sample_transmission, tiny(1.0_dp))), self%ks_rho) - log(cos(self%transmission_min))
-        else
-          g(i) = log(max(maxval(ev%sample_transmission), tiny(1.0_dp))/cos(self%transmission_min))
-        end if
+        g(i) = peak_constraint(ev%sample_transmission, base%sample_transmission, cos(self%transmission_min))
       else if (self%i_deflection > 0 .and. i >= self%i_deflection) then
-        g(i) = deflection_constraint(self, ev, i - self%i_deflection)
-      else if (i <= self%n_stress .and. self%peak_stress == 'ks') then
-        g(i) = ks_peak(log(max(ev%sample_stress(:, modulo(i - 1, self%base%n_links) + 1, &
-                                                (i - 1)/self%base%n_links + 1), tiny(1.0_dp))), self%ks_rho) &
-               - log(self%stress_allowable)
+        l = modulo(i - self%i_deflection, self%n_deflection_points()) + 1
+        s = (i - self%i_deflection)/self%n_deflection_points() + 1
+        g(i) = peak_constraint(ev%sample_deflection(:, l, s), base%sample_deflection(:, l, s), &
+                               self%deflection_limit(l))
       else if (i <= self%n_stress) then
-        g(i) = log(max(ev%stress_at(modulo(i - 1, self%base%n_links) + 1, (i - 1)/self%base%n_links + 1), &
-                       tiny(1.0_dp))/self%stress_allowable)
+        l = modulo(i - 1, self%base%n_links) + 1
+        s = (i - 1)/self%base%n_links + 1
+        g(i) = peak_constraint(ev%sample_stress(:, l, s), base%sample_stress(:, l, s), self%stress_allowable)
       else if (ev%frequency_at(i - self%n_stress) > 0.0_dp) then
         g(i) = log(self%frequency_factor*abs(self%speeds(i - self%n_stress))/ev%frequency_at(i - self%n_stress))
       else
         g(i) = ieee_value(g(i), ieee_quiet_nan)   ! an unstable frozen structure (design_results refuses it)
       end if
     end do
-  end function constraints_of
-
-  !> The analysis constraints of design ev with each peak stress taken at the
-  !> sample where base's stress is largest (at base itself: its peak): a
-  !> forward difference from base then gives the derivative at base's
-  !> largest sample, the one the variational derivative takes, not a chord
-  !> across a switch of the largest sample.  Frequencies as constraints_of.
-  function constraints_at_peaks_of(self, ev, base) result(g)
-    class(design_problem_t), intent(in) :: self
-    type(design_eval_t), intent(in) :: ev, base
-    real(dp) :: g(self%n_analysis_constraints())
-    integer :: i, l, s
-    g = self%constraints_of(ev)
-    if (self%peak_stress == 'ks') return          ! smooth: nothing to pin
-    do i = 0, self%n_deflection_points()*size(self%speeds) - 1
-      l = modulo(i, self%n_deflection_points()) + 1
-      s = i/self%n_deflection_points() + 1
-      g(self%i_deflection + i) = log(max(ev%sample_deflection(maxloc(base%sample_deflection(:, l, s), dim=1), l, s), &
-                                         tiny(1.0_dp))/self%deflection_limit(l))
-    end do
-    if (self%i_transmission > 0) g(self%i_transmission) = &
-      log(max(ev%sample_transmission(maxloc(base%sample_transmission, dim=1)), tiny(1.0_dp))/cos(self%transmission_min))
-    do i = 1, self%n_stress
-      l = modulo(i - 1, self%base%n_links) + 1
-      s = (i - 1)/self%base%n_links + 1
-      g(i) = log(max(ev%sample_stress(maxloc(base%sample_stress(:, l, s), dim=1), l, s), tiny(1.0_dp)) &
-                 /self%stress_allowable)
-    end do
+  contains
+    !> ln(peak of v / limit), the peak the largest of sample_peaks(v) (or
+    !> the one about base's largest, pinned) or their KS aggregate in ln.
+    real(dp) function peak_constraint(v, v_base, limit) result(gi)
+      real(dp), intent(in) :: v(:), v_base(:), limit
+      real(dp) :: p(size(v))
+      p = sample_peaks(v, self%peak_interpolation)
+      if (self%peak_stress == 'ks') then
+        gi = ks_peak(log(max(p, tiny(1.0_dp))), self%ks_rho) - log(limit)
+      else if (pin) then
+        gi = log(max(p(maxloc(sample_peaks(v_base, self%peak_interpolation), dim=1)), tiny(1.0_dp))/limit)
+      else
+        gi = log(max(maxval(p), tiny(1.0_dp))/limit)
+      end if
+    end function peak_constraint
   end function constraints_at_peaks_of
 
   !> A forward difference from x to its neighbour xp: gp, the constraints at
@@ -912,23 +919,45 @@ contains
     if (ev%ok .and. evp%ok) gp = self%constraints_at_peaks_of(evp, ev)
   end subroutine neighbour_constraints
 
-  !> Deflection constraint j (0-based: point modulo(j, n_points) + 1 at speed
-  !> j / n_points + 1): ln(peak deflection over the samples / limit), the
-  !> peak as the stresses' (the largest sample, or the KS aggregate of
-  !> ln(deflection) with ks_rho).
-  real(dp) function deflection_constraint(self, ev, j) result(g)
-    class(design_problem_t), intent(in) :: self
-    type(design_eval_t), intent(in) :: ev
-    integer, intent(in) :: j
-    integer :: p, s
-    p = modulo(j, self%n_deflection_points()) + 1
-    s = j/self%n_deflection_points() + 1
-    if (self%peak_stress == 'ks') then
-      g = ks_peak(log(max(ev%sample_deflection(:, p, s), tiny(1.0_dp))), self%ks_rho) - log(self%deflection_limit(p))
-    else
-      g = log(max(maxval(ev%sample_deflection(:, p, s)), tiny(1.0_dp))/self%deflection_limit(p))
-    end if
-  end function deflection_constraint
+  !> The peak of the periodic samples v > 0 (equally spaced over a
+  !> revolution) about each sample.  'none': v itself.  'parabola': about
+  !> sample k the largest, over half a spacing either side (t in
+  !> [-1/2, 1/2] spacings), of the parabola through u = ln v at k-1, k, k+1
+  !> (periodic wrap),
+  !>     P(t) = u(k) + t (u(k+1) - u(k-1))/2 + t^2 (u(k-1) - 2 u(k) + u(k+1))/2,
+  !> at its vertex t* = -P'(0)/P'' when concave and t* within the half
+  !> spacings, else at the nearer end; returned as exp(P(t*)).  The largest
+  !> of these is the peak of the piecewise-quadratic reading of ln v: at
+  !> least the largest sample, exact for a Gaussian-shaped peak, and for a
+  !> smooth peak at spacing d its error falls as d^4 (a symmetric peak)
+  !> against the largest sample's d^2.  In ln because the constraints are
+  !> ln(peak / limit) and a bump's logarithm is nearly a parabola (a peak
+  !> exp(kappa (cos(theta) - 1)), kappa = 60, midway between 72 samples:
+  !> the largest sample 5.6 % low, the parabola in v 1.2 %, in ln v 0.008 %).
+  !> Each entry is continuous in the samples and, where the vertex reaches
+  !> the end of its half spacing, differentiable (the slope is zero there),
+  !> so the design derivative follows from the samples' by the chain rule.
+  pure function sample_peaks(v, how) result(p)
+    real(dp), intent(in) :: v(:)
+    character(len=*), intent(in) :: how
+    real(dp) :: p(size(v))
+    real(dp) :: u(size(v)), slope, curvature, t
+    integer :: k, n
+    p = v
+    if (how /= 'parabola' .or. size(v) < 3) return
+    n = size(v)
+    u = log(max(v, tiny(1.0_dp)))
+    do k = 1, n
+      slope = 0.5_dp*(u(modulo(k, n) + 1) - u(modulo(k - 2, n) + 1))
+      curvature = u(modulo(k - 2, n) + 1) - 2.0_dp*u(k) + u(modulo(k, n) + 1)
+      if (curvature < 0.0_dp) then
+        t = max(-0.5_dp, min(0.5_dp, -slope/curvature))
+      else
+        t = sign(0.5_dp, slope)
+      end if
+      p(k) = exp(u(k) + t*(slope + 0.5_dp*curvature*t))
+    end do
+  end function sample_peaks
 
   !> |cos mu| at the current time, mu the angle between the rigid-body lines
   !> of the two links that meet at joint j (a four-bar's transmission angle
