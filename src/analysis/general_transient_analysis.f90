@@ -18,7 +18,7 @@ module general_transient_analysis
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t
-  use transient_integration, only: start_integrator, write_start_frequencies, choose_solver_settings, static_load_t
+  use transient_integration, only: start_integrator, write_start_frequencies
   use element_effects, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_consistent
@@ -26,7 +26,7 @@ module general_transient_analysis
   use spatial_model, only: spatial_link_t
   use spatial_external_loads, only: spatial_loads_input_t, spatial_point_load_t
   use spatial_loads_settings, only: read_spatial_loads, echo_spatial_loads
-  use spatial_run_steps, only: initial_state, write_cost, write_loads, spatial_formulation_of
+  use spatial_run_steps, only: initial_state, write_cost, write_loads, spatial_formulation_of, choose_settings
   use restart_file, only: write_restart_file
   use revolution_peaks, only: element_peaks_t
   use motion_profile, only: motion_constant
@@ -122,17 +122,7 @@ contains
     end if
     n_out = max(1, nint((t_end - t0)/dt_out))
     dt_out = (t_end - t0)/n_out
-    block   ! the solver settings the deck left out, from the model's static response (transient_integration)
-      type(static_load_t) :: load
-      real(dp) :: mass(model%n, model%n), stiff(model%n, model%n)
-      call load%start(model%n, y, t0, t_end)
-      do while (load%next(t) .and. .not. err%failed())
-        call model%set_time(t)
-        call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
-        call load%add(model, t, mass, stiff, err)
-      end do
-      call choose_solver_settings(out, s, load, max(rate, two_pi/(t_end - t0)), .false., err)
-    end block
+    call choose_settings(out, s, model, y, t0, t_end, max(rate, two_pi/(t_end - t0)), err)   ! those the deck left out
     if (err%failed()) return
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return

@@ -18,7 +18,7 @@ module spatial_analysis
   use table_output, only: table_t
   use progress, only: progress_t
   use lsode_solver, only: lsode_t
-  use transient_integration, only: start_integrator, write_start_frequencies, choose_solver_settings, static_load_t
+  use transient_integration, only: start_integrator, write_start_frequencies
   use element_effects, only: effects_summary
   use transient_settings, only: transient_settings_t, read_transient_settings, echo_transient_settings
   use spatial_beam, only: spatial_stress_t, spatial_to_local, spatial_formulation_consistent
@@ -31,7 +31,7 @@ module spatial_analysis
   use spatial_settings, only: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
   use spatial_external_loads, only: spatial_loads_input_t, spatial_point_load_t, resolve_spatial_loads
   use spatial_loads_settings, only: read_spatial_loads, echo_spatial_loads
-  use spatial_run_steps, only: initial_state, write_cost, write_loads, spatial_formulation_of
+  use spatial_run_steps, only: initial_state, write_cost, write_loads, spatial_formulation_of, choose_settings
   implicit none
   private
   public :: run_spatial
@@ -110,17 +110,7 @@ contains
     dt_out = s%output_step_deg*pi/180.0_dp/inp%omega
     t_end = t0 + s%revolutions*two_pi/inp%omega
     n_out = max(1, nint((t_end - t0)/dt_out))
-    block   ! the solver settings the deck left out, from the model's static response (transient_integration)
-      type(static_load_t) :: load
-      real(dp) :: mass(model%n, model%n), stiff(model%n, model%n)
-      call load%start(model%n, y, t0, t_end)
-      do while (load%next(t) .and. .not. err%failed())
-        call model%set_time(t)
-        call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
-        call load%add(model, t, mass, stiff, err)
-      end do
-      call choose_solver_settings(out, s, load, inp%omega, .false., err)
-    end block
+    call choose_settings(out, s, model, y, t0, t_end, inp%omega, err)   ! those the deck left out
     if (err%failed()) return
     call start_integrator(out, s, model%kd, t0, size(y), ode, err)
     if (err%failed()) return

@@ -11,7 +11,7 @@ module spatial_run_steps
   use deck_reader, only: deck_t
   use table_output, only: table_t
   use lsode_solver, only: lsode_t, lsode_counters_t
-  use transient_integration, only: write_integration_cost
+  use transient_integration, only: write_integration_cost, choose_solver_settings, static_load_t
   use transient_settings, only: transient_settings_t, check_mode_number
   use spatial_beam, only: spatial_to_local, spatial_formulation_kear, spatial_formulation_consistent
   use spatial_correlation, only: sdofs
@@ -20,9 +20,28 @@ module spatial_run_steps
   use spatial_external_loads, only: spatial_point_load_t
   implicit none
   private
-  public :: initial_state, write_cost, write_loads, spatial_formulation_of
+  public :: initial_state, write_cost, write_loads, spatial_formulation_of, choose_settings
 
 contains
+
+  !> The solver settings the deck left out, from the model's static response
+  !> over [t0, t_end] (transient_integration); rate: the driver's speed.
+  subroutine choose_settings(out, s, model, y, t0, t_end, rate, err)
+    type(table_t), intent(inout) :: out
+    type(transient_settings_t), intent(inout) :: s
+    class(spatial_model_t), intent(inout) :: model
+    real(dp), intent(in) :: y(:), t0, t_end, rate
+    type(error_t), intent(inout) :: err
+    type(static_load_t) :: load
+    real(dp) :: mass(model%n, model%n), stiff(model%n, model%n), t
+    call load%start(model%n, y, t0, t_end)
+    do while (load%next(t) .and. .not. err%failed())
+      call model%set_time(t)
+      call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)
+      call load%add(model, t, mass, stiff, err)
+    end do
+    call choose_solver_settings(out, s, load, rate, .false., err)
+  end subroutine choose_settings
 
   !> The cost footer: CPU time, DLSODE's counters and the model's own work.
   subroutine write_cost(out, s, ode, model, cpu_seconds, revolutions_done)
