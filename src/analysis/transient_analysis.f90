@@ -440,10 +440,10 @@ contains
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: uw(2)
     integer :: e, node
-    real(dp) :: qe(model%table%element_dofs)
+    real(dp) :: qe(model%table%element_dofs())
     call joint_carrier(mech, j, e, node)
     qe = model%table%gather(e, q)
-    uw = qe(model%table%node_dofs*(node - 1) + 1:model%table%node_dofs*(node - 1) + 2)   ! 4 or 6 DOFs per node
+    uw = qe(model%table%node_dofs()*(node - 1) + 1:model%table%node_dofs()*(node - 1) + 2)   ! 4 or 6 DOFs per node
   end subroutine joint_displacement
 
   subroutine write_columns(out, mech, model, resp, names, extra)

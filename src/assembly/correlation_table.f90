@@ -65,8 +65,8 @@ module correlation_table
   !> private: read through unknown, coefficient, unknowns, coefficients,
   !> label_of, n_unknowns and band, changed only by the table's own rules.
   type :: correlation_base_t
-    integer :: n_elements = 0
-    integer :: element_dofs = dofs_per_element     !< 2 * node_dofs
+    integer, private :: n_elem = 0
+    integer, private :: el_dofs = dofs_per_element         !< 2 * node_dofs
     integer, private :: n_global = 0
     integer, private :: half_bandwidth = 0                  !< of assembled M and K
     integer, allocatable, private :: map(:, :)              !< (element_dofs, n_elements) global index, 0 = held at zero
@@ -80,6 +80,8 @@ module correlation_table
     procedure :: finish_band
     procedure :: widen_band
     procedure :: split_translations
+    procedure :: n_elements
+    procedure :: element_dofs
     procedure :: n_unknowns
     procedure :: band
     procedure :: unknown
@@ -103,19 +105,26 @@ module correlation_table
   !> The planar table: links of Kear's, the consistent or Tennant's elements
   !> joined by the planar joint rules above.
   type, extends(correlation_base_t) :: correlation_table_t
-    integer :: n_links = 0
-    integer :: node_dofs = 4                       !< 4: [U W th m] (Kear); 6: also [ux uxx]; 7: also [a psi lam]
-    integer, allocatable :: link_of_element(:)     !< (n_elements)
-    integer, allocatable :: first_element(:)       !< (n_links + 1): elements of link k are first(k):first(k+1)-1
+    private
+    integer :: n_link = 0
+    integer :: n_node_dofs = 4                     !< 4: [U W th m] (Kear); 6: also [ux uxx]; 7: also [a psi lam]
+    integer, allocatable :: link_of_el(:)          !< (n_elements)
+    integer, allocatable :: first_el(:)            !< (n_links + 1): elements of link k are first(k):first(k+1)-1
     integer, allocatable :: sleeve_s(:)            !< (n_elements) axial unknown of a sleeve end at node 2 (0: none)
     integer, allocatable :: sleeve_u(:), sleeve_w(:) !< the sleeve's translations (0: on the ground)
     integer, allocatable :: glob(:, :)             !< (element_dofs + 2, n_elements) globals an element uses
     integer, allocatable :: n_glob(:)              !< (n_elements)
   contains
-    procedure :: build
-    procedure :: element_map
-    procedure :: is_sleeve_element
-    procedure :: describe
+    procedure, public :: build
+    procedure, public :: n_links
+    procedure, public :: node_dofs
+    procedure, public :: link_of_element
+    procedure, public :: first_element
+    procedure, public :: globals_of
+    procedure, public :: sleeve_unknowns
+    procedure, public :: element_map
+    procedure, public :: is_sleeve_element
+    procedure, public :: describe
   end type correlation_table_t
 
 contains
@@ -144,14 +153,14 @@ contains
     n_links = size(n_elem)
     call check_ends(n_elem, ends, err)
     if (err%failed()) return
-    self%node_dofs = 4
+    self%n_node_dofs = 4
     if (present(axial_dofs)) then
-      if (axial_dofs) self%node_dofs = 6
+      if (axial_dofs) self%n_node_dofs = 6
     end if
     if (present(shear_dofs)) then
-      if (shear_dofs) self%node_dofs = 7
+      if (shear_dofs) self%n_node_dofs = 7
     end if
-    nd = self%node_dofs
+    nd = self%n_node_dofs
     call lay_out_links(self, n_elem)
 
     ! joint_dofs(:, jid): a joint's shared unknowns (U, W of a pin; s of a slider)
@@ -159,13 +168,13 @@ contains
              node_coef(nd, 0:maxval(n_elem)))
     joint_dofs = 0
     do k = 1, n_links
-      call end_node(self, joint_dofs, ends(1, k), k, 1, self%first_element(k), node_map(:, 0), node_coef(:, 0))
+      call end_node(self, joint_dofs, ends(1, k), k, 1, self%first_el(k), node_map(:, 0), node_coef(:, 0))
       do j = 1, n_elem(k) - 1
         call interior_node(self, k, j + 1, node_map(:, j), node_coef(:, j))
       end do
-      call end_node(self, joint_dofs, ends(2, k), k, n_elem(k) + 1, self%first_element(k + 1) - 1, &
+      call end_node(self, joint_dofs, ends(2, k), k, n_elem(k) + 1, self%first_el(k + 1) - 1, &
                     node_map(:, n_elem(k)), node_coef(:, n_elem(k)))
-      call self%join_nodes(self%first_element(k), node_map(:, 0:n_elem(k)), node_coef(:, 0:n_elem(k)))
+      call self%join_nodes(self%first_el(k), node_map(:, 0:n_elem(k)), node_coef(:, 0:n_elem(k)))
     end do
     if (self%n_global == 0) then
       call err%set('correlation table', 'the supports leave no free degree of freedom')
@@ -183,17 +192,17 @@ contains
     type(correlation_table_t), intent(inout) :: self
     integer, intent(in) :: n_elem(:)
     integer :: k
-    self%element_dofs = 2*self%node_dofs
-    self%n_links = size(n_elem)
-    self%n_elements = sum(n_elem)
-    allocate(self%first_element(self%n_links + 1), self%link_of_element(self%n_elements))
-    self%first_element(1) = 1
-    do k = 1, self%n_links
-      self%first_element(k + 1) = self%first_element(k) + n_elem(k)
-      self%link_of_element(self%first_element(k):self%first_element(k + 1) - 1) = k
+    self%el_dofs = 2*self%n_node_dofs
+    self%n_link = size(n_elem)
+    self%n_elem = sum(n_elem)
+    allocate(self%first_el(self%n_link + 1), self%link_of_el(self%n_elem))
+    self%first_el(1) = 1
+    do k = 1, self%n_link
+      self%first_el(k + 1) = self%first_el(k) + n_elem(k)
+      self%link_of_el(self%first_el(k):self%first_el(k + 1) - 1) = k
     end do
-    call self%start_table(self%n_elements, self%element_dofs)
-    allocate(self%sleeve_s(self%n_elements), self%sleeve_u(self%n_elements), self%sleeve_w(self%n_elements))
+    call self%start_table(self%n_elem, self%el_dofs)
+    allocate(self%sleeve_s(self%n_elem), self%sleeve_u(self%n_elem), self%sleeve_w(self%n_elem))
     self%sleeve_s = 0
     self%sleeve_u = 0
     self%sleeve_w = 0
@@ -217,7 +226,7 @@ contains
     real(dp), intent(out) :: coefs(:)
     integer :: d
     do d = 1, size(dofs)
-      dofs(d) = self%new_unknown('L'//str(link)//' N'//str(node)//' '//trim(node_dof_name(self%node_dofs, d)))
+      dofs(d) = self%new_unknown('L'//str(link)//' N'//str(node)//' '//trim(node_dof_name(self%n_node_dofs, d)))
     end do
     coefs = 1.0_dp
   end subroutine interior_node
@@ -281,13 +290,13 @@ contains
       dofs(3) = self%new_unknown(where//' th')
       coefs(3) = 1.0_dp
     end select
-    if (self%node_dofs == 6) then
+    if (self%n_node_dofs == 6) then
       ! consistent element: curvature and axial-strain DOFs free at every end
       do d = 4, 6
         if (dofs(d) == 0) dofs(d) = self%new_unknown(where//' '//trim(axial_names(d)))
         coefs(d) = 1.0_dp
       end do
-    else if (self%node_dofs == 7) then
+    else if (self%n_node_dofs == 7) then
       ! shear angle a follows th, psi follows m, lam is always own
       if (attach%kind /= joint_clamp) then
         dofs(5) = self%new_unknown(where//' a')
@@ -341,12 +350,12 @@ contains
     type(correlation_table_t), intent(inout) :: self
     integer :: e, i
     if (allocated(self%glob)) deallocate(self%glob, self%n_glob)
-    allocate(self%glob(self%element_dofs + 2, self%n_elements), self%n_glob(self%n_elements))
+    allocate(self%glob(self%el_dofs + 2, self%n_elem), self%n_glob(self%n_elem))
     self%glob = 0
     self%n_glob = 0
     self%half_bandwidth = 0
-    do e = 1, self%n_elements
-      do i = 1, self%element_dofs
+    do e = 1, self%n_elem
+      do i = 1, self%el_dofs
         call add_glob(e, self%map(i, e))
       end do
       call add_glob(e, self%sleeve_u(e))
@@ -390,9 +399,9 @@ contains
     ! adjacency of the unknowns (two unknowns of one element are coupled), in CSR form
     allocate(degree(n), start(n + 1))
     degree = 0
-    do e = 1, self%n_elements
-      do i = 1, self%element_dofs
-        do j = 1, self%element_dofs
+    do e = 1, self%n_elem
+      do i = 1, self%el_dofs
+        do j = 1, self%el_dofs
           a = self%map(i, e)
           b = self%map(j, e)
           if (a > 0 .and. b > 0 .and. a /= b) degree(a) = degree(a) + 1
@@ -405,9 +414,9 @@ contains
     end do
     allocate(adj(max(1, start(n + 1) - 1)), fill(n))
     fill = start(1:n)
-    do e = 1, self%n_elements
-      do i = 1, self%element_dofs
-        do j = 1, self%element_dofs
+    do e = 1, self%n_elem
+      do i = 1, self%el_dofs
+        do j = 1, self%el_dofs
           a = self%map(i, e)
           b = self%map(j, e)
           if (a > 0 .and. b > 0 .and. a /= b) then
@@ -446,8 +455,8 @@ contains
       new_index(order(n + 1 - i)) = i
     end do
     new_map = self%map
-    do e = 1, self%n_elements
-      do i = 1, self%element_dofs
+    do e = 1, self%n_elem
+      do i = 1, self%el_dofs
         if (self%map(i, e) > 0) new_map(i, e) = new_index(self%map(i, e))
       end do
     end do
@@ -483,8 +492,8 @@ contains
   subroutine start_table(self, n_elements, element_dofs)
     class(correlation_base_t), intent(inout) :: self
     integer, intent(in) :: n_elements, element_dofs
-    self%n_elements = n_elements
-    self%element_dofs = element_dofs
+    self%n_elem = n_elements
+    self%el_dofs = element_dofs
     self%n_global = 0
     if (allocated(self%map)) deallocate(self%map)
     if (allocated(self%coef)) deallocate(self%coef)
@@ -588,6 +597,18 @@ contains
     self%half_bandwidth = bandwidth(self%map)
   end subroutine split_translations
 
+  !> The number of elements.
+  pure integer function n_elements(self)
+    class(correlation_base_t), intent(in) :: self
+    n_elements = self%n_elem
+  end function n_elements
+
+  !> The DOFs of one element (twice the DOFs of a node).
+  pure integer function element_dofs(self)
+    class(correlation_base_t), intent(in) :: self
+    element_dofs = self%el_dofs
+  end function element_dofs
+
   !> The number of global unknowns.
   pure integer function n_unknowns(self)
     class(correlation_base_t), intent(in) :: self
@@ -618,7 +639,7 @@ contains
   pure function unknowns(self, e) result(g)
     class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
-    integer :: g(self%element_dofs)
+    integer :: g(self%el_dofs)
     g = self%map(:, e)
   end function unknowns
 
@@ -642,7 +663,7 @@ contains
   pure function coefficients(self, e) result(c)
     class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
-    real(dp) :: c(self%element_dofs)
+    real(dp) :: c(self%el_dofs)
     c = self%coef(:, e)
   end function coefficients
 
@@ -685,9 +706,9 @@ contains
     class(correlation_base_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: qg(:)
-    real(dp) :: qe(self%element_dofs)
+    real(dp) :: qe(self%el_dofs)
     integer :: i
-    do i = 1, self%element_dofs
+    do i = 1, self%el_dofs
       if (self%map(i, e) > 0) then
         qe(i) = self%coef(i, e)*qg(self%map(i, e))
       else
@@ -703,7 +724,7 @@ contains
     real(dp), intent(in) :: q(:), qd(:)
     real(dp), intent(out) :: qe(:), qde(:)
     integer :: i, g
-    do i = 1, self%element_dofs
+    do i = 1, self%el_dofs
       g = self%map(i, e)
       if (g > 0) then
         qe(i) = self%coef(i, e)*q(g)
@@ -722,7 +743,7 @@ contains
     real(dp), intent(in) :: fe(:)
     real(dp), intent(inout) :: fg(:)
     integer :: i
-    do i = 1, self%element_dofs
+    do i = 1, self%el_dofs
       if (self%map(i, e) > 0) fg(self%map(i, e)) = fg(self%map(i, e)) + self%coef(i, e)*fe(i)
     end do
   end subroutine scatter_add
@@ -734,10 +755,10 @@ contains
     real(dp), intent(in) :: ae(:, :)
     real(dp), intent(inout) :: ag(:, :)
     integer :: i, j, gi, gj
-    do j = 1, self%element_dofs
+    do j = 1, self%el_dofs
       gj = self%map(j, e)
       if (gj == 0) cycle
-      do i = 1, self%element_dofs
+      do i = 1, self%el_dofs
         gi = self%map(i, e)
         if (gi == 0) cycle
         ag(gi, gj) = ag(gi, gj) + self%coef(i, e)*ae(i, j)*self%coef(j, e)
@@ -779,6 +800,50 @@ contains
     call self%list_unknowns(label_width, lines(n_head + n_rows + 2:))
   end subroutine table_lines
 
+  !> The number of links.
+  pure integer function n_links(self)
+    class(correlation_table_t), intent(in) :: self
+    n_links = self%n_link
+  end function n_links
+
+  !> The DOFs of one node: 4 [U W th m], 6 (also [ux uxx]) or 7 (also [a psi lam]).
+  pure integer function node_dofs(self)
+    class(correlation_table_t), intent(in) :: self
+    node_dofs = self%n_node_dofs
+  end function node_dofs
+
+  !> The link element e belongs to.
+  pure integer function link_of_element(self, e)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    link_of_element = self%link_of_el(e)
+  end function link_of_element
+
+  !> The first element of link k (k = n_links + 1: one past the last element).
+  pure integer function first_element(self, k)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: k
+    first_element = self%first_el(k)
+  end function first_element
+
+  !> The global unknowns element e uses, in element_map's column order (a
+  !> sleeve element also uses the sleeve's U_s, W_s).
+  pure function globals_of(self, e) result(g)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    integer :: g(self%n_glob(e))
+    g = self%glob(1:self%n_glob(e), e)
+  end function globals_of
+
+  !> A sleeve end of element e: its axial unknown s and the sleeve's
+  !> translations U_s, W_s (0: none, or on the ground).
+  pure function sleeve_unknowns(self, e) result(g)
+    class(correlation_table_t), intent(in) :: self
+    integer, intent(in) :: e
+    integer :: g(3)
+    g = [self%sleeve_s(e), self%sleeve_u(e), self%sleeve_w(e)]
+  end function sleeve_unknowns
+
   logical pure function is_sleeve_element(self, e)
     class(correlation_table_t), intent(in) :: self
     integer, intent(in) :: e
@@ -797,17 +862,17 @@ contains
     integer :: i, col, js, ju, jw, iu
     real(dp) :: c, s, c2a, s2a, dphi(2, 3), ddphi(2, 3)
     ng = self%n_glob(e)
-    c0(1:self%element_dofs, 1:ng) = 0.0_dp
-    c1(1:self%element_dofs, 1:ng) = 0.0_dp
-    c2(1:self%element_dofs, 1:ng) = 0.0_dp
-    do i = 1, self%element_dofs
+    c0(1:self%el_dofs, 1:ng) = 0.0_dp
+    c1(1:self%el_dofs, 1:ng) = 0.0_dp
+    c2(1:self%el_dofs, 1:ng) = 0.0_dp
+    do i = 1, self%el_dofs
       if (self%map(i, e) == 0) cycle
       col = findloc(self%glob(1:ng, e), self%map(i, e), dim=1)
       c0(i, col) = self%coef(i, e)
     end do
     if (self%sleeve_s(e) == 0) return
     ! sleeve at node 2: (U2, W2) = s u(phi) + (u_perp . (U_s, W_s)) u_perp
-    iu = self%node_dofs + 1
+    iu = self%n_node_dofs + 1
     c = cos(phi)
     s = sin(phi)
     c2a = cos(2.0_dp*phi)
@@ -840,12 +905,12 @@ contains
   subroutine describe(self, lines)
     class(correlation_table_t), intent(in) :: self
     character(len=160), allocatable, intent(out) :: lines(:)
-    character(len=160) :: head(3), rows(self%n_elements)
+    character(len=160) :: head(3), rows(self%n_elem)
     integer :: e, nd
     character(len=160) :: l
-    write(head(1), '(a,i0,a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elements, ' elements of ', &
-      self%element_dofs, ' DOFs, ', self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
-    nd = self%node_dofs
+    write(head(1), '(a,i0,a,i0,a,i0,a,i0)') 'variable correlation table: ', self%n_elem, ' elements of ', &
+      self%el_dofs, ' DOFs, ', self%n_global, ' global unknowns, half-bandwidth ', self%half_bandwidth
+    nd = self%n_node_dofs
     select case (nd)
     case (6)
       head(2) = '  element link :   U1   W1  th1   m1  ux1 uxx1   U2   W2  th2   m2  ux2 uxx2   (global unknown; ' &
@@ -857,8 +922,8 @@ contains
       head(2) = '  element link :   U1   W1  th1   m1   U2   W2  th2   m2   (global unknown; 0 = held at zero)'
     end select
     head(3) = '  ----------------------------------------------------------------------'
-    do e = 1, self%n_elements
-      write(l, '(2x,i7,i5,a,14i5)') e, self%link_of_element(e), ' :', self%map(:, e)
+    do e = 1, self%n_elem
+      write(l, '(2x,i7,i5,a,14i5)') e, self%link_of_el(e), ' :', self%map(:, e)
       if (self%sleeve_s(e) > 0 .and. self%sleeve_u(e) > 0) then
         write(l(len_trim(l) + 1:), '(a,i0,a,i0,a,i0,a)') '  (sleeve: U2, W2 from s = ', self%sleeve_s(e), &
           ' and U_s, W_s = ', self%sleeve_u(e), ', ', self%sleeve_w(e), ')'

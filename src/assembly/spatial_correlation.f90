@@ -33,10 +33,10 @@ contains
   subroutine describe(self, lines)
     class(spatial_table_t), intent(in) :: self
     character(len=160), allocatable, intent(out) :: lines(:)
-    character(len=160) :: head(2), rows(self%n_elements)
+    character(len=160) :: head(2), rows(self%n_elements())
     integer :: e, i, k
     character(len=160) :: l
-    head(1) = 'variable correlation table: '//str(self%n_elements)//' elements, '//str(self%n_unknowns())// &
+    head(1) = 'variable correlation table: '//str(self%n_elements())//' elements, '//str(self%n_unknowns())// &
               ' global unknowns, half-bandwidth '//str(self%band())
     l = '  element :'
     do k = 1, 2
@@ -45,7 +45,7 @@ contains
       end do
     end do
     head(2) = trim(l)//'   (global unknown; 0 = held at zero; RX..RZ global or, at a spherical end, local)'
-    do e = 1, self%n_elements
+    do e = 1, self%n_elements()
       write(rows(e), '(2x,i7,a,20i5)') e, ' :', self%unknowns(e)
     end do
     call self%table_lines(head, rows, 22, lines)

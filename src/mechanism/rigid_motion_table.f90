@@ -18,7 +18,10 @@ module rigid_motion_table
   private
   public :: motion_table_t
 
+  !> The table's points, rates and turns hold together: private, read
+  !> through motion_at only.
   type :: motion_table_t
+    private
     integer :: n_table = 0                        !< intervals per revolution
     real(dp) :: theta_start = 0.0_dp              !< crank angle of the first table point
     real(dp), allocatable :: p(:, :, :)           !< (3, 0:n_table, element): X1, Y1, phi
@@ -26,8 +29,8 @@ module rigid_motion_table
     real(dp), allocatable :: ddp(:, :, :)         !< d2/dtheta2
     real(dp), allocatable :: phi_per_turn(:)      !< phi gained per crank revolution (0 or +-2 pi)
   contains
-    procedure :: build
-    procedure :: motion_at
+    procedure, public :: build
+    procedure, public :: motion_at
   end type motion_table_t
 
 contains

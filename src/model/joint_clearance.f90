@@ -49,7 +49,7 @@ contains
     integer, intent(in) :: e, node
     type(clearance_joint_t), intent(inout) :: cj
     type(error_t), intent(inout) :: err
-    call table%split_translations(e, 1 + table%node_dofs*(node - 1), &
+    call table%split_translations(e, 1 + table%node_dofs()*(node - 1), &
                                   ['J'//str(cj%joint)//' U journal', 'J'//str(cj%joint)//' W journal'], &
                                   cj%bearing, cj%journal, err)
     if (err%failed()) then

@@ -88,7 +88,7 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: qdd(:)
-    real(dp) :: acc(model%n), r(model%table%element_dofs)
+    real(dp) :: acc(model%n), r(model%table%element_dofs())
     integer :: k, base, e, j
     if (present(qdd)) then
       acc = qdd
@@ -102,11 +102,11 @@ contains
     end if
     do k = 1, size(self%ends)
       call model%element_joint_force(self%ends(k)%element, t, q, qd, acc, r)
-      base = model%table%node_dofs*(self%ends(k)%node - 1)
+      base = model%table%node_dofs()*(self%ends(k)%node - 1)
       self%ends(k)%force = r(base + 1:base + 2)
       self%ends(k)%moment = r(base + 3)
     end do
-    do k = 1, size(model%cw%element)
+    do k = 1, model%cw%count()
       call add_counterweight(self, model, k, q, qd, acc)
     end do
     ! ground or guide on joint j: G = sum of the joint's forces on its link
@@ -117,7 +117,7 @@ contains
       self%support(1:2, self%ends(k)%joint) = self%support(1:2, self%ends(k)%joint) + self%ends(k)%force
       self%support(3, self%ends(k)%joint) = self%support(3, self%ends(k)%joint) + self%ends(k)%moment
     end do
-    do k = 1, size(model%joint_mass%mass)
+    do k = 1, model%joint_mass%count()
       e = model%joint_mass%element(k)
       j = joint_at(self, e, model%joint_mass%node(k))
       if (j == 0) cycle
@@ -177,7 +177,7 @@ contains
     type(mechanism_model_t), intent(in) :: model
     integer, intent(in) :: e, node
     real(dp), intent(in) :: qdd(:)
-    real(dp) :: a(2), c, s, qe(model%table%element_dofs)
+    real(dp) :: a(2), c, s, qe(model%table%element_dofs())
     type(rigid_state_t) :: rb
     rb = model%rb(e)
     a = [rb%x1_dd, rb%y1_dd]
@@ -187,6 +187,6 @@ contains
       a = a + model%el(e)%length*[-rb%phi_dd*s - rb%phi_d**2*c, rb%phi_dd*c - rb%phi_d**2*s]
     end if
     qe = model%table%gather(e, qdd)
-    a = a + qe(model%table%node_dofs*(node - 1) + 1:model%table%node_dofs*(node - 1) + 2)
+    a = a + qe(model%table%node_dofs()*(node - 1) + 1:model%table%node_dofs()*(node - 1) + 2)
   end function node_acceleration
 end module joint_reactions

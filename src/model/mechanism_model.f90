@@ -213,8 +213,8 @@ contains
                              axial_dofs=mold%axial_dofs())
     if (err%failed()) return
 
-    allocate(self%el(self%table%n_elements), source=mold)
-    allocate(self%rb(self%table%n_elements))
+    allocate(self%el(self%table%n_elements()), source=mold)
+    allocate(self%rb(self%table%n_elements()))
     do k = 1, mech%n_links
       associate (lk => mech%links(k))
         do e = lk%first_element, lk%first_element + lk%n_elements - 1
@@ -235,7 +235,7 @@ contains
       m = self%kin%element_motion_global(mech%links(k)%first_element)
       block
         type(sliding_link_t) :: sl
-        call sliding_link_init(sl, mech, k, m%length, effects, beta, self%table%node_dofs, err)
+        call sliding_link_init(sl, mech, k, m%length, effects, beta, self%table%node_dofs(), err)
         if (err%failed()) return
         if (sl%carrier_element > 0) sl%carrier_length = self%el(sl%carrier_element)%length
         self%slide = [self%slide, sl]
@@ -262,7 +262,7 @@ contains
     integer :: k, e, g
     real(dp) :: c, arm(2)
     if (new_mass) call add_counterweight_mass(self, self%mass_band, .true.)
-    do k = 1, size(self%cw%element)
+    do k = 1, self%cw%count()
       e = self%cw%element(k)
       g = self%table%unknown(3, e)
       if (g == 0) cycle
@@ -278,9 +278,9 @@ contains
     type(mechanism_model_t), intent(in) :: self
     integer, intent(in) :: k
     real(dp), intent(in) :: psi
-    real(dp) :: arm(2)
-    arm = [cos(psi)*self%cw%moment(1, k) - sin(psi)*self%cw%moment(2, k), &
-           sin(psi)*self%cw%moment(1, k) + cos(psi)*self%cw%moment(2, k)]
+    real(dp) :: arm(2), mc(2)
+    mc = self%cw%moment(k)
+    arm = [cos(psi)*mc(1) - sin(psi)*mc(2), sin(psi)*mc(1) + cos(psi)*mc(2)]
   end function counterweight_arm
 
   !> J on the slope's diagonal: dense (band = F) or lower band storage.
@@ -289,7 +289,7 @@ contains
     real(dp), intent(inout) :: mass(:, :)
     logical, intent(in) :: band
     integer :: k, e, g
-    do k = 1, size(self%cw%element)
+    do k = 1, self%cw%count()
       e = self%cw%element(k)
       g = self%table%unknown(3, e)
       if (g == 0) cycle
@@ -322,7 +322,7 @@ contains
     integer, intent(out) :: g(2)
     real(dp), intent(out) :: c(2)
     integer :: first
-    first = 1 + self%table%node_dofs*(node - 1)
+    first = 1 + self%table%node_dofs()*(node - 1)
     g = self%table%unknowns_of([first, first + 1], e)
     c = self%table%coefficients_of([first, first + 1], e)
   end subroutine node_translation_dofs
@@ -347,20 +347,18 @@ contains
     character(len=:), allocatable :: resolved
     self%moving = .false.
     allocate(self%loads(0), self%slide(0))
-    allocate(self%joint_mass%mass(0), self%joint_mass%element(0), self%joint_mass%node(0))
-    allocate(self%cw%element(0), self%cw%mass(0), self%cw%inertia(0), self%cw%moment(2, 0))
     call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
     call self%table%build(n_elem, ends, err, axial_dofs=mold%axial_dofs())
     if (err%failed()) return
-    if (size(specs) /= self%table%n_elements .or. size(states) /= self%table%n_elements) then
+    if (size(specs) /= self%table%n_elements() .or. size(states) /= self%table%n_elements()) then
       call err%set('flexible model', 'need one element spec and rigid state per element')
       return
     end if
-    allocate(self%el(self%table%n_elements), source=mold)
+    allocate(self%el(self%table%n_elements()), source=mold)
     self%rb = states
-    do e = 1, self%table%n_elements
+    do e = 1, self%table%n_elements()
       call beam_element_init(self%el(e), specs(e)%length, specs(e)%width, specs(e)%depth, specs(e)%material, &
                              effects, err, damping_beta=beta)
       if (err%failed()) return
@@ -376,7 +374,7 @@ contains
     call self%size_state(self%table%n_unknowns(), self%table%band())
     if (allocated(self%work_me)) deallocate(self%work_me, self%work_ke, self%work_fe, self%work_qe, self%work_qde)
     if (allocated(self%frame_basis)) deallocate(self%frame_basis)
-    associate(nd => self%table%element_dofs)
+    associate(nd => self%table%element_dofs())
       allocate(self%work_me(nd, nd), self%work_ke(nd, nd), self%work_fe(nd), self%work_qe(nd), self%work_qde(nd))
     end associate
     self%mass_constant_in_q = all([(beam_mass_constant_in_q(self%el(e)), e = 1, size(self%el))])
@@ -397,7 +395,7 @@ contains
     logical :: symmetric
     self%frame_tables = .false.
     symmetric = .true.
-    if (self%table%element_dofs /= 8 .or. .not. self%mass_constant_in_q) return
+    if (self%table%element_dofs() /= 8 .or. .not. self%mass_constant_in_q) return
     do e = 1, size(self%el)
       if (.not. beam_linear_strain(self%el(e))) return
     end do
@@ -472,7 +470,7 @@ contains
     class(mechanism_model_t), intent(in) :: self
     integer, intent(in) :: e
     real(dp), intent(in) :: q(:)
-    real(dp) :: qe(self%table%element_dofs)
+    real(dp) :: qe(self%table%element_dofs())
     integer :: k
     do k = 1, size(self%slide)
       if (self%slide(k)%element /= e) cycle
@@ -636,7 +634,7 @@ contains
     logical, intent(in) :: new_mass
     integer :: k, i, g(2), e
     real(dp) :: c(2), a(2), m
-    do k = 1, size(self%joint_mass%mass)
+    do k = 1, self%joint_mass%count()
       e = self%joint_mass%element(k)
       m = self%joint_mass%mass(k)
       call node_translation_dofs(self, e, self%joint_mass%node(k), g, c)
@@ -654,7 +652,7 @@ contains
     class(mechanism_model_t), intent(inout) :: self
     real(dp), intent(in) :: q(:)
     real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
-    real(dp), dimension(self%table%element_dofs, self%table%element_dofs) :: me, ke
+    real(dp), dimension(self%table%element_dofs(), self%table%element_dofs()) :: me, ke
     integer :: e, i, g(2)
     real(dp) :: c(2)
     mass = 0.0_dp
@@ -666,7 +664,7 @@ contains
       call self%table%scatter_add_matrix(e, ke, stiff)
     end do
     call add_sliding_matrices(self, q, mass, stiff, -1)
-    do e = 1, size(self%joint_mass%mass)
+    do e = 1, self%joint_mass%count()
       call node_translation_dofs(self, self%joint_mass%element(e), self%joint_mass%node(e), g, c)
       do i = 1, 2
         if (g(i) > 0) mass(g(i), g(i)) = mass(g(i), g(i)) + self%joint_mass%mass(e)*c(i)**2
@@ -711,7 +709,7 @@ contains
       call self%table%add_newton_bands(e, self%work_me, self%work_ke, kd, mass, stiff)
     end do
     call add_sliding_matrices(self, q, mass, stiff, kd)
-    do e = 1, size(self%joint_mass%mass)
+    do e = 1, self%joint_mass%count()
       call node_translation_dofs(self, self%joint_mass%element(e), self%joint_mass%node(e), g, c)
       do i = 1, 2
         if (g(i) > 0) mass(1, g(i)) = mass(1, g(i)) + self%joint_mass%mass(e)*c(i)**2
@@ -817,7 +815,7 @@ contains
         where (self%clearance(m)%journal > p) self%clearance(m)%journal = self%clearance(m)%journal + 2
       end do
     end do
-    do k = 1, size(self%cw%element)
+    do k = 1, self%cw%count()
       ! a counterweight turns about a fixed pivot (register_counterweights)
       if (any(self%table%unknowns_of([1, 2], self%cw%element(k)) > 0)) then
         call err%set('clearance', 'a joint clearance at a counterweight''s pivot is not modelled (the '// &
@@ -868,7 +866,7 @@ contains
     type(mechanism_model_t), intent(inout) :: self
     integer, intent(in) :: e, node
     real(dp), intent(in) :: q(:), moment
-    real(dp) :: gen(self%table%element_dofs)
+    real(dp) :: gen(self%table%element_dofs())
     call beam_point_load(self%el(e), self%table%gather(e, q), self%rb(e)%phi, real(node - 1, dp), [0.0_dp, 0.0_dp], &
                          moment, gen)
     call self%table%scatter_add(e, gen, self%force)
@@ -911,7 +909,7 @@ contains
     real(dp), intent(in) :: t, q(:), qd(:)
     real(dp), intent(out) :: kinetic, strain
     integer :: e
-    real(dp) :: qe(self%table%element_dofs), ke_s, se_s
+    real(dp) :: qe(self%table%element_dofs()), ke_s, se_s
     call self%set_time(t)
     kinetic = 0.0_dp
     strain = 0.0_dp
@@ -926,7 +924,7 @@ contains
       kinetic = kinetic + beam_kinetic_energy(self%el(e), qe, self%table%gather(e, qd), self%rb(e))
       strain = strain + beam_strain_energy(self%el(e), qe, self%rb(e)%phi)
     end do
-    do e = 1, size(self%joint_mass%mass)
+    do e = 1, self%joint_mass%count()
       block
         integer :: g(2), i
         real(dp) :: c(2), v(2), cph, sph
@@ -993,7 +991,7 @@ contains
     real(dp), intent(in) :: t, q(:)
     real(dp), intent(inout) :: f(:)
     real(dp), intent(inout), optional :: jac(:, :)
-    real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
+    real(dp) :: gen(self%table%element_dofs()), dgen(self%table%element_dofs(), self%table%element_dofs()), fac
     integer :: k, e
     do k = 1, size(self%loads)
       e = self%loads(k)%element
@@ -1071,8 +1069,8 @@ contains
     integer, intent(in) :: e
     real(dp), intent(in) :: t, q(:), qd(:), qdd(:)
     real(dp), intent(out) :: r(:)
-    real(dp) :: me(self%table%element_dofs, self%table%element_dofs), fe(self%table%element_dofs), qe(size(r))
-    real(dp) :: gen(self%table%element_dofs), dgen(self%table%element_dofs, self%table%element_dofs), fac
+    real(dp) :: me(self%table%element_dofs(), self%table%element_dofs()), fe(self%table%element_dofs()), qe(size(r))
+    real(dp) :: gen(self%table%element_dofs()), dgen(self%table%element_dofs(), self%table%element_dofs()), fac
     type(element_eval_info_t) :: info
     integer :: k
     qe = self%table%gather(e, q)

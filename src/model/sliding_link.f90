@@ -159,7 +159,7 @@ contains
                             dot_product(d, u), dot_product(dd, u), dot_product(ddd, u) + r%phi_d*dot_product(dd, n))
       call table%element_map(sl%element, r%phi, r%phi_d, r%phi_dd, sl%ng, sl%c0, sl%c1, sl%c2)
     end associate
-    sl%glob(1:sl%ng) = table%glob(1:sl%ng, sl%element)
+    sl%glob(1:sl%ng) = table%globals_of(sl%element)
   end subroutine sliding_link_set_state
 
   !> Element DOFs from the global displacements (current map).

@@ -98,7 +98,7 @@ contains
     if (err%failed()) return
     self%omega = mech%driver%omega
 
-    allocate(self%el(self%table%n_elements), self%fs(self%table%n_elements))
+    allocate(self%el(self%table%n_elements()), self%fs(self%table%n_elements()))
     call place_joint_masses(mech, pm)
     do k = 1, mech%n_links
       associate (lk => mech%links(k))
@@ -110,8 +110,8 @@ contains
             call err%add_context('link '''//trim(lk%name)//'''')
             return
           end if
-          masses(1) = sum(pm%mass, mask=pm%element == e .and. pm%node == 1)
-          masses(2) = sum(pm%mass, mask=pm%element == e .and. pm%node == 2)
+          masses(1) = pm%mass_at(e, 1)
+          masses(2) = pm%mass_at(e, 2)
           call tennant_element_init(self%el(e), m%length, es, ramberg_osgood_t(lk%e1, lk%e2, lk%m, lk%rho), opt, &
                                     err, node_mass=masses, sliding=lk%sliding, fibre_ratio=lk%fibre/(0.5_dp*lk%h))
           if (err%failed()) then
@@ -145,9 +145,9 @@ contains
     self%moving = .false.
     call self%table%build(n_elem, ends, err, shear_dofs=opt%shear)
     if (err%failed()) return
-    allocate(self%el(self%table%n_elements))
+    allocate(self%el(self%table%n_elements()))
     self%fs = states
-    do e = 1, self%table%n_elements
+    do e = 1, self%table%n_elements()
       call tennant_element_init(self%el(e), lengths(e), sections, materials(e), opt, err)
       if (err%failed()) return
     end do
@@ -160,7 +160,7 @@ contains
     type(steady_model_t), intent(inout) :: self
     integer :: ne
     self%n = self%table%n_unknowns()
-    ne = self%table%n_elements
+    ne = self%table%n_elements()
     allocate(self%cm(mx, mx, ne), self%cmd(mx, mx, ne), self%cmdd(mx, mx, ne), self%ng(ne))
     self%cm = 0.0_dp
     self%cmd = 0.0_dp
@@ -307,7 +307,7 @@ contains
         call self%table%scatter_add(e, fe, force)
       end if
     end do
-    if (allocated(self%cw%element)) call add_counterweights(self, mass, force)
+    if (self%cw%count() > 0) call add_counterweights(self, mass, force)
   end subroutine model_linear_terms
 
   !> Lagrange's equation of the end slope w_x of a counterweight's link gets
@@ -318,7 +318,7 @@ contains
     real(dp), intent(inout) :: mass(:, :), force(:)
     real(dp) :: me(tennant_max_dof, tennant_max_dof), fe(tennant_max_dof)
     integer :: k, e
-    do k = 1, size(self%cw%element)
+    do k = 1, self%cw%count()
       e = self%cw%element(k)
       me = 0.0_dp
       fe = 0.0_dp
@@ -339,7 +339,7 @@ contains
     integer :: ng
     integer :: g(mx)
     ng = self%ng(e)
-    g(1:ng) = self%table%glob(1:ng, e)
+    g(1:ng) = self%table%globals_of(e)
     associate (c0 => self%cm(1:nd, 1:ng, e), c1 => self%cmd(1:nd, 1:ng, e), c2 => self%cmdd(1:nd, 1:ng, e), &
                m => me(1:nd, 1:nd), c => ce(1:nd, 1:nd), k => ke(1:nd, 1:nd))
       mass(g(1:ng), g(1:ng)) = mass(g(1:ng), g(1:ng)) + matmul(transpose(c0), matmul(m, c0))
@@ -360,7 +360,7 @@ contains
     integer :: ng
     if (self%table%is_sleeve_element(e)) then
       ng = self%ng(e)
-      qe = matmul(self%cm(1:self%el(e)%nd, 1:ng, e), q(self%table%glob(1:ng, e)))
+      qe = matmul(self%cm(1:self%el(e)%nd, 1:ng, e), q(self%table%globals_of(e)))
     else
       qe = self%table%gather(e, q)
     end if
@@ -401,7 +401,7 @@ contains
       info%beyond_peak = info%beyond_peak .or. ei%beyond_peak
       if (self%table%is_sleeve_element(e)) then
         ng = self%ng(e)
-        g(1:ng) = self%table%glob(1:ng, e)
+        g(1:ng) = self%table%globals_of(e)
         associate (c0 => self%cm(1:nd, 1:ng, e), gg => g(1:ng))
           fn(gg) = fn(gg) + matmul(transpose(c0), fe(1:nd))
           if (present(secant)) secant(gg, gg) = secant(gg, gg) + matmul(transpose(c0), matmul(ks(1:nd, 1:nd), c0))

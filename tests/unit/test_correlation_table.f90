@@ -52,8 +52,8 @@ contains
     integer :: i
     call fourbar(1, t, err, axial=.true.)
     call assert_true(.not. err%failed(), err%text())
-    call assert_equal(t%node_dofs, 6, 'six DOFs per node')
-    call assert_equal(t%element_dofs, 12, 'twelve per element')
+    call assert_equal(t%node_dofs(), 6, 'six DOFs per node')
+    call assert_equal(t%element_dofs(), 12, 'twelve per element')
     call assert_equal(t%n_unknowns(), 27, 'global unknowns')
     call assert_true(all(t%unknowns_of([1, 2, 3], 1) == 0) .and. all(t%unknowns_of([4, 5, 6], 1) > 0), &
                      'A: U = W = th = 0; m, ux, uxx free')
@@ -153,7 +153,7 @@ contains
       call assert_true(all(t%unknowns_of([5, 6], 2*n_each) == t%unknowns_of([5, 6], 3*n_each)), &
                        'C shared by coupler and rocker ends')
       seen = 0
-      do e = 1, t%n_elements
+      do e = 1, t%n_elements()
         do k = 1, 8
           if (t%unknown(k, e) > 0) seen(t%unknown(k, e)) = 1
         end do
@@ -174,7 +174,7 @@ contains
     do i = 1, t%n_unknowns()
       qg(i) = sin(1.3_dp*i)
     end do
-    do e = 1, t%n_elements
+    do e = 1, t%n_elements()
       fe = [(cos(0.7_dp*i + e), i = 1, 8)]
       fg = 0.0_dp
       call t%scatter_add(e, fe, fg)
@@ -262,7 +262,7 @@ contains
     ends(:, 3) = [link_end_t(joint_ground_pin, 4), link_end_t(joint_pin, 3)]
     call tt%build([1, 1, 1], ends, err, shear_dofs=.true.)
     call assert_true(.not. err%failed(), 'build')
-    call assert_equal(tt%element_dofs, 14, 'element DOFs')
+    call assert_equal(tt%element_dofs(), 14, 'element DOFs')
     call assert_equal(tt%n_unknowns(), 22, 'unknowns')
     ! node A (clamp): U W th a held; m psi lam own
     call assert_true(all(tt%unknowns_of([1, 2, 3, 5], 1) == 0) .and. all(tt%unknowns_of([4, 6, 7], 1) > 0), 'clamp')
@@ -285,7 +285,7 @@ contains
     type(error_t) :: err
     type(link_end_t) :: ends(2, 2)
     real(dp) :: c0(16, 16), c1(16, 16), c2(16, 16), q(8), qe(8), phi, us, ws, s, uw(2), qg(16)
-    integer :: ng, e, i
+    integer :: ng, e, i, g(16), sleeve(3)
     ends(:, 1) = [link_end_t(joint_clamp, 1), link_end_t(joint_pin, 2)]
     ends(:, 2) = [link_end_t(joint_ground_pin, 3), link_end_t(joint_sleeve, 2, carried=.true.)]
     call tt%build([1, 1], ends, err)
@@ -295,17 +295,20 @@ contains
     phi = 0.7_dp
     call tt%element_map(e, phi, 3.0_dp, -5.0_dp, ng, c0, c1, c2)
     q = [(0.01_dp*i, i = 1, 8)]
+    call assert_equal(size(tt%globals_of(e)), ng, 'element_map''s columns')
+    g(1:ng) = tt%globals_of(e)
     do i = 1, ng
-      qg(i) = q(tt%glob(i, e))
+      qg(i) = q(g(i))
     end do
     qe = matmul(c0(1:8, 1:ng), qg(1:ng))
-    us = q(tt%sleeve_u(e))
-    ws = q(tt%sleeve_w(e))
-    s = q(tt%sleeve_s(e))
+    sleeve = tt%sleeve_unknowns(e)
+    s = q(sleeve(1))
+    us = q(sleeve(2))
+    ws = q(sleeve(3))
     uw = [cos(phi)*qe(5) + sin(phi)*qe(6), -sin(phi)*qe(5) + cos(phi)*qe(6)]
     call assert_close(uw(1), s, 1.0e-15_dp, 'axial = s')
     call assert_close(uw(2), -sin(phi)*us + cos(phi)*ws, 1.0e-15_dp, 'transverse = sleeve across the link')
-    call assert_equal(tt%sleeve_u(e), tt%unknown(5, 1), 'the sleeve moves with the crank pin')
+    call assert_equal(sleeve(2), tt%unknown(5, 1), 'the sleeve moves with the crank pin')
   end subroutine test_sleeve_carried
 
   subroutine test_sleeve_ground()
@@ -313,16 +316,17 @@ contains
     type(error_t) :: err
     type(link_end_t) :: ends(2, 2)
     real(dp) :: c0(16, 16), c1(16, 16), c2(16, 16), phi
-    integer :: ng, js
+    integer :: ng, js, sleeve(3)
     ends(:, 1) = [link_end_t(joint_clamp, 1), link_end_t(joint_pin, 2)]
     ends(:, 2) = [link_end_t(joint_pin, 2), link_end_t(joint_sleeve, 3, carried=.false.)]
     call tt%build([1, 1], ends, err)
     call assert_true(.not. err%failed(), 'build')
     phi = -1.2_dp
     call tt%element_map(2, phi, 0.0_dp, 0.0_dp, ng, c0, c1, c2)
-    js = findloc(tt%glob(1:ng, 2), tt%sleeve_s(2), dim=1)
+    sleeve = tt%sleeve_unknowns(2)
+    js = findloc(tt%globals_of(2), sleeve(1), dim=1)
     call assert_all_close(c0(5:6, js), [cos(phi), sin(phi)], 0.0_dp, 1.0e-15_dp, '(U2, W2) = s u(phi)')
-    call assert_equal(tt%sleeve_u(2), 0, 'no sleeve translation unknowns')
+    call assert_true(all(sleeve(2:3) == 0), 'no sleeve translation unknowns')
     call assert_equal(ng, 5, 'globals: B U, B W, th1, s, th2')
   end subroutine test_sleeve_ground
 

@@ -69,7 +69,7 @@ contains
     call assert_true(t%band() <= kd0 + 2, 'half-bandwidth grows by at most two')
     call assert_true(index(t%label_of(cj%journal(1)), 'journal') > 0, 'labelled')
     call assert_equal(size(t%labels()), 12, 'one label per unknown')
-    do e = 1, t%n_elements       ! every unknown 1..12 used exactly where expected
+    do e = 1, t%n_elements()       ! every unknown 1..12 used exactly where expected
       call assert_true(maxval(t%unknowns(e)) <= 12, 'map within the new size')
     end do
     call random_number(qg)

@@ -64,8 +64,8 @@ contains
       if (model%table%is_sleeve_element(e)) then
         ng = model%ng(e)
         ke = ke + tennant_kinetic_energy(model%el(e), model%element_q(e, q), &
-          matmul(model%cm(1:nd, 1:ng, e), qd(model%table%glob(1:ng, e))) + &
-          matmul(model%cmd(1:nd, 1:ng, e), q(model%table%glob(1:ng, e))), model%fs(e))
+          matmul(model%cm(1:nd, 1:ng, e), qd(model%table%globals_of(e))) + &
+          matmul(model%cmd(1:nd, 1:ng, e), q(model%table%globals_of(e))), model%fs(e))
       else
         ke = ke + tennant_kinetic_energy(model%el(e), model%element_q(e, q), model%element_q(e, qd), model%fs(e))
       end if

@@ -249,7 +249,7 @@ contains
     call make_model(beam_input('ground_pin', n), element_effects_t(stretching=.true.), 0.0_dp, model, ok, &
                     formulation=formulation)
     if (.not. ok) return
-    mid = model%table%unknown(model%table%node_dofs + 2, n/2)    ! W at the end of element n/2: mid-span
+    mid = model%table%unknown(model%table%node_dofs() + 2, n/2)    ! W at the end of element n/2: mid-span
     call mode_start(model, 1, a_over_r*radius_gyration, omega, shapes, y, err, at=mid)
     p%kind = probe_modal
     allocate(p%c(model%n))
