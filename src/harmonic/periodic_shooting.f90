@@ -273,7 +273,11 @@ contains
     logical :: ok
     n = self%n
     n2 = 2*self%n
-    if (.false.) o = ml
+    if (ml < n2 - 1 .or. mu < n2 - 1) then
+      call self%fail(t, 'the band (ml = '//str(ml)//', mu = '//str(mu)//') does not hold a '//str(n2)//' x '// &
+                     str(n2)//' block of the flow''s Jacobian')
+      return
+    end if
     call jacobian_blocks(self, t, y, a, b, ok)
     if (.not. ok) return
     nb = size(y)/n2

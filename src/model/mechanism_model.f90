@@ -58,7 +58,7 @@ module mechanism_model
 
   !> DLSODE's Newton matrix of a turning mechanism: at most this many steps
   !> old, and re-formed earlier when the chord iteration's measured
-  !> contraction factor would pass newton_contraction (model_jacobian_steps).
+  !> contraction factor would pass newton_contraction (set_newton_ageing).
   integer, parameter :: newton_age_limit = 5
   real(dp), parameter :: newton_contraction = 0.2_dp
 
@@ -110,8 +110,6 @@ module mechanism_model
     procedure :: newton_factor => model_newton_factor
     procedure :: damping_beta
     procedure :: crank_angle
-    procedure :: jacobian_steps => model_jacobian_steps
-    procedure :: jacobian_contraction => model_jacobian_contraction
     procedure :: assemble_band
     procedure :: set_time
     procedure, private :: build_motion_table
@@ -206,6 +204,7 @@ contains
     type(motion_t) :: m
 
     self%moving = .true.
+    call set_newton_ageing(self, abs(mech%driver%omega) > 0.0_dp)
     call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
     self%formulation = resolved
@@ -346,6 +345,7 @@ contains
     class(planar_element_t), allocatable :: mold
     character(len=:), allocatable :: resolved
     self%moving = .false.
+    call set_newton_ageing(self, .false.)
     allocate(self%loads(0), self%slide(0))
     call resolve_formulation(formulation, effects, mold, resolved, err)
     if (err%failed()) return
@@ -762,29 +762,17 @@ contains
   !> Jacobians at 32 elements per link retries after a failed iteration; a
   !> fixed 5 still let the iteration fail at 32.  So the age limit adapts: at
   !> most `newton_age_limit` steps, fewer when the measured contraction would
-  !> pass `newton_contraction` (model_jacobian_contraction, module
-  !> lsode_newton).  A longer limit (10) saves matrices on coarse meshes but
-  !> costs 8-17 % more steps with the rates in the error test (atol_rate =
-  !> atol, the deck default).  A structure that does not turn keeps DLSODE's 20.
-  integer function model_jacobian_steps(self) result(steps)
-    class(mechanism_model_t), intent(in) :: self
-    steps = 0
-    if (turning(self)) steps = newton_age_limit
-  end function model_jacobian_steps
-
-  !> The bound on the chord iteration's contraction factor for a turning
-  !> mechanism (model_jacobian_steps); 0 (DLSODE's fixed limit) otherwise.
-  real(dp) function model_jacobian_contraction(self) result(theta)
-    class(mechanism_model_t), intent(in) :: self
-    theta = 0.0_dp
-    if (turning(self)) theta = newton_contraction
-  end function model_jacobian_contraction
-
-  pure logical function turning(self)
-    type(mechanism_model_t), intent(in) :: self
-    turning = .false.
-    if (self%moving) turning = abs(self%kin%mech%driver%omega) > 0.0_dp
-  end function turning
+  !> pass `newton_contraction` (ode_system_t's jacobian_steps and
+  !> jacobian_contraction, module lsode_newton).  A longer limit (10) saves
+  !> matrices on coarse meshes but costs 8-17 % more steps with the rates in
+  !> the error test (atol_rate = atol, the deck default).  A structure that
+  !> does not turn keeps DLSODE's 20.
+  subroutine set_newton_ageing(self, turning)
+    type(mechanism_model_t), intent(inout) :: self
+    logical, intent(in) :: turning
+    self%jacobian_steps = merge(newton_age_limit, 0, turning)
+    self%jacobian_contraction = merge(newton_contraction, 0.0_dp, turning)
+  end subroutine set_newton_ageing
 
   ! ------------------------------------------------------------------ clearance joints
 

@@ -74,10 +74,10 @@ contains
     nje = nje + 1
     ierpj = 0
     jcur = 1
-    steps = active%jacobian_steps()          ! DLSODE resets MSBP to 20 for every new problem
+    steps = active%jacobian_steps          ! DLSODE resets MSBP to 20 for every new problem
     if (steps > 0) msbp = steps
     longest_age = merge(steps, 20, steps > 0)
-    theta_bound = active%jacobian_contraction()
+    theta_bound = active%jacobian_contraction
     if (nst == 0) then                       ! a new problem
       growth = 0.0_dp
       fresh = 0.0_dp

@@ -52,17 +52,26 @@ module lsode_solver
     'run is stiff for its method (use bdf) or needs a shorter output interval'
 
   !> A first-order system y' = f(t, y).  Extend it to carry the model.
+  !> The system's own Newton matrix (has_newton_matrix, newton_factor,
+  !> newton_solve) may set how long DLSODE keeps one: jacobian_steps, the most
+  !> steps with one matrix (DLSODE's MSBP, set by our DPREPJ; 0: DLSODE's 20;
+  !> a system whose Jacobian ages fast, as a turning mechanism's, asks for
+  !> fewer), and jacobian_contraction, the contraction factor of the chord
+  !> iteration the matrix may reach before it is re-formed (0: the age limit
+  !> alone; when positive our DPREPJ/DSOLSY measure the contraction and
+  !> shorten the age limit, jacobian_steps being then the longest age; module
+  !> lsode_newton).  A model sets both when it is built.
   type, abstract :: ode_system_t
     type(error_t) :: err          !< set by rhs/jacobian when the model cannot go on
     real(dp) :: t_failed = 0.0_dp !< time at which err was first set
+    integer :: jacobian_steps = 0
+    real(dp) :: jacobian_contraction = 0.0_dp
   contains
     procedure(rhs_interface), deferred :: rhs
     procedure :: jacobian => jacobian_not_provided
     procedure :: has_newton_matrix
     procedure :: newton_factor => newton_factor_not_provided
     procedure :: newton_solve => newton_solve_not_provided
-    procedure :: jacobian_steps
-    procedure :: jacobian_contraction
     procedure :: fail
     procedure :: stop_time
   end type ode_system_t
@@ -162,21 +171,28 @@ contains
 
   ! ------------------------------------------------------------------ model side
 
+  ! The defaults below refuse: the arguments the binding's interface gives
+  ! them and they do not need are named in an empty associate block (the
+  ! project's idiom for an argument a fixed interface imposes: no warning,
+  ! no code).
+
   !> Default: a model that does not supply an analytic Jacobian.
   subroutine jacobian_not_provided(self, t, y, ml, mu, pd)
     class(ode_system_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:)
     integer, intent(in) :: ml, mu
     real(dp), intent(inout) :: pd(:, :)
-    if (.false.) pd(1, 1) = t + y(1) + ml + mu   ! arguments intentionally unused
+    associate (unused_y => y, unused_ml => ml, unused_mu => mu, unused_pd => pd)
+    end associate
     call self%fail(t, 'this model supplies no analytic Jacobian; use MF = 22 or 25')
   end subroutine jacobian_not_provided
 
   !> Default: no Newton matrix of its own (DLSODE forms I - h*el0*J from J).
   logical function has_newton_matrix(self)
     class(ode_system_t), intent(in) :: self
+    associate (unused_self => self)
+    end associate
     has_newton_matrix = .false.
-    if (.false.) has_newton_matrix = self%err%failed()   ! argument intentionally unused
   end function has_newton_matrix
 
   !> Form and factor P = I - hl0 J at (t, y), hl0 = h*el0 of DLSODE's step;
@@ -185,8 +201,9 @@ contains
     class(ode_system_t), intent(inout) :: self
     real(dp), intent(in) :: t, y(:), hl0
     logical, intent(out) :: ok
+    associate (unused_y => y, unused_hl0 => hl0)
+    end associate
     ok = .false.
-    if (.false.) ok = y(1) + hl0 > 0.0_dp   ! arguments intentionally unused
     call self%fail(t, 'this model supplies no Newton matrix of its own')
   end subroutine newton_factor_not_provided
 
@@ -197,26 +214,6 @@ contains
     x = 0.0_dp
     call self%fail(0.0_dp, 'this model supplies no Newton matrix of its own')
   end subroutine newton_solve_not_provided
-
-  !> Most steps DLSODE takes with one Jacobian (its MSBP, set by our DPREPJ);
-  !> 0: DLSODE's 20.  A system whose Jacobian ages fast (the mechanism
-  !> model's rotates with the rigid-body motion) asks for fewer.
-  integer function jacobian_steps(self)
-    class(ode_system_t), intent(in) :: self
-    jacobian_steps = 0
-    if (.false.) jacobian_steps = merge(1, 0, self%err%failed())   ! argument intentionally unused
-  end function jacobian_steps
-
-  !> The contraction factor of DLSODE's chord iteration that the system's
-  !> Newton matrix may reach before it is re-formed; 0 (the default): DLSODE's
-  !> fixed age limit alone.  When positive, our DPREPJ/DSOLSY measure the
-  !> contraction and shorten the age limit to keep it below this value
-  !> (module lsode_newton; jacobian_steps is then the longest age).
-  real(dp) function jacobian_contraction(self)
-    class(ode_system_t), intent(in) :: self
-    jacobian_contraction = 0.0_dp
-    if (.false.) jacobian_contraction = merge(1.0_dp, 0.0_dp, self%err%failed())   ! argument intentionally unused
-  end function jacobian_contraction
 
   !> Record the first failure of the model at time t.
   subroutine fail(self, t, message)

@@ -65,7 +65,8 @@ subroutine dprepj(neq, y, yh, nyh, ewt, ftem, savf, wm, iwm, f, jac)
   integer, intent(inout) :: iwm(*)
   procedure(rhs_f77) :: f
   procedure(jac_f77) :: jac
-  if (.false.) y(1) = yh(1, 1)   ! YH: intentionally unused
+  associate (unused_yh => yh(1, 1))
+  end associate
   call prepare_newton_matrix(neq, y, ewt, ftem, savf, wm, iwm, f, jac)
 end subroutine dprepj
 
@@ -77,6 +78,7 @@ subroutine dsolsy(wm, iwm, x, tem)
   real(dp), intent(in) :: wm(*), tem(*)
   integer, intent(in) :: iwm(*)
   real(dp), intent(inout) :: x(*)
-  if (.false.) x(1) = tem(1)     ! TEM: intentionally unused
+  associate (unused_tem => tem(1))
+  end associate
   call solve_newton_matrix(wm, iwm, x)
 end subroutine dsolsy

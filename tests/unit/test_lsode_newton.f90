@@ -28,9 +28,10 @@ module test_lsode_newton_suite
   !> z' = B z with B = [[-a, w], [-w, -b]], so y(t) = R(wt)^T exp(B t) y(0).
   !> Its Newton matrix P = I - hl0 A(t_f) is exact when formed and turns out
   !> of date at a rate proportional to w; it asks for at most 10 steps per
-  !> matrix and a contraction bound `theta` (0: the fixed limit alone).
+  !> matrix (jacobian_steps) and a contraction bound `theta`
+  !> (jacobian_contraction; 0: the fixed limit alone).
   type, extends(ode_system_t) :: turning_t
-    real(dp) :: w = 0.0_dp, a = 1.0e4_dp, b = 1.0_dp, theta = 0.2_dp
+    real(dp) :: w = 0.0_dp, a = 1.0e4_dp, b = 1.0_dp
     real(dp) :: p_inv(2, 2) = 0.0_dp
     integer :: n_factor = 0
   contains
@@ -38,8 +39,6 @@ module test_lsode_newton_suite
     procedure :: has_newton_matrix => turning_has_newton
     procedure :: newton_factor => turning_factor
     procedure :: newton_solve => turning_solve
-    procedure :: jacobian_steps => turning_steps
-    procedure :: jacobian_contraction => turning_contraction
   end type turning_t
 
 contains
@@ -89,16 +88,6 @@ contains
     x(1) = self%p_inv(1, 1)*x1 + self%p_inv(1, 2)*x(2)
     x(2) = self%p_inv(2, 1)*x1 + self%p_inv(2, 2)*x(2)
   end subroutine turning_solve
-
-  integer function turning_steps(self)
-    class(turning_t), intent(in) :: self
-    turning_steps = merge(10, 0, .not. self%err%failed())
-  end function turning_steps
-
-  real(dp) function turning_contraction(self)
-    class(turning_t), intent(in) :: self
-    turning_contraction = self%theta
-  end function turning_contraction
 
   subroutine run_all()
     call run_test('banded_newton_solve_equals_dense_solve_linear_model', test_solve_linear_model)
@@ -343,7 +332,8 @@ contains
     type(error_t) :: err
     real(dp) :: y(2), z(2), b(2, 2), mu, delta, t
     sys%w = w
-    sys%theta = theta
+    sys%jacobian_steps = 10
+    sys%jacobian_contraction = theta
     y = 1.0_dp
     t = 2.0_dp
     call ode%init(2, 0.0_dp, mf_bdf_full_user, 1.0e-6_dp, [1.0e-9_dp], err)
