@@ -118,7 +118,6 @@ module correlation_table
     procedure, public :: build
     procedure, public :: n_links
     procedure, public :: node_dofs
-    procedure, public :: link_of_element
     procedure, public :: first_element
     procedure, public :: globals_of
     procedure, public :: sleeve_unknowns
@@ -811,13 +810,6 @@ contains
     class(correlation_table_t), intent(in) :: self
     node_dofs = self%n_node_dofs
   end function node_dofs
-
-  !> The link element e belongs to.
-  pure integer function link_of_element(self, e)
-    class(correlation_table_t), intent(in) :: self
-    integer, intent(in) :: e
-    link_of_element = self%link_of_el(e)
-  end function link_of_element
 
   !> The first element of link k (k = n_links + 1: one past the last element).
   pure integer function first_element(self, k)

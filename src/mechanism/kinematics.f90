@@ -81,7 +81,6 @@ module kinematics
     procedure :: joint_velocity
     procedure :: joint_acceleration
     procedure :: slide
-    procedure :: active_length
   end type kinematics_t
 
 contains
@@ -910,14 +909,4 @@ contains
     s = 0.0_dp
     if (self%islide(j) > 0) s = [self%q(self%islide(j)), self%qd(self%islide(j)), self%qdd(self%islide(j))]
   end function slide
-
-  !> Active length of link i and its rates (the fixed length for other links).
-  pure function active_length(self, i) result(l)
-    class(kinematics_t), intent(in) :: self
-    integer, intent(in) :: i
-    real(dp) :: l(3)
-    type(motion_t) :: m
-    m = motion_at_fraction(self, i, 0.0_dp, 1)
-    l = [m%length, m%length_d, m%length_dd]
-  end function active_length
 end module kinematics

@@ -20,9 +20,9 @@ module linkage
     tennant_aluminium_rho
   implicit none
   private
-  public :: max_links, max_joints, max_elements_per_link, coordinate_unset
+  public :: max_links, max_joints, coordinate_unset
   public :: joint_pin, joint_ground_pin, joint_clamp, joint_slider_fixed, joint_slider_link, joint_free
-  public :: profile_constant, profile_spinup, branch_open, branch_crossed
+  public :: profile_constant, profile_spinup, branch_open
   public :: mechanism_input_t, input_issue_t, mechanism_t, link_t, joint_t, driver_t
   public :: build_mechanism, driver_angle, joint_type_name
 

@@ -5,7 +5,7 @@ module reference_materials
   implicit none
   private
   public :: tennant_aluminium_e1, tennant_aluminium_e2, tennant_aluminium_m, tennant_aluminium_rho
-  public :: psi_in_pa, mass_density_in_si, default_link_material
+  public :: default_link_material
 
   ! Tennant's "approximating aluminum", section 8.1 (T6, T7): sigma = A eps - B eps^m.
   real(dp), parameter :: tennant_aluminium_e1 = 10.87e6_dp      !< A, lb/in^2

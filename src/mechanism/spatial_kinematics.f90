@@ -34,7 +34,7 @@ module spatial_kinematics
   private
   public :: spatial_fourbar_t, spatial_pose_t, spatial_fourbar_init, spatial_fourbar_solve
   public :: spatial_fourbar_set_universal
-  public :: rocker_angle_closed_form, rotate_about
+  public :: rocker_angle_closed_form
   public :: link_crank, link_coupler, link_rocker
 
   integer, parameter :: link_crank = 1, link_coupler = 2, link_rocker = 3

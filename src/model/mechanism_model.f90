@@ -122,7 +122,7 @@ module mechanism_model
     procedure :: static_equilibrium
     procedure :: element_joint_force
     procedure, private :: add_clearance
-    procedure :: clearance_spin
+    procedure, private :: clearance_spin
     procedure :: element_q
   end type mechanism_model_t
 
