@@ -282,6 +282,7 @@ contains
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), gm_k(:, :)
+    logical, allocatable :: active_k(:)
     integer :: n, mt, k, hess_kind, stalls, escapes, regs, outcome, shifts, i
     real(dp) :: xnorm, snorm, t, mu
     logical :: step_back_method, auto, exact_model, refused, restored
@@ -300,7 +301,7 @@ contains
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
     call self%start(prob, x0, step_back_method, auto, err)
     if (err%failed()) return
-    allocate(s(n), x_new(n), g_new(mt), gm_k(n, n))
+    allocate(s(n), x_new(n), g_new(mt), gm_k(n, n), active_k(size(self%active)))
 
     k = 0
     stalls = 0
@@ -317,7 +318,13 @@ contains
         if (err%failed()) exit outer
         exact_model = hess_kind /= hessian_gauss .and. .not. self%quasi_newton .and. self%regularizations == regs
         gm_k = self%gm
+        active_k = self%active
       else
+        ! the working set of x_k: what the rejected trial added or dropped
+        ! belongs to a point that was not accepted (HS 84: strictly satisfied
+        ! members, added at rejected points, pulled to zero by B11, made
+        ! every later trial worse)
+        self%active = active_k
         ! ---- the filter rejected the step from x_k: G + mu I (Levenberg), mu x10 per rejection
         mu = merge(1.0e-2_dp*max(1.0_dp, maxval([(abs(gm_k(i, i)), i=1, n)])), 10.0_dp*mu, shifts == 1)
         self%gm = gm_k
