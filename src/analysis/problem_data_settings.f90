@@ -10,7 +10,7 @@ module problem_data_settings
   use deck_reader, only: deck_t, invalid_value, group_read_t
   use deck_checks, only: check_real, check_reals, check_integer
   use table_output, only: table_t
-  use deck_problem, only: problem_data_t, is_unset, max_n, max_ineq, max_eq, no_bound
+  use deck_problem, only: problem_data_t, is_unset, max_n, max_ineq, max_eq, no_bound, unset
   implicit none
   private
   public :: read_problem_data, echo_problem_data
@@ -20,11 +20,11 @@ module problem_data_settings
   ! staging variables of &problem_data
   integer :: n, n_ineq, n_eq
   real(dp) :: f_q(max_n, max_n), f_c(max_n), f_0
-  real(dp) :: g_q(max_n, max_n, max_ineq), g_a(max_ineq, max_n), g_b(max_ineq)
-  real(dp) :: h_q(max_n, max_n, max_eq), h_a(max_eq, max_n), h_b(max_eq)
+  real(dp) :: g_q(max_n, max_n, max_ineq), g_a(max_ineq, max_n), g_c(max_n, max_ineq), g_b(max_ineq)
+  real(dp) :: h_q(max_n, max_n, max_eq), h_a(max_eq, max_n), h_c(max_n, max_eq), h_b(max_eq)
   real(dp) :: lower(max_n), upper(max_n), f_star, x_star(max_n)
   character(len=120) :: title
-  namelist /problem_data/ n, f_q, f_c, f_0, n_ineq, g_q, g_a, g_b, n_eq, h_q, h_a, h_b, lower, upper, &
+  namelist /problem_data/ n, f_q, f_c, f_0, n_ineq, g_q, g_c, g_a, g_b, n_eq, h_q, h_c, h_a, h_b, lower, upper, &
                           f_star, x_star, title
 
 contains
@@ -36,7 +36,14 @@ contains
     type(error_t), intent(inout) :: err
     logical :: found
     call stage_from(d)        ! (intent(out): the defaults)
+    g_a = unset               ! given or not: one order per family (one_order)
+    g_c = unset
+    h_a = unset
+    h_c = unset
     call deck%read_group('problem_data', problem_data_group, .true., found, err)
+    if (err%failed()) return
+    call one_order(deck, 'g', g_a, g_c, err)
+    call one_order(deck, 'h', h_a, h_c, err)
     if (err%failed()) return
     d = problem_data_t(n=n, f_q=f_q, f_c=f_c, f_0=f_0, n_ineq=n_ineq, g_q=g_q, g_a=g_a, g_b=g_b, n_eq=n_eq, &
                        h_q=h_q, h_a=h_a, h_b=h_b, lower=lower, upper=upper, f_star=f_star, x_star=x_star, title=title)
@@ -122,6 +129,28 @@ contains
     end subroutine check_family
   end subroutine check_all
 
+  !> The linear terms of one constraint family in the order of the deck's
+  !> other data, c_c(j, k) (the constraint index last, as in c_q(i, j, k)),
+  !> or in the older order c_a(k, j); both in one deck is ambiguous (exit 2).
+  !> On return c_a holds them (entries not given are 0).
+  subroutine one_order(deck, c, a, cc, err)
+    type(deck_t), intent(in) :: deck
+    character(len=1), intent(in) :: c
+    real(dp), intent(inout) :: a(:, :), cc(:, :)
+    type(error_t), intent(inout) :: err
+    logical :: a_given, c_given
+    if (err%failed()) return
+    a_given = .not. all(is_unset(a))
+    c_given = .not. all(is_unset(cc))
+    if (a_given .and. c_given) then
+      call invalid_value(deck, 'problem_data', c//'_a', 'given with '//c//'_c', 'give the linear terms in one ' &
+        //'order: '//c//'_c(j,k) (variable j, constraint k: the order of '//c//'_q(i,j,k)) or '//c//'_a(k,j), not both', err)
+      return
+    end if
+    if (c_given) a = transpose(cc)
+    where (is_unset(a)) a = 0.0_dp
+  end subroutine one_order
+
   !> Echo the coefficients into the output header.
   subroutine echo_problem_data(d, out)
     type(problem_data_t), intent(in) :: d
@@ -140,10 +169,12 @@ contains
     n_ineq = d%n_ineq
     g_q = d%g_q
     g_a = d%g_a
+    g_c = unset
     g_b = d%g_b
     n_eq = d%n_eq
     h_q = d%h_q
     h_a = d%h_a
+    h_c = unset
     h_b = d%h_b
     lower = d%lower
     upper = d%upper

@@ -6,8 +6,9 @@
 !>       f_q(1,1) = 4, f_q(1,2) = 2, ...         ! F = 1/2 x^T Q x + c^T x + f0
 !>       f_c = -8, -6, -4,  f_0 = 9
 !>       n_ineq = 1                              ! g_i = 1/2 x^T Q_i x + a_i^T x - b_i <= 0
-!>       g_a(1,:) = 1, 1, 2,  g_b(1) = 3         !   (g_q(:,:,i) = Q_i, default 0: linear)
-!>       n_eq = 0                                ! h_j = 1/2 x^T Q_j x + a_j^T x - b_j = 0
+!>       g_c(:,1) = 1, 1, 2,  g_b(1) = 3         !   (g_q(:,:,i) = Q_i, default 0: linear;
+!>                                               !   g_c(:,i) = a_i, or g_a(i,:) = a_i, not both)
+!>       n_eq = 0                                ! h_j = 1/2 x^T Q_j x + a_j^T x - b_j = 0 (h_q, h_c, h_b)
 !>       lower = 0, 0, 0                         ! simple bounds (default none: -+1e30)
 !>       f_star = 0.111111111, x_star = ...      ! optional known optimum (summary distance)
 !>       title = 'HS 35 from its coefficients'

@@ -11,7 +11,9 @@
 !> Levenberg step, which for fewer violated constraints than variables is
 !> the shortest step that zeroes the linearised violations.  A step that
 !> does not reduce V is halved (only constraint functions are evaluated:
-!> no analysis, nothing counts in NF).  Trial points stay in the box.
+!> no analysis, nothing counts in NF).  Trial points stay in the box: a
+!> variable on a bound that the step pushes outward is held there and the
+!> step recomputed without it.
 !> Ends when max violation <= feas_tol (ok) or after max_iter steps.
 module feasibility_restoration
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -38,11 +40,12 @@ contains
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: dg(:, :), r(:), a(:, :), y(:), s(:), x_t(:), g_t(:)
     integer, allocatable :: idx(:), ipiv(:)
+    logical, allocatable :: held(:), out(:)
     real(dp) :: v, v_t, mu
-    integer :: i, l, m, mt, halvings
+    integer :: i, l, m, mt, halvings, passes
     m = prob%m
     mt = prob%m + prob%n_eq
-    allocate(dg(prob%n, mt), s(prob%n), g_t(mt))
+    allocate(dg(prob%n, mt), s(prob%n), g_t(mt), held(prob%n), out(prob%n))
     ok = .false.
     call prob%constraint_values(x, g, err)
     if (err%failed()) return
@@ -57,22 +60,37 @@ contains
       if (err%failed()) return
       idx = pack([(i, i=1, mt)], abs(r) > feas_tol)
       l = size(idx)
-      ! (J^T J + mu I) y = r, s = -J y; mu: 1e-8 of the scale (a zero gradient
-      ! of a violated constraint leaves a zero row, not a singular system)
-      a = matmul(transpose(dg(:, idx)), dg(:, idx))
-      mu = 1.0e-8_dp*maxval([(a(i, i), i=1, l)])
-      if (.not. mu > 0.0_dp) return            ! every violated gradient zero: a stationary point of V
-      do i = 1, l
-        a(i, i) = a(i, i) + mu
+      ! a variable on a bound that the step would push out of the box is held
+      ! there (its row of J zeroed) and the step recomputed: projecting the
+      ! free step instead shrinks it to nothing where the violated
+      ! constraints pull against the box (HS 97 from x0 = 0: two variables
+      ! reach their upper bounds, and the projected steps stall)
+      held = .false.
+      do passes = 1, prob%n + 1
+        do i = 1, l
+          where (held) dg(:, idx(i)) = 0.0_dp
+        end do
+        ! (J^T J + mu I) y = r, s = -J y; mu: 1e-8 of the scale (a zero gradient
+        ! of a violated constraint leaves a zero row, not a singular system)
+        a = matmul(transpose(dg(:, idx)), dg(:, idx))
+        mu = 1.0e-8_dp*maxval([(a(i, i), i=1, l)])
+        if (.not. mu > 0.0_dp) return            ! every violated gradient zero: a stationary point of V
+        do i = 1, l
+          a(i, i) = a(i, i) + mu
+        end do
+        y = r(idx)
+        if (allocated(ipiv)) deallocate(ipiv)
+        allocate(ipiv(l))
+        call lu_factor(a, ipiv, err)
+        if (err%failed()) return
+        call lu_solve(a, ipiv, y, err)
+        if (err%failed()) return
+        s = -matmul(dg(:, idx), y)
+        if (.not. allocated(prob%xl)) exit
+        out = .not. held .and. ((x <= prob%xl .and. s < 0.0_dp) .or. (x >= prob%xu .and. s > 0.0_dp))
+        if (.not. any(out)) exit
+        held = held .or. out
       end do
-      y = r(idx)
-      if (allocated(ipiv)) deallocate(ipiv)
-      allocate(ipiv(l))
-      call lu_factor(a, ipiv, err)
-      if (err%failed()) return
-      call lu_solve(a, ipiv, y, err)
-      if (err%failed()) return
-      s = -matmul(dg(:, idx), y)
       v = sum(r**2)
       v_t = huge(1.0_dp)
       do halvings = 0, 30

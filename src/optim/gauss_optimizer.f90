@@ -282,6 +282,7 @@ contains
     real(dp), intent(in) :: x0(:)
     type(error_t), intent(inout) :: err
     real(dp), allocatable :: s(:), x_new(:), g_new(:), gm_k(:, :)
+    logical, allocatable :: active_k(:)
     integer :: n, mt, k, hess_kind, stalls, escapes, regs, outcome, shifts, i
     real(dp) :: xnorm, snorm, t, mu
     logical :: step_back_method, auto, exact_model, refused, restored
@@ -300,7 +301,7 @@ contains
     step_back_method = any(self%opts%method == [method_gauss_constrained, method_gnlc, method_gnlc_general])
     call self%start(prob, x0, step_back_method, auto, err)
     if (err%failed()) return
-    allocate(s(n), x_new(n), g_new(mt), gm_k(n, n))
+    allocate(s(n), x_new(n), g_new(mt), gm_k(n, n), active_k(size(self%active)))
 
     k = 0
     stalls = 0
@@ -317,7 +318,13 @@ contains
         if (err%failed()) exit outer
         exact_model = hess_kind /= hessian_gauss .and. .not. self%quasi_newton .and. self%regularizations == regs
         gm_k = self%gm
+        active_k = self%active
       else
+        ! the working set of x_k: what the rejected trial added or dropped
+        ! belongs to a point that was not accepted (HS 84: strictly satisfied
+        ! members, added at rejected points, pulled to zero by B11, made
+        ! every later trial worse)
+        self%active = active_k
         ! ---- the filter rejected the step from x_k: G + mu I (Levenberg), mu x10 per rejection
         mu = merge(1.0e-2_dp*max(1.0_dp, maxval([(abs(gm_k(i, i)), i=1, n)])), 10.0_dp*mu, shifts == 1)
         self%gm = gm_k
@@ -997,6 +1004,21 @@ contains
                        .not. self%active(1:m)))
         self%additions = self%additions + count(limit .and. .not. self%active(1:m))
         self%active(1:m) = self%active(1:m) .or. limit
+        ! a bound the whole step crossed was held at it (compute_step); the
+        ! cut point does not reach it, and kept in the set it would pull its
+        ! variable onto the bound at the next step whatever the constraints
+        ! that limited this one need (HS 93: x5 = x6 = 0 zeroes the active
+        ! product constraint, B11 has no solution, and the run stopped)
+        if (prob%n_bounds > 0 .and. self%opts%hold_bounds) then
+          limit = .false.
+          limit(m - prob%n_bounds + 1:m) = self%active(m - prob%n_bounds + 1:m) .and. &
+                                           g_new(m - prob%n_bounds + 1:m) < -self%opts%feas_tol
+          if (any(limit)) then
+            call self%note('bound(s) '//set_text(limit)//' not reached at the step-back point: released')
+            self%releases = self%releases + count(limit)
+            self%active(1:m) = self%active(1:m) .and. .not. limit
+          end if
+        end if
       else
         call self%add_to_active(violated, touched, step_back_method)
       end if
@@ -1464,12 +1486,22 @@ contains
       l = count(self%active)
       if (l == 0 .or. l >= n) return
       allocate(cc(n, l), kk(l, l), w(l, n), pm(n, n), piv(l))
+      ! unit columns: the projector does not depend on their scale, but
+      ! C^T C does; gradients of very different sizes (a bound's 1 beside an
+      ! equality's 1e5: HS 109) made it look singular, the test then ran on
+      ! the whole space and shifted G for a curvature the tangent space does
+      ! not have (and the run converged linearly)
       l = 0
       do j = 1, size(self%active)
-        if (.not. self%active(j)) cycle
+        if (.not. self%active(j) .or. .not. norm2(self%dg(:, j)) > 0.0_dp) cycle
         l = l + 1
-        cc(:, l) = self%dg(:, j)
+        cc(:, l) = self%dg(:, j)/norm2(self%dg(:, j))
       end do
+      if (l == 0) return
+      cc = cc(:, 1:l)
+      kk = kk(1:l, 1:l)
+      w = w(1:l, :)
+      piv = piv(1:l)
       kk = matmul(transpose(cc), cc)
       call lu_factor(kk, piv, perr, rc)
       if (perr%failed() .or. rc < 1.0e-12_dp) return

@@ -45,6 +45,7 @@ contains
     call start_suite('test_deck_groups')
     call run_test('transient_deck_echo_reads_back', test_transient_echo)
     call run_test('optimize_and_problem_data_echo_reads_back', test_optimize_echo)
+    call run_test('problem_data_linear_terms_in_either_order_not_both', test_linear_order)
     call run_test('sweep_echo_reads_back_as_values', test_sweep_echo)
     call run_test('spatial_loads_echo_reads_back', test_spatial_loads_echo)
     call run_test('design_echo_reads_back', test_design_echo)
@@ -117,6 +118,34 @@ contains
     call assert_equal(d%n_ineq, 0, 'n_ineq default')
     call assert_true(d%f_star < -1.0e300_dp .and. d%lower(1) <= -1.0e30_dp, 'f_star, lower defaults')
   end subroutine test_optimize_echo
+
+  !> The linear terms of the constraints in the order of g_q (g_c(j,k):
+  !> variable j, constraint k) give the same problem as the older g_a(k,j);
+  !> a deck with both for one family is refused (exit 2).
+  subroutine test_linear_order()
+    character(len=*), parameter :: head = "&optimize problem = 'deck' /|&problem_data n = 3, n_ineq = 2, n_eq = 1, "
+    character(len=:), allocatable :: echo
+    type(optimize_settings_t) :: s
+    type(problem_data_t), allocatable :: d, d_old
+    type(error_t) :: err
+    allocate(d, d_old)
+    call optimize_echo(head//"g_a(1,:) = 1, 2, 3, g_a(2,3) = -4, h_a(1,2) = 5 /", echo, s, d_old, err)
+    call assert_true(.not. err%failed(), 'g_a, h_a: '//err%text())
+    call optimize_echo(head//"g_c(:,1) = 1, 2, 3, g_c(3,2) = -4, h_c(2,1) = 5 /", echo, s, d, err)
+    call assert_true(.not. err%failed(), 'g_c, h_c: '//err%text())
+    call assert_all_close(reshape(d%g_a, [size(d%g_a)]), reshape(d_old%g_a, [size(d_old%g_a)]), 0.0_dp, 0.0_dp, &
+                          'g_c is g_a transposed')
+    call assert_all_close(reshape(d%h_a, [size(d%h_a)]), reshape(d_old%h_a, [size(d_old%h_a)]), 0.0_dp, 0.0_dp, &
+                          'h_c is h_a transposed')
+    call assert_close(d%g_a(1, 3) + d%g_a(2, 3) + d%h_a(1, 2), 3.0_dp - 4.0_dp + 5.0_dp, 0.0_dp, 'the entries given')
+    call optimize_echo(head//"g_a(1,1) = 1, g_c(2,2) = 1 /", echo, s, d, err)
+    call assert_true(err%failed() .and. index(err%text(), 'g_c') > 0 .and. index(err%text(), 'not both') > 0, &
+                     'g_a and g_c together refused: '//err%text())
+    call err%clear()
+    call optimize_echo(head//"h_c(1,1) = 1, h_a(1,2) = 1 /", echo, s, d, err)
+    call assert_true(err%failed() .and. index(err%text(), 'h_c') > 0, 'h_a and h_c together refused: '//err%text())
+    call err%clear()
+  end subroutine test_linear_order
 
   subroutine test_sweep_echo()
     character(len=:), allocatable :: echo1, echo2
