@@ -1,16 +1,22 @@
 #!/usr/bin/env python3
 """The spatial reference outputs against the same decks on a finer mesh (doc/spatial.md, "Mesh convergence").
 
-For every inputs/spatial_*.nml with a reference output (or the decks named), a copy with every link's
-element count multiplied by --factor (link_n_elements) is written under the work directory and run;
+For every inputs/spatial_*.nml and inputs/cantilever_*.nml with a reference output (or the decks named,
+e.g. a general_transient deck),
+a copy with every link's element count multiplied by --factor (link_n_elements) is written under the
+work directory and run;
 the peaks (largest |value|) of the reference output's columns are compared with the finer run's: the
 joint and link-end columns by name, the element stresses per link (the largest over the link's
 elements, since the element columns are numbered along the mesh).  The difference is relative as in
 tools/default_settings.py (a column against the larger of its peak and 1 % of the largest peak of its
 kind).  Exit status 1 when a deck's worst peak differs by more than --check percent.
 
+With --default-solver the finer run leaves out the deck's solver lines (method, rtol, atol, atol_rate,
+max_order: the settings flexmech chooses, doc/transient.md), for a deck whose own tolerances make the
+finer mesh too slow; the difference then holds the chosen settings' time error too.
+
 usage: python3 tools/mesh_convergence.py [--flexmech build/bin/flexmech] [--work build/mesh_convergence]
-                                          [--factor 2] [--check PERCENT] [--last-turn]
+                                          [--factor 2] [--check PERCENT] [--last-turn] [--default-solver]
                                           [DECK_NAME ...]
 """
 import argparse
@@ -24,7 +30,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import default_settings  # noqa: E402
 from default_settings import read_table  # noqa: E402
 
-LINKS = ('crank', 'coupler', 'rocker')
+LINKS = ('crank', 'coupler', 'rocker')      # the spatial four-bar's links (a deck without link_name)
 
 
 def element_counts(text):
@@ -38,6 +44,21 @@ def element_counts(text):
         else:
             counts.append(int(item))
     return counts
+
+
+SOLVER_LINE = re.compile(r'^\s*(method|rtol|atol|atol_rate|max_order)\s*=.*\n', re.MULTILINE | re.IGNORECASE)
+
+
+def without_solver_lines(text):
+    """The deck without its solver lines (each on its own line in the shipped decks)."""
+    return SOLVER_LINE.sub('', text)
+
+
+def link_names(text, n):
+    """The deck's link_name values (a planar &mechanism deck), else the spatial four-bar's links."""
+    m = re.search(r'^\s*link_name\s*=\s*([^!\n]*)', text, re.MULTILINE | re.IGNORECASE)
+    names = re.findall(r"'([^']*)'", m.group(1)) if m else []
+    return tuple(names) if len(names) == n else LINKS[:n]
 
 
 def refined(text, factor):
@@ -62,16 +83,16 @@ def worst_peak(ref, new):
     return default_settings.worst_peak(ref, new, kind)
 
 
-def link_peaks(path, counts, last_turn=False):
-    """Peaks of an output: its columns by name, its element stresses merged per link; over its
-    last revolution only with last_turn."""
+def link_peaks(path, counts, last_turn=False, links=LINKS):
+    """Peaks of an output: its columns by name, its element stresses merged per link (named by links);
+    over its last revolution only with last_turn."""
     names, rows, _ = read_table(path)
     if last_turn:
         angle = names.index('crank_deg')
         end = max(r[angle] for r in rows)
         rows = [r for r in rows if r[angle] >= end - 360.0 - 1.0e-6]
     result, first = {}, 1
-    for link, n in zip(LINKS, counts):
+    for link, n in zip(links, counts):
         elems = ['sigma_max_e%d' % k for k in range(first, first + n)]
         first += n
         vals = [abs(r[names.index(e)]) for e in elems if e in names for r in rows
@@ -79,7 +100,7 @@ def link_peaks(path, counts, last_turn=False):
         if vals:
             result['sigma_' + link] = max(vals)
     for j, name in enumerate(names):
-        if name in ('t', 'crank_deg') or name.startswith('sigma_max_e'):
+        if name in ('t', 'crank_deg', 'drive') or name.startswith('sigma_max_e'):
             continue
         values = [abs(r[j]) for r in rows if r[j] == r[j]]
         if values:
@@ -88,7 +109,11 @@ def link_peaks(path, counts, last_turn=False):
 
 
 def revolutions(path):
+    """Revolutions of the crank the output covers (0 for an output without a crank angle: a general
+    mechanism's, whose columns are then judged over the whole run)."""
     names, rows, _ = read_table(path)
+    if 'crank_deg' not in names:
+        return 0.0
     angle = [r[names.index('crank_deg')] for r in rows]
     return (max(angle) - min(angle)) / 360.0
 
@@ -101,41 +126,47 @@ def main():
     ap.add_argument('--check', type=float, default=None)
     ap.add_argument('--last-turn', action='store_true',
                     help='judge a run of several revolutions (--check) by its last revolution')
+    ap.add_argument('--default-solver', action='store_true',
+                    help='run the finer mesh at the solver settings flexmech chooses')
     ap.add_argument('decks', nargs='*')
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
-    names = args.decks or sorted(os.path.basename(p)[:-4] for p in glob.glob('inputs/spatial_*.nml')
+    names = args.decks or sorted(os.path.basename(p)[:-4]
+                                 for p in glob.glob('inputs/spatial_*.nml') + glob.glob('inputs/cantilever_*.nml')
                                  if os.path.exists('reference_outputs/' + os.path.basename(p)[:-4] + '.out'))
     failed = False
-    print('| deck | mesh | finer | peak stress psi, crank | coupler | rocker | worst peak difference | '
+    print('| deck | mesh | finer | peak stress psi per link, this / finer | worst peak difference | '
           'last revolution |')
-    print('|---|---|---|---|---|---|---|---|')
+    print('|---|---|---|---|---|---|')
     for name in names:
         with open('inputs/%s.nml' % name) as f:
             text = f.read()
         counts = element_counts(text)
+        links = link_names(text, len(counts))
         deck = os.path.join(args.work, name + '_fine.nml')
         out = os.path.join(args.work, name + '_fine.out')
         with open(deck, 'w') as f:
-            f.write(refined(text, args.factor))
+            fine = refined(text, args.factor)
+            f.write(without_solver_lines(fine) if args.default_solver else fine)
         proc = subprocess.run([args.flexmech, deck, '-o', out], stdout=subprocess.DEVNULL,
                               stderr=subprocess.PIPE, text=True)
         if proc.returncode != 0:
             print('| %s | run failed (exit %d): %s |' % (name, proc.returncode, proc.stderr.strip()[:200]))
             failed = True
             continue
-        ref = link_peaks('reference_outputs/%s.out' % name, counts)
-        new = link_peaks(out, [args.factor * n for n in counts])
+        ref = link_peaks('reference_outputs/%s.out' % name, counts, links=links)
+        new = link_peaks(out, [args.factor * n for n in counts], links=links)
         worst, where = worst_peak(ref, new)
-        last = '(one revolution)'
+        last = '(whole run: one revolution or less)'
         if revolutions('reference_outputs/%s.out' % name) > 1.01:
-            worst_last, where_last = worst_peak(link_peaks('reference_outputs/%s.out' % name, counts, True),
-                                                link_peaks(out, [args.factor * n for n in counts], True))
+            worst_last, where_last = worst_peak(
+                link_peaks('reference_outputs/%s.out' % name, counts, True, links),
+                link_peaks(out, [args.factor * n for n in counts], True, links))
             last = '%.3f %% (%s)' % (100.0 * worst_last, where_last)
             if args.last_turn:
                 worst = worst_last
-        stress = ' | '.join('%.0f / %.0f' % (ref.get('sigma_' + k, 0.0), new.get('sigma_' + k, 0.0))
-                            for k in LINKS)
+        stress = ', '.join('%s %.0f / %.0f' % (k, ref.get('sigma_' + k, 0.0), new.get('sigma_' + k, 0.0))
+                           for k in links)
         print('| %s | %s | %s | %s | %.3f %% (%s) | %s |' % (name, ', '.join(map(str, counts)),
               ', '.join(str(args.factor * n) for n in counts), stress, 100.0 * worst, where, last))
         sys.stdout.flush()

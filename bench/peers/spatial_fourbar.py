@@ -6,13 +6,17 @@ Tennant's four-bar as in inputs/spatial_fourbar_100.nml, in both codes as a 3D m
 state at crank angle 0), coupler 11 in, rocker 10.5 in on a pin at D = (10, 0, 0), revolute joints
 about Z at B and C, branch 1; every link a 1.0 x 0.25 in rectangle (1.0 in the plane of motion),
 E = 10.87e6 psi, nu = 0.33, rho = 2.536e-4 lb s^2/in^4; geometrically nonlinear, rotary and torsional
-inertia, LINEAR material (the peer has no Ramberg-Osgood law); undamped in bending, one revolution
-from the rigid-body state (the same initial-value problem in both codes).  The peer's beams are 3D
+inertia, LINEAR material (the peer has no Ramberg-Osgood law); undamped, one revolution from the
+rigid-body state (the same initial-value problem in both codes).  The peer's beams are 3D
 and can leave the plane; neither does (the out-of-plane displacements are checked to stay at
 round-off).
 
 flexmech: the consistent element at the deck's mesh, two elements a link, default solver settings,
-beta = 1e-6 s on the axial modes as the shipped decks.  Exudyn: ObjectBeamGeometricallyExact as in
+undamped (damping_beta = 0), as the peer.  A second run with beta = 1e-6 s, the shipped decks' damping
+of the axial modes, shows what that damping does here: it is not small for this linkage's bending
+modes (natural frequencies at the start 1214, 1461, 2712, 3083 rad/s in the plane: zeta = beta omega / 2
+= 6e-4 to 1.5e-3, and the free vibration the start leaves decays by exp(-beta omega^2 t / 2), 5 % to 26 %
+over the turn), which alone makes a 9-16 % difference in the peaks the free vibration sets.  Exudyn: ObjectBeamGeometricallyExact as in
 spatial_rssr.py (Euler-parameter nodes, stiff shear, section inertia rho (Ip, Iy, Iz)), the crank's
 hub and clamp as there; ObjectJointRevoluteZ at B, C (between the link end nodes, whose z stays Z in
 planar motion) and at D.
@@ -167,7 +171,7 @@ DECK = """&run
   rtol = {rtol}
   revolutions = 1
   output_step_deg = 1.0
-  damping_beta = 1.0e-6
+  damping_beta = {beta}
 /
 &effects
   stretching = T, curvature = T, material = F, rotary_inertia = T, coupling = T
@@ -176,11 +180,11 @@ DECK = """&run
 """
 
 
-def flexmech_case(exe, work, mesh, rtol, formulation):
-    tag = 'flexmech_%s_%s_rtol%g' % (formulation, '-'.join(map(str, mesh)), rtol)
+def flexmech_case(exe, work, mesh, rtol, formulation, beta):
+    tag = 'flexmech_%s_%s_rtol%g_beta%g' % (formulation, '-'.join(map(str, mesh)), rtol, beta)
     deck, path = os.path.join(work, tag + '.nml'), os.path.join(work, tag + '.out')
     with open(deck, 'w') as f:
-        f.write(DECK.format(mesh=', '.join(map(str, mesh)), rtol=rtol, formulation=formulation))
+        f.write(DECK.format(mesh=', '.join(map(str, mesh)), rtol=rtol, formulation=formulation, beta=beta))
     cpu = run_timed([exe, deck, '-o', path])
     if cpu is None:
         return None, None
@@ -219,21 +223,24 @@ def main():
             print_compare('Exudyn %d elements, %d steps against 64 elements, 8000 steps:' % key,
                           ex_ref, ex[key], ('ref', 'this'), OUTPUTS)
     fm = {}
-    for mesh, form, rtol in (((2, 2, 2), 'consistent', 1e-6), ((4, 4, 4), 'consistent', 1e-8),
-                             ((1, 1, 1), 'exact', 1e-6)):
-        cpu, o = flexmech_case(a.flexmech, work, mesh, rtol, form)
+    for mesh, form, rtol, beta in (((2, 2, 2), 'consistent', 1e-6, 0.0), ((4, 4, 4), 'consistent', 1e-8, 0.0),
+                                   ((2, 2, 2), 'consistent', 1e-6, 1e-6), ((1, 1, 1), 'exact', 1e-6, 0.0)):
+        cpu, o = flexmech_case(a.flexmech, work, mesh, rtol, form, beta)
         if o is None:
-            print('flexmech %s %s: the run failed' % (form, mesh))
+            print('flexmech %s %s, beta %g: the run failed' % (form, mesh, beta))
             continue
-        fm[(mesh, form)] = o
-        print('flexmech %s, elements %s, rtol %g: CPU %.2f s; largest out-of-plane |B_UZ|, |C_UZ| %.1e, %.1e in'
-              % (form, mesh, rtol, cpu, max(map(abs, o['B_UZ'])), max(map(abs, o['C_UZ']))))
-    print_compare('flexmech consistent (2, 2, 2) against (4, 4, 4), rtol 1e-8:', fm[((4, 4, 4), 'consistent')],
-                  fm[((2, 2, 2), 'consistent')], ('4,4,4', 'this'), OUTPUTS)
-    for (mesh, form), o in fm.items():
-        print_compare('flexmech %s %s against Exudyn 64 elements, 8000 steps:' % (form, mesh), o, ex_ref,
-                      outputs=OUTPUTS)
-    h, degs = common(fm[((2, 2, 2), 'consistent')], ex_ref, OUTPUTS)
+        fm[(mesh, form, beta)] = o
+        print('flexmech %s, elements %s, rtol %g, beta %g s: CPU %.2f s; largest out-of-plane |B_UZ|, |C_UZ| '
+              '%.1e, %.1e in' % (form, mesh, rtol, beta, cpu, max(map(abs, o['B_UZ'])), max(map(abs, o['C_UZ']))))
+    deck = fm[((2, 2, 2), 'consistent', 0.0)]
+    print_compare('flexmech consistent (2, 2, 2) against (4, 4, 4), rtol 1e-8, undamped:',
+                  fm[((4, 4, 4), 'consistent', 0.0)], deck, ('4,4,4', 'this'), OUTPUTS)
+    print_compare('flexmech consistent (2, 2, 2): beta = 1e-6 s against undamped:', deck,
+                  fm[((2, 2, 2), 'consistent', 1e-6)], ('undamped', 'beta 1e-6'), OUTPUTS)
+    for (mesh, form, beta), o in fm.items():
+        print_compare('flexmech %s %s, beta %g s, against Exudyn 64 elements, 8000 steps:' % (form, mesh, beta),
+                      o, ex_ref, outputs=OUTPUTS)
+    h, degs = common(deck, ex_ref, OUTPUTS)
     path = os.path.join(work, 'overlay.dat')
     with open(path, 'w') as f:
         f.write('# deg ' + ' '.join('%s_flexmech %s_exudyn' % (k, k) for k in OUTPUTS) + '\n')

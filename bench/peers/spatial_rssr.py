@@ -12,8 +12,9 @@ A damped run into the periodic state is not possible: Exudyn 1.13.6's 3D geometr
 ignores its section damping matrix (a clamped beam's free vibration is the same to all digits with
 beta = 0 and 5e-4 s).
 
-flexmech: the consistent element, default solver settings (the deck below); beta = 1e-6 s on the
-axial modes as in inputs/spatial_rssr_100.nml (zeta = 1.4e-4 in the first bending mode).
+flexmech: the consistent element at the deck's mesh (1, 4, 2 elements), default solver settings (the
+deck below); beta = 1e-6 s on the axial modes as in inputs/spatial_rssr_100.nml (zeta = 1.4e-4 in the
+first bending mode).
 Exudyn: ObjectBeamGeometricallyExact, its 3D geometrically exact (Simo-Reissner) beam: two rigid-body
 nodes, linear interpolation, one-point (reduced) integration; generalized-alpha with a fixed step.
 The nodes are NodeRigidBodyEP (Euler parameters): with the rotation-vector nodes
@@ -59,6 +60,9 @@ SHEAR_FACTOR = 100.0
 TURNS = 1
 NEWTON_RTOL = float(os.environ.get("EXUDYN_NEWTON_RTOL", "1e-6"))   # 1e-7 meets round-off after a few turns
 OUTPUTS = ('B_UZ', 'C_UX', 'B_U', 'C_U', 'M_A', 'M_D', 'sigma_c')
+DECK_MESH = (1, 4, 2)            # inputs/spatial_rssr_100.nml's elements (crank, coupler, rocker)
+FINER_MESH = (2, 8, 4)           # the doubled mesh
+REFERENCE_MESH = (4, 16, 8)      # flexmech's own reference (rtol 1e-8)
 
 
 # ------------------------------------------------------------------ rigid kinematics (flexmech's)
@@ -381,19 +385,19 @@ def main():
                           ex_ref, ex[key][1], ('ref', 'this'))
 
     fm = {}
-    for mesh, form, rtol in (((1, 2, 1), 'consistent', 1e-6), ((2, 4, 2), 'consistent', 1e-8),
-                             ((4, 8, 4), 'consistent', 1e-8), ((1, 1, 1), 'exact', 1e-6)):
+    for mesh, form, rtol in ((DECK_MESH, 'consistent', 1e-6), (FINER_MESH, 'consistent', 1e-8),
+                             (REFERENCE_MESH, 'consistent', 1e-8), ((1, 1, 1), 'exact', 1e-6)):
         cpu, o = flexmech_case(a.flexmech, work, mesh, rtol, form, turns)
         if o is None:
             print('flexmech %s %s: the run failed' % (form, mesh))
             continue
         fm[(mesh, form)] = o
         print('flexmech %s, elements %s, rtol %g: CPU %.1f s (%.2f s a turn)' % (form, mesh, rtol, cpu, cpu / turns))
-    fm_ref = fm[((4, 8, 4), 'consistent')]
-    fm_deck = fm[((1, 2, 1), 'consistent')]
-    for mesh in ((1, 2, 1), (2, 4, 2)):
-        print_compare('flexmech consistent %s against 4, 8, 4, rtol 1e-8:' % (mesh,), fm_ref,
-                      fm[(mesh, 'consistent')], ('4,8,4', 'this'))
+    fm_ref = fm[(REFERENCE_MESH, 'consistent')]
+    fm_deck = fm[(DECK_MESH, 'consistent')]
+    for mesh in (DECK_MESH, FINER_MESH):
+        print_compare('flexmech consistent %s against %s, rtol 1e-8:' % (mesh, REFERENCE_MESH), fm_ref,
+                      fm[(mesh, 'consistent')], ('reference', 'this'))
     for (mesh, form), o in fm.items():
         print_compare('flexmech %s %s against Exudyn 64 elements, 4000 steps:' % (form, mesh), o, ex_ref)
 

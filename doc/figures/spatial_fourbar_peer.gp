@@ -1,5 +1,5 @@
 # Tennant's four-bar built in 3D at 100 rad/s, linear material, one revolution from the rigid-body
-# state: flexmech's spatial analysis (consistent element, two elements a link) against Exudyn
+# state: flexmech's spatial analysis (consistent element, two elements a link, undamped) against Exudyn
 # (geometrically exact 3D beams, 64 elements a link).  The data come from
 # bench/peers/spatial_fourbar.py (make bench-peers); then run gnuplot doc/figures/spatial_fourbar_peer.gp
 # from the repository root (doc/spatial.md, "Cross-check against Exudyn").

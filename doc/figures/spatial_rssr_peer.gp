@@ -1,5 +1,5 @@
 # RSSR four-bar at 100 rad/s, linear material, one revolution from the rigid-body
-# state: flexmech (consistent element, 1, 2, 1 elements; Kear's element, one a
+# state: flexmech (consistent element, 1, 4, 2 elements; Kear's element, one a
 # link) against Exudyn (geometrically exact 3D beams, 64 elements a link).
 # The data come from bench/peers/spatial_rssr.py (make bench-peers); then run
 # gnuplot doc/figures/spatial_rssr_peer.gp from the repository root

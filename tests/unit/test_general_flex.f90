@@ -2,8 +2,9 @@
 !> &general_links group, the general_transient analysis): the RSSR written
 !> as a general mechanism against the spatial four-bar model (frequencies,
 !> energies of the rigid motion, static states), the energy balance of the
-!> driven undamped RSSR and of a planar two-link arm with two driven joints,
-!> the joint rules' unknowns, refused joints and bad &general_links input.
+!> driven undamped RSSR, of a planar two-link arm with two driven joints and
+!> of a spatial three-axis manipulator driven by three tables, the joint
+!> rules' unknowns, refused joints and bad &general_links input.
 module test_general_flex_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
@@ -41,6 +42,26 @@ module test_general_flex_suite
     "link_name = 'upper', 'fore'|link_joint1 = 1, 2|link_joint2 = 2, 3|n_drivers = 2|driver_joint = 1, 2|"// &
     "driver_profile = 2*'spinup'|driver_rate = 20.0, -30.0|driver_spinup_time = 2*0.05"
 
+  !> the spatial three-axis manipulator of inputs/general_manipulator_3axis.nml
+  !> (waist, shoulder and elbow out and back by A sin^4(pi t / 1 s), tables every 0.05 s),
+  !> its time axis shifted by -0.3 s: t = 0 is the deck's 0.3 s, the joints turning and accelerating
+  character(len=*), parameter :: tt = "-0.3, -0.25, -0.2, -0.15, -0.1, -0.05, 0.0, 0.05, 0.1, 0.15, 0.2, 0.25, "// &
+    "0.3, 0.35, 0.4, 0.45, 0.5, 0.55, 0.6, 0.65, 0.7"
+  character(len=*), parameter :: manipulator_body = "space = 'spatial'|n_joints = 4|"// &
+    "joint_name = 'W', 'S', 'E', 'T'|joint_kind = 'revolute', 'revolute', 'revolute', 'free'|"// &
+    "joint_ground = T, F, F, F|joint_x = 0.0, 0.0, 20.0, 36.0|joint_z = 0.0, 8.0, 8.0, 8.0|"// &
+    "joint_axis(:, 1) = 0.0, 0.0, 1.0|joint_axis(:, 2) = 0.0, 1.0, 0.0|joint_axis(:, 3) = 0.0, 1.0, 0.0|"// &
+    "n_links = 3|link_name = 'column', 'upper', 'fore'|link_joint1 = 1, 2, 3|link_joint2 = 2, 3, 4|"// &
+    "n_drivers = 3|driver_joint = 1, 2, 3|driver_profile = 3*'table'|driver_n_table = 3*21|"// &
+    "driver_table_t(:, 1) = "//tt//"|driver_table_t(:, 2) = "//tt//"|driver_table_t(:, 3) = "//tt//"|"// &
+    "driver_table_value(:, 1) = 0.0, 0.035932, 0.547118, 2.54881, 7.16186, 15, 25.7029, 37.8159, 49.0881, "// &
+    "57.0993, 60, 57.0993, 49.0881, 37.8159, 25.7029, 15, 7.16186, 2.54881, 0.547118, 0.035932, 0.0|"// &
+    "driver_table_value(:, 2) = 0.0, -0.017966, -0.273559, -1.27441, -3.58093, -7.5, -12.8514, -18.908, "// &
+    "-24.5441, -28.5497, -30, -28.5497, -24.5441, -18.908, -12.8514, -7.5, -3.58093, -1.27441, -0.273559, "// &
+    "-0.017966, 0.0|"// &
+    "driver_table_value(:, 3) = 0.0, 0.026949, 0.410338, 1.91161, 5.3714, 11.25, 19.2772, 28.3619, 36.8161, "// &
+    "42.8245, 45, 42.8245, 36.8161, 28.3619, 19.2772, 11.25, 5.3714, 1.91161, 0.410338, 0.026949, 0.0"
+
 contains
 
   subroutine run_all()
@@ -48,6 +69,7 @@ contains
     call run_test('rssr_joint_rules_unknowns', test_rssr_rules)
     call run_test('driven_rssr_jacobi_energy_balance', test_rssr_balance)
     call run_test('driven_two_link_arm_jacobi_energy_balance', test_arm_balance)
+    call run_test('spatial_manipulator_jacobi_energy_balance', test_manipulator_balance)
     call run_test('unsupported_joints_refused', test_refused)
     call run_test('bad_general_links_input_names_the_variable', test_bad_links)
   end subroutine run_all
@@ -222,6 +244,23 @@ contains
                          gm%table%unknowns_of([1, 2, 3, 4, 5, 6], 2)), 'elbow: translations and rotations shared')
     call jacobi_balance(gm, (0.05_dp*pi/180.0_dp)/30.0_dp, 200, 1.0e-6_dp)
   end subroutine test_arm_balance
+
+  !> The spatial three-axis manipulator of inputs/general_manipulator_3axis.nml
+  !> (circular bars of radius 0.5 in), one element a link, linear material,
+  !> every other effect on, undamped, from the rigid state at the deck's
+  !> 0.3 s (the joints turning at 2.0-4.1 rad/s and accelerating) over 0.01 s:
+  !> three table drivers, two driven revolute joints between moving links
+  !> whose axes turn with the waist, a free tip.
+  subroutine test_manipulator_balance()
+    type(general_flex_model_t), target :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    fx = element_effects_t(.true., .true., .false., .true., .true.)
+    call make_model(manipulator_body, 1, fx, gm, err, radius=0.5_dp)
+    call assert_true(.not. err%failed(), 'manipulator: '//err%text())
+    if (err%failed()) return
+    call jacobi_balance(gm, 2.0e-5_dp, 500, 1.0e-3_dp)
+  end subroutine test_manipulator_balance
 
   !> Energy balance of a driven undamped run (test_spatial_model's RSSR
   !> balance): with L(q, q', t) = KE - SE, the Jacobi integral h = KE2 - KE0
