@@ -6,8 +6,10 @@
 !> &transient gives the integrator, the time span (revolutions of the
 !> first driver turning at a constant rate, or t_end) and the damping,
 !> &effects the element's effects, &spatial_loads gravity and the static
-!> start.  Rows at equal time steps: the elastic translations of the joints
-!> that move (global), each link's end-2 deflections and rotations in its
+!> start, &general_support lumped mounts under ground joints.  Rows at
+!> equal time steps: the elastic translations of the joints that move
+!> (global; a mounted joint's is its mount's displacement), the forces the
+!> mounts carry, each link's end-2 deflections and rotations in its
 !> rigid-body axes, its end-1 resultants and every element's largest
 !> |stress|; then the peaks, the final energies and the cost.
 module general_transient_analysis
@@ -36,6 +38,8 @@ module general_transient_analysis
   use general_links_settings, only: general_links_input_t, read_general_links, echo_general_links, &
     build_general_links
   use general_flex_model, only: general_flex_model_t, unsupported_joint
+  use general_support_settings, only: general_support_input_t, read_general_support, echo_general_support, &
+    build_mounts
   implicit none
   private
   public :: run_general_transient
@@ -53,7 +57,8 @@ contains
     type(transient_settings_t) :: s
     type(spatial_loads_input_t) :: loads
     type(spatial_point_load_t), allocatable :: no_loads(:)
-    logical :: has_loads
+    type(general_support_input_t) :: support
+    logical :: has_loads, has_support
     type(general_flex_model_t), target :: model
     type(lsode_t) :: ode
     type(progress_t) :: bar
@@ -72,6 +77,8 @@ contains
     if (err%failed()) return
     call read_spatial_loads(deck, loads, has_loads, err)
     if (err%failed()) return
+    call read_general_support(deck, mech, support, has_support, err)
+    if (err%failed()) return
     rate = constant_rate(mech)
     block   ! a joint the flexible model does not take: named with its line
       integer :: j
@@ -89,9 +96,11 @@ contains
     call echo_general_links(link_input, out)
     call echo_transient_settings(out)
     if (has_loads) call echo_spatial_loads(loads, out)
+    if (has_support) call echo_general_support(support, out)
     call build_general_links(deck, link_input, mech%n_links, links, err)
     if (err%failed()) return
-    call model%init_general(kin, links, s%effects, s%damping_beta, err, formulation=spatial_formulation_of(s))
+    call model%init_general(kin, links, s%effects, s%damping_beta, err, formulation=spatial_formulation_of(s), &
+                            mounts=build_mounts(support, mech))
     if (err%failed()) then
       call input_error_in(deck, 'general_mechanism', err)
       return
@@ -228,6 +237,10 @@ contains
       row(kk + 1:kk + 3) = q(model%joint_dofs(:, i))
       kk = kk + 3
     end do
+    do i = 1, model%support%count()
+      row(kk + 1:kk + 3) = model%support%carried_force(i, q, y(2::2))
+      kk = kk + 3
+    end do
     do i = 1, size(model%glinks)
       ee = model%glinks(i)%first_element + model%glinks(i)%n_elements - 1
       p = spatial_to_local(model%rb(ee)%rot, model%table%gather(ee, q), model%el(ee)%local_rotation)
@@ -280,6 +293,15 @@ contains
                      'the integrator asks for')
     call model%table%describe(lines)
     call out%comments(lines)
+    do l = 1, model%support%count()
+      associate (mt => model%support%mounts(l))
+        call out%comment('mount under ground joint '''//trim(mt%joint_name)//''' (global X, Y, Z): mass '// &
+          str(mt%mass(1), 6)//', '//str(mt%mass(2), 6)//', '//str(mt%mass(3), 6)//' lb s^2/in; stiffness '// &
+          str(mt%stiffness(1), 6)//', '//str(mt%stiffness(2), 6)//', '//str(mt%stiffness(3), 6)//' lb/in; '// &
+          'damping '//str(mt%damping(1), 6)//', '//str(mt%damping(2), 6)//', '//str(mt%damping(3), 6)// &
+          ' lb s/in; its displacement is the joint''s translation, its rigid-body position the nominal one')
+      end associate
+    end do
   end subroutine write_header
 
   subroutine write_columns(out, model, names)
@@ -289,12 +311,16 @@ contains
     integer :: i, e
     character(len=3), parameter :: local(6) = ['u  ', 'v  ', 'w  ', 'tx ', 'ty ', 'tz ']
     character(len=3), parameter :: res(4) = ['N  ', 'My ', 'Mz ', 'T  ']
-    character(len=2), parameter :: comp(3) = ['UX', 'UY', 'UZ']
+    character(len=2), parameter :: comp(3) = ['UX', 'UY', 'UZ'], force(3) = ['FX', 'FY', 'FZ']
+    character(len=:), allocatable :: mounts
     names = [character(len=32) :: 't', 'drive']
     associate (m => model%gk%mech)
       do i = 1, m%n_joints
         if (all(model%joint_dofs(:, i) == 0)) cycle
         names = [character(len=32) :: names, (trim(m%joints(i)%name)//'_'//comp(e), e = 1, 3)]
+      end do
+      do i = 1, model%support%count()
+        names = [character(len=32) :: names, (trim(model%support%mounts(i)%joint_name)//'_'//force(e), e = 1, 3)]
       end do
       do i = 1, m%n_links
         names = [character(len=32) :: names, (trim(m%links(i)%name)//'_'//trim(local(e))//'_end', e = 1, 6)]
@@ -306,8 +332,11 @@ contains
     do e = 1, size(model%el)
       names = [character(len=32) :: names, 'sigma_max_e'//str(e)]
     end do
+    mounts = ''
+    if (model%support%count() > 0) mounts = '<joint>_F* = force its mount carries to the rigid ground, k u + c u'' '// &
+      '(global, lb); '
     call out%comment('columns: t (s); drive = the first driver''s joint coordinate (deg, or the slide); '// &
-      '<joint>_U* = elastic translation of each joint that moves along global X, Y, Z (in); '// &
+      '<joint>_U* = elastic translation of each joint that moves along global X, Y, Z (in); '//mounts// &
       '<link>_u/v/w_end = elastic displacement of the link''s end 2 in its rigid-body axes (in); '// &
       '<link>_tx/ty/tz_end = its small rotation (tx twist, ty = -w_x, tz = v_x; rad); <link>_N/My/Mz/T_root '// &
       '= axial force (lb), bending moments (lb in) and St. Venant torque (lb in) at the link''s end 1; '// &

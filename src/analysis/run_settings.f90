@@ -37,7 +37,7 @@ module run_settings
   character(len=16) :: units
   namelist /run/ analysis, title, units
 
-  integer, parameter :: group_len = 20, max_groups = 6
+  integer, parameter :: group_len = 20, max_groups = 7
 
 contains
 
@@ -63,8 +63,8 @@ contains
     case ('kinematics')
       groups(1:3) = [character(len=group_len) :: 'run', 'general_mechanism', 'kinematics']
     case ('general_transient')
-      groups(1:6) = [character(len=group_len) :: 'run', 'general_mechanism', 'general_links', 'transient', 'effects', &
-                     'spatial_loads']
+      groups(1:7) = [character(len=group_len) :: 'run', 'general_mechanism', 'general_links', 'transient', 'effects', &
+                     'spatial_loads', 'general_support']
     end select
   end function analysis_groups
 

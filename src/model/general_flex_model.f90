@@ -29,6 +29,9 @@
 !>      spinning idly between two spherical joints has its twist held at its
 !>      first end;
 !>  free end: every node DOF its own.
+!> A ground joint on a lumped mount (module support_mounts) keeps its
+!> rotation rule but its translations are the mount's displacement, shared
+!> by the link ends there, as at a joint between links.
 !> The axial slope and curvature of the consistent element (u_x, u_xx) are
 !> each node's own.  Prismatic, slider and universal joints and a passive
 !> revolute between two links in space are refused (code 2).
@@ -44,6 +47,8 @@ module general_flex_model
   use general_mechanism, only: gjoint_revolute, gjoint_spherical, gjoint_weld, gjoint_free, gjoint_names, &
     unit_or_zero
   use general_kinematics, only: general_kinematics_t
+  use linalg, only: solve_linear
+  use support_mounts, only: support_mounts_t, support_mount_t
   implicit none
   private
   public :: general_flex_model_t, unsupported_joint
@@ -56,10 +61,17 @@ module general_flex_model
     type(spatial_link_t), allocatable :: glinks(:)   !< section, material, elements and length of every link
     real(dp), allocatable :: frame0(:, :, :)        !< (3, 3, link): element axes in the link frame (columns x, y, z)
     integer, allocatable :: joint_dofs(:, :)        !< (3, joint): global unknowns of its elastic translation (0: zero)
+    type(support_mounts_t) :: support                !< lumped mounts under ground joints (none: the rigid ground)
+    real(dp) :: t_support = -huge(1.0_dp)            !< time of the mass factor the mounts' update was made for
   contains
     procedure :: init_general
     procedure :: set_time => general_set_time
     procedure :: crank_angle => driver_angle
+    procedure :: accelerations => mounted_accelerations
+    procedure :: assemble_band => mounted_band
+    procedure :: assemble_dense => mounted_dense
+    procedure :: energies => mounted_energies
+    procedure :: static_state => mounted_static_state
   end type general_flex_model_t
 
   !> The node table while it is numbered (slots UX UY UZ RX RY RZ vxx wxx ux uxx).
@@ -74,8 +86,9 @@ contains
 
   !> Elements, joint rules and the correlation table of the mechanism of gk
   !> (initialised: its mobility checked) with links(:) (section, material,
-  !> elements) for every link.  Unsupported joints: err%code = 2.
-  subroutine init_general(self, gk, links, effects, beta, err, formulation)
+  !> elements) for every link, and mounts under ground joints if given.
+  !> Unsupported joints, a mount on a joint not on the ground: err%code = 2.
+  subroutine init_general(self, gk, links, effects, beta, err, formulation, mounts)
     class(general_flex_model_t), intent(inout) :: self
     type(general_kinematics_t), intent(in) :: gk
     type(spatial_link_t), intent(in) :: links(:)
@@ -83,15 +96,27 @@ contains
     real(dp), intent(in) :: beta
     type(error_t), intent(inout) :: err
     integer, intent(in), optional :: formulation
+    type(support_mount_t), intent(in), optional :: mounts(:)
     integer :: l, i, e, ne
     logical :: loc(2)
     self%formulation = spatial_formulation_consistent
     if (present(formulation)) self%formulation = formulation
     self%gk = gk
     self%glinks = links
+    if (allocated(self%support%mounts)) deallocate(self%support%mounts)
+    if (present(mounts)) self%support%mounts = mounts
+    self%t_support = -huge(1.0_dp)
     associate (m => self%gk%mech)
       call check_joints(self, err)
       if (err%failed()) return
+      do i = 1, self%support%count()
+        if (m%joints(self%support%mounts(i)%joint)%member(1) /= 0) then
+          call err%set('general flexible model', 'joint '''//trim(m%joints(self%support%mounts(i)%joint)%name)// &
+                       ''' is not on the ground: only a ground joint sits on a mount')
+          err%code = 2
+          return
+        end if
+      end do
       if (allocated(self%frame0)) deallocate(self%frame0)
       allocate(self%frame0(3, 3, m%n_links))
       do l = 1, m%n_links
@@ -141,7 +166,53 @@ contains
     end if
     call build_table(self)
     call self%size_state(self%table%n_unknowns(), self%table%band())
+    do i = 1, self%support%count()
+      self%support%mounts(i)%dofs = self%joint_dofs(:, self%support%mounts(i)%joint)
+    end do
+    call self%support%newton_dampers(beta, self%newton%damper, self%newton%damper_dofs)
   end subroutine init_general
+
+  !> Joint i sits on a mount.
+  logical function mounted(self, i)
+    type(general_flex_model_t), intent(in) :: self
+    integer, intent(in) :: i
+    integer :: k
+    mounted = .false.
+    do k = 1, self%support%count()
+      if (self%support%mounts(k)%joint == i) mounted = .true.
+    end do
+  end function mounted
+
+  !> The rigid states at t from the general kinematics (.false.: they
+  !> failed).  The parent's procedures called on the parent component
+  !> (self%spatial_model_t%...) would set them by the four-bar's set_time:
+  !> set here first, they find them current.
+  logical function rigid_motion_at(self, t) result(ok)
+    class(general_flex_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    call self%set_time(t)
+    ok = .not. self%err%failed()
+  end function rigid_motion_at
+
+  !> q'' of the links and the mounts: the links' (spatial_model), then the
+  !> mounts' forces and masses (module support_mounts: its Woodbury update of
+  !> the links' factored mass matrix, renewed when that is).
+  subroutine mounted_accelerations(self, t, q, qd, qdd)
+    class(general_flex_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out), contiguous :: qdd(:)
+    type(error_t) :: err
+    qdd = 0.0_dp
+    if (.not. rigid_motion_at(self, t)) return
+    call self%spatial_model_t%accelerations(t, q, qd, qdd)
+    if (self%support%count() == 0 .or. self%err%failed()) return
+    if (self%t_support < self%t_mass .or. self%t_support > self%t_mass) then
+      call self%support%factor_update(self%mass_band, self%kd, err)
+      self%t_support = self%t_mass
+    end if
+    call self%support%solve_update(qdd, err, self%support%forces(q, qd, self%gravity))
+    if (err%failed()) call self%fail(t, 'the mounts'' mass update: '//err%text())
+  end subroutine mounted_accelerations
 
   !> The joints the flexible analysis models (the rules above); code 2 otherwise.
   subroutine check_joints(self, err)
@@ -406,7 +477,7 @@ contains
       end if
       jn = jt%name
       ground = jt%member(1) == 0
-      if (.not. ground) then
+      if (.not. ground .or. mounted(self, i)) then
         call tb%shared_unknowns(nodes%trans(:, i), [(trim(jn)//' '//trim(slot_names(k)), k = 1, 3)])
         nodes%map(1:3, node, l) = nodes%trans(:, i)
         nodes%coef(1:3, node, l) = 1.0_dp
@@ -450,4 +521,78 @@ contains
       end if
     end associate
   end subroutine joint_end
+
+  !> The Newton matrix's M and K_t (band storage): the links' and the mounts'.
+  subroutine mounted_band(self, q, mass, stiff)
+    class(general_flex_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
+    call self%spatial_model_t%assemble_band(q, mass, stiff)
+    call self%support%add_band(self%kd, mass, stiff)
+  end subroutine mounted_band
+
+  !> Dense M and K_t: the links' and the mounts'.
+  subroutine mounted_dense(self, q, mass, stiff)
+    class(general_flex_model_t), intent(inout) :: self
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(out), contiguous :: mass(:, :), stiff(:, :)
+    call self%spatial_model_t%assemble_dense(q, mass, stiff)
+    call self%support%add_dense(mass, stiff)
+  end subroutine mounted_dense
+
+  !> Kinetic and strain energy of the links with the mounts' kinetic and
+  !> spring energy.
+  subroutine mounted_energies(self, t, q, qd, kinetic, strain)
+    class(general_flex_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t, q(:), qd(:)
+    real(dp), intent(out) :: kinetic, strain
+    real(dp) :: km, sm
+    kinetic = 0.0_dp
+    strain = 0.0_dp
+    if (.not. rigid_motion_at(self, t)) return
+    call self%spatial_model_t%energies(t, q, qd, kinetic, strain)
+    call self%support%energies(q, qd, km, sm)
+    kinetic = kinetic + km
+    strain = strain + sm
+  end subroutine mounted_energies
+
+  !> The static elastic state at t with the mounts (spatial_model's without):
+  !> F(q, 0, t) of the links and the mounts = 0 by Newton's method on the
+  !> elastic tangent and the mounts' springs, q holding the start guess.
+  subroutine mounted_static_state(self, t, q, err)
+    class(general_flex_model_t), intent(inout) :: self
+    real(dp), intent(in) :: t
+    real(dp), intent(inout) :: q(:)
+    type(error_t), intent(inout) :: err
+    real(dp) :: mass(self%n, self%n), stiff(self%n, self%n), f(self%n), zero(self%n)
+    real(dp) :: scale
+    integer :: it
+    if (.not. rigid_motion_at(self, t)) then
+      call err%set('general flexible model', self%err%text())
+      return
+    end if
+    if (self%support%count() == 0) then
+      call self%spatial_model_t%static_state(t, q, err)
+      return
+    end if
+    zero = 0.0_dp
+    scale = 0.0_dp
+    do it = 1, 100
+      call self%spatial_model_t%accelerations(t, q, zero, f)     ! the links' F in self%force
+      if (self%err%failed()) then
+        call err%set('general flexible model', self%err%text())
+        return
+      end if
+      f = self%force
+      call self%support%add_forces(q, zero, self%gravity, f)
+      call self%assemble_dense(q, mass, stiff)
+      call solve_linear(stiff, f, err)
+      if (err%failed()) return
+      q = q + f
+      scale = max(scale, maxval(abs(q)))
+      if (maxval(abs(f)) <= 1.0e-12_dp*scale) return
+    end do
+    call err%set('general flexible model', 'the static state with the mounts at t = '//str(t)// &
+                 ' did not converge in 100 Newton steps')
+  end subroutine mounted_static_state
 end module general_flex_model

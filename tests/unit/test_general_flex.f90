@@ -4,14 +4,18 @@
 !> energies of the rigid motion, static states), the energy balance of the
 !> driven undamped RSSR, of a planar two-link arm with two driven joints and
 !> of a spatial three-axis manipulator driven by three tables, the joint
-!> rules' unknowns, refused joints and bad &general_links input.
+!> rules' unknowns, refused joints and bad &general_links input; the
+!> four-bar on lumped mounts (module support_mounts): its equations of
+!> motion against a dense solve, its energy balance, and the force its
+!> mounts carry against the shaking force of the rigid four-bar.
 module test_general_flex_suite
   use kinds, only: dp, pi
   use error_status, only: error_t
   use deck_reader, only: deck_t
   use material_law, only: ramberg_osgood_t
   use element_effects, only: element_effects_t
-  use lsode_solver, only: lsode_t, mf_adams
+  use lsode_solver, only: lsode_t, mf_adams, mf_bdf_band_user
+  use linalg, only: solve_linear
   use spatial_section, only: spatial_section_init, section_circular, section_rectangular
   use spatial_kinematics, only: spatial_fourbar_t, spatial_fourbar_init
   use spatial_model, only: spatial_model_t, spatial_link_t, spatial_joint_spherical
@@ -19,6 +23,7 @@ module test_general_flex_suite
   use general_kinematics, only: general_kinematics_t
   use general_deck, only: read_general_mechanism
   use general_flex_model, only: general_flex_model_t
+  use support_mounts, only: support_mount_t
   use general_transient_analysis, only: run_general_transient
   use assertions
   use deck_runner, only: open_deck_text, close_deck_text, scratch_path, run_deck, line_length
@@ -41,6 +46,12 @@ module test_general_flex_suite
     "joint_kind = 'revolute', 'revolute', 'free'|joint_ground = T, F, F|joint_x = 0.0, 10.0, 18.0|n_links = 2|"// &
     "link_name = 'upper', 'fore'|link_joint1 = 1, 2|link_joint2 = 2, 3|n_drivers = 2|driver_joint = 1, 2|"// &
     "driver_profile = 2*'spinup'|driver_rate = 20.0, -30.0|driver_spinup_time = 2*0.05"
+  !> the planar four-bar of inputs/general_fourbar_150.nml, its crank at 20 rad/s
+  character(len=*), parameter :: fourbar_body = "n_joints = 4|joint_name = 'A', 'B', 'C', 'D'|"// &
+    "joint_kind = 4*'revolute'|joint_ground = T, F, F, T|joint_x = 0.0, 5.0, 8.5, 10.0|"// &
+    "joint_y = 0.0, 0.0, 10.0, 0.0|n_links = 3|link_name = 'crank', 'coupler', 'rocker'|"// &
+    "link_joint1 = 1, 2, 4|link_joint2 = 2, 3, 3|link_length = 5.0, 11.0, 10.5|n_drivers = 1|driver_joint = 1|"// &
+    "driver_rate = 20.0"
 
   !> the spatial three-axis manipulator of inputs/general_manipulator_3axis.nml
   !> (waist, shoulder and elbow out and back by A sin^4(pi t / 1 s), tables every 0.05 s),
@@ -72,6 +83,9 @@ contains
     call run_test('spatial_manipulator_jacobi_energy_balance', test_manipulator_balance)
     call run_test('unsupported_joints_refused', test_refused)
     call run_test('bad_general_links_input_names_the_variable', test_bad_links)
+    call run_test('mounted_fourbar_equations_against_dense_solve', test_mounted_equations)
+    call run_test('mounted_fourbar_jacobi_energy_balance', test_mounted_balance)
+    call run_test('mount_forces_against_rigid_shaking_force', test_mount_shaking)
   end subroutine run_all
 
   ! ------------------------------------------------------------ helpers
@@ -92,13 +106,14 @@ contains
 
   !> The general model of a mechanism body, every link a circular bar of
   !> radius r (or a rectangular 0.5 x 0.25 in bar) with n elements.
-  subroutine make_model(body, n, fx, model, err, radius)
+  subroutine make_model(body, n, fx, model, err, radius, mounts)
     character(len=*), intent(in) :: body
     integer, intent(in) :: n
     type(element_effects_t), intent(in) :: fx
     type(general_flex_model_t), intent(out) :: model
     type(error_t), intent(inout) :: err
     real(dp), intent(in), optional :: radius
+    type(support_mount_t), intent(in), optional :: mounts(:)
     type(general_kinematics_t) :: gk
     type(spatial_link_t), allocatable :: links(:)
     integer :: k
@@ -115,8 +130,17 @@ contains
         call spatial_section_init(links(k)%sec, section_rectangular, [0.5_dp, 0.25_dp], alu, err)
       end if
     end do
-    call model%init_general(gk, links, fx, 0.0_dp, err)
+    call model%init_general(gk, links, fx, 0.0_dp, err, mounts=mounts)
   end subroutine make_model
+
+  !> Mounts under the four-bar's ground joints A (1) and D (4), the same
+  !> mass, stiffness and damping in every direction.
+  function fourbar_mounts(m, k, c) result(mounts)
+    real(dp), intent(in) :: m, k, c
+    type(support_mount_t) :: mounts(2)
+    mounts(1) = support_mount_t('A', 1, [m, m, m], [k, k, k], [c, c, c])
+    mounts(2) = support_mount_t('D', 4, [m, m, m], [k, k, k], [c, c, c])
+  end function fourbar_mounts
 
   !> The spatial four-bar model of the same RSSR (module spatial_model).
   subroutine make_spatial_rssr(n, fx, sm)
@@ -337,6 +361,168 @@ contains
                      'names deck and group: '//err%text())
     call assert_true(index(err%text(), 'link_radius(2)') > 0, 'names the variable: '//err%text())
   end subroutine test_bad_links
+
+  !> The four-bar on damped mounts: the mounts' translations are the link
+  !> ends' at A and D, and q'' (the links' factored mass with the mounts'
+  !> Woodbury update) satisfies the dense (M + P^T m P) q'' = F + P^T f_m
+  !> to round-off at an arbitrary state (a wrong update or a missing mount
+  !> force leaves a residual of the order of the mount force).
+  subroutine test_mounted_equations()
+    type(general_flex_model_t) :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    real(dp), allocatable :: q(:), qd(:), qdd(:), f(:), mass(:, :), stiff(:, :)
+    integer :: i
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+    call make_model(fourbar_body, 2, fx, gm, err, mounts=fourbar_mounts(0.02_dp, 3.0e4_dp, 5.0_dp))
+    call assert_true(.not. err%failed(), 'mounted four-bar: '//err%text())
+    if (err%failed()) return
+    call assert_true(all(gm%table%unknowns_of([1, 2, 3], 1) == gm%support%mounts(1)%dofs) .and. &
+                     all(gm%support%mounts(1)%dofs > 0), 'the crank''s end at A moves with mount A')
+    call assert_true(all(gm%table%unknowns_of([1, 2, 3], gm%glinks(3)%first_element) == gm%support%mounts(2)%dofs), &
+                     'the rocker''s end at D moves with mount D')
+    call assert_true(all(gm%table%unknowns_of([4, 5, 6], 1) == 0), 'the crank''s rotations still held at A')
+    allocate(q(gm%n), qd(gm%n), qdd(gm%n), f(gm%n), mass(gm%n, gm%n), stiff(gm%n, gm%n))
+    q = [(1.0e-4_dp*sin(1.3_dp*i), i = 1, gm%n)]
+    qd = [(2.0e-2_dp*cos(0.7_dp*i), i = 1, gm%n)]
+    call gm%accelerations(0.01_dp, q, qd, qdd)
+    f = gm%force
+    call gm%support%add_forces(q, qd, gm%gravity, f)
+    call assert_true(maxval(abs(f - gm%force)) > 1.0_dp, 'the mounts exert forces')
+    call gm%assemble_dense(q, mass, stiff)
+    call assert_close(maxval(abs(matmul(mass, qdd) - f)), 0.0_dp, 1.0e-9_dp*maxval(abs(f)), 'M q'''' = F')
+  end subroutine test_mounted_equations
+
+  !> The four-bar at 20 rad/s on undamped mounts (0.02 lb s^2/in, 3e4 lb/in:
+  !> 1225 rad/s) from rest, every effect on, undamped: the Jacobi balance of
+  !> jacobi_balance with the mounts' kinetic and spring energy in KE and SE
+  !> (leaving either out, or a mount force inconsistent with its energy,
+  !> breaks it by the mounts' share, which must be above 5 % of the links'
+  !> largest strain energy over the span).
+  subroutine test_mounted_balance()
+    type(general_flex_model_t), target :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    real(dp) :: km, sm, ke, se, mount_max, links_max
+    real(dp), allocatable :: y(:)
+    type(lsode_t) :: ode
+    integer :: k
+    fx = element_effects_t(.true., .true., .true., .true., .true.)
+    call make_model(fourbar_body, 1, fx, gm, err, mounts=fourbar_mounts(0.02_dp, 3.0e4_dp, 0.0_dp))
+    call assert_true(.not. err%failed(), 'mounted four-bar: '//err%text())
+    if (err%failed()) return
+    allocate(y(2*gm%n))
+    y = 0.0_dp
+    mount_max = 0.0_dp
+    links_max = 0.0_dp
+    call ode%init(size(y), 0.0_dp, mf_adams, 1.0e-9_dp, [1.0e-13_dp], err, max_steps=500000)
+    do k = 1, 40
+      call ode%integrate_to(gm, y, 1.0e-4_dp*k, err)
+      if (err%failed()) exit
+      call gm%support%energies(y(1::2), y(2::2), km, sm)
+      call gm%energies(1.0e-4_dp*k, y(1::2), y(2::2), ke, se)
+      mount_max = max(mount_max, km + sm)
+      links_max = max(links_max, se - sm)
+    end do
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    print '(a,es10.3,a,es10.3,a)', '    largest mount energy ', mount_max, ' lb in; links'' strain energy ', &
+      links_max, ' lb in'
+    call assert_true(mount_max > 0.05_dp*links_max, 'the mounts take a share of the energy')
+    call jacobi_balance(gm, 1.0e-5_dp, 400, 0.1_dp*links_max)
+  end subroutine test_mounted_balance
+
+  !> The force the support receives: the four-bar at 20 rad/s (its links'
+  !> first frequency far above the crank's) on light stiff mounts (1e-4
+  !> lb s^2/in, 1e4 lb/in, critically damped), the linear element with its
+  !> rotary inertia and Coriolis terms, from the static state at its
+  !> quasi-static rate, by BDF on the model's Newton matrix.  The sum of the
+  !> forces the mounts carry, k u + c u', equals minus the shaking force of the rigid four-bar,
+  !> the rate of its momentum sum m a_G, computed here independently of the
+  !> model: the joints of the four-bar by its closed-form position (circle
+  !> intersection), the link centres' accelerations by central differences.
+  !> Over the first half revolution (rows every 10 degrees) the largest
+  !> difference is 1.5 % of the shaking force's peak (the links' elastic
+  !> momentum and the mounts' inertia; (omega/omega_1)^2 is about 1 %):
+  !> bound 2.5 %; a wrong mass, sign or direction gives O(1).
+  subroutine test_mount_shaking()
+    type(general_flex_model_t), target :: gm
+    type(error_t) :: err
+    type(element_effects_t) :: fx
+    type(lsode_t) :: ode
+    real(dp), allocatable :: y(:), qm(:), qp(:), atol(:)
+    real(dp) :: t, carried(3), shaking(2), worst, peak, h
+    integer :: k
+    real(dp), parameter :: omega = 20.0_dp, c = 2.0_dp*sqrt(1.0e-4_dp*1.0e4_dp)
+    fx = element_effects_t(.false., .false., .false., .true., .true.)
+    call make_model(fourbar_body, 1, fx, gm, err, mounts=fourbar_mounts(1.0e-4_dp, 1.0e4_dp, c))
+    call assert_true(.not. err%failed(), 'mounted four-bar: '//err%text())
+    if (err%failed()) return
+    allocate(y(2*gm%n), qm(gm%n), qp(gm%n), atol(2*gm%n))
+    h = 1.0e-4_dp
+    y = 0.0_dp
+    qm = 0.0_dp
+    qp = 0.0_dp
+    call gm%static_state(-h, qm, err)
+    call gm%static_state(h, qp, err)
+    y(1::2) = 0.5_dp*(qm + qp)
+    call gm%static_state(0.0_dp, y(1::2), err)
+    y(2::2) = (qp - qm)/(2.0_dp*h)
+    call assert_true(.not. err%failed(), 'static start: '//err%text())
+    atol(1::2) = 1.0e-10_dp
+    atol(2::2) = 1.0e-6_dp
+    call ode%init(size(y), 0.0_dp, mf_bdf_band_user, 1.0e-7_dp, atol, err, ml=2*gm%kd + 1, mu=2*gm%kd + 1, &
+                  max_steps=500000)
+    worst = 0.0_dp
+    peak = 0.0_dp
+    do k = 0, 18
+      t = (k*10.0_dp*pi/180.0_dp)/omega
+      if (k > 0) call ode%integrate_to(gm, y, t, err)
+      if (err%failed()) exit
+      carried = gm%support%carried_force(1, y(1::2), y(2::2)) + gm%support%carried_force(2, y(1::2), y(2::2))
+      shaking = rigid_shaking(t, omega, gm%glinks(1)%sec%area*alu%rho)
+      worst = max(worst, norm2(carried(1:2) + shaking))
+      peak = max(peak, norm2(shaking))
+      call assert_close(carried(3), 0.0_dp, 1.0e-9_dp*norm2(shaking), 'no force out of the plane')
+    end do
+    call assert_true(.not. err%failed(), 'integration: '//err%text())
+    print '(a,es10.3,a,es10.3,a)', '    largest |sum of mount forces + shaking force| ', worst, ' lb of a peak ', &
+      peak, ' lb'
+    call assert_true(peak > 1.0_dp, 'the four-bar shakes')
+    call assert_close(worst, 0.0_dp, 0.025_dp*peak, 'mount forces = - shaking force')
+  end subroutine test_mount_shaking
+
+  !> The shaking force (lb, X and Y) of the rigid four-bar of fourbar_body at
+  !> time t, crank at omega t, links of mass rho A per length: sum m a_G by
+  !> central differences (step 1e-5 / omega s) of the closed-form positions.
+  function rigid_shaking(t, omega, rho_a) result(f)
+    real(dp), intent(in) :: t, omega, rho_a
+    real(dp) :: f(2)
+    real(dp) :: g(2, -1:1), dt
+    integer :: s
+    dt = 1.0e-5_dp/omega
+    do s = -1, 1
+      g(:, s) = first_moment(omega*(t + s*dt))
+    end do
+    f = rho_a*(g(:, 1) - 2.0_dp*g(:, 0) + g(:, -1))/dt**2
+  end function rigid_shaking
+
+  !> sum L_i x_G,i of the rigid four-bar (A at 0, D at (10, 0); crank 5,
+  !> coupler 11, rocker 10.5) at crank angle theta, C on the branch above AD.
+  function first_moment(theta) result(s)
+    real(dp), intent(in) :: theta
+    real(dp) :: s(2)
+    real(dp), parameter :: d(2) = [10.0_dp, 0.0_dp], lc = 11.0_dp, lr = 10.5_dp
+    real(dp) :: b(2), bd(2), e, a, hh, cc(2), u(2)
+    b = 5.0_dp*[cos(theta), sin(theta)]
+    bd = d - b
+    e = norm2(bd)
+    u = bd/e
+    a = (lc**2 - lr**2 + e**2)/(2.0_dp*e)
+    hh = sqrt(lc**2 - a**2)
+    cc = b + a*u + hh*[-u(2), u(1)]
+    if (cc(2) < 0.0_dp) cc = b + a*u - hh*[-u(2), u(1)]
+    s = 5.0_dp*0.5_dp*b + lc*0.5_dp*(b + cc) + lr*0.5_dp*(d + cc)
+  end function first_moment
 
   function str_int(k) result(s)
     integer, intent(in) :: k
