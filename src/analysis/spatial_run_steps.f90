@@ -34,7 +34,7 @@ contains
     type(error_t), intent(inout) :: err
     type(static_load_t) :: load
     real(dp) :: mass(model%n, model%n), stiff(model%n, model%n), t
-    call load%start(model%n, y, t0, t_end, model%kd)
+    call load%start(model%n, y, t0, t_end)
     do while (load%next(t) .and. .not. err%failed())
       call model%set_time(t)
       call model%assemble_dense(0.0_dp*y(1::2), mass, stiff)

@@ -397,8 +397,10 @@ contains
     n = size(k, 1)
     ! Gaps and the shift are measured on the eigenvalue's own scale: on the
     ! largest one's (1e16 against 1e6 with the curvature DOFs), the shift of
-    ! a low mode would sit nearer the mode below it than its own.
-    scale = epsilon(1.0_dp)*maxval(abs(w))
+    ! a low mode would sit nearer the mode below it than its own.  Not below
+    ! 1e-4 of the largest: a free mode (zero to round-off) keeps K - sigma M
+    ! away from exact singularity.
+    scale = 1.0e-4_dp*maxval(abs(w))
     first = 1                           ! the cluster's first mode: a gap from it starts the next
     do i = 2, mode
       if (w(i) - w(first) > cluster*max(abs(w(i)), scale)) first = i
