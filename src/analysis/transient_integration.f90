@@ -11,7 +11,8 @@ module transient_integration
   use table_output, only: table_t
   use lsode_solver, only: lsode_t, lsode_counters_t, ode_system_t, mf_adams, mf_bdf_full_user, mf_bdf_band_user, &
                           mf_bdf_band_fd, mf_bdf_full_fd
-  use linalg, only: sym_generalized_eig, band_generalized_eig
+  use linalg, only: sym_generalized_eig, band_generalized_eig, band_eigenvector, dense_to_lower_band
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute, band_cholesky_inverse_diagonal
   use transient_settings, only: transient_settings_t
   implicit none
   private
@@ -252,37 +253,119 @@ contains
   !> accelerations a at the rigid-body state (rhs at y = 0); the static
   !> deflection K^-1 M a mode by mode (free modes carry none) and each mode's
   !> largest displacement in it (and, at the first sample, in the initial
-  !> displacement).
+  !> displacement).  A banded model's shapes are found from the lowest up,
+  !> until no higher mode can reach the rule's share (banded_shapes).
   subroutine add_load_sample(self, model, t, mass, stiff, err)
     class(static_load_t), intent(inout) :: self
     class(ode_system_t), intent(inout) :: model
     real(dp), intent(in) :: t, mass(:, :), stiff(:, :)
     type(error_t), intent(inout) :: err
     real(dp) :: shapes(size(self%w2), size(self%w2)), w2(size(self%w2)), peak(size(self%w2)), &
-                scale(size(self%w2)), modal(size(self%w2)), y(2*size(self%w2)), ydot(2*size(self%w2))
-    integer :: k
-    if (self%kd >= 0 .and. self%kd < size(w2) - 1) then
-      call band_generalized_eig(stiff, mass, self%kd, w2, err, shapes)
-    else
-      call sym_generalized_eig(stiff, mass, w2, err, shapes)
-    end if
-    if (err%failed()) return
-    self%w2 = max(self%w2, w2)
-    peak = [(maxval(abs(shapes(:, k))), k = 1, size(w2))]
-    scale = 0.0_dp
-    where (w2 > free_mode*w2(size(w2))) scale = 1.0_dp/w2
-    if (self%done == 0) self%share = abs(matmul(matmul(self%q0, mass), shapes))*peak
+                scale(size(self%w2)), modal(size(self%w2)), y(2*size(self%w2)), ydot(2*size(self%w2)), &
+                f(size(self%w2)), q_static
+    integer :: k, n_shapes
+    logical :: bounded
     y = 0.0_dp
     call model%rhs(t, y, ydot)
     if (model%err%failed()) then
       call err%set('', model%err%text())
       return
     end if
-    modal = matmul(matmul(ydot(2::2), mass), shapes)*scale
-    self%share = max(self%share, abs(modal)*peak)
-    self%q_static = max(self%q_static, maxval(abs(matmul(shapes, modal))))
+    f = matmul(ydot(2::2), mass)
+    bounded = .false.
+    n_shapes = size(w2)
+    if (self%kd >= 0 .and. self%kd < size(w2) - 1) then
+      call band_generalized_eig(stiff, mass, self%kd, w2, err)
+      if (err%failed()) return
+      call banded_shapes(self, mass, stiff, f, w2, shapes, n_shapes, q_static, bounded, err)
+    else
+      call sym_generalized_eig(stiff, mass, w2, err, shapes)
+    end if
+    if (err%failed()) return
+    self%w2 = max(self%w2, w2)
+    peak = 0.0_dp
+    peak(:n_shapes) = [(maxval(abs(shapes(:, k))), k = 1, n_shapes)]
+    scale = 0.0_dp
+    where (w2 > free_mode*w2(size(w2))) scale = 1.0_dp/w2
+    if (self%done == 0) self%share(:n_shapes) = abs(matmul(matmul(self%q0, mass), shapes(:, :n_shapes)))*peak(:n_shapes)
+    modal = 0.0_dp
+    modal(:n_shapes) = matmul(f, shapes(:, :n_shapes))*scale(:n_shapes)
+    self%share(:n_shapes) = max(self%share(:n_shapes), abs(modal(:n_shapes))*peak(:n_shapes))
+    if (bounded) then
+      self%q_static = max(self%q_static, q_static)
+    else
+      self%q_static = max(self%q_static, maxval(abs(matmul(shapes, modal))))
+    end if
     self%done = self%done + 1
   end subroutine add_load_sample
+
+  !> The shapes of the lowest n_shapes modes of a banded model, ascending,
+  !> until no higher mode can carry mode_share of the static deflection
+  !> (doc/transient.md, "Default solver settings"), and this sample's static
+  !> deflection q_static = max |K^-1 f| (f = M a).  An M-normalised mode phi
+  !> has |phi_i| <= d = max_i sqrt((M^-1)_ii), and the modes k > m together
+  !> hold sum_k>m (phi_k^T g)^2 = g^T M^-1 g - sum_k<=m (phi_k^T g)^2 = r_m(g)^2
+  !> of any g.  So mode k > m carries at most d r_m(f) / w_k^2 of the load's
+  !> deflection (|phi^T f| max|phi| / w^2) and, at the first sample, d
+  !> r_m(K q0) / w_k^2 of the initial displacement q0 (|phi^T M q0| =
+  !> |phi^T K q0| / w^2): the search stops when that bound at w_m+1 is below
+  !> half of mode_share times the largest deflection known so far (the
+  !> rule's q_s can only grow).  bounded = .false. (every shape found, and
+  !> q_static not set) when K is not positive definite or has free modes.
+  subroutine banded_shapes(self, mass, stiff, f, w2, shapes, n_shapes, q_static, bounded, err)
+    class(static_load_t), intent(in) :: self
+    real(dp), intent(in) :: mass(:, :), stiff(:, :), f(:), w2(:)
+    real(dp), intent(out) :: shapes(:, :), q_static
+    integer, intent(out) :: n_shapes
+    logical, intent(out) :: bounded
+    type(error_t), intent(inout) :: err
+    real(dp) :: mb(self%kd + 1, size(f)), kb(self%kd + 1, size(f)), d(size(f)), x(size(f)), g0(size(f)), &
+                r2(2), floor(2), threshold, d_max
+    integer :: info, k, n
+    n = size(f)
+    shapes = 0.0_dp
+    q_static = 0.0_dp
+    n_shapes = n
+    call dense_to_lower_band(mass, self%kd, mb)
+    call dense_to_lower_band(stiff, self%kd, kb)
+    call band_cholesky_inplace(mb, self%kd, info)
+    bounded = info == 0
+    if (bounded) then
+      call band_cholesky_inplace(kb, self%kd, info)
+      bounded = info == 0 .and. w2(1) > free_mode*w2(n)
+    end if
+    if (.not. bounded) then
+      do k = 1, n
+        call band_eigenvector(stiff, mass, self%kd, w2, k, shapes, err)
+        if (err%failed()) return
+      end do
+      return
+    end if
+    x = f
+    call band_cholesky_substitute(kb, self%kd, x)
+    q_static = maxval(abs(x))
+    threshold = 0.5_dp*mode_share*max(self%q_static, q_static)
+    g0 = 0.0_dp
+    if (self%done == 0) g0 = matmul(stiff, self%q0)
+    x = f
+    call band_cholesky_substitute(mb, self%kd, x)
+    r2(1) = dot_product(f, x)
+    x = g0
+    call band_cholesky_substitute(mb, self%kd, x)
+    r2(2) = dot_product(g0, x)
+    floor = 1.0e3_dp*epsilon(1.0_dp)*r2           ! the round-off of the subtractions below
+    call band_cholesky_inverse_diagonal(mb, self%kd, d)
+    d_max = sqrt(maxval(d))
+    n_shapes = 0
+    do k = 1, n
+      if (d_max*sqrt(maxval(max(r2, 0.0_dp) + floor)) < threshold*w2(k)) exit
+      call band_eigenvector(stiff, mass, self%kd, w2, k, shapes, err)
+      if (err%failed()) return
+      n_shapes = k
+      r2(1) = r2(1) - dot_product(shapes(:, k), f)**2
+      r2(2) = r2(2) - dot_product(shapes(:, k), g0)**2
+    end do
+  end subroutine banded_shapes
 
   !> The number of times the load is sampled at: load_samples, fewer for a
   !> model whose order n makes each sample's eigenproblem (n^3) costly.

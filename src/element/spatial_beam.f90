@@ -778,7 +778,8 @@ contains
   end function spatial_to_global
 
   !> y = x with each vector triple (but the rotation triples flagged local)
-  !> multiplied by m: T^T q with m = rot^T, T p with m = rot.
+  !> multiplied by m: T^T q with m = rot^T, T p with m = rot.  (Scalar
+  !> statements: the 3 x 3 products stay in registers, no array temporaries.)
   pure function rotate_triples(m, x, local) result(y)
     real(dp), intent(in) :: m(3, 3), x(nd)
     logical, intent(in), optional :: local(2)
@@ -787,14 +788,13 @@ contains
     integer :: b, r
     loc = .false.
     if (present(local)) loc = local
-    y(7:10) = x(7:10)                    ! curvature and u-slope DOFs stay local
-    y(17:20) = x(17:20)
-    if (loc(1)) y(4:6) = x(4:6)
-    if (loc(2)) y(14:16) = x(14:16)
+    y = x                                ! curvature and u-slope DOFs (and local triples) stay
     do b = 1, 4
       if ((b == 2 .and. loc(1)) .or. (b == 4 .and. loc(2))) cycle
       r = triple_first(b)
-      y(r:r + 2) = m(:, 1)*x(r) + m(:, 2)*x(r + 1) + m(:, 3)*x(r + 2)
+      y(r) = m(1, 1)*x(r) + m(1, 2)*x(r + 1) + m(1, 3)*x(r + 2)
+      y(r + 1) = m(2, 1)*x(r) + m(2, 2)*x(r + 1) + m(2, 3)*x(r + 2)
+      y(r + 2) = m(3, 1)*x(r) + m(3, 2)*x(r + 1) + m(3, 3)*x(r + 2)
     end do
   end function rotate_triples
 
@@ -830,10 +830,16 @@ contains
     real(dp), intent(in) :: w(3), p(nd)
     logical, intent(in) :: local(2)
     real(dp) :: r(nd)
+    logical :: rotates(4)
+    integer :: b, k
+    rotates = [.true., .not. local(1), .true., .not. local(2)]
     r = 0.0_dp
-    r(1:3) = cross(w, p(1:3))
-    if (.not. local(1)) r(4:6) = cross(w, p(4:6))
-    r(11:13) = cross(w, p(11:13))
-    if (.not. local(2)) r(14:16) = cross(w, p(14:16))
+    do b = 1, 4                          ! (the cross product written out: inlined)
+      if (.not. rotates(b)) cycle
+      k = triple_first(b)
+      r(k) = w(2)*p(k + 2) - w(3)*p(k + 1)
+      r(k + 1) = w(3)*p(k) - w(1)*p(k + 2)
+      r(k + 2) = w(1)*p(k + 1) - w(2)*p(k)
+    end do
   end function skew_apply
 end module spatial_beam

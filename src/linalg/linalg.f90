@@ -16,7 +16,7 @@ module linalg
   public :: cholesky_factor, cholesky_solve
   public :: band_cholesky_factor, band_cholesky_solve
   public :: band_lu_factor, band_lu_solve
-  public :: sym_generalized_eig, band_generalized_eig, symmetric_eigenvalues, identity, eigenvalues_general
+  public :: sym_generalized_eig, band_generalized_eig, band_eigenvector, symmetric_eigenvalues, identity, eigenvalues_general
   public :: dense_to_lower_band, outer, cross
 
   interface
@@ -351,9 +351,7 @@ contains
   !> bandwidth kd, given dense): eigenvalues ascending in `w` by LAPACK's
   !> banded reduction (DSBGV without vectors, about 12 n^2 kd operations
   !> instead of DSYGV's 9 n^3 or more); with `vectors`, M-orthonormal
-  !> eigenvectors by inverse iteration on the banded K - sigma M (two
-  !> O(n kd^2) solves each from sigma just below the eigenvalue), modes of
-  !> a cluster M-orthogonalized against each other.  Same results as
+  !> eigenvectors by inverse iteration (band_eigenvector).  Same results as
   !> sym_generalized_eig (eigenvectors up to sign, and up to a rotation
   !> inside a cluster of equal eigenvalues).
   subroutine band_generalized_eig(k, m, kd, w, err, vectors)
@@ -362,10 +360,8 @@ contains
     real(dp), intent(out) :: w(:)
     type(error_t), intent(inout) :: err
     real(dp), intent(out), optional :: vectors(:, :)
-    real(dp), parameter :: cluster = 1.0e-8_dp    !< relative gap below which two eigenvalues are one cluster
     real(dp) :: kb(kd + 1, size(k, 1)), mb(kd + 1, size(k, 1)), z(1, 1), work(3*size(k, 1))
-    real(dp) :: shifted(3*kd + 1, size(k, 1)), x(size(k, 1)), mx(size(k, 1)), sigma, scale, norm
-    integer :: ipiv(size(k, 1)), n, info, mode, i, j, it, first
+    integer :: n, info, mode
     n = size(k, 1)
     call dense_to_lower_band(k, kd, kb)
     call dense_to_lower_band(m, kd, mb)
@@ -379,33 +375,58 @@ contains
                    //str(info - n)//')')
     end if
     if (err%failed() .or. .not. present(vectors)) return
-    scale = maxval(abs(w))
-    first = 1
     do mode = 1, n
-      if (w(mode) - w(first) > cluster*scale) first = mode
-      sigma = w(mode) - cluster*scale
-      shifted = 0.0_dp
-      do j = 1, n
-        do i = max(1, j - kd), min(n, j + kd)
-          shifted(2*kd + 1 + i - j, j) = k(i, j) - sigma*m(i, j)
-        end do
-      end do
-      call band_lu_factor(shifted, kd, kd, ipiv, err)
+      call band_eigenvector(k, m, kd, w, mode, vectors, err)
       if (err%failed()) return
-      x = [(1.0_dp + 0.01_dp*modulo(37*i + 11*mode, 101), i = 1, n)]   ! a start of its own: one a cluster's earlier modes lack
-      mx = band_m(x)
-      do it = 1, 2
-        x = mx
-        call band_lu_solve(shifted, kd, kd, ipiv, x, err)
-        if (err%failed()) return
-        if (first < mode) call m_orthogonalize(x, first, mode)
-        mx = band_m(x)
-        norm = sqrt(max(dot_product(x, mx), tiny(1.0_dp)))
-        x = x/norm
-        mx = mx/norm
-      end do
-      vectors(:, mode) = x
     end do
+  end subroutine band_generalized_eig
+
+  !> Column `mode` of `vectors`: the M-normalised eigenvector of eigenvalue
+  !> w(mode) (w: all eigenvalues, ascending, from band_generalized_eig) by
+  !> inverse iteration on the banded K - sigma M (two O(n kd^2) solves from
+  !> sigma just below the eigenvalue), M-orthogonalized against the earlier
+  !> modes of its cluster (columns found before, in ascending order).
+  subroutine band_eigenvector(k, m, kd, w, mode, vectors, err)
+    real(dp), intent(in) :: k(:, :), m(:, :), w(:)
+    integer, intent(in) :: kd, mode
+    real(dp), intent(inout) :: vectors(:, :)
+    type(error_t), intent(inout) :: err
+    real(dp), parameter :: cluster = 1.0e-8_dp    !< relative gap below which two eigenvalues are one cluster
+    real(dp) :: shifted(3*kd + 1, size(k, 1)), x(size(k, 1)), mx(size(k, 1)), sigma, scale, norm
+    integer :: ipiv(size(k, 1)), n, i, j, it, first
+    n = size(k, 1)
+    ! Gaps and the shift are measured on the eigenvalue's own scale: on the
+    ! largest one's (1e16 against 1e6 with the curvature DOFs), the shift of
+    ! a low mode would sit nearer the mode below it than its own.  Not below
+    ! 1e-4 of the largest: a free mode (zero to round-off) keeps K - sigma M
+    ! away from exact singularity.
+    scale = 1.0e-4_dp*maxval(abs(w))
+    first = 1                           ! the cluster's first mode: a gap from it starts the next
+    do i = 2, mode
+      if (w(i) - w(first) > cluster*max(abs(w(i)), scale)) first = i
+    end do
+    sigma = w(mode) - cluster*max(abs(w(mode)), scale)
+    shifted = 0.0_dp
+    do j = 1, n
+      do i = max(1, j - kd), min(n, j + kd)
+        shifted(2*kd + 1 + i - j, j) = k(i, j) - sigma*m(i, j)
+      end do
+    end do
+    call band_lu_factor(shifted, kd, kd, ipiv, err)
+    if (err%failed()) return
+    x = [(1.0_dp + 0.01_dp*modulo(37*i + 11*mode, 101), i = 1, n)]   ! a start of its own: one a cluster's earlier modes lack
+    mx = band_m(x)
+    do it = 1, 2
+      x = mx
+      call band_lu_solve(shifted, kd, kd, ipiv, x, err)
+      if (err%failed()) return
+      if (first < mode) call m_orthogonalize(x, first, mode)
+      mx = band_m(x)
+      norm = sqrt(max(dot_product(x, mx), tiny(1.0_dp)))
+      x = x/norm
+      mx = mx/norm
+    end do
+    vectors(:, mode) = x
   contains
     !> x M-orthogonal to the cluster's modes found before this one
     subroutine m_orthogonalize(x, first, mode)
@@ -428,7 +449,7 @@ contains
         end do
       end do
     end function band_m
-  end subroutine band_generalized_eig
+  end subroutine band_eigenvector
 
   !> Eigenvalues (ascending) of a symmetric matrix: the generalized
   !> eigensolver with M = I (the inertia and convexity tests of the models,

@@ -22,7 +22,7 @@ module second_order_newton
   use kinds, only: dp
   use error_status, only: error_t
   use linalg, only: band_lu_factor, band_lu_solve
-  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute, add_pair_band
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute, symmetric_band_product, add_pair_band
   implicit none
   private
   public :: second_order_newton_t, symmetric_band, band_combination
@@ -145,7 +145,7 @@ contains
     if (self%cholesky .and. .not. allocated(self%damper)) then
       g = 1.0_dp/(self%beta + self%hl0)
       r2 = x(2::2) + g*r1
-      call symmetric_band_product(self%mass, self%n, self%kd, r2, dv)
+      call symmetric_band_product(self%mass, self%kd, r2, dv)
       call band_cholesky_substitute(self%chol, self%kd, dv)
       dv = dv - g*r1
     else
@@ -162,25 +162,6 @@ contains
     x(1::2) = r1 + self%hl0*dv
     end associate
   end subroutine solve
-
-  !> y = M a, M symmetric in lower band storage m(1+i-j, j): O(N kd).
-  pure subroutine symmetric_band_product(m, n, kd, a, y)
-    integer, intent(in) :: n, kd
-    real(dp), intent(in) :: m(kd + 1, n)
-    real(dp), intent(in) :: a(n)
-    real(dp), intent(out) :: y(n)
-    real(dp) :: s
-    integer :: i, j
-    y = 0.0_dp
-    do j = 1, n
-      s = m(1, j)*a(j)
-      do i = j + 1, min(n, j + kd)
-        y(i) = y(i) + m(1 + i - j, j)*a(j)
-        s = s + m(1 + i - j, j)*a(i)
-      end do
-      y(j) = y(j) + s
-    end do
-  end subroutine symmetric_band_product
 
   !> Whether a band matrix in general band storage (half-bandwidth kd) is
   !> symmetric to round-off (1e-10 of its largest entry).

@@ -1,12 +1,14 @@
 !> Tests of the banded Cholesky kernels (module band_kernels): the solve
 !> against a dense solve of the same matrix, the factor against LAPACK's
 !> DPBTRF (same arithmetic: equal to round-off), the first non-positive
-!> leading minor reported by its order, and bands wider than the matrix.
+!> leading minor reported by its order, bands wider than the matrix, the
+!> diagonal of the inverse from the factor and the symmetric band product.
 module test_band_kernels_suite
   use kinds, only: dp
   use error_status, only: error_t
   use linalg, only: solve_linear, band_cholesky_factor
-  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute
+  use band_kernels, only: band_cholesky_inplace, band_cholesky_substitute, band_cholesky_inverse_diagonal, &
+                          symmetric_band_product
   use assertions
   implicit none
   private
@@ -19,6 +21,8 @@ contains
     call run_test('factor_equals_lapack', test_lapack)
     call run_test('indefinite_reports_minor', test_indefinite)
     call run_test('band_wider_than_matrix', test_wide)
+    call run_test('inverse_diagonal_equals_dense', test_inverse_diagonal)
+    call run_test('symmetric_product_equals_dense', test_product)
   end subroutine run_all
 
   !> SPD band matrix (n, kd): diagonally dominant, entries of mixed sign.
@@ -100,6 +104,38 @@ contains
     call band_cholesky_substitute(ab, kd, x)
     call assert_all_close(x, b, 0.0_dp, 1.0e-13_dp*maxval(abs(b)), 'A^-1 b')
   end subroutine test_wide
+
+  !> diag(A^-1) from the factor against the dense solves of A x = e_i (A's
+  !> condition below 10: 1e-12 is far above round-off; an indexing error
+  !> changes an entry at order 1).
+  subroutine test_inverse_diagonal()
+    integer, parameter :: n = 30, kd = 5
+    real(dp) :: a(n, n), ab(kd + 1, n), d(n), e(n)
+    type(error_t) :: err
+    integer :: i, info
+    call spd_band(n, kd, a, ab)
+    call band_cholesky_inplace(ab, kd, info)
+    call assert_equal(info, 0, 'factored')
+    call band_cholesky_inverse_diagonal(ab, kd, d)
+    do i = 1, n
+      e = 0.0_dp
+      e(i) = 1.0_dp
+      call solve_linear(a, e, err)
+      call assert_close(d(i), e(i), 1.0e-12_dp, '(A^-1)_ii')
+    end do
+  end subroutine test_inverse_diagonal
+
+  !> M a from the lower band against the dense product (the same sums
+  !> per entry, so 1e-14 of |M a|).
+  subroutine test_product()
+    integer, parameter :: n = 23, kd = 4
+    real(dp) :: a(n, n), ab(kd + 1, n), x(n), y(n)
+    integer :: i
+    call spd_band(n, kd, a, ab)
+    x = [(cos(real(2*i, dp)), i = 1, n)]
+    call symmetric_band_product(ab, kd, x, y)
+    call assert_all_close(y, matmul(a, x), 0.0_dp, 1.0e-14_dp*maxval(abs(matmul(a, x))), 'M a')
+  end subroutine test_product
 end module test_band_kernels_suite
 
 program test_band_kernels
