@@ -549,6 +549,13 @@ contains
         end if
         if (prob%is_bearing()) then
           call out%summary('final peak bearing force', str(ev%peak_bearing, 8))
+          ! the minimax residuals: |F_j| at each sample, the joints fastest
+          if (prob%is_minimax()) then
+            do i = 1, size(prob%bearing_joints)
+              call out%summary('final peak bearing force joint '//str(prob%bearing_joints(i)), &
+                               str(maxval(ev%residual(i::size(prob%bearing_joints))), 8))
+            end do
+          end if
           call out%summary('final rms bearing force', str(ev%rms_bearing, 8))
           if (opt%n_steps > 0) then
             call out%summary('initial peak bearing force', str(opt%steps(1)%peak_bearing, 8))
