@@ -539,27 +539,15 @@ contains
             call out%summary('initial path error (rigid body)', str(opt%steps(1)%rigid_path_error, 8))
           end if
         end if
-        if (prob%is_shaking()) then
-          call out%summary('final peak shaking force', str(ev%peak_shaking, 8))
-          call out%summary('final rms shaking force', str(ev%rms_shaking, 8))
-          if (opt%n_steps > 0) then
-            call out%summary('initial peak shaking force', str(opt%steps(1)%peak_shaking, 8))
-            call out%summary('initial rms shaking force', str(opt%steps(1)%rms_shaking, 8))
-          end if
-        end if
+        if (prob%is_shaking()) call force_summary('shaking', ev%peak_shaking, ev%rms_shaking)
         if (prob%is_bearing()) then
-          call out%summary('final peak bearing force', str(ev%peak_bearing, 8))
+          call force_summary('bearing', ev%peak_bearing, ev%rms_bearing)
           ! the minimax residuals: |F_j| at each sample, the joints fastest
           if (prob%is_minimax()) then
             do i = 1, size(prob%bearing_joints)
               call out%summary('final peak bearing force joint '//str(prob%bearing_joints(i)), &
                                str(maxval(ev%residual(i::size(prob%bearing_joints))), 8))
             end do
-          end if
-          call out%summary('final rms bearing force', str(ev%rms_bearing, 8))
-          if (opt%n_steps > 0) then
-            call out%summary('initial peak bearing force', str(opt%steps(1)%peak_bearing, 8))
-            call out%summary('initial rms bearing force', str(opt%steps(1)%rms_bearing, 8))
           end if
         end if
       else
@@ -586,6 +574,20 @@ contains
     call out%cost('cpu_seconds_per_analysis', str(prob%cpu_analyses/max(1, prob%n_analyses), 4))
     call out%cost('cpu_seconds_analyses', str(prob%cpu_analyses, 4))
     call out%cost('cpu_seconds_design', str(cpu, 4))
+  contains
+    !> The final and initial peak and rms of a force objective ('shaking', 'bearing').
+    subroutine force_summary(what, peak, rms)
+      character(len=*), intent(in) :: what
+      real(dp), intent(in) :: peak, rms
+      call out%summary('final peak '//what//' force', str(peak, 8))
+      call out%summary('final rms '//what//' force', str(rms, 8))
+      if (opt%n_steps == 0) return
+      associate (st => opt%steps(1))
+        call out%summary('initial peak '//what//' force', str(merge(st%peak_shaking, st%peak_bearing, &
+                                                                    what == 'shaking'), 8))
+        call out%summary('initial rms '//what//' force', str(merge(st%rms_shaking, st%rms_bearing, what == 'shaking'), 8))
+      end associate
+    end subroutine force_summary
   end subroutine write_results
 
   !> Largest distance of the coupler point from its target.

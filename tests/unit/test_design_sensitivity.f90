@@ -172,11 +172,10 @@ contains
   !> the differences' noise there measured 1.2e-6).  Counted as one analysis.
   subroutine test_design_derivatives()
     type(design_problem_t) :: prob
-    real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), gp(:), gm(:), rp(:), rm(:)
+    real(dp), allocatable :: x0(:), dg(:, :), dr(:, :)
     type(design_eval_t) :: ev
-    real(dp) :: xs(3), h
     logical :: ok
-    integer :: j, before
+    integer :: before
     call load(example3//'/|&steady damping_beta = 1.0e-5, integrator = ''bdf'', rtol = 1.0e-9, '// &
               'atol = 1.0e-13 /', prob, x0)
     prob%shooting%newton_tol = 1.0e-8_dp
@@ -194,18 +193,7 @@ contains
     call assert_equal(prob%n_sensitivity, 1, 'one sensitivity solve')
     call assert_true(maxval(abs(dg(1, :))) <= 1.0e-12_dp, 'the crank counterweight leaves the stresses alone')
     call assert_true(maxval(abs(dr(1, :))) > 0.1_dp*maxval(abs(dr(3, :))), 'but moves the shaking force')
-    do j = 1, 3
-      h = 1.0e-3_dp
-      xs = x0
-      xs(j) = x0(j) + h
-      call values(prob, xs, gp, rp)
-      xs(j) = x0(j) - h
-      call values(prob, xs, gm, rm)
-      call assert_all_close(dg(j, :), (gp - gm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((gp - gm)/(2*h))) + 1.0e-5_dp, &
-                            'dg/dx of variable '//char(48 + j))
-      call assert_all_close(dr(j, :), (rp - rm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((rp - rm)/(2*h))), &
-                            'dr/dx of variable '//char(48 + j))
-    end do
+    call check_against_differences(prob, x0, dg, dr, 1.0e-3_dp)
   end subroutine test_design_derivatives
 
   !> The same check with the nonlinear analysis in the loop: example 1
@@ -469,9 +457,8 @@ contains
   !> elastic equations, the coupler's height through mass and stiffness.
   subroutine test_bearing_derivatives()
     type(design_problem_t) :: prob
-    real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), gp(:), gm(:), rp(:), rm(:)
+    real(dp), allocatable :: x0(:), dg(:, :), dr(:, :), r(:)
     type(design_eval_t) :: ev
-    real(dp) :: xs(3), h
     logical :: ok
     integer :: j
     call load(replace_objective('''bearing_peak'', bearing_joints = 1, 4, ')//'/|&steady damping_beta = 1.0e-5, '// &
@@ -486,21 +473,35 @@ contains
     call assert_true(ok, 'derivatives_at succeeds')
     if (.not. ok) return
     call assert_equal(size(dr, 2), 2*36, 'two joints at 36 samples')
+    r = prob%residuals_of(ev)
     do j = 1, 3
-      h = 1.0e-3_dp
+      call assert_true(maxval(abs(dr(j, :))) > 1.0e-3_dp*maxval(abs(r)), 'variable '//char(48 + j)// &
+                       ' moves the bearing forces')
+    end do
+    call check_against_differences(prob, x0, dg, dr, 1.0e-3_dp)
+  end subroutine test_bearing_derivatives
+
+  !> dg/dx and dr/dx of each variable against central differences of whole
+  !> analyses at x0 +- h: within 1e-4 of each derivative vector's largest
+  !> entry (plus 1e-5 absolute for the constraints, logarithms).
+  subroutine check_against_differences(prob, x0, dg, dr, h)
+    type(design_problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: x0(:), dg(:, :), dr(:, :), h
+    real(dp), allocatable :: gp(:), gm(:), rp(:), rm(:)
+    real(dp) :: xs(size(x0))
+    integer :: j
+    do j = 1, size(x0)
       xs = x0
       xs(j) = x0(j) + h
       call values(prob, xs, gp, rp)
       xs(j) = x0(j) - h
       call values(prob, xs, gm, rm)
-      call assert_true(maxval(abs(dr(j, :))) > 1.0e-3_dp*maxval(abs(rp)), 'variable '//char(48 + j)// &
-                       ' moves the bearing forces')
-      call assert_all_close(dr(j, :), (rp - rm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((rp - rm)/(2*h))), &
-                            'dr/dx of variable '//char(48 + j))
       call assert_all_close(dg(j, :), (gp - gm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((gp - gm)/(2*h))) + 1.0e-5_dp, &
                             'dg/dx of variable '//char(48 + j))
+      call assert_all_close(dr(j, :), (rp - rm)/(2*h), 0.0_dp, 1.0e-4_dp*maxval(abs((rp - rm)/(2*h))), &
+                            'dr/dx of variable '//char(48 + j))
     end do
-  end subroutine test_bearing_derivatives
+  end subroutine check_against_differences
 
   !> Example 3's text at 30 rad/s with 72 samples.
   function slow(text) result(moved)
