@@ -212,7 +212,9 @@ program bench_design
   if (size(decks) == 0) then
     decks = [character(len=256) :: 'inputs/design_bar_frequency.nml', 'inputs/design_fourbar_path_60.nml', &
              'inputs/design_fourbar_mass_150.nml', 'inputs/design_fourbar_counterweights.nml', &
-             'inputs/design_fourbar_mass_150_nonlinear.nml']
+             'inputs/design_fourbar_mass_150_nonlinear.nml', 'inputs/design_fourbar_mass_150_nonlinear_deflection.nml', &
+             'inputs/design_fourbar_counterweights_bearing.nml', 'inputs/design_fourbar_counterweights_bearing_linear.nml', &
+             'inputs/design_fourbar_path_60_nonlinear.nml']
   end if
   write(output_unit, '(a)') '# Design with the analysis in the loop: the design loop (GNLC on sequential '// &
     'approximate problems) beside NLopt SLSQP and COBYLA, same deck, start, analyses and constraints.'

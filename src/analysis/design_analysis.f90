@@ -105,6 +105,7 @@ contains
                             fd_rel_step=difference_step(ds%evaluator), peak_stress=ds%peak_stress, ks_rho=ds%ks_rho, &
                             peak_interpolation=ds%peak_interpolation)
     if (prob%is_path()) call set_path(ds, prob)
+    if (prob%is_bearing()) prob%bearing_joints = pack(ds%bearing_joints, ds%bearing_joints > 0)
     call set_deflections(ds, prob)
     if (prob%is_shaking() .and. any(st%sections(1:mech%n_links)%n > 0)) then
       call invalid_value(deck, 'design', 'objective', ''''//trim(prob%objective_kind)//'''', &
@@ -140,6 +141,18 @@ contains
   end subroutine set_deflections
 
 
+
+  !> '1, 4': the joint numbers, comma separated.
+  function joint_list(joints) result(text)
+    integer, intent(in) :: joints(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, size(joints)
+      text = text//merge(', ', '  ', k > 1)//str(joints(k))
+    end do
+    text = trim(adjustl(text))
+  end function joint_list
 
   !> Finite-difference steps above the analysis' noise (doc/design.md).
   real(dp) function difference_step(evaluator) result(step)
@@ -337,6 +350,12 @@ contains
       call out%comment('design: least peak shaking force over the steady revolution (minimax: min t subject to '// &
         '|F_shake(theta_k)| <= t at '//str(prob%samples)//' crank angles, elastic motion included; F = peak / '// &
         'its initial value '//str(prob%f0, 8)//')')
+    case ('bearing', 'bearing_peak')
+      call out%comment('design: least '//trim(merge('mean square', 'peak       ', prob%objective_kind == 'bearing'))// &
+        ' bearing force of joints '//joint_list(prob%bearing_joints)//' over the steady revolution (the force each '// &
+        'pin carries, rigid and elastic, at '//str(prob%samples)//' crank angles; '// &
+        trim(merge('F = mean sum |F_j|^2', 'minimax: F = peak   ', prob%objective_kind == 'bearing'))// &
+        ' / its initial value '//str(prob%f0, 8)//')')
     case default
       call out%comment('design: minimum mass of the links (F = mass / initial mass '//str(prob%mass0, 8)//')')
     end select
@@ -442,12 +461,14 @@ contains
     if (prob%is_path()) names(7 + n + nc:) = [character(len=32) :: 'objective', 'path_error', 'rigid_path_error']
     if (prob%is_shaking()) names(7 + n + nc:) = [character(len=32) :: 'objective', 'peak_shaking', &
                                                                  'rms_shaking']
+    if (prob%is_bearing()) names(7 + n + nc:) = [character(len=32) :: 'objective', 'peak_bearing', 'rms_bearing']
     call out%comment('columns: k = design iteration; analyses and cpu_s (analysis CPU) so far; mass of the links; '// &
                      'max_violation = largest g; move_limit = largest change of x in the next approximate problem; '// &
                      'the design values; g<i> = analysis constraints (<= 0 feasible); path objectives: '// &
                      'objective = F / F0, path_error = sum of squared distances of the coupler point from the '// &
                      'targets with the elastic deformation, rigid_path_error = the same for the rigid-body point; '// &
-                     'shaking: peak and rms shaking force over the revolution')
+                     'shaking: peak and rms shaking force over the revolution; bearing: peak and rms bearing '// &
+                     'force of the named joints')
     call out%columns(names)
     do r = 1, opt%n_steps
       associate (st => opt%steps(r))
@@ -458,6 +479,7 @@ contains
         row(7 + n:6 + n + nc) = st%g
         if (prob%is_path()) row(7 + n + nc:) = [st%objective, st%path_error, st%rigid_path_error]
         if (prob%is_shaking()) row(7 + n + nc:) = [st%objective, st%peak_shaking, st%rms_shaking]
+        if (prob%is_bearing()) row(7 + n + nc:) = [st%objective, st%peak_bearing, st%rms_bearing]
         call out%row(row)
         ! after the row: the column names stay the last '#' line before the first row
         if (len(st%events) > 0) call out%comment('k = '//str(st%k)//': '//st%events)
@@ -517,12 +539,15 @@ contains
             call out%summary('initial path error (rigid body)', str(opt%steps(1)%rigid_path_error, 8))
           end if
         end if
-        if (prob%is_shaking()) then
-          call out%summary('final peak shaking force', str(ev%peak_shaking, 8))
-          call out%summary('final rms shaking force', str(ev%rms_shaking, 8))
-          if (opt%n_steps > 0) then
-            call out%summary('initial peak shaking force', str(opt%steps(1)%peak_shaking, 8))
-            call out%summary('initial rms shaking force', str(opt%steps(1)%rms_shaking, 8))
+        if (prob%is_shaking()) call force_summary('shaking', ev%peak_shaking, ev%rms_shaking)
+        if (prob%is_bearing()) then
+          call force_summary('bearing', ev%peak_bearing, ev%rms_bearing)
+          ! the minimax residuals: |F_j| at each sample, the joints fastest
+          if (prob%is_minimax()) then
+            do i = 1, size(prob%bearing_joints)
+              call out%summary('final peak bearing force joint '//str(prob%bearing_joints(i)), &
+                               str(maxval(ev%residual(i::size(prob%bearing_joints))), 8))
+            end do
           end if
         end if
       else
@@ -549,6 +574,20 @@ contains
     call out%cost('cpu_seconds_per_analysis', str(prob%cpu_analyses/max(1, prob%n_analyses), 4))
     call out%cost('cpu_seconds_analyses', str(prob%cpu_analyses, 4))
     call out%cost('cpu_seconds_design', str(cpu, 4))
+  contains
+    !> The final and initial peak and rms of a force objective ('shaking', 'bearing').
+    subroutine force_summary(what, peak, rms)
+      character(len=*), intent(in) :: what
+      real(dp), intent(in) :: peak, rms
+      call out%summary('final peak '//what//' force', str(peak, 8))
+      call out%summary('final rms '//what//' force', str(rms, 8))
+      if (opt%n_steps == 0) return
+      associate (st => opt%steps(1))
+        call out%summary('initial peak '//what//' force', str(merge(st%peak_shaking, st%peak_bearing, &
+                                                                    what == 'shaking'), 8))
+        call out%summary('initial rms '//what//' force', str(merge(st%rms_shaking, st%rms_bearing, what == 'shaking'), 8))
+      end associate
+    end subroutine force_summary
   end subroutine write_results
 
   !> Largest distance of the coupler point from its target.

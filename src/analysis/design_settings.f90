@@ -21,6 +21,7 @@ module design_settings
   integer, parameter :: max_points = 72
   integer, parameter :: max_speeds = 8
   integer, parameter :: max_deflections = 8
+  integer, parameter :: max_bearings = 8
   !> a value not given (bounds, speeds, target points: required or counted)
   real(dp), parameter :: unset = -huge(1.0_dp)
   real(dp), parameter :: unset_value = unset
@@ -61,6 +62,8 @@ module design_settings
     !> movability: the transmission angle at a joint and its least value
     integer :: transmission_joint = 0
     real(dp) :: transmission_min_deg = 40.0_dp
+    !> the joints of the bearing-force objectives
+    integer :: bearing_joints(max_bearings) = 0
   end type design_settings_t
 
   ! staging variables of &design
@@ -80,12 +83,13 @@ module design_settings
   character(len=8) :: deflection_from(max_deflections)
   integer :: transmission_joint
   real(dp) :: transmission_min_deg
+  integer :: bearing_joints(max_bearings)
   namelist /design/ variables, lower, upper, scale, objective, evaluator, stress_allowable, &
                     frequency_factor, max_iterations, samples, xtol, feas_tol, move_limit, hessian, derivatives, &
                     speeds, objective_speed, stop_when_periodic, max_revolutions, &
                     path_link, path_r, path_angle_deg, path_x, path_y, path_dgamma_deg, peak_stress, ks_rho, peak_interpolation, &
                     deflection_link, deflection_at, deflection_limit, deflection_from, transmission_joint, &
-                    transmission_min_deg
+                    transmission_min_deg, bearing_joints
 
 contains
 
@@ -165,6 +169,7 @@ contains
     deflection_from = s%deflection_from
     transmission_joint = s%transmission_joint
     transmission_min_deg = s%transmission_min_deg
+    bearing_joints = s%bearing_joints
   end subroutine stage_from
 
   !> The settings value from the namelist variables (after a read).
@@ -204,6 +209,7 @@ contains
     s%deflection_from = deflection_from
     s%transmission_joint = transmission_joint
     s%transmission_min_deg = transmission_min_deg
+    s%bearing_joints = bearing_joints
   end subroutine staged
 
   !> The &design group's namelist read and write (deck_reader, table_t%echo_group).
@@ -222,7 +228,7 @@ contains
     type(error_t), intent(inout) :: err
     character(len=*), parameter :: g = 'design'
     call check_choice(deck, g, 'objective', s%objective, [character(len=32) :: 'mass', 'path', 'path_rigid', &
-                      'shaking', 'shaking_peak'], err)
+                      'shaking', 'shaking_peak', 'bearing', 'bearing_peak'], err)
     call check_choice(deck, g, 'evaluator', s%evaluator, [character(len=16) :: 'shooting', 'harmonic', 'transient'], err)
     call check_real(deck, g, 'stop_when_periodic', s%stop_when_periodic, err, at_least=1.0e-10_dp, at_most=1.0e-2_dp, &
                     why='largest relative change of the sampled response per revolution (transient evaluator); '// &
@@ -275,6 +281,9 @@ contains
                            shaking_supported(mech), err)
         return
       end if
+    else if (s%objective == 'bearing' .or. s%objective == 'bearing_peak') then
+      call check_bearings(deck, mech, s, err)
+      if (err%failed()) return
     else if (s%objective /= 'mass') then
       call check_path(deck, mech, s, err)
       if (err%failed()) return
@@ -404,6 +413,32 @@ contains
     if (count(s%deflection_link /= 0) /= np) call invalid_value(deck, g, 'deflection_link', 'more than '//str(np), &
       'at most '//str(max_deflections)//' points, given one after another', err)
   end subroutine check_deflections
+
+  !> The joints of the bearing-force objectives: given one after another,
+  !> each a joint of the mechanism; no link sliding through a sleeve (its
+  !> end forces are not a node's).
+  subroutine check_bearings(deck, mech, s, err)
+    type(deck_t), intent(inout) :: deck
+    type(design_settings_t), intent(inout) :: s
+    type(mechanism_t), intent(in) :: mech
+    type(error_t), intent(inout) :: err
+    character(len=*), parameter :: g = 'design'
+    integer :: nj, k
+    nj = count(s%bearing_joints /= 0)
+    if (nj == 0 .or. any(s%bearing_joints(1:nj) == 0)) then
+      call invalid_value(deck, g, 'bearing_joints', str(nj)//' given', 'the objective '''//trim(s%objective)// &
+                         ''' needs the joints whose bearing force it takes, one after another: bearing_joints = 1, 4', &
+                         err)
+      return
+    end if
+    do k = 1, nj
+      call check_integer(deck, g, 'bearing_joints('//str(k)//')', s%bearing_joints(k), err, at_least=1, &
+                         at_most=mech%n_joints, why='a joint whose bearing force the objective takes')
+      if (err%failed()) return
+    end do
+    if (len(shaking_supported(mech)) > 0) call invalid_value(deck, g, 'objective', ''''//trim(s%objective)//'''', &
+      'the bearing forces are not built when '//shaking_supported(mech), err)
+  end subroutine check_bearings
 
   !> The movability constraint: a joint where exactly two links meet, and
   !> the least transmission angle there.

@@ -37,7 +37,8 @@ module design_problem
   use optim_problem, only: opt_problem_t
   use tennant_element, only: tennant_options_t, tennant_stress_t
   use steady_model, only: steady_model_t, link_sections_t
-  use shaking_force, only: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative
+  use shaking_force, only: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative, periodic_derivatives
+  use joint_bearing, only: bearing_forces
   use harmonic_solver, only: harmonic_settings_t, harmonic_report_t, harmonic_solve, harmonic_diagnosis
   use periodic_shooting, only: shooting_settings_t, shooting_report_t, shooting_solve, periodic_orbit, &
                                shooting_diagnosis, orbit_sensitivity
@@ -99,6 +100,10 @@ module design_problem
     real(dp) :: rigid_path_error = 0.0_dp       !< sum of rigid_residual^2 (B's F)
     real(dp) :: peak_shaking = 0.0_dp           !< largest |shaking force| over the samples (objective 'shaking')
     real(dp) :: rms_shaking = 0.0_dp            !< its root mean square over the revolution
+    !> largest bearing force |F_j| over the samples and the named joints
+    !> (objectives 'bearing' and 'bearing_peak'; module joint_bearing)
+    real(dp) :: peak_bearing = 0.0_dp
+    real(dp) :: rms_bearing = 0.0_dp            !< sqrt(mean over the samples of sum_j |F_j|^2)
     real(dp) :: cpu_seconds = 0.0_dp
     real(dp), allocatable :: y_periodic(:, :)   !< (2 n, speed) periodic state at t = 0 (shooting evaluator)
     !> (2 n, 2 n, speed) its monodromy matrix (shooting evaluator): the
@@ -155,8 +160,11 @@ module design_problem
     real(dp) :: transmission_min = 0.0_dp
     real(dp) :: mass0 = 1.0_dp                    !< mass of the initial design
     !> 'mass', 'path' (elastic path error), 'path_rigid', 'shaking' (mean
-    !> square shaking force) or 'shaking_peak' (its peak: minimax)
+    !> square shaking force), 'shaking_peak' (its peak: minimax), 'bearing'
+    !> (mean square bearing force of the joints bearing_joints) or
+    !> 'bearing_peak' (their peak: minimax)
     character(len=32) :: objective_kind = 'mass'
+    integer, allocatable :: bearing_joints(:)     !< the joints of the bearing objectives
     real(dp) :: f0 = 1.0_dp                       !< objective of the initial design (the objective's scale)
     ! ---- the coupler point (path objectives): on a rigid arm clamped to
     !      link path_link at its end 1, at distance path_r and angle
@@ -193,6 +201,7 @@ module design_problem
     character(len=:), allocatable :: last_failure
   contains
     procedure :: setup
+    procedure :: is_bearing
     procedure :: n_analysis_constraints
     procedure :: n_deflection_points
     procedure :: mechanism_at
@@ -327,11 +336,18 @@ contains
     is_shaking = self%objective_kind == 'shaking' .or. self%objective_kind == 'shaking_peak'
   end function is_shaking
 
+  !> The objective is the named joints' bearing force, its mean square or its peak.
+  logical pure function is_bearing(self)
+    class(design_problem_t), intent(in) :: self
+    is_bearing = self%objective_kind == 'bearing' .or. self%objective_kind == 'bearing_peak'
+  end function is_bearing
+
   !> The objective is the largest of the analysis results the residuals
-  !> hold (|shaking force| at each sample): min t subject to r_k <= t.
+  !> hold (|shaking force| or each joint's |bearing force| at each sample):
+  !> min t subject to r_k <= t.
   logical pure function is_minimax(self)
     class(design_problem_t), intent(in) :: self
-    is_minimax = self%objective_kind == 'shaking_peak'
+    is_minimax = self%objective_kind == 'shaking_peak' .or. self%objective_kind == 'bearing_peak'
   end function is_minimax
 
   !> The objective is made of analysis results r (the residuals): their sum
@@ -343,13 +359,16 @@ contains
 
   !> Residuals of the objective: 2 per target point (path), 2 per sample
   !> (shaking force components / sqrt(samples)), 1 per sample (minimax:
-  !> |shaking force|); none for the mass.
+  !> |shaking force|), the same per sample and named joint for the bearing
+  !> force; none for the mass.
   integer pure function n_residuals_design(self)
     class(design_problem_t), intent(in) :: self
     n_residuals_design = 0
     if (self%is_path()) n_residuals_design = 2*size(self%path_x)
     if (self%objective_kind == 'shaking') n_residuals_design = 2*self%samples
     if (self%objective_kind == 'shaking_peak') n_residuals_design = self%samples
+    if (self%objective_kind == 'bearing') n_residuals_design = 2*self%samples*size(self%bearing_joints)
+    if (self%objective_kind == 'bearing_peak') n_residuals_design = self%samples*size(self%bearing_joints)
   end function n_residuals_design
 
   !> The coupler point's (distance, angle in rad) at design x (clamped).
@@ -456,6 +475,10 @@ contains
       f = ev%rms_shaking**2
     case ('shaking_peak')
       f = ev%peak_shaking
+    case ('bearing')
+      f = ev%rms_bearing**2
+    case ('bearing_peak')
+      f = ev%peak_bearing
     case ('path')
       f = ev%path_error
     case default
@@ -573,7 +596,8 @@ contains
     ev%path_error = ev%path_error + one%path_error
     ev%rigid_path_error = ev%rigid_path_error + one%rigid_path_error
     ev%peak_shaking = max(ev%peak_shaking, one%peak_shaking)
-    mean_square = mean_square + one%rms_shaking**2
+    ev%peak_bearing = max(ev%peak_bearing, one%peak_bearing)
+    mean_square = mean_square + merge(one%rms_bearing, one%rms_shaking, self%is_bearing())**2
   end subroutine join_speed
 
   subroutine close_join(self, mass, ev, n_objective, mean_square)
@@ -586,8 +610,13 @@ contains
     ev%mass = mass
     ev%link_stress = maxval(ev%stress_at, dim=2)
     ev%lowest_frequency = minval(ev%frequency_at)
-    ev%rms_shaking = sqrt(mean_square/max(n_objective, 1))
-    if (self%objective_kind == 'shaking') ev%residual = ev%residual/sqrt(real(max(n_objective, 1), dp))
+    if (self%is_bearing()) then
+      ev%rms_bearing = sqrt(mean_square/max(n_objective, 1))
+    else
+      ev%rms_shaking = sqrt(mean_square/max(n_objective, 1))
+    end if
+    if (self%objective_kind == 'shaking' .or. self%objective_kind == 'bearing') &
+      ev%residual = ev%residual/sqrt(real(max(n_objective, 1), dp))
   end subroutine close_join
 
   !> One steady-state analysis at one speed (s of self%speeds): build,
@@ -702,8 +731,8 @@ contains
     type(tennant_stress_t), allocatable :: st(:)
     integer :: k, i, e, np
     real(dp) :: ra(2), rigid(2), flexible(2)
-    real(dp), allocatable :: shake(:, :), moment(:, :)
-    logical :: shaking
+    real(dp), allocatable :: shake(:, :), moment(:, :), qs(:, :), qds(:, :), qdds(:, :), bear(:, :, :)
+    logical :: shaking, bearing
     np = size(at_point)
     allocate(wn(model%n), st(size(model%el)))
     ev%lowest_frequency = huge(1.0_dp)
@@ -727,6 +756,14 @@ contains
     end if
     shaking = self%is_shaking()
     if (shaking) allocate(shake(2, self%samples), moment(2, self%samples))
+    bearing = self%is_bearing()
+    if (bearing) then
+      ! the rates at the samples by trigonometric interpolation (module joint_bearing)
+      qs = q(:, at_sample)
+      allocate(qds(model%n, self%samples), qdds(model%n, self%samples), &
+               bear(2, size(self%bearing_joints), self%samples))
+      call periodic_derivatives(qs, model%period(), qds, qdds)
+    end if
     allocate(ev%sample_stress(self%samples, mech%n_links, 1), &
              ev%sample_deflection(self%samples, self%n_deflection_points(), 1), ev%sample_transmission(self%samples))
     ev%sample_transmission = 0.0_dp
@@ -743,6 +780,7 @@ contains
         shake(:, k) = rigid_momentum_rate(model, mech)
         moment(:, k) = elastic_first_moment(model, mech, q(:, at_sample(k)))
       end if
+      if (bearing) bear(:, :, k) = bearing_forces(model, mech, self%bearing_joints, qs(:, k), qds(:, k), qdds(:, k))
       do i = 1, self%n_deflection_points()
         ev%sample_deflection(k, i, 1) = point_deflection(model, mech%links(self%deflection_link(i))%first_element, &
           mech%links(self%deflection_link(i))%n_elements, self%deflection_at(i), self%deflection_chord(i), &
@@ -770,10 +808,19 @@ contains
         ev%residual = reshape(shake, [2*self%samples])/sqrt(real(self%samples, dp))
       end if
     end if
+    if (bearing) then
+      ev%rms_bearing = sqrt(sum(bear**2)/self%samples)
+      ev%peak_bearing = maxval(hypot(bear(1, :, :), bear(2, :, :)))
+      if (self%is_minimax()) then
+        ev%residual = reshape(hypot(bear(1, :, :), bear(2, :, :)), [size(bear(1, :, :))])
+      else
+        ev%residual = reshape(bear, [size(bear)])/sqrt(real(self%samples, dp))
+      end if
+    end if
     ev%ok = ieee_is_finite(ev%mass) .and. all(ieee_is_finite(ev%link_stress)) .and. &
             all(ieee_is_finite(ev%sample_deflection)) .and. all(ieee_is_finite(ev%sample_transmission)) .and. &
             ieee_is_finite(ev%lowest_frequency) .and. ieee_is_finite(ev%path_error) .and. &
-            ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking)
+            ieee_is_finite(ev%rigid_path_error) .and. ieee_is_finite(ev%rms_shaking) .and. ieee_is_finite(ev%rms_bearing)
     if (.not. ev%ok) then
       ev%reason = 'the analysis gave a value that is not finite'
     else if (self%frequency_factor > 0.0_dp .and. .not. ev%lowest_frequency > 0.0_dp) then

@@ -78,6 +78,7 @@ module design_sequence
     real(dp) :: objective = 0.0_dp          !< scaled objective (mass / initial, or path error / initial)
     real(dp) :: path_error = 0.0_dp, rigid_path_error = 0.0_dp
     real(dp) :: peak_shaking = 0.0_dp, rms_shaking = 0.0_dp
+    real(dp) :: peak_bearing = 0.0_dp, rms_bearing = 0.0_dp
     real(dp) :: max_violation = 0.0_dp
     real(dp) :: move_limit = 0.0_dp         !< 1/rho of the next approximate problem
     real(dp), allocatable :: x(:), g(:)
@@ -484,6 +485,8 @@ contains
     st%rigid_path_error = ev%rigid_path_error
     st%peak_shaking = ev%peak_shaking
     st%rms_shaking = ev%rms_shaking
+    st%peak_bearing = ev%peak_bearing
+    st%rms_bearing = ev%rms_bearing
   end subroutine describe
 
   !> The analysis constraints at x and the objective's residuals (path

@@ -23,7 +23,8 @@ module shaking_force
   use steady_model, only: steady_model_t
   implicit none
   private
-  public :: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative, shaking_supported
+  public :: rigid_momentum_rate, elastic_first_moment, periodic_second_derivative, periodic_derivatives, &
+            shaking_supported
 
   !> 3-point Gauss-Legendre on [0, 1]: exact for the quintic w and linear u
   real(dp), parameter :: gx(3) = [0.5_dp - 0.5_dp*sqrt(0.6_dp), 0.5_dp, 0.5_dp + 0.5_dp*sqrt(0.6_dp)]
@@ -151,15 +152,26 @@ contains
   end function rotate
 
   !> d^2 s/dt^2 at the samples of one period (s(:, k) at t = (k - 1) T / N)
-  !> by trigonometric interpolation: the discrete Fourier coefficients times
-  !> -(2 pi j / T)^2, the Nyquist term of an even N dropped (it has no
-  !> unique derivative).  O(N^2): N is a few dozen.
+  !> by trigonometric interpolation (periodic_derivatives).
   function periodic_second_derivative(s, period) result(sdd)
     real(dp), intent(in) :: s(:, :), period
     real(dp) :: sdd(size(s, 1), size(s, 2))
+    real(dp) :: sd(size(s, 1), size(s, 2))
+    call periodic_derivatives(s, period, sd, sdd)
+  end function periodic_second_derivative
+
+  !> ds/dt and d^2 s/dt^2 at the samples of one period (s(:, k) at
+  !> t = (k - 1) T / N) by trigonometric interpolation: the discrete Fourier
+  !> coefficients times 2 pi j / T and -(2 pi j / T)^2, the Nyquist term of
+  !> an even N dropped (it has no unique derivative).  O(N^2): N is a few
+  !> dozen.
+  subroutine periodic_derivatives(s, period, sd, sdd)
+    real(dp), intent(in) :: s(:, :), period
+    real(dp), intent(out) :: sd(:, :), sdd(:, :)
     real(dp) :: ac(size(s, 1)), as(size(s, 1)), w, arg
     integer :: n, j, k
     n = size(s, 2)
+    sd = 0.0_dp
     sdd = 0.0_dp
     do j = 1, (n - 1)/2
       ac = 0.0_dp
@@ -174,8 +186,9 @@ contains
       w = 2.0_dp*pi*j/period
       do k = 1, n
         arg = 2.0_dp*pi*real(j*(k - 1), dp)/n
+        sd(:, k) = sd(:, k) + w*(as*cos(arg) - ac*sin(arg))
         sdd(:, k) = sdd(:, k) - w**2*(ac*cos(arg) + as*sin(arg))
       end do
     end do
-  end function periodic_second_derivative
+  end subroutine periodic_derivatives
 end module shaking_force
