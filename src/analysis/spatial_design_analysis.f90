@@ -136,6 +136,10 @@ contains
     opt%opts%xtol = ds%xtol
     opt%opts%feas_tol = ds%feas_tol
     opt%opts%ftol = ds%xtol**2
+    ! Potter's B11 evaluates the actual constraints and their differences at
+    ! each Newton iterate (n + 1 analyses each); on analyses with noise near
+    ! 1e-4 more than two of them buy nothing (doc/design.md)
+    opt%opts%newton_max_iter = 2
   end subroutine load_spatial_design
 
   !> The forward-difference step in x = ln(size): the analysis is the
