@@ -15,7 +15,7 @@ module design_settings
   use shaking_force, only: shaking_supported
   implicit none
   private
-  public :: design_settings_t, read_design_settings, echo_design_settings, unset_value
+  public :: design_settings_t, read_design_settings, read_design_group, echo_design_settings, unset_value
 
   integer, parameter :: max_vars = 20
   integer, parameter :: max_points = 72
@@ -103,6 +103,22 @@ contains
     type(mechanism_t), intent(in) :: mech
     type(design_settings_t), intent(out) :: s
     type(error_t), intent(inout) :: err
+    call read_design_group(deck, s, err)
+    if (err%failed()) return
+    call check_objective(deck, mech, s, err)
+    if (err%failed()) return
+    call check_deflections(deck, mech, s, err)
+    if (err%failed()) return
+    call check_transmission(deck, mech, s, err)
+  end subroutine read_design_settings
+
+  !> Read &design (required): the variables named one after another and the
+  !> checks that need no mechanism (check_settings; the spatial design's
+  !> checks follow in its own module).
+  subroutine read_design_group(deck, s, err)
+    type(deck_t), intent(inout) :: deck
+    type(design_settings_t), intent(out) :: s
+    type(error_t), intent(inout) :: err
     logical :: found
     integer :: n
     call stage_from(s)        ! (intent(out): the defaults)
@@ -116,13 +132,7 @@ contains
       return
     end if
     call check_settings(deck, s, err)
-    if (err%failed()) return
-    call check_objective(deck, mech, s, err)
-    if (err%failed()) return
-    call check_deflections(deck, mech, s, err)
-    if (err%failed()) return
-    call check_transmission(deck, mech, s, err)
-  end subroutine read_design_settings
+  end subroutine read_design_group
 
   !> Echo the group into the output header.
   subroutine echo_design_settings(s, out)

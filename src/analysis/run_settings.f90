@@ -58,6 +58,8 @@ contains
       groups(1:5) = [character(len=group_len) :: 'run', 'mechanism', 'steady', 'tennant', 'design']
     case ('spatial')
       groups(1:5) = [character(len=group_len) :: 'run', 'spatial_mechanism', 'transient', 'effects', 'spatial_loads']
+    case ('spatial_design')
+      groups(1:5) = [character(len=group_len) :: 'run', 'spatial_mechanism', 'transient', 'effects', 'design']
     case ('lsode_check')
       groups(1:2) = [character(len=group_len) :: 'run', 'lsode_check']
     case ('kinematics')
@@ -76,13 +78,14 @@ contains
     character(len=*), intent(in) :: analysis_name
     logical, intent(in) :: sweep
     type(error_t), intent(inout) :: err
-    character(len=group_len) :: known(1 + 8*max_groups), reads(max_groups)
+    character(len=group_len) :: known(1 + 9*max_groups), reads(max_groups)
     reads = analysis_groups(trim(analysis_name))
     if (len_trim(reads(1)) == 0) return   ! the name itself is refused elsewhere
     ! every group of the program, for the suggestion (repeats and blanks do no harm)
     known = [character(len=group_len) :: 'sweep', analysis_groups('transient'), analysis_groups('steady'), &
              analysis_groups('optimize'), analysis_groups('design'), analysis_groups('spatial'), &
-             analysis_groups('lsode_check'), analysis_groups('kinematics'), analysis_groups('general_transient')]
+             analysis_groups('spatial_design'), analysis_groups('lsode_check'), analysis_groups('kinematics'), &
+             analysis_groups('general_transient')]
     if (sweep) then
       call check_deck_layout(deck, trim(analysis_name), [character(len=group_len) :: reads, 'sweep'], known, err)
     else

@@ -17,7 +17,7 @@ module spatial_settings
   use spatial_model, only: spatial_link_t, spatial_joint_spherical, spatial_joint_revolute, spatial_joint_universal
   implicit none
   private
-  public :: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial
+  public :: spatial_input_t, read_spatial_mechanism, spatial_mechanism_group, build_spatial, write_spatial_mechanism
 
   !> The group as read; the default initialisation is the documented defaults (doc/decks.md).
   type :: spatial_input_t
@@ -195,6 +195,14 @@ contains
       joint_kind = spatial_joint_spherical
     end select
   end function joint_kind
+
+  !> The group with the values of s on unit u (a deck the design writes).
+  subroutine write_spatial_mechanism(s, u)
+    type(spatial_input_t), intent(in) :: s
+    integer, intent(in) :: u
+    call stage_from(s)
+    write(u, nml=spatial_mechanism, delim='apostrophe')
+  end subroutine write_spatial_mechanism
 
   !> The &spatial_mechanism group's namelist read and write (deck_reader, table_t%echo_group).
   subroutine spatial_mechanism_group(r)

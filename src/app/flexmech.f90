@@ -24,6 +24,7 @@ program flexmech
   use steady_analysis, only: run_steady
   use spatial_analysis, only: run_spatial
   use design_analysis, only: run_design
+  use spatial_design_analysis, only: run_spatial_design
   use plot_command, only: dispatch_plot
   use subcommands, only: dispatch_subcommands
   implicit none
@@ -72,7 +73,8 @@ program flexmech
   ! the analyses, in the order the message of an unknown name lists them
   analyses = [analysis_t('transient', run_transient), analysis_t('steady', run_steady), &
               analysis_t('optimize', run_optimize), analysis_t('design', run_design), &
-              analysis_t('spatial', run_spatial), analysis_t('lsode_check', run_lsode_check), &
+              analysis_t('spatial', run_spatial), analysis_t('spatial_design', run_spatial_design), &
+              analysis_t('lsode_check', run_lsode_check), &
               analysis_t('kinematics', run_kinematics), analysis_t('general_transient', run_general_transient)]
   k = position(analyses, analysis)
   if (k > 0) then

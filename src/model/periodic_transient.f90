@@ -1,10 +1,13 @@
-!> The transient analysis run to its periodic state: the planar transient
-!> model (module mechanism_model, DLSODE) integrated revolution after
-!> revolution from a given state until the response repeats, as the
+!> The transient analysis run to its periodic state: a transient model (the
+!> planar mechanism_model or the spatial spatial_model, DLSODE) integrated
+!> revolution after revolution from a given state until the response repeats, as the
 !> transient analysis' stop_when_periodic does, for callers that need the
-!> periodic response itself (the design analysis' 'transient' evaluator).
+!> periodic response itself (the design analysis' 'transient' evaluator,
+!> the spatial design).
 !>
-!>     call transient_to_periodic(model, s, y, times, q, rep, err)
+!>     call transient_to_periodic(model, s, y, times, q, rep, err [, omega])
+!>
+!> omega: the crank speed (rad/s); left out, a planar model's driver speed.
 !>
 !> y: the interleaved state (q, q_d) at t = 0 (zeros: from rest; the previous
 !> design's periodic state: a warm start); on return the state at the start
@@ -29,6 +32,7 @@ module periodic_transient
   use error_status, only: error_t
   use strings, only: str
   use lsode_solver, only: lsode_t, lsode_counters_t, mf_adams, mf_bdf_band_user
+  use second_order_model, only: second_order_model_t
   use mechanism_model, only: mechanism_model_t
   implicit none
   private
@@ -38,7 +42,8 @@ module periodic_transient
     real(dp) :: tolerance = 1.0e-6_dp     !< largest relative change per revolution (stop_when_periodic)
     integer :: max_revolutions = 200      !< not periodic by then: a failure
     real(dp) :: rtol = 1.0e-7_dp          !< DLSODE relative tolerance
-    real(dp) :: atol = 1.0e-11_dp         !< DLSODE absolute tolerance (displacements and rates)
+    real(dp) :: atol = 1.0e-11_dp         !< DLSODE absolute tolerance (displacements; rates too by default)
+    real(dp) :: atol_rate = -1.0_dp       !< of the rates; < 0: atol
     logical :: bdf = .true.               !< banded BDF with the model's Newton matrix; else Adams
     integer :: max_steps = 200000         !< DLSODE steps per call (as shooting's per revolution)
   end type periodic_transient_settings_t
@@ -52,29 +57,41 @@ module periodic_transient
 
 contains
 
-  subroutine transient_to_periodic(model, s, y, times, q, rep, err)
-    type(mechanism_model_t), intent(inout), target :: model
+  subroutine transient_to_periodic(model, s, y, times, q, rep, err, omega)
+    class(second_order_model_t), intent(inout), target :: model
     type(periodic_transient_settings_t), intent(in) :: s
     real(dp), intent(inout), contiguous :: y(:)
     real(dp), intent(in) :: times(:)
     real(dp), intent(out) :: q(:, :)
     type(periodic_transient_report_t), intent(out) :: rep
     type(error_t), intent(inout) :: err
+    real(dp), intent(in), optional :: omega
     type(lsode_t) :: ode
     type(lsode_counters_t) :: c
     real(dp) :: prev(size(q, 1), size(q, 2)), y_start(size(y)), peak(size(q, 1))
-    real(dp) :: period, t0, floor
+    real(dp) :: period, t0, floor, speed, atol(size(y))
     integer :: r, k, ml, mf
     if (err%failed()) return
-    if (.not. model%kin%mech%driver%omega > 0.0_dp) then
+    speed = 0.0_dp
+    if (present(omega)) then
+      speed = omega
+    else
+      select type (model)
+      class is (mechanism_model_t)
+        speed = model%kin%mech%driver%omega
+      end select
+    end if
+    if (.not. speed > 0.0_dp) then
       call err%set('transient to periodic', 'needs a crank turning at a constant speed > 0')
       return
     end if
-    period = two_pi/model%kin%mech%driver%omega
+    period = two_pi/speed
     mf = mf_adams
     if (s%bdf) mf = mf_bdf_band_user
     ml = min(2*model%kd + 1, size(y) - 1)
-    call ode%init(size(y), 0.0_dp, mf, s%rtol, [s%atol], err, ml=ml, mu=ml, max_steps=s%max_steps)
+    atol(1::2) = s%atol
+    atol(2::2) = merge(s%atol_rate, s%atol, s%atol_rate >= 0.0_dp)
+    call ode%init(size(y), 0.0_dp, mf, s%rtol, atol, err, ml=ml, mu=ml, max_steps=s%max_steps)
     if (err%failed()) return
     y_start = y
     do r = 1, s%max_revolutions
